@@ -1,0 +1,23 @@
+# sb_module(NAME SOURCES a.cc b.cc DEPS sb_base ... TEST_DEPS ...)
+# Creates the static library sb_NAME (part of libstrangebeta) from SOURCES and,
+# when tests are on, the test binary sb_NAME_test from every *_test.cc in the
+# module folder. Modules may only depend on modules below them.
+function(sb_module name)
+  cmake_parse_arguments(M "" "" "SOURCES;DEPS;TEST_DEPS" ${ARGN})
+  add_library(sb_${name} STATIC ${M_SOURCES})
+  target_include_directories(sb_${name} PUBLIC ${CMAKE_SOURCE_DIR}/src)
+  target_link_libraries(sb_${name} PUBLIC ${M_DEPS})
+  target_compile_definitions(sb_${name} PRIVATE SB_SOURCE_DIR="${CMAKE_SOURCE_DIR}")
+  if(SB_BUILD_TESTS)
+    file(GLOB tests CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*_test.cc)
+    if(tests)
+      add_executable(sb_${name}_test ${tests})
+      target_link_libraries(sb_${name}_test PRIVATE sb_${name} ${M_TEST_DEPS} GTest::gtest_main GTest::gmock)
+      target_compile_definitions(sb_${name}_test PRIVATE
+        SB_SHARED_DIR="${SB_SHARED_DIR}" SB_SOURCE_DIR="${CMAKE_SOURCE_DIR}"
+        SB_BINARY_DIR="${CMAKE_BINARY_DIR}")
+      gtest_discover_tests(sb_${name}_test DISCOVERY_TIMEOUT 60
+        PROPERTIES ENVIRONMENT "SB_SHARED=${SB_SHARED_DIR}")
+    endif()
+  endif()
+endfunction()

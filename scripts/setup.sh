@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Installs the Debian packages strangebeta needs to build, test and run.
+# Installs nothing when everything is present. Safe to run repeatedly.
+set -euo pipefail
+
+PACKAGES=(
+  build-essential cmake pkg-config ninja-build
+  libcli11-dev nlohmann-json3-dev libfmt-dev
+  libsqlite3-dev libcpp-httplib-dev libcairo2-dev libsodium-dev
+  libnanoflann-dev libhwy-dev
+  libopenmpi-dev openmpi-bin
+  libgtest-dev libgmock-dev libbenchmark-dev
+  wrk chromium chromium-driver nodejs npm
+  poppler-utils
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    # nodejs/npm may come from outside Debian (e.g. a preinstalled toolchain).
+    if [[ "$p" == nodejs && -x "$(command -v node)" ]]; then continue; fi
+    if [[ "$p" == npm && -x "$(command -v npm)" ]]; then continue; fi
+    missing+=("$p")
+  fi
+done
+
+if ((${#missing[@]})); then
+  echo "setup: installing ${missing[*]}"
+  SUDO=""
+  if [[ $(id -u) -ne 0 ]]; then SUDO=sudo; fi
+  export DEBIAN_FRONTEND=noninteractive
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+else
+  echo "setup: all Debian packages present"
+fi

@@ -1,0 +1,40 @@
+#include "base/text.h"
+
+#include <gtest/gtest.h>
+
+#include "base/files.h"
+#include "base/status.h"
+
+namespace sb {
+namespace {
+
+TEST(Text, TrimAndLower) {
+  EXPECT_EQ(Trim("  a b \r\n"), "a b");
+  EXPECT_EQ(Trim(""), "");
+  EXPECT_EQ(ToLower("MaTcH"), "match");
+}
+
+TEST(Text, SplitLinesHandlesCrlfAndFinalNewline) {
+  auto lines = SplitLines("a\r\nb\n\nc\n");
+  ASSERT_EQ(lines.size(), 4u);
+  EXPECT_EQ(lines[0], "a");
+  EXPECT_EQ(lines[1], "b");
+  EXPECT_EQ(lines[2], "");
+  EXPECT_EQ(lines[3], "c");
+}
+
+TEST(Text, XmlEscape) { EXPECT_EQ(XmlEscape("<a&'\">"), "&lt;a&amp;&#39;&quot;&gt;"); }
+
+TEST(Files, AtomicWriteThenRead) {
+  std::string path = ::testing::TempDir() + "sb_files_test.txt";
+  ASSERT_TRUE(WriteFileAtomic(path, "hello\n").ok());
+  auto r = ReadFile(path);
+  ASSERT_TRUE(r.ok());
+  EXPECT_EQ(*r, "hello\n");
+  auto missing = ReadFile(path + ".nope");
+  EXPECT_FALSE(missing.ok());
+  EXPECT_EQ(missing.status().code(), Status::Code::kNotFound);
+}
+
+}  // namespace
+}  // namespace sb
