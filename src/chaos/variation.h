@@ -1,0 +1,78 @@
+// Chaotic variation of one or more routes (paper sections 6–7).
+#ifndef SB_CHAOS_VARIATION_H_
+#define SB_CHAOS_VARIATION_H_
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "base/status.h"
+#include "chaos/mapping.h"
+#include "chaos/ode.h"
+#include "crdl/route.h"
+
+namespace sb::chaos {
+
+// Every parameter of a variation. Defaults are the "default" preset.
+struct VaryParams {
+  std::string preset = "default";
+  System system = System::Lorenz();
+  IntegratorKind integrator = IntegratorKind::kRk4;
+  double step = 0.015;
+  State ref_ic = {-13.0, -12.0, 52.0};
+  State var_ic = {-16.0, -12.0, 52.0};
+  int skip = 0;
+  MappingOptions mapping;
+
+  // The named preset: "default" (IC_v -16,-12,52; skip 0) or "more"
+  // (IC_v -16,-13.5,52; skip 100). Errors name the unknown preset.
+  static Result<VaryParams> Preset(std::string_view name);
+  // Checks ranges (step > 0 and finite, skip >= 0, finite ICs and params,
+  // max_repeat >= 0, mask non-empty). Errors name the field.
+  Status Validate() const;
+};
+
+// A route given to Vary, with the name the plan shows for it.
+struct InputRoute {
+  std::string name;
+  Route route;
+};
+
+// Where a varied move came from: route = position among the inputs, move =
+// index within that route's moves (both 0-based).
+struct SourceRef {
+  int route = 0;
+  int move = 0;
+  bool operator==(const SourceRef&) const = default;
+};
+
+struct VariedMove {
+  Hand hand = Hand::kRight;
+  std::string text;                 // empty for a blank
+  std::optional<SourceRef> source;  // nullopt for a blank (Dabby rule)
+  bool changed = false;             // source index != position
+  std::vector<std::string> notes;   // e.g. "(match?)"
+};
+
+struct Variation {
+  VaryParams params;
+  std::vector<InputRoute> inputs;
+  std::vector<VariedMove> moves;   // one per input move, in order
+  std::vector<State> reference;    // reference trajectory points r_1..r_n
+  std::vector<State> variation;    // variation trajectory points v_1..v_n
+  std::vector<int> mapping;        // k(j) per position, -1 for a blank
+};
+
+// The input moves after match handling, concatenated in input order: a move
+// whose text is "match" takes the text of the previous move of the other hand
+// in the same route (keeping its own hand) and the note "(match?)"; a leading
+// match with no such move is kept as is.
+std::vector<VariedMove> PrepareMoves(const std::vector<InputRoute>& inputs);
+
+// Generates the variation. Errors: kInvalidInput for bad parameters or no
+// moves. Pure; thread-safe. Cost O(n log n) in the number of moves.
+Result<Variation> Vary(std::vector<InputRoute> inputs, const VaryParams& params);
+
+}  // namespace sb::chaos
+
+#endif  // SB_CHAOS_VARIATION_H_
