@@ -1,0 +1,110 @@
+#include "crdl/route.h"
+
+#include <gtest/gtest.h>
+
+namespace sb {
+namespace {
+
+constexpr const char* kFigure1 =
+    "Problem 13 from the CU-hosted RMR CCS\n"
+    "name: Problem 13\n"
+    "grade: 5.10\n"
+    "\n"
+    "A few large moves between moderate crimps.\n"
+    "---\n"
+    "R slopey ledge\n"
+    "L match\n"
+    "# a comment\n"
+    "\n"
+    "right medium crimp sidepull\n"
+    "LEFT diagonal sloper\n";
+
+TEST(Crdl, ParsesHeaderMetadataAndMoves) {
+  auto r = ParseCrdl(kFigure1, "fig1.crdl");
+  ASSERT_TRUE(r.ok()) << r.status().message();
+  EXPECT_EQ(r->Meta("name").value(), "Problem 13");
+  EXPECT_EQ(r->Meta("GRADE").value(), "5.10");
+  EXPECT_FALSE(r->Meta("setter").has_value());
+  ASSERT_EQ(r->header.size(), 5u);
+  EXPECT_EQ(r->header[0].key, "");
+  EXPECT_EQ(r->header[0].value, "Problem 13 from the CU-hosted RMR CCS");
+  ASSERT_EQ(r->moves.size(), 4u);
+  EXPECT_EQ(r->moves[0].hand, Hand::kRight);
+  EXPECT_EQ(r->moves[0].text, "slopey ledge");
+  EXPECT_EQ(r->moves[1].hand, Hand::kLeft);
+  EXPECT_EQ(r->moves[2].hand, Hand::kRight);
+  EXPECT_EQ(r->moves[2].text, "medium crimp sidepull");
+  EXPECT_EQ(r->moves[2].line, 11);
+  EXPECT_EQ(r->moves[3].hand, Hand::kLeft);
+  EXPECT_EQ(r->Name(), "Problem 13");
+}
+
+TEST(Crdl, CrlfAndBomTolerated) {
+  auto r = ParseCrdl("\xEF\xBB\xBFname: x\r\n---\r\nR jug\r\nL crimp\r\n", "a.crdl");
+  ASSERT_TRUE(r.ok()) << r.status().message();
+  EXPECT_EQ(r->moves[1].text, "crimp");
+  EXPECT_EQ(r->Meta("name").value(), "x");
+}
+
+TEST(Crdl, RoundTrip) {
+  auto r = ParseCrdl(kFigure1, "fig1.crdl");
+  ASSERT_TRUE(r.ok());
+  std::string printed = PrintCrdl(*r);
+  auto again = ParseCrdl(printed, "printed");
+  ASSERT_TRUE(again.ok()) << again.status().message();
+  EXPECT_EQ(*again, *r);
+  EXPECT_EQ(PrintCrdl(*again), printed);
+}
+
+TEST(Crdl, UrlInDescriptionIsNotMetadata) {
+  auto r = ParseCrdl("see http://example.org\nurl:http://x\n---\nR jug\n", "a");
+  ASSERT_TRUE(r.ok());
+  EXPECT_FALSE(r->Meta("url").has_value());
+}
+
+struct BadCase {
+  const char* text;
+  const char* message;
+};
+
+TEST(Crdl, ErrorsNameFileLineAndColumn) {
+  const BadCase cases[] = {
+      {"name: a\n---\nR jug\nR crimp\nL pinch\nR edge\nQ jug\n",
+       "route.crdl:7:1: expected hand L or R, got \"Q\""},
+      {"---\nR jug\n  Lx crimp\n", "route.crdl:3:3: expected hand L or R, got \"Lx\""},
+      {"name: a\nR jug\n", "route.crdl:2:1: missing \"---\" line between the header and the moves"},
+      {"name: a\n---\n\n# only a comment\n", "route.crdl:2:1: route has no moves after \"---\""},
+      {"---\nR jug\nL\n", "route.crdl:3:2: empty move text after hand L"},
+      {"---\nR jug\nleft    \n", "route.crdl:3:5: empty move text after hand L"},
+      {"name: a\n --- \nR jug\n", "route.crdl:2:1: the separator line must be exactly \"---\""},
+      {"---\nR ju\xFFg\n", "route.crdl:2:5: invalid UTF-8"},
+      {"", "route.crdl:1:1: missing \"---\" line between the header and the moves"},
+  };
+  for (const BadCase& c : cases) {
+    auto r = ParseCrdl(c.text, "route.crdl");
+    ASSERT_FALSE(r.ok()) << c.text;
+    EXPECT_EQ(r.status().code(), Status::Code::kInvalidInput);
+    EXPECT_EQ(r.status().message(), c.message);
+  }
+}
+
+TEST(Crdl, MatchText) {
+  EXPECT_TRUE(IsMatchText("match"));
+  EXPECT_TRUE(IsMatchText(" MATCH. "));
+  EXPECT_TRUE(IsMatchText("Match!"));
+  EXPECT_FALSE(IsMatchText("match on jug"));
+  EXPECT_FALSE(IsMatchText("rematch"));
+}
+
+TEST(Crdl, SetMetaReplacesOrAppends) {
+  Route r;
+  r.SetMeta("name", "a");
+  r.SetMeta("Name", "b");
+  EXPECT_EQ(r.header.size(), 1u);
+  EXPECT_EQ(r.Name(), "b");
+  r.SetMeta("grade", "V3");
+  EXPECT_EQ(r.header.size(), 2u);
+}
+
+}  // namespace
+}  // namespace sb
