@@ -11,7 +11,7 @@ PACKAGES=(
   libopenmpi-dev openmpi-bin
   libgtest-dev libgmock-dev libbenchmark-dev
   wrk chromium chromium-driver nodejs npm
-  poppler-utils
+  poppler-utils fonts-dejavu-core
 )
 
 missing=()

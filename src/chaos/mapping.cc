@@ -3,8 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-
-#include <nanoflann.hpp>
+#include <thread>
 
 #include "base/text.h"
 
@@ -55,55 +54,193 @@ const char* DabbyDirectionName(DabbyDirection d) {
 }
 
 // ---------------------------------------------------------------------------
-// k-d tree over the masked coordinates (nanoflann).
+// Uniform grid over the masked coordinates: points are bucketed by cell and
+// stored cell by cell (good locality for trajectory-ordered queries); a query
+// scans cells in rings of growing Chebyshev radius around its own cell and
+// stops once no unscanned cell can hold a point as near as the k-th best.
 
 namespace {
 constexpr size_t kBruteForceMax = 64;
 
-struct Cloud {
-  std::vector<double> coords;  // dims values per point
-  size_t dims = 0;
-  size_t kdtree_get_point_count() const { return dims ? coords.size() / dims : 0; }
-  double kdtree_get_pt(size_t idx, size_t d) const { return coords[idx * dims + d]; }
-  template <class BBox>
-  bool kdtree_get_bbox(BBox&) const {
-    return false;
-  }
-};
-
-using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Cloud>,
-                                                   Cloud, -1, uint32_t>;
+// A candidate: (squared distance, index), ordered lexicographically.
+using Cand = std::pair<double, int>;
 }  // namespace
 
 struct NearestIndex::Tree {
-  Cloud cloud;
-  std::unique_ptr<KdTree> index;
+  int dims = 0;
+  int axis[3] = {0, 0, 0};          // state component of each grid axis
+  double lo[3] = {0, 0, 0};         // grid origin
+  double cell = 1.0;                // cell edge length
+  long g[3] = {1, 1, 1};            // cells per axis
+  std::vector<uint32_t> start;      // CSR: points of cell c are [start[c], start[c+1])
+  std::vector<int> index;           // original index of each stored point
+  std::vector<double> coords;       // stored points' coordinates, dims per point
+
+  long CellOf(int a, double v) const {
+    double f = std::floor((v - lo[a]) / cell);
+    if (!(f >= 0)) return 0;  // also NaN
+    return f >= static_cast<double>(g[a]) ? g[a] - 1 : static_cast<long>(f);
+  }
 };
 
 NearestIndex::NearestIndex(const std::vector<State>& points, DimMask mask)
     : points_(points), mask_(mask) {
   if (points_.size() <= kBruteForceMax || mask_ == 0) return;
-  tree_ = std::make_unique<Tree>();
+  auto t = std::make_unique<Tree>();
   for (int i = 0; i < 3; ++i) {
-    if (mask_ & (1u << i)) ++tree_->cloud.dims;
+    if (mask_ & (1u << i)) t->axis[t->dims++] = i;
   }
-  tree_->cloud.coords.reserve(points_.size() * tree_->cloud.dims);
-  for (const State& p : points_) {
-    for (int i = 0; i < 3; ++i) {
-      if (mask_ & (1u << i)) tree_->cloud.coords.push_back(p[i]);
+  const size_t n = points_.size();
+  double hi[3];
+  for (int a = 0; a < t->dims; ++a) {
+    t->lo[a] = hi[a] = points_[0][t->axis[a]];
+    for (const State& p : points_) {
+      double v = p[t->axis[a]];
+      if (!std::isfinite(v)) return;  // leave brute force to cope with non-finite data
+      t->lo[a] = std::min(t->lo[a], v);
+      hi[a] = std::max(hi[a], v);
     }
   }
-  tree_->index = std::make_unique<KdTree>(static_cast<int>(tree_->cloud.dims), tree_->cloud,
-                                          nanoflann::KDTreeSingleIndexAdaptorParams(16));
+  // About one cell per point over the bounding box (the attractor fills only
+  // part of it, so occupied cells hold a few points each), at most 4M cells.
+  double extent_max = 0, volume = 1;
+  for (int a = 0; a < t->dims; ++a) extent_max = std::max(extent_max, hi[a] - t->lo[a]);
+  if (!(extent_max > 0)) return;  // all points equal: brute force handles ties
+  for (int a = 0; a < t->dims; ++a) volume *= std::max(hi[a] - t->lo[a], extent_max * 1e-6);
+  double target = std::min<double>(static_cast<double>(n), 4e6);
+  t->cell = std::pow(volume / target, 1.0 / t->dims);
+  long cells = 1;
+  for (int a = 0; a < t->dims; ++a) {
+    t->g[a] = std::max(1L, static_cast<long>(std::ceil((hi[a] - t->lo[a]) / t->cell)) + 1);
+    cells *= t->g[a];
+  }
+  auto cell_id = [&](const State& p) {
+    long c = 0;
+    for (int a = t->dims - 1; a >= 0; --a) c = c * t->g[a] + t->CellOf(a, p[t->axis[a]]);
+    return c;
+  };
+  t->start.assign(cells + 1, 0);
+  std::vector<long> ids(n);
+  for (size_t i = 0; i < n; ++i) {
+    ids[i] = cell_id(points_[i]);
+    ++t->start[ids[i] + 1];
+  }
+  for (long c = 0; c < cells; ++c) t->start[c + 1] += t->start[c];
+  std::vector<uint32_t> fill(t->start.begin(), t->start.end() - 1);
+  t->index.resize(n);
+  t->coords.resize(n * t->dims);
+  for (size_t i = 0; i < n; ++i) {  // ascending i: each cell lists indices in order
+    uint32_t slot = fill[ids[i]]++;
+    t->index[slot] = static_cast<int>(i);
+    for (int a = 0; a < t->dims; ++a) t->coords[slot * t->dims + a] = points_[i][t->axis[a]];
+  }
+  tree_ = std::move(t);
 }
 
 NearestIndex::~NearestIndex() = default;
 
 namespace {
-bool Better(double d, int i, double best_d, int best_i) {
-  return d < best_d || (d == best_d && i < best_i);
+
+// Keeps the k best candidates in a max-heap ordered by (distance, index).
+void Offer(std::vector<Cand>& heap, size_t k, Cand c) {
+  if (heap.size() < k) {
+    heap.push_back(c);
+    std::push_heap(heap.begin(), heap.end());
+  } else if (c < heap.front()) {
+    std::pop_heap(heap.begin(), heap.end());
+    heap.back() = c;
+    std::push_heap(heap.begin(), heap.end());
+  }
 }
+
 }  // namespace
+
+// The k nearest (distance, index) pairs in ascending order.
+static std::vector<Cand> GridSearch(const NearestIndex::Tree& t, const std::vector<State>& pts,
+                                    DimMask mask, const State& q, size_t k);
+
+std::vector<Cand> GridSearch(const NearestIndex::Tree& t, const std::vector<State>& pts,
+                             DimMask mask, const State& q, size_t k) {
+  (void)pts;
+  (void)mask;
+  const int d = t.dims;
+  long c[3] = {0, 0, 0};
+  double qa[3] = {0, 0, 0};
+  for (int a = 0; a < d; ++a) {
+    qa[a] = q[t.axis[a]];
+    c[a] = t.CellOf(a, qa[a]);
+  }
+  std::vector<Cand> heap;
+  heap.reserve(k + 1);
+  Cand best1{std::numeric_limits<double>::infinity(), std::numeric_limits<int>::max()};
+  bool have1 = false;
+  auto scan_cell = [&](long id) {
+    if (k == 1) {
+      for (uint32_t s = t.start[id], e = t.start[id + 1]; s < e; ++s) {
+        const double* p = &t.coords[static_cast<size_t>(s) * d];
+        double dist = 0.0;
+        for (int a = 0; a < d; ++a) {
+          double diff = qa[a] - p[a];
+          dist += diff * diff;
+        }
+        Cand c{dist, t.index[s]};
+        if (c < best1) best1 = c;
+        have1 = true;
+      }
+      return;
+    }
+    for (uint32_t s = t.start[id], e = t.start[id + 1]; s < e; ++s) {
+      const double* p = &t.coords[static_cast<size_t>(s) * d];
+      double dist = 0.0;
+      for (int a = 0; a < d; ++a) {
+        double diff = qa[a] - p[a];
+        dist += diff * diff;
+      }
+      Offer(heap, k, {dist, t.index[s]});
+    }
+  };
+  long max_r = 0;
+  for (int a = 0; a < d; ++a) max_r = std::max({max_r, c[a], t.g[a] - 1 - c[a]});
+  for (long r = 0; r <= max_r; ++r) {
+    // Visit every cell at Chebyshev distance exactly r from c (clipped to the grid).
+    long lo[3], hi[3];
+    for (int a = 0; a < d; ++a) {
+      lo[a] = std::max(0L, c[a] - r);
+      hi[a] = std::min(t.g[a] - 1, c[a] + r);
+    }
+    long cur[3] = {lo[0], lo[1], lo[2]};
+    for (;;) {
+      bool on_ring = false;
+      for (int a = 0; a < d; ++a) on_ring |= (cur[a] == c[a] - r || cur[a] == c[a] + r);
+      if (on_ring || r == 0) {
+        long id = 0;
+        for (int a = d - 1; a >= 0; --a) id = id * t.g[a] + cur[a];
+        scan_cell(id);
+      }
+      int a = 0;
+      while (a < d && ++cur[a] > hi[a]) {
+        cur[a] = lo[a];
+        ++a;
+      }
+      if (a == d) break;
+    }
+    if (k == 1 ? !have1 : heap.size() < k) continue;
+    double kth = k == 1 ? best1.first : heap.front().first;
+    // Lower bound on the distance to any cell outside the scanned block.
+    double bound = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < d; ++a) {
+      if (c[a] - r > 0) bound = std::min(bound, qa[a] - (t.lo[a] + (c[a] - r) * t.cell));
+      if (c[a] + r < t.g[a] - 1) bound = std::min(bound, t.lo[a] + (c[a] + r + 1) * t.cell - qa[a]);
+    }
+    if (bound == std::numeric_limits<double>::infinity()) break;  // whole grid scanned
+    // A safety margin covers rounding in cell assignment and distances.
+    bound -= t.cell * 1e-9 + std::abs(bound) * 1e-12;
+    if (bound > 0 && bound * bound > kth) break;
+  }
+  if (k == 1) return {best1};
+  std::sort_heap(heap.begin(), heap.end());
+  return heap;
+}
 
 int NearestIndex::Nearest(const State& q) const {
   if (points_.empty()) return -1;
@@ -119,59 +256,21 @@ int NearestIndex::Nearest(const State& q) const {
     }
     return best;
   }
-  double qp[3];
-  size_t k = 0;
-  for (int i = 0; i < 3; ++i) {
-    if (mask_ & (1u << i)) qp[k++] = q[i];
-  }
-  uint32_t idx[2];
-  double dist[2];
-  size_t found = tree_->index->knnSearch(qp, 2, idx, dist);
-  int best = static_cast<int>(idx[0]);
-  double best_d = MaskedDist2(q, points_[best], mask_);
-  if (found == 2 && dist[1] <= dist[0]) {
-    // An exact tie: collect every point at that distance and take the lowest index.
-    std::vector<std::pair<uint32_t, double>> hits;
-    double radius = std::nextafter(dist[0], std::numeric_limits<double>::infinity());
-    tree_->index->radiusSearch(qp, radius, hits, nanoflann::SearchParams(32, 0, false));
-    for (const auto& h : hits) {
-      double d = MaskedDist2(q, points_[h.first], mask_);
-      if (Better(d, static_cast<int>(h.first), best_d, best)) {
-        best_d = d;
-        best = static_cast<int>(h.first);
-      }
-    }
-  }
-  return best;
+  return GridSearch(*tree_, points_, mask_, q, 1)[0].second;
 }
 
 std::vector<int> NearestIndex::KNearest(const State& q, int k) const {
-  std::vector<std::pair<double, int>> cand;
   size_t want = std::min<size_t>(k > 0 ? k : 0, points_.size());
   if (want == 0) return {};
+  std::vector<Cand> cand;
   if (!tree_) {
     for (size_t i = 0; i < points_.size(); ++i) {
       cand.emplace_back(MaskedDist2(q, points_[i], mask_), static_cast<int>(i));
     }
+    std::sort(cand.begin(), cand.end());
   } else {
-    double qp[3];
-    size_t d = 0;
-    for (int i = 0; i < 3; ++i) {
-      if (mask_ & (1u << i)) qp[d++] = q[i];
-    }
-    std::vector<uint32_t> idx(want);
-    std::vector<double> dist(want);
-    size_t found = tree_->index->knnSearch(qp, want, idx.data(), dist.data());
-    // Include every point tied with the k-th so the (distance, index) order is exact.
-    double radius =
-        std::nextafter(dist[found - 1], std::numeric_limits<double>::infinity());
-    std::vector<std::pair<uint32_t, double>> hits;
-    tree_->index->radiusSearch(qp, radius, hits, nanoflann::SearchParams(32, 0, false));
-    for (const auto& h : hits) {
-      cand.emplace_back(MaskedDist2(q, points_[h.first], mask_), static_cast<int>(h.first));
-    }
+    cand = GridSearch(*tree_, points_, mask_, q, want);
   }
-  std::sort(cand.begin(), cand.end());
   std::vector<int> out;
   for (size_t i = 0; i < cand.size() && out.size() < want; ++i) out.push_back(cand[i].second);
   return out;
@@ -239,6 +338,23 @@ std::vector<int> MapTrajectory(const std::vector<State>& reference,
 
   if (options.kind == MappingKind::kEuclidean) {
     NearestIndex index(reference, options.mask);
+    if (options.max_repeat <= 0) {
+      // Independent queries: split them across threads for long inputs.
+      unsigned threads = n >= 65536 ? std::max(1u, std::thread::hardware_concurrency()) : 1;
+      threads = std::min(threads, 8u);
+      auto work = [&](size_t begin, size_t end) {
+        for (size_t j = begin; j < end; ++j) k[j] = index.Nearest(variation[j]);
+      };
+      std::vector<std::thread> pool;
+      size_t chunk = (n + threads - 1) / threads;
+      for (unsigned t = 1; t < threads; ++t) {
+        size_t b = std::min(n, t * chunk), e = std::min(n, (t + 1) * chunk);
+        pool.emplace_back(work, b, e);
+      }
+      work(0, std::min(n, chunk));
+      for (auto& th : pool) th.join();
+      return k;
+    }
     for (size_t j = 0; j < n; ++j) {
       int best = index.Nearest(variation[j]);
       if (!allowed(best)) {

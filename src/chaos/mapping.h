@@ -54,8 +54,9 @@ inline double MaskedDist2(const State& a, const State& b, DimMask mask) {
 }
 
 // Nearest-neighbour index over a fixed set of reference points. Exact: the
-// answer is the point of least MaskedDist2, ties to the lowest index. Uses a
-// k-d tree for large sets, so a query is O(log n) on average. Immutable after
+// answer is the point of least MaskedDist2, ties to the lowest index. Large
+// sets are bucketed in a uniform grid over the masked coordinates (about one
+// cell per point), so a query near the points scans O(1) cells on average. Immutable after
 // construction; queries are thread-safe. Holds its own copy of the points.
 class NearestIndex {
  public:
@@ -70,8 +71,9 @@ class NearestIndex {
   std::vector<int> KNearest(const State& q, int k) const;
   size_t size() const { return points_.size(); }
 
+  struct Tree;  // the grid (implementation detail)
+
  private:
-  struct Tree;
   std::vector<State> points_;
   DimMask mask_;
   std::unique_ptr<Tree> tree_;  // null for small sets (brute force)

@@ -1,5 +1,6 @@
 #include "chaos/mapping.h"
 
+#include <algorithm>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -38,20 +39,27 @@ TEST(Mapping, TiesGoToLowestIndex) {
   EXPECT_EQ(k[1], 0);
 }
 
-TEST(Mapping, KdTreeEqualsBruteForceIncludingTies) {
+TEST(Mapping, GridEqualsBruteForceIncludingTies) {
   std::mt19937_64 rng(7);
   std::uniform_int_distribution<int> coord(-20, 20);  // coarse: many exact ties
   std::vector<State> ref(2000), var(500);
   for (auto& p : ref) p = {double(coord(rng)), double(coord(rng)), double(coord(rng))};
   for (auto& p : var) p = {coord(rng) + 0.5 * (rng() % 2), double(coord(rng)), double(coord(rng))};
+  // Queries far outside the points' bounding box, and on its corners.
+  var.push_back({1000, -1000, 3});
+  var.push_back({-20, -20, -20});
+  var.push_back({20.0001, 55, -300});
   for (DimMask mask : {1u, 3u, 5u, 7u}) {
     NearestIndex index(ref, mask);
     for (const State& q : var) ASSERT_EQ(index.Nearest(q), BruteNearest(ref, q, mask));
-    auto kn = index.KNearest(var[0], 5);
-    ASSERT_EQ(kn.size(), 5u);
-    for (size_t i = 1; i < kn.size(); ++i) {
-      double a = MaskedDist2(var[0], ref[kn[i - 1]], mask), b = MaskedDist2(var[0], ref[kn[i]], mask);
-      EXPECT_TRUE(a < b || (a == b && kn[i - 1] < kn[i]));
+    for (size_t qi : {size_t(0), size_t(1), var.size() - 1}) {
+      auto kn = index.KNearest(var[qi], 40);
+      // Brute force: every index sorted by (distance, index), first 40.
+      std::vector<std::pair<double, int>> all;
+      for (size_t i = 0; i < ref.size(); ++i) all.emplace_back(MaskedDist2(var[qi], ref[i], mask), int(i));
+      std::sort(all.begin(), all.end());
+      ASSERT_EQ(kn.size(), 40u);
+      for (size_t i = 0; i < kn.size(); ++i) EXPECT_EQ(kn[i], all[i].second);
     }
   }
 }
@@ -78,6 +86,14 @@ TEST(Mapping, MaxRepeatTakesNextNearest) {
   EXPECT_EQ(MapTrajectory(ref, var, o), (std::vector<int>{0, 1, 0, 1}));
   // Same text counts as the same move: indices 0 and 1 are one class.
   EXPECT_EQ(MapTrajectory(ref, var, o, {0, 0, 1, 2}), (std::vector<int>{0, 2, 0, 2}));
+}
+
+TEST(Mapping, LongTrajectoriesMatchBruteForceOnASample) {
+  auto ref = Trajectory(System::Lorenz(), IntegratorKind::kRk4, 0.015, {-13, -12, 52}, 0, 20000);
+  auto var = Trajectory(System::Lorenz(), IntegratorKind::kRk4, 0.015, {-16, -12, 52}, 0, 20000);
+  MappingOptions o;
+  auto k = MapTrajectory(ref, var, o);
+  for (size_t j = 0; j < var.size(); j += 97) ASSERT_EQ(k[j], BruteNearest(ref, var[j], o.mask));
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <cctype>
 #include <cmath>
 #include <map>
+#include <thread>
 
 #include "base/text.h"
 
@@ -94,10 +95,20 @@ Result<Variation> Vary(std::vector<InputRoute> inputs, const VaryParams& params)
 
   Variation v;
   v.params = params;
-  v.reference = Trajectory(params.system, params.integrator, params.step, params.ref_ic,
-                           params.skip, n);
-  v.variation = Trajectory(params.system, params.integrator, params.step, params.var_ic,
-                           params.skip, n);
+  auto integrate_reference = [&] {
+    v.reference = Trajectory(params.system, params.integrator, params.step, params.ref_ic,
+                             params.skip, n);
+  };
+  if (static_cast<long>(n) + params.skip >= 65536) {  // long: integrate both at once
+    std::thread t(integrate_reference);
+    v.variation = Trajectory(params.system, params.integrator, params.step, params.var_ic,
+                             params.skip, n);
+    t.join();
+  } else {
+    integrate_reference();
+    v.variation = Trajectory(params.system, params.integrator, params.step, params.var_ic,
+                             params.skip, n);
+  }
   for (int i = 0; i < n; ++i) {
     for (int d = 0; d < 3; ++d) {
       if (!std::isfinite(v.reference[i][d]) || !std::isfinite(v.variation[i][d])) {

@@ -1,13 +1,35 @@
-// PLACEHOLDER until the owning module lands; replaced by the real subcommand.
+// strangebeta check: validate CRDL files; optionally print them normalised.
 #include <cstdio>
 
+#include "cli/cli_util.h"
 #include "cli/commands.h"
+#include "crdl/route.h"
 
 namespace sb::cli {
 
-int RunCheck(const std::vector<std::string>&) {
-  std::fprintf(stderr, "strangebeta check: not available in this build yet\n");
-  return 1;
+int RunCheck(const std::vector<std::string>& args) {
+  CLI::App app{"Parse CRDL route files and report the first error of each (file:line:col).",
+               "strangebeta check"};
+  std::vector<std::string> files;
+  bool print = false;
+  app.add_option("routes", files, "CRDL route files ('-' = stdin)")->required();
+  app.add_flag("--print", print, "print each route normalised (CRDL) instead of a summary");
+  if (int rc = ParseArgs(app, args); rc >= 0) return rc;
+  int rc = 0;
+  for (const std::string& f : files) {
+    auto r = ReadCrdlFile(f);
+    if (!r.ok()) {
+      rc = std::max(rc, Fail("check", r.status()));
+      continue;
+    }
+    if (print) {
+      std::fputs(PrintCrdl(*r).c_str(), stdout);
+    } else {
+      std::printf("%s: ok, \"%s\", %zu moves\n", f.c_str(), r->Name(RouteFileStem(f)).c_str(),
+                  r->moves.size());
+    }
+  }
+  return rc;
 }
 
 }  // namespace sb::cli

@@ -1,0 +1,21 @@
+// Cairo drawing of a plan's trajectory picture (paper figure 2), shared by the
+// SVG renderer here and the PDF/PNG renderers of the web app.
+#ifndef SB_PLAN_DRAW_H_
+#define SB_PLAN_DRAW_H_
+
+#include <cairo.h>
+
+#include "plan/plan.h"
+
+namespace sb::plan {
+
+// Draws the reference (black) and variation (blue) trajectories projected on
+// the x–z plane with grey association lines from each variation point v_j to
+// its reference point r_k(j), axes with ticks and labels and a legend, into
+// the rectangle (0, 0, width, height) of `cr` (user units). Does not own `cr`;
+// leaves its state as it found it. Not thread-safe on one cairo_t.
+void DrawTrajectory(cairo_t* cr, const RoutePlan& plan, double width, double height);
+
+}  // namespace sb::plan
+
+#endif  // SB_PLAN_DRAW_H_
