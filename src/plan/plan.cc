@@ -380,6 +380,14 @@ std::string RenderTrajectorySvg(const RoutePlan& plan) {
   cairo_destroy(cr);
   cairo_surface_finish(surface);
   cairo_surface_destroy(surface);
+  // Cairo numbers surfaces process-wide ("surface1", "surface6", ...): pin the
+  // id so the same plan always gives the same bytes.
+  const std::string key = "<g id=\"surface";
+  if (size_t pos = out.find(key); pos != std::string::npos) {
+    size_t digits = pos + key.size(), end = digits;
+    while (end < out.size() && out[end] >= '0' && out[end] <= '9') ++end;
+    out.replace(digits, end - digits, "1");
+  }
   return out;
 }
 

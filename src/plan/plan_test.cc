@@ -1,0 +1,128 @@
+#include "plan/plan.h"
+
+#include <gtest/gtest.h>
+
+namespace sb::plan {
+namespace {
+
+RoutePlan MakePlan(const chaos::VaryParams& p) {
+  auto a = ParseCrdl("name: Alpha\n---\nR jug\nL match\nR crimp | rail\nL sloper\nR pinch\n", "a");
+  auto b = ParseCrdl("---\nL pocket\nR edge\nL gaston\nR undercling\n", "b");
+  EXPECT_TRUE(a.ok() && b.ok());
+  auto v = chaos::Vary({{"Alpha", *a}, {"b", *b}}, p);
+  EXPECT_TRUE(v.ok()) << v.status().message();
+  return {*v, {}, ""};
+}
+
+TEST(Plan, JsonHasTheDocumentedShape) {
+  RoutePlan plan = MakePlan(*chaos::VaryParams::Preset("more"));
+  auto j = ToJson(plan);
+  ASSERT_TRUE(j.contains("parameters"));
+  EXPECT_EQ(j["parameters"]["preset"], "more");
+  EXPECT_EQ(j["parameters"]["skip"], 100);
+  EXPECT_EQ(j["parameters"]["mask"], "101");
+  EXPECT_EQ(j["parameters"]["var_ic"][1], -13.5);
+  ASSERT_EQ(j["inputs"].size(), 2u);
+  EXPECT_EQ(j["inputs"][0]["name"], "Alpha");
+  EXPECT_EQ(j["inputs"][1]["moves"], 4);
+  ASSERT_EQ(j["moves"].size(), 9u);
+  ASSERT_EQ(j["reference"].size(), 9u);
+  ASSERT_EQ(j["variation"][0].size(), 3u);
+  for (size_t i = 0; i < 9; ++i) {
+    const auto& m = j["moves"][i];
+    const auto& src = m["source"];
+    int flat = src["route"].get<int>() == 0 ? src["move"].get<int>() : 5 + src["move"].get<int>();
+    EXPECT_EQ(m["changed"].get<bool>(), flat != int(i));
+    EXPECT_TRUE(m["hand"] == "L" || m["hand"] == "R");
+  }
+  EXPECT_FALSE(j.contains("smoothing"));
+}
+
+TEST(Plan, ParamsJsonRoundTrip) {
+  chaos::VaryParams p = *chaos::VaryParams::Preset("more");
+  p.system = chaos::System::Rossler(0.1, 0.3, 6);
+  p.integrator = chaos::IntegratorKind::kRkf45;
+  p.mapping.kind = chaos::MappingKind::kDabby;
+  p.mapping.dabby_direction = chaos::DabbyDirection::kBelow;
+  p.mapping.max_repeat = 2;
+  p.mapping.mask = chaos::kMaskY;
+  auto back = ParamsFromJson(ParamsToJson(p));
+  ASSERT_TRUE(back.ok()) << back.status().message();
+  EXPECT_EQ(ParamsToJson(*back), ParamsToJson(p));
+}
+
+TEST(Plan, ParamsFromJsonNamesTheBadField) {
+  using nlohmann::json;
+  EXPECT_EQ(ParamsFromJson(json{{"step", "x"}}).status().message(), "step: expected a number");
+  EXPECT_EQ(ParamsFromJson(json{{"var_ic", {1, 2}}}).status().message(),
+            "var_ic: expected an array of 3 numbers");
+  EXPECT_EQ(ParamsFromJson(json{{"mask", "000"}}).status().message(),
+            "mask: mask \"000\" selects no dimension");
+  EXPECT_EQ(ParamsFromJson(json{{"skip", -1}}).status().message(),
+            "skip: must be between 0 and 100000000");
+  EXPECT_FALSE(ParamsFromJson(json{{"preset", "wild"}}).ok());
+  EXPECT_FALSE(ParamsFromJson(json::array()).ok());
+  auto sys = ParamsFromJson(json{{"system", "rossler"}});
+  ASSERT_TRUE(sys.ok());
+  EXPECT_EQ(sys->system.params[2], 5.7);
+}
+
+TEST(Plan, TextPlanShowsChangesProvenanceAndEveryParameter) {
+  RoutePlan plan = MakePlan(*chaos::VaryParams::Preset("more"));
+  std::string text = RenderText(plan);
+  EXPECT_NE(text.find("CHAOTIC ROUTE PLAN"), std::string::npos);
+  EXPECT_NE(text.find("Alpha #"), std::string::npos);
+  EXPECT_NE(text.find("(match?)"), std::string::npos);
+  EXPECT_NE(text.find("--var-ic=-16,-13.5,52"), std::string::npos);
+  EXPECT_NE(text.find("skip 100"), std::string::npos);
+  EXPECT_NE(text.find("integrator rk4"), std::string::npos);
+  // No copy of the inputs: the header line of the inputs is not printed.
+  EXPECT_EQ(text.find("name: Alpha"), std::string::npos);
+  chaos::VaryParams same;
+  same.var_ic = same.ref_ic;  // the variation is the input: every move appears
+  std::string md = RenderMarkdown(MakePlan(same));
+  EXPECT_NE(md.find("crimp \\| rail"), std::string::npos);  // escaped table cell
+}
+
+TEST(Plan, BlanksAreShownForTheSetterToFill) {
+  chaos::VaryParams p;
+  p.mapping.kind = chaos::MappingKind::kDabby;
+  p.var_ic = {10, 10, 30};
+  RoutePlan plan = MakePlan(p);
+  bool blank = false;
+  for (const auto& m : plan.variation.moves) blank |= !m.source.has_value();
+  if (!blank) GTEST_SKIP() << "no blank with these parameters";
+  EXPECT_NE(RenderText(plan).find("(fill in)"), std::string::npos);
+  EXPECT_NE(RenderJson(plan).find("\"source\": null"), std::string::npos);
+}
+
+TEST(Plan, RenderingIsDeterministic) {
+  RoutePlan a = MakePlan(chaos::VaryParams()), b = MakePlan(chaos::VaryParams());
+  for (Format f : {Format::kText, Format::kMarkdown, Format::kJson, Format::kSvg}) {
+    EXPECT_EQ(Render(a, f), Render(b, f));
+  }
+  std::string svg = RenderTrajectorySvg(a);
+  EXPECT_EQ(svg.rfind("<?xml", 0), 0u);
+  EXPECT_NE(svg.find("<svg"), std::string::npos);
+  EXPECT_NE(svg.find("</svg>"), std::string::npos);
+}
+
+TEST(Plan, SmoothingSuggestionsAppearInEveryFormat) {
+  RoutePlan plan = MakePlan(chaos::VaryParams());
+  plan.smoothing_model = "test.model";
+  plan.smoothing.push_back({2, {{"L", "jug", "good jug"}}, 10.5, 7.25});
+  EXPECT_NE(RenderText(plan).find("insert: L good jug"), std::string::npos);
+  EXPECT_NE(RenderText(plan).find("saves 3.25 bits"), std::string::npos);
+  auto j = ToJson(plan);
+  EXPECT_EQ(j["smoothing"]["suggestions"][0]["after"], 2);
+  EXPECT_EQ(j["smoothing"]["suggestions"][0]["bits_saved"], 3.25);
+  EXPECT_NE(RenderMarkdown(plan).find("insert: good jug"), std::string::npos);
+}
+
+TEST(Plan, FormatParsing) {
+  EXPECT_EQ(*ParseFormat("md"), Format::kMarkdown);
+  EXPECT_FALSE(ParseFormat("pdf").ok());
+}
+
+}  // namespace
+}  // namespace sb::plan
