@@ -1,0 +1,75 @@
+#include "crdl/site_csv.h"
+
+#include <gtest/gtest.h>
+
+namespace sb {
+namespace {
+
+constexpr const char* kRoutes =
+    "route_id,user_id,name,description,created_at,grade,type,is_variation,nna,dim_mask,"
+    "max_repeat,prec_trunc,transient,rx,ry,rz,vx,vy,vz,is_public\n"
+    "2,7,Warm Up,\"Two lines,\nof description\",2010-01-01,V1,Bouldering,f,B,011,0,0,100,"
+    "0.0,0.0,0.0,0.0,0.0,0.0,t\n"
+    "1,7,Other,,2010-01-01,,,f,B,011,0,0,100,0.0,0.0,0.0,0.0,0.0,0.0,f\n"
+    "3,8,\"Variation on 2,1\",,2010-01-02,,,t,B,101,1,0,0,-13.0,-12.0,52.0,-16.0,-12.0,52.0,t\n";
+constexpr const char* kMoves =
+    "route_id,seq_no,hand,move,nnn,delta,error,crux\n"
+    "2,2,L,crimp,f,0,f,f\n"
+    "2,1,R,jug,f,0,f,f\n"
+    "1,1,R,pinch,f,0,f,f\n"
+    "3,0,R,jug,f,0,f,f\n"
+    "99,1,L,orphan,f,0,f,f\n";
+
+TEST(SiteCsv, ParsesRoutesMovesAndVariationParameters) {
+  auto e = ParseSiteExport(kRoutes, "r.csv", kMoves, "m.csv");
+  ASSERT_TRUE(e.ok()) << e.status().message();
+  ASSERT_EQ(e->routes.size(), 3u);
+  EXPECT_EQ(e->routes[0].id, 1);  // sorted by id
+  EXPECT_FALSE(e->routes[0].is_public);
+  const SiteRoute& w = e->routes[e->Find(2)];
+  EXPECT_EQ(w.route.Name(), "Warm Up");
+  EXPECT_EQ(w.route.Meta("grade").value(), "V1");
+  ASSERT_EQ(w.route.moves.size(), 2u);
+  EXPECT_EQ(w.route.moves[0].text, "jug");  // seq_no order
+  EXPECT_EQ(w.route.moves[1].hand, Hand::kLeft);
+  const SiteRoute& v = e->routes[e->Find(3)];
+  EXPECT_TRUE(v.is_variation);
+  EXPECT_EQ(v.params.at("dim_mask"), "101");
+  EXPECT_EQ(v.seq_nos, std::vector<int>{0});
+  EXPECT_EQ(e->orphan_moves, 1);
+  EXPECT_EQ(e->Find(42), -1);
+  EXPECT_EQ(VariationInputIds(v.route.Name()), (std::vector<int>{1, 2}));
+  EXPECT_TRUE(VariationInputIds("My Route").empty());
+}
+
+TEST(SiteCsv, FormatRoundTrips) {
+  auto e = ParseSiteExport(kRoutes, "r.csv", kMoves, "m.csv");
+  ASSERT_TRUE(e.ok());
+  std::string r, m;
+  FormatSiteExport(*e, &r, &m);
+  auto again = ParseSiteExport(r, "r2", m, "m2");
+  ASSERT_TRUE(again.ok()) << again.status().message();
+  ASSERT_EQ(again->routes.size(), e->routes.size());
+  for (size_t i = 0; i < e->routes.size(); ++i) {
+    EXPECT_EQ(again->routes[i].route, e->routes[i].route);
+    EXPECT_EQ(again->routes[i].params, e->routes[i].params);
+    EXPECT_EQ(again->routes[i].seq_nos, e->routes[i].seq_nos);
+  }
+}
+
+TEST(SiteCsv, ErrorsNameFileRecordAndColumn) {
+  auto bad_id = ParseSiteExport(kRoutes, "r.csv",
+                                "route_id,seq_no,hand,move\nx,1,L,jug\n", "m.csv");
+  EXPECT_EQ(bad_id.status().message(), "m.csv: record 1: route_id: not a whole number: \"x\"");
+  auto bad_hand = ParseSiteExport(kRoutes, "r.csv", "route_id,seq_no,hand,move\n2,1,Q,jug\n",
+                                  "m.csv");
+  EXPECT_EQ(bad_hand.status().message(), "m.csv: record 1: hand: expected L or R, got \"q\"");
+  auto missing = ParseSiteExport("route_id,name\n1,a\n", "r.csv", kMoves, "m.csv");
+  EXPECT_EQ(missing.status().message(), "r.csv:1: missing column \"user_id\"");
+  auto dup = ParseSiteExport(
+      "route_id,user_id,name,is_variation\n1,1,a,f\n1,1,b,f\n", "r.csv", kMoves, "m.csv");
+  EXPECT_FALSE(dup.ok());
+}
+
+}  // namespace
+}  // namespace sb
