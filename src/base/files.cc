@@ -11,6 +11,7 @@
 #include <iostream>
 #include <iterator>
 #include <sstream>
+#include <vector>
 
 namespace sb {
 
@@ -58,6 +59,23 @@ Status WriteFileAtomic(const std::string& path, std::string_view data) {
     return Status::IoError(path + ": " + std::strerror(err));
   }
   return Status::Ok();
+}
+
+std::string FindDataFile(const std::string& relative) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  std::vector<fs::path> roots;
+  if (const char* env = std::getenv("SB_DATA_DIR"); env && *env) roots.emplace_back(env);
+#ifdef SB_SOURCE_DIR
+  roots.push_back(fs::path(SB_SOURCE_DIR) / "data");
+#endif
+  fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) roots.push_back(exe.parent_path() / ".." / "data");
+  for (const fs::path& root : roots) {
+    fs::path p = root / relative;
+    if (fs::is_regular_file(p, ec)) return fs::weakly_canonical(p, ec).string();
+  }
+  return "";
 }
 
 std::string FindSharedDir(const std::string& fallback) {

@@ -19,6 +19,12 @@ Result<std::string> ReadFile(const std::string& path);
 // distinct paths.
 Status WriteFileAtomic(const std::string& path, std::string_view data);
 
+// Finds a bundled data file (e.g. "grammar/climbing.gra", "models/default.sbm")
+// in, first to last: $SB_DATA_DIR, the source tree's data/ (compiled in), and
+// data/ beside the running executable's parent directory. Returns the path, or
+// "" when none has it. Thread-safe.
+std::string FindDataFile(const std::string& relative);
+
 // Directory holding ../shared reference material, or "" when absent.
 // Looks at $SB_SHARED first, then `fallback`. Used by tests and benchmarks.
 std::string FindSharedDir(const std::string& fallback);

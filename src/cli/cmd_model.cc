@@ -1,13 +1,615 @@
-// PLACEHOLDER until the owning module lands; replaced by the real subcommand.
-#include <cstdio>
+// strangebeta model: train, score, generate with, interpolate with and
+// classify with variable-order Markov models (src/markov, docs/markov.md).
+//
+//   strangebeta model train --alg dectw|ppmc|markov --depth D [--alphabet K] --out MODEL [FILE]
+//   strangebeta model train ... --group-by label --out DIR LABELLED_FILE
+//   strangebeta model train ... [--group-by user|grade] --corpus DIR [--symbols k1..k4] --out ...
+//   strangebeta model score --model MODEL [--average] [FILE]
+//   strangebeta model generate --model MODEL --length n [--start TOKENS] [--seed S]
+//   strangebeta model interpolate --model MODEL --before TOKENS --after TOKENS --max-insert j
+//   strangebeta model classify --models M1,M2,... [--labelled] [FILE]
+//   strangebeta model classify --cross-validate --alg A --depth D [--folds k] LABELLED_FILE
+//   strangebeta model classify --cross-validate --group-by user|grade --corpus DIR ...
+#include <sys/stat.h>
 
+#include <charconv>
+#include <cstdio>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "base/files.h"
+#include "base/text.h"
+#include "cli/cli_util.h"
 #include "cli/commands.h"
+#include "crdl/site_csv.h"
+#include "language/symbols.h"
+#include "markov/classify.h"
+#include "markov/generate.h"
+#include "markov/interpolate.h"
+#include "markov/model.h"
+#include "markov/token_model.h"
 
 namespace sb::cli {
+namespace {
 
-int RunModel(const std::vector<std::string>&) {
-  std::fprintf(stderr, "strangebeta model: not available in this build yet\n");
-  return 1;
+using markov::Algorithm;
+using markov::ModelSpec;
+using markov::TokenModel;
+using sb::Move;
+using sb::SiteRoute;
+
+constexpr const char* kCmd = "model";
+
+struct Token {
+  std::string text;
+  int line;
+  int col;
+};
+
+// Whitespace-separated tokens of every line, with 1-based line:col.
+std::vector<std::vector<Token>> TokenLines(std::string_view data) {
+  std::vector<std::vector<Token>> out;
+  const auto lines = SplitLines(data);
+  for (size_t l = 0; l < lines.size(); ++l) {
+    std::vector<Token> toks;
+    const std::string_view s = lines[l];
+    size_t i = 0;
+    auto ws = [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; };
+    while (i < s.size()) {
+      while (i < s.size() && ws(s[i])) ++i;
+      size_t j = i;
+      while (j < s.size() && !ws(s[j])) ++j;
+      if (j > i) toks.push_back({std::string(s.substr(i, j - i)), int(l + 1), int(i + 1)});
+      i = j;
+    }
+    out.push_back(std::move(toks));
+  }
+  return out;
+}
+
+std::string InputName(const std::string& file) {
+  return file.empty() || file == "-" ? "<stdin>" : file;
+}
+
+Result<std::string> ReadInput(const std::string& file) {
+  return ReadFile(file.empty() ? "-" : file);
+}
+
+// Integer ids of tokens for a model without vocabulary; errors name file:line:col.
+Result<std::vector<int32_t>> IdsOf(const std::vector<Token>& toks, int k, const std::string& name) {
+  std::vector<int32_t> ids;
+  ids.reserve(toks.size());
+  for (const Token& t : toks) {
+    int32_t v = -1;
+    auto [p, ec] = std::from_chars(t.text.data(), t.text.data() + t.text.size(), v);
+    if (ec != std::errc() || p != t.text.data() + t.text.size() || v < 0 || v >= k) {
+      return Status::InvalidInput(name + ":" + std::to_string(t.line) + ":" +
+                                  std::to_string(t.col) + ": token '" + t.text +
+                                  "' is not an integer in [0, " + std::to_string(k) + ")");
+    }
+    ids.push_back(v);
+  }
+  return ids;
+}
+
+Result<std::vector<int32_t>> Encode(const TokenModel& m, const std::vector<Token>& toks,
+                                    const std::string& name) {
+  if (!m.has_vocabulary()) return IdsOf(toks, m.spec().alphabet_size, name);
+  std::vector<int32_t> ids;
+  ids.reserve(toks.size());
+  for (const Token& t : toks) ids.push_back(m.vocabulary().Id(t.text));
+  return ids;
+}
+
+std::string Fmt(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.17g", v + 0.0);  // no "-0"
+  return buf;
+}
+
+// Keeps letters, digits, '.', '-', '_'; everything else becomes '_'.
+std::string SafeFileName(const std::string& label) {
+  std::string out;
+  for (char c : label) {
+    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                    c == '.' || c == '-' || c == '_';
+    out.push_back(ok ? c : '_');
+  }
+  if (out.empty() || out[0] == '.') out.insert(out.begin(), '_');
+  return out;
+}
+
+// Lower-cased, trimmed grade ("V4" and "v4" are one class); "" when none.
+std::string NormalGrade(const std::optional<std::string>& g) {
+  return g ? ToLower(Trim(*g)) : std::string();
+}
+
+// The corpus routes (the original site's CSV export in DIR) as symbol
+// sequences of set k1..k4 (moves without a parse skipped), labelled by user
+// id or grade ("all" when group_by is empty); routes with no symbols or no
+// grade are left out.
+Result<std::vector<markov::LabelledRoute>> CorpusRoutes(const std::string& dir,
+                                                        const std::string& group_by,
+                                                        const std::string& set) {
+  if (set.size() != 2 || set[0] != 'k' || set[1] < '1' || set[1] > '4') {
+    return Status::InvalidInput("--symbols: expected k1, k2, k3 or k4, got '" + set + "'");
+  }
+  const int k = set[1] - '1';
+  auto site = ReadSiteExport(dir);
+  if (!site.ok()) return site.status();
+  auto lang = language::MoveLanguage::LoadDefault();
+  if (!lang.ok()) return lang.status();
+  std::vector<markov::LabelledRoute> out;
+  for (const SiteRoute& r : site->routes) {
+    markov::LabelledRoute lr;
+    if (group_by == "user") {
+      lr.label = std::to_string(r.user_id);
+    } else if (group_by == "grade") {
+      lr.label = NormalGrade(r.route.Meta("grade"));
+      if (lr.label.empty()) continue;
+    } else {
+      lr.label = "all";
+    }
+    for (const Move& m : r.route.moves) {
+      std::string sym = lang->SymbolsOf(m.text).k[k];
+      if (sym != "NO_PARSE" && !sym.empty()) lr.tokens.push_back(std::move(sym));
+    }
+    lr.line = r.id;
+    if (!lr.tokens.empty()) out.push_back(std::move(lr));
+  }
+  if (out.empty()) return Status::InvalidInput(dir + ": no routes with symbols");
+  return out;
+}
+
+// The symbols (set k1..k4) of the moves of CRDL route files, concatenated in
+// order; moves without a parse are skipped.
+Result<std::vector<std::string>> RouteFileSymbols(const std::vector<std::string>& files,
+                                                  const std::string& set) {
+  if (set.size() != 2 || set[0] != 'k' || set[1] < '1' || set[1] > '4') {
+    return Status::InvalidInput("--symbols: expected k1, k2, k3 or k4, got '" + set + "'");
+  }
+  auto lang = language::MoveLanguage::LoadDefault();
+  if (!lang.ok()) return lang.status();
+  std::vector<std::string> out;
+  for (const std::string& f : files) {
+    auto route = ReadCrdlFile(f);
+    if (!route.ok()) return route.status();
+    for (const Move& m : route->moves) {
+      std::string sym = lang->SymbolsOf(m.text).k[set[1] - '1'];
+      if (sym != "NO_PARSE" && !sym.empty()) out.push_back(std::move(sym));
+    }
+  }
+  if (out.empty()) return Status::InvalidInput("--routes: no move of these routes parses");
+  return out;
+}
+
+// Metadata of a model trained on symbolized moves (read by vary --smooth).
+std::map<std::string, std::string> SymbolMetadata(const std::string& set) {
+  return {{"grammar", "climbing"}, {"symbol_set", set}};
+}
+
+// Labelled routes from --corpus (grouped by user or grade) or from a
+// labelled token file (--group-by label).
+Result<std::vector<markov::LabelledRoute>> LoadLabelled(const std::string& group_by,
+                                                        const std::string& corpus,
+                                                        const std::string& set,
+                                                        const std::string& file) {
+  if (group_by == "user" || group_by == "grade") {
+    if (corpus.empty()) {
+      return Status::InvalidInput("--group-by " + group_by + " needs --corpus DIR");
+    }
+    if (!file.empty()) return Status::InvalidInput("give either FILE or --corpus, not both");
+    return CorpusRoutes(corpus, group_by, set);
+  }
+  if (group_by != "label") {
+    return Status::InvalidInput("--group-by: expected user, grade or label, got '" + group_by +
+                                "'");
+  }
+  if (!corpus.empty()) return Status::InvalidInput("--group-by label reads FILE, not --corpus");
+  auto data = ReadInput(file);
+  if (!data.ok()) return data.status();
+  return markov::ParseLabelled(*data, InputName(file));
+}
+
+struct SpecOptions {
+  std::string alg = "dectw";
+  int depth = 5;
+  double alpha = 1.0;
+};
+
+void AddSpecOptions(CLI::App* app, SpecOptions* o) {
+  app->add_option("--alg", o->alg, "algorithm: dectw (the paper's DE-CTW), ppmc, markov")
+      ->capture_default_str();
+  app->add_option("--depth", o->depth, "context length D (1..32)")->capture_default_str();
+  app->add_option("--alpha", o->alpha, "additive smoothing constant for --alg markov (> 0)")
+      ->capture_default_str();
+}
+
+Result<ModelSpec> MakeSpec(const SpecOptions& o) {
+  auto alg = markov::ParseAlgorithm(o.alg);
+  if (!alg.ok()) return Status::InvalidInput("--alg: " + alg.status().message());
+  ModelSpec spec;
+  spec.algorithm = *alg;
+  spec.depth = o.depth;
+  spec.alpha = o.alpha;
+  return spec;
+}
+
+int Train(const SpecOptions& so, int alphabet, const std::string& out, const std::string& file,
+          const std::string& group_by, const std::string& corpus, const std::string& set,
+          const std::vector<std::string>& route_files) {
+  auto spec = MakeSpec(so);
+  if (!spec.ok()) return Fail(kCmd, spec.status());
+  if (!route_files.empty()) {
+    if (!file.empty() || !corpus.empty() || !group_by.empty() || alphabet > 0) {
+      return Fail(kCmd, Status::InvalidInput(
+                            "--routes trains on CRDL files alone: drop FILE, --corpus, "
+                            "--group-by and --alphabet"));
+    }
+    auto toks = RouteFileSymbols(route_files, set);
+    if (!toks.ok()) return Fail(kCmd, toks.status());
+    auto m = TokenModel::FromTokens(*spec, *toks);
+    if (!m.ok()) return Fail(kCmd, m.status());
+    m->set_metadata(SymbolMetadata(set));
+    Status s = markov::SaveModel(*m, out);
+    if (!s.ok()) return Fail(kCmd, s);
+    std::fprintf(stderr, "trained %s, depth %d, alphabet %d on %zu symbols of %zu routes -> %s\n",
+                 markov::AlgorithmName(m->spec().algorithm), m->spec().depth,
+                 m->spec().alphabet_size, m->training().size(), route_files.size(), out.c_str());
+    return 0;
+  }
+  if (!group_by.empty()) {
+    if (alphabet > 0) {
+      return Fail(kCmd, Status::InvalidInput("--group-by: --alphabet is not supported"));
+    }
+    auto routes = LoadLabelled(group_by, corpus, set, file);
+    if (!routes.ok()) return Fail(kCmd, routes.status());
+    auto groups = markov::TrainGroups(*routes, *spec);
+    if (!groups.ok()) return Fail(kCmd, groups.status());
+    ::mkdir(out.c_str(), 0777);
+    for (size_t i = 0; i < groups->labels.size(); ++i) {
+      if (group_by != "label") groups->models[i].set_metadata(SymbolMetadata(set));
+      const std::string path = out + "/" + SafeFileName(groups->labels[i]) + ".sbm";
+      Status s = markov::SaveModel(groups->models[i], path);
+      if (!s.ok()) return Fail(kCmd, s);
+      std::printf("%s\t%s\t%zu\n", groups->labels[i].c_str(), path.c_str(),
+                  groups->models[i].training().size());
+    }
+    return 0;
+  }
+  if (!corpus.empty()) {
+    if (!file.empty())
+      return Fail(kCmd, Status::InvalidInput("give either FILE or --corpus, not both"));
+    if (alphabet > 0)
+      return Fail(kCmd, Status::InvalidInput("--corpus: --alphabet is not supported"));
+    auto routes = CorpusRoutes(corpus, "", set);
+    if (!routes.ok()) return Fail(kCmd, routes.status());
+    std::vector<std::string> toks;
+    for (const auto& r : *routes) toks.insert(toks.end(), r.tokens.begin(), r.tokens.end());
+    auto m = TokenModel::FromTokens(*spec, toks);
+    if (!m.ok()) return Fail(kCmd, m.status());
+    m->set_metadata(SymbolMetadata(set));
+    Status s = markov::SaveModel(*m, out);
+    if (!s.ok()) return Fail(kCmd, s);
+    std::fprintf(stderr,
+                 "trained %s, depth %d, alphabet %d on %zu symbols of %zu corpus routes -> %s\n",
+                 markov::AlgorithmName(m->spec().algorithm), m->spec().depth,
+                 m->spec().alphabet_size, m->training().size(), routes->size(), out.c_str());
+    return 0;
+  }
+  auto data = ReadInput(file);
+  if (!data.ok()) return Fail(kCmd, data.status());
+  const std::string name = InputName(file);
+  std::vector<Token> all;
+  for (auto& line : TokenLines(*data))
+    for (auto& t : line) all.push_back(std::move(t));
+  Result<TokenModel> m = Status::Internal("unset");
+  if (alphabet > 0) {
+    spec->alphabet_size = alphabet;
+    auto ids = IdsOf(all, alphabet, name);
+    if (!ids.ok()) return Fail(kCmd, ids.status());
+    m = TokenModel::FromIds(*spec, std::move(ids).value());
+  } else {
+    std::vector<std::string> toks;
+    toks.reserve(all.size());
+    for (auto& t : all) toks.push_back(std::move(t.text));
+    if (toks.empty()) return Fail(kCmd, Status::InvalidInput(name + ": no training tokens"));
+    m = TokenModel::FromTokens(*spec, toks);
+  }
+  if (!m.ok()) return Fail(kCmd, Status::InvalidInput(name + ": " + m.status().message()));
+  Status s = markov::SaveModel(*m, out);
+  if (!s.ok()) return Fail(kCmd, s);
+  std::fprintf(stderr, "trained %s, depth %d, alphabet %d on %zu symbols -> %s\n",
+               markov::AlgorithmName(m->spec().algorithm), m->spec().depth, m->spec().alphabet_size,
+               m->training().size(), out.c_str());
+  return 0;
+}
+
+int Score(const std::string& model_path, bool average, const std::string& file) {
+  auto m = markov::LoadModel(model_path);
+  if (!m.ok()) return Fail(kCmd, m.status());
+  auto data = ReadInput(file);
+  if (!data.ok()) return Fail(kCmd, data.status());
+  const std::string name = InputName(file);
+  std::string out;
+  for (const auto& line : TokenLines(*data)) {
+    auto ids = Encode(*m, line, name);
+    if (!ids.ok()) return Fail(kCmd, ids.status());
+    const double bits = m->model().LogLoss(*ids);
+    if (average) {
+      out += ids->empty() ? std::string("nan") : Fmt(bits / static_cast<double>(ids->size()));
+    } else {
+      out += Fmt(bits);
+    }
+    out += '\n';
+  }
+  return WriteOutput(kCmd, "-", out);
+}
+
+Result<std::vector<int32_t>> EncodeArg(const TokenModel& m, const std::string& text,
+                                       const std::string& field) {
+  std::vector<Token> toks;
+  for (auto& line : TokenLines(text))
+    for (auto& t : line) toks.push_back(std::move(t));
+  return Encode(m, toks, field);
+}
+
+int Generate(const std::string& model_path, int length, const std::string& start,
+             const uint64_t* seed) {
+  auto m = markov::LoadModel(model_path);
+  if (!m.ok()) return Fail(kCmd, m.status());
+  if (length < 0) return Fail(kCmd, Status::InvalidInput("--length must be >= 0"));
+  auto ids = EncodeArg(*m, start, "--start");
+  if (!ids.ok()) return Fail(kCmd, ids.status());
+  markov::GenerateOptions opt;
+  opt.length = length;
+  opt.sample = seed != nullptr;
+  if (seed) opt.seed = *seed;
+  const auto gen = markov::Generate(m->model(), *ids, opt);
+  std::string out;
+  for (size_t i = 0; i < gen.size(); ++i) {
+    if (i) out += ' ';
+    out += m->Decode(gen[i]);
+  }
+  out += '\n';
+  return WriteOutput(kCmd, "-", out);
+}
+
+int Interpolate(const std::string& model_path, const std::string& before, const std::string& after,
+                int max_insert) {
+  auto m = markov::LoadModel(model_path);
+  if (!m.ok()) return Fail(kCmd, m.status());
+  auto b = EncodeArg(*m, before, "--before");
+  if (!b.ok()) return Fail(kCmd, b.status());
+  auto a = EncodeArg(*m, after, "--after");
+  if (!a.ok()) return Fail(kCmd, a.status());
+  markov::InsertionOptions opt;
+  opt.max_insert = max_insert;
+  auto r = markov::BestInsertion(m->model(), *b, *a, opt);
+  if (!r.ok()) return Fail(kCmd, Status::InvalidInput("--max-insert: " + r.status().message()));
+  std::string out = "insert:";
+  for (int32_t id : r->inserted) out += " " + m->Decode(id);
+  out += "\nbits_without: " + Fmt(r->baseline_bits) + "\nbits_with: " + Fmt(r->bits) +
+         "\nbits_saved: " + Fmt(r->saved_bits()) + "\n";
+  return WriteOutput(kCmd, "-", out);
+}
+
+std::string Stem(const std::string& path) {
+  size_t slash = path.find_last_of('/');
+  std::string base = slash == std::string::npos ? path : path.substr(slash + 1);
+  size_t dot = base.rfind('.');
+  if (dot != std::string::npos && dot > 0) base.resize(dot);
+  return base;
+}
+
+int ClassifyWithModels(const std::vector<std::string>& paths, bool labelled,
+                       const std::string& file) {
+  std::vector<TokenModel> models;
+  std::vector<std::string> labels;
+  for (const auto& p : paths) {
+    auto m = markov::LoadModel(p);
+    if (!m.ok()) return Fail(kCmd, m.status());
+    models.push_back(std::move(m).value());
+    labels.push_back(Stem(p));
+  }
+  std::vector<const TokenModel*> ptrs;
+  for (const auto& m : models) ptrs.push_back(&m);
+  auto data = ReadInput(file);
+  if (!data.ok()) return Fail(kCmd, data.status());
+  const std::string name = InputName(file);
+  std::string out;
+  size_t total = 0, correct = 0;
+  auto classify = [&](const std::vector<std::string>& toks, int line) -> Status {
+    auto c = markov::Classify(ptrs, toks);
+    if (!c.ok()) {
+      return Status::InvalidInput(name + ":" + std::to_string(line) +
+                                  ":1: " + c.status().message());
+    }
+    out += labels[c->best] + "\t" + Fmt(c->bits_per_symbol[c->best]);
+    return Status::Ok();
+  };
+  if (labelled) {
+    auto routes = markov::ParseLabelled(*data, name);
+    if (!routes.ok()) return Fail(kCmd, routes.status());
+    for (const auto& r : *routes) {
+      Status s = classify(r.tokens, r.line);
+      if (!s.ok()) return Fail(kCmd, s);
+      ++total;
+      const std::string got = out.substr(out.rfind('\n') + 1, std::string::npos);
+      const bool ok = got.substr(0, got.find('\t')) == SafeFileName(r.label) ||
+                      got.substr(0, got.find('\t')) == r.label;
+      if (ok) ++correct;
+      out += "\t" + r.label + "\n";
+    }
+    char buf[128];
+    std::snprintf(buf, sizeof buf, "# accuracy %.4f (%zu/%zu)\n",
+                  total ? double(correct) / double(total) : 0.0, correct, total);
+    out += buf;
+  } else {
+    const auto lines = TokenLines(*data);
+    for (size_t l = 0; l < lines.size(); ++l) {
+      if (lines[l].empty()) continue;
+      std::vector<std::string> toks;
+      for (const auto& t : lines[l]) toks.push_back(t.text);
+      Status s = classify(toks, static_cast<int>(l + 1));
+      if (!s.ok()) return Fail(kCmd, s);
+      out += "\n";
+    }
+  }
+  return WriteOutput(kCmd, "-", out);
+}
+
+int CrossValidate(const SpecOptions& so, int folds, const std::string& file,
+                  const std::string& group_by, const std::string& corpus, const std::string& set) {
+  auto spec = MakeSpec(so);
+  if (!spec.ok()) return Fail(kCmd, spec.status());
+  auto routes = LoadLabelled(group_by.empty() ? "label" : group_by, corpus, set, file);
+  if (!routes.ok()) return Fail(kCmd, routes.status());
+  auto rep = markov::CrossValidate(*routes, *spec, folds);
+  if (!rep.ok()) return Fail(kCmd, rep.status());
+  return WriteOutput(kCmd, "-", markov::FormatReport(*rep));
+}
+
+}  // namespace
+
+int RunModel(const std::vector<std::string>& args) {
+  CLI::App app{
+      "Variable-order Markov models over symbol sequences (DE-CTW as in the Strange Beta\n"
+      "paper, PPM-C, a Markov chain): train, score, generate, interpolate, classify.\n"
+      "Input files hold whitespace-separated tokens; '-' or no FILE reads stdin.\n"
+      "See docs/markov.md.",
+      "strangebeta model"};
+  app.require_subcommand(1);
+
+  // train
+  CLI::App* train = app.add_subcommand(
+      "train",
+      "Train a model. All lines of FILE are concatenated, in order, into one training "
+      "sequence (as the reference did). Without --alphabet tokens are strings and the "
+      "vocabulary is stored in the model (with one extra id for unknown tokens).");
+  SpecOptions train_spec;
+  AddSpecOptions(train, &train_spec);
+  int alphabet = 0;
+  std::string train_out, train_file, group_by;
+  train
+      ->add_option("--alphabet", alphabet,
+                   "K: tokens are integer ids in [0, K) used as they are (interop with the "
+                   "reference); 0 = string tokens")
+      ->capture_default_str();
+  train->add_option("--out", train_out, "model file to write (with --group-by: a directory)")
+      ->required();
+  std::string corpus, symbol_set = "k1";
+  train->add_option("--group-by", group_by,
+                    "one model per group, written to DIR/<group>.sbm: 'user' or 'grade' (with "
+                    "--corpus), or 'label' (FILE is a labelled token file: label<TAB>tokens per "
+                    "route) [off]");
+  train->add_option("--corpus", corpus,
+                    "train on the original site's CSV export in DIR (public_routes.csv, "
+                    "public_moves.csv), moves symbolized with the project's grammar [off]");
+  std::vector<std::string> route_files;
+  train->add_option("--routes", route_files,
+                    "train on the moves of these CRDL route files, symbolized with the "
+                    "project's grammar (how data/models/default.sbm is made) [off]");
+  train->add_option("--symbols", symbol_set,
+                    "symbol set for --corpus and --routes: k1, k2, k3 or k4 (stored in the "
+                    "model for vary --smooth)")
+      ->capture_default_str();
+  train->add_option("file", train_file, "token file [stdin]");
+
+  // score
+  CLI::App* score = app.add_subcommand(
+      "score",
+      "Print for each input line its total -log2 P (bits, scored from an empty context), one "
+      "number per line (%.17g). Empty lines print 0 (nan with --average).");
+  std::string score_model, score_file;
+  bool average = false;
+  score->add_option("--model", score_model, "model file")->required();
+  score->add_flag("--average", average, "print bits per symbol instead of total bits [off]");
+  score->add_option("file", score_file, "token lines [stdin]");
+
+  // generate
+  CLI::App* gen = app.add_subcommand(
+      "generate",
+      "Forward simulation: print --length tokens that follow --start. Greedy (most likely) "
+      "unless --seed is given, then sampled (deterministic for a seed).");
+  std::string gen_model, gen_start;
+  int length = 10;
+  uint64_t seed = 0;
+  gen->add_option("--model", gen_model, "model file")->required();
+  gen->add_option("--length", length, "number of tokens to generate")->capture_default_str();
+  gen->add_option("--start", gen_start, "context tokens (space-separated) [empty]");
+  CLI::Option* seed_opt = gen->add_option("--seed", seed, "sample with this PRNG seed [greedy]");
+
+  // interpolate
+  CLI::App* interp = app.add_subcommand(
+      "interpolate",
+      "Exact best insertion of 0..j tokens between --before and --after, minimising "
+      "-log2 P(before + inserted + after). Prints 'insert: ...', bits_without, bits_with, "
+      "bits_saved.");
+  std::string in_model, in_before, in_after;
+  int max_insert = 2;
+  interp->add_option("--model", in_model, "model file")->required();
+  interp->add_option("--before", in_before, "tokens before the boundary [empty]");
+  interp->add_option("--after", in_after, "tokens after the boundary [empty]");
+  interp->add_option("--max-insert", max_insert, "j, at most this many tokens (0..4)")
+      ->capture_default_str();
+
+  // classify
+  CLI::App* cls = app.add_subcommand(
+      "classify",
+      "Recognition: which model gives a route the fewest bits per symbol. With --models, "
+      "prints 'label<TAB>bits_per_symbol' per input line (label = model file name without "
+      "extension; with --labelled also the true label and a final accuracy line). With "
+      "--cross-validate, trains per-label models (a labelled file, or --corpus grouped by "
+      "user or grade) and prints a k-fold accuracy report.");
+  std::vector<std::string> cls_models;
+  bool labelled = false, cross = false;
+  int folds = 5;
+  std::string cls_file;
+  SpecOptions cls_spec;
+  cls->add_option("--models", cls_models, "model files (comma-separated or repeated)")
+      ->delimiter(',');
+  cls->add_flag("--labelled", labelled, "input is a labelled token file [off]");
+  cls->add_flag("--cross-validate", cross, "cross-validate per-label models on FILE [off]");
+  cls->add_option("--folds", folds, "k for --cross-validate (route i is in fold i mod k)")
+      ->capture_default_str();
+  std::string cls_group = "label", cls_corpus, cls_set = "k1";
+  cls->add_option("--group-by", cls_group,
+                  "labels for --cross-validate: 'label' (FILE is labelled), or 'user' / 'grade' "
+                  "(with --corpus)")
+      ->capture_default_str();
+  cls->add_option("--corpus", cls_corpus, "the site's CSV export directory for user/grade [off]");
+  cls->add_option("--symbols", cls_set, "symbol set for --corpus: k1..k4")->capture_default_str();
+  AddSpecOptions(cls, &cls_spec);
+  cls->add_option("file", cls_file, "input [stdin]");
+
+  if (int rc = ParseArgs(app, args); rc >= 0) return rc;
+
+  if (train->parsed()) {
+    return Train(train_spec, alphabet, train_out, train_file, group_by, corpus, symbol_set,
+                 route_files);
+  }
+  if (score->parsed()) return Score(score_model, average, score_file);
+  if (gen->parsed()) {
+    return Generate(gen_model, length, gen_start, seed_opt->count() > 0 ? &seed : nullptr);
+  }
+  if (interp->parsed()) return Interpolate(in_model, in_before, in_after, max_insert);
+  if (cls->parsed()) {
+    if (cross) {
+      if (!cls_models.empty()) {
+        return Fail(kCmd,
+                    Status::InvalidInput("--cross-validate trains its own models; drop --models"));
+      }
+      return CrossValidate(cls_spec, folds, cls_file, cls_group, cls_corpus, cls_set);
+    }
+    if (cls_models.empty()) {
+      return Fail(kCmd, Status::InvalidInput("classify needs --models or --cross-validate"));
+    }
+    return ClassifyWithModels(cls_models, labelled, cls_file);
+  }
+  return 2;
 }
 
 }  // namespace sb::cli

@@ -48,6 +48,10 @@ int RunVary(const std::vector<std::string>& args) {
   app.add_option("--smooth", smooth,
                  "smooth subsequence boundaries with this Markov model file (see "
                  "'strangebeta model'); 'default' = the bundled model [off]");
+  double smooth_min_bits = 0.0;
+  app.add_option("--smooth-min-bits", smooth_min_bits,
+                 "show only smoothing suggestions that save more than this many bits")
+      ->capture_default_str();
   app.add_option("--format", format, "text, markdown, json or svg")->capture_default_str();
   app.add_option("-o,--output", out, "write to FILE instead of standard output");
   if (int rc = ParseArgs(app, args); rc >= 0) return rc;
@@ -115,7 +119,7 @@ int RunVary(const std::vector<std::string>& args) {
   if (!v.ok()) return Fail("vary", v.status());
   plan::RoutePlan rp{std::move(*v), {}, ""};
   if (!smooth.empty()) {
-    if (Status s = plan::Smooth(smooth, &rp); !s.ok()) return Fail("vary", s);
+    if (Status s = plan::Smooth(smooth, &rp, smooth_min_bits); !s.ok()) return Fail("vary", s);
   }
   return WriteOutput("vary", out, plan::Render(rp, *fmt));
 }

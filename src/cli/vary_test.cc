@@ -1,4 +1,6 @@
 // Command-line tests of `strangebeta vary` and `strangebeta check`.
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -21,7 +23,10 @@ std::string Slurp(const std::string& path) {
 class VaryCli : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = std::filesystem::path(::testing::TempDir()) / "sb_vary_cli";
+    // One directory per test and process: ctest runs tests in parallel.
+    dir_ = std::filesystem::path(::testing::TempDir()) /
+           ("sb_vary_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
+            "_" + std::to_string(::getpid()));
     std::filesystem::remove_all(dir_);
     std::filesystem::create_directories(dir_);
     Write("a.crdl", "name: Alpha\ngrade: V3\n---\nR jug\nL match\nR crimp\nL sloper\nR pinch\n");
@@ -41,6 +46,7 @@ class VaryCli : public ::testing::Test {
     if (err) *err = e;
     return rc;
   }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
   std::filesystem::path dir_;
   std::string out_;
 };

@@ -256,9 +256,13 @@ std::string RenderText(const RoutePlan& plan) {
            Pad(MoveText(m), w) + "  " + Provenance(plan, m) + "\n";
     while (next < plan.smoothing.size() && plan.smoothing[next].after == static_cast<int>(j)) {
       const Suggestion& s = plan.smoothing[next++];
-      for (const auto& ins : s.moves) {
-        out += "     +  " + Pad("insert: " + SuggestionText(ins), w + 6) + "  (smoothing, saves " +
-               FormatNumber(std::round(s.bits_saved() * 100) / 100) + " bits)\n";
+      for (size_t i = 0; i < s.moves.size(); ++i) {
+        out += "     +  " + Pad("insert: " + SuggestionText(s.moves[i]), w + 6);
+        if (i == 0) {
+          out += "  (smoothing saves " + FormatNumber(std::round(s.bits_saved() * 100) / 100) +
+                 " bits)";
+        }
+        out += "\n";
       }
     }
   }

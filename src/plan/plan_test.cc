@@ -113,6 +113,7 @@ TEST(Plan, SmoothingSuggestionsAppearInEveryFormat) {
   plan.smoothing.push_back({2, {{"L", "jug", "good jug"}}, 10.5, 7.25});
   EXPECT_NE(RenderText(plan).find("insert: L good jug"), std::string::npos);
   EXPECT_NE(RenderText(plan).find("saves 3.25 bits"), std::string::npos);
+  EXPECT_NE(RenderText(plan).find("saves 3.25 bits"), std::string::npos);
   auto j = ToJson(plan);
   EXPECT_EQ(j["smoothing"]["suggestions"][0]["after"], 2);
   EXPECT_EQ(j["smoothing"]["suggestions"][0]["bits_saved"], 3.25);

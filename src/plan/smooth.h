@@ -16,7 +16,14 @@ namespace sb::plan {
 // `model_path` ("default" = the bundled model), and records it in
 // plan->smoothing when it lowers the total. Sets plan->smoothing_model.
 // Errors: the model cannot be read (kNotFound/kInvalidInput).
-Status Smooth(const std::string& model_path, RoutePlan* plan);
+// Each boundary is judged on its own against the unsmoothed sequence; a
+// suggestion's inserted moves alternate hands starting with the hand other
+// than the move before the boundary. Not thread-safe for one plan.
+// Suggestions saving `min_bits` or less are dropped (0 = any saving).
+Status Smooth(const std::string& model_path, RoutePlan* plan, double min_bits = 0.0);
+
+// The bundled model (data/models/default.sbm, see FindDataFile), or "".
+std::string DefaultModelPath();
 
 }  // namespace sb::plan
 

@@ -1,0 +1,122 @@
+// Benchmarks of the Markov models (issue 5): DE-CTW training time and
+// memory at alphabet 200, depth 5 on order-2 Markov streams of 200,000 and
+// 1,000,000 symbols; PPM-C training; exact interpolation (j = 3, alphabet
+// 300). Peak memory: run one size per process and read the `peak_rss_MB`
+// counter (getrusage ru_maxrss of the whole process). Commands in
+// docs/BENCHMARKS.md ("Markov models").
+#include <benchmark/benchmark.h>
+#include <sys/resource.h>
+
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include "markov/interpolate.h"
+#include "markov/model.h"
+
+namespace {
+
+using sb::markov::Algorithm;
+using sb::markov::Model;
+
+// A deterministic order-2 Markov stream: each context (a, b) has 8
+// successors with Zipf-like weights 1/(r+1), plus a 5% uniform jump.
+std::vector<int32_t> Stream(int k, size_t n, uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  auto u01 = [&] { return static_cast<double>(rng() >> 11) * 0x1.0p-53; };
+  std::vector<int32_t> out;
+  out.reserve(n);
+  int32_t a = 0, b = 1;
+  const double w[8] = {1, 1 / 2., 1 / 3., 1 / 4., 1 / 5., 1 / 6., 1 / 7., 1 / 8.};
+  double wsum = 0;
+  for (double x : w) wsum += x;
+  for (size_t i = 0; i < n; ++i) {
+    int32_t next;
+    if (u01() < 0.05) {
+      next = static_cast<int32_t>(rng() % k);
+    } else {
+      double u = u01() * wsum;
+      int r = 0;
+      while (r < 7 && u >= w[r]) u -= w[r++];
+      const uint64_t h =
+          (static_cast<uint64_t>(a) * 1000003u + b) * 0x9E3779B97F4A7C15ull + r * 7919u;
+      next = static_cast<int32_t>((h >> 17) % k);
+    }
+    out.push_back(next);
+    a = b;
+    b = next;
+  }
+  return out;
+}
+
+double PeakRssMb() {
+  rusage ru{};
+  getrusage(RUSAGE_SELF, &ru);
+  return ru.ru_maxrss / 1024.0;
+}
+
+void Train(benchmark::State& state, Algorithm alg) {
+  const auto seq = Stream(200, static_cast<size_t>(state.range(0)), 42);
+  for (auto _ : state) {
+    auto m = Model::Train({alg, 5, 200, 1.0}, seq);
+    benchmark::DoNotOptimize(m.ok());
+  }
+  state.counters["peak_rss_MB"] = PeakRssMb();
+  state.counters["symbols_per_s"] = benchmark::Counter(
+      static_cast<double>(state.range(0)), benchmark::Counter::kIsIterationInvariantRate);
+}
+
+void BM_TrainDeCtw(benchmark::State& state) { Train(state, Algorithm::kDeCtw); }
+BENCHMARK(BM_TrainDeCtw)->Arg(200000)->Arg(1000000)->Unit(benchmark::kMillisecond)->Iterations(3);
+
+// Worst case for memory: a uniform i.i.d. stream makes almost every context
+// of length >= 3 new.
+void BM_TrainDeCtwUniform(benchmark::State& state) {
+  std::mt19937_64 rng(5);
+  std::vector<int32_t> seq(static_cast<size_t>(state.range(0)));
+  for (auto& s : seq) s = static_cast<int32_t>(rng() % 200);
+  for (auto _ : state) {
+    auto m = Model::Train({Algorithm::kDeCtw, 5, 200, 1.0}, seq);
+    benchmark::DoNotOptimize(m.ok());
+  }
+  state.counters["peak_rss_MB"] = PeakRssMb();
+}
+BENCHMARK(BM_TrainDeCtwUniform)
+    ->Arg(200000)
+    ->Arg(1000000)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
+
+void BM_TrainPpmC(benchmark::State& state) { Train(state, Algorithm::kPpmC); }
+BENCHMARK(BM_TrainPpmC)->Arg(200000)->Arg(1000000)->Unit(benchmark::kMillisecond)->Iterations(3);
+
+// Exact best insertion of 0..3 symbols, alphabet 300, DE-CTW depth 5 trained
+// on 200,000 symbols; boundaries join two unrelated parts of the stream.
+void BM_InterpolateJ3(benchmark::State& state) {
+  const auto seq = Stream(300, 200000, 7);
+  auto m = Model::Train({Algorithm::kDeCtw, 5, 300, 1.0}, seq);
+  const auto test = Stream(300, 20000, 99);
+  std::vector<std::pair<std::vector<int32_t>, std::vector<int32_t>>> cases;
+  for (int c = 0; c < 10; ++c) {
+    const size_t b = 1000 * c + 100, a = 1000 * c + 600;
+    cases.push_back(
+        {{test.begin() + b, test.begin() + b + 20}, {test.begin() + a, test.begin() + a + 10}});
+  }
+  sb::markov::InsertionOptions opt;
+  opt.max_insert = static_cast<int>(state.range(0));
+  uint64_t nodes = 0;
+  size_t i = 0;
+  for (auto _ : state) {
+    const auto& [before, after] = cases[i++ % cases.size()];
+    auto r = sb::markov::BestInsertion(**m, before, after, opt);
+    nodes += r->nodes_visited;
+    benchmark::DoNotOptimize(r->bits);
+  }
+  state.counters["nodes"] =
+      benchmark::Counter(static_cast<double>(nodes), benchmark::Counter::kAvgIterations);
+}
+BENCHMARK(BM_InterpolateJ3)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond)->Iterations(10);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,102 @@
+// Internal: an open-addressing hash map from 64-bit keys to 32-bit values,
+// used for context-trie edges. Not part of the public API.
+#ifndef SB_MARKOV_FLAT_MAP_H_
+#define SB_MARKOV_FLAT_MAP_H_
+
+#include <cstdint>
+#include <vector>
+
+namespace sb::markov::internal {
+
+// Maps uint64 keys (never kEmpty) to uint32 values. Linear probing, power-of-two
+// capacity, load factor <= 1/2. Not thread-safe for writes; concurrent Find()
+// calls on an unchanging map are safe.
+class FlatMap {
+ public:
+  static constexpr uint64_t kEmpty = ~uint64_t{0};
+  static constexpr uint32_t kNone = ~uint32_t{0};
+
+  FlatMap() { Rehash(16); }
+
+  // Returns the value for `key`, or kNone.
+  uint32_t Find(uint64_t key) const {
+    size_t i = Slot(key);
+    for (;;) {
+      const uint64_t k = keys_[i];
+      if (k == key) return values_[i];
+      if (k == kEmpty) return kNone;
+      i = (i + 1) & mask_;
+    }
+  }
+
+  // Returns a reference to the value for `key`, inserting `fresh` when absent;
+  // `*inserted` tells which. The reference is valid until the next insertion.
+  uint32_t& FindOrInsert(uint64_t key, uint32_t fresh, bool* inserted) {
+    if ((size_ + 1) * 2 > keys_.size()) Rehash(keys_.size() * 2);
+    size_t i = Slot(key);
+    for (;;) {
+      const uint64_t k = keys_[i];
+      if (k == key) {
+        *inserted = false;
+        return values_[i];
+      }
+      if (k == kEmpty) {
+        keys_[i] = key;
+        values_[i] = fresh;
+        ++size_;
+        *inserted = true;
+        return values_[i];
+      }
+      i = (i + 1) & mask_;
+    }
+  }
+
+  size_t size() const { return size_; }
+  size_t MemoryBytes() const { return keys_.capacity() * 12; }
+
+  // Calls f(key, value) for every entry, in slot order.
+  template <typename F>
+  void ForEach(F&& f) const {
+    for (size_t i = 0; i < keys_.size(); ++i)
+      if (keys_[i] != kEmpty) f(keys_[i], values_[i]);
+  }
+
+ private:
+  size_t Slot(uint64_t key) const {
+    uint64_t h = key * 0x9E3779B97F4A7C15ull;
+    h ^= h >> 29;
+    return static_cast<size_t>(h) & mask_;
+  }
+  void Rehash(size_t cap) {
+    std::vector<uint64_t> old_keys;
+    std::vector<uint32_t> old_values;
+    old_keys.swap(keys_);
+    old_values.swap(values_);
+    keys_.assign(cap, kEmpty);
+    values_.assign(cap, 0);
+    mask_ = cap - 1;
+    size_ = 0;
+    for (size_t i = 0; i < old_keys.size(); ++i) {
+      if (old_keys[i] == kEmpty) continue;
+      size_t j = Slot(old_keys[i]);
+      while (keys_[j] != kEmpty) j = (j + 1) & mask_;
+      keys_[j] = old_keys[i];
+      values_[j] = old_values[i];
+      ++size_;
+    }
+  }
+
+  std::vector<uint64_t> keys_;
+  std::vector<uint32_t> values_;
+  size_t mask_ = 0;
+  size_t size_ = 0;
+};
+
+// Key of the trie edge from `node` by symbol `sym`.
+inline uint64_t EdgeKey(uint32_t node, int32_t sym) {
+  return (uint64_t{node} << 32) | static_cast<uint32_t>(sym);
+}
+
+}  // namespace sb::markov::internal
+
+#endif  // SB_MARKOV_FLAT_MAP_H_

@@ -1,0 +1,288 @@
+#include "markov/token_model.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cstring>
+#include <utility>
+
+#include "base/files.h"
+
+namespace sb::markov {
+namespace {
+
+constexpr char kMagic[8] = {'S', 'B', 'V', 'O', 'M', 'M', '\r', '\n'};
+constexpr uint32_t kVersion = 1;
+constexpr uint32_t kFlagVocabulary = 1;
+constexpr uint32_t kFlagMetadata = 2;
+
+uint64_t Fnv1a(std::string_view data) {
+  uint64_t h = 0xcbf29ce484222325ull;
+  for (unsigned char c : data) {
+    h ^= c;
+    h *= 0x100000001b3ull;
+  }
+  return h;
+}
+
+void PutU32(std::string* out, uint32_t v) {
+  for (int i = 0; i < 4; ++i) out->push_back(static_cast<char>((v >> (8 * i)) & 0xff));
+}
+void PutU64(std::string* out, uint64_t v) {
+  for (int i = 0; i < 8; ++i) out->push_back(static_cast<char>((v >> (8 * i)) & 0xff));
+}
+
+class Reader {
+ public:
+  explicit Reader(std::string_view b) : b_(b) {}
+  bool U32(uint32_t* v) {
+    if (b_.size() - pos_ < 4) return false;
+    *v = 0;
+    for (int i = 0; i < 4; ++i) *v |= uint32_t{static_cast<unsigned char>(b_[pos_ + i])} << (8 * i);
+    pos_ += 4;
+    return true;
+  }
+  bool U64(uint64_t* v) {
+    if (b_.size() - pos_ < 8) return false;
+    *v = 0;
+    for (int i = 0; i < 8; ++i) *v |= uint64_t{static_cast<unsigned char>(b_[pos_ + i])} << (8 * i);
+    pos_ += 8;
+    return true;
+  }
+  bool Bytes(size_t n, std::string_view* s) {
+    if (b_.size() - pos_ < n) return false;
+    *s = b_.substr(pos_, n);
+    pos_ += n;
+    return true;
+  }
+  size_t remaining() const { return b_.size() - pos_; }
+  size_t pos() const { return pos_; }
+
+ private:
+  std::string_view b_;
+  size_t pos_ = 0;
+};
+
+}  // namespace
+
+Vocabulary::Vocabulary(std::vector<std::string> tokens) : tokens_(std::move(tokens)) {
+  std::sort(tokens_.begin(), tokens_.end());
+  tokens_.erase(std::unique(tokens_.begin(), tokens_.end()), tokens_.end());
+  for (size_t i = 0; i < tokens_.size(); ++i) ids_.emplace(tokens_[i], static_cast<int32_t>(i));
+}
+
+int32_t Vocabulary::Id(std::string_view token) const {
+  auto it = ids_.find(token);
+  return it == ids_.end() ? unknown_id() : it->second;
+}
+
+const std::string& Vocabulary::Token(int32_t id) const {
+  static const std::string kUnk = "<unk>";
+  if (id < 0 || static_cast<size_t>(id) >= tokens_.size()) return kUnk;
+  return tokens_[id];
+}
+
+Result<TokenModel> TokenModel::Build(const ModelSpec& spec, bool has_vocab, Vocabulary vocab,
+                                     std::vector<int32_t> ids) {
+  auto m = Model::Train(spec, ids);
+  if (!m.ok()) return m.status();
+  TokenModel tm;
+  tm.model_ = std::shared_ptr<const Model>(std::move(m).value());
+  tm.has_vocab_ = has_vocab;
+  tm.vocab_ = std::move(vocab);
+  tm.training_ = std::move(ids);
+  return tm;
+}
+
+Result<TokenModel> TokenModel::FromIds(const ModelSpec& spec, std::vector<int32_t> ids) {
+  return Build(spec, false, Vocabulary(), std::move(ids));
+}
+
+Result<TokenModel> TokenModel::FromTokens(ModelSpec spec, const std::vector<std::string>& tokens) {
+  if (tokens.empty()) return Status::InvalidInput("no training tokens");
+  return FromTokensWithVocabulary(spec, Vocabulary(tokens), tokens);
+}
+
+Result<TokenModel> TokenModel::FromTokensWithVocabulary(ModelSpec spec, const Vocabulary& vocab,
+                                                        const std::vector<std::string>& tokens) {
+  spec.alphabet_size = static_cast<int>(vocab.size()) + 1;
+  std::vector<int32_t> ids;
+  ids.reserve(tokens.size());
+  for (const auto& t : tokens) ids.push_back(vocab.Id(t));
+  return Build(spec, true, vocab, std::move(ids));
+}
+
+Result<std::vector<int32_t>> TokenModel::Encode(const std::vector<std::string>& tokens) const {
+  std::vector<int32_t> ids;
+  ids.reserve(tokens.size());
+  for (size_t i = 0; i < tokens.size(); ++i) {
+    if (has_vocab_) {
+      ids.push_back(vocab_.Id(tokens[i]));
+      continue;
+    }
+    int32_t v = -1;
+    const char* b = tokens[i].data();
+    const char* e = b + tokens[i].size();
+    auto [p, ec] = std::from_chars(b, e, v);
+    if (ec != std::errc() || p != e || v < 0 || v >= spec().alphabet_size) {
+      return Status::InvalidInput("token " + std::to_string(i + 1) + " '" + tokens[i] +
+                                  "' is not an integer in [0, " +
+                                  std::to_string(spec().alphabet_size) + ")");
+    }
+    ids.push_back(v);
+  }
+  return ids;
+}
+
+std::string TokenModel::Decode(int32_t id) const {
+  return has_vocab_ ? vocab_.Token(id) : std::to_string(id);
+}
+
+std::string TokenModel::Serialize() const {
+  std::string out(kMagic, sizeof kMagic);
+  PutU32(&out, kVersion);
+  const ModelSpec& s = spec();
+  PutU32(&out, static_cast<uint32_t>(s.algorithm));
+  PutU32(&out, static_cast<uint32_t>(s.depth));
+  PutU32(&out, static_cast<uint32_t>(s.alphabet_size));
+  uint64_t alpha_bits;
+  std::memcpy(&alpha_bits, &s.alpha, 8);
+  PutU64(&out, alpha_bits);
+  PutU32(&out, (has_vocab_ ? kFlagVocabulary : 0) | (metadata_.empty() ? 0 : kFlagMetadata));
+  if (has_vocab_) {
+    PutU32(&out, static_cast<uint32_t>(vocab_.size()));
+    for (const auto& t : vocab_.tokens()) {
+      PutU32(&out, static_cast<uint32_t>(t.size()));
+      out += t;
+    }
+  }
+  if (!metadata_.empty()) {
+    PutU32(&out, static_cast<uint32_t>(metadata_.size()));
+    for (const auto& [k, v] : metadata_) {
+      PutU32(&out, static_cast<uint32_t>(k.size()));
+      out += k;
+      PutU32(&out, static_cast<uint32_t>(v.size()));
+      out += v;
+    }
+  }
+  PutU64(&out, training_.size());
+  for (int32_t id : training_) PutU32(&out, static_cast<uint32_t>(id));
+  PutU64(&out, Fnv1a(out));
+  return out;
+}
+
+Result<TokenModel> TokenModel::Parse(std::string_view bytes, const std::string& name) {
+  auto bad = [&](const std::string& why) {
+    return Status::InvalidInput(name + ": not a valid model file: " + why);
+  };
+  if (bytes.size() < sizeof kMagic || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0) {
+    return bad("wrong magic (expected an 'SBVOMM' model)");
+  }
+  if (bytes.size() < sizeof kMagic + 4 + 8) return bad("truncated header");
+  Reader r(bytes.substr(sizeof kMagic));
+  uint32_t version = 0, alg = 0, depth = 0, ab = 0, flags = 0;
+  uint64_t alpha_bits = 0;
+  r.U32(&version);
+  if (version != kVersion) {
+    return bad("unsupported format version " + std::to_string(version) + " (this build reads 1)");
+  }
+  {
+    uint64_t stored = 0;
+    for (int i = 0; i < 8; ++i)
+      stored |= uint64_t{static_cast<unsigned char>(bytes[bytes.size() - 8 + i])} << (8 * i);
+    if (stored != Fnv1a(bytes.substr(0, bytes.size() - 8))) {
+      return bad("checksum mismatch (file truncated or corrupted)");
+    }
+  }
+  if (!r.U32(&alg) || !r.U32(&depth) || !r.U32(&ab) || !r.U64(&alpha_bits) || !r.U32(&flags)) {
+    return bad("truncated header");
+  }
+  if (alg > 2) return bad("unknown algorithm code " + std::to_string(alg));
+  if ((flags & ~(kFlagVocabulary | kFlagMetadata)) != 0) return bad("unknown flags");
+  ModelSpec spec;
+  spec.algorithm = static_cast<Algorithm>(alg);
+  spec.depth = depth > 1000 ? 1000 : static_cast<int>(depth);
+  spec.alphabet_size = ab > 100000000 ? 100000000 : static_cast<int>(ab);
+  std::memcpy(&spec.alpha, &alpha_bits, 8);
+  if (Status st = ValidateSpec(spec); !st.ok()) return bad(st.message());
+  const bool has_vocab = (flags & kFlagVocabulary) != 0;
+  std::vector<std::string> tokens;
+  if (has_vocab) {
+    uint32_t n = 0;
+    if (!r.U32(&n)) return bad("truncated vocabulary");
+    if (static_cast<uint64_t>(n) + 1 != ab) return bad("vocabulary size does not match alphabet");
+    if (n > r.remaining() / 4) return bad("truncated vocabulary");
+    tokens.reserve(n);
+    for (uint32_t i = 0; i < n; ++i) {
+      uint32_t len = 0;
+      std::string_view t;
+      if (!r.U32(&len) || !r.Bytes(len, &t)) return bad("truncated vocabulary");
+      if (t.empty() || (i > 0 && !(tokens.back() < t))) {
+        return bad("vocabulary is not sorted and distinct");
+      }
+      tokens.emplace_back(t);
+    }
+  }
+  std::map<std::string, std::string> metadata;
+  if (flags & kFlagMetadata) {
+    uint32_t count = 0;
+    if (!r.U32(&count) || count == 0 || count > r.remaining() / 8) return bad("truncated metadata");
+    std::string_view last;
+    for (uint32_t i = 0; i < count; ++i) {
+      uint32_t kl = 0, vl = 0;
+      std::string_view k, v;
+      if (!r.U32(&kl) || !r.Bytes(kl, &k) || !r.U32(&vl) || !r.Bytes(vl, &v)) {
+        return bad("truncated metadata");
+      }
+      if (k.empty() || v.empty() || (i > 0 && !(last < k))) {
+        return bad("metadata keys are not sorted, distinct and non-empty");
+      }
+      last = k;
+      metadata.emplace(std::string(k), std::string(v));
+    }
+  }
+  uint64_t n = 0;
+  if (!r.U64(&n)) return bad("truncated training sequence");
+  if (r.remaining() < 8 || n > (r.remaining() - 8) / 4) return bad("truncated training sequence");
+  if (r.remaining() - 8 != n * 4) return bad("trailing bytes after the training sequence");
+  std::vector<int32_t> ids(n);
+  for (uint64_t i = 0; i < n; ++i) {
+    uint32_t v = 0;
+    r.U32(&v);
+    if (v >= ab) return bad("symbol id out of range at position " + std::to_string(i));
+    if (has_vocab && v == ab - 1) return bad("unknown-token id in the training sequence");
+    ids[i] = static_cast<int32_t>(v);
+  }
+  Vocabulary vocab(std::move(tokens));
+  auto tm = Build(spec, has_vocab, std::move(vocab), std::move(ids));
+  if (!tm.ok()) return bad(tm.status().message());
+  tm->set_metadata(std::move(metadata));
+  return tm;
+}
+
+Status SaveModel(const TokenModel& model, const std::string& path) {
+  return WriteFileAtomic(path, model.Serialize());
+}
+
+Result<TokenModel> LoadModel(const std::string& path) {
+  auto data = ReadFile(path);
+  if (!data.ok()) return data.status();
+  return TokenModel::Parse(*data, path);
+}
+
+std::vector<std::string> Tokenize(std::string_view text) {
+  std::vector<std::string> out;
+  size_t i = 0;
+  auto ws = [](char c) {
+    return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f';
+  };
+  while (i < text.size()) {
+    while (i < text.size() && ws(text[i])) ++i;
+    size_t j = i;
+    while (j < text.size() && !ws(text[j])) ++j;
+    if (j > i) out.emplace_back(text.substr(i, j - i));
+    i = j;
+  }
+  return out;
+}
+
+}  // namespace sb::markov
