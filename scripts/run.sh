@@ -1,6 +1,17 @@
 #!/usr/bin/env bash
-# The main job on its embedded default: a variation of the bundled example routes.
+# The main job on its embedded default: a variation of the bundled example routes,
+# then the web app (strangebeta serve) on var/strangebeta.db.
 set -euo pipefail
 build=${1:-build}
 cd "$(dirname "$0")/.."
-exec "$build/strangebeta" vary --preset more data/examples/crimp-ladder.crdl data/examples/slab-dance.crdl
+# A variation of two bundled examples first (skipped when they are absent).
+if [[ -f data/examples/crimp-ladder.crdl && -f data/examples/slab-dance.crdl ]]; then
+  "$build/strangebeta" vary --preset more data/examples/crimp-ladder.crdl data/examples/slab-dance.crdl || true
+fi
+
+# Then the web app on the embedded default database (seeded with the bundled
+# examples and the demo account when fresh). SB_PORT overrides the port.
+mkdir -p var
+seed=()
+[[ -d data/examples ]] && seed=(--seed-examples data/examples)
+exec "$build/strangebeta" serve --port "${SB_PORT:-8080}" --db var/strangebeta.db "${seed[@]}"

@@ -34,3 +34,14 @@ if ((${#missing[@]})); then
 else
   echo "setup: all Debian packages present"
 fi
+
+# Playwright for the browser tests (playwright-core only: it drives the Debian
+# chromium above and downloads no browser), from the npm registry, pinned by
+# tests/browser/package-lock.json. tests/browser.sh retries when this fails.
+browser_dir="$(cd "$(dirname "$0")/.." && pwd)/tests/browser"
+if [[ -f "$browser_dir/package-lock.json" && ! -d "$browser_dir/node_modules/playwright-core" ]] &&
+   command -v npm >/dev/null; then
+  echo "setup: npm ci in tests/browser"
+  (cd "$browser_dir" && npm ci --no-audit --no-fund --loglevel=error) ||
+    echo "setup: warning: npm ci in tests/browser failed"
+fi

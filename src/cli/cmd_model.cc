@@ -569,8 +569,11 @@ int RunModel(const std::vector<std::string>& args) {
   int folds = 5;
   std::string cls_file;
   SpecOptions cls_spec;
+  // One argument per occurrence (split at commas), so that a FILE after
+  // --models M1,M2 is the input and not a third model.
   cls->add_option("--models", cls_models, "model files (comma-separated or repeated)")
-      ->delimiter(',');
+      ->delimiter(',')
+      ->allow_extra_args(false);
   cls->add_flag("--labelled", labelled, "input is a labelled token file [off]");
   cls->add_flag("--cross-validate", cross, "cross-validate per-label models on FILE [off]");
   cls->add_option("--folds", folds, "k for --cross-validate (route i is in fold i mod k)")

@@ -1,13 +1,111 @@
-// PLACEHOLDER until the owning module lands; replaced by the real subcommand.
-#include <cstdio>
+// strangebeta serve: run the web app on a SQLite database.
+#include <pthread.h>
+#include <signal.h>
 
+#include <cstdio>
+#include <filesystem>
+#include <thread>
+
+#include "cli/cli_util.h"
 #include "cli/commands.h"
+#include "store/sqlite_store.h"
+#include "web/seed.h"
+#include "web/server.h"
 
 namespace sb::cli {
 
-int RunServe(const std::vector<std::string>&) {
-  std::fprintf(stderr, "strangebeta serve: not available in this build yet\n");
-  return 1;
+int RunServe(const std::vector<std::string>& args) {
+  CLI::App app{"Run the web app: accounts, routes, variations, IC maps and printable plans.",
+               "strangebeta serve"};
+  int port = 8080;
+  std::string host = "127.0.0.1";
+  std::string db = "var/strangebeta.db";
+  std::string seed_dir;
+  bool no_seed = false;
+  std::string static_dir;
+  int threads = 0;
+  bool log = false;
+  app.add_option("--port", port, "TCP port (0 = any free port)")->check(CLI::Range(0, 65535));
+  app.add_option("--host", host, "address to listen on (default 127.0.0.1)");
+  app.add_option("--db", db, "SQLite database file (created when absent)");
+  app.add_option("--seed-examples", seed_dir,
+                 "directory of *.crdl routes to seed a fresh database with "
+                 "(default: the bundled data/examples)");
+  app.add_flag("--no-seed", no_seed, "do not seed a fresh database");
+  app.add_option("--static", static_dir, "directory of the web assets (default: bundled web/)");
+  app.add_option("--threads", threads,
+                 "worker threads = concurrent connections (default max(32, 4 x cores))")
+      ->check(CLI::Range(0, 256));
+  bool secure_cookie = false;
+  app.add_flag("--secure-cookies", secure_cookie,
+               "mark the session cookie Secure (when behind an HTTPS proxy)");
+  app.add_flag("--log", log, "print one line per request to stderr");
+  if (int rc = ParseArgs(app, args); rc >= 0) return rc;
+
+  std::error_code ec;
+  std::filesystem::path parent = std::filesystem::path(db).parent_path();
+  if (!parent.empty()) std::filesystem::create_directories(parent, ec);
+  Result<std::unique_ptr<store::Store>> st = store::OpenSqliteStore(db);
+  if (!st.ok()) return Fail("serve", st.status());
+  store::Store* store = st->get();
+
+  // A fresh database gets the demo account and the example routes.
+  Result<int64_t> users = store->CountUsers();
+  if (!users.ok()) return Fail("serve", users.status());
+  bool fresh = *users == 0;
+  if (fresh && !no_seed) {
+    Result<int64_t> demo = web::EnsureDemoAccount(store);
+    if (!demo.ok()) return Fail("serve", demo.status());
+    std::string dir = seed_dir.empty() ? web::DefaultExamplesDir() : seed_dir;
+    std::vector<std::string> skipped;
+    Result<int> n = web::SeedExamples(store, dir, *demo, &skipped);
+    if (!n.ok()) return Fail("serve", n.status());
+    for (const std::string& s : skipped) std::fprintf(stderr, "serve: skipped %s\n", s.c_str());
+    std::printf("seeded %d example route%s%s%s\n", *n, *n == 1 ? "" : "s",
+                dir.empty() ? "" : " from ", dir.c_str());
+  }
+
+  web::ServerOptions options;
+  options.static_dir = static_dir;
+  options.threads = threads;
+  options.access_log = log;
+  options.secure_cookie = secure_cookie;
+  if (options.static_dir.empty() && web::DefaultStaticDir().empty()) {
+    std::fprintf(stderr, "serve: warning: web assets (web/app.js) not found; pages lack style\n");
+  }
+
+  // SIGINT/SIGTERM stop the server cleanly: block them here (threads inherit
+  // the mask) and wait for them on a thread of our own.
+  sigset_t set;
+  sigemptyset(&set);
+  sigaddset(&set, SIGINT);
+  sigaddset(&set, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &set, nullptr);
+
+  web::Server server(store, options);
+  Result<int> bound = server.Bind(host, port);
+  if (!bound.ok()) return Fail("serve", bound.status());
+  std::string shown = host == "0.0.0.0" ? "127.0.0.1" : host;
+  std::printf("strangebeta web app on http://%s:%d/ (database %s)\n", shown.c_str(), *bound,
+              db.c_str());
+  if (store->FindUserByName(web::kDemoUser).ok()) {
+    std::printf("demo account: user %s, password %s\n", web::kDemoUser, web::kDemoPassword);
+  }
+  std::printf("press Ctrl-C to stop\n");
+  std::fflush(stdout);
+
+  std::thread waiter([&server, set] {
+    int sig = 0;
+    sigwait(&set, &sig);
+    server.Stop();
+  });
+  Status run = server.Run();
+  // Wake the waiter if Run ended for another reason.
+  pthread_kill(waiter.native_handle(), SIGTERM);
+  waiter.join();
+  if (!run.ok()) return Fail("serve", run);
+  std::printf("stopped\n");
+  return 0;
 }
 
 }  // namespace sb::cli

@@ -62,7 +62,7 @@ Result<SiteExport> ParseSiteExport(std::string_view routes_csv, std::string_view
   if (!rrows.ok()) return rrows.status();
   auto mrows = ParseCsv(moves_csv, moves_name);
   if (!mrows.ok()) return mrows.status();
-  auto rc = Columns(*rrows, routes_name, {"route_id", "user_id", "name", "is_variation"});
+  auto rc = Columns(*rrows, routes_name, {"route_id", "name"});
   if (!rc.ok()) return rc.status();
   auto mc = Columns(*mrows, moves_name, {"route_id", "seq_no", "hand", "move"});
   if (!mc.ok()) return mc.status();
@@ -80,9 +80,11 @@ Result<SiteExport> ParseSiteExport(std::string_view routes_csv, std::string_view
     auto id = ToInt(col(*rc, row, "route_id"), routes_name, i, "route_id");
     if (!id.ok()) return id.status();
     r.id = *id;
-    auto user = ToInt(col(*rc, row, "user_id"), routes_name, i, "user_id");
-    if (!user.ok()) return user.status();
-    r.user_id = *user;
+    if (std::string u = col(*rc, row, "user_id"); !Trim(u).empty()) {  // optional column
+      auto user = ToInt(u, routes_name, i, "user_id");
+      if (!user.ok()) return user.status();
+      r.user_id = *user;
+    }
     r.is_variation = col(*rc, row, "is_variation") == "t";
     std::string pub = col(*rc, row, "is_public");
     r.is_public = pub.empty() || pub == "t";

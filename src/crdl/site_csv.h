@@ -37,7 +37,8 @@ struct SiteExport {
   int Find(int id) const;
 };
 
-// Parses the two CSV texts. Rows are validated: errors name the file, line
+// Parses the two CSV texts. Required columns: route_id and name (routes);
+// route_id, seq_no, hand and move (moves); the others may be absent. Rows are validated: errors name the file, line
 // and column name ("public_moves.csv: record 12: route_id: not a whole number").
 // Moves of routes missing from the routes file are skipped and counted. Pure; thread-safe.
 Result<SiteExport> ParseSiteExport(std::string_view routes_csv, std::string_view routes_name,

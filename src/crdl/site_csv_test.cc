@@ -64,8 +64,12 @@ TEST(SiteCsv, ErrorsNameFileRecordAndColumn) {
   auto bad_hand = ParseSiteExport(kRoutes, "r.csv", "route_id,seq_no,hand,move\n2,1,Q,jug\n",
                                   "m.csv");
   EXPECT_EQ(bad_hand.status().message(), "m.csv: record 1: hand: expected L or R, got \"q\"");
-  auto missing = ParseSiteExport("route_id,name\n1,a\n", "r.csv", kMoves, "m.csv");
-  EXPECT_EQ(missing.status().message(), "r.csv:1: missing column \"user_id\"");
+  auto missing = ParseSiteExport("route_id,title\n1,a\n", "r.csv", kMoves, "m.csv");
+  EXPECT_EQ(missing.status().message(), "r.csv:1: missing column \"name\"");
+  auto minimal = ParseSiteExport("route_id,name\n2,a\n", "r.csv", "route_id,seq_no,hand,move\n2,1,L,jug\n", "m.csv");
+  ASSERT_TRUE(minimal.ok()) << minimal.status().message();
+  EXPECT_EQ(minimal->routes[0].user_id, 0);
+  EXPECT_FALSE(minimal->routes[0].is_variation);
   auto dup = ParseSiteExport(
       "route_id,user_id,name,is_variation\n1,1,a,f\n1,1,b,f\n", "r.csv", kMoves, "m.csv");
   EXPECT_FALSE(dup.ok());

@@ -1,6 +1,10 @@
 #include "plan/smooth.h"
 
 #include <algorithm>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <mutex>
 
 #include "base/files.h"
 #include "language/symbols.h"
@@ -17,6 +21,66 @@ bool Continues(const chaos::VariedMove& a, const chaos::VariedMove& b) {
          a.source->move + 1 == b.source->move;
 }
 
+// Loaded models and the default grammar, kept for the life of the process so
+// a server does not reload them per request. A model is reloaded when its
+// file's size or modification time changes. Thread-safe.
+struct Cache {
+  std::mutex mu;
+  struct Entry {
+    std::filesystem::file_time_type mtime;
+    uintmax_t size = 0;
+    std::shared_ptr<const markov::TokenModel> model;
+  };
+  std::map<std::string, Entry> models;
+  std::shared_ptr<const language::Grammar> grammar;
+};
+
+Cache& TheCache() {
+  static Cache* cache = new Cache;  // never destroyed: used until exit
+  return *cache;
+}
+
+Result<std::shared_ptr<const markov::TokenModel>> CachedModel(const std::string& path) {
+  std::error_code ec;
+  auto mtime = std::filesystem::last_write_time(path, ec);
+  uintmax_t size = ec ? 0 : std::filesystem::file_size(path, ec);
+  Cache& c = TheCache();
+  {
+    std::lock_guard<std::mutex> lock(c.mu);
+    auto it = c.models.find(path);
+    if (!ec && it != c.models.end() && it->second.mtime == mtime && it->second.size == size) {
+      return it->second.model;
+    }
+  }
+  auto m = markov::LoadModel(path);
+  if (!m.ok()) return m.status();
+  auto shared = std::make_shared<const markov::TokenModel>(std::move(*m));
+  if (!ec) {
+    std::lock_guard<std::mutex> lock(c.mu);
+    c.models[path] = {mtime, size, shared};
+  }
+  return shared;
+}
+
+Result<language::MoveLanguage> CachedLanguage() {
+  Cache& c = TheCache();
+  std::shared_ptr<const language::Grammar> g;
+  {
+    std::lock_guard<std::mutex> lock(c.mu);
+    g = c.grammar;
+  }
+  if (!g) {
+    std::string dir = language::DefaultGrammarDir();
+    if (dir.empty()) return Status::NotFound("default grammar (data/grammar) not found");
+    auto loaded = language::LoadGrammarDir(dir);
+    if (!loaded.ok()) return loaded.status();
+    g = *loaded;
+    std::lock_guard<std::mutex> lock(c.mu);
+    c.grammar = g;
+  }
+  return language::MoveLanguage(g, language::Tokenization::kFolded);
+}
+
 }  // namespace
 
 std::string DefaultModelPath() { return FindDataFile("models/default.sbm"); }
@@ -31,8 +95,9 @@ Status Smooth(const std::string& model_path, RoutePlan* plan, double min_bits) {
           "SB_DATA_DIR to the directory holding models/default.sbm)");
     }
   }
-  auto model = markov::LoadModel(path);
-  if (!model.ok()) return model.status();
+  auto loaded = CachedModel(path);
+  if (!loaded.ok()) return loaded.status();
+  const markov::TokenModel* model = loaded->get();
   if (!model->has_vocabulary()) {
     return Status::InvalidInput(path +
                                 ": the model's tokens are integer ids; smoothing needs a model "
@@ -47,7 +112,7 @@ Status Smooth(const std::string& model_path, RoutePlan* plan, double min_bits) {
     return Status::InvalidInput(path + ": unknown symbol set \"" + set + "\" in the model");
   }
   const int k = set[1] - '1';
-  auto lang = language::MoveLanguage::LoadDefault();
+  auto lang = CachedLanguage();
   if (!lang.ok()) return lang.status();
 
   const auto& moves = plan->variation.moves;

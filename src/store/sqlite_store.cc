@@ -1,0 +1,544 @@
+#include "store/sqlite_store.h"
+
+#include <sqlite3.h>
+
+#include <ctime>
+#include <mutex>
+#include <string_view>
+#include <utility>
+
+namespace sb::store {
+
+namespace {
+
+// Migrations, applied in order; PRAGMA user_version holds how many ran.
+// Never edit a released entry: append a new one.
+const char* const kMigrations[] = {
+    // 1: the base schema.
+    R"sql(
+CREATE TABLE users (
+  id            INTEGER PRIMARY KEY,
+  username      TEXT NOT NULL UNIQUE COLLATE NOCASE,
+  password_hash TEXT NOT NULL,
+  created_at    TEXT NOT NULL
+);
+CREATE TABLE sessions (
+  id_hash    TEXT PRIMARY KEY,
+  user_id    INTEGER NOT NULL REFERENCES users(id) ON DELETE CASCADE,
+  csrf       TEXT NOT NULL,
+  created_at INTEGER NOT NULL,
+  expires_at INTEGER NOT NULL
+);
+CREATE TABLE login_failures (
+  key TEXT NOT NULL,
+  at  INTEGER NOT NULL
+);
+CREATE TABLE routes (
+  id           INTEGER PRIMARY KEY,
+  owner_id     INTEGER REFERENCES users(id) ON DELETE SET NULL,
+  name         TEXT NOT NULL,
+  grade        TEXT NOT NULL DEFAULT '',
+  setter       TEXT NOT NULL DEFAULT '',
+  crdl         TEXT NOT NULL,
+  move_count   INTEGER NOT NULL DEFAULT 0,
+  is_public    INTEGER NOT NULL DEFAULT 1,
+  is_variation INTEGER NOT NULL DEFAULT 0,
+  params_json  TEXT NOT NULL DEFAULT '',
+  plan_json    TEXT NOT NULL DEFAULT '',
+  created_at   TEXT NOT NULL,
+  updated_at   TEXT NOT NULL
+);
+CREATE TABLE variation_inputs (
+  variation_id INTEGER NOT NULL REFERENCES routes(id) ON DELETE CASCADE,
+  position     INTEGER NOT NULL,
+  route_id     INTEGER REFERENCES routes(id) ON DELETE SET NULL,
+  name         TEXT NOT NULL,
+  crdl         TEXT NOT NULL,
+  PRIMARY KEY (variation_id, position)
+);
+)sql",
+    // 2: indexes for the list filters and log-in throttling; smoothing flag.
+    R"sql(
+CREATE INDEX routes_owner ON routes(owner_id);
+CREATE INDEX routes_public ON routes(is_public, id);
+CREATE INDEX variation_inputs_route ON variation_inputs(route_id);
+CREATE INDEX sessions_user ON sessions(user_id);
+CREATE INDEX login_failures_key ON login_failures(key, at);
+ALTER TABLE routes ADD COLUMN smooth INTEGER NOT NULL DEFAULT 0;
+)sql",
+};
+static_assert(sizeof(kMigrations) / sizeof(kMigrations[0]) == kSchemaVersion);
+
+std::string NowText() {
+  std::time_t t = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M:%S", &tm);
+  return buf;
+}
+
+// A prepared statement, finalised on scope exit.
+class Stmt {
+ public:
+  Stmt(sqlite3* db, std::string_view sql) : db_(db) {
+    rc_ = sqlite3_prepare_v2(db, sql.data(), static_cast<int>(sql.size()), &s_, nullptr);
+  }
+  ~Stmt() { sqlite3_finalize(s_); }
+  Stmt(const Stmt&) = delete;
+  Stmt& operator=(const Stmt&) = delete;
+
+  bool prepared() const { return rc_ == SQLITE_OK; }
+  Stmt& Bind(int i, int64_t v) {
+    sqlite3_bind_int64(s_, i, v);
+    return *this;
+  }
+  Stmt& Bind(int i, const std::string& v) {
+    sqlite3_bind_text(s_, i, v.data(), static_cast<int>(v.size()), SQLITE_TRANSIENT);
+    return *this;
+  }
+  Stmt& Bind(int i, std::optional<int64_t> v) {
+    if (v) {
+      sqlite3_bind_int64(s_, i, *v);
+    } else {
+      sqlite3_bind_null(s_, i);
+    }
+    return *this;
+  }
+  // SQLITE_ROW, SQLITE_DONE or an error code.
+  int Step() { return prepared() ? sqlite3_step(s_) : rc_; }
+  int64_t Int(int col) { return sqlite3_column_int64(s_, col); }
+  bool IsNull(int col) { return sqlite3_column_type(s_, col) == SQLITE_NULL; }
+  std::string Text(int col) {
+    const unsigned char* p = sqlite3_column_text(s_, col);
+    int n = sqlite3_column_bytes(s_, col);
+    return p ? std::string(reinterpret_cast<const char*>(p), n) : std::string();
+  }
+  Status Error(std::string_view what) const {
+    return Status::IoError(std::string(what) + ": " + sqlite3_errmsg(db_));
+  }
+
+ private:
+  sqlite3* db_;
+  sqlite3_stmt* s_ = nullptr;
+  int rc_;
+};
+
+class SqliteStore final : public Store {
+ public:
+  explicit SqliteStore(sqlite3* db) : db_(db) {}
+  ~SqliteStore() override { sqlite3_close_v2(db_); }
+
+  Status Init() {
+    SB_RETURN_IF_ERROR(Exec("PRAGMA foreign_keys = ON"));
+    SB_RETURN_IF_ERROR(Exec("PRAGMA busy_timeout = 5000"));
+    {
+      Stmt s(db_, "PRAGMA journal_mode = WAL");
+      s.Step();  // in-memory databases answer "memory"; that is fine
+    }
+    SB_RETURN_IF_ERROR(Exec("PRAGMA synchronous = NORMAL"));
+    int version = SchemaVersionLocked();
+    if (version > kSchemaVersion) {
+      return Status::InvalidInput("database schema version " + std::to_string(version) +
+                                  " is newer than this program's (" +
+                                  std::to_string(kSchemaVersion) + ")");
+    }
+    for (int v = version; v < kSchemaVersion; ++v) {
+      SB_RETURN_IF_ERROR(Exec("BEGIN IMMEDIATE"));
+      Status st = Exec(kMigrations[v]);
+      if (st.ok()) st = Exec("PRAGMA user_version = " + std::to_string(v + 1));
+      if (!st.ok()) {
+        Exec("ROLLBACK");
+        return Status::IoError("migration " + std::to_string(v + 1) + ": " + st.message());
+      }
+      SB_RETURN_IF_ERROR(Exec("COMMIT"));
+    }
+    return Status::Ok();
+  }
+
+  int SchemaVersion() override {
+    std::lock_guard<std::mutex> lock(mu_);
+    return SchemaVersionLocked();
+  }
+
+  Result<int64_t> CreateUser(const std::string& username,
+                             const std::string& password_hash) override {
+    std::lock_guard<std::mutex> lock(mu_);
+    Stmt s(db_, "INSERT INTO users(username, password_hash, created_at) VALUES(?,?,?)");
+    s.Bind(1, username).Bind(2, password_hash).Bind(3, NowText());
+    int rc = s.Step();
+    if (rc == SQLITE_CONSTRAINT) return Status::Conflict("username '" + username + "' is taken");
+    if (rc != SQLITE_DONE) return s.Error("create user");
+    return static_cast<int64_t>(sqlite3_last_insert_rowid(db_));
+  }
+
+  Result<User> FindUserByName(const std::string& username) override {
+    std::lock_guard<std::mutex> lock(mu_);
+    Stmt s(db_, "SELECT id, username, password_hash, created_at FROM users WHERE username = ?");
+    s.Bind(1, username);
+    return ReadUser(s, "no user '" + username + "'");
+  }
+
+  Result<User> FindUser(int64_t id) override {
+    std::lock_guard<std::mutex> lock(mu_);
+    Stmt s(db_, "SELECT id, username, password_hash, created_at FROM users WHERE id = ?");
+    s.Bind(1, id);
+    return ReadUser(s, "no user " + std::to_string(id));
+  }
+
+  Result<int64_t> CountUsers() override {
+    std::lock_guard<std::mutex> lock(mu_);
+    Stmt s(db_, "SELECT COUNT(*) FROM users");
+    if (s.Step() != SQLITE_ROW) return s.Error("count users");
+    return s.Int(0);
+  }
+
+  Status CreateSession(const Session& session) override {
+    std::lock_guard<std::mutex> lock(mu_);
+    {
+      // Expired sessions are dropped here so the table stays small.
+      Stmt d(db_, "DELETE FROM sessions WHERE expires_at <= ?");
+      d.Bind(1, static_cast<int64_t>(std::time(nullptr)));
+      d.Step();
+    }
+    Stmt s(db_,
+           "INSERT INTO sessions(id_hash, user_id, csrf, created_at, expires_at) "
+           "VALUES(?,?,?,?,?)");
+    s.Bind(1, session.id_hash)
+        .Bind(2, session.user_id)
+        .Bind(3, session.csrf)
+        .Bind(4, static_cast<int64_t>(std::time(nullptr)))
+        .Bind(5, session.expires_at);
+    if (s.Step() != SQLITE_DONE) return s.Error("create session");
+    return Status::Ok();
+  }
+
+  Result<Session> FindSession(const std::string& id_hash, int64_t now) override {
+    std::lock_guard<std::mutex> lock(mu_);
+    Stmt s(db_,
+           "SELECT s.id_hash, s.user_id, u.username, s.csrf, s.expires_at FROM sessions s "
+           "JOIN users u ON u.id = s.user_id WHERE s.id_hash = ? AND s.expires_at > ?");
+    s.Bind(1, id_hash).Bind(2, now);
+    int rc = s.Step();
+    if (rc == SQLITE_DONE) return Status::NotFound("no such session");
+    if (rc != SQLITE_ROW) return s.Error("find session");
+    Session out;
+    out.id_hash = s.Text(0);
+    out.user_id = s.Int(1);
+    out.username = s.Text(2);
+    out.csrf = s.Text(3);
+    out.expires_at = s.Int(4);
+    return out;
+  }
+
+  Status DeleteSession(const std::string& id_hash) override {
+    std::lock_guard<std::mutex> lock(mu_);
+    Stmt s(db_, "DELETE FROM sessions WHERE id_hash = ?");
+    s.Bind(1, id_hash);
+    if (s.Step() != SQLITE_DONE) return s.Error("delete session");
+    return Status::Ok();
+  }
+
+  Status RecordLoginFailure(const std::string& key, int64_t now) override {
+    std::lock_guard<std::mutex> lock(mu_);
+    // Old entries are dropped here so the table stays small.
+    {
+      Stmt d(db_, "DELETE FROM login_failures WHERE at < ?");
+      d.Bind(1, now - 24 * 3600);
+      d.Step();
+    }
+    Stmt s(db_, "INSERT INTO login_failures(key, at) VALUES(?,?)");
+    s.Bind(1, key).Bind(2, now);
+    if (s.Step() != SQLITE_DONE) return s.Error("record log-in failure");
+    return Status::Ok();
+  }
+
+  Result<int> CountLoginFailures(const std::string& key, int64_t since) override {
+    std::lock_guard<std::mutex> lock(mu_);
+    Stmt s(db_, "SELECT COUNT(*) FROM login_failures WHERE key = ? AND at >= ?");
+    s.Bind(1, key).Bind(2, since);
+    if (s.Step() != SQLITE_ROW) return s.Error("count log-in failures");
+    return static_cast<int>(s.Int(0));
+  }
+
+  Status ClearLoginFailures(const std::string& key) override {
+    std::lock_guard<std::mutex> lock(mu_);
+    Stmt s(db_, "DELETE FROM login_failures WHERE key = ?");
+    s.Bind(1, key);
+    if (s.Step() != SQLITE_DONE) return s.Error("clear log-in failures");
+    return Status::Ok();
+  }
+
+  Result<int64_t> InsertRoute(const RouteRecord& route) override {
+    std::lock_guard<std::mutex> lock(mu_);
+    SB_RETURN_IF_ERROR(Exec("BEGIN IMMEDIATE"));
+    Result<int64_t> id = InsertLocked(route, {});
+    if (!id.ok()) {
+      Exec("ROLLBACK");
+      return id.status();
+    }
+    Status st = Exec("COMMIT");
+    if (!st.ok()) {
+      Exec("ROLLBACK");
+      return st;
+    }
+    return id;
+  }
+
+  Result<std::vector<int64_t>> InsertRoutes(const std::vector<RouteRecord>& routes) override {
+    std::lock_guard<std::mutex> lock(mu_);
+    SB_RETURN_IF_ERROR(Exec("BEGIN IMMEDIATE"));
+    std::vector<int64_t> ids;
+    ids.reserve(routes.size());
+    for (const RouteRecord& r : routes) {
+      Result<int64_t> id = InsertLocked(r, ids);
+      if (!id.ok()) {
+        Exec("ROLLBACK");
+        return id.status();
+      }
+      ids.push_back(*id);
+    }
+    Status st = Exec("COMMIT");
+    if (!st.ok()) {
+      Exec("ROLLBACK");
+      return st;
+    }
+    return ids;
+  }
+
+  Status UpdateRoute(const RouteRecord& route) override {
+    std::lock_guard<std::mutex> lock(mu_);
+    Stmt s(db_,
+           "UPDATE routes SET crdl = ?, name = ?, grade = ?, setter = ?, is_public = ?, "
+           "move_count = ?, updated_at = ? WHERE id = ?");
+    s.Bind(1, route.crdl)
+        .Bind(2, route.name)
+        .Bind(3, route.grade)
+        .Bind(4, route.setter)
+        .Bind(5, static_cast<int64_t>(route.is_public))
+        .Bind(6, static_cast<int64_t>(route.move_count))
+        .Bind(7, NowText())
+        .Bind(8, route.id);
+    if (s.Step() != SQLITE_DONE) return s.Error("update route");
+    if (sqlite3_changes(db_) == 0) return Status::NotFound("no route " + std::to_string(route.id));
+    return Status::Ok();
+  }
+
+  Status DeleteRoute(int64_t id) override {
+    std::lock_guard<std::mutex> lock(mu_);
+    Stmt s(db_, "DELETE FROM routes WHERE id = ?");
+    s.Bind(1, id);
+    if (s.Step() != SQLITE_DONE) return s.Error("delete route");
+    if (sqlite3_changes(db_) == 0) return Status::NotFound("no route " + std::to_string(id));
+    return Status::Ok();
+  }
+
+  Result<RouteRecord> GetRoute(int64_t id) override {
+    std::lock_guard<std::mutex> lock(mu_);
+    std::string sql = std::string(kSelect) + " WHERE r.id = ?";
+    Stmt s(db_, sql);
+    s.Bind(1, id);
+    int rc = s.Step();
+    if (rc == SQLITE_DONE) return Status::NotFound("no route " + std::to_string(id));
+    if (rc != SQLITE_ROW) return s.Error("get route");
+    RouteRecord r = ReadRoute(s, true);
+    Stmt in(db_,
+            "SELECT route_id, name, crdl FROM variation_inputs WHERE variation_id = ? "
+            "ORDER BY position");
+    in.Bind(1, id);
+    while ((rc = in.Step()) == SQLITE_ROW) {
+      VariationInput vi;
+      if (!in.IsNull(0)) vi.route_id = in.Int(0);
+      vi.name = in.Text(1);
+      vi.crdl = in.Text(2);
+      r.inputs.push_back(std::move(vi));
+    }
+    if (rc != SQLITE_DONE) return in.Error("get variation inputs");
+    return r;
+  }
+
+  Result<std::vector<RouteRecord>> ListRoutes(const RouteFilter& f) override {
+    std::lock_guard<std::mutex> lock(mu_);
+    std::string sql = std::string(kSelect) + " WHERE (r.is_public = 1 OR r.owner_id = ?1)";
+    if (!f.grade.empty()) sql += " AND r.grade = ?2 COLLATE NOCASE";
+    if (!f.setter.empty())
+      sql +=
+          " AND (instr(lower(r.setter), lower(?3)) > 0 OR "
+          "instr(lower(ifnull(u.username,'')), lower(?3)) > 0)";
+    if (!f.text.empty())
+      sql +=
+          " AND (instr(lower(r.name), lower(?4)) > 0 OR "
+          "instr(lower(r.crdl), lower(?4)) > 0)";
+    if (f.is_variation)
+      sql += *f.is_variation ? " AND r.is_variation = 1" : " AND r.is_variation = 0";
+    sql += " ORDER BY r.id DESC LIMIT ?5";
+    Stmt s(db_, sql);
+    s.Bind(1, f.viewer.value_or(-1));
+    if (!f.grade.empty()) s.Bind(2, f.grade);
+    if (!f.setter.empty()) s.Bind(3, f.setter);
+    if (!f.text.empty()) s.Bind(4, f.text);
+    s.Bind(5, static_cast<int64_t>(f.limit));
+    std::vector<RouteRecord> out;
+    int rc;
+    while ((rc = s.Step()) == SQLITE_ROW) out.push_back(ReadRoute(s, false));
+    if (rc != SQLITE_DONE) return s.Error("list routes");
+    return out;
+  }
+
+  Result<std::vector<RouteRecord>> AllRoutes(std::optional<int64_t> owner) override {
+    std::lock_guard<std::mutex> lock(mu_);
+    std::string sql = std::string(kSelect);
+    if (owner) sql += " WHERE r.owner_id = ?1";
+    sql += " ORDER BY r.id";
+    Stmt s(db_, sql);
+    if (owner) s.Bind(1, *owner);
+    std::vector<RouteRecord> out;
+    int rc;
+    while ((rc = s.Step()) == SQLITE_ROW) out.push_back(ReadRoute(s, true));
+    if (rc != SQLITE_DONE) return s.Error("all routes");
+    for (RouteRecord& r : out) {
+      if (!r.is_variation) continue;
+      Stmt in(db_,
+              "SELECT route_id, name, crdl FROM variation_inputs WHERE variation_id = ? "
+              "ORDER BY position");
+      in.Bind(1, r.id);
+      while (in.Step() == SQLITE_ROW) {
+        VariationInput vi;
+        if (!in.IsNull(0)) vi.route_id = in.Int(0);
+        vi.name = in.Text(1);
+        vi.crdl = in.Text(2);
+        r.inputs.push_back(std::move(vi));
+      }
+    }
+    return out;
+  }
+
+ private:
+  static constexpr const char* kSelect =
+      "SELECT r.id, r.owner_id, ifnull(u.username,''), r.name, r.grade, r.setter, r.crdl, "
+      "r.is_public, r.is_variation, r.params_json, r.plan_json, r.smooth, r.created_at, "
+      "r.updated_at, r.move_count FROM routes r LEFT JOIN users u ON u.id = r.owner_id";
+
+  static RouteRecord ReadRoute(Stmt& s, bool full) {
+    RouteRecord r;
+    r.id = s.Int(0);
+    if (!s.IsNull(1)) r.owner_id = s.Int(1);
+    r.owner_name = s.Text(2);
+    r.name = s.Text(3);
+    r.grade = s.Text(4);
+    r.setter = s.Text(5);
+    if (full) r.crdl = s.Text(6);
+    r.is_public = s.Int(7) != 0;
+    r.is_variation = s.Int(8) != 0;
+    r.params_json = s.Text(9);
+    if (full) r.plan_json = s.Text(10);
+    r.smooth = s.Int(11) != 0;
+    r.created_at = s.Text(12);
+    r.updated_at = s.Text(13);
+    r.move_count = static_cast<int>(s.Int(14));
+    return r;
+  }
+
+  Result<User> ReadUser(Stmt& s, const std::string& not_found) {
+    int rc = s.Step();
+    if (rc == SQLITE_DONE) return Status::NotFound(not_found);
+    if (rc != SQLITE_ROW) return s.Error("find user");
+    User u;
+    u.id = s.Int(0);
+    u.username = s.Text(1);
+    u.password_hash = s.Text(2);
+    u.created_at = s.Text(3);
+    return u;
+  }
+
+  // Inside a transaction. `batch` = ids already inserted by this call.
+  Result<int64_t> InsertLocked(const RouteRecord& r, const std::vector<int64_t>& batch) {
+    std::string now = r.created_at.empty() ? NowText() : r.created_at;
+    Stmt s(db_,
+           "INSERT INTO routes(owner_id, name, grade, setter, crdl, move_count, is_public, "
+           "is_variation, params_json, plan_json, smooth, created_at, updated_at) "
+           "VALUES(?,?,?,?,?,?,?,?,?,?,?,?,?)");
+    s.Bind(1, r.owner_id)
+        .Bind(2, r.name)
+        .Bind(3, r.grade)
+        .Bind(4, r.setter)
+        .Bind(5, r.crdl)
+        .Bind(6, static_cast<int64_t>(r.move_count))
+        .Bind(7, static_cast<int64_t>(r.is_public))
+        .Bind(8, static_cast<int64_t>(r.is_variation))
+        .Bind(9, r.params_json)
+        .Bind(10, r.plan_json)
+        .Bind(11, static_cast<int64_t>(r.smooth))
+        .Bind(12, now)
+        .Bind(13, now);
+    if (s.Step() != SQLITE_DONE) return s.Error("insert route");
+    int64_t id = sqlite3_last_insert_rowid(db_);
+    for (size_t i = 0; i < r.inputs.size(); ++i) {
+      const VariationInput& vi = r.inputs[i];
+      std::optional<int64_t> rid = vi.route_id;
+      if (vi.batch_index) {
+        if (*vi.batch_index < 0 || static_cast<size_t>(*vi.batch_index) >= batch.size()) {
+          return Status::InvalidInput("variation input refers to a later route of the batch");
+        }
+        rid = batch[*vi.batch_index];
+      }
+      Stmt in(db_,
+              "INSERT INTO variation_inputs(variation_id, position, route_id, name, crdl) "
+              "VALUES(?,?,?,?,?)");
+      in.Bind(1, id)
+          .Bind(2, static_cast<int64_t>(i))
+          .Bind(3, rid)
+          .Bind(4, vi.name)
+          .Bind(5, vi.crdl);
+      int rc = in.Step();
+      if (rc == SQLITE_CONSTRAINT) {
+        return Status::NotFound("variation input route " + std::to_string(rid.value_or(0)) +
+                                " does not exist");
+      }
+      if (rc != SQLITE_DONE) return in.Error("insert variation input");
+    }
+    return id;
+  }
+
+  int SchemaVersionLocked() {
+    Stmt s(db_, "PRAGMA user_version");
+    return s.Step() == SQLITE_ROW ? static_cast<int>(s.Int(0)) : 0;
+  }
+
+  Status Exec(const std::string& sql) {
+    char* err = nullptr;
+    if (sqlite3_exec(db_, sql.c_str(), nullptr, nullptr, &err) != SQLITE_OK) {
+      std::string msg = err ? err : sqlite3_errmsg(db_);
+      sqlite3_free(err);
+      return Status::IoError(msg);
+    }
+    return Status::Ok();
+  }
+
+  sqlite3* db_;
+  std::mutex mu_;
+};
+
+}  // namespace
+
+Result<std::unique_ptr<Store>> OpenSqliteStore(const std::string& path) {
+  sqlite3* db = nullptr;
+  int rc =
+      sqlite3_open_v2(path.c_str(), &db,
+                      SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_FULLMUTEX, nullptr);
+  if (rc != SQLITE_OK) {
+    std::string msg = db ? sqlite3_errmsg(db) : "out of memory";
+    sqlite3_close_v2(db);
+    return Status::IoError(path + ": " + msg);
+  }
+  auto store = std::make_unique<SqliteStore>(db);
+  Status st = store->Init();
+  if (!st.ok()) {
+    if (st.code() == Status::Code::kInvalidInput)
+      return Status::InvalidInput(path + ": " + st.message());
+    return Status::IoError(path + ": " + st.message());
+  }
+  return std::unique_ptr<Store>(std::move(store));
+}
+
+}  // namespace sb::store

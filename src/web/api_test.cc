@@ -1,0 +1,640 @@
+// API tests: a real server on an ephemeral loopback port over a real SQLite
+// file in a temporary directory.
+#include <gtest/gtest.h>
+#include <httplib.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <thread>
+
+#include "base/files.h"
+#include "store/sqlite_store.h"
+#include "web/seed.h"
+#include "web/server.h"
+
+namespace sb::web {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+const char kRoute[] =
+    "name: Crimp Ladder\n"
+    "grade: V4\n"
+    "setter: Carol\n"
+    "A ladder of crimps.\n"
+    "---\n"
+    "R small crimp\n"
+    "L small crimp\n"
+    "R match\n"
+    "L sloper\n"
+    "R jug\n"
+    "L jug finish\n";
+
+const char kRoute2[] =
+    "name: Slab Dance\n"
+    "grade: 5.9\n"
+    "---\n"
+    "L smear\n"
+    "R high step\n"
+    "L pinch\n"
+    "R gaston\n"
+    "L crimp\n";
+
+// One running server over a database file.
+class Running {
+ public:
+  explicit Running(const std::string& db, size_t max_body = 256 * 1024) {
+    Result<std::unique_ptr<store::Store>> s = store::OpenSqliteStore(db);
+    EXPECT_TRUE(s.ok()) << s.status().message();
+    store_ = std::move(s).value();
+    ServerOptions o;
+    o.fast_password_hashing = true;
+    o.max_body_bytes = max_body;
+    o.threads = 4;
+    server_ = std::make_unique<Server>(store_.get(), o);
+    Result<int> port = server_->Bind("127.0.0.1", 0);
+    EXPECT_TRUE(port.ok());
+    port_ = *port;
+    thread_ = std::thread([this] { server_->Run(); });
+    server_->WaitUntilReady();
+  }
+  ~Running() {
+    server_->Stop();
+    thread_.join();
+  }
+  int port() const { return port_; }
+  store::Store* store() { return store_.get(); }
+
+ private:
+  std::unique_ptr<store::Store> store_;
+  std::unique_ptr<Server> server_;
+  std::thread thread_;
+  int port_ = 0;
+};
+
+// A client with a cookie jar of one cookie and the CSRF token.
+class Client {
+ public:
+  explicit Client(int port) : http_("127.0.0.1", port) { http_.set_read_timeout(30); }
+
+  httplib::Result Send(const std::string& method, const std::string& path,
+                       const std::string& body = "", bool with_csrf = true) {
+    httplib::Headers h;
+    if (!cookie_.empty()) h.emplace("Cookie", cookie_);
+    if (with_csrf && !csrf_.empty()) h.emplace("X-CSRF-Token", csrf_);
+    const char* type = "application/json";
+    if (method == "GET") return http_.Get(path.c_str(), h);
+    if (method == "POST") return http_.Post(path.c_str(), h, body, type);
+    if (method == "PUT") return http_.Put(path.c_str(), h, body, type);
+    return http_.Delete(path.c_str(), h, body, type);
+  }
+  int Status(const std::string& method, const std::string& path, const std::string& body = "",
+             bool with_csrf = true) {
+    auto r = Send(method, path, body, with_csrf);
+    return r ? r->status : -1;
+  }
+  json Json(const std::string& method, const std::string& path, const std::string& body,
+            int expect) {
+    auto r = Send(method, path, body);
+    EXPECT_TRUE(r) << path;
+    if (!r) return json();
+    EXPECT_EQ(r->status, expect) << method << " " << path << " -> " << r->body;
+    return json::parse(r->body, nullptr, false);
+  }
+  void SignUp(const std::string& user, const std::string& pass = "password123") {
+    ASSERT_EQ(Status("POST", "/api/users", json{{"username", user}, {"password", pass}}.dump()),
+              201);
+  }
+  bool LogIn(const std::string& user, const std::string& pass = "password123") {
+    auto r = Send("POST", "/api/sessions", json{{"username", user}, {"password", pass}}.dump());
+    if (!r || r->status != 200) return false;
+    std::string sc = r->get_header_value("Set-Cookie");
+    cookie_ = sc.substr(0, sc.find(';'));
+    set_cookie_ = sc;
+    csrf_ = json::parse(r->body)["csrf"];
+    return true;
+  }
+  const std::string& set_cookie() const { return set_cookie_; }
+  std::string& cookie() { return cookie_; }
+  std::string& csrf() { return csrf_; }
+
+ private:
+  httplib::Client http_;
+  std::string cookie_, set_cookie_, csrf_;
+};
+
+class ApiTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("sb_web_test_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    db_ = (dir_ / "web.db").string();
+    server_ = std::make_unique<Running>(db_);
+  }
+  void TearDown() override {
+    server_.reset();
+    fs::remove_all(dir_);
+  }
+  void Restart(size_t max_body = 256 * 1024) {
+    server_.reset();
+    server_ = std::make_unique<Running>(db_, max_body);
+  }
+  Client NewClient() { return Client(server_->port()); }
+  int64_t AddRoute(Client& c, const std::string& crdl, bool pub = true) {
+    json j = c.Json("POST", "/api/routes", json{{"crdl", crdl}, {"public", pub}}.dump(), 201);
+    return j.value("id", int64_t{0});
+  }
+
+  fs::path dir_;
+  std::string db_;
+  std::unique_ptr<Running> server_;
+};
+
+TEST_F(ApiTest, SignUpRules) {
+  Client c = NewClient();
+  c.SignUp("alice");
+  EXPECT_EQ(c.Status("POST", "/api/users", R"({"username":"alice","password":"password123"})"),
+            409);
+  EXPECT_EQ(c.Status("POST", "/api/users", R"({"username":"ALICE","password":"password123"})"),
+            409);
+  EXPECT_EQ(c.Status("POST", "/api/users", R"({"username":"bob","password":"short"})"), 400);
+  EXPECT_EQ(c.Status("POST", "/api/users", R"({"username":"","password":"password123"})"), 400);
+  EXPECT_EQ(c.Status("POST", "/api/users",
+                     json{{"username", std::string(41, 'a')}, {"password", "password123"}}.dump()),
+            400);
+  EXPECT_EQ(c.Status("POST", "/api/users",
+                     json{{"username", std::string(40, 'a')}, {"password", "password123"}}.dump()),
+            201);
+  EXPECT_EQ(c.Status("POST", "/api/users", R"({"username":"a b","password":"password123"})"), 400);
+  EXPECT_EQ(c.Status("POST", "/api/users", R"({"username":"caf\u00e9","password":"password123"})"),
+            400);
+  EXPECT_EQ(c.Status("POST", "/api/users", R"({"username":"nul\u0000x","password":"password123"})"),
+            400);
+  EXPECT_EQ(
+      c.Status("POST", "/api/users", "{\"username\":\"\xff\xfe\",\"password\":\"password123\"}"),
+      400);
+  EXPECT_EQ(c.Status("POST", "/api/users", R"({"username":7,"password":"password123"})"), 400);
+  EXPECT_EQ(c.Status("POST", "/api/users", R"({"username":"carol"})"), 400);
+  EXPECT_EQ(c.Status("POST", "/api/users", R"(["carol"])"), 400);
+  EXPECT_EQ(c.Status("POST", "/api/users", "{not json"), 400);
+  EXPECT_EQ(c.Status("POST", "/api/users", ""), 400);
+  EXPECT_EQ(c.Status("POST", "/api/users", R"({"username":"d.e-f_1","password":"12345678"})"), 201);
+}
+
+TEST_F(ApiTest, LogInLogOutAndCookieFlags) {
+  Client c = NewClient();
+  c.SignUp("alice");
+  EXPECT_FALSE(c.LogIn("alice", "wrong-password"));
+  EXPECT_EQ(c.Status("POST", "/api/sessions", R"({"username":"nobody","password":"password123"})"),
+            401);
+  ASSERT_TRUE(c.LogIn("alice"));
+  EXPECT_EQ(c.csrf().size(), 64u);
+  EXPECT_NE(c.set_cookie().find("HttpOnly"), std::string::npos);
+  EXPECT_NE(c.set_cookie().find("SameSite=Lax"), std::string::npos);
+  // The cookie value is a 256-bit token; the database holds only its hash.
+  std::string token = c.cookie().substr(c.cookie().find('=') + 1);
+  EXPECT_EQ(token.size(), 64u);
+  EXPECT_FALSE(server_->store()->FindSession(token, 0).ok());
+  json me = c.Json("GET", "/api/session", "", 200);
+  EXPECT_EQ(me["username"], "alice");
+  // Log-out without the CSRF header is refused; with it, the session ends.
+  EXPECT_EQ(c.Status("DELETE", "/api/sessions", "", /*with_csrf=*/false), 403);
+  EXPECT_EQ(c.Status("DELETE", "/api/sessions"), 204);
+  EXPECT_EQ(c.Json("GET", "/api/session", "", 200)["logged_in"], false);
+  EXPECT_EQ(c.Status("POST", "/api/routes", json{{"crdl", kRoute}}.dump()), 401);
+}
+
+TEST_F(ApiTest, FailedLogInsAreRateLimited) {
+  Client c = NewClient();
+  c.SignUp("alice");
+  for (int i = 0; i < 5; ++i) EXPECT_FALSE(c.LogIn("alice", "wrong-password"));
+  // Now even the right password waits.
+  EXPECT_EQ(c.Status("POST", "/api/sessions", R"({"username":"alice","password":"password123"})"),
+            429);
+  // Other users are not affected.
+  c.SignUp("bob");
+  EXPECT_TRUE(c.LogIn("bob"));
+}
+
+TEST_F(ApiTest, CsrfTokenRequiredWithASessionCookie) {
+  Client c = NewClient();
+  c.SignUp("alice");
+  ASSERT_TRUE(c.LogIn("alice"));
+  EXPECT_EQ(c.Status("POST", "/api/routes", json{{"crdl", kRoute}}.dump(), false), 403);
+  std::string good = c.csrf();
+  c.csrf() = std::string(64, '0');
+  EXPECT_EQ(c.Status("POST", "/api/routes", json{{"crdl", kRoute}}.dump()), 403);
+  c.csrf() = good;
+  EXPECT_EQ(c.Status("POST", "/api/routes", json{{"crdl", kRoute}}.dump()), 201);
+  // Reads need no token.
+  EXPECT_EQ(c.Status("GET", "/api/routes", "", false), 200);
+}
+
+TEST_F(ApiTest, RoutesCrudVisibilityAndOwnership) {
+  Client alice = NewClient(), bob = NewClient(), anon = NewClient();
+  alice.SignUp("alice");
+  bob.SignUp("bob");
+  ASSERT_TRUE(alice.LogIn("alice"));
+  ASSERT_TRUE(bob.LogIn("bob"));
+  int64_t pub = AddRoute(alice, kRoute);
+  int64_t priv = AddRoute(alice, kRoute2, false);
+  // Public unless created with "public": false.
+  json j = alice.Json("POST", "/api/routes", json{{"crdl", kRoute2}}.dump(), 201);
+  int64_t def = j["id"];
+  EXPECT_EQ(anon.Json("GET", "/api/routes/" + std::to_string(def), "", 200)["public"], true);
+
+  json got = anon.Json("GET", "/api/routes/" + std::to_string(pub), "", 200);
+  EXPECT_EQ(got["name"], "Crimp Ladder");
+  EXPECT_EQ(got["grade"], "V4");
+  EXPECT_EQ(got["crdl"], kRoute);
+  EXPECT_EQ(got["move_list"].size(), 6u);
+  EXPECT_EQ(anon.Status("GET", "/api/routes/" + std::to_string(priv)), 404);
+  EXPECT_EQ(bob.Status("GET", "/api/routes/" + std::to_string(priv)), 404);
+  EXPECT_EQ(alice.Status("GET", "/api/routes/" + std::to_string(priv)), 200);
+
+  EXPECT_EQ(anon.Json("GET", "/api/routes", "", 200)["routes"].size(), 2u);
+  EXPECT_EQ(alice.Json("GET", "/api/routes", "", 200)["routes"].size(), 3u);
+  EXPECT_EQ(anon.Json("GET", "/api/routes?grade=v4", "", 200)["routes"].size(), 1u);
+  EXPECT_EQ(anon.Json("GET", "/api/routes?setter=carol", "", 200)["routes"].size(), 1u);
+  EXPECT_EQ(anon.Json("GET", "/api/routes?q=pinch", "", 200)["routes"].size(), 1u);
+  EXPECT_EQ(anon.Json("GET", "/api/routes?q=nothing-like-this", "", 200)["routes"].size(), 0u);
+
+  std::string path = "/api/routes/" + std::to_string(pub);
+  std::string upd = json{{"crdl", std::string(kRoute2)}, {"public", true}}.dump();
+  EXPECT_EQ(anon.Status("PUT", path, upd), 401);
+  EXPECT_EQ(bob.Status("PUT", path, upd), 403);
+  EXPECT_EQ(anon.Status("DELETE", path), 401);
+  EXPECT_EQ(bob.Status("DELETE", path), 403);
+  EXPECT_EQ(alice.Status("PUT", path, json{{"crdl", "name: x\n---\nQ nope\n"}}.dump()), 400);
+  EXPECT_EQ(alice.Status("PUT", path, upd), 200);
+  EXPECT_EQ(anon.Json("GET", path, "", 200)["name"], "Slab Dance");
+  EXPECT_EQ(alice.Status("PUT", "/api/routes/987654", upd), 404);
+  EXPECT_EQ(alice.Status("DELETE", path), 204);
+  EXPECT_EQ(anon.Status("GET", path), 404);
+  EXPECT_EQ(alice.Status("DELETE", path), 404);
+}
+
+TEST_F(ApiTest, BadCrdlNamesLineAndReason) {
+  Client c = NewClient();
+  c.SignUp("alice");
+  ASSERT_TRUE(c.LogIn("alice"));
+  auto r = c.Send("POST", "/api/routes", json{{"crdl", "name: x\n---\nR jug\nX what\n"}}.dump());
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 400);
+  json j = json::parse(r->body);
+  EXPECT_EQ(j["line"], 4);
+  EXPECT_FALSE(j["reason"].get<std::string>().empty());
+  EXPECT_NE(j["error"].get<std::string>().find(":4:"), std::string::npos);
+  EXPECT_EQ(c.Status("POST", "/api/routes", R"({"crdl":"no separator"})"), 400);
+  EXPECT_EQ(c.Status("POST", "/api/routes", R"({"crdl":"---\n"})"), 400);
+  EXPECT_EQ(c.Status("POST", "/api/routes", R"({"crdl":5})"), 400);
+  EXPECT_EQ(c.Status("POST", "/api/routes", R"({"crdl":"name: a\n---\nR b\n","public":"yes"})"),
+            400);
+  EXPECT_EQ(c.Status("POST", "/api/routes", "{\"crdl\":\"name: \xff\n---\nR b\n\"}"), 400);
+}
+
+TEST_F(ApiTest, VariationsAreStoredLikeRoutesAndCanBeVaried) {
+  Client c = NewClient(), anon = NewClient();
+  c.SignUp("alice");
+  ASSERT_TRUE(c.LogIn("alice"));
+  int64_t a = AddRoute(c, kRoute), b = AddRoute(c, kRoute2);
+  json v = c.Json("POST", "/api/variations",
+                  json{{"routes", {a, b}}, {"preset", "default"}, {"smooth", false}}.dump(), 201);
+  ASSERT_TRUE(v.contains("id"));
+  ASSERT_EQ(v["moves"].size(), 11u);
+  for (const json& m : v["moves"]) {
+    EXPECT_TRUE(m["hand"] == "L" || m["hand"] == "R");
+    EXPECT_TRUE(m.contains("source"));
+  }
+  int64_t vid = v["id"];
+  json stored = anon.Json("GET", "/api/routes/" + std::to_string(vid), "", 200);
+  EXPECT_EQ(stored["is_variation"], true);
+  EXPECT_EQ(stored["parameters"]["preset"], "default");
+  ASSERT_EQ(stored["inputs"].size(), 2u);
+  EXPECT_EQ(stored["inputs"][0]["route"], a);
+  EXPECT_EQ(stored["inputs"][1]["route"], b);
+  EXPECT_EQ(stored["move_list"].size(), 11u);
+  // The plan is rebuilt identically from the stored parameters and snapshots.
+  json plan = anon.Json("GET", "/api/variations/" + std::to_string(vid), "", 200)["plan"];
+  EXPECT_EQ(plan["moves"], v["moves"]);
+
+  // Every vary parameter can be given; the "more" preset differs.
+  json v2 = c.Json("POST", "/api/variations",
+                   json{{"routes", {a, b}},
+                        {"preset", "more"},
+                        {"system", "lorenz"},
+                        {"integrator", "rkf45"},
+                        {"step", 0.01},
+                        {"var_ic", {-15.5, -12.0, 52.0}},
+                        {"skip", 10},
+                        {"mask", "111"},
+                        {"max_repeat", 2},
+                        {"smooth", true}}
+                       .dump(),
+                   201);
+  EXPECT_EQ(v2["smoothing"]["requested"], true);
+  json p2 = anon.Json("GET", "/api/routes/" + std::to_string(v2["id"].get<int64_t>()), "", 200);
+  EXPECT_EQ(p2["parameters"]["integrator"], "rkf45");
+  EXPECT_EQ(p2["parameters"]["skip"], 10);
+  EXPECT_EQ(p2["parameters"]["mask"], "111");
+
+  // A variation can itself be varied.
+  json vv = c.Json("POST", "/api/variations", json{{"routes", {vid}}}.dump(), 201);
+  EXPECT_EQ(vv["moves"].size(), 11u);
+
+  // Refusals.
+  EXPECT_EQ(anon.Status("POST", "/api/variations", json{{"routes", {a}}}.dump()), 401);
+  EXPECT_EQ(c.Status("POST", "/api/variations", json{{"routes", {a}}}.dump(), false), 403);
+  EXPECT_EQ(c.Status("POST", "/api/variations", json{{"routes", {987654}}}.dump()), 404);
+  EXPECT_EQ(c.Status("POST", "/api/variations", json{{"routes", json::array()}}.dump()), 400);
+  EXPECT_EQ(c.Status("POST", "/api/variations", json{{"routes", {"x"}}}.dump()), 400);
+  EXPECT_EQ(c.Status("POST", "/api/variations", R"({"routes":[1e400]})"), 400);
+  EXPECT_EQ(c.Status("POST", "/api/variations", R"({"routes":[18446744073709551615]})"), 404);
+  EXPECT_EQ(c.Status("POST", "/api/variations", json{{"routes", {a}}, {"preset", "wild"}}.dump()),
+            400);
+  EXPECT_EQ(c.Status("POST", "/api/variations", json{{"routes", {a}}, {"step", -1}}.dump()), 400);
+  EXPECT_EQ(c.Status("POST", "/api/variations", json{{"routes", {a}}, {"skip", 100000000}}.dump()),
+            400);
+  EXPECT_EQ(c.Status("POST", "/api/variations", json{{"routes", {a}}, {"mask", "000"}}.dump()),
+            400);
+  EXPECT_EQ(c.Status("POST", "/api/variations", json{{"routes", {a}}, {"var_ic", {1, 2}}}.dump()),
+            400);
+  EXPECT_EQ(c.Status("POST", "/api/variations", json{{"routes", {a}}, {"smooth", "yes"}}.dump()),
+            400);
+  EXPECT_EQ(c.Status("POST", "/api/variations", "[1,2]"), 400);
+  EXPECT_EQ(c.Status("POST", "/api/variations", "{\"routes\":"), 400);
+  // Private routes of others cannot be varied.
+  Client bob = NewClient();
+  bob.SignUp("bob");
+  ASSERT_TRUE(bob.LogIn("bob"));
+  int64_t secret = AddRoute(bob, kRoute, false);
+  EXPECT_EQ(c.Status("POST", "/api/variations", json{{"routes", {secret}}}.dump()), 404);
+}
+
+TEST_F(ApiTest, PlanPagesSvgAndPdf) {
+  Client c = NewClient();
+  c.SignUp("alice");
+  ASSERT_TRUE(c.LogIn("alice"));
+  int64_t a = AddRoute(c, kRoute);
+  json v = c.Json("POST", "/api/variations", json{{"routes", {a}}}.dump(), 201);
+  std::string id = std::to_string(v["id"].get<int64_t>());
+  Client anon = NewClient();
+  auto page = anon.Send("GET", "/variations/" + id);
+  ASSERT_TRUE(page);
+  EXPECT_EQ(page->status, 200);
+  EXPECT_NE(page->body.find("Chaotic route plan"), std::string::npos);
+  EXPECT_NE(page->body.find("<svg"), std::string::npos);
+  auto svg = anon.Send("GET", "/variations/" + id + ".svg");
+  ASSERT_TRUE(svg);
+  EXPECT_EQ(svg->status, 200);
+  EXPECT_NE(svg->body.find("<svg"), std::string::npos);
+  auto pdf = anon.Send("GET", "/variations/" + id + ".pdf");
+  ASSERT_TRUE(pdf);
+  EXPECT_EQ(pdf->status, 200);
+  EXPECT_EQ(pdf->get_header_value("Content-Type"), "application/pdf");
+  EXPECT_EQ(pdf->body.rfind("%PDF-", 0), 0u);
+  EXPECT_NE(pdf->body.find("/Count 1"), std::string::npos);  // one page
+  auto pdf2 = anon.Send("GET", "/variations/" + id + ".pdf");
+  EXPECT_EQ(pdf->body, pdf2->body);  // deterministic
+  EXPECT_EQ(anon.Status("GET", "/variations/99999"), 404);
+  EXPECT_EQ(anon.Status("GET", "/variations/99999.pdf"), 404);
+  EXPECT_EQ(anon.Status("GET", "/variations/" + std::to_string(a)),
+            404);  // a route, not a variation
+  for (const char* p : {"/", "/login", "/signup", "/routes/new", "/vary", "/import",
+                        "/vary?routes=1,x,99", "/?q=%3Cscript%3E"}) {
+    EXPECT_EQ(anon.Status("GET", p), 200) << p;
+  }
+  auto list = anon.Send("GET", "/?q=%3Cscript%3E");
+  EXPECT_EQ(list->body.find("<script>"), std::string::npos);
+  EXPECT_EQ(anon.Status("GET", "/routes/" + std::to_string(a)), 200);
+  EXPECT_EQ(anon.Status("GET", "/routes/abc"), 404);
+  EXPECT_EQ(anon.Status("GET", "/routes/99999999999999999999999"), 404);
+  EXPECT_EQ(anon.Status("GET", "/no/such/page"), 404);
+  EXPECT_EQ(anon.Status("GET", "/static/app.css"), 200);
+}
+
+TEST_F(ApiTest, LandscapeAndPick) {
+  Client c = NewClient();
+  c.SignUp("alice");
+  ASSERT_TRUE(c.LogIn("alice"));
+  int64_t a = AddRoute(c, kRoute);
+  auto r = c.Send("GET", "/api/landscape?routes=" + std::to_string(a) + "&grid=9&spacing=0.5");
+  ASSERT_TRUE(r);
+  if (r->status == 404) GTEST_SKIP() << "no landscape module in this build";
+  ASSERT_EQ(r->status, 200) << r->body;
+  json m = json::parse(r->body);
+  EXPECT_EQ(m["grid"], 9);
+  EXPECT_EQ(m["length"], 6);
+  EXPECT_EQ(m["effect"].size(), 81u);
+  EXPECT_EQ(m["change"].size(), 81u);
+  EXPECT_EQ(m["effect"][40], 0);  // the reference IC itself changes nothing
+  json p = c.Json("GET", "/api/pick?n=20&grid=21&effect=10&change=2&count=3", "", 200);
+  ASSERT_EQ(p["candidates"].size(), 3u);
+  EXPECT_LE(p["candidates"][0]["score"].get<double>(), p["candidates"][2]["score"].get<double>());
+  EXPECT_EQ(c.Status("GET", "/api/landscape?grid=100000"), 400);
+  EXPECT_EQ(c.Status("GET", "/api/landscape?grid=abc"), 400);
+  EXPECT_EQ(c.Status("GET", "/api/landscape?plane=qq"), 400);
+  EXPECT_EQ(c.Status("GET", "/api/landscape?params=%7Bbad"), 400);
+  EXPECT_EQ(c.Status("GET", "/api/landscape?routes=987654"), 404);
+  EXPECT_EQ(c.Status("GET", "/api/landscape?spacing=-1"), 400);
+  EXPECT_EQ(c.Status("GET", "/api/pick?n=20&effect=21"), 400);
+  EXPECT_EQ(c.Status("GET", "/api/pick?effect=nan"), 400);
+}
+
+TEST_F(ApiTest, CsvImportExportRoundTrip) {
+  Client c = NewClient();
+  c.SignUp("alice");
+  ASSERT_TRUE(c.LogIn("alice"));
+  std::string routes =
+      "route_id,user_id,name,description,created_at,grade,type,is_variation,nna,dim_mask,"
+      "max_repeat,prec_trunc,transient,rx,ry,rz,vx,vy,vz,is_public\n"
+      "72,27,Base,\"Some words\n\",2010-01-20 13:11:57.6,V4,Bouldering,f,,,,,,,,,,,,t\n"
+      "74,27,\"Variation on 72\",,2010-01-20 13:12:03.5,,,t,B,101,0,0,0,-13.0,-12.0,52.0,"
+      "-16.0,-12.0,52.0,t\n";
+  std::string moves =
+      "route_id,seq_no,hand,move,nnn,delta,error,crux\n"
+      "72,1,R,jug,f,0,f,f\n72,2,L,crimp,f,0,f,f\n72,3,R,sloper,f,0,f,f\n"
+      "74,1,R,crimp,f,0,f,f\n74,2,L,jug,f,0,f,f\n74,3,R,sloper,f,0,f,f\n";
+  json im = c.Json("POST", "/api/import/csv",
+                   json{{"routes_csv", routes}, {"moves_csv", moves}}.dump(), 201);
+  EXPECT_EQ(im["imported"], 2);
+  int64_t vid = im["ids"]["74"];
+  json v = c.Json("GET", "/api/variations/" + std::to_string(vid), "", 200);
+  EXPECT_EQ(v["parameters"]["integrator"], "rkf45");
+  ASSERT_EQ(v["inputs"].size(), 1u);
+  EXPECT_EQ(v["inputs"][0]["route"], im["ids"]["72"]);
+  auto ex = c.Send("GET", "/api/export/routes.csv?mine=1");
+  ASSERT_TRUE(ex);
+  EXPECT_EQ(ex->status, 200);
+  EXPECT_NE(ex->body.find("Variation on 72"), std::string::npos);
+  EXPECT_NE(ex->body.find(",B,101,"), std::string::npos);
+  auto exm = c.Send("GET", "/api/export/moves.csv?mine=1");
+  EXPECT_NE(exm->body.find(",R,sloper,"), std::string::npos);
+  EXPECT_EQ(c.Status("POST", "/api/import/csv", json{{"routes_csv", "x"}, {"moves_csv", 1}}.dump()),
+            400);
+  EXPECT_EQ(c.Status("POST", "/api/import/csv",
+                     json{{"routes_csv", "name\nfoo\n"}, {"moves_csv", moves}}.dump()),
+            400);
+  auto crdl = c.Send("GET", "/api/routes/" + im["ids"]["72"].dump() + ".crdl");
+  ASSERT_TRUE(crdl);
+  EXPECT_EQ(crdl->status, 200);
+  EXPECT_NE(crdl->body.find("---\nR jug\n"), std::string::npos);
+}
+
+TEST_F(ApiTest, OversizedBodiesMalformedJsonUnknownIds) {
+  Client c = NewClient();
+  c.SignUp("alice");
+  ASSERT_TRUE(c.LogIn("alice"));
+  std::string big = json{{"crdl", std::string(300 * 1024, 'a')}}.dump();
+  EXPECT_EQ(c.Status("POST", "/api/routes", big), 413);
+  EXPECT_EQ(c.Status("POST", "/api/users", big), 413);
+  EXPECT_EQ(c.Status("POST", "/api/routes", "{\"crdl\": "), 400);
+  EXPECT_EQ(c.Status("PUT", "/api/routes/1", "nope"), 404);
+  int64_t a = AddRoute(c, kRoute);
+  EXPECT_EQ(c.Status("PUT", "/api/routes/" + std::to_string(a), "nope"), 400);
+  for (const char* p : {"/api/routes/0", "/api/routes/424242", "/api/routes/-1", "/api/routes/x",
+                        "/api/routes/99999999999999999999999999", "/api/variations/424242",
+                        "/api/variations/abc"}) {
+    EXPECT_EQ(c.Status("GET", p), 404) << p;
+  }
+  EXPECT_EQ(c.Status("DELETE", "/api/routes/424242"), 404);
+}
+
+TEST_F(ApiTest, RandomBytesNeverGiveA500) {
+  Client c = NewClient();
+  c.SignUp("alice");
+  ASSERT_TRUE(c.LogIn("alice"));
+  int64_t a = AddRoute(c, kRoute);
+  std::mt19937 rng(12345);
+  const std::vector<std::pair<std::string, std::string>> targets = {
+      {"POST", "/api/users"},      {"POST", "/api/sessions"},
+      {"POST", "/api/routes"},     {"PUT", "/api/routes/" + std::to_string(a)},
+      {"POST", "/api/variations"}, {"POST", "/api/feedback"},
+      {"POST", "/api/import/csv"}, {"DELETE", "/api/sessions"}};
+  const std::vector<std::string> seeds = {"{}",
+                                          "null",
+                                          "[]",
+                                          "{\"username\":null}",
+                                          "{\"routes\":[1,2,{}]}",
+                                          "{\"crdl\":\"\"}",
+                                          "{\"routes\":[1],\"var_ic\":\"a,b,c\"}",
+                                          "{\"routes\":[1],\"step\":1e308}",
+                                          "{\"routes\":[1],\"params\":[1e308,1e308,1e308]}",
+                                          "{\"routes_csv\":\"\",\"moves_csv\":\"\"}",
+                                          "{\"crdl\":\"---\\n---\\n\"}"};
+  for (int i = 0; i < 300; ++i) {
+    std::string body;
+    if (i % 3 == 0) {
+      body = seeds[i / 3 % seeds.size()];
+    } else {
+      int n = rng() % 200;
+      for (int k = 0; k < n; ++k) body.push_back(static_cast<char>(rng() & 0xff));
+    }
+    const auto& [method, path] = targets[i % targets.size()];
+    int st = c.Status(method, path, body);
+    EXPECT_GT(st, 0) << method << " " << path;
+    EXPECT_LT(st, 500) << method << " " << path << " body "
+                       << json(body).dump(-1, ' ', true, json::error_handler_t::replace);
+    if (method == "DELETE") {
+      ASSERT_TRUE(c.LogIn("alice"));
+    }
+  }
+  // Still serving, data intact.
+  EXPECT_EQ(c.Status("GET", "/api/routes/" + std::to_string(a)), 200);
+}
+
+TEST_F(ApiTest, EverythingSurvivesARestart) {
+  Client c = NewClient();
+  c.SignUp("alice");
+  ASSERT_TRUE(c.LogIn("alice"));
+  int64_t a = AddRoute(c, kRoute);
+  int64_t p = AddRoute(c, kRoute2, false);
+  json v = c.Json("POST", "/api/variations", json{{"routes", {a, p}}}.dump(), 201);
+  std::string cookie = c.cookie(), csrf = c.csrf();
+  Restart();
+  Client again = NewClient();
+  again.cookie() = cookie;
+  again.csrf() = csrf;
+  // The session is still valid, private routes are still private and readable by the owner.
+  EXPECT_EQ(again.Json("GET", "/api/session", "", 200)["username"], "alice");
+  EXPECT_EQ(again.Status("GET", "/api/routes/" + std::to_string(p)), 200);
+  Client anon = NewClient();
+  EXPECT_EQ(anon.Status("GET", "/api/routes/" + std::to_string(p)), 404);
+  json plan = anon.Json("GET", "/api/variations/" + v["id"].dump(), "", 200)["plan"];
+  EXPECT_EQ(plan["moves"], v["moves"]);
+  // Passwords still verify; names are still taken.
+  Client fresh = NewClient();
+  EXPECT_TRUE(fresh.LogIn("alice"));
+  EXPECT_EQ(fresh.Status("POST", "/api/users", R"({"username":"alice","password":"password123"})"),
+            409);
+}
+
+TEST_F(ApiTest, ImportsTheOriginalCorpusAndRebuildsEveryPlan) {
+  std::string shared = FindSharedDir(SB_SHARED_DIR);
+  if (shared.empty()) GTEST_SKIP() << "../shared is absent";
+  Result<std::string> routes = ReadFile(shared + "/corpus/public_routes.csv");
+  Result<std::string> moves = ReadFile(shared + "/corpus/public_moves.csv");
+  if (!routes.ok() || !moves.ok()) GTEST_SKIP() << "corpus CSV files are absent";
+  Restart(8 << 20);  // the corpus is about 1 MB of CSV
+  Client c = NewClient();
+  c.SignUp("gym");
+  ASSERT_TRUE(c.LogIn("gym"));
+  json im = c.Json("POST", "/api/import/csv",
+                   json{{"routes_csv", *routes}, {"moves_csv", *moves}}.dump(), 201);
+  ASSERT_GT(im["imported"].get<int>(), 500);
+  // Every imported variation's plan page, PDF and JSON can be built (no 500).
+  int variations = 0;
+  json list = c.Json("GET", "/api/routes?variations=1&limit=5000", "", 200);
+  for (const json& r : list["routes"]) {
+    std::string id = std::to_string(r["id"].get<int64_t>());
+    ++variations;
+    EXPECT_EQ(c.Status("GET", "/variations/" + id), 200) << id;
+    if (variations % 20 == 0) EXPECT_EQ(c.Status("GET", "/variations/" + id + ".pdf"), 200) << id;
+  }
+  EXPECT_GT(variations, 100);
+  // Export gives the same number of routes back.
+  auto ex = c.Send("GET", "/api/export/routes.csv?mine=1");
+  ASSERT_TRUE(ex);
+  auto exm = c.Send("GET", "/api/export/moves.csv?mine=1");
+  ASSERT_TRUE(exm);
+  Client c2 = NewClient();
+  c2.SignUp("gym2");
+  ASSERT_TRUE(c2.LogIn("gym2"));
+  json again = c2.Json("POST", "/api/import/csv",
+                       json{{"routes_csv", ex->body}, {"moves_csv", exm->body}}.dump(), 201);
+  EXPECT_EQ(again["imported"], im["imported"]);
+}
+
+TEST(SeedTest, DemoAccountAndExamples) {
+  fs::path dir = fs::temp_directory_path() / ("sb_seed_test_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "ex");
+  ASSERT_TRUE(WriteFileAtomic((dir / "ex" / "b.crdl").string(), "name: B\n---\nR jug\n").ok());
+  ASSERT_TRUE(WriteFileAtomic((dir / "ex" / "a.crdl").string(), "---\nL crimp\n").ok());
+  ASSERT_TRUE(WriteFileAtomic((dir / "ex" / "bad.crdl").string(), "no separator\n").ok());
+  auto s = store::OpenSqliteStore((dir / "s.db").string());
+  ASSERT_TRUE(s.ok());
+  Result<int64_t> demo = EnsureDemoAccount(s->get(), true);
+  ASSERT_TRUE(demo.ok());
+  EXPECT_EQ(*EnsureDemoAccount(s->get(), true), *demo);
+  std::vector<std::string> skipped;
+  Result<int> n = SeedExamples(s->get(), (dir / "ex").string(), *demo, &skipped);
+  ASSERT_TRUE(n.ok());
+  EXPECT_EQ(*n, 2);
+  EXPECT_EQ(skipped.size(), 1u);
+  auto all = (*s)->AllRoutes(std::nullopt);
+  ASSERT_EQ(all->size(), 2u);
+  EXPECT_EQ((*all)[0].name, "a");  // the file stem names an unnamed route
+  EXPECT_EQ((*all)[1].name, "B");
+  EXPECT_EQ(*SeedExamples(s->get(), (dir / "nope").string(), *demo, nullptr), 0);
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace sb::web

@@ -1,0 +1,78 @@
+// The web app: JSON API, server-rendered pages, plan SVG/PDF, static assets.
+// See docs/web.md for the API, the pages and the schema.
+//
+// Typical use (strangebeta serve):
+//
+//   auto store = store::OpenSqliteStore("var/strangebeta.db");
+//   web::Server server(store->get(), web::ServerOptions{});
+//   Result<int> port = server.Bind("127.0.0.1", 8080);   // 0 = any free port
+//   server.Run();                                          // blocks until Stop()
+//
+// No HTTP library types appear in this header.
+#ifndef SB_WEB_SERVER_H_
+#define SB_WEB_SERVER_H_
+
+#include <cstddef>
+#include <memory>
+#include <string>
+
+#include "base/status.h"
+#include "store/store.h"
+
+namespace sb::web {
+
+struct ServerOptions {
+  // Directory of the static assets (app.css, app.js) served under /static/;
+  // "" = DefaultStaticDir().
+  std::string static_dir;
+  // Request bodies above this many bytes get 413.
+  size_t max_body_bytes = 2 * 1024 * 1024;
+  // Cheapest argon2id cost (tests only; never in production).
+  bool fast_password_hashing = false;
+  // Session lifetime.
+  int session_seconds = 30 * 24 * 3600;
+  // Failed log-ins allowed per user name (and 4x that per client address)
+  // within `login_window_seconds`; more get 429.
+  int login_failure_limit = 5;
+  int login_window_seconds = 15 * 60;
+  // Worker threads (0 = max(32, 4 x cores)). Each open keep-alive connection
+  // holds one worker, so this bounds the concurrent connections served.
+  int threads = 0;
+  // Mark the session cookie Secure (when served behind HTTPS).
+  bool secure_cookie = false;
+  // Print one access-log line per request to stderr.
+  bool access_log = false;
+};
+
+// The directory holding the bundled web assets: $SB_WEB_DIR, else
+// <source dir>/web (compiled in), else <executable dir>/../web. "" when none
+// exists.
+std::string DefaultStaticDir();
+
+// The HTTP server. Does not own `store`, which must outlive it. Handlers run
+// on a worker pool; the store must be thread-safe (every Store is).
+class Server {
+ public:
+  Server(store::Store* store, ServerOptions options);
+  ~Server();
+  Server(const Server&) = delete;
+  Server& operator=(const Server&) = delete;
+
+  // Binds a listening socket on host:port; port 0 picks a free port.
+  // Returns the bound port. Errors: kIoError when the address is taken.
+  Result<int> Bind(const std::string& host, int port);
+  // Serves requests until Stop(). Call after Bind(). Returns when stopped.
+  Status Run();
+  // Stops Run() (from any thread, e.g. a signal watcher or a test).
+  void Stop();
+  // Blocks until Run() is accepting connections (for tests).
+  void WaitUntilReady();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace sb::web
+
+#endif  // SB_WEB_SERVER_H_
