@@ -3,20 +3,11 @@
 #include <cstring>
 
 #include "base/files.h"
+#include "base/hash.h"
 
 namespace sb::landscape {
 
 namespace {
-
-// FNV-1a, 64 bit.
-uint64_t Fnv1a64(std::string_view data) {
-  uint64_t h = 0xcbf29ce484222325ull;
-  for (unsigned char c : data) {
-    h ^= c;
-    h *= 0x100000001b3ull;
-  }
-  return h;
-}
 
 class Writer {
  public:

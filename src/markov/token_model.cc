@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "base/files.h"
+#include "base/hash.h"
 
 namespace sb::markov {
 namespace {
@@ -14,15 +15,6 @@ constexpr char kMagic[8] = {'S', 'B', 'V', 'O', 'M', 'M', '\r', '\n'};
 constexpr uint32_t kVersion = 1;
 constexpr uint32_t kFlagVocabulary = 1;
 constexpr uint32_t kFlagMetadata = 2;
-
-uint64_t Fnv1a(std::string_view data) {
-  uint64_t h = 0xcbf29ce484222325ull;
-  for (unsigned char c : data) {
-    h ^= c;
-    h *= 0x100000001b3ull;
-  }
-  return h;
-}
 
 void PutU32(std::string* out, uint32_t v) {
   for (int i = 0; i < 4; ++i) out->push_back(static_cast<char>((v >> (8 * i)) & 0xff));
@@ -166,7 +158,7 @@ std::string TokenModel::Serialize() const {
   }
   PutU64(&out, training_.size());
   for (int32_t id : training_) PutU32(&out, static_cast<uint32_t>(id));
-  PutU64(&out, Fnv1a(out));
+  PutU64(&out, Fnv1a64(out));
   return out;
 }
 
@@ -189,7 +181,7 @@ Result<TokenModel> TokenModel::Parse(std::string_view bytes, const std::string& 
     uint64_t stored = 0;
     for (int i = 0; i < 8; ++i)
       stored |= uint64_t{static_cast<unsigned char>(bytes[bytes.size() - 8 + i])} << (8 * i);
-    if (stored != Fnv1a(bytes.substr(0, bytes.size() - 8))) {
+    if (stored != Fnv1a64(bytes.substr(0, bytes.size() - 8))) {
       return bad("checksum mismatch (file truncated or corrupted)");
     }
   }
