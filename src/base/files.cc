@@ -41,6 +41,17 @@ Status WriteFileAtomic(const std::string& path, std::string_view data) {
     std::cout.flush();
     return std::cout ? Status::Ok() : Status::IoError("<stdout>: write error");
   }
+  // Devices, pipes and other non-regular files (e.g. -o /dev/null) are
+  // written in place: renaming over them would replace them.
+  std::error_code ec;
+  auto st = std::filesystem::status(path, ec);
+  if (!ec && std::filesystem::exists(st) && !std::filesystem::is_regular_file(st)) {
+    std::FILE* f = std::fopen(path.c_str(), "wb");
+    if (!f) return Status::IoError(path + ": " + std::strerror(errno));
+    bool ok = std::fwrite(data.data(), 1, data.size(), f) == data.size();
+    ok = (std::fclose(f) == 0) && ok;
+    return ok ? Status::Ok() : Status::IoError(path + ": write error");
+  }
   std::string tmp = path + ".tmp." + std::to_string(::getpid());
   {
     std::FILE* f = std::fopen(tmp.c_str(), "wb");

@@ -15,8 +15,9 @@ Result<std::string> ReadFile(const std::string& path);
 
 // Writes `data` to `path` atomically: a temporary file beside it is written,
 // flushed and renamed over the target, so a failure never leaves a half-written
-// file. "-" writes to standard output. Errors: kIoError. Thread-safe for
-// distinct paths.
+// file. "-" writes to standard output; an existing non-regular file (a
+// device such as /dev/null, a pipe) is written in place. Errors: kIoError.
+// Thread-safe for distinct paths.
 Status WriteFileAtomic(const std::string& path, std::string_view data);
 
 // Finds a bundled data file (e.g. "grammar/climbing.gra", "models/default.sbm")

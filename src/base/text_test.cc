@@ -1,6 +1,7 @@
 #include "base/text.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include "base/files.h"
 #include "base/status.h"
@@ -34,6 +35,14 @@ TEST(Files, AtomicWriteThenRead) {
   auto missing = ReadFile(path + ".nope");
   EXPECT_FALSE(missing.ok());
   EXPECT_EQ(missing.status().code(), Status::Code::kNotFound);
+}
+
+TEST(Files, AtomicWriteLeavesDevicesInPlace) {
+  // Renaming a temporary file over /dev/null would replace the device.
+  ASSERT_TRUE(WriteFileAtomic("/dev/null", "discarded\n").ok());
+  struct stat st;
+  ASSERT_EQ(::stat("/dev/null", &st), 0);
+  EXPECT_TRUE(S_ISCHR(st.st_mode));
 }
 
 }  // namespace

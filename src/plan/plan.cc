@@ -242,6 +242,7 @@ std::string RenderText(const RoutePlan& plan) {
   for (const auto& m : moves) w = std::max(w, Width(MoveText(m)));
   w = std::min<size_t>(w, 60);
   std::string out;
+  out.reserve(512 + moves.size() * (w + 40));
   out += "CHAOTIC ROUTE PLAN\n";
   out += "Variation of " + InputsLine(plan) + "\n";
   out += std::to_string(moves.size()) + " moves, " + std::to_string(ChangedCount(plan)) +
