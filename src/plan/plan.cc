@@ -246,19 +246,20 @@ std::string RenderText(const RoutePlan& plan) {
   out += "CHAOTIC ROUTE PLAN\n";
   out += "Variation of " + InputsLine(plan) + "\n";
   out += std::to_string(moves.size()) + " moves, " + std::to_string(ChangedCount(plan)) +
-         " changed (*)\n\n";
-  out += "  #    hand  " + Pad("move", w) + "  from\n";
+         " changed\n\n";
+  out += "  #  hand  " + Pad("move", w) + "  status   from\n";
   size_t next = 0;
   for (size_t j = 0; j < moves.size(); ++j) {
     const auto& m = moves[j];
     char num[16];
     std::snprintf(num, sizeof num, "%3zu", j + 1);
-    out += std::string(num) + (m.changed ? " *  " : "    ") + HandLetter(m.hand) + "     " +
-           Pad(MoveText(m), w) + "  " + Provenance(plan, m) + "\n";
+    out += std::string(num) + "  " + HandLetter(m.hand) + "     " + Pad(MoveText(m), w) +
+           (m.changed ? "  changed  " : "  kept     ") + Provenance(plan, m) + "\n";
     while (next < plan.smoothing.size() && plan.smoothing[next].after == static_cast<int>(j)) {
       const Suggestion& s = plan.smoothing[next++];
       for (size_t i = 0; i < s.moves.size(); ++i) {
-        out += "     +  " + Pad("insert: " + SuggestionText(s.moves[i]), w + 6);
+        std::string ins = "insert: " + SuggestionText(s.moves[i]);
+        out += "  +  " + (i == 0 ? Pad(ins, w + 6) : ins);
         if (i == 0) {
           out += "  (smoothing saves " + FormatNumber(std::round(s.bits_saved() * 100) / 100) +
                  " bits)";
@@ -267,7 +268,8 @@ std::string RenderText(const RoutePlan& plan) {
       }
     }
   }
-  out += "\n* changed: the move differs from the input's move at that position.\n";
+  out += "\nchanged: the move differs from the input's move at that position; from: the input "
+         "route and move number it comes from.\n";
   if (!plan.smoothing_model.empty()) {
     out += "+ smoothing suggestions from model " + plan.smoothing_model + ".\n";
   }
