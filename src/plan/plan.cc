@@ -367,7 +367,87 @@ json ToJson(const RoutePlan& plan) {
   return j;
 }
 
-std::string RenderJson(const RoutePlan& plan) { return ToJson(plan).dump(2) + "\n"; }
+namespace {
+
+// JSON string literal (quotes included). Input is valid UTF-8 (CRDL checks
+// it), so only quotes, backslashes and control characters need escapes.
+void AppendJsonString(std::string* out, std::string_view s) {
+  out->push_back('"');
+  for (char c : s) {
+    switch (c) {
+      case '"': *out += "\\\""; break;
+      case '\\': *out += "\\\\"; break;
+      case '\n': *out += "\\n"; break;
+      case '\r': *out += "\\r"; break;
+      case '\t': *out += "\\t"; break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20) {
+          char buf[8];
+          std::snprintf(buf, sizeof buf, "\\u%04x", c);
+          *out += buf;
+        } else {
+          out->push_back(c);
+        }
+    }
+  }
+  out->push_back('"');
+}
+
+void AppendPoints(std::string* out, const char* key, const std::vector<chaos::State>& pts) {
+  *out += "  \"";
+  *out += key;
+  *out += "\": [";
+  for (size_t i = 0; i < pts.size(); ++i) {
+    *out += i ? ",\n    [" : "\n    [";
+    *out += FormatNumber(pts[i][0]) + "," + FormatNumber(pts[i][1]) + "," + FormatNumber(pts[i][2]);
+    *out += "]";
+  }
+  *out += pts.empty() ? "]" : "\n  ]";
+}
+
+}  // namespace
+
+std::string RenderJson(const RoutePlan& plan) {
+  // Written directly rather than through a document tree: one line per move
+  // and per trajectory point keeps million-move plans fast and readable.
+  const auto& v = plan.variation;
+  std::string out;
+  out.reserve(256 + v.moves.size() * 150);
+  out += "{\n  \"parameters\": " + ParamsToJson(v.params).dump() + ",\n  \"inputs\": [";
+  for (size_t i = 0; i < v.inputs.size(); ++i) {
+    out += i ? ", {\"name\": " : "{\"name\": ";
+    AppendJsonString(&out, v.inputs[i].name);
+    out += ", \"moves\": " + std::to_string(v.inputs[i].route.moves.size()) + "}";
+  }
+  out += "],\n  \"moves\": [";
+  for (size_t j = 0; j < v.moves.size(); ++j) {
+    const auto& m = v.moves[j];
+    out += j ? ",\n    {\"hand\": \"" : "\n    {\"hand\": \"";
+    out += HandLetter(m.hand);
+    out += "\", \"text\": ";
+    AppendJsonString(&out, m.text);
+    if (m.source) {
+      out += ", \"source\": {\"route\": " + std::to_string(m.source->route) +
+             ", \"move\": " + std::to_string(m.source->move) + "}";
+    } else {
+      out += ", \"source\": null";
+    }
+    out += m.changed ? ", \"changed\": true, \"notes\": [" : ", \"changed\": false, \"notes\": [";
+    for (size_t k = 0; k < m.notes.size(); ++k) {
+      if (k) out += ", ";
+      AppendJsonString(&out, m.notes[k]);
+    }
+    out += "]}";
+  }
+  out += v.moves.empty() ? "],\n" : "\n  ],\n";
+  AppendPoints(&out, "reference", v.reference);
+  out += ",\n";
+  AppendPoints(&out, "variation", v.variation);
+  json full = ToJson(RoutePlan{chaos::Variation{}, plan.smoothing, plan.smoothing_model});
+  if (full.contains("smoothing")) out += ",\n  \"smoothing\": " + full["smoothing"].dump();
+  out += "\n}\n";
+  return out;
+}
 
 namespace {
 cairo_status_t AppendToString(void* closure, const unsigned char* data, unsigned int length) {

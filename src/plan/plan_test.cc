@@ -120,6 +120,18 @@ TEST(Plan, SmoothingSuggestionsAppearInEveryFormat) {
   EXPECT_NE(RenderMarkdown(plan).find("insert: good jug"), std::string::npos);
 }
 
+TEST(Plan, RenderedJsonEqualsTheDocumentModel) {
+  auto a = ParseCrdl("---\nR say \"hi\" \\ back\tslash\nL match\nR \u00e9 crimp\n", "q");
+  ASSERT_TRUE(a.ok()) << a.status().message();
+  auto v = chaos::Vary({{"quote \"name\"", *a}}, *chaos::VaryParams::Preset("more"));
+  ASSERT_TRUE(v.ok());
+  RoutePlan plan{*v, {}, ""};
+  EXPECT_EQ(nlohmann::json::parse(RenderJson(plan)), ToJson(plan));
+  plan.smoothing_model = "m";
+  plan.smoothing.push_back({0, {{"L", "jug", "jug"}}, 3, 2});
+  EXPECT_EQ(nlohmann::json::parse(RenderJson(plan)), ToJson(plan));
+}
+
 TEST(Plan, FormatParsing) {
   EXPECT_EQ(*ParseFormat("md"), Format::kMarkdown);
   EXPECT_FALSE(ParseFormat("pdf").ok());
