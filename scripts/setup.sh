@@ -7,7 +7,6 @@ PACKAGES=(
   build-essential cmake pkg-config ninja-build
   libcli11-dev nlohmann-json3-dev libfmt-dev
   libsqlite3-dev libcpp-httplib-dev libcairo2-dev libsodium-dev
-  libnanoflann-dev libhwy-dev
   libopenmpi-dev openmpi-bin
   libgtest-dev libgmock-dev libbenchmark-dev
   wrk chromium chromium-driver nodejs npm
