@@ -449,6 +449,41 @@ std::string RenderJson(const RoutePlan& plan) {
   return out;
 }
 
+bool SmoothingFromJson(const json& j, RoutePlan* plan) {
+  if (!j.is_object() || !j.contains("smoothing")) return false;
+  const json& sm = j["smoothing"];
+  if (!sm.is_object() || !sm.contains("model") || !sm["model"].is_string() ||
+      !sm.contains("suggestions") || !sm["suggestions"].is_array()) {
+    return false;
+  }
+  std::vector<Suggestion> out;
+  for (const json& s : sm["suggestions"]) {
+    if (!s.is_object() || !s.value("after", json()).is_number_integer() ||
+        !s.value("bits_before", json()).is_number() || !s.value("bits_after", json()).is_number() ||
+        !s.value("insert", json()).is_array()) {
+      return false;
+    }
+    Suggestion sug;
+    sug.after = s["after"].get<int>();
+    sug.bits_before = s["bits_before"].get<double>();
+    sug.bits_after = s["bits_after"].get<double>();
+    for (const json& m : s["insert"]) {
+      if (!m.is_object()) return false;
+      InsertedMove im;
+      for (auto [field, dst] : {std::pair{"hand", &im.hand}, std::pair{"symbol", &im.symbol},
+                                std::pair{"description", &im.description}}) {
+        if (!m.value(field, json()).is_string()) return false;
+        *dst = m[field].get<std::string>();
+      }
+      sug.moves.push_back(std::move(im));
+    }
+    out.push_back(std::move(sug));
+  }
+  plan->smoothing = std::move(out);
+  plan->smoothing_model = sm["model"].get<std::string>();
+  return true;
+}
+
 namespace {
 cairo_status_t AppendToString(void* closure, const unsigned char* data, unsigned int length) {
   static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);

@@ -50,7 +50,12 @@ std::string ReproduceOptions(const chaos::VaryParams& p);
 std::string RenderText(const RoutePlan& plan);
 std::string RenderMarkdown(const RoutePlan& plan);
 nlohmann::json ToJson(const RoutePlan& plan);
-std::string RenderJson(const RoutePlan& plan);  // ToJson, pretty-printed, newline-terminated
+std::string RenderJson(const RoutePlan& plan);  // the same as ToJson, one move per line
+// Restores plan->smoothing and plan->smoothing_model from the "smoothing"
+// member of a ToJson document (so a stored plan shows the suggestions made
+// when it was created). Returns false, leaving the plan unchanged, when `j`
+// has no well-formed "smoothing" member.
+bool SmoothingFromJson(const nlohmann::json& j, RoutePlan* plan);
 // The trajectory picture (paper figure 2): reference black, variation blue,
 // grey association lines, x–z projection, labelled axes.
 std::string RenderTrajectorySvg(const RoutePlan& plan);

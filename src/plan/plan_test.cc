@@ -132,6 +132,19 @@ TEST(Plan, RenderedJsonEqualsTheDocumentModel) {
   EXPECT_EQ(nlohmann::json::parse(RenderJson(plan)), ToJson(plan));
 }
 
+TEST(Plan, SmoothingSurvivesAJsonRoundTrip) {
+  RoutePlan plan = MakePlan(chaos::VaryParams());
+  plan.smoothing_model = "gym.sbm";
+  plan.smoothing.push_back({1, {{"R", "jug", "jug"}, {"L", "crimp", "crimp"}}, 12.5, 9.0});
+  RoutePlan back = MakePlan(chaos::VaryParams());
+  ASSERT_TRUE(SmoothingFromJson(ToJson(plan), &back));
+  EXPECT_EQ(RenderText(back), RenderText(plan));
+  RoutePlan untouched = MakePlan(chaos::VaryParams());
+  EXPECT_FALSE(SmoothingFromJson(ToJson(untouched), &untouched));  // no "smoothing" member
+  EXPECT_FALSE(SmoothingFromJson(nlohmann::json{{"smoothing", {{"model", 3}}}}, &untouched));
+  EXPECT_TRUE(untouched.smoothing_model.empty());
+}
+
 TEST(Plan, FormatParsing) {
   EXPECT_EQ(*ParseFormat("md"), Format::kMarkdown);
   EXPECT_FALSE(ParseFormat("pdf").ok());

@@ -517,7 +517,14 @@ struct Server::Impl {
     if (!var.ok()) return var.status();
     plan::RoutePlan p;
     p.variation = std::move(var).value();
-    if (rec.smooth) {
+    // The suggestions made when the variation was created, as stored with
+    // it; re-smoothed only for variations stored without them.
+    if (rec.smooth && !rec.plan_json.empty() &&
+        plan::SmoothingFromJson(json::parse(rec.plan_json, nullptr, false), &p)) {
+      if (smoothing_note && p.smoothing.empty()) {
+        *smoothing_note = "No suggestions: the model found no insertion that reads better.";
+      }
+    } else if (rec.smooth) {
       Status st = SmoothPlan(&p);
       if (smoothing_note) {
         if (!st.ok()) {
