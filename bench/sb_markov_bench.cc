@@ -11,7 +11,11 @@
 #include <random>
 #include <vector>
 
+#include "base/files.h"
+#include "crdl/site_csv.h"
+#include "language/symbols.h"
 #include "markov/interpolate.h"
+#include "markov/token_model.h"
 #include "markov/model.h"
 
 namespace {
@@ -116,6 +120,48 @@ void BM_InterpolateJ3(benchmark::State& state) {
       benchmark::Counter(static_cast<double>(nodes), benchmark::Counter::kAvgIterations);
 }
 BENCHMARK(BM_InterpolateJ3)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond)->Iterations(10);
+
+// The same search on real data: DE-CTW depth 5 over the corpus moves read
+// with the project's grammar (symbol set k4, alphabet ~430), boundaries
+// joining 8 moves of one route to 8 of another. Skipped without ../shared.
+void BM_InterpolateCorpusJ3(benchmark::State& state) {
+  std::string shared = sb::FindSharedDir(SB_SHARED_DIR);
+  auto corpus = shared.empty() ? sb::Result<sb::SiteExport>(sb::Status::NotFound("no corpus"))
+                               : sb::ReadSiteExport(shared + "/corpus");
+  auto lang = sb::language::MoveLanguage::LoadDefault();
+  if (!corpus.ok() || !lang.ok()) {
+    state.SkipWithError("../shared/corpus or the grammar not found");
+    return;
+  }
+  std::vector<std::string> toks;
+  std::vector<std::vector<std::string>> routes;
+  for (const auto& r : corpus->routes) {
+    std::vector<std::string> seq;
+    for (const auto& m : r.route.moves) {
+      std::string s = lang->SymbolsOf(m.text).k[3];
+      if (s != "NO_PARSE") seq.push_back(s);
+    }
+    toks.insert(toks.end(), seq.begin(), seq.end());
+    if (seq.size() >= 12) routes.push_back(seq);
+  }
+  auto tm = sb::markov::TokenModel::FromTokens({Algorithm::kDeCtw, 5, 0, 1.0}, toks);
+  std::vector<std::pair<std::vector<int32_t>, std::vector<int32_t>>> cases;
+  for (size_t i = 0; i + 1 < routes.size() && cases.size() < 20; i += 7) {
+    auto b = tm->Encode({routes[i].begin(), routes[i].begin() + 8});
+    auto a = tm->Encode({routes[i + 1].begin() + 4, routes[i + 1].begin() + 12});
+    cases.push_back({*b, *a});
+  }
+  sb::markov::InsertionOptions opt;
+  opt.max_insert = 3;
+  size_t i = 0;
+  for (auto _ : state) {
+    const auto& [before, after] = cases[i++ % cases.size()];
+    auto r = sb::markov::BestInsertion(tm->model(), before, after, opt);
+    benchmark::DoNotOptimize(r->bits);
+  }
+  state.counters["alphabet"] = tm->spec().alphabet_size;
+}
+BENCHMARK(BM_InterpolateCorpusJ3)->Unit(benchmark::kMillisecond)->Iterations(20);
 
 }  // namespace
 
