@@ -213,15 +213,20 @@ struct Server::Impl {
   std::once_flag dummy_once;
   std::string dummy_hash;
 
-  void PostUsers(const httplib::Request& req, httplib::Response& res) {
+  // Reads {"username", "password"} from a JSON body; on failure the response
+  // (400/403/413) is already set and false is returned.
+  bool ReadCredentials(const httplib::Request& req, httplib::Response& res, std::string* user,
+                       std::string* pass) {
     Viewer v;
-    if (!ApiViewer(req, res, &v)) return;
+    if (!ApiViewer(req, res, &v)) return false;
     json body;
-    if (!BodyObject(req, res, &body)) return;
+    if (!BodyObject(req, res, &body)) return false;
+    return GetString(body, "username", user, res) && GetString(body, "password", pass, res);
+  }
+
+  void PostUsers(const httplib::Request& req, httplib::Response& res) {
     std::string user, pass;
-    if (!GetString(body, "username", &user, res) || !GetString(body, "password", &pass, res)) {
-      return;
-    }
+    if (!ReadCredentials(req, res, &user, &pass)) return;
     Status st = store::CheckUsername(user);
     if (st.ok()) st = store::CheckPassword(pass);
     if (!st.ok()) return Error(res, 400, st.message());
@@ -234,14 +239,8 @@ struct Server::Impl {
   }
 
   void PostSessions(const httplib::Request& req, httplib::Response& res) {
-    Viewer v;
-    if (!ApiViewer(req, res, &v)) return;
-    json body;
-    if (!BodyObject(req, res, &body)) return;
     std::string user, pass;
-    if (!GetString(body, "username", &user, res) || !GetString(body, "password", &pass, res)) {
-      return;
-    }
+    if (!ReadCredentials(req, res, &user, &pass)) return;
     std::string ukey = "user:" + ToLower(user.substr(0, 64));
     std::string ikey = "ip:" + req.remote_addr;
     int64_t since = Now() - options.login_window_seconds;
