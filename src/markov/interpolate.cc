@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <thread>
 #include <unordered_map>
 #include <utility>
 
@@ -28,10 +29,18 @@ class Search {
     for (int32_t c : cands_) allowed_[c] = 1;
   }
 
-  void Run() { Dfs(0, 0.0); }
+  // Searches every insertion; with stride > 1 only those whose first symbol
+  // has a rank (in the cheapest-first order) equal to `offset` modulo
+  // `stride` (the empty insertion is always scored).
+  void Run(size_t stride = 1, size_t offset = 0) {
+    stride_ = stride;
+    offset_ = offset;
+    Dfs(0, 0.0);
+  }
 
   std::vector<int32_t> best_ins;
   double best = std::numeric_limits<double>::infinity();
+  size_t best_rank = 0;  // rank of best_ins's first symbol + 1; 0 for the empty insertion
   uint64_t nodes = 0;
 
  private:
@@ -124,12 +133,20 @@ class Search {
       if (a < best && (std::isinf(best) || a < best - 1e-12 * std::max(1.0, std::fabs(best)))) {
         best = a;
         best_ins = ins_;
+        best_rank = rank_;
       }
     }
     if (m == j_) return;
     const std::shared_ptr<const Order> order = Children(best - g);
-    for (auto [cost, c] : *order) {
+    for (size_t i = 0; i < order->size(); ++i) {
+      auto [cost, c] = (*order)[i];
       if (g + cost >= best) break;
+      // Lists for smaller budgets are prefixes of one cheapest-first order,
+      // so i is the symbol's rank whatever the budget.
+      if (m == 0) {
+        if (i % stride_ != offset_) continue;
+        rank_ = i + 1;
+      }
       buf_.push_back(c);
       ins_.push_back(c);
       Dfs(m + 1, g + cost);
@@ -138,6 +155,7 @@ class Search {
     }
   }
 
+  size_t stride_ = 1, offset_ = 0, rank_ = 0;
   const Model& m_;
   std::span<const int32_t> after_;
   int j_;
@@ -184,11 +202,34 @@ Result<InsertionResult> BestInsertion(const Model& model, std::span<const int32_
   std::sort(cands.begin(), cands.end());
   cands.erase(std::unique(cands.begin(), cands.end()), cands.end());
 
-  Search s(model, before, after, options.max_insert, cands);
-  s.Run();
   InsertionResult r;
-  r.inserted = s.best_ins;
-  r.nodes_visited = s.nodes;
+  // Deep searches over many candidates split the first inserted symbol
+  // between two threads (even and odd ranks), each with its own bound. The
+  // merge keeps the sequential answer: the lowest bits, and on a tie the
+  // insertion whose first symbol comes first in the cheapest-first order
+  // (the empty insertion before all).
+  const bool split = options.threads == 0
+                         ? options.max_insert >= 3 && cands.size() >= 64 &&
+                               std::thread::hardware_concurrency() > 1
+                         : options.threads > 1;
+  if (split) {
+    Search s0(model, before, after, options.max_insert, cands);
+    Search s1(model, before, after, options.max_insert, cands);
+    std::thread t([&] { s1.Run(2, 1); });
+    s0.Run(2, 0);
+    t.join();
+    const double tol = 1e-12 * std::max(1.0, std::fabs(std::min(s0.best, s1.best)));
+    bool take1 = s1.best < s0.best - tol ||
+                 (!(s0.best < s1.best - tol) && s1.best_rank < s0.best_rank);
+    const Search& w = take1 ? s1 : s0;
+    r.inserted = w.best_ins;
+    r.nodes_visited = s0.nodes + s1.nodes;
+  } else {
+    Search s(model, before, after, options.max_insert, cands);
+    s.Run();
+    r.inserted = s.best_ins;
+    r.nodes_visited = s.nodes;
+  }
   std::vector<int32_t> full(before.begin(), before.end());
   full.insert(full.end(), after.begin(), after.end());
   r.baseline_bits = model.LogLoss(full);

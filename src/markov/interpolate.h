@@ -22,6 +22,9 @@ inline constexpr int kMaxInsert = 4;
 struct InsertionOptions {
   int max_insert = 2;               // j: insert 0..j symbols, 0..kMaxInsert
   std::vector<int32_t> candidates;  // symbols that may be inserted; empty = Model::SeenSymbols()
+  // 0 = automatic (two threads for max_insert >= 3 with 64+ candidates on a
+  // multi-core machine), 1 = one thread. The answer is the same either way.
+  int threads = 0;
 };
 
 struct InsertionResult {

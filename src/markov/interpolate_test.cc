@@ -96,6 +96,41 @@ TEST(Interpolate, EqualsBruteForce) {
   EXPECT_EQ(cases, 3 * 3 * 3 * 4 * 4);
 }
 
+TEST(Interpolate, TwoThreadsGiveTheSequentialAnswer) {
+  // Includes brute force with both splits on small alphabets, and the
+  // sequential search on a larger one (where the split is used by default).
+  std::mt19937_64 rng(5);
+  for (Algorithm alg : {Algorithm::kDeCtw, Algorithm::kPpmC, Algorithm::kMarkov}) {
+    for (int k : {4, 7, 80}) {
+      const auto train = Stream(k, k > 10 ? 3000 : 300, 17 + k);
+      auto r = Model::Train({alg, 3, k + 1, 0.5}, train);
+      ASSERT_TRUE(r.ok());
+      const Model& m = **r;
+      for (int trial = 0; trial < 3; ++trial) {
+        std::vector<int32_t> before, after;
+        for (int i = 0; i < 4; ++i) before.push_back(static_cast<int32_t>(rng() % k));
+        for (int i = 0; i < 4; ++i) after.push_back(static_cast<int32_t>(rng() % k));
+        const int j = k > 10 ? 2 : 3;  // keep the large case quick
+        InsertionOptions one, two;
+        one.max_insert = two.max_insert = j;
+        one.threads = 1;
+        two.threads = 2;
+        auto a = BestInsertion(m, before, after, one);
+        auto b = BestInsertion(m, before, after, two);
+        ASSERT_TRUE(a.ok() && b.ok());
+        EXPECT_EQ(a->inserted, b->inserted) << AlgorithmName(alg) << " k " << k;
+        EXPECT_EQ(a->bits, b->bits);
+        if (k <= 10) {
+          Brute brute;
+          std::vector<int32_t> cur;
+          BruteForce(m, before, after, m.SeenSymbols(), j, &cur, &brute);
+          EXPECT_NEAR(b->bits, brute.bits, 1e-9 * std::max(1.0, brute.bits));
+        }
+      }
+    }
+  }
+}
+
 TEST(Interpolate, RejectsBadArguments) {
   auto r = Model::Train({Algorithm::kDeCtw, 2, 3, 1.0}, std::vector<int32_t>{0, 1, 2, 0});
   ASSERT_TRUE(r.ok());
