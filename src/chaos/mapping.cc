@@ -175,28 +175,21 @@ std::vector<Cand> GridSearch(const NearestIndex::Tree& t, const std::vector<Stat
   Cand best1{std::numeric_limits<double>::infinity(), std::numeric_limits<int>::max()};
   bool have1 = false;
   auto scan_cell = [&](long id) {
-    if (k == 1) {
-      for (uint32_t s = t.start[id], e = t.start[id + 1]; s < e; ++s) {
-        const double* p = &t.coords[static_cast<size_t>(s) * d];
-        double dist = 0.0;
-        for (int a = 0; a < d; ++a) {
-          double diff = qa[a] - p[a];
-          dist += diff * diff;
-        }
-        Cand c{dist, t.index[s]};
-        if (c < best1) best1 = c;
-        have1 = true;
-      }
-      return;
-    }
     for (uint32_t s = t.start[id], e = t.start[id + 1]; s < e; ++s) {
+      // The same sum, in the same order, as MaskedDist2.
       const double* p = &t.coords[static_cast<size_t>(s) * d];
       double dist = 0.0;
       for (int a = 0; a < d; ++a) {
         double diff = qa[a] - p[a];
         dist += diff * diff;
       }
-      Offer(heap, k, {dist, t.index[s]});
+      Cand c{dist, t.index[s]};
+      if (k == 1) {  // no heap for the common single-neighbour query
+        if (c < best1) best1 = c;
+        have1 = true;
+      } else {
+        Offer(heap, k, c);
+      }
     }
   };
   long max_r = 0;

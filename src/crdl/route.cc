@@ -11,6 +11,13 @@ namespace sb {
 
 const char* HandLetter(Hand hand) { return hand == Hand::kLeft ? "L" : "R"; }
 
+std::optional<Hand> ParseHand(std::string_view word) {
+  std::string lw = ToLower(word);
+  if (lw == "l" || lw == "left") return Hand::kLeft;
+  if (lw == "r" || lw == "right") return Hand::kRight;
+  return std::nullopt;
+}
+
 static bool EqualsIgnoreCase(std::string_view a, std::string_view b) {
   return ToLower(a) == ToLower(b);
 }
@@ -125,17 +132,14 @@ Result<Route> ParseCrdl(std::string_view text, std::string_view filename) {
     size_t word_end = 0;
     while (word_end < rest.size() && rest[word_end] != ' ' && rest[word_end] != '\t') ++word_end;
     std::string_view word = rest.substr(0, word_end);
-    std::string lw = ToLower(word);
     Move move;
-    if (lw == "l" || lw == "left") {
-      move.hand = Hand::kLeft;
-    } else if (lw == "r" || lw == "right") {
-      move.hand = Hand::kRight;
-    } else {
+    std::optional<Hand> hand = ParseHand(word);
+    if (!hand) {
       std::string shown(word.substr(0, 20));
       return Status::InvalidInput(Where(filename, i + 1, indent + 1) +
                                   "expected hand L or R, got \"" + shown + "\"");
     }
+    move.hand = *hand;
     std::string_view move_text = Trim(rest.substr(word_end));
     if (move_text.empty()) {
       return Status::InvalidInput(Where(filename, i + 1, indent + word_end + 1) +

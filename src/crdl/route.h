@@ -29,6 +29,8 @@ enum class Hand { kLeft, kRight };
 
 // "L" or "R".
 const char* HandLetter(Hand hand);
+// Parses a hand word: L, R, left or right, any case; nullopt otherwise.
+std::optional<Hand> ParseHand(std::string_view word);
 
 // One hand move. `line` is the 1-based source line (0 when not from a file).
 struct Move {

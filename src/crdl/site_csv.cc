@@ -130,14 +130,12 @@ Result<SiteExport> ParseSiteExport(std::string_view routes_csv, std::string_view
     }
     std::string hand = ToLower(Trim(col(*mc, row, "hand")));
     Move m;
-    if (hand == "l" || hand == "left") {
-      m.hand = Hand::kLeft;
-    } else if (hand == "r" || hand == "right") {
-      m.hand = Hand::kRight;
-    } else {
+    std::optional<Hand> parsed = ParseHand(hand);
+    if (!parsed) {
       return Status::InvalidInput(std::string(moves_name) + ": record " + std::to_string(i) +
                                   ": hand: expected L or R, got \"" + hand + "\"");
     }
+    m.hand = *parsed;
     m.text = std::string(Trim(col(*mc, row, "move")));
     by_route[*id].push_back({*seq, std::move(m)});
   }
