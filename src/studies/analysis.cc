@@ -6,6 +6,7 @@
 #include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <numeric>
 #include <optional>
 #include <set>
 
@@ -152,19 +153,31 @@ std::vector<std::optional<RowScore>> ScoreRows(const Instrument& in, const Keyed
   return out;
 }
 
-void RouteTable(const ResponseTable& table, const std::vector<std::optional<RowScore>>& scores,
-                Analysis* a) {
-  for (const std::string& label : RouteLabels(table)) {
-    RouteStats s;
-    s.route = label;
-    std::vector<double> ranks;
-    for (size_t r = 0; r < table.rows.size(); ++r) {
-      if (table.rows[r].route != label) continue;
-      if (table.rows[r].rank) ranks.push_back(*table.rows[r].rank);
-      if (!scores[r]) continue;
-      s.sums.push_back(scores[r]->sum);
-      s.percent_positive.push_back(scores[r]->percent_positive);
-    }
+// Index of each row's route in `labels` (display order).
+std::vector<size_t> RouteIndex(const ResponseTable& table, const std::vector<std::string>& labels) {
+  std::map<std::string, size_t> index;
+  for (size_t i = 0; i < labels.size(); ++i) index[labels[i]] = i;
+  std::vector<size_t> out;
+  out.reserve(table.rows.size());
+  for (const Response& r : table.rows) out.push_back(index.at(r.route));
+  return out;
+}
+
+void RouteTable(const ResponseTable& table, const std::vector<std::string>& labels,
+                const std::vector<size_t>& route_of,
+                const std::vector<std::optional<RowScore>>& scores, Analysis* a) {
+  std::vector<RouteStats> routes(labels.size());
+  std::vector<std::vector<double>> ranks(labels.size());
+  for (size_t r = 0; r < table.rows.size(); ++r) {
+    RouteStats& s = routes[route_of[r]];
+    if (table.rows[r].rank) ranks[route_of[r]].push_back(*table.rows[r].rank);
+    if (!scores[r]) continue;
+    s.sums.push_back(scores[r]->sum);
+    s.percent_positive.push_back(scores[r]->percent_positive);
+  }
+  for (size_t i = 0; i < labels.size(); ++i) {
+    RouteStats& s = routes[i];
+    s.route = labels[i];
     s.n = int(s.sums.size());
     s.median_sum = Median(s.sums);
     s.mean_sum = Mean(s.sums);
@@ -173,31 +186,36 @@ void RouteTable(const ResponseTable& table, const std::vector<std::optional<RowS
     s.q3_sum = Quantile(s.sums, 0.75);
     s.max_sum = Quantile(s.sums, 1);
     s.mean_percent_positive = Mean(s.percent_positive);
-    s.ranked = int(ranks.size());
-    s.median_rank = Median(ranks);
-    a->routes.push_back(std::move(s));
+    s.ranked = int(ranks[i].size());
+    s.median_rank = Median(ranks[i]);
   }
+  a->routes = std::move(routes);
 }
 
-// participant -> route -> rank, participants in byte order.
-std::map<std::string, std::map<std::string, double>> RanksByParticipant(const ResponseTable& t) {
-  std::map<std::string, std::map<std::string, double>> out;
-  for (const Response& r : t.rows) {
-    if (r.rank) out[r.participant][r.route] = *r.rank;
+// Ranks as a participants x routes matrix (participants in byte order, NaN
+// where a participant gave the route no rank).
+std::vector<std::vector<double>> RankMatrix(const ResponseTable& t, size_t routes,
+                                            const std::vector<size_t>& route_of) {
+  std::map<std::string, std::vector<double>> by_participant;
+  for (size_t r = 0; r < t.rows.size(); ++r) {
+    if (!t.rows[r].rank) continue;
+    auto [it, fresh] = by_participant.try_emplace(t.rows[r].participant, routes, kNaN);
+    it->second[route_of[r]] = *t.rows[r].rank;
   }
+  std::vector<std::vector<double>> out;
+  for (auto& [participant, row] : by_participant) out.push_back(std::move(row));
   return out;
 }
 
 // Kendall's W over the participants who ranked every one of `routes`.
-KendallWResult ConcordanceOf(const std::map<std::string, std::map<std::string, double>>& ranks,
-                             const std::vector<std::string>& routes) {
+KendallWResult ConcordanceOf(const std::vector<std::vector<double>>& ranks,
+                             const std::vector<size_t>& routes) {
   std::vector<std::vector<double>> m;
-  for (const auto& [participant, by_route] : ranks) {
+  for (const std::vector<double>& all : ranks) {
     std::vector<double> row;
-    for (const std::string& route : routes) {
-      auto it = by_route.find(route);
-      if (it == by_route.end()) break;
-      row.push_back(it->second);
+    for (size_t route : routes) {
+      if (std::isnan(all[route])) break;
+      row.push_back(all[route]);
     }
     if (row.size() == routes.size()) m.push_back(std::move(row));
   }
@@ -207,8 +225,8 @@ KendallWResult ConcordanceOf(const std::map<std::string, std::map<std::string, d
   return w;
 }
 
-void PairTable(const ResponseTable& table, Analysis* a) {
-  const auto ranks = RanksByParticipant(table);
+void PairTable(const ResponseTable& table, const std::vector<size_t>& route_of, Analysis* a) {
+  const auto ranks = RankMatrix(table, a->routes.size(), route_of);
   for (size_t i = 0; i < a->routes.size(); ++i) {
     for (size_t j = i + 1; j < a->routes.size(); ++j) {
       const RouteStats &ra = a->routes[i], &rb = a->routes[j];
@@ -219,12 +237,12 @@ void PairTable(const ResponseTable& table, Analysis* a) {
       p.n_b = rb.n;
       p.wilcoxon = MannWhitneyU(ra.sums, rb.sums);
       p.welch = WelchT(ra.percent_positive, rb.percent_positive);
-      p.kendall_w = ConcordanceOf(ranks, {ra.route, rb.route});
+      p.kendall_w = ConcordanceOf(ranks, {i, j});
       a->pairs.push_back(std::move(p));
     }
   }
-  std::vector<std::string> all;
-  for (const RouteStats& r : a->routes) all.push_back(r.route);
+  std::vector<size_t> all(a->routes.size());
+  std::iota(all.begin(), all.end(), size_t{0});
   a->kendall_w = ConcordanceOf(ranks, all);
 }
 
@@ -314,8 +332,10 @@ Result<Analysis> Analyze(const Instrument& in, const ResponseTable& table,
   a.alpha_censored = AlphaOf(keyed, complete, keep);
   ItemTable(in, keyed, complete, keep, &a);
   const auto scores = ScoreRows(in, keyed, keep);
-  RouteTable(table, scores, &a);
-  PairTable(table, &a);
+  const std::vector<std::string> labels = RouteLabels(table);
+  const std::vector<size_t> route_of = RouteIndex(table, labels);
+  RouteTable(table, labels, route_of, scores, &a);
+  PairTable(table, route_of, &a);
   Correlations(table, scores, &a);
   return a;
 }
