@@ -315,6 +315,7 @@ std::string PValue(double p) {
 Result<Analysis> Analyze(const Instrument& in, const ResponseTable& table,
                          const AnalysisOptions& options) {
   if (table.rows.empty()) return Status::InvalidInput("responses: no response rows");
+  SB_RETURN_IF_ERROR(ValidateResponses(table, in, "responses"));
   Analysis a;
   a.instrument = in.name;
   a.scale_min = in.scale_min;

@@ -89,8 +89,8 @@ struct Analysis {
   std::vector<Correlation> correlations;
 };
 
-// Runs the whole analysis. `table` must satisfy ValidateResponses for
-// `instrument` (parsed tables do). Errors (kInvalidInput): no rows, an
+// Runs the whole analysis. Errors (kInvalidInput): no rows, a table that
+// fails ValidateResponses (checked first, messages start "responses"), an
 // unknown or duplicate id in options.drop, every item dropped, drop together
 // with censor. Statistics that are undefined for the data (too few rows, a
 // constant variable) are NaN. Pure; thread-safe.

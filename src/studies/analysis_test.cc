@@ -246,6 +246,8 @@ TEST(Analysis, DropErrors) {
   EXPECT_EQ(msg({{"q1"}, true}), "drop: choose items to drop or the censoring rule, not both");
   EXPECT_EQ(Analyze(PilotInstrument(), Table({}), {}).status().message(),
             "responses: no response rows");
+  EXPECT_EQ(Analyze(PilotInstrument(), Table({Row("a", "1", {1, 2})}), {}).status().message(),
+            "responses: participant \"a\" route \"1\": expected 5 answers, got 2");
 }
 
 TEST(Analysis, KendallWUsesOnlyParticipantsWhoRankedEveryRoute) {

@@ -11,6 +11,13 @@ namespace {
 
 using nlohmann::json;
 
+// "q<n>" (built with += : GCC 12 warns falsely (-Wrestrict) about "q" + std::string).
+std::string ItemId(int n) {
+  std::string id(1, 'q');
+  id += std::to_string(n);
+  return id;
+}
+
 Instrument MakeBrc() {
   // Paper appendix B, table 5 ("Neg." column: items 1, 2, 8, 12).
   static const char* const kTexts[] = {
@@ -32,7 +39,7 @@ Instrument MakeBrc() {
   Instrument in{"BRC 14-item instrument (Strange Beta, table 5)", -2, 2, {}};
   for (int i = 0; i < 14; ++i) {
     const int n = i + 1;
-    in.items.push_back({"q" + std::to_string(n), kTexts[i], n == 1 || n == 2 || n == 8 || n == 12});
+    in.items.push_back({ItemId(n), kTexts[i], n == 1 || n == 2 || n == 8 || n == 12});
   }
   return in;
 }
@@ -47,7 +54,7 @@ Instrument MakePilot() {
       "Requires thought/non-obvious beta",
   };
   Instrument in{"Pilot 5-item instrument (Strange Beta, table 4)", 1, 5, {}};
-  for (int i = 0; i < 5; ++i) in.items.push_back({"q" + std::to_string(i + 1), kTexts[i], false});
+  for (int i = 0; i < 5; ++i) in.items.push_back({ItemId(i + 1), kTexts[i], false});
   return in;
 }
 
@@ -102,14 +109,16 @@ Status ReadScale(const json& j, std::string_view name, Instrument* out) {
   if (!s.is_array() || s.size() != 2 || !s[0].is_number_integer() || !s[1].is_number_integer()) {
     return Invalid(name, "scale", "expected two integers [min, max], got " + s.dump());
   }
-  const int64_t lo = s[0].get<int64_t>(), hi = s[1].get<int64_t>();
-  if (lo < -kMaxScaleValue || hi > kMaxScaleValue) {
+  // Compared as doubles first: a huge unsigned value must not wrap around.
+  const double dlo = s[0].get<double>(), dhi = s[1].get<double>();
+  if (dlo < -kMaxScaleValue || dlo > kMaxScaleValue || dhi < -kMaxScaleValue ||
+      dhi > kMaxScaleValue) {
     return Invalid(name, "scale",
                    "values must lie in [-" + std::to_string(kMaxScaleValue) + ", " +
                        std::to_string(kMaxScaleValue) + "]");
   }
-  out->scale_min = int(lo);
-  out->scale_max = int(hi);
+  out->scale_min = int(dlo);
+  out->scale_max = int(dhi);
   return Status::Ok();
 }
 
