@@ -319,7 +319,7 @@ TEST(Analysis, JsonAndBoxPlotAreDeterministicAndComplete) {
 TEST(Analysis, BoxPlotDrawsOutliersBeyondTheWhiskers) {
   Instrument in{"one", 0, 100, {{"x", "x", false}}};
   std::vector<Response> rows;
-  for (int v : {50, 51, 52, 53, 54, 100}) rows.push_back(Row("p" + std::to_string(v), "r", {v}));
+  for (int v : {50, 51, 52, 53, 54, 100}) rows.push_back(Row(std::to_string(v), "r", {v}));
   Analysis a = Analyze(in, Table(rows), {}).value();
   const std::string svg = BoxPlotSvg(a);
   size_t circles = 0;

@@ -166,6 +166,24 @@ const Instrument& PilotInstrument() {
   return kPilot;
 }
 
+const std::vector<Question>& BrcDemographics() {
+  static const std::vector<Question> kQuestions = {
+      {"years_climbing", "Years climbing?", AnswerKind::kNumber},
+      {"years_gym", "Years climbing in a gym?", AnswerKind::kNumber},
+      {"hardest_indoor", "Hardest indoor redpoint?", AnswerKind::kGrade},
+      {"hardest_outdoor", "Hardest outdoor redpoint?", AnswerKind::kGrade},
+      {"days_outside", "Days per week climbing outside?", AnswerKind::kNumber},
+      {"days_gym", "Days per week climbing at the gym?", AnswerKind::kNumber},
+      {"indoor_range", "Typical indoor grade range?", AnswerKind::kGradeRange},
+      {"outdoor_range", "Typical outdoor grade range?", AnswerKind::kGradeRange},
+      {"order", "In what order did you climb the routes (e.g., 1,4,3,2)?", AnswerKind::kRouteOrder},
+      {"rank", "What is your overall ranking of the routes from best to worst (e.g., 4,2,1,3)?",
+       AnswerKind::kRouteRanking},
+      {"ice_cream", "What is your favorite ice cream flavor?", AnswerKind::kText},
+  };
+  return kQuestions;
+}
+
 Status ValidateInstrument(const Instrument& in, std::string_view name) {
   if (in.name.empty() || in.name.size() > size_t(kMaxTextLength) || !CleanText(in.name)) {
     return Invalid(name, "name",

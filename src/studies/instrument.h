@@ -62,6 +62,28 @@ const Instrument& BrcInstrument();
 // [1, 5] as the pilot's "scale from one to five" (3 is the midpoint).
 const Instrument& PilotInstrument();
 
+// The BRC study's demographic and other questions (paper table 6), for the
+// study pages. `kind` says how each is answered; the analysis uses `order`
+// (the response file's order column), `rank` (its rank column) and, as the
+// paper did, the upper end of the typical outdoor grade range as `ability`.
+enum class AnswerKind {
+  kNumber,        // a non-negative number (years, days per week)
+  kGrade,         // one climbing grade
+  kGradeRange,    // a lowest and a highest grade
+  kRouteOrder,    // the order in which the routes were climbed (a permutation)
+  kRouteRanking,  // the routes from best to worst
+  kText,          // free text
+};
+struct Question {
+  std::string id;
+  std::string text;
+  AnswerKind kind;
+};
+// Table 6 in the paper's order: years_climbing, years_gym, hardest_indoor,
+// hardest_outdoor, days_outside, days_gym, indoor_range, outdoor_range, order,
+// rank, ice_cream. A static list; thread-safe.
+const std::vector<Question>& BrcDemographics();
+
 // Parses and validates an instrument JSON document
 // {"name": ..., "scale": [min, max], "items": [{"id", "text", "negative"}, ...]}.
 // `name` (usually the file path) prefixes every message: JSON syntax errors

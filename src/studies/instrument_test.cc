@@ -36,6 +36,17 @@ TEST(Instrument, PilotIsTable4) {
   EXPECT_TRUE(ValidateInstrument(in, "pilot").ok());
 }
 
+TEST(Instrument, BrcDemographicsAreTable6) {
+  const std::vector<Question>& q = BrcDemographics();
+  ASSERT_EQ(q.size(), 11u);
+  EXPECT_EQ(q[8].id, "order");
+  EXPECT_EQ(q[8].kind, AnswerKind::kRouteOrder);
+  EXPECT_EQ(q[9].id, "rank");
+  EXPECT_EQ(q[9].kind, AnswerKind::kRouteRanking);
+  EXPECT_EQ(q[7].kind, AnswerKind::kGradeRange);  // its upper end is the ability
+  EXPECT_EQ(q[10].text, "What is your favorite ice cream flavor?");
+}
+
 TEST(Instrument, BundledFilesEqualTheBuiltIns) {
   for (const char* name : {"brc", "pilot"}) {
     std::string path = FindDataFile(std::string("instruments/") + name + ".json");
@@ -97,7 +108,10 @@ TEST(Instrument, ErrorsNameFileLineAndField) {
             "I.json: items[0].txt: unknown field");
   std::string many = R"({"name": "x", "scale": [1, 5], "items": [)";
   for (int i = 0; i <= kMaxItems; ++i) {
-    many += (i ? "," : "") + std::string(R"({"id": "q)") + std::to_string(i) + R"(", "text": "t"})";
+    many += i ? "," : "";
+    many += R"({"id": "q)";
+    many += std::to_string(i);
+    many += R"(", "text": "t"})";
   }
   EXPECT_EQ(Error(many + "]}"), "I.json: items: more than 100 items");
 }
