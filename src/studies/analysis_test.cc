@@ -12,11 +12,13 @@
 #include <random>
 
 #include "studies/boxplot.h"
-#include "studies/scipy_test_util.h"
 #include "studies/simulate.h"
+#include "studies/test_util.h"
 
 namespace sb::studies {
 namespace {
+
+using testing::Row;
 
 using nlohmann::json;
 
@@ -172,15 +174,6 @@ TEST(AnalysisVsScipy, SimulatedSurveysWithTiesMissingAnswersAndSmallSamples) {
     }
   }
   EXPECT_TRUE(exact && asymptotic);
-}
-
-Response Row(const std::string& participant, const std::string& route,
-             std::vector<std::optional<int>> answers) {
-  Response r;
-  r.participant = participant;
-  r.route = route;
-  r.answers = std::move(answers);
-  return r;
 }
 
 ResponseTable Table(const std::vector<Response>& rows, bool rank = false) {

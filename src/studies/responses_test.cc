@@ -4,20 +4,14 @@
 #include <gtest/gtest.h>
 
 #include "studies/simulate.h"
+#include "studies/test_util.h"
 
 namespace sb::studies {
 namespace {
 
-const Instrument& Pilot() { return PilotInstrument(); }
+using testing::Row;
 
-Response Row(const std::string& participant, const std::string& route,
-             std::vector<std::optional<int>> answers) {
-  Response r;
-  r.participant = participant;
-  r.route = route;
-  r.answers = std::move(answers);
-  return r;
-}
+const Instrument& Pilot() { return PilotInstrument(); }
 
 std::string Error(const std::string& csv) {
   Result<ResponseTable> r = ParseResponsesCsv(csv, "R.csv", Pilot());

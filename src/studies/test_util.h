@@ -1,7 +1,7 @@
-// Test helpers: run src/studies/scipy_reference.py under Debian's
-// /usr/bin/python3 + python3-scipy and compare numbers to 1e-9.
-#ifndef SB_STUDIES_SCIPY_TEST_UTIL_H_
-#define SB_STUDIES_SCIPY_TEST_UTIL_H_
+// Test helpers: response rows; running src/studies/scipy_reference.py under
+// Debian's /usr/bin/python3 + python3-scipy and comparing numbers to 1e-9.
+#ifndef SB_STUDIES_TEST_UTIL_H_
+#define SB_STUDIES_TEST_UTIL_H_
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -12,10 +12,24 @@
 #include <fstream>
 #include <iomanip>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <string>
+#include <vector>
+
+#include "studies/responses.h"
 
 namespace sb::studies::testing {
+
+// A response row without rank, order or ability.
+inline Response Row(const std::string& participant, const std::string& route,
+                    std::vector<std::optional<int>> answers) {
+  Response r;
+  r.participant = participant;
+  r.route = route;
+  r.answers = std::move(answers);
+  return r;
+}
 
 inline constexpr double kTolerance = 1e-9;
 
@@ -81,4 +95,4 @@ inline ::testing::AssertionResult Close(double mine, const nlohmann::json& ref) 
 
 }  // namespace sb::studies::testing
 
-#endif  // SB_STUDIES_SCIPY_TEST_UTIL_H_
+#endif  // SB_STUDIES_TEST_UTIL_H_
