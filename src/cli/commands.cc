@@ -16,6 +16,7 @@ const Command kCommands[] = {
     {"symbols", "turn move descriptions into symbols (sets k1..k4)", RunSymbols},
     {"model", "train, score, generate with and interpolate variable-order Markov models",
      RunModel},
+    {"study", "analyse climber surveys (the paper's instruments and statistics)", RunStudy},
     {"serve", "run the web app", RunServe},
 };
 
