@@ -16,6 +16,8 @@ const Command kCommands[] = {
     {"symbols", "turn move descriptions into symbols (sets k1..k4)", RunSymbols},
     {"model", "train, score, generate with and interpolate variable-order Markov models",
      RunModel},
+    {"grade", "convert grades between scales; estimate, train and evaluate grades from moves",
+     RunGrade},
     {"serve", "run the web app", RunServe},
 };
 
