@@ -134,17 +134,18 @@ Result<Row> EstimateFile(const std::string& file, const grades::GradeEstimator& 
                                 "--discipline");
   }
   row.discipline = *d;
-  const Scale s = scale ? *scale
-                        : (rg && rg->grade.discipline() == *d ? rg->grade.scale
-                                                              : grades::DefaultScale(*d));
+  const Scale s =
+      scale ? *scale
+            : (rg && rg->grade.discipline() == *d ? rg->grade.scale : grades::DefaultScale(*d));
   row.scale = grades::ScaleName(s);
   std::vector<std::string> texts;
   for (const Move& m : route->moves) texts.push_back(m.text);
   grades::RouteReading reading = grades::ReadRoute(lang, texts, est.symbol_set());
   auto e = est.EstimateRoute(reading, *d);
-  if (!e.ok()) return Status(e.status().code() == Status::Code::kNotFound
-                                 ? Status::NotFound(file + ": " + e.status().message())
-                                 : Status::InvalidInput(file + ": " + e.status().message()));
+  if (!e.ok())
+    return Status(e.status().code() == Status::Code::kNotFound
+                      ? Status::NotFound(file + ": " + e.status().message())
+                      : Status::InvalidInput(file + ": " + e.status().message()));
   row.e = *e;
   row.estimate = grades::FormatBand(*d, e->band, s);
   row.low = grades::FormatBand(*d, e->low, s);
@@ -164,11 +165,11 @@ std::string RowText(const Row& r) {
 
 std::string RowJson(const Row& r) {
   std::string o = "{\"file\":" + JsonString(r.file) + ",\"name\":" + JsonString(r.name) +
-                  ",\"discipline\":\"" + grades::DisciplineName(r.discipline) +
-                  "\",\"scale\":\"" + r.scale + "\",\"estimate\":" + JsonString(r.estimate) +
+                  ",\"discipline\":\"" + grades::DisciplineName(r.discipline) + "\",\"scale\":\"" +
+                  r.scale + "\",\"estimate\":" + JsonString(r.estimate) +
                   ",\"low\":" + JsonString(r.low) + ",\"high\":" + JsonString(r.high) +
-                  ",\"level\":" + Fmt(grades::kIntervalLevel) + ",\"grade\":" +
-                  (r.grade.empty() ? std::string("null") : JsonString(r.grade)) +
+                  ",\"level\":" + Fmt(grades::kIntervalLevel) +
+                  ",\"grade\":" + (r.grade.empty() ? std::string("null") : JsonString(r.grade)) +
                   ",\"band\":" + std::to_string(r.e.band) + ",\"mean_band\":" + Fmt(r.e.mean) +
                   ",\"probabilities\":[";
   for (size_t j = 0; j < r.e.bands.size(); ++j) {
@@ -186,11 +187,11 @@ int EstimateRoutes(const std::vector<std::string>& files, const std::string& sca
   auto d = Optional<Discipline>(discipline, grades::ParseDiscipline, "--discipline");
   if (!d.ok()) return Fail(kCmd, d.status());
   if (format != "text" && format != "json") {
-    return Fail(kCmd, Status::InvalidInput("--format: expected text or json, got '" + format +
-                                           "'"));
+    return Fail(kCmd,
+                Status::InvalidInput("--format: expected text or json, got '" + format + "'"));
   }
-  auto est = model.empty() ? grades::GradeEstimator::LoadDefault()
-                           : grades::GradeEstimator::Load(model);
+  auto est =
+      model.empty() ? grades::GradeEstimator::LoadDefault() : grades::GradeEstimator::Load(model);
   if (!est.ok()) return Fail(kCmd, est.status());
   auto lang = language::MoveLanguage::LoadDefault();
   if (!lang.ok()) return Fail(kCmd, lang.status());
@@ -219,41 +220,48 @@ Result<int> SymbolSet(const std::string& s) {
   return s[1] - '0';
 }
 
-int Train(const std::string& corpus, const std::string& out, const std::string& symbols) {
+int Train(const std::string& corpus, const std::string& out, const std::string& symbols,
+          const std::string& rule_text) {
   auto set = SymbolSet(symbols);
   if (!set.ok()) return Fail(kCmd, set.status());
+  auto rule = grades::ParseL2Rule(rule_text, "--l2-rule");
+  if (!rule.ok()) return Fail(kCmd, rule.status());
   auto labelled = Label(corpus, *set);
   if (!labelled.ok()) return Fail(kCmd, labelled.status());
   std::vector<std::string> notes;
   grades::TrainOptions opt;
   opt.symbol_set = *set;
+  opt.rule = *rule;
   opt.notes = &notes;
   auto est = grades::GradeEstimator::Train(labelled->routes, opt);
   if (!est.ok()) return Fail(kCmd, est.status());
   Status s = est->Save(out);
   if (!s.ok()) return Fail(kCmd, s);
-  for (const std::string& n : notes) std::fprintf(stderr, "strangebeta grade train: %s\n", n.c_str());
+  for (const std::string& n : notes)
+    std::fprintf(stderr, "strangebeta grade train: %s\n", n.c_str());
   std::fprintf(stderr, "strangebeta grade train: wrote %s (%zu labelled routes)\n", out.c_str(),
                labelled->routes.size());
   return 0;
 }
 
 int Evaluate(const std::string& corpus, int folds, const std::string& format,
-             const std::string& symbols) {
+             const std::string& symbols, const std::string& rule_text) {
   if (format != "text" && format != "json") {
-    return Fail(kCmd, Status::InvalidInput("--format: expected text or json, got '" + format +
-                                           "'"));
+    return Fail(kCmd,
+                Status::InvalidInput("--format: expected text or json, got '" + format + "'"));
   }
   if (folds < 2 || folds > grades::kMaxFolds) {
-    return Fail(kCmd, Status::InvalidInput("--folds: expected 2.." +
-                                           std::to_string(grades::kMaxFolds) + ", got " +
-                                           std::to_string(folds)));
+    return Fail(kCmd,
+                Status::InvalidInput("--folds: expected 2.." + std::to_string(grades::kMaxFolds) +
+                                     ", got " + std::to_string(folds)));
   }
   auto set = SymbolSet(symbols);
   if (!set.ok()) return Fail(kCmd, set.status());
+  auto rule = grades::ParseL2Rule(rule_text, "--l2-rule");
+  if (!rule.ok()) return Fail(kCmd, rule.status());
   auto labelled = Label(corpus, *set);
   if (!labelled.ok()) return Fail(kCmd, labelled.status());
-  auto ev = grades::CrossValidate(labelled->routes, folds);
+  auto ev = grades::CrossValidate(labelled->routes, folds, *rule);
   if (!ev.ok()) return Fail(kCmd, ev.status());
   return WriteOutput(kCmd, "-",
                      format == "json" ? grades::FormatEvaluationJson(*ev)
@@ -301,6 +309,12 @@ int RunGrade(const std::vector<std::string>& args) {
   train->add_option("--out", out, "estimator file to write")->required();
   train->add_option("--symbols", train_symbols, "symbol set of the Markov chains: k1..k4")
       ->capture_default_str();
+  std::string train_rule = "one-se", ev_rule = "one-se";
+  train
+      ->add_option("--l2-rule", train_rule,
+                   "how inner cross-validation picks the penalty: one-se (the largest within "
+                   "one standard error of the best) or min (the best)")
+      ->capture_default_str();
 
   CLI::App* ev = app.add_subcommand(
       "evaluate",
@@ -314,12 +328,13 @@ int RunGrade(const std::vector<std::string>& args) {
   ev->add_option("--format", ev_format, "text or json")->capture_default_str();
   ev->add_option("--symbols", ev_symbols, "symbol set of the Markov chains: k1..k4")
       ->capture_default_str();
+  ev->add_option("--l2-rule", ev_rule, "one-se or min (see train)")->capture_default_str();
 
   if (int rc = ParseArgs(app, args); rc >= 0) return rc;
   if (conv->parsed()) return Convert(grade, to, conv_disc, from);
   if (est->parsed()) return EstimateRoutes(files, scale, model, est_disc, est_format);
-  if (train->parsed()) return Train(train_corpus, out, train_symbols);
-  if (ev->parsed()) return Evaluate(ev_corpus, folds, ev_format, ev_symbols);
+  if (train->parsed()) return Train(train_corpus, out, train_symbols, train_rule);
+  if (ev->parsed()) return Evaluate(ev_corpus, folds, ev_format, ev_symbols, ev_rule);
   return 2;
 }
 

@@ -68,8 +68,8 @@ Result<std::vector<double>> CrossFitMarkov(const std::vector<const TrainingRoute
 }
 
 // Standardised features of the rows in `rows` with the model's mean/scale.
-OrdinalData MakeData(const Matrix& X, const std::vector<size_t>& rows,
-                     const std::vector<int>& cls, int classes) {
+OrdinalData MakeData(const Matrix& X, const std::vector<size_t>& rows, const std::vector<int>& cls,
+                     int classes) {
   OrdinalData d;
   d.features = static_cast<int>(X.cols);
   d.classes = classes;
@@ -106,35 +106,48 @@ Result<std::pair<OrdinalModel, std::vector<int>>> FitOnRows(const Matrix& X,
   return std::make_pair(std::move(fit->model), std::move(classes));
 }
 
-// The penalty with the lowest inner-CV ranked probability score (ties: the
-// larger penalty); the candidates are kL2Grid and, last, an infinite penalty
-// (the thresholds-only model), so features that do not help are dropped.
+// The penalty by inner cross-validation of the ranked probability score
+// with the one-standard-error rule (Hastie, Tibshirani & Friedman, The
+// Elements of Statistical Learning, 7.10): the largest penalty whose mean
+// score is within one standard error (over folds) of the best. Candidates
+// are kL2Grid and, last, an infinite penalty (the thresholds-only model),
+// so features that do not clearly help are dropped.
 Result<double> ChooseL2(const Matrix& X, const std::vector<int>& band, const std::vector<int>& fold,
-                        int k) {
+                        int k, L2Rule rule) {
   const int lo = *std::min_element(band.begin(), band.end());
   const int hi = *std::max_element(band.begin(), band.end());
-  double best_l2 = kL2Grid[0], best = std::numeric_limits<double>::infinity();
   std::vector<double> candidates(std::begin(kL2Grid), std::end(kL2Grid));
   candidates.push_back(std::numeric_limits<double>::infinity());
-  for (double l2 : candidates) {
-    double score = 0;
+  std::vector<double> mean(candidates.size()), se(candidates.size());
+  for (size_t c = 0; c < candidates.size(); ++c) {
+    std::vector<double> per_fold;
     for (int f = 0; f < k; ++f) {
       std::vector<size_t> train, test;
       for (size_t i = 0; i < band.size(); ++i) (fold[i] == f ? test : train).push_back(i);
-      auto fit = FitOnRows(X, train, band, l2);
+      auto fit = FitOnRows(X, train, band, candidates[c]);
       if (!fit.ok()) return fit.status();
+      double score = 0;
       for (size_t r : test) {
-        std::vector<double> p =
-            fit->first.Probabilities({X.x.data() + r * X.cols, X.cols});
+        std::vector<double> p = fit->first.Probabilities({X.x.data() + r * X.cols, X.cols});
         score += RankedProbabilityScore(fit->second, p, band[r], lo, hi);
       }
+      per_fold.push_back(score / static_cast<double>(test.size()));
     }
-    if (score <= best + 1e-12 * std::max(1.0, std::fabs(best))) {
-      best = score;
-      best_l2 = l2;
-    }
+    double m = 0, v = 0;
+    for (double s : per_fold) m += s / k;
+    for (double s : per_fold) v += (s - m) * (s - m) / (k - 1);
+    mean[c] = m;
+    se[c] = std::sqrt(v / k);
   }
-  return best_l2;
+  size_t best = 0;  // ties: the larger penalty
+  for (size_t c = 1; c < candidates.size(); ++c) {
+    if (mean[c] <= mean[best]) best = c;
+  }
+  size_t chosen = best;
+  for (size_t c = best + 1; rule == L2Rule::kOneStandardError && c < candidates.size(); ++c) {
+    if (mean[c] <= mean[best] + se[best]) chosen = c;
+  }
+  return candidates[chosen];
 }
 
 std::string Fmt(double v) {
@@ -152,10 +165,9 @@ Status CheckReadings(const std::vector<const TrainingRoute*>& routes, bool* with
                                   ": per-move difficulty present on some routes only");
     }
     if (!md.empty() && md.size() != r->reading.moves.size()) {
-      return Status::InvalidInput("route " + std::to_string(r->id) +
-                                  ": per-move difficulty has " + std::to_string(md.size()) +
-                                  " values for " + std::to_string(r->reading.moves.size()) +
-                                  " moves");
+      return Status::InvalidInput("route " + std::to_string(r->id) + ": per-move difficulty has " +
+                                  std::to_string(md.size()) + " values for " +
+                                  std::to_string(r->reading.moves.size()) + " moves");
     }
   }
   return Status::Ok();
@@ -438,8 +450,8 @@ Result<DisciplineModel> ReadModel(Reader* r, Discipline d) {
   auto bc = BandChains::FromParts(std::move(symbols), std::move(chains), *alpha);
   if (!bc.ok()) {
     r->Back();
-    return r->Error(bc.status().message() + " (section ending on line " +
-                    std::to_string(end_line) + ")");
+    return r->Error(bc.status().message() + " (section ending on line " + std::to_string(end_line) +
+                    ")");
   }
   m.chains = std::move(*bc);
   return m;
@@ -448,6 +460,15 @@ Result<DisciplineModel> ReadModel(Reader* r, Discipline d) {
 }  // namespace
 
 // ---------------------------------------------------------------- public
+
+const char* L2RuleName(L2Rule r) { return r == L2Rule::kMinimum ? "min" : "one-se"; }
+
+Result<L2Rule> ParseL2Rule(std::string_view text, std::string_view field) {
+  if (text == "one-se") return L2Rule::kOneStandardError;
+  if (text == "min") return L2Rule::kMinimum;
+  return Status::InvalidInput(std::string(field) + ": expected one-se or min, got '" +
+                              std::string(text) + "'");
+}
 
 std::vector<int> AssignFolds(const std::vector<const TrainingRoute*>& routes, int k) {
   struct G {
@@ -476,7 +497,8 @@ std::vector<int> AssignFolds(const std::vector<const TrainingRoute*>& routes, in
 }
 
 Result<DisciplineModel> TrainDiscipline(const std::vector<const TrainingRoute*>& routes,
-                                        Discipline d, std::vector<std::string>* notes) {
+                                        Discipline d, L2Rule rule,
+                                        std::vector<std::string>* notes) {
   bool with_difficulty = false;
   SB_RETURN_IF_ERROR(CheckReadings(routes, &with_difficulty));
   std::set<int> groups, bands;
@@ -523,7 +545,7 @@ Result<DisciplineModel> TrainDiscipline(const std::vector<const TrainingRoute*>&
   for (size_t i = 0; i < routes.size(); ++i) {
     for (size_t j = 0; j < p; ++j) X.x[i * p + j] = (X.x[i * p + j] - m.mean[j]) / m.scale[j];
   }
-  Result<double> l2 = ChooseL2(X, band, fold, k);
+  Result<double> l2 = ChooseL2(X, band, fold, k, rule);
   if (!l2.ok()) return l2.status();
   m.l2 = *l2;
   std::vector<size_t> all(routes.size());
@@ -560,7 +582,7 @@ Result<GradeEstimator> GradeEstimator::Train(const std::vector<TrainingRoute>& r
     std::sort(mine.begin(), mine.end(),
               [](const TrainingRoute* a, const TrainingRoute* b) { return a->id < b->id; });
     if (mine.empty()) continue;
-    Result<DisciplineModel> m = TrainDiscipline(mine, d, options.notes);
+    Result<DisciplineModel> m = TrainDiscipline(mine, d, options.rule, options.notes);
     if (!m.ok()) {
       if (m.status().code() != Status::Code::kInvalidInput) return m.status();
       why.push_back(m.status().message());
@@ -597,8 +619,8 @@ Result<Estimate> EstimateWithModel(const DisciplineModel& model, const RouteRead
   const bool has_difficulty = !reading.move_difficulty.empty();
   if (has_difficulty && reading.move_difficulty.size() != reading.moves.size()) {
     return Status::InvalidInput("per-move difficulty has " +
-                                std::to_string(reading.move_difficulty.size()) +
-                                " values for " + std::to_string(reading.moves.size()) + " moves");
+                                std::to_string(reading.move_difficulty.size()) + " values for " +
+                                std::to_string(reading.moves.size()) + " moves");
   }
   const std::vector<std::string>& names = FeatureNames(has_difficulty);
   const std::vector<double> f = RouteFeatures(reading);
@@ -611,11 +633,10 @@ Result<Estimate> EstimateWithModel(const DisciplineModel& model, const RouteRead
     } else {
       auto it = std::find(names.begin(), names.end(), want);
       if (it == names.end()) {
-        return Status::InvalidInput("the model needs feature '" + want +
-                                    "', which this route's reading lacks" +
-                                    (want.rfind("difficulty_", 0) == 0
-                                         ? " (give the per-move difficulty)"
-                                         : " (the model is from another version)"));
+        return Status::InvalidInput(
+            "the model needs feature '" + want + "', which this route's reading lacks" +
+            (want.rfind("difficulty_", 0) == 0 ? " (give the per-move difficulty)"
+                                               : " (the model is from another version)"));
       }
       v = f[static_cast<size_t>(it - names.begin())];
     }
@@ -640,8 +661,7 @@ std::string GradeEstimator::Serialize() const {
     if (m) WriteModel(*m, &o);
   }
   char sum[40];
-  std::snprintf(sum, sizeof sum, "checksum %016llx\n",
-                static_cast<unsigned long long>(Fnv1a64(o)));
+  std::snprintf(sum, sizeof sum, "checksum %016llx\n", static_cast<unsigned long long>(Fnv1a64(o)));
   return o + sum;
 }
 
@@ -656,7 +676,8 @@ Result<GradeEstimator> GradeEstimator::Parse(std::string_view bytes, const std::
   const std::string_view magic_line = bytes.substr(0, bytes.find('\n'));
   if (magic_line.rfind(kMagic, 0) != 0) return bad("wrong magic (first line)");
   if (magic_line != std::string(kMagic) + " " + std::to_string(kVersion)) {
-    return bad("unsupported version '" + std::string(magic_line.substr(std::string_view(kMagic).size())) +
+    return bad("unsupported version '" +
+               std::string(magic_line.substr(std::string_view(kMagic).size())) +
                "' (this build reads version " + std::to_string(kVersion) + ")");
   }
   uint64_t want = 0;

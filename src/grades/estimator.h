@@ -36,9 +36,9 @@ inline constexpr double kIntervalLevel = 0.8;
 inline constexpr int kInnerFolds = 5;
 // The L2 penalties tried, from nearly unpenalised to weights close to zero
 // on standardised features: 10^-2, 10^-1.5, ..., 10^3.
-inline constexpr double kL2Grid[] = {0.01,  0.031622776601683794, 0.1,    0.31622776601683794,
-                                     1,     3.1622776601683795,   10,     31.622776601683793,
-                                     100,   316.22776601683796,   1000};
+inline constexpr double kL2Grid[] = {0.01, 0.031622776601683794, 0.1, 0.31622776601683794,
+                                     1,    3.1622776601683795,   10,  31.622776601683793,
+                                     100,  316.22776601683796,   1000};
 // The name of the Markov feature (appended after FeatureNames()).
 inline constexpr const char* kMarkovFeature = "markov_band";
 // The bundled default estimator, relative to the data directory.
@@ -70,8 +70,8 @@ struct Estimate {
 // One discipline's trained model.
 struct DisciplineModel {
   Discipline discipline = Discipline::kRoped;
-  int routes = 0;     // training routes
-  double l2 = 0;      // chosen penalty
+  int routes = 0;                          // training routes
+  double l2 = 0;                           // chosen penalty
   std::vector<int> bands;                  // the ordinal classes, ascending
   std::vector<std::string> feature_names;  // FeatureNames(..) + kMarkovFeature
   std::vector<double> mean, scale;         // standardisation: (x - mean) / scale
@@ -79,9 +79,20 @@ struct DisciplineModel {
   BandChains chains;
 };
 
+// How the inner cross-validation picks the L2 penalty from its scores.
+enum class L2Rule {
+  kOneStandardError,  // the largest penalty within one standard error of the best (default)
+  kMinimum,           // the penalty with the best score
+};
+// "one-se" / "min". Never fails.
+const char* L2RuleName(L2Rule r);
+// Parses L2RuleName() output. Errors: kInvalidInput naming `field`.
+Result<L2Rule> ParseL2Rule(std::string_view text, std::string_view field = "l2 rule");
+
 // Training options.
 struct TrainOptions {
   int symbol_set = 3;  // k1..k4 for the Markov chains (k3: hold types + quality flags)
+  L2Rule rule = L2Rule::kOneStandardError;
   // Diagnostics for each discipline trained (e.g. the chosen penalty); may be null.
   std::vector<std::string>* notes = nullptr;
 };
@@ -131,7 +142,7 @@ class GradeEstimator {
 // Fits one discipline's model on `routes` (all of discipline `d`).
 // Exposed for the evaluation. Errors as GradeEstimator::Train.
 Result<DisciplineModel> TrainDiscipline(const std::vector<const TrainingRoute*>& routes,
-                                        Discipline d, std::vector<std::string>* notes);
+                                        Discipline d, L2Rule rule, std::vector<std::string>* notes);
 
 // Estimates a route's band with one discipline's model (what
 // GradeEstimator::EstimateRoute does once it has picked the model).

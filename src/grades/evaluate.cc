@@ -158,13 +158,14 @@ LabelledCorpus LabelSiteExport(const SiteExport& site, language::MoveLanguage& l
   return c;
 }
 
-Result<Evaluation> CrossValidate(const std::vector<TrainingRoute>& routes, int folds) {
+Result<Evaluation> CrossValidate(const std::vector<TrainingRoute>& routes, int folds, L2Rule rule) {
   if (folds < 2 || folds > kMaxFolds) {
     return Status::InvalidInput("--folds: expected 2.." + std::to_string(kMaxFolds) + ", got " +
                                 std::to_string(folds));
   }
   Evaluation ev;
   ev.folds = folds;
+  ev.rule = rule;
   for (Discipline d : {Discipline::kRoped, Discipline::kBouldering}) {
     std::vector<const TrainingRoute*> rs;
     for (const TrainingRoute& r : routes) {
@@ -190,10 +191,9 @@ Result<Evaluation> CrossValidate(const std::vector<TrainingRoute>& routes, int f
       for (size_t i = 0; i < rs.size(); ++i) {
         if (fold[i] != f) train.push_back(rs[i]), train_bands.push_back(rs[i]->band());
       }
-      Result<DisciplineModel> m = TrainDiscipline(train, d, nullptr);
+      Result<DisciplineModel> m = TrainDiscipline(train, d, rule, nullptr);
       if (!m.ok()) {
-        return Status::InvalidInput("fold " + std::to_string(f + 1) + ": " +
-                                    m.status().message());
+        return Status::InvalidInput("fold " + std::to_string(f + 1) + ": " + m.status().message());
       }
       de.l2.push_back(m->l2);
       const int maj = MajorityBand(train_bands), med = LowerMedianBand(train_bands);
@@ -219,7 +219,8 @@ Result<Evaluation> CrossValidate(const std::vector<TrainingRoute>& routes, int f
 
 std::string FormatEvaluationText(const Evaluation& e, const LabelledCorpus* corpus) {
   std::string o = "grade estimate: " + std::to_string(e.folds) +
-                  "-fold cross-validation by route group (docs/grades.md)\n";
+                  "-fold cross-validation by route group, l2 rule " + L2RuleName(e.rule) +
+                  " (docs/grades.md)\n";
   if (corpus) {
     int by[2] = {0, 0};
     for (const TrainingRoute& r : corpus->routes) ++by[static_cast<int>(r.discipline)];
@@ -248,7 +249,8 @@ std::string FormatEvaluationText(const Evaluation& e, const LabelledCorpus* corp
 }
 
 std::string FormatEvaluationJson(const Evaluation& e) {
-  std::string o = "{\"folds\":" + std::to_string(e.folds);
+  std::string o =
+      "{\"folds\":" + std::to_string(e.folds) + ",\"l2_rule\":\"" + L2RuleName(e.rule) + "\"";
   for (const DisciplineEvaluation& d : e.disciplines) {
     o += ",\"" + std::string(DisciplineName(d.discipline)) + "\":{\"n\":" + std::to_string(d.n) +
          ",\"model\":" + MetricsJson(d.model) + ",\"majority\":" + MetricsJson(d.majority) +

@@ -29,10 +29,10 @@ Result<RouteGrade> GradeOfRoute(const Route& route, const std::string& where);
 // The corpus routes usable for training and evaluation, and why the others
 // were left out.
 struct LabelledCorpus {
-  std::vector<TrainingRoute> routes;  // route id order
-  int total = 0;                      // routes in the export
-  int no_grade = 0;                   // no grade at all
-  int no_moves = 0;                   // graded, but the export has no moves
+  std::vector<TrainingRoute> routes;    // route id order
+  int total = 0;                        // routes in the export
+  int no_grade = 0;                     // no grade at all
+  int no_moves = 0;                     // graded, but the export has no moves
   std::vector<std::string> unreadable;  // "route 675: grade: 'Vmack': ..." (graded, refused)
 };
 
@@ -62,6 +62,7 @@ struct DisciplineEvaluation {
 
 struct Evaluation {
   int folds = 0;
+  L2Rule rule = L2Rule::kOneStandardError;
   std::vector<DisciplineEvaluation> disciplines;  // roped, then bouldering (those with routes)
 };
 
@@ -78,7 +79,8 @@ inline constexpr int kMaxFolds = 50;
 // discipline. Errors: kInvalidInput for folds outside 2..kMaxFolds, a
 // discipline with fewer groups than folds, or a training fold that cannot
 // be fitted.
-Result<Evaluation> CrossValidate(const std::vector<TrainingRoute>& routes, int folds);
+Result<Evaluation> CrossValidate(const std::vector<TrainingRoute>& routes, int folds,
+                                 L2Rule rule = L2Rule::kOneStandardError);
 
 // Fixed-format text table / JSON ({"folds":K,"roped":{"n":..,"model":{"exact":..,
 // "within_one":..,"mae":..},"majority":{..},"median":{..},"l2":[..]},

@@ -19,16 +19,34 @@ struct FamilyOf {
 };
 
 constexpr FamilyOf kFamilies[] = {
-    {"Jug", kHoldJug},          {"Ledge", kHoldJug},         {"Horn", kHoldJug},
-    {"Knob", kHoldJug},         {"Flake", kHoldJug},         {"Incut", kHoldJug},
-    {"Volume", kHoldJug},       {"Jib", kHoldJug},           {"Crimp", kHoldCrimp},
-    {"Edge", kHoldCrimp},       {"Rail", kHoldCrimp},        {"ThumbCatch", kHoldCrimp},
-    {"Sloper", kHoldSloper},    {"Dish", kHoldSloper},       {"Pinch", kHoldPinch},
-    {"Tufa", kHoldPinch},       {"Pocket", kHoldPocket},     {"Mono", kHoldPocket},
-    {"SidePull", kHoldDirectional}, {"Gaston", kHoldDirectional},
-    {"UnderCling", kHoldDirectional}, {"DownPull", kHoldDirectional},
-    {"Layback", kHoldDirectional},  {"Arete", kHoldOther},  {"Crack", kHoldOther},
-    {"Jam", kHoldOther},        {"FootHook", kHoldOther},    {"FootHold", kHoldOther},
+    {"Jug", kHoldJug},
+    {"Ledge", kHoldJug},
+    {"Horn", kHoldJug},
+    {"Knob", kHoldJug},
+    {"Flake", kHoldJug},
+    {"Incut", kHoldJug},
+    {"Volume", kHoldJug},
+    {"Jib", kHoldJug},
+    {"Crimp", kHoldCrimp},
+    {"Edge", kHoldCrimp},
+    {"Rail", kHoldCrimp},
+    {"ThumbCatch", kHoldCrimp},
+    {"Sloper", kHoldSloper},
+    {"Dish", kHoldSloper},
+    {"Pinch", kHoldPinch},
+    {"Tufa", kHoldPinch},
+    {"Pocket", kHoldPocket},
+    {"Mono", kHoldPocket},
+    {"SidePull", kHoldDirectional},
+    {"Gaston", kHoldDirectional},
+    {"UnderCling", kHoldDirectional},
+    {"DownPull", kHoldDirectional},
+    {"Layback", kHoldDirectional},
+    {"Arete", kHoldOther},
+    {"Crack", kHoldOther},
+    {"Jam", kHoldOther},
+    {"FootHook", kHoldOther},
+    {"FootHold", kHoldOther},
     {"Mantle", kHoldOther},
 };
 
@@ -109,10 +127,10 @@ RouteReading ReadRoute(language::MoveLanguage& lang, std::span<const std::string
 
 const std::vector<std::string>& FeatureNames(bool with_difficulty) {
   static const std::vector<std::string> kBase = {
-      "moves_log",     "parsed",      "match",          "hold_jug",         "hold_crimp",
-      "hold_sloper",   "hold_pinch",  "hold_pocket",    "hold_directional", "hold_other",
-      "big_move",      "cross",       "bad_hold",       "good_hold",        "static_action",
-      "footwork",      "flags_max",   "flags_mean",     "flags_sustained",
+      "moves_log",   "parsed",     "match",       "hold_jug",         "hold_crimp",
+      "hold_sloper", "hold_pinch", "hold_pocket", "hold_directional", "hold_other",
+      "big_move",    "cross",      "bad_hold",    "good_hold",        "static_action",
+      "footwork",    "flags_max",  "flags_mean",  "flags_sustained",
   };
   static const std::vector<std::string> kWithDifficulty = [] {
     std::vector<std::string> v = kBase;
@@ -138,8 +156,8 @@ std::vector<double> RouteFeatures(const RouteReading& reading) {
   f.push_back(ms.empty() ? 0.0 : std::log(n));
   f.push_back(share([](const MoveFacts& m) { return m.parsed; }));
   f.push_back(share([](const MoveFacts& m) { return m.match; }));
-  for (uint32_t fam : {kHoldJug, kHoldCrimp, kHoldSloper, kHoldPinch, kHoldPocket,
-                       kHoldDirectional, kHoldOther}) {
+  for (uint32_t fam :
+       {kHoldJug, kHoldCrimp, kHoldSloper, kHoldPinch, kHoldPocket, kHoldDirectional, kHoldOther}) {
     f.push_back(share([fam](const MoveFacts& m) { return (m.hold_families & fam) != 0; }));
   }
   f.push_back(share([](const MoveFacts& m) { return m.big_move; }));

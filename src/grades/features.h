@@ -35,7 +35,7 @@ enum HoldFamily : uint32_t {
 // One move as the grammar reads it.
 struct MoveFacts {
   bool parsed = false;
-  std::string symbol;        // the move's symbol in the chosen set (k1..k4); "" when not parsed
+  std::string symbol;          // the move's symbol in the chosen set (k1..k4); "" when not parsed
   uint32_t hold_families = 0;  // HoldFamily bits
   bool match = false;          // a match move (only [Match] named)
   bool big_move = false;       // [ActionSizeBig] or [ActionVerbBig] (the paper's BIG flag)

@@ -21,13 +21,14 @@ constexpr double kA = -0.375, kB = -0.125, kC = 0.125, kD = 0.375;  // YDS lette
 constexpr double kSign = 0.25;  // what "+" / "-" add to a whole grade
 
 #define SB_YDS_LETTERS(n)                                                                  \
-  {"5." #n "a", n + kA, true}, {"5." #n "b", n + kB, true}, {"5." #n "c", n + kC, true}, \
-      {"5." #n "d", n + kD, true}
+  {"5." #n "a", n + kA, true}, {"5." #n "b", n + kB, true}, {"5." #n "c", n + kC, true}, { \
+    "5." #n "d", n + kD, true                                                              \
+  }
 
 constexpr LadderGrade kYdsLadder[] = {
-    {"5.0", 0, true},  {"5.1", 1, true},  {"5.2", 2, true},  {"5.3", 3, true},
-    {"5.4", 4, true},  {"5.5", 5, true},  {"5.6", 6, true},  {"5.7", 7, true},
-    {"5.8", 8, true},  {"5.9", 9, true},  SB_YDS_LETTERS(10), SB_YDS_LETTERS(11),
+    {"5.0", 0, true},   {"5.1", 1, true},   {"5.2", 2, true},   {"5.3", 3, true},
+    {"5.4", 4, true},   {"5.5", 5, true},   {"5.6", 6, true},   {"5.7", 7, true},
+    {"5.8", 8, true},   {"5.9", 9, true},   SB_YDS_LETTERS(10), SB_YDS_LETTERS(11),
     SB_YDS_LETTERS(12), SB_YDS_LETTERS(13), SB_YDS_LETTERS(14), SB_YDS_LETTERS(15),
 };
 #undef SB_YDS_LETTERS
@@ -42,58 +43,78 @@ constexpr LadderGrade kVLadder[] = {
 // Font on the V axis. Where the table gives two Font grades for one V grade
 // (V3 = 6A/6A+), they sit a quarter grade either side of it.
 constexpr LadderGrade kFontLadder[] = {
-    {"3", -1, true},     {"3+", -0.5, false}, {"4", 0, true},     {"4+", 0.25, true},
-    {"5", 1, true},      {"5+", 2, true},     {"6A", 2.75, true}, {"6A+", 3.25, true},
-    {"6B", 3.75, true},  {"6B+", 4.25, true}, {"6C", 4.75, true}, {"6C+", 5.25, true},
-    {"7A", 6, true},     {"7A+", 7, true},    {"7B", 7.75, true}, {"7B+", 8.25, true},
-    {"7C", 9, true},     {"7C+", 10, true},   {"8A", 11, true},   {"8A+", 12, true},
-    {"8B", 13, true},    {"8B+", 14, true},   {"8C", 15, true},   {"8C+", 16, true},
+    {"3", -1, true},    {"3+", -0.5, false}, {"4", 0, true},     {"4+", 0.25, true},
+    {"5", 1, true},     {"5+", 2, true},     {"6A", 2.75, true}, {"6A+", 3.25, true},
+    {"6B", 3.75, true}, {"6B+", 4.25, true}, {"6C", 4.75, true}, {"6C+", 5.25, true},
+    {"7A", 6, true},    {"7A+", 7, true},    {"7B", 7.75, true}, {"7B+", 8.25, true},
+    {"7C", 9, true},    {"7C+", 10, true},   {"8A", 11, true},   {"8A+", 12, true},
+    {"8B", 13, true},   {"8B+", 14, true},   {"8C", 15, true},   {"8C+", 16, true},
     {"9A", 17, true},
 };
 
 // French sport grades on the YDS axis.
 constexpr LadderGrade kFrenchLadder[] = {
-    {"1", 1, true},          {"2", 2, true},          {"3", 3, true},
-    {"4a", 4, true},         {"4b", 5, true},         {"4c", 6, true},
-    {"5a", 7, true},         {"5b", 8, true},         {"5c", 9, true},
-    {"6a", 10 + kA, true},   {"6a+", 10 + kB, true},  {"6b", 10 + kC, true},
-    {"6b+", 10 + kD, true},  {"6c", 11 + kA, true},   {"6c+", 11, true},
-    {"7a", 11 + kD, true},   {"7a+", 12 + kA, true},  {"7b", 12 + kB, true},
-    {"7b+", 12 + kC, true},  {"7c", 12 + kD, true},   {"7c+", 13 + kA, true},
-    {"8a", 13 + kB, true},   {"8a+", 13 + kC, true},  {"8b", 13 + kD, true},
-    {"8b+", 14 + kA, true},  {"8c", 14 + kB, true},   {"8c+", 14 + kC, true},
-    {"9a", 14 + kD, true},   {"9a+", 15 + kA, true},  {"9b", 15 + kB, true},
-    {"9b+", 15 + kC, true},  {"9c", 15 + kD, true},
+    {"1", 1, true},         {"2", 2, true},        {"3", 3, true},         {"4a", 4, true},
+    {"4b", 5, true},        {"4c", 6, true},       {"5a", 7, true},        {"5b", 8, true},
+    {"5c", 9, true},        {"6a", 10 + kA, true}, {"6a+", 10 + kB, true}, {"6b", 10 + kC, true},
+    {"6b+", 10 + kD, true}, {"6c", 11 + kA, true}, {"6c+", 11, false},     {"7a", 11 + kD, true},
+    {"7a+", 12 + kA, true}, {"7b", 12 + kB, true}, {"7b+", 12 + kC, true}, {"7c", 12 + kD, true},
+    {"7c+", 13 + kA, true}, {"8a", 13 + kB, true}, {"8a+", 13 + kC, true}, {"8b", 13 + kD, true},
+    {"8b+", 14 + kA, true}, {"8c", 14 + kB, true}, {"8c+", 14 + kC, true}, {"9a", 14 + kD, true},
+    {"9a+", 15 + kA, true}, {"9b", 15 + kB, true}, {"9b+", 15 + kC, true}, {"9c", 15 + kD, false},
 };
 
 // UIAA on the YDS axis; rows the table leaves empty are interpolated
 // linearly in UIAA steps (N-, N, N+ are three equal steps).
 constexpr LadderGrade kUiaaLadder[] = {
-    {"I", 1, true},            {"I+", 4.0 / 3, false},     {"II-", 5.0 / 3, false},
-    {"II", 2, true},           {"II+", 7.0 / 3, false},    {"III-", 8.0 / 3, false},
-    {"III", 3, true},          {"III+", 10.0 / 3, false},  {"IV-", 11.0 / 3, false},
-    {"IV", 4, true},           {"IV+", 5, true},           {"V-", 5.5, false},
-    {"V", 6, true},            {"V+", 7, true},            {"VI-", 8, true},
-    {"VI", 9, true},           {"VI+", 10 + kA, true},     {"VII-", 10 + kB, true},
-    {"VII", 10 + kC, true},    {"VII+", 10 + kD, true},    {"VIII-", 11 + kB, true},
-    {"VIII", 11 + kD, true},   {"VIII+", 12 + kA, true},   {"IX-", 12 + kC, true},
-    {"IX", 12 + kD, true},     {"IX+", 13 + kA, true},     {"X-", 13 + kC, true},
-    {"X", 13 + kD, true},      {"X+", 14 + kA, true},      {"XI-", 14 + kC, true},
-    {"XI", 14 + kD, true},     {"XI+", 15 + kA, true},     {"XII-", 15 + kC, true},
-    {"XII", 15 + kD, true},    {"XII+", 15 + kD + 0.25, false},
+    {"I", 1, true},
+    {"I+", 4.0 / 3, false},
+    {"II-", 5.0 / 3, false},
+    {"II", 2, true},
+    {"II+", 7.0 / 3, false},
+    {"III-", 8.0 / 3, false},
+    {"III", 3, true},
+    {"III+", 10.0 / 3, false},
+    {"IV-", 11.0 / 3, false},
+    {"IV", 4, true},
+    {"IV+", 5, true},
+    {"V-", 5.5, false},
+    {"V", 6, true},
+    {"V+", 7, true},
+    {"VI-", 8, true},
+    {"VI", 9, true},
+    {"VI+", 10 + kA, true},
+    {"VII-", 10 + kB, true},
+    {"VII", 10 + kC, true},
+    {"VII+", 10 + kD, true},
+    {"VIII-", 11 + kB, true},
+    {"VIII", 11 + kD, true},
+    {"VIII+", 12 + kA, true},
+    {"IX-", 12 + kC, true},
+    {"IX", 12 + kD, true},
+    {"IX+", 13 + kA, true},
+    {"X-", 13 + kC, true},
+    {"X", 13 + kD, true},
+    {"X+", 14 + kA, true},
+    {"XI-", 14 + kC, true},
+    {"XI", 14 + kD, true},
+    {"XI+", 15 + kA, true},
+    {"XII-", 15 + kC, false},
+    {"XII", 15 + kD, false},
+    {"XII+", 15 + kD + 0.25, false},
 };
 
 // V <-> YDS (the rough translation between boulder and route grades).
 constexpr CrossAnchor kCross[] = {
-    {-1, 8, false},         {0, 9, true},           {0.25, 10 + kB, true},  {1, 10 + kC, true},
-    {2, 11 + kA, true},     {3, 11 + kB, true},     {4, 12 + kA, true},     {5, 12 + kB, true},
-    {6, 12 + kC, true},     {7, 13 + kA, true},     {8, 13 + kB, true},     {9, 13 + kD, true},
-    {10, 14 + kA, true},    {11, 14 + kB, true},    {12, 14 + kC, true},    {13, 14 + kD, false},
-    {14, 15 + kA, false},   {15, 15 + kB, false},   {16, 15 + kC, false},   {17, 15 + kD, false},
+    {-1, 8, false},       {0, 9, true},         {0.25, 10 + kB, true}, {1, 10 + kC, true},
+    {2, 11 + kA, true},   {3, 11 + kB, true},   {4, 12 + kA, true},    {5, 12 + kB, true},
+    {6, 12 + kC, true},   {7, 13 + kA, true},   {8, 13 + kB, true},    {9, 13 + kD, true},
+    {10, 14 + kA, true},  {11, 14 + kB, true},  {12, 14 + kC, true},   {13, 14 + kD, false},
+    {14, 15 + kA, false}, {15, 15 + kB, false}, {16, 15 + kC, false},  {17, 15 + kD, false},
 };
 
-constexpr const char* kRoman[] = {"I", "II", "III", "IV", "V",  "VI",
-                                  "VII", "VIII", "IX", "X", "XI", "XII"};
+constexpr const char* kRoman[] = {"I",   "II",   "III", "IV", "V",  "VI",
+                                  "VII", "VIII", "IX",  "X",  "XI", "XII"};
 
 // ---------------------------------------------------------------- helpers
 
@@ -133,8 +154,7 @@ struct Cursor {
 
 std::string Rest(const Cursor& c) { return std::string(c.s.substr(c.i)); }
 
-Status Trailing(std::string_view field, std::string_view text, const Cursor& c,
-                const char* what) {
+Status Trailing(std::string_view field, std::string_view text, const Cursor& c, const char* what) {
   return Bad(field, text, std::string("unexpected ") + Quote(Rest(c)) + " after the " + what);
 }
 
@@ -259,8 +279,9 @@ Result<Grade> ParseLettered(std::string_view field, std::string_view text, Scale
   const char* name = font ? "Font" : "French";
   if (!n) return Bad(field, text, std::string("not a ") + name + " grade: expected a number");
   if (*n > 9) {
-    return Bad(field, text, font ? "above 9A, the top of the Font scale"
-                                 : "above 9c, the top of the French scale");
+    return Bad(
+        field, text,
+        font ? "above 9A, the top of the Font scale" : "above 9c, the top of the French scale");
   }
   std::string canon = std::to_string(*n);
   const char l = Lower(c.peek());
@@ -272,8 +293,9 @@ Result<Grade> ParseLettered(std::string_view field, std::string_view text, Scale
   const int s = Sign(&c);
   if (!c.done()) return Trailing(field, text, c, "grade");
   if (*n >= 6 && !lettered) {
-    return Bad(field, text, std::string(name) + " grades from 6 up take a letter (" +
-                                (font ? "6A, 6A+, 6B" : "6a, 6a+, 6b") + ")");
+    return Bad(field, text,
+               std::string(name) + " grades from 6 up take a letter (" +
+                   (font ? "6A, 6A+, 6B" : "6a, 6a+, 6b") + ")");
   }
   if (s < 0 && (font || lettered)) {
     return Bad(field, text, std::string(name) + " grades take '+' only");
@@ -333,7 +355,6 @@ Result<Grade> ParseUiaa(std::string_view field, std::string_view text, bool allo
   if (number > 12) return Bad(field, text, "above XII, the top of the UIAA scale");
   const int s = Sign(&c);
   if (!c.done()) return Trailing(field, text, c, "grade");
-  if (number == 12 && s > 0) return Bad(field, text, "above XII+, the top of this table");
   std::string canon = std::string(kRoman[number - 1]) + SignText(s);
   return Make(text, Scale::kUiaa, canon, UiaaValue(number, s));
 }
@@ -378,13 +399,12 @@ Result<Grade> ParseNumeric(std::string_view field, std::string_view t,
   }
   const bool bare = next == '\0' || next == '+' || next == '-' || next == '/';
   if (!bare) {
-    return Bad(field, t,
-               "not a grade I can read (YDS 5.10a, V4, Font 6A+, French 6a+, UIAA VII+)");
+    return Bad(field, t, "not a grade I can read (YDS 5.10a, V4, Font 6A+, French 6a+, UIAA VII+)");
   }
   if (!d) {
     return Bad(field, t,
-               "a bare number needs the discipline: roped reads " + std::to_string(n) +
-                   " as 5." + std::to_string(n) + ", bouldering as V" + std::to_string(n) +
+               "a bare number needs the discipline: roped reads " + std::to_string(n) + " as 5." +
+                   std::to_string(n) + ", bouldering as V" + std::to_string(n) +
                    " (or give the scale)");
   }
   if (*d == Discipline::kRoped) return ParseYds(field, t, /*allow_bare=*/true);
@@ -397,7 +417,7 @@ double Interpolate(double x, std::span<const CrossAnchor> a, bool v_to_yds) {
   size_t hi = 1;
   while (hi + 1 < a.size() && x > in(hi)) ++hi;
   const size_t lo = hi - 1;
-  return out(lo) + (x - in(lo)) * (out(hi) - out(lo)) / (in(hi) - in(lo));
+  return out(lo) + (x - in(lo)) * (out(hi) - out(lo)) / (in(hi)-in(lo));
 }
 
 }  // namespace
@@ -423,8 +443,8 @@ Result<std::optional<Discipline>> DisciplineFromType(std::string_view type,
   for (const char* b : {"bouldering", "boulder"}) {
     if (t == b) return std::optional<Discipline>(Discipline::kBouldering);
   }
-  for (const char* r : {"sport", "tr", "toprope", "top rope", "top-rope", "trad", "lead",
-                        "roped", "route"}) {
+  for (const char* r :
+       {"sport", "tr", "toprope", "top rope", "top-rope", "trad", "lead", "roped", "route"}) {
     if (t == r) return std::optional<Discipline>(Discipline::kRoped);
   }
   return Status::InvalidInput(std::string(field) + ": " + Quote(type) +
@@ -453,8 +473,8 @@ Result<Scale> ParseScale(std::string_view text, std::string_view field) {
   for (Scale s : {Scale::kYds, Scale::kV, Scale::kFont, Scale::kFrench, Scale::kUiaa}) {
     if (t == ScaleName(s)) return s;
   }
-  return Status::InvalidInput(std::string(field) +
-                              ": expected yds, v, font, french or uiaa, got " + Quote(text));
+  return Status::InvalidInput(std::string(field) + ": expected yds, v, font, french or uiaa, got " +
+                              Quote(text));
 }
 
 Discipline ScaleDiscipline(Scale s) {
@@ -479,8 +499,7 @@ Result<Grade> ParseGrade(std::string_view text, const GradeContext& context,
   }
   if (IsRomanOnly(t)) return ParseUiaa(field, t, false);
   if (Upper(t[0]) == 'V') return ParseV(field, t, false);  // "Vmack": the V message
-  return Bad(field, t,
-             "not a grade I can read (YDS 5.10a, V4, Font 6A+, French 6a+, UIAA VII+)");
+  return Bad(field, t, "not a grade I can read (YDS 5.10a, V4, Font 6A+, French 6a+, UIAA VII+)");
 }
 
 double ConvertAxis(double value, Discipline from, Discipline to) {
@@ -488,9 +507,7 @@ double ConvertAxis(double value, Discipline from, Discipline to) {
   return Interpolate(value, kCross, from == Discipline::kBouldering);
 }
 
-double Difficulty(const Grade& g, Discipline d) {
-  return ConvertAxis(g.value, g.discipline(), d);
-}
+double Difficulty(const Grade& g, Discipline d) { return ConvertAxis(g.value, g.discipline(), d); }
 
 int Band(double value) { return static_cast<int>(std::ceil(value - 0.5)); }
 
@@ -516,8 +533,8 @@ std::string FormatValue(double value, Discipline from, Scale to) {
   if (std::fabs(da - db) <= kTie) {
     // Neighbours sharing a stem print compactly: "5.10a/b", "6B/6B+".
     std::string an = a.name, bn = b.name;
-    if (to == Scale::kYds && an.size() == bn.size() && an.substr(0, an.size() - 1) ==
-                                                           bn.substr(0, bn.size() - 1)) {
+    if (to == Scale::kYds && an.size() == bn.size() &&
+        an.substr(0, an.size() - 1) == bn.substr(0, bn.size() - 1)) {
       return an + "/" + bn.back();
     }
     if (to == Scale::kV && an != "VB") return an + "-" + bn.substr(1);
