@@ -55,6 +55,11 @@ std::string JsonString(std::string_view s) {
   return o + "\"";
 }
 
+Status CheckFormat(const std::string& format) {
+  if (format == "text" || format == "json") return Status::Ok();
+  return Status::InvalidInput("--format: expected text or json, got '" + format + "'");
+}
+
 // Parses an optional --discipline / --from / --scale value.
 template <typename T, typename F>
 Result<std::optional<T>> Optional(const std::string& text, F parse, const char* field) {
@@ -186,10 +191,8 @@ int EstimateRoutes(const std::vector<std::string>& files, const std::string& sca
   if (!scale.ok()) return Fail(kCmd, scale.status());
   auto d = Optional<Discipline>(discipline, grades::ParseDiscipline, "--discipline");
   if (!d.ok()) return Fail(kCmd, d.status());
-  if (format != "text" && format != "json") {
-    return Fail(kCmd,
-                Status::InvalidInput("--format: expected text or json, got '" + format + "'"));
-  }
+  if (Status f = CheckFormat(format); !f.ok()) return Fail(kCmd, f);
+
   auto est =
       model.empty() ? grades::GradeEstimator::LoadDefault() : grades::GradeEstimator::Load(model);
   if (!est.ok()) return Fail(kCmd, est.status());
@@ -205,67 +208,63 @@ int EstimateRoutes(const std::vector<std::string>& files, const std::string& sca
   return WriteOutput(kCmd, "-", out);
 }
 
-Result<grades::LabelledCorpus> Label(const std::string& corpus, int symbol_set) {
+// The labelled corpus and the training options of train/evaluate.
+struct Prepared {
+  grades::LabelledCorpus labelled;
+  grades::TrainOptions options;
+};
+
+Result<Prepared> Prepare(const std::string& corpus, const std::string& symbols,
+                         const std::string& rule_text) {
+  Prepared p;
+  if (symbols.size() != 2 || symbols[0] != 'k' || symbols[1] < '1' || symbols[1] > '4') {
+    return Status::InvalidInput("--symbols: expected k1, k2, k3 or k4, got '" + symbols + "'");
+  }
+  p.options.symbol_set = symbols[1] - '0';
+  auto rule = grades::ParseL2Rule(rule_text, "--l2-rule");
+  if (!rule.ok()) return rule.status();
+  p.options.rule = *rule;
   auto site = ReadSiteExport(corpus);
   if (!site.ok()) return site.status();
   auto lang = language::MoveLanguage::LoadDefault();
   if (!lang.ok()) return lang.status();
-  return grades::LabelSiteExport(*site, *lang, symbol_set);
-}
-
-Result<int> SymbolSet(const std::string& s) {
-  if (s.size() != 2 || s[0] != 'k' || s[1] < '1' || s[1] > '4') {
-    return Status::InvalidInput("--symbols: expected k1, k2, k3 or k4, got '" + s + "'");
-  }
-  return s[1] - '0';
+  p.labelled = grades::LabelSiteExport(*site, *lang, p.options.symbol_set);
+  return p;
 }
 
 int Train(const std::string& corpus, const std::string& out, const std::string& symbols,
           const std::string& rule_text) {
-  auto set = SymbolSet(symbols);
-  if (!set.ok()) return Fail(kCmd, set.status());
-  auto rule = grades::ParseL2Rule(rule_text, "--l2-rule");
-  if (!rule.ok()) return Fail(kCmd, rule.status());
-  auto labelled = Label(corpus, *set);
-  if (!labelled.ok()) return Fail(kCmd, labelled.status());
+  auto p = Prepare(corpus, symbols, rule_text);
+  if (!p.ok()) return Fail(kCmd, p.status());
   std::vector<std::string> notes;
-  grades::TrainOptions opt;
-  opt.symbol_set = *set;
-  opt.rule = *rule;
-  opt.notes = &notes;
-  auto est = grades::GradeEstimator::Train(labelled->routes, opt);
+  p->options.notes = &notes;
+  auto est = grades::GradeEstimator::Train(p->labelled.routes, p->options);
   if (!est.ok()) return Fail(kCmd, est.status());
   Status s = est->Save(out);
   if (!s.ok()) return Fail(kCmd, s);
-  for (const std::string& n : notes)
+  for (const std::string& n : notes) {
     std::fprintf(stderr, "strangebeta grade train: %s\n", n.c_str());
+  }
   std::fprintf(stderr, "strangebeta grade train: wrote %s (%zu labelled routes)\n", out.c_str(),
-               labelled->routes.size());
+               p->labelled.routes.size());
   return 0;
 }
 
 int Evaluate(const std::string& corpus, int folds, const std::string& format,
              const std::string& symbols, const std::string& rule_text) {
-  if (format != "text" && format != "json") {
-    return Fail(kCmd,
-                Status::InvalidInput("--format: expected text or json, got '" + format + "'"));
-  }
+  if (Status f = CheckFormat(format); !f.ok()) return Fail(kCmd, f);
   if (folds < 2 || folds > grades::kMaxFolds) {
     return Fail(kCmd,
                 Status::InvalidInput("--folds: expected 2.." + std::to_string(grades::kMaxFolds) +
                                      ", got " + std::to_string(folds)));
   }
-  auto set = SymbolSet(symbols);
-  if (!set.ok()) return Fail(kCmd, set.status());
-  auto rule = grades::ParseL2Rule(rule_text, "--l2-rule");
-  if (!rule.ok()) return Fail(kCmd, rule.status());
-  auto labelled = Label(corpus, *set);
-  if (!labelled.ok()) return Fail(kCmd, labelled.status());
-  auto ev = grades::CrossValidate(labelled->routes, folds, *rule);
+  auto p = Prepare(corpus, symbols, rule_text);
+  if (!p.ok()) return Fail(kCmd, p.status());
+  auto ev = grades::CrossValidate(p->labelled.routes, folds, p->options.rule);
   if (!ev.ok()) return Fail(kCmd, ev.status());
   return WriteOutput(kCmd, "-",
                      format == "json" ? grades::FormatEvaluationJson(*ev)
-                                      : grades::FormatEvaluationText(*ev, &*labelled));
+                                      : grades::FormatEvaluationText(*ev, &p->labelled));
 }
 
 }  // namespace

@@ -367,8 +367,7 @@ bool IsRomanOnly(std::string_view t) {
   return i == t.size();
 }
 
-Result<Grade> ParseInScale(std::string_view field, std::string_view t, Scale s,
-                           std::optional<Discipline> d) {
+Result<Grade> ParseInScale(std::string_view field, std::string_view t, Scale s) {
   switch (s) {
     case Scale::kYds:
       return ParseYds(field, t, /*allow_bare=*/true);
@@ -380,7 +379,6 @@ Result<Grade> ParseInScale(std::string_view field, std::string_view t, Scale s,
     case Scale::kUiaa:
       return ParseUiaa(field, t, /*allow_arabic=*/true);
   }
-  (void)d;
   return Bad(field, t, "unknown scale");
 }
 
@@ -491,7 +489,7 @@ Result<Grade> ParseGrade(std::string_view text, const GradeContext& context,
     return Status::InvalidInput(std::string(field) + ": longer than " +
                                 std::to_string(kMaxGradeChars) + " characters: not a grade");
   }
-  if (context.scale) return ParseInScale(field, t, *context.scale, context.discipline);
+  if (context.scale) return ParseInScale(field, t, *context.scale);
   if (t.size() >= 2 && t[0] == '5' && t[1] == '.') return ParseYds(field, t, false);
   if (IsDigit(t[0])) return ParseNumeric(field, t, context.discipline);
   if (Upper(t[0]) == 'V' && t.size() > 1 && (IsDigit(t[1]) || Upper(t[1]) == 'B')) {
