@@ -17,6 +17,8 @@ const Command kCommands[] = {
     {"model", "train, score, generate with and interpolate variable-order Markov models",
      RunModel},
     {"study", "analyse climber surveys (the paper's instruments and statistics)", RunStudy},
+    {"grade", "convert grades between scales; estimate, train and evaluate grades from moves",
+     RunGrade},
     {"serve", "run the web app", RunServe},
 };
 

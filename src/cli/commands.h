@@ -35,6 +35,7 @@ int RunModel(const std::vector<std::string>& args);
 int RunServe(const std::vector<std::string>& args);
 int RunCheck(const std::vector<std::string>& args);
 int RunStudy(const std::vector<std::string>& args);
+int RunGrade(const std::vector<std::string>& args);
 
 }  // namespace sb::cli
 
