@@ -16,6 +16,8 @@ const Command kCommands[] = {
     {"symbols", "turn move descriptions into symbols (sets k1..k4)", RunSymbols},
     {"model", "train, score, generate with and interpolate variable-order Markov models",
      RunModel},
+    {"difficulty", "per-move difficulty estimate: train, evaluate (cross-validated), show",
+     RunDifficulty},
     {"serve", "run the web app", RunServe},
 };
 

@@ -34,6 +34,7 @@ int RunSymbols(const std::vector<std::string>& args);
 int RunModel(const std::vector<std::string>& args);
 int RunServe(const std::vector<std::string>& args);
 int RunCheck(const std::vector<std::string>& args);
+int RunDifficulty(const std::vector<std::string>& args);
 
 }  // namespace sb::cli
 
