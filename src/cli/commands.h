@@ -35,6 +35,7 @@ int RunModel(const std::vector<std::string>& args);
 int RunServe(const std::vector<std::string>& args);
 int RunCheck(const std::vector<std::string>& args);
 int RunDifficulty(const std::vector<std::string>& args);
+int RunSearch(const std::vector<std::string>& args);
 
 }  // namespace sb::cli
 
