@@ -18,7 +18,8 @@ namespace sb::chaos {
 namespace {
 
 // ---------------------------------------------------------------------------
-// Four ICs per step on vector lanes, with the step templates of ode.h (as the
+// Two ICs per step on the lanes of an SSE2 vector (a wider GCC vector is split
+// into scalar compares without AVX), with the step templates of ode.h (as the
 // landscape kernel does): the same float64 operations in the same order as
 // chaos::Trajectory, so every lane is bit-identical to the scalar result
 // (the build has -ffp-contract=off).
@@ -74,7 +75,7 @@ inline RawV Dist2(const RawV& x, const RawV& y, const RawV& z, double rx, double
   return d;
 }
 
-// Up to this many reference points the nearest neighbours of four lanes are
+// Up to this many reference points the nearest neighbours of all lanes are
 // found by one brute-force pass (vectorised across lanes); beyond, through
 // the shared NearestIndex. NearestIndex itself is brute force up to 64
 // points, and both are exact (least distance, ties to the lowest index).

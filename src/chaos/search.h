@@ -12,8 +12,9 @@
 //
 // Candidates are evaluated in batches: the reference trajectory and its
 // nearest-neighbour index are built once; variation trajectories are
-// integrated four ICs at a time on vector lanes with the same step templates
-// as chaos::Trajectory (bit-identical float64), and the batch is split over
+// integrated two ICs at a time on the lanes of an SSE2 vector with the same
+// step templates as chaos::Trajectory (bit-identical float64), nearest
+// neighbours found in one vectorised pass, and the batch is split over
 // threads. The winner is re-made with chaos::Vary, so the result is exactly
 // `vary --var-ic` at the IC used.
 #ifndef SB_CHAOS_SEARCH_H_

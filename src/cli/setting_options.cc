@@ -1,5 +1,6 @@
 #include "cli/setting_options.h"
 
+#include <charconv>
 #include <cstdio>
 
 #include "language/symbols.h"
@@ -104,17 +105,31 @@ Result<SettingOutcome> VaryWithSetting(std::vector<chaos::InputRoute> inputs,
   return out;
 }
 
+namespace {
+
+// Shortest round-trip form, so `vary --var-ic` reads back exactly this IC.
+std::string Shortest(double v) {
+  if (v == 0) v = 0;  // no "-0"
+  char buf[64];
+  auto [p, ec] = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, p);
+}
+
+std::string IcText(const chaos::State& s) {
+  return Shortest(s[0]) + "," + Shortest(s[1]) + "," + Shortest(s[2]);
+}
+
+}  // namespace
+
 std::string FormatSettingReport(const SettingOutcome& o) {
   std::string out;
-  char line[512];
   if (o.search) {
     const chaos::SearchResult& s = *o.search;
-    std::snprintf(line, sizeof line,
-                  "# search: IC %.17g,%.17g,%.17g used, %.6g from %.17g,%.17g,%.17g asked for "
-                  "(%d ICs evaluated)\n",
-                  s.used_ic[0], s.used_ic[1], s.used_ic[2], s.distance, s.requested_ic[0],
-                  s.requested_ic[1], s.requested_ic[2], s.evaluated);
-    out += line;
+    char dist[64];
+    std::snprintf(dist, sizeof dist, "%.4g", s.distance);
+    out += "# search: IC " + IcText(s.used_ic) + " used, " + dist + " from " +
+           IcText(s.requested_ic) + " asked for (" + std::to_string(s.evaluated) +
+           " ICs evaluated)\n";
     for (const chaos::ConstraintOutcome& c : s.outcomes) {
       out += std::string("#   ") + chaos::ConstraintName(c.constraint) + ": " +
              (c.held ? "held" : "NOT held") + " (" + c.detail + ")\n";
