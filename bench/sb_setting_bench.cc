@@ -102,7 +102,8 @@ void BM_EvaluateIcs(benchmark::State& state) {
   params.mapping.max_repeat = 2;
   auto ev = sb::chaos::IcEvaluator::Make(p.inputs, params, p.facts, All());
   std::vector<sb::chaos::State> ics;
-  for (int i = 0; i < 4096; ++i) ics.push_back({-16.0 + 0.01 * (i % 64), -12.0 + 0.01 * (i / 64), 52});
+  for (int i = 0; i < 4096; ++i)
+    ics.push_back({-16.0 + 0.01 * (i % 64), -12.0 + 0.01 * (i / 64), 52});
   std::vector<uint32_t> f(ics.size());
   for (auto _ : state) {
     ev->Evaluate(ics.data(), ics.size(), f.data());

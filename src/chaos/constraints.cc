@@ -127,8 +127,8 @@ Result<ConstraintChecker> ConstraintChecker::Make(const std::vector<VariedMove>&
   c.n_ = static_cast<int>(prepared.size());
   const size_t n = prepared.size();
   if (!facts.crux.empty() && facts.crux.size() != n) {
-    return Status::InvalidInput("crux flags: " + std::to_string(facts.crux.size()) +
-                                " given for " + std::to_string(n) + " input moves");
+    return Status::InvalidInput("crux flags: " + std::to_string(facts.crux.size()) + " given for " +
+                                std::to_string(n) + " input moves");
   }
   if (!facts.difficulty.empty() && facts.difficulty.size() != n) {
     return Status::InvalidInput("difficulty estimates: " + std::to_string(facts.difficulty.size()) +
@@ -194,8 +194,7 @@ uint32_t ConstraintChecker::Check(const int* k, const Hand* hands) const {
   if ((requested_ & ConstraintBit(Constraint::kKeepStart)) && (k[0] < 0 || !first_[k[0]])) {
     fail |= ConstraintBit(Constraint::kKeepStart);
   }
-  if ((requested_ & ConstraintBit(Constraint::kKeepFinish)) &&
-      (k[n - 1] < 0 || !last_[k[n - 1]])) {
+  if ((requested_ & ConstraintBit(Constraint::kKeepFinish)) && (k[n - 1] < 0 || !last_[k[n - 1]])) {
     fail |= ConstraintBit(Constraint::kKeepFinish);
   }
   if (requested_ & ConstraintBit(Constraint::kCruxWindow)) {
@@ -306,8 +305,8 @@ std::vector<ConstraintOutcome> ConstraintChecker::Report(const Variation& v) con
       }
       case Constraint::kEffect: {
         MappingChange m = MeasureChange(v.mapping.data(), n);
-        o.detail = "effect " + std::to_string(m.effect) + " (target " +
-                   Num(*c_.target_effect) + " +/- " + Num(c_.effect_tolerance) + ")";
+        o.detail = "effect " + std::to_string(m.effect) + " (target " + Num(*c_.target_effect) +
+                   " +/- " + Num(c_.effect_tolerance) + ")";
         break;
       }
       case Constraint::kChange: {

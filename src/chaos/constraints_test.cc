@@ -35,8 +35,8 @@ TEST(CruxWindowTest, ParsesFractionsAndRejectsTheRest) {
   EXPECT_DOUBLE_EQ(w->begin, 0.5);
   EXPECT_DOUBLE_EQ(w->end, 0.9);
   EXPECT_TRUE(ParseCruxWindow(" 0 , 1 ").ok());
-  for (const char* bad : {"0.9,0.5", "a,b", "0.5", "0.1,0.2,0.3", "-0.1,0.5", "0.5,1.5", ",",
-                          "nan,1", "0.5x,0.9"}) {
+  for (const char* bad :
+       {"0.9,0.5", "a,b", "0.5", "0.1,0.2,0.3", "-0.1,0.5", "0.5,1.5", ",", "nan,1", "0.5x,0.9"}) {
     auto r = ParseCruxWindow(bad);
     EXPECT_FALSE(r.ok()) << bad;
     EXPECT_NE(r.status().message().find(bad), std::string::npos) << r.status().message();
@@ -77,7 +77,8 @@ TEST(ConstraintCheckerTest, KeepFinishAcceptsAnyInputsLastMove) {
   Constraints cs;
   cs.keep_finish = true;
   ConstraintChecker c = Make(cs, {});
-  int ends_a[6] = {0, 1, 2, 3, 4, 2}, ends_b[6] = {0, 1, 2, 3, 4, 5}, ends_mid[6] = {0, 1, 2, 3, 4, 4};
+  int ends_a[6] = {0, 1, 2, 3, 4, 2}, ends_b[6] = {0, 1, 2, 3, 4, 5},
+      ends_mid[6] = {0, 1, 2, 3, 4, 4};
   EXPECT_EQ(c.Failures(ends_a), 0u);
   EXPECT_EQ(c.Failures(ends_b), 0u);
   EXPECT_EQ(c.Failures(ends_mid), ConstraintBit(Constraint::kKeepFinish));

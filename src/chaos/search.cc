@@ -134,7 +134,8 @@ void RunLanes(const F& f, IntegratorKind integrator, double h, const State* ics,
       best_k = reinterpret_cast<RawV>((reinterpret_cast<RawM>(kv) & lt) |
                                       (reinterpret_cast<RawM>(best_k) & ~lt));
     }
-    for (int l = 0; l < kLanes; ++l) near[static_cast<size_t>(l) * n + j] = static_cast<int>(best_k[l]);
+    for (int l = 0; l < kLanes; ++l)
+      near[static_cast<size_t>(l) * n + j] = static_cast<int>(best_k[l]);
   }
 }
 
@@ -145,8 +146,7 @@ void RunSystem(const System& sys, IntegratorKind integrator, double h, const Sta
   if (sys.kind == SystemKind::kLorenz) {
     RunLanes<M>(LorenzV{V(q[0]), V(q[1]), V(q[2])}, integrator, h, ics, skip, n, ref, traj, near);
   } else {
-    RunLanes<M>(RosslerV{V(q[0]), V(q[1]), V(q[2])}, integrator, h, ics, skip, n, ref, traj,
-                near);
+    RunLanes<M>(RosslerV{V(q[0]), V(q[1]), V(q[2])}, integrator, h, ics, skip, n, ref, traj, near);
   }
 }
 
@@ -302,9 +302,7 @@ void IcEvaluator::Impl::Map(const State* var, const int* near, int* k) const {
   }
   auto cls = [&](int i) { return move_class.empty() ? i : move_class[i]; };
   int run_class = -1, run_len = 0;
-  auto allowed = [&](int cand) {
-    return cls(cand) != run_class || run_len < o.max_repeat;
-  };
+  auto allowed = [&](int cand) { return cls(cand) != run_class || run_len < o.max_repeat; };
   for (int j = 0; j < n; ++j) {
     int best = nearest(j);
     if (!allowed(best) && near) {
@@ -360,15 +358,15 @@ Result<IcEvaluator> IcEvaluator::Make(const std::vector<InputRoute>& inputs,
   if (!is_match.empty() && is_match.size() != prepared.size()) {
     return Status::InvalidInput("match flags: one per input move expected");
   }
-  auto checker = ConstraintChecker::Make(prepared, inputs, facts, constraints,
-                                         params.mapping.max_repeat);
+  auto checker =
+      ConstraintChecker::Make(prepared, inputs, facts, constraints, params.mapping.max_repeat);
   if (!checker.ok()) return checker.status();
   IcEvaluator e;
   Impl& m = *e.impl_;
   m.params = params;
   m.n = static_cast<int>(prepared.size());
-  m.reference = Trajectory(params.system, params.integrator, params.step, params.ref_ic,
-                           params.skip, m.n);
+  m.reference =
+      Trajectory(params.system, params.integrator, params.step, params.ref_ic, params.skip, m.n);
   for (const State& s : m.reference) {
     if (!Finite(s)) {
       return Status::InvalidInput(
@@ -378,8 +376,8 @@ Result<IcEvaluator> IcEvaluator::Make(const std::vector<InputRoute>& inputs,
   }
   if (params.mapping.kind == MappingKind::kEuclidean) {
     m.index = std::make_unique<NearestIndex>(m.reference, params.mapping.mask);
-    m.lane_nearest = m.n <= kLaneBruteForceMax && params.mapping.mask >= 1 &&
-                     params.mapping.mask <= 7;
+    m.lane_nearest =
+        m.n <= kLaneBruteForceMax && params.mapping.mask >= 1 && params.mapping.mask <= 7;
     if (m.lane_nearest) {
       for (const State& s : m.reference) {
         m.ref_soa.x.push_back(s[0]);
@@ -494,7 +492,8 @@ Result<SearchResult> SearchVariation(const std::vector<InputRoute>& inputs,
     const size_t end = std::min(offsets.size(), begin + batch);
     ics.resize(end - begin);
     fails.resize(end - begin);
-    for (size_t i = begin; i < end; ++i) ics[i - begin] = IcAt(params.var_ic, offsets[i], grid.spacing);
+    for (size_t i = begin; i < end; ++i)
+      ics[i - begin] = IcAt(params.var_ic, offsets[i], grid.spacing);
     ev->EvaluateParallel(ics.data(), ics.size(), fails.data(), threads);
     for (size_t i = 0; i < ics.size(); ++i) {
       const uint32_t f = fails[i];
@@ -521,12 +520,14 @@ Result<SearchResult> SearchVariation(const std::vector<InputRoute>& inputs,
       if ((1u << c) == alt) continue;
       if (worst < 0 || fail_count[c] > fail_count[worst]) worst = c;
     }
-    if (worst < 0 && (requested & alt) && fail_count[static_cast<int>(Constraint::kAlternateHands)]) {
+    if (worst < 0 && (requested & alt) &&
+        fail_count[static_cast<int>(Constraint::kAlternateHands)]) {
       worst = static_cast<int>(Constraint::kAlternateHands);
     }
     char head[256];
-    std::snprintf(head, sizeof head, "no variation IC within %d grid steps (spacing %g, plane %s) of ",
-                  grid.radius, grid.spacing, SearchPlaneName(grid.plane));
+    std::snprintf(head, sizeof head,
+                  "no variation IC within %d grid steps (spacing %g, plane %s) of ", grid.radius,
+                  grid.spacing, SearchPlaneName(grid.plane));
     std::string msg = head + IcText(params.var_ic);
     if (worst < 0) {
       msg += " has a finite trajectory";
@@ -552,7 +553,8 @@ Result<SearchResult> SearchVariation(const std::vector<InputRoute>& inputs,
   r.offset = offsets[chosen];
   r.used_ic = IcAt(params.var_ic, r.offset, grid.spacing);
   double d2 = 0;
-  for (int a = 0; a < 3; ++a) d2 += (r.used_ic[a] - r.requested_ic[a]) * (r.used_ic[a] - r.requested_ic[a]);
+  for (int a = 0; a < 3; ++a)
+    d2 += (r.used_ic[a] - r.requested_ic[a]) * (r.used_ic[a] - r.requested_ic[a]);
   r.distance = std::sqrt(d2);
   r.evaluated = static_cast<int>(evaluated);
   VaryParams used = params;
@@ -568,8 +570,8 @@ Result<SearchResult> SearchVariation(const std::vector<InputRoute>& inputs,
                               ConstraintName(o.constraint) + " (" + o.detail + ")");
     }
     if (o.constraint == Constraint::kAlternateHands && r.hands_swapped > 0) {
-      o.detail += " after " + std::to_string(r.hands_swapped) +
-                  " hand swap" + (r.hands_swapped > 1 ? "s" : "") +
+      o.detail += " after " + std::to_string(r.hands_swapped) + " hand swap" +
+                  (r.hands_swapped > 1 ? "s" : "") +
                   " (no IC within the radius alternated by itself)";
     }
   }

@@ -71,13 +71,13 @@ struct SearchOptions {
 };
 
 struct SearchResult {
-  Variation variation;              // Vary() at used_ic (hands swapped if noted)
+  Variation variation;  // Vary() at used_ic (hands swapped if noted)
   State requested_ic = {0, 0, 0};
   State used_ic = {0, 0, 0};
-  std::array<int, 3> offset = {0, 0, 0};  // grid steps from the requested IC
-  double distance = 0.0;                  // Euclidean |used_ic - requested_ic|
-  int evaluated = 0;                      // candidate ICs evaluated
-  int hands_swapped = 0;  // > 0 only when no IC alternated hands by itself
+  std::array<int, 3> offset = {0, 0, 0};    // grid steps from the requested IC
+  double distance = 0.0;                    // Euclidean |used_ic - requested_ic|
+  int evaluated = 0;                        // candidate ICs evaluated
+  int hands_swapped = 0;                    // > 0 only when no IC alternated hands by itself
   std::vector<ConstraintOutcome> outcomes;  // one per requested constraint
 };
 
@@ -89,9 +89,8 @@ class IcEvaluator {
  public:
   // Errors (kInvalidInput): bad parameters, no moves, match flags of the
   // wrong size, or what ConstraintChecker::Make refuses.
-  static Result<IcEvaluator> Make(const std::vector<InputRoute>& inputs,
-                                  const VaryParams& params, const MoveFacts& facts,
-                                  const Constraints& constraints,
+  static Result<IcEvaluator> Make(const std::vector<InputRoute>& inputs, const VaryParams& params,
+                                  const MoveFacts& facts, const Constraints& constraints,
                                   const std::vector<bool>& is_match = {});
   IcEvaluator(IcEvaluator&&) noexcept;
   IcEvaluator& operator=(IcEvaluator&&) noexcept;

@@ -1,9 +1,9 @@
 #include "chaos/search.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <set>
-
-#include <gtest/gtest.h>
 
 namespace sb::chaos {
 namespace {
@@ -11,8 +11,8 @@ namespace {
 // Three synthetic routes of `per` moves each; one flagged crux in each, at
 // about two thirds of the route; hands alternate within a route.
 std::vector<InputRoute> ThreeRoutes(int per = 10) {
-  const char* holds[] = {"jug", "crimp", "sloper", "pinch", "pocket", "sidepull", "gaston",
-                         "undercling", "edge", "ledge", "rail", "volume"};
+  const char* holds[] = {"jug",    "crimp",      "sloper", "pinch", "pocket", "sidepull",
+                         "gaston", "undercling", "edge",   "ledge", "rail",   "volume"};
   std::vector<InputRoute> out;
   for (int r = 0; r < 3; ++r) {
     Route route;
@@ -219,8 +219,7 @@ TEST(SearchTest, ReportsTheConstraintThatCouldNotBeMet) {
   const std::string& m = r.status().message();
   const std::string all = std::to_string(SearchOffsets(g).size());
   EXPECT_NE(m.find("crux-window could not be met"), std::string::npos) << m;
-  EXPECT_NE(m.find("crux-window failed at " + all + " of " + all + " ICs"), std::string::npos)
-      << m;
+  EXPECT_NE(m.find("crux-window failed at " + all + " of " + all + " ICs"), std::string::npos) << m;
   EXPECT_EQ(m.find("keep-finish failed at " + all), std::string::npos) << m;
   EXPECT_NE(m.find("within 15 grid steps"), std::string::npos) << m;
 }

@@ -4,10 +4,9 @@
 //   strangebeta difficulty evaluate --corpus DIR [--folds K] [--format text|json]
 //   strangebeta difficulty show ROUTE.crdl [--model FILE] [--format text|json]
 #include <cstdio>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "cli/cli_util.h"
 #include "cli/commands.h"
@@ -44,7 +43,8 @@ Result<difficulty::CorpusSelection> LoadCorpus(const std::string& dir) {
   if (!corpus.ok()) return corpus.status();
   difficulty::CorpusSelection sel = difficulty::SelectLabelledRoutes(*corpus);
   if (sel.routes.size() < 2) {
-    return Status::InvalidInput(dir + ": fewer than two original routes flag a crux (the crux "
+    return Status::InvalidInput(dir +
+                                ": fewer than two original routes flag a crux (the crux "
                                 "column of public_moves.csv); nothing to learn from");
   }
   return sel;
@@ -113,13 +113,13 @@ int Evaluate(const std::string& corpus_dir, int folds, const std::string& format
   row("estimate (grammar+position)", ev->estimate);
   row("baseline: position only", ev->position);
   row("baseline: chance", ev->chance);
-  out += "\nROC AUC: flagged cruxes against all other moves, every held-out move pooled.\n"
-         "top-1: routes whose highest estimate is a flagged crux.\n";
+  out +=
+      "\nROC AUC: flagged cruxes against all other moves, every held-out move pooled.\n"
+      "top-1: routes whose highest estimate is a flagged crux.\n";
   return WriteOutput(kCmd, "-", out);
 }
 
-int Show(const std::string& route_file, const std::string& model_file,
-         const std::string& format) {
+int Show(const std::string& route_file, const std::string& model_file, const std::string& format) {
   auto route = ReadCrdlFile(route_file);
   if (!route.ok()) return Fail(kCmd, route.status());
   Result<difficulty::Model> model = Status::Internal("unset");
@@ -157,12 +157,14 @@ int Show(const std::string& route_file, const std::string& model_file,
                        {"difficulty", d[j]},
                        {"reasons", reasons}});
     }
-    nlohmann::json j = {{"route", name}, {"model", model_path}, {"moves", moves},
-                        {"hardest", hardest}};
+    nlohmann::json j = {
+        {"route", name}, {"model", model_path}, {"moves", moves}, {"hardest", hardest}};
     return WriteOutput(kCmd, "-", j.dump() + "\n");
   }
-  std::string out = name + ": estimated difficulty per move (P(crux) from how the grammar reads "
-                           "the move and where it sits; model " + model_path + ")\n\n";
+  std::string out = name +
+                    ": estimated difficulty per move (P(crux) from how the grammar reads "
+                    "the move and where it sits; model " +
+                    model_path + ")\n\n";
   char line[1024];
   for (size_t j = 0; j < d.size(); ++j) {
     std::string bar(static_cast<size_t>(d[j] * 20.0 + 0.5), '#');
@@ -199,8 +201,10 @@ int RunDifficulty(const std::vector<std::string>& args) {
       "Train the estimate on the original routes that flag a crux in the site's CSV export "
       "(how data/models/difficulty.sbd is made) and write the model file.");
   std::string corpus, out;
-  train->add_option("--corpus", corpus, "the site's CSV export directory (public_routes.csv, "
-                                        "public_moves.csv)")
+  train
+      ->add_option("--corpus", corpus,
+                   "the site's CSV export directory (public_routes.csv, "
+                   "public_moves.csv)")
       ->required();
   train->add_option("--out", out, "model file to write")->required();
 

@@ -6,9 +6,8 @@
 //       [--alternate-hands] [--max-repeat N] [--match text|grammar] [--effect E]
 //       [--change C] [variation and grid options] [--format text|json]
 #include <cstdio>
-#include <optional>
-
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "chaos/search.h"
 #include "chaos/variation.h"
@@ -32,9 +31,8 @@ nlohmann::json ReportJson(const SettingOutcome& o, const plan::RoutePlan& rp) {
     const chaos::SearchResult& s = *o.search;
     nlohmann::json cs = nlohmann::json::array();
     for (const chaos::ConstraintOutcome& c : s.outcomes) {
-      cs.push_back({{"name", chaos::ConstraintName(c.constraint)},
-                    {"held", c.held},
-                    {"detail", c.detail}});
+      cs.push_back(
+          {{"name", chaos::ConstraintName(c.constraint)}, {"held", c.held}, {"detail", c.detail}});
     }
     j["search"] = {{"requested_ic", Ic(s.requested_ic)},
                    {"used_ic", Ic(s.used_ic)},
@@ -150,7 +148,8 @@ int RunSearch(const std::vector<std::string>& args) {
     vp.integrator = *k;
   }
   vp.mapping.max_repeat = max_repeat;
-  if (Status s = vp.Validate(); !s.ok()) return Fail(kCmd, Status::InvalidInput("--" + s.message()));
+  if (Status s = vp.Validate(); !s.ok())
+    return Fail(kCmd, Status::InvalidInput("--" + s.message()));
   auto req = ResolveSettingOptions(setting);
   if (!req.ok()) return Fail(kCmd, req.status());
   req->constraints.target_effect = effect;

@@ -1,13 +1,12 @@
 // Command-line tests of `strangebeta search` and `strangebeta difficulty`
 // (issue 13), and of the reusable setter options.
+#include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
-#include <sstream>
-
-#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "base/files.h"
 #include "cli/commands.h"
@@ -133,9 +132,9 @@ TEST_F(SettingCli, MatchGrammarReadsMatchMovesThatTheTextRuleLeaves) {
   std::string route = (dir_ / "m.crdl").string();
   ASSERT_EQ(Run(RunSearch, {route, "--var-ic", "-13,-12,52", "--format", "json"}), 0);
   auto text_rule = nlohmann::json::parse(out_);
-  ASSERT_EQ(Run(RunSearch, {route, "--var-ic", "-13,-12,52", "--match", "grammar", "--format",
-                            "json"}),
-            0);
+  ASSERT_EQ(
+      Run(RunSearch, {route, "--var-ic", "-13,-12,52", "--match", "grammar", "--format", "json"}),
+      0);
   auto grammar = nlohmann::json::parse(out_);
   // At the reference IC the mapping is the identity: move 2 is itself.
   EXPECT_EQ(text_rule["plan"]["moves"][1]["text"], "match on sloper");
@@ -159,8 +158,7 @@ TEST_F(SettingCli, ResolveSettingOptionsFillsTheRequest) {
   EXPECT_EQ(r->match, difficulty::MatchRule::kGrammar);
   EXPECT_EQ(r->grid.plane, chaos::SearchPlane::kCube);
   o.search_plane = "zz";
-  EXPECT_NE(ResolveSettingOptions(o).status().message().find("--search-plane"),
-            std::string::npos);
+  EXPECT_NE(ResolveSettingOptions(o).status().message().find("--search-plane"), std::string::npos);
 }
 
 TEST_F(SettingCli, DifficultyShowListsEveryMove) {
@@ -181,9 +179,8 @@ TEST_F(SettingCli, DifficultyErrorsExitTwo) {
   std::string err;
   EXPECT_EQ(Run(RunDifficulty, {"show", (dir_ / "missing.crdl").string()}, &err), 2);
   std::ofstream(dir_ / "bad.sbd") << "strangebeta difficulty model\nversion 1\n";
-  EXPECT_EQ(Run(RunDifficulty, {"show", Example("crimp-ladder"), "--model",
-                                (dir_ / "bad.sbd").string()},
-                &err),
+  EXPECT_EQ(Run(RunDifficulty,
+                {"show", Example("crimp-ladder"), "--model", (dir_ / "bad.sbd").string()}, &err),
             2);
   EXPECT_NE(err.find("bad.sbd:"), std::string::npos) << err;
   EXPECT_EQ(Run(RunDifficulty, {"evaluate", "--corpus", (dir_ / "none").string()}, &err), 2);
@@ -193,8 +190,8 @@ TEST_F(SettingCli, DifficultyErrorsExitTwo) {
 TEST_F(SettingCli, DifficultyEvaluateAndTrainOnTheCorpus) {
   std::string shared = FindSharedDir(SB_SHARED_DIR);
   if (shared.empty()) GTEST_SKIP() << "../shared not found (set SB_SHARED); corpus test skipped";
-  ASSERT_EQ(Run(RunDifficulty, {"evaluate", "--corpus", shared + "/corpus", "--folds", "5",
-                                "--format", "json"}),
+  ASSERT_EQ(Run(RunDifficulty,
+                {"evaluate", "--corpus", shared + "/corpus", "--folds", "5", "--format", "json"}),
             0);
   auto j = nlohmann::json::parse(out_);
   for (const char* k : {"auc", "top1"}) {

@@ -11,11 +11,10 @@
 #ifndef SB_CLI_SETTING_OPTIONS_H_
 #define SB_CLI_SETTING_OPTIONS_H_
 
+#include <CLI/CLI.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <CLI/CLI.hpp>
 
 #include "base/status.h"
 #include "chaos/search.h"

@@ -75,8 +75,9 @@ std::vector<std::string> Vocabulary(const std::vector<const PreparedRoute*>& rou
 
 Result<Model> TrainOn(const std::vector<const PreparedRoute*>& routes, FeatureSet set) {
   if (routes.size() < 2) {
-    return Status::InvalidInput("training needs at least two routes (the penalty is chosen by "
-                                "cross-validation over routes)");
+    return Status::InvalidInput(
+        "training needs at least two routes (the penalty is chosen by "
+        "cross-validation over routes)");
   }
   Model m;
   m.feature_set = set;
@@ -92,7 +93,8 @@ Result<Model> TrainOn(const std::vector<const PreparedRoute*>& routes, FeatureSe
   std::vector<Dataset> train(inner), test(inner);
   for (int k = 0; k < inner; ++k) {
     std::vector<const PreparedRoute*> tr, te;
-    for (size_t i = 0; i < routes.size(); ++i) (FoldOf(i, inner) == k ? te : tr).push_back(routes[i]);
+    for (size_t i = 0; i < routes.size(); ++i)
+      (FoldOf(i, inner) == k ? te : tr).push_back(routes[i]);
     train[k] = MakeDataset(tr, m.features);
     test[k] = MakeDataset(te, m.features);
   }

@@ -85,7 +85,7 @@ struct Model {
   FeatureSet feature_set = FeatureSet::kGrammarAndPosition;
   std::vector<std::string> features;  // names, ascending; fit's columns in this order
   LogisticFit fit;
-  double lambda = 0.0;  // the penalty cross-validation chose
+  double lambda = 0.0;                    // the penalty cross-validation chose
   int routes = 0, moves = 0, cruxes = 0;  // what it was trained on
 };
 
@@ -111,9 +111,9 @@ struct Scores {
 };
 struct Evaluation {
   int routes = 0, moves = 0, cruxes = 0, folds = 0;
-  Scores estimate;            // grammar + position
-  Scores position;            // the position-only baseline, trained the same way
-  Scores chance;              // AUC 0.5; top-1 = mean over routes of cruxes / moves
+  Scores estimate;              // grammar + position
+  Scores position;              // the position-only baseline, trained the same way
+  Scores chance;                // AUC 0.5; top-1 = mean over routes of cruxes / moves
   std::vector<double> lambdas;  // the penalty chosen in each fold (estimate)
 };
 // Cross-validates by route: for each fold k, trains (Train, with its own

@@ -1,9 +1,9 @@
 #include "difficulty/difficulty.h"
 
+#include <gtest/gtest.h>
+
 #include <cinttypes>
 #include <cstdio>
-
-#include <gtest/gtest.h>
 
 #include "base/files.h"
 #include "base/hash.h"
@@ -147,11 +147,11 @@ TEST(TrainTest, LearnsTheGrammarSignal) {
   for (double x : d) EXPECT_TRUE(x >= 0 && x <= 1);
   EXPECT_GT(d[1], 0.5);
   for (int j : {0, 2, 3}) EXPECT_LT(d[j], d[1] / 2);
-  auto reasons = est.Contributions(RouteFeatures(r, {lang.Read(r.moves[0].text),
-                                                     lang.Read(r.moves[1].text),
-                                                     lang.Read(r.moves[2].text),
-                                                     lang.Read(r.moves[3].text)},
-                                                 FeatureSet::kGrammarAndPosition)[1]);
+  auto reasons =
+      est.Contributions(RouteFeatures(r,
+                                      {lang.Read(r.moves[0].text), lang.Read(r.moves[1].text),
+                                       lang.Read(r.moves[2].text), lang.Read(r.moves[3].text)},
+                                      FeatureSet::kGrammarAndPosition)[1]);
   ASSERT_FALSE(reasons.empty());
   EXPECT_GT(reasons[0].second, 0.0);
   for (size_t i = 1; i < reasons.size(); ++i) EXPECT_GE(reasons[i - 1].second, reasons[i].second);
@@ -327,13 +327,12 @@ TEST(MatchByGrammarTest, ReadsMatchMovesButNotMovesThatGoOn) {
                           "hand match to left far finger pocket"}) {
     EXPECT_TRUE(ReadsAsMatch(lang.Read(yes))) << yes;
   }
-  for (const char* no : {"jug", "match and throw to incut crimp", "match feet",
-                         "cross to crimp", "asdf"}) {
+  for (const char* no :
+       {"jug", "match and throw to incut crimp", "match feet", "cross to crimp", "asdf"}) {
     EXPECT_FALSE(ReadsAsMatch(lang.Read(no))) << no;
   }
   Route r;
-  r.moves = {M(Hand::kRight, "sloper"), M(Hand::kLeft, "match on sloper"),
-             M(Hand::kRight, "dyno")};
+  r.moves = {M(Hand::kRight, "sloper"), M(Hand::kLeft, "match on sloper"), M(Hand::kRight, "dyno")};
   EXPECT_EQ(GrammarMatchFlags(r, lang), (std::vector<bool>{false, true, false}));
   EXPECT_EQ(*ParseMatchRule("Grammar"), MatchRule::kGrammar);
   EXPECT_EQ(*ParseMatchRule("text"), MatchRule::kText);

@@ -85,7 +85,7 @@ LogisticFit FitLogistic(const Dataset& data, double lambda) {
   // (lambda / 2) sum_k (v_k sd_k)^2, the same problem as on the standardised
   // features (w_k = v_k sd_k, intercept = b + sum_k v_k mean_k), so the
   // Hessian costs O(nnz^2) per row instead of O(p^2).
-  const int p = static_cast<int>(cols.size()) + 1;  // parameter 0 = intercept
+  const int p = static_cast<int>(cols.size()) + 1;         // parameter 0 = intercept
   std::vector<std::vector<std::pair<int, double>>> nz(n);  // (parameter, value) per row
   for (size_t i = 0; i < n; ++i) {
     nz[i].push_back({0, 1.0});

@@ -13,8 +13,8 @@ namespace sb::difficulty {
 // A row-major n x d matrix of features with a 0/1 label per row.
 struct Dataset {
   int cols = 0;
-  std::vector<double> x;        // rows() * cols values
-  std::vector<uint8_t> label;   // one per row
+  std::vector<double> x;       // rows() * cols values
+  std::vector<uint8_t> label;  // one per row
   size_t rows() const { return label.size(); }
   const double* row(size_t i) const { return x.data() + i * static_cast<size_t>(cols); }
 };

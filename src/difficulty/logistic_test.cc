@@ -1,5 +1,7 @@
 #include "difficulty/logistic.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -7,8 +9,6 @@
 #include <fstream>
 #include <sstream>
 #include <string>
-
-#include <gtest/gtest.h>
 
 namespace sb::difficulty {
 namespace {
@@ -49,8 +49,8 @@ std::string RunPython(const std::string& script, const std::string& tag) {
   std::filesystem::create_directories(dir);
   std::ofstream(dir / "check.py") << script;
   std::string out_path = (dir / "out.txt").string();
-  std::string cmd = "/usr/bin/python3 " + (dir / "check.py").string() + " > " + out_path +
-                    " 2>/dev/null";
+  std::string cmd =
+      "/usr/bin/python3 " + (dir / "check.py").string() + " > " + out_path + " 2>/dev/null";
   int rc = std::system(cmd.c_str());
   std::stringstream ss;
   ss << std::ifstream(out_path).rdbuf();
@@ -90,9 +90,11 @@ TEST(RocAucTest, AgreesWithSciPy) {
   py += "]";
   std::string out = RunPython(
       "from scipy.stats import mannwhitneyu\n"
-      "s=" + ps + "\ny=" + py + "\n"
-      "pos=[a for a,b in zip(s,y) if b]; neg=[a for a,b in zip(s,y) if not b]\n"
-      "u=mannwhitneyu(pos,neg).statistic\nprint('%.17g' % (u/(len(pos)*len(neg))))\n",
+      "s=" +
+          ps + "\ny=" + py +
+          "\n"
+          "pos=[a for a,b in zip(s,y) if b]; neg=[a for a,b in zip(s,y) if not b]\n"
+          "u=mannwhitneyu(pos,neg).statistic\nprint('%.17g' % (u/(len(pos)*len(neg))))\n",
       "auc");
   if (out.empty()) GTEST_SKIP() << "/usr/bin/python3 with SciPy not available";
   EXPECT_NEAR(RocAuc(s, y), std::stod(out), 1e-12);
@@ -115,15 +117,20 @@ TEST(FitLogisticTest, AgreesWithSciPyOnTheSameObjective) {
   rows += "]";
   std::string out = RunPython(
       "import numpy as np\nfrom scipy.optimize import minimize\n"
-      "D=np.array(" + rows + ")\nX=D[:,:-1]; y=D[:,-1]\n"
-      "X=X[:,:5]\nmu=X.mean(0); sd=X.std(0); Z=(X-mu)/sd\nlam=" + Num(lambda) + "\n"
-      "def f(b):\n"
-      "  s=b[0]+Z@b[1:]\n"
-      "  p=1/(1+np.exp(-s))\n"
-      "  g=np.concatenate([[np.sum(p-y)], Z.T@(p-y)+lam*b[1:]])\n"
-      "  return np.sum(np.logaddexp(0,s)-y*s)+0.5*lam*b[1:]@b[1:], g\n"
-      "r=minimize(f,np.zeros(6),jac=True,method='BFGS',options={'gtol':1e-12,'maxiter':10000})\n"
-      "print(' '.join('%.17g'%v for v in r.x))\n",
+      "D=np.array(" +
+          rows +
+          ")\nX=D[:,:-1]; y=D[:,-1]\n"
+          "X=X[:,:5]\nmu=X.mean(0); sd=X.std(0); Z=(X-mu)/sd\nlam=" +
+          Num(lambda) +
+          "\n"
+          "def f(b):\n"
+          "  s=b[0]+Z@b[1:]\n"
+          "  p=1/(1+np.exp(-s))\n"
+          "  g=np.concatenate([[np.sum(p-y)], Z.T@(p-y)+lam*b[1:]])\n"
+          "  return np.sum(np.logaddexp(0,s)-y*s)+0.5*lam*b[1:]@b[1:], g\n"
+          "r=minimize(f,np.zeros(6),jac=True,method='BFGS',options={'gtol':1e-12,'maxiter':10000})"
+          "\n"
+          "print(' '.join('%.17g'%v for v in r.x))\n",
       "fit");
   if (out.empty()) GTEST_SKIP() << "/usr/bin/python3 with SciPy not available";
   std::istringstream in(out);

@@ -155,8 +155,7 @@ PlanWarnings Warn(const chaos::Variation& v, const chaos::MoveFacts& facts) {
   for (int j = 0; j < n; ++j) {
     c.changed += v.moves[j].changed;
     const auto& s = v.moves[j].source;
-    bool same_text = s && idx.Valid(*s, v) && j < idx.total &&
-                     cls[n + idx.Flat(*s)] == cls[n + j];
+    bool same_text = s && idx.Valid(*s, v) && j < idx.total && cls[n + idx.Flat(*s)] == cls[n + j];
     c.text_changed += !same_text;
     int k = j < static_cast<int>(v.mapping.size()) ? v.mapping[j] : j;
     if (k >= 0 && k != j) {
@@ -164,7 +163,8 @@ PlanWarnings Warn(const chaos::Variation& v, const chaos::MoveFacts& facts) {
       c.farthest = std::max(c.farthest, std::abs(k - j));
     }
   }
-  chaos::MappingChange mc = chaos::MeasureChange(v.mapping.data(), static_cast<int>(v.mapping.size()));
+  chaos::MappingChange mc =
+      chaos::MeasureChange(v.mapping.data(), static_cast<int>(v.mapping.size()));
   c.change = mc.change();
   char buf[256];
   std::snprintf(buf, sizeof buf,

@@ -14,10 +14,10 @@
 namespace sb::plan {
 
 enum class WarningKind {
-  kRepeatedMove,      // the same move several times in a row
-  kSameHand,          // the same hand on consecutive moves
-  kNoFinish,          // the route does not end on an input's last move
-  kEarlyCrux,         // a crux in the first fifth
+  kRepeatedMove,        // the same move several times in a row
+  kSameHand,            // the same hand on consecutive moves
+  kNoFinish,            // the route does not end on an input's last move
+  kEarlyCrux,           // a crux in the first fifth
   kStartAwayFromStart,  // an input's first move somewhere after the start
 };
 // "repeated-move", "same-hand", "no-finish", "early-crux", "start-mid-route".
@@ -25,9 +25,9 @@ const char* WarningKindName(WarningKind k);
 
 struct Warning {
   WarningKind kind = WarningKind::kRepeatedMove;
-  int first = 0;  // first move concerned (0-based position in the variation)
-  int last = 0;   // last move concerned (== first for one move)
-  int count = 1;  // moves concerned (e.g. how many times a move repeats)
+  int first = 0;        // first move concerned (0-based position in the variation)
+  int last = 0;         // last move concerned (== first for one move)
+  int count = 1;        // moves concerned (e.g. how many times a move repeats)
   std::string message;  // one line, moves numbered from 1
 };
 
@@ -41,8 +41,8 @@ struct ChangeSummary {
   int text_changed = 0;
   long displacement = 0;  // sum |k(j) - j|
   double change = 0.0;
-  int farthest = 0;       // max |k(j) - j|
-  std::string message;    // one line
+  int farthest = 0;     // max |k(j) - j|
+  std::string message;  // one line
 };
 
 struct PlanWarnings {
