@@ -61,22 +61,16 @@ nlohmann::json ReportJson(const SettingOutcome& o, const plan::RoutePlan& rp) {
                   {"change", c.change},
                   {"farthest", c.farthest},
                   {"message", c.message}};
+  plan::DifficultyProfile prof = plan::Profile(rp.variation, o.facts);
   nlohmann::json moves = nlohmann::json::array();
-  for (size_t j2 = 0; j2 < rp.variation.moves.size(); ++j2) {
-    const auto& m = rp.variation.moves[j2];
-    int flat = -1;
-    if (m.source) {
-      flat = m.source->move;
-      for (int r = 0; r < m.source->route; ++r) {
-        flat += static_cast<int>(rp.variation.inputs[r].route.moves.size());
-      }
-    }
-    bool crux = flat >= 0 && flat < static_cast<int>(o.facts.crux.size()) && o.facts.crux[flat];
+  for (size_t m = 0; m < prof.crux.size(); ++m) {
     nlohmann::json d = nullptr;
-    if (flat >= 0 && flat < static_cast<int>(o.facts.difficulty.size())) {
-      d = o.facts.difficulty[flat];
-    }
-    moves.push_back({{"crux", crux}, {"difficulty", d}});
+    if (m < prof.difficulty.size()) d = prof.difficulty[m];
+    moves.push_back({{"crux", static_cast<bool>(prof.crux[m])}, {"difficulty", d}});
+  }
+  if (prof.hardest_first >= 0) {
+    j["hardest_stretch"] = {
+        {"first", prof.hardest_first}, {"last", prof.hardest_last}, {"mean", prof.hardest_mean}};
   }
   j["move_facts"] = moves;
   j["plan"] = plan::ToJson(rp);

@@ -175,4 +175,37 @@ PlanWarnings Warn(const chaos::Variation& v, const chaos::MoveFacts& facts) {
   return out;
 }
 
+DifficultyProfile Profile(const chaos::Variation& v, const chaos::MoveFacts& facts) {
+  DifficultyProfile p;
+  const int n = static_cast<int>(v.moves.size());
+  InputIndex idx(v);
+  const bool crux_ok = static_cast<int>(facts.crux.size()) == idx.total;
+  const bool diff_ok = static_cast<int>(facts.difficulty.size()) == idx.total;
+  p.crux.assign(n, false);
+  if (diff_ok) p.difficulty.assign(n, 0.0);
+  for (int j = 0; j < n; ++j) {
+    const auto& s = v.moves[j].source;
+    if (!s || !idx.Valid(*s, v)) continue;
+    if (crux_ok) p.crux[j] = facts.crux[idx.Flat(*s)];
+    if (diff_ok) p.difficulty[j] = facts.difficulty[idx.Flat(*s)];
+  }
+  if (!diff_ok || n == 0) return p;
+  const int w = std::max(1, n / 5);
+  double sum = 0;
+  for (int j = 0; j < w; ++j) sum += p.difficulty[j];
+  double best = sum;
+  int at = 0;
+  for (int j = w; j < n; ++j) {
+    sum += p.difficulty[j] - p.difficulty[j - w];
+    if (sum > best + 1e-12 * w) {
+      best = sum;
+      at = j - w + 1;
+    }
+  }
+  p.hardest_first = at;
+  p.hardest_last = at + w - 1;
+  p.hardest_mean = best / w;
+  return p;
+}
+
 }  // namespace sb::plan

@@ -57,6 +57,21 @@ struct PlanWarnings {
 // Facts of the wrong size are ignored. Pure; thread-safe. O(n log n).
 PlanWarnings Warn(const chaos::Variation& v, const chaos::MoveFacts& facts = {});
 
+// What the plan shows per move of the variation (issue 13's difficulty
+// profile): each move's crux flag and estimate, carried from its source input
+// move, and the stretch of a fifth of the route (at least one move) with the
+// highest mean estimate. Value type.
+struct DifficultyProfile {
+  std::vector<bool> crux;          // one per move; false for a blank
+  std::vector<double> difficulty;  // one per move; empty when no estimate was given
+  int hardest_first = -1;          // the hardest stretch (0-based, inclusive);
+  int hardest_last = -1;           //   -1 without estimates
+  double hardest_mean = 0.0;       // its mean estimate
+};
+// `facts` as for Warn (facts of the wrong size are ignored); a blank's
+// estimate is 0. Ties between stretches go to the earliest. Pure. O(n).
+DifficultyProfile Profile(const chaos::Variation& v, const chaos::MoveFacts& facts);
+
 }  // namespace sb::plan
 
 #endif  // SB_PLAN_WARNINGS_H_

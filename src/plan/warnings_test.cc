@@ -128,6 +128,38 @@ TEST(WarningsTest, HandSwapsAndBlanksAreReadFromTheMoves) {
   EXPECT_EQ(Warn(v).summary.text_changed, 1);
 }
 
+TEST(ProfileTest, CarriesFactsFromTheSourcesAndFindsTheHardestStretch) {
+  chaos::Variation v = Make({1, 4, 1, 0, 2, 5});
+  chaos::MoveFacts f{chaos::CruxFlags(v.inputs), {0.1, 0.5, 0.2, 0.3, 0.4, 0.9}};
+  DifficultyProfile p = Profile(v, f);
+  EXPECT_EQ(p.crux, (std::vector<bool>{true, false, true, false, false, false}));
+  EXPECT_EQ(p.difficulty, (std::vector<double>{0.5, 0.4, 0.5, 0.1, 0.2, 0.9}));
+  // A fifth of 6 moves is one move: the hardest is the last.
+  EXPECT_EQ(p.hardest_first, 5);
+  EXPECT_EQ(p.hardest_last, 5);
+  EXPECT_DOUBLE_EQ(p.hardest_mean, 0.9);
+  // Without estimates: flags only, no stretch.
+  DifficultyProfile q = Profile(v, {chaos::CruxFlags(v.inputs), {}});
+  EXPECT_TRUE(q.difficulty.empty());
+  EXPECT_EQ(q.hardest_first, -1);
+  EXPECT_EQ(q.crux, p.crux);
+}
+
+TEST(ProfileTest, StretchesAreAFifthOfTheRouteEarliestOnTies) {
+  Route r;
+  for (int i = 0; i < 10; ++i) r.moves.push_back(M(i % 2 ? Hand::kLeft : Hand::kRight, "m"));
+  chaos::Variation v;
+  v.inputs = {{"R", r}};
+  v.moves = chaos::PrepareMoves(v.inputs);
+  for (int i = 0; i < 10; ++i) v.mapping.push_back(i);
+  chaos::MoveFacts f;
+  f.difficulty = {0.1, 0.6, 0.6, 0.1, 0.1, 0.1, 0.6, 0.6, 0.1, 0.1};
+  DifficultyProfile p = Profile(v, f);
+  EXPECT_EQ(p.hardest_first, 1);  // two-move stretches; 1-2 and 6-7 tie
+  EXPECT_EQ(p.hardest_last, 2);
+  EXPECT_DOUBLE_EQ(p.hardest_mean, 0.6);
+}
+
 TEST(WarningKindTest, Names) {
   EXPECT_STREQ(WarningKindName(WarningKind::kRepeatedMove), "repeated-move");
   EXPECT_STREQ(WarningKindName(WarningKind::kStartAwayFromStart), "start-mid-route");
