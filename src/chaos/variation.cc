@@ -43,6 +43,14 @@ Status VaryParams::Validate() const {
 }
 
 std::vector<VariedMove> PrepareMoves(const std::vector<InputRoute>& inputs) {
+  return PrepareMoves(inputs, {});
+}
+
+std::vector<VariedMove> PrepareMoves(const std::vector<InputRoute>& inputs,
+                                     const std::vector<bool>& is_match) {
+  size_t total = 0;
+  for (const InputRoute& in : inputs) total += in.route.moves.size();
+  const bool by_flag = !is_match.empty() && is_match.size() == total;
   std::vector<VariedMove> out;
   for (size_t r = 0; r < inputs.size(); ++r) {
     const auto& moves = inputs[r].route.moves;
@@ -54,7 +62,8 @@ std::vector<VariedMove> PrepareMoves(const std::vector<InputRoute>& inputs) {
       v.text = moves[m].text;
       v.source = SourceRef{static_cast<int>(r), static_cast<int>(m)};
       int h = v.hand == Hand::kLeft ? 0 : 1;
-      if (IsMatchText(v.text) && last[1 - h]) {
+      bool match = by_flag ? is_match[out.size()] : IsMatchText(v.text);
+      if (match && last[1 - h]) {
         v.text = *last[1 - h];
         v.notes.push_back("(match?)");
       }
@@ -87,10 +96,29 @@ std::string NormalizeForRepeat(std::string_view text) {
 
 }  // namespace
 
+std::vector<int> RepeatClasses(const std::vector<VariedMove>& moves) {
+  std::map<std::string, int> ids;
+  std::vector<int> out;
+  out.reserve(moves.size());
+  for (const VariedMove& m : moves) {
+    auto [it, inserted] = ids.emplace(NormalizeForRepeat(m.text), static_cast<int>(ids.size()));
+    out.push_back(it->second);
+  }
+  return out;
+}
+
 Result<Variation> Vary(std::vector<InputRoute> inputs, const VaryParams& params) {
+  return Vary(std::move(inputs), params, {});
+}
+
+Result<Variation> Vary(std::vector<InputRoute> inputs, const VaryParams& params,
+                       const std::vector<bool>& is_match) {
   SB_RETURN_IF_ERROR(params.Validate());
-  std::vector<VariedMove> prepared = PrepareMoves(inputs);
+  std::vector<VariedMove> prepared = PrepareMoves(inputs, is_match);
   if (prepared.empty()) return Status::InvalidInput("no moves to vary");
+  if (!is_match.empty() && is_match.size() != prepared.size()) {
+    return Status::InvalidInput("match flags: one per input move expected");
+  }
   const int n = static_cast<int>(prepared.size());
 
   Variation v;
@@ -120,14 +148,7 @@ Result<Variation> Vary(std::vector<InputRoute> inputs, const VaryParams& params)
   }
 
   std::vector<int> move_class;
-  if (params.mapping.max_repeat > 0) {
-    std::map<std::string, int> ids;
-    move_class.reserve(n);
-    for (const VariedMove& m : prepared) {
-      auto [it, inserted] = ids.emplace(NormalizeForRepeat(m.text), static_cast<int>(ids.size()));
-      move_class.push_back(it->second);
-    }
-  }
+  if (params.mapping.max_repeat > 0) move_class = RepeatClasses(prepared);
   v.mapping = MapTrajectory(v.reference, v.variation, params.mapping, move_class);
 
   v.moves.reserve(n);

@@ -68,10 +68,24 @@ struct Variation {
 // in the same route (keeping its own hand) and the note "(match?)"; a leading
 // match with no such move is kept as is.
 std::vector<VariedMove> PrepareMoves(const std::vector<InputRoute>& inputs);
+// The same with the match rule given per input move: `is_match` holds one
+// entry per input move in concatenation order (e.g. the grammar's reading,
+// difficulty::GrammarMatchFlags); empty means the whole-text rule above.
+// A size other than 0 or the number of input moves is treated as empty.
+std::vector<VariedMove> PrepareMoves(const std::vector<InputRoute>& inputs,
+                                     const std::vector<bool>& is_match);
+
+// The classes max_repeat counts runs of: equal ids for moves whose texts are
+// equal ignoring case and punctuation (first occurrence order). Pure.
+std::vector<int> RepeatClasses(const std::vector<VariedMove>& moves);
 
 // Generates the variation. Errors: kInvalidInput for bad parameters or no
 // moves. Pure; thread-safe. Cost O(n log n) in the number of moves.
 Result<Variation> Vary(std::vector<InputRoute> inputs, const VaryParams& params);
+// The same with the match rule given per input move (see PrepareMoves);
+// kInvalidInput when `is_match` is neither empty nor one entry per input move.
+Result<Variation> Vary(std::vector<InputRoute> inputs, const VaryParams& params,
+                       const std::vector<bool>& is_match);
 
 }  // namespace sb::chaos
 

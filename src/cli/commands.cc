@@ -12,6 +12,8 @@ const Command kCommands[] = {
     {"landscape", "scan the initial-condition landscape (effect/change maps); render maps",
      RunLandscape},
     {"pick", "pick variation ICs with a desired effect and change", RunPick},
+    {"search", "the nearest variation IC meeting setter constraints (start, finish, crux, hands)",
+     RunSearch},
     {"parse", "parse move descriptions with a Phoenix grammar", RunParse},
     {"symbols", "turn move descriptions into symbols (sets k1..k4)", RunSymbols},
     {"model", "train, score, generate with and interpolate variable-order Markov models",
@@ -19,6 +21,8 @@ const Command kCommands[] = {
     {"study", "analyse climber surveys (the paper's instruments and statistics)", RunStudy},
     {"grade", "convert grades between scales; estimate, train and evaluate grades from moves",
      RunGrade},
+    {"difficulty", "per-move difficulty estimate: train, evaluate (cross-validated), show",
+     RunDifficulty},
     {"serve", "run the web app", RunServe},
 };
 

@@ -37,6 +37,7 @@ struct Move {
   Hand hand = Hand::kRight;
   std::string text;
   int line = 0;
+  bool crux = false;  // a crux of its route (the site CSV's `crux` column)
 
   bool operator==(const Move& o) const { return hand == o.hand && text == o.text; }
 };

@@ -137,6 +137,8 @@ Result<SiteExport> ParseSiteExport(std::string_view routes_csv, std::string_view
     }
     m.hand = *parsed;
     m.text = std::string(Trim(col(*mc, row, "move")));
+    std::string crux = ToLower(Trim(col(*mc, row, "crux")));
+    m.crux = crux == "t" || crux == "true";
     by_route[*id].push_back({*seq, std::move(m)});
   }
   for (auto& [id, rows] : by_route) {

@@ -1,0 +1,77 @@
+// Warnings on a route plan (issue 13): what a setter would otherwise find at
+// the wall, whatever options made the variation, and how much it actually
+// changed. A pure function of the variation and what is known of its input
+// moves; renderers show the result.
+#ifndef SB_PLAN_WARNINGS_H_
+#define SB_PLAN_WARNINGS_H_
+
+#include <string>
+#include <vector>
+
+#include "chaos/constraints.h"
+#include "chaos/variation.h"
+
+namespace sb::plan {
+
+enum class WarningKind {
+  kRepeatedMove,        // the same move several times in a row
+  kSameHand,            // the same hand on consecutive moves
+  kNoFinish,            // the route does not end on an input's last move
+  kEarlyCrux,           // a crux in the first fifth
+  kStartAwayFromStart,  // an input's first move somewhere after the start
+};
+// "repeated-move", "same-hand", "no-finish", "early-crux", "start-mid-route".
+const char* WarningKindName(WarningKind k);
+
+struct Warning {
+  WarningKind kind = WarningKind::kRepeatedMove;
+  int first = 0;        // first move concerned (0-based position in the variation)
+  int last = 0;         // last move concerned (== first for one move)
+  int count = 1;        // moves concerned (e.g. how many times a move repeats)
+  std::string message;  // one line, moves numbered from 1
+};
+
+// How much actually changed. "changed" is the paper's (source index !=
+// position); text_changed counts positions whose move text differs from the
+// input's move at that position (case and punctuation ignored); change is the
+// landscape's (mean |k(j) - j| over changed moves).
+struct ChangeSummary {
+  int moves = 0;
+  int changed = 0;
+  int text_changed = 0;
+  long displacement = 0;  // sum |k(j) - j|
+  double change = 0.0;
+  int farthest = 0;     // max |k(j) - j|
+  std::string message;  // one line
+};
+
+struct PlanWarnings {
+  std::vector<Warning> warnings;  // by kind (enum order), then position
+  ChangeSummary summary;
+};
+
+// The warnings of a variation. `facts` (one entry per input move in
+// concatenation order, or empty) says which input moves are cruxes: the
+// flagged ones, or where none is flagged the hardest by the estimate (as the
+// crux window counts them); with neither, no crux warning is possible.
+// Facts of the wrong size are ignored. Pure; thread-safe. O(n log n).
+PlanWarnings Warn(const chaos::Variation& v, const chaos::MoveFacts& facts = {});
+
+// What the plan shows per move of the variation (issue 13's difficulty
+// profile): each move's crux flag and estimate, carried from its source input
+// move, and the stretch of a fifth of the route (at least one move) with the
+// highest mean estimate. Value type.
+struct DifficultyProfile {
+  std::vector<bool> crux;          // one per move; false for a blank
+  std::vector<double> difficulty;  // one per move; empty when no estimate was given
+  int hardest_first = -1;          // the hardest stretch (0-based, inclusive);
+  int hardest_last = -1;           //   -1 without estimates
+  double hardest_mean = 0.0;       // its mean estimate
+};
+// `facts` as for Warn (facts of the wrong size are ignored); a blank's
+// estimate is 0. Ties between stretches go to the earliest. Pure. O(n).
+DifficultyProfile Profile(const chaos::Variation& v, const chaos::MoveFacts& facts);
+
+}  // namespace sb::plan
+
+#endif  // SB_PLAN_WARNINGS_H_
