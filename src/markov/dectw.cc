@@ -1,9 +1,12 @@
 #include "markov/dectw.h"
 
 #include <algorithm>
+#include <cstring>
 #include <cmath>
 #include <map>
 #include <utility>
+
+#include "markov/bytes.h"
 
 namespace sb::markov::internal {
 namespace {
@@ -30,6 +33,89 @@ DeCtwModel::DeCtwModel(const ModelSpec& spec, std::span<const int32_t> sequence)
   for (int32_t s : sequence) ++symbol_counts_[s];
   BuildDecomposition();
   Learn(sequence);
+}
+
+DeCtwModel::DeCtwModel(const ModelSpec& spec, std::span<const int32_t> sequence, LoadOnly)
+    : Model(spec) {
+  symbol_counts_.assign(spec.alphabet_size, 0);
+  for (int32_t s : sequence) ++symbol_counts_[s];
+  BuildDecomposition();
+}
+
+// State layout (little-endian): u64 T, T x u32 trie_state; u64 C, C x u64
+// edge keys, C x u32 edge values; u64 S, S x f64 beta, S x u32 counts
+// (c0 | c1 << 16), S x u32 child[0], S x u32 child[1].
+void DeCtwModel::SaveState(std::string* out) const {
+  using internal::PutArray;
+  using internal::PutU64;
+  PutU64(out, trie_state_.size());
+  PutArray(out, trie_state_);
+  PutU64(out, edges_.raw_keys().size());
+  PutArray(out, edges_.raw_keys());
+  PutArray(out, edges_.raw_values());
+  std::vector<uint64_t> beta(num_states_);
+  std::vector<uint32_t> counts(num_states_), c0(num_states_), c1(num_states_);
+  for (uint32_t i = 0; i < num_states_; ++i) {
+    const State& st = S(i);
+    std::memcpy(&beta[i], &st.beta, 8);
+    counts[i] = uint32_t{st.c[0]} | (uint32_t{st.c[1]} << 16);
+    c0[i] = st.child[0];
+    c1[i] = st.child[1];
+  }
+  PutU64(out, num_states_);
+  PutArray(out, beta);
+  PutArray(out, counts);
+  PutArray(out, c0);
+  PutArray(out, c1);
+}
+
+Status DeCtwModel::LoadState(std::string_view state) {
+  auto bad = [](const std::string& why) { return Status::InvalidInput("DE-CTW state: " + why); };
+  internal::ByteReader r(state);
+  const uint32_t K = static_cast<uint32_t>(spec_.alphabet_size);
+  uint64_t t = 0, cap = 0, ns = 0;
+  if (!r.U64(&t) || t == 0 || t >= kSingleton || !r.Array(t, &trie_state_)) {
+    return bad("truncated or empty trie");
+  }
+  std::vector<uint64_t> keys;
+  std::vector<uint32_t> values;
+  if (!r.U64(&cap) || !r.Array(cap, &keys) || !r.Array(cap, &values)) {
+    return bad("truncated edge table");
+  }
+  if (!edges_.Adopt(std::move(keys), std::move(values))) return bad("malformed edge table");
+  if (!r.U64(&ns) || ns >= kSingleton) return bad("truncated states");
+  std::vector<uint64_t> beta;
+  std::vector<uint32_t> counts, c0, c1;
+  if (!r.Array(ns, &beta) || !r.Array(ns, &counts) || !r.Array(ns, &c0) || !r.Array(ns, &c1)) {
+    return bad("truncated states");
+  }
+  if (r.remaining() != 0) return bad("trailing bytes");
+  for (uint32_t v : trie_state_) {
+    if (v == kNone) continue;
+    if ((v & kSingleton) ? (v & ~kSingleton) >= K : v >= ns) return bad("bad trie state");
+  }
+  bool edges_ok = true;
+  edges_.ForEach([&](uint64_t key, uint32_t value) {
+    if ((key >> 32) >= t || (key & 0xffffffffu) >= K || value >= t || value == 0) {
+      edges_ok = false;
+    }
+  });
+  if (!edges_ok) return bad("bad trie edge");
+  chunks_.clear();
+  num_states_ = 0;
+  for (uint64_t i = 0; i < ns; ++i) {
+    if ((c0[i] != kNone && c0[i] >= ns) || (c1[i] != kNone && c1[i] >= ns)) {
+      return bad("bad state child");
+    }
+    const uint32_t id = NewState();
+    State& st = S(id);
+    std::memcpy(&st.beta, &beta[i], 8);
+    st.c[0] = static_cast<uint16_t>(counts[i] & 0xffff);
+    st.c[1] = static_cast<uint16_t>(counts[i] >> 16);
+    st.child[0] = c0[i];
+    st.child[1] = c1[i];
+  }
+  return Status::Ok();
 }
 
 // Mirrors DecompositionTreeBuilder.buildStatic: a Huffman tree from the

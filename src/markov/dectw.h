@@ -5,8 +5,11 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <string>
+#include <string_view>
 #include <vector>
 
+#include "base/status.h"
 #include "markov/flat_map.h"
 #include "markov/model.h"
 
@@ -27,6 +30,12 @@ class DeCtwModel final : public Model {
   // Builds the decomposition and trains. `spec`/`sequence` must be valid
   // (checked by Model::Train).
   DeCtwModel(const ModelSpec& spec, std::span<const int32_t> sequence);
+  // Counts and decomposition only; LoadState then fills the trained state.
+  DeCtwModel(const ModelSpec& spec, std::span<const int32_t> sequence, LoadOnly);
+  // The trained state: trie, edge table and binary states (model files).
+  void SaveState(std::string* out) const override;
+  // Errors: kInvalidInput when the bytes are not a consistent state.
+  Status LoadState(std::string_view state);
 
   double Probability(std::span<const int32_t> context, int32_t symbol) const override;
   void Distribution(std::span<const int32_t> context, std::span<double> out) const override;

@@ -4,6 +4,7 @@
 #define SB_MARKOV_FLAT_MAP_H_
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace sb::markov::internal {
@@ -54,6 +55,27 @@ class FlatMap {
   size_t size() const { return size_; }
   size_t MemoryBytes() const { return keys_.capacity() * 12; }
 
+  // The raw table (model files): keys (kEmpty = free slot) and values, one
+  // per slot; the capacity is a power of two.
+  const std::vector<uint64_t>& raw_keys() const { return keys_; }
+  const std::vector<uint32_t>& raw_values() const { return values_; }
+  // Takes over a raw table written by raw_keys()/raw_values(). Returns false
+  // (leaving the map unchanged) unless the capacity is a power of two >= 16,
+  // the arrays have equal sizes and at most half the slots are used, so
+  // every probe ends at a free slot.
+  bool Adopt(std::vector<uint64_t> keys, std::vector<uint32_t> values) {
+    const size_t cap = keys.size();
+    if (cap < 16 || (cap & (cap - 1)) != 0 || values.size() != cap) return false;
+    size_t used = 0;
+    for (uint64_t k : keys) used += k != kEmpty;
+    if (used * 2 > cap) return false;
+    keys_ = std::move(keys);
+    values_ = std::move(values);
+    mask_ = cap - 1;
+    size_ = used;
+    return true;
+  }
+
   // Calls f(key, value) for every entry, in slot order.
   template <typename F>
   void ForEach(F&& f) const {
@@ -91,6 +113,10 @@ class FlatMap {
   size_t mask_ = 0;
   size_t size_ = 0;
 };
+
+// Tag of the constructors that build a model from a model file's state.
+struct LoadOnly {};
+inline constexpr LoadOnly kLoadOnly{};
 
 // Key of the trie edge from `node` by symbol `sym`.
 inline uint64_t EdgeKey(uint32_t node, int32_t sym) {

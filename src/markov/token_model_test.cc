@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "markov/bytes.h"
+
 namespace sb::markov {
 namespace {
 
@@ -32,10 +34,10 @@ uint64_t Fnv1a(std::string_view data) {
   return h;
 }
 
-// Recomputes the trailing checksum after editing a file's bytes.
+// Recomputes the trailing checksum (format 2) after editing a file's bytes.
 std::string Reseal(std::string bytes) {
   bytes.resize(bytes.size() - 8);
-  const uint64_t h = Fnv1a(bytes);
+  const uint64_t h = internal::WordFnv1a64(bytes);
   for (int i = 0; i < 8; ++i) bytes.push_back(static_cast<char>((h >> (8 * i)) & 0xff));
   return bytes;
 }
@@ -115,28 +117,89 @@ TEST(ModelFile, EveryByteFlipIsAnError) {
 }
 
 TEST(ModelFile, InconsistentContentWithValidChecksum) {
-  const std::string good = StringModel(Algorithm::kDeCtw).Serialize();
+  const TokenModel m = StringModel(Algorithm::kDeCtw);
+  const std::string good = m.Serialize();
+  std::string state;
+  m.model().SaveState(&state);
   // Header: magic 8, version 4, algorithm 4 (at 12), depth 4 (16), alphabet 4 (20).
   auto with = [&](size_t off, uint32_t v) {
     std::string b = good;
     std::memcpy(&b[off], &v, 4);  // little-endian hosts (x86-64, arm64)
     return Reseal(b);
   };
-  EXPECT_FALSE(TokenModel::Parse(with(8, 2), "version").ok());
+  EXPECT_FALSE(TokenModel::Parse(with(8, 3), "version").ok());
   EXPECT_FALSE(TokenModel::Parse(with(12, 9), "alg").ok());
   EXPECT_FALSE(TokenModel::Parse(with(16, 0), "depth").ok());
   EXPECT_FALSE(TokenModel::Parse(with(16, 4000000000u), "depth").ok());
   EXPECT_FALSE(TokenModel::Parse(with(20, 3), "alphabet").ok());
   EXPECT_FALSE(TokenModel::Parse(with(20, 0xffffffffu), "alphabet").ok());
-  // Last training id set to the unknown id / out of range.
-  std::string b = good;
-  const uint32_t unk = 5, big = 99;
-  std::memcpy(&b[b.size() - 12], &unk, 4);
-  EXPECT_FALSE(TokenModel::Parse(Reseal(b), "unk").ok());
-  std::memcpy(&b[b.size() - 12], &big, 4);
-  EXPECT_FALSE(TokenModel::Parse(Reseal(b), "range").ok());
+  // Last training id (before the state section) set to the unknown id / out of range.
+  const size_t last_id = good.size() - 8 - (8 + state.size()) - 4;
+  EXPECT_FALSE(TokenModel::Parse(with(last_id, 5), "unk").ok());
+  EXPECT_FALSE(TokenModel::Parse(with(last_id, 99), "range").ok());
   EXPECT_FALSE(TokenModel::Parse("", "empty").ok());
   EXPECT_FALSE(TokenModel::Parse("SBVOMM\r\n", "magic only").ok());
+}
+
+// Format 1 files (training sequence only, byte-wise FNV-1a) are still read:
+// the model is retrained and scores the same to the last bit.
+TEST(ModelFile, ReadsFormatOne) {
+  for (Algorithm alg : {Algorithm::kDeCtw, Algorithm::kPpmC, Algorithm::kMarkov}) {
+    const TokenModel m = StringModel(alg);
+    std::string state;
+    m.model().SaveState(&state);
+    std::string v1 = m.Serialize();
+    v1.resize(v1.size() - 8 - 8 - state.size());  // drop checksum and state section
+    v1[8] = 1;                                   // version 1
+    const uint64_t h = Fnv1a(v1);
+    for (int i = 0; i < 8; ++i) v1.push_back(static_cast<char>((h >> (8 * i)) & 0xff));
+    auto back = TokenModel::Parse(v1, "v1");
+    ASSERT_TRUE(back.ok()) << back.status().message();
+    auto ids = back->Encode({"L-jug", "R-crimp", "match", "R-sloper", "L-crimp"});
+    ASSERT_TRUE(ids.ok());
+    EXPECT_EQ(back->model().LogLoss(*ids), m.model().LogLoss(*ids));
+    EXPECT_EQ(back->Serialize(), m.Serialize());  // re-saved as format 2
+  }
+}
+
+// A damaged trained state with a valid checksum is refused or, when it is
+// still structurally sound, scores without reading out of bounds.
+TEST(ModelFile, DamagedStateNeverCrashes) {
+  for (Algorithm alg : {Algorithm::kDeCtw, Algorithm::kPpmC, Algorithm::kMarkov}) {
+    const TokenModel m = StringModel(alg);
+    std::string state;
+    m.model().SaveState(&state);
+    const std::string good = m.Serialize();
+    const size_t begin = good.size() - 8 - state.size();
+    std::vector<int32_t> probe;
+    for (int i = 0; i < 30; ++i) probe.push_back(i % 6);
+    for (size_t i = begin; i < good.size() - 8; i += 3) {
+      for (unsigned char x : {0x01, 0x80, 0xff}) {
+        std::string b = good;
+        b[i] = static_cast<char>(b[i] ^ x);
+        auto r = TokenModel::Parse(Reseal(b), "flip");
+        if (r.ok()) (void)r->model().LogLoss(probe);
+      }
+    }
+  }
+}
+
+TEST(ModelFile, InvalidUtf8IsRefused) {
+  auto m = TokenModel::FromTokens({Algorithm::kDeCtw, 2, 0, 1.0}, {"jug", "cr\xffmp", "jug"});
+  ASSERT_TRUE(m.ok());
+  auto r = TokenModel::Parse(m->Serialize(), "bad.sbm");
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().message(),
+            "bad.sbm: not a valid model file: vocabulary token 1 is not valid UTF-8");
+  TokenModel good = StringModel(Algorithm::kDeCtw);
+  good.set_metadata({{"grammar", "x\xc3"}});
+  auto g = TokenModel::Parse(good.Serialize(), "meta.sbm");
+  ASSERT_FALSE(g.ok());
+  EXPECT_EQ(g.status().message(),
+            "meta.sbm: not a valid model file: metadata entry 1 is not valid UTF-8");
+  auto p = LoadModel("/tmp/model-\xff.sbm");
+  ASSERT_FALSE(p.ok());
+  EXPECT_EQ(p.status().message(), "model path is not valid UTF-8 (rename the file)");
 }
 
 }  // namespace
