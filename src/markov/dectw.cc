@@ -101,20 +101,27 @@ Status DeCtwModel::LoadState(std::string_view state) {
     }
   });
   if (!edges_ok) return bad("bad trie edge");
-  chunks_.clear();
-  num_states_ = 0;
   for (uint64_t i = 0; i < ns; ++i) {
     if ((c0[i] != kNone && c0[i] >= ns) || (c1[i] != kNone && c1[i] >= ns)) {
       return bad("bad state child");
     }
-    const uint32_t id = NewState();
-    State& st = S(id);
-    std::memcpy(&st.beta, &beta[i], 8);
-    st.c[0] = static_cast<uint16_t>(counts[i] & 0xffff);
-    st.c[1] = static_cast<uint16_t>(counts[i] >> 16);
-    st.child[0] = c0[i];
-    st.child[1] = c1[i];
   }
+  chunks_.clear();
+  const uint64_t chunk = uint64_t{1} << kChunkBits;
+  for (uint64_t base = 0; base < ns; base += chunk) {
+    chunks_.push_back(std::make_unique_for_overwrite<State[]>(chunk));
+    State* out = chunks_.back().get();
+    const uint64_t n = std::min(chunk, ns - base);
+    for (uint64_t i = 0; i < n; ++i) {
+      State& st = out[i];
+      std::memcpy(&st.beta, &beta[base + i], 8);
+      st.c[0] = static_cast<uint16_t>(counts[base + i] & 0xffff);
+      st.c[1] = static_cast<uint16_t>(counts[base + i] >> 16);
+      st.child[0] = c0[base + i];
+      st.child[1] = c1[base + i];
+    }
+  }
+  num_states_ = static_cast<uint32_t>(ns);
   return Status::Ok();
 }
 
