@@ -16,6 +16,8 @@ const Command kCommands[] = {
     {"symbols", "turn move descriptions into symbols (sets k1..k4)", RunSymbols},
     {"model", "train, score, generate with and interpolate variable-order Markov models",
      RunModel},
+    {"graph", "feature-wise transition graphs and A* interpolation (the dance method)",
+     RunGraph},
     {"serve", "run the web app", RunServe},
 };
 

@@ -167,6 +167,34 @@ void GraphModel::BuildEdges() {
   }
 }
 
+namespace {
+
+Status CheckMetadata(const std::string& k, const std::string& v) {
+  if (k.empty() || k.size() > 64) return Status::InvalidInput("metadata key must be 1..64 bytes");
+  for (char c : k) {
+    if (!((c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' || c == '-')) {
+      return Status::InvalidInput("metadata key '" + k + "' may only use a-z, 0-9, _ and -");
+    }
+  }
+  if (v.empty() || v.size() > 1024 || Utf8ErrorOffset(v) != std::string_view::npos) {
+    return Status::InvalidInput("metadata value of '" + k + "' must be 1..1024 bytes of UTF-8");
+  }
+  for (unsigned char c : v) {
+    if (c < 0x20 || c == 0x7f) {
+      return Status::InvalidInput("metadata value of '" + k + "' has a control character");
+    }
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
+Status GraphModel::set_metadata(std::map<std::string, std::string> m) {
+  for (const auto& [k, v] : m) SB_RETURN_IF_ERROR(CheckMetadata(k, v));
+  metadata_ = std::move(m);
+  return Status::Ok();
+}
+
 int32_t GraphModel::ValueId(int f, std::string_view value) const {
   const auto& v = values_[f];
   auto it = std::lower_bound(v.begin(), v.end(), value,
@@ -234,6 +262,8 @@ std::string GraphModel::Serialize() const {
   out += "min-pair-count " + std::to_string(options_.min_pair_count) + "\n";
   out += "influence " + std::string(InfluenceModeName(options_.influence)) + " " +
          std::to_string(pairs_.size()) + "\n";
+  out += "metadata " + std::to_string(metadata_.size()) + "\n";
+  for (const auto& [k, v] : metadata_) out += k + " " + v + "\n";
   for (int f = 0; f < k; ++f) {
     out += "values " + std::to_string(f + 1) + " " + std::to_string(values_[f].size()) + "\n";
     for (size_t q = 0; q < values_[f].size(); ++q) {
@@ -409,6 +439,23 @@ Result<GraphModel> GraphModel::Parse(std::string_view bytes, const std::string& 
   SB_RETURN_IF_ERROR(in.U64(f[2], kMaxInfluencePairs, &num_pairs));
   if (g.options_.influence == InfluenceMode::kNone && num_pairs != 0) {
     return in.Error("influence 'none' with pairs");
+  }
+  {
+    SB_RETURN_IF_ERROR(in.Fields("metadata", 2, &f));
+    uint64_t m = 0;
+    SB_RETURN_IF_ERROR(in.U64(f[1], 1000, &m));
+    std::string last;
+    for (uint64_t i = 0; i < m; ++i) {
+      std::string_view line;
+      if (!in.Next(&line)) return in.Error("truncated metadata");
+      const size_t sp = line.find(' ');
+      if (sp == std::string_view::npos) return in.Error("expected 'key value'");
+      std::string key(line.substr(0, sp)), value(line.substr(sp + 1));
+      if (Status st = CheckMetadata(key, value); !st.ok()) return in.Error(st.message());
+      if (i > 0 && !(last < key)) return in.Error("metadata keys are not in ascending order");
+      last = key;
+      g.metadata_.emplace(std::move(key), std::move(value));
+    }
   }
   g.values_.resize(k);
   g.occurrences_.resize(k);

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <span>
 #include <string>
 #include <string_view>
@@ -97,6 +98,13 @@ class GraphModel {
     return PairCount(p, q, r) >= options_.min_pair_count;
   }
 
+  // Free key/value metadata stored in the file (e.g. "tokens" = "climbing",
+  // "grammar" = "climbing"). Keys: 1..64 bytes of [a-z0-9_-]; values:
+  // 1..1024 bytes of UTF-8 without control characters. Not thread-safe to set.
+  const std::map<std::string, std::string>& metadata() const { return metadata_; }
+  // Errors: kInvalidInput for a key or value outside the rules above.
+  Status set_metadata(std::map<std::string, std::string> m);
+
   // Value ids of a token. Errors (kInvalidInput, "`what`: ...") name the
   // first value the graph has never seen and its feature (1-based), or a
   // wrong arity.
@@ -123,6 +131,7 @@ class GraphModel {
   // edges_[f][q]: outgoing edges with weights (complete when alpha > 0).
   std::vector<std::vector<std::vector<Edge>>> edges_;
   std::vector<InfluencePair> pairs_;
+  std::map<std::string, std::string> metadata_;
   // pair_counts_[p][q]: (child value, tokens with parent = q and child = it),
   // ascending by child value.
   std::vector<std::vector<std::vector<std::pair<int32_t, uint32_t>>>> pair_counts_;

@@ -107,6 +107,7 @@ GraphModel Sample() {
   o.reverse_edges = true;
   auto g = GraphModel::Train(t.sequences, 3, o);
   EXPECT_TRUE(g.ok());
+  EXPECT_TRUE(g->set_metadata({{"grammar", "climbing"}, {"tokens", "climbing"}}).ok());
   return *g;
 }
 
@@ -117,6 +118,9 @@ TEST(GraphFile, RoundTripIsByteIdentical) {
   ASSERT_TRUE(back.ok()) << back.status().message();
   EXPECT_EQ(back->Serialize(), bytes);
   EXPECT_EQ(back->influence(), g.influence());
+  EXPECT_EQ(back->metadata(), g.metadata());
+  EXPECT_FALSE(g.set_metadata({{"Bad Key", "x"}}).ok());
+  EXPECT_FALSE(g.set_metadata({{"k", "line\nbreak"}}).ok());
   EXPECT_EQ(back->influence().size(), 2u);
   EXPECT_DOUBLE_EQ(back->Weight(0, 1, 0), g.Weight(0, 1, 0));
   EXPECT_TRUE(bytes.starts_with("strangebeta-graph 1\nfeatures 3\n"));
@@ -154,26 +158,26 @@ std::string WithChecksum(const std::string& body) {
 TEST(GraphFile, ContentErrorsNameTheLine) {
   const std::string head =
       "strangebeta-graph 1\nfeatures 1\nalpha 0\nreverse-edges 0\nmin-pair-count 1\n"
-      "influence none 0\nvalues 1 2\na 1\nb 1\ntransitions 1 1\n";
+      "influence none 0\nmetadata 0\nvalues 1 2\na 1\nb 1\ntransitions 1 1\n";
   auto ok = GraphModel::Parse(WithChecksum(head + "0 1 1\nend\n"), "g.sbg");
   ASSERT_TRUE(ok.ok()) << ok.status().message();
   EXPECT_DOUBLE_EQ(ok->Weight(0, 0, 1), 0.0);
   EXPECT_EQ(GraphModel::Parse(WithChecksum(head + "0 2 1\nend\n"), "g.sbg").status().message(),
-            "g.sbg:11: '2' is not an integer in 0..1");
+            "g.sbg:12: '2' is not an integer in 0..1");
   EXPECT_EQ(GraphModel::Parse(WithChecksum(head + "0 1 0\nend\n"), "g.sbg").status().message(),
-            "g.sbg:11: a count must be >= 1");
+            "g.sbg:12: a count must be >= 1");
   EXPECT_EQ(GraphModel::Parse(WithChecksum(head + "0 1 1\n"), "g.sbg").status().message(),
-            "g.sbg:12: truncated: expected 'end'");
+            "g.sbg:13: truncated: expected 'end'");
   EXPECT_EQ(GraphModel::Parse(WithChecksum(head + "0 1 1\nend\nx\n"), "g.sbg")
                 .status()
                 .message(),
-            "g.sbg:13: unexpected content after 'end'");
+            "g.sbg:14: unexpected content after 'end'");
   std::string unsorted = head;
   unsorted.replace(unsorted.find("a 1\nb 1"), 7, "b 1\na 1");
   EXPECT_EQ(GraphModel::Parse(WithChecksum(unsorted + "0 1 1\nend\n"), "g.sbg")
                 .status()
                 .message(),
-            "g.sbg:9: values are not in ascending order");
+            "g.sbg:10: values are not in ascending order");
 }
 
 TEST(GraphFile, InfluenceFileErrors) {

@@ -292,6 +292,7 @@ class Generator {
 
   bool HasNext() const { return has_next_; }
   double NextKey() const { return next_key_; }
+  double NextCost() const { return next_cost_; }
 
   // Moves the buffered successor to `out` (k values) with its transition
   // cost, and buffers the next one. False on a budget/work failure.
@@ -472,11 +473,16 @@ class Searcher {
   };
   struct OpenItem {
     double pri;
+    double tie;  // greedy: the cost g, so plateaus of equal h are searched cheapest first
     uint64_t seq;
     uint32_t node;
     bool gen;  // false: expand the node; true: take its next successor
-    // Min-heap by priority; on ties the newest first.
-    bool operator>(const OpenItem& o) const { return pri != o.pri ? pri > o.pri : seq < o.seq; }
+    // Min-heap by priority, then tie; then the newest first.
+    bool operator>(const OpenItem& o) const {
+      if (pri != o.pri) return pri > o.pri;
+      if (tie != o.tie) return tie > o.tie;
+      return seq < o.seq;
+    }
   };
 
   SearchResult Finish(SearchResult* r) {
@@ -557,13 +563,15 @@ class Searcher {
     }
     if ((table_used_ + 1) * 2 > table_.size() && !GrowTable()) return kNone;
     uint32_t* slot = Slot(s);
+    // Greedy ignores cost: a state already reached in as few steps is done.
+    const bool greedy = q_->greedy_;
     for (uint32_t n = *slot; n != kNone; n = nodes_[n].next_same) {
       const Node& o = nodes_[n];
-      if (o.alive && o.g <= g && o.depth <= depth) return kNone;
+      if (o.alive && (greedy || o.g <= g) && o.depth <= depth) return kNone;
     }
     for (uint32_t n = *slot; n != kNone; n = nodes_[n].next_same) {
       Node& o = nodes_[n];
-      if (o.alive && g <= o.g && depth <= o.depth) Kill(n);
+      if (o.alive && (greedy || g <= o.g) && depth <= o.depth) Kill(n);
     }
     const uint32_t id = static_cast<uint32_t>(nodes_.size());
     if (!nodes_.Push({g, parent, depth, *slot, kNone, true})) {
@@ -593,8 +601,8 @@ class Searcher {
     nodes_[n].gen = kNone;
   }
 
-  bool PushOpen(double pri, uint32_t node, bool gen) {
-    if (!open_.Push({pri, seq_++, node, gen})) {
+  bool PushOpen(double pri, double g, uint32_t node, bool gen) {
+    if (!open_.Push({pri, q_->greedy_ ? g : 0.0, seq_++, node, gen})) {
       q_->failure_ = Failure::kMemory;
       return false;
     }
@@ -624,7 +632,7 @@ class Searcher {
   // the memory bound (A*), else its result is in *r.
   double BestFirst(SearchResult* r) {
     const uint32_t s0 = AddNode(start_.data(), 0.0, 0, kNone);
-    if (s0 == kNone || !PushOpen(Priority(0, q_->H(start_.data())), s0, false)) return 0.0;
+    if (s0 == kNone || !PushOpen(Priority(0, q_->H(start_.data())), 0.0, s0, false)) return 0.0;
     std::vector<int32_t> succ;
     while (!open_.empty()) {
       std::pop_heap(open_.v().begin(), open_.v().end(), std::greater<OpenItem>());
@@ -655,14 +663,18 @@ class Searcher {
           DropGen(it.node);
           continue;
         }
-        if (!PushOpen(Priority(n.g, gen->NextKey()), it.node, true)) return LowerBound(it.pri);
+        if (!PushOpen(Priority(n.g, gen->NextKey()), n.g + gen->NextCost(), it.node, true)) {
+          return LowerBound(it.pri);
+        }
         continue;
       }
       Generator* gen = gens_[n.gen];
       double c = 0;
       if (!gen->Take(&succ, &c)) return LowerBound(it.pri);
       if (gen->HasNext()) {
-        if (!PushOpen(Priority(n.g, gen->NextKey()), it.node, true)) return LowerBound(it.pri);
+        if (!PushOpen(Priority(n.g, gen->NextKey()), n.g + gen->NextCost(), it.node, true)) {
+          return LowerBound(it.pri);
+        }
       } else {
         DropGen(it.node);
       }
@@ -671,7 +683,7 @@ class Searcher {
       if (q_->failure_ != Failure::kNone) return LowerBound(it.pri);
       if (id == kNone) continue;
       ++q_->stats_->generated;
-      if (!PushOpen(Priority(g2, q_->H(succ.data())), id, false)) return LowerBound(it.pri);
+      if (!PushOpen(Priority(g2, q_->H(succ.data())), g2, id, false)) return LowerBound(it.pri);
     }
     return 0.0;
   }
@@ -758,8 +770,9 @@ class Searcher {
         return false;
       }
       if (std::equal(s, s + k_, &tt_states_[size_t(e.state) * k_])) {
-        if (e.g <= g && e.depth <= depth) return true;
-        if (g <= e.g && depth <= e.depth) {
+        const bool greedy = q_->greedy_;
+        if ((greedy || e.g <= g) && e.depth <= depth) return true;
+        if ((greedy || g <= e.g) && depth <= e.depth) {
           e.g = g;
           e.depth = depth;
         }

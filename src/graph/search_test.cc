@@ -152,7 +152,9 @@ TEST_P(SearchVsExhaustive, CostsMatch) {
         if (want == kInf) {
           EXPECT_EQ(astar->outcome, Outcome::kNoPath) << "L=" << L;
           EXPECT_EQ(greedy->outcome, Outcome::kNoPath);
-          if (bounded->outcome != Outcome::kLimit) EXPECT_EQ(bounded->outcome, Outcome::kNoPath);
+          if (bounded->outcome != Outcome::kLimit) {
+            EXPECT_EQ(bounded->outcome, Outcome::kNoPath);
+          }
           continue;
         }
         ++found;
@@ -161,7 +163,9 @@ TEST_P(SearchVsExhaustive, CostsMatch) {
         EXPECT_NEAR(PathCost(*g, a, *astar, b), astar->cost, 1e-12 * (1 + want));
         EXPECT_LE(static_cast<int>(astar->inserted.size()), L);
         for (const auto& s : astar->inserted) {
-          if (influence) EXPECT_TRUE(g->Admissible(s));
+          if (influence) {
+            EXPECT_TRUE(g->Admissible(s));
+          }
         }
         ASSERT_EQ(greedy->outcome, Outcome::kFound);
         EXPECT_GE(greedy->cost, astar->cost - 1e-9 * (1 + want));
