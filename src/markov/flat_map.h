@@ -20,15 +20,20 @@ class FlatMap {
   FlatMap() { Rehash(16); }
 
   // Returns the value for `key`, or kNone.
-  uint32_t Find(uint64_t key) const {
-    size_t i = Slot(key);
+  uint32_t Find(uint64_t key) const { return FindIn(keys_.data(), values_.data(), mask_, key); }
+
+  // Find over a raw table (keys/values of capacity mask + 1, at least one
+  // free slot), e.g. one mapped from a model file.
+  static uint32_t FindIn(const uint64_t* keys, const uint32_t* values, size_t mask, uint64_t key) {
+    size_t i = SlotOf(key, mask);
     for (;;) {
-      const uint64_t k = keys_[i];
-      if (k == key) return values_[i];
+      const uint64_t k = keys[i];
+      if (k == key) return values[i];
       if (k == kEmpty) return kNone;
-      i = (i + 1) & mask_;
+      i = (i + 1) & mask;
     }
   }
+  size_t mask() const { return mask_; }
 
   // Returns a reference to the value for `key`, inserting `fresh` when absent;
   // `*inserted` tells which. The reference is valid until the next insertion.
@@ -84,11 +89,12 @@ class FlatMap {
   }
 
  private:
-  size_t Slot(uint64_t key) const {
+  static size_t SlotOf(uint64_t key, size_t mask) {
     uint64_t h = key * 0x9E3779B97F4A7C15ull;
     h ^= h >> 29;
-    return static_cast<size_t>(h) & mask_;
+    return static_cast<size_t>(h) & mask;
   }
+  size_t Slot(uint64_t key) const { return SlotOf(key, mask_); }
   void Rehash(size_t cap) {
     std::vector<uint64_t> old_keys;
     std::vector<uint32_t> old_values;

@@ -92,7 +92,8 @@ Result<std::unique_ptr<Model>> Model::Train(const ModelSpec& spec,
 
 Result<std::unique_ptr<Model>> Model::FromState(const ModelSpec& spec,
                                                 std::span<const int32_t> sequence,
-                                                std::string_view state) {
+                                                std::string_view state,
+                                                std::shared_ptr<const void> backing) {
   SB_RETURN_IF_ERROR(ValidateSpec(spec));
   for (size_t i = 0; i < sequence.size(); ++i) {
     if (sequence[i] < 0 || sequence[i] >= spec.alphabet_size) {
@@ -104,7 +105,7 @@ Result<std::unique_ptr<Model>> Model::FromState(const ModelSpec& spec,
   switch (spec.algorithm) {
     case Algorithm::kDeCtw: {
       auto d = std::make_unique<internal::DeCtwModel>(spec, sequence, internal::kLoadOnly);
-      st = d->LoadState(state);
+      st = d->LoadState(state, std::move(backing));
       m = std::move(d);
       break;
     }

@@ -1,5 +1,10 @@
 #include "markov/token_model.h"
 
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <charconv>
 #include <cstring>
@@ -130,15 +135,26 @@ std::string TokenModel::Serialize() const {
   }
   PutU64(&out, training_.size());
   internal::PutArray(&out, training_);
-  std::string state;
-  model_->SaveState(&state);
-  PutU64(&out, state.size());
-  out += state;
+  // The state section starts 8-byte aligned, so a mapped file can be used in place.
+  while ((out.size() + 8) % 8 != 0) out.push_back('\0');
+  const size_t len_at = out.size();
+  PutU64(&out, 0);
+  const size_t begin = out.size();
+  model_->SaveState(&out);
+  const uint64_t len = out.size() - begin;
+  for (int i = 0; i < 8; ++i) out[len_at + i] = static_cast<char>((len >> (8 * i)) & 0xff);
   PutU64(&out, internal::WordFnv1a64(out));
   return out;
 }
 
 Result<TokenModel> TokenModel::Parse(std::string_view bytes, const std::string& name) {
+  auto copy = std::make_shared<const std::string>(bytes);
+  const std::string_view view(*copy);
+  return Parse(view, name, std::move(copy));
+}
+
+Result<TokenModel> TokenModel::Parse(std::string_view bytes, const std::string& name,
+                                     std::shared_ptr<const void> backing) {
   auto bad = [&](const std::string& why) {
     return Status::InvalidInput(name + ": not a valid model file: " + why);
   };
@@ -235,10 +251,15 @@ Result<TokenModel> TokenModel::Parse(std::string_view bytes, const std::string& 
     tm = Build(spec, has_vocab, std::move(vocab), std::move(ids));  // retrains
   } else {
     uint64_t len = 0;
-    std::string_view state;
+    std::string_view state, pad;
+    // Zero padding up to the 8-byte aligned length field.
+    const size_t at = sizeof kMagic + r.pos();
+    if (!r.Bytes((8 - at % 8) % 8, &pad) || pad.find_first_not_of('\0') != std::string_view::npos) {
+      return bad("truncated or bad padding before the trained state");
+    }
     if (!r.U64(&len) || !r.Bytes(len, &state)) return bad("truncated trained state");
     if (r.remaining() != 0) return bad("trailing bytes after the trained state");
-    auto m = Model::FromState(spec, ids, state);
+    auto m = Model::FromState(spec, ids, state, std::move(backing));
     if (!m.ok()) return bad(m.status().message());
     TokenModel t;
     t.model_ = std::shared_ptr<const Model>(std::move(m).value());
@@ -259,6 +280,23 @@ Status SaveModel(const TokenModel& model, const std::string& path) {
 Result<TokenModel> LoadModel(const std::string& path) {
   if (Utf8ErrorOffset(path) != std::string_view::npos) {
     return Status::InvalidInput("model path is not valid UTF-8 (rename the file)");
+  }
+  // Map the file (read-only); fall back to reading it (pipes, empty files).
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  struct stat st {};
+  if (fd >= 0 && ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0) {
+    const size_t size = static_cast<size_t>(st.st_size);
+    void* p = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0);
+    ::close(fd);
+    if (p != MAP_FAILED) {
+      std::shared_ptr<const void> mapping(p, [size](const void* q) {
+        ::munmap(const_cast<void*>(q), size);
+      });
+      return TokenModel::Parse(std::string_view(static_cast<const char*>(p), size), path,
+                               std::move(mapping));
+    }
+  } else if (fd >= 0) {
+    ::close(fd);
   }
   auto data = ReadFile(path);
   if (!data.ok()) return data.status();
