@@ -266,6 +266,10 @@ Result<ModelSpec> MakeSpec(const SpecOptions& o) {
   spec.algorithm = *alg;
   spec.depth = o.depth;
   spec.alpha = o.alpha;
+  // Ranges are checked before any input is read (the alphabet is set later).
+  if (Status st = markov::ValidateSpec(spec); !st.ok()) {
+    return Status::InvalidInput("--depth/--alpha: " + st.message());
+  }
   return spec;
 }
 

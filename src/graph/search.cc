@@ -122,7 +122,20 @@ class Query {
       const size_t m = g_.values(f).size();
       lists_[f].resize(m);
       built_[f].assign(m, 0);
-      // Reverse adjacency, then Dijkstra (weights) and BFS (hops) from the goal value.
+      // Reverse adjacency (charged while it lives), then Dijkstra (weights)
+      // and BFS (hops) from the goal value.
+      size_t edges = 0;
+      for (size_t q = 0; q < m; ++q) edges += g_.OutEdges(f, static_cast<int32_t>(q)).size();
+      // (The Dijkstra queue holds at most one entry per edge plus the goal.)
+      const size_t rev_bytes =
+          edges * (sizeof(std::pair<int32_t, double>) + sizeof(std::pair<double, int32_t>)) +
+          m * (sizeof(std::vector<std::pair<int32_t, double>>) + sizeof(int32_t)) + 64;
+      if (!budget_.Take(rev_bytes)) return false;
+      struct Give {
+        Budget* b;
+        size_t n;
+        ~Give() { b->Give(n); }
+      } give{&budget_, rev_bytes};
       std::vector<std::vector<std::pair<int32_t, double>>> rev(m);
       for (size_t q = 0; q < m; ++q) {
         for (const Edge& e : g_.OutEdges(f, static_cast<int32_t>(q))) {
