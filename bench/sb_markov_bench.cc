@@ -10,16 +10,16 @@
 
 #include <cstdint>
 #include <cstdio>
-#include <string>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "base/files.h"
 #include "crdl/site_csv.h"
 #include "language/symbols.h"
 #include "markov/interpolate.h"
-#include "markov/token_model.h"
 #include "markov/model.h"
+#include "markov/token_model.h"
 
 namespace {
 
@@ -177,8 +177,8 @@ struct LoadFixture {
   std::vector<int32_t> test;
   double want_bits = 0;  // the log-loss of the model as trained
   LoadFixture() {
-    auto tm = sb::markov::TokenModel::FromIds({Algorithm::kDeCtw, 5, 200, 1.0},
-                                              Stream(200, 200000, 42));
+    auto tm =
+        sb::markov::TokenModel::FromIds({Algorithm::kDeCtw, 5, 200, 1.0}, Stream(200, 200000, 42));
     test = Stream(200, 50000, 4242);
     want_bits = tm->model().LogLoss(test);
     path = "/tmp/sb_markov_bench_" + std::to_string(::getpid()) + ".sbm";

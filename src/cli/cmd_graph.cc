@@ -11,22 +11,21 @@
 //   strangebeta graph tokens --routes FILE.crdl... | --corpus DIR [--readable]
 //   strangebeta graph evaluate --corpus DIR [...]   (cmd_graph_eval.cc)
 #include <cstdio>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "base/files.h"
 #include "base/text.h"
 #include "cli/cli_util.h"
 #include "cli/commands.h"
 #include "cli/subcommands.h"
+#include "crdl/route.h"
+#include "crdl/site_csv.h"
 #include "graph/graph.h"
 #include "graph/influence.h"
 #include "graph/search.h"
 #include "graph/tokens.h"
-#include "crdl/route.h"
-#include "crdl/site_csv.h"
 #include "language/symbols.h"
 #include "plan/climb_tokens.h"
 
@@ -114,15 +113,18 @@ int Train(const std::vector<std::string>& files, const std::vector<std::string>&
     o.pairs = std::move(pairs).value();
   }
   auto g = graph::GraphModel::Train(seqs, k, o);
-  if (!g.ok()) return Fail(kCmd, Status::InvalidInput("--out " + out + ": " + g.status().message()));
+  if (!g.ok())
+    return Fail(kCmd, Status::InvalidInput("--out " + out + ": " + g.status().message()));
   if (climbing) {
     Status st = g->set_metadata({{"grammar", "climbing"}, {"tokens", "climbing"}});
     if (!st.ok()) return Fail(kCmd, st);
   }
   if (Status s = graph::SaveGraph(*g, out); !s.ok()) return Fail(kCmd, s);
-  std::fprintf(stderr, "trained %d feature graphs on %zu tokens in %zu sequences, influence %s (%zu pairs) -> %s\n",
-               k, tokens, seqs.size(), graph::InfluenceModeName(g->options().influence),
-               g->influence().size(), out.c_str());
+  std::fprintf(
+      stderr,
+      "trained %d feature graphs on %zu tokens in %zu sequences, influence %s (%zu pairs) -> %s\n",
+      k, tokens, seqs.size(), graph::InfluenceModeName(g->options().influence),
+      g->influence().size(), out.c_str());
   return 0;
 }
 
@@ -180,10 +182,9 @@ int Interpolate(const std::string& path, const std::string& from, const std::str
     out += "expanded " + std::to_string(r->stats.expanded) + ", generated " +
            std::to_string(r->stats.generated) + ", peak memory " +
            std::to_string(r->stats.peak_bytes) + " bytes" +
-           (r->stats.depth_first
-                ? ", depth first after the memory bound (" +
-                      std::to_string(r->stats.iterations) + " iterations)"
-                : std::string()) +
+           (r->stats.depth_first ? ", depth first after the memory bound (" +
+                                       std::to_string(r->stats.iterations) + " iterations)"
+                                 : std::string()) +
            "\n";
   }
   if (int rc = WriteOutput(kCmd, "-", out); rc != 0) return rc;
@@ -214,9 +215,10 @@ int Info(const std::string& path) {
 }
 
 int RunTrain(const std::vector<std::string>& args) {
-  CLI::App app{"Train one transition graph per feature on token files (one sequence a line, "
-               "tokens v1|v2|...|vk with the same k throughout) and write the graph file.",
-               "strangebeta graph train"};
+  CLI::App app{
+      "Train one transition graph per feature on token files (one sequence a line, "
+      "tokens v1|v2|...|vk with the same k throughout) and write the graph file.",
+      "strangebeta graph train"};
   std::vector<std::string> files, route_files;
   std::string out, influence = "none", corpus;
   double alpha = 0;
@@ -255,11 +257,12 @@ int RunTrain(const std::vector<std::string>& args) {
 }
 
 int RunInterpolate(const std::vector<std::string>& args) {
-  CLI::App app{"The cheapest sequence of states between --from and --to (A*: cost g = summed "
-               "edge weights, heuristic h = summed per-feature shortest paths), or greedy "
-               "(f = h). Prints the inserted states, the cost in nats of every transition from "
-               "--from to --to, and the search statistics. Exit 1 when there is none.",
-               "strangebeta graph interpolate"};
+  CLI::App app{
+      "The cheapest sequence of states between --from and --to (A*: cost g = summed "
+      "edge weights, heuristic h = summed per-feature shortest paths), or greedy "
+      "(f = h). Prints the inserted states, the cost in nats of every transition from "
+      "--from to --to, and the search statistics. Exit 1 when there is none.",
+      "strangebeta graph interpolate"};
   std::string gpath, from, to, format = "text";
   bool greedy = false, no_influence = false;
   graph::SearchOptions so;
@@ -294,10 +297,11 @@ int RunInterpolate(const std::vector<std::string>& args) {
 }
 
 int RunTokens(const std::vector<std::string>& args) {
-  CLI::App app{"Print the climbing tokens (v1|...|v9: hand, verb, move-size, hold, hold-size, "
-               "hold-shape, cross, big, good) of routes, one route a line; with --readable, "
-               "each token written back as a move.",
-               "strangebeta graph tokens"};
+  CLI::App app{
+      "Print the climbing tokens (v1|...|v9: hand, verb, move-size, hold, hold-size, "
+      "hold-shape, cross, big, good) of routes, one route a line; with --readable, "
+      "each token written back as a move.",
+      "strangebeta graph tokens"};
   std::vector<std::string> route_files;
   std::string corpus;
   bool readable = false;

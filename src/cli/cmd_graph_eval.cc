@@ -30,7 +30,8 @@ int RunGraphEvaluate(const std::vector<std::string>& args) {
                  "route pairs to vary (1.." + std::to_string(plan::kMaxEvalVariations) + ")")
       ->capture_default_str()
       ->check(CLI::Range(1, plan::kMaxEvalVariations));
-  app.add_option("--max-length", o.max_length, "A*/greedy: at most this many inserted moves (0..1000)")
+  app.add_option("--max-length", o.max_length,
+                 "A*/greedy: at most this many inserted moves (0..1000)")
       ->capture_default_str()
       ->check(CLI::Range(0, 1000));
   app.add_option("--vomm-insert", o.vomm_insert, "VOMM: at most this many inserted moves (0..4)")

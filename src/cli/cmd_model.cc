@@ -287,9 +287,9 @@ int Train(const SpecOptions& so, int alphabet, const std::string& out, const std
   if (!spec.ok()) return Fail(kCmd, spec.status());
   if (!route_files.empty()) {
     if (!file.empty() || !corpus.empty() || !group_by.empty() || alphabet > 0) {
-      return Fail(kCmd, Status::InvalidInput(
-                            "--routes trains on CRDL files alone: drop FILE, --corpus, "
-                            "--group-by and --alphabet"));
+      return Fail(kCmd,
+                  Status::InvalidInput("--routes trains on CRDL files alone: drop FILE, --corpus, "
+                                       "--group-by and --alphabet"));
     }
     auto toks = RouteFileSymbols(route_files, src);
     if (!toks.ok()) return Fail(kCmd, toks.status());
@@ -412,9 +412,9 @@ int Generate(const std::string& model_path, const markov::GenerateOptions& opt,
   if (format != "tokens") {
     auto src = plan::CheckSmoothingModel(*m, model_path);
     if (!src.ok()) {
-      return Fail(kCmd, Status::InvalidInput("--format " + format +
-                                             " needs a model of move symbols: " +
-                                             src.status().message()));
+      return Fail(
+          kCmd, Status::InvalidInput("--format " + format +
+                                     " needs a model of move symbols: " + src.status().message()));
     }
     auto l = plan::LoadSymbolLanguage(*src);
     if (!l.ok()) return Fail(kCmd, l.status());
@@ -590,9 +590,10 @@ int RunTrain(const std::vector<std::string>& args) {
 }
 
 int RunScore(const std::vector<std::string>& args) {
-  CLI::App app{"Print for each input line its total -log2 P (bits, scored from an empty "
-               "context), one number per line (%.17g). Empty lines print 0 (nan with --average).",
-               "strangebeta model score"};
+  CLI::App app{
+      "Print for each input line its total -log2 P (bits, scored from an empty "
+      "context), one number per line (%.17g). Empty lines print 0 (nan with --average).",
+      "strangebeta model score"};
   std::string model, file;
   bool average = false;
   app.add_option("--model", model, "model file")->required();
@@ -615,17 +616,16 @@ int RunGenerate(const std::vector<std::string>& args) {
   markov::GenerateOptions opt;
   uint64_t seed = 0;
   app.add_option("--model", model, "model file")->required();
-  app.add_option("--length", opt.length,
-                 "number of tokens to generate (0.." + std::to_string(markov::kMaxGenerateLength) +
-                     ")")
+  app.add_option(
+         "--length", opt.length,
+         "number of tokens to generate (0.." + std::to_string(markov::kMaxGenerateLength) + ")")
       ->capture_default_str();
   app.add_option("--start", start, "context tokens (space-separated) [empty]");
   CLI::Option* seed_opt = app.add_option("--seed", seed, "sample with this PRNG seed [greedy]");
   app.add_option("--temperature", opt.temperature,
                  "sampling: draw from P^(1/T); < 1 sharper, > 1 flatter (0 < T <= 100)")
       ->capture_default_str();
-  app.add_option("--max-run", opt.max_run,
-                 "at most this many equal tokens in a row (0 = no limit)")
+  app.add_option("--max-run", opt.max_run, "at most this many equal tokens in a row (0 = no limit)")
       ->capture_default_str();
   app.add_option("--no-repeat-ngram", opt.no_repeat_ngram,
                  "never repeat an n-gram of this length (2.." +

@@ -6,11 +6,10 @@
 
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
 #include "graph/graph.h"
@@ -57,8 +56,8 @@ TEST_F(GraphCli, TrainAndInterpolateAMelody) {
   Write("melody.tok", kMelody);
   ASSERT_EQ(Run({"train", "--out", P("m.sbg"), "--influence", "learn", P("melody.tok")}), 0)
       << err_;
-  ASSERT_EQ(Run({"interpolate", "--graph", P("m.sbg"), "--from", "C4|q", "--to", "C5|h",
-                 "--format", "json"}),
+  ASSERT_EQ(Run({"interpolate", "--graph", P("m.sbg"), "--from", "C4|q", "--to", "C5|h", "--format",
+                 "json"}),
             0)
       << err_;
   const auto j = nlohmann::json::parse(out_);
@@ -80,8 +79,8 @@ TEST_F(GraphCli, TrainAndInterpolateAMelody) {
   EXPECT_NEAR(j["cost"].get<double>(), cost, 1e-12);
   EXPECT_GT(j["expanded"].get<uint64_t>(), 0u);
   // Greedy is never cheaper; the text format lists the same states.
-  ASSERT_EQ(Run({"interpolate", "--graph", P("m.sbg"), "--from", "C4|q", "--to", "C5|h",
-                 "--greedy", "--format", "json"}),
+  ASSERT_EQ(Run({"interpolate", "--graph", P("m.sbg"), "--from", "C4|q", "--to", "C5|h", "--greedy",
+                 "--format", "json"}),
             0);
   EXPECT_GE(nlohmann::json::parse(out_)["cost"].get<double>(), cost - 1e-12);
   ASSERT_EQ(Run({"interpolate", "--graph", P("m.sbg"), "--from", "C4|q", "--to", "C5|h"}), 0);

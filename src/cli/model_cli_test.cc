@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "cli/commands.h"
 #include "base/files.h"
+#include "cli/commands.h"
 #include "crdl/route.h"
 #include "markov/token_model.h"
 
@@ -426,9 +426,8 @@ TEST_F(ModelCli, TrainWithThePhoenixGrammarRecordsIt) {
   if (shared.empty()) GTEST_SKIP() << "../shared not found";
   const std::string gra = shared + "/peer/climbing.gra";
   const std::string ex = std::string(SB_SOURCE_DIR) + "/data/examples/";
-  ASSERT_EQ(Run({"train", "--depth", "2", "--symbols", "k1", "--phoenix", "--grammar", gra,
-                 "--out", P("peer.sbm"), "--routes", ex + "crimp-ladder.crdl",
-                 ex + "roof-jugs.crdl"}),
+  ASSERT_EQ(Run({"train", "--depth", "2", "--symbols", "k1", "--phoenix", "--grammar", gra, "--out",
+                 P("peer.sbm"), "--routes", ex + "crimp-ladder.crdl", ex + "roof-jugs.crdl"}),
             0)
       << err_;
   auto m = markov::LoadModel(P("peer.sbm"));
@@ -452,14 +451,14 @@ TEST_F(ModelCli, TrainWithThePhoenixGrammarRecordsIt) {
 
 TEST_F(ModelCli, GenerateReadableAndCrdl) {
   const std::string ex = std::string(SB_SOURCE_DIR) + "/data/examples/";
-  std::vector<std::string> args = {"train", "--depth", "2", "--symbols", "k3", "--out",
-                                   P("k3.sbm"), "--routes"};
+  std::vector<std::string> args = {"train", "--depth", "2",         "--symbols",
+                                   "k3",    "--out",   P("k3.sbm"), "--routes"};
   for (const char* f : {"crimp-ladder", "roof-jugs", "slab-dance", "sloper-arete"})
     args.push_back(ex + f + ".crdl");
   ASSERT_EQ(Run(args), 0) << err_;
-  ASSERT_EQ(Run({"generate", "--model", P("k3.sbm"), "--length", "8", "--format", "crdl",
-                 "--seed", "3"}),
-            0)
+  ASSERT_EQ(
+      Run({"generate", "--model", P("k3.sbm"), "--length", "8", "--format", "crdl", "--seed", "3"}),
+      0)
       << err_;
   const std::string crdl = out_;
   // The CRDL parses: check it with the route reader.
@@ -497,8 +496,7 @@ TEST_F(ModelCli, InterpolateExactly) {
     EXPECT_EQ(Words(lines[0]).size(), 1u + std::stoul(j)) << lines[0];
   }
   EXPECT_EQ(Run({"interpolate", "--model", P("m.sbm"), "--exactly", "5"}), 2);
-  EXPECT_EQ(Run({"interpolate", "--model", P("m.sbm"), "--exactly", "1", "--max-insert", "1"}),
-            2);
+  EXPECT_EQ(Run({"interpolate", "--model", P("m.sbm"), "--exactly", "1", "--max-insert", "1"}), 2);
   EXPECT_NE(err_.find("not both"), std::string::npos) << err_;
 }
 
@@ -600,8 +598,8 @@ TEST_F(ModelCli, UsageErrorsAndHelp) {
   ASSERT_EQ(Run({"score", "--help"}), 0);
   EXPECT_NE(out_.find("--average"), std::string::npos);
   ASSERT_EQ(Run({"generate", "--help"}), 0);
-  for (const char* opt : {"--model", "--length", "--start", "--seed", "--temperature",
-                          "--max-run", "--no-repeat-ngram", "--format"})
+  for (const char* opt : {"--model", "--length", "--start", "--seed", "--temperature", "--max-run",
+                          "--no-repeat-ngram", "--format"})
     EXPECT_NE(out_.find(opt), std::string::npos) << "generate " << opt;
   ASSERT_EQ(Run({"interpolate", "--help"}), 0);
   for (const char* opt : {"--model", "--before", "--after", "--max-insert", "--exactly"})

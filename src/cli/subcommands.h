@@ -23,12 +23,11 @@ struct Subcommand {
 // "--help", "-h" or "help" print the table (exit 0; no argument: exit 2);
 // an unknown name is a usage error (exit 2). `cmd` is the command name
 // ("model"), `about` a paragraph printed above the table.
-inline int RunSubcommands(const char* cmd, const char* about,
-                          std::span<const Subcommand> table,
+inline int RunSubcommands(const char* cmd, const char* about, std::span<const Subcommand> table,
                           const std::vector<std::string>& args) {
   auto usage = [&](std::FILE* out) {
-    std::fprintf(out, "usage: strangebeta %s <subcommand> [options]\n\n%s\n\nsubcommands:\n",
-                 cmd, about);
+    std::fprintf(out, "usage: strangebeta %s <subcommand> [options]\n\n%s\n\nsubcommands:\n", cmd,
+                 about);
     for (const Subcommand& s : table) std::fprintf(out, "  %-12s %s\n", s.name, s.summary);
     std::fprintf(out, "\nRun 'strangebeta %s <subcommand> --help' for its options.\n", cmd);
   };

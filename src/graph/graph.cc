@@ -81,8 +81,7 @@ Result<GraphModel> GraphModel::Train(const std::vector<Sequence>& sequences, int
       for (const auto& tok : seq) vs.push_back(tok[f]);
     std::sort(vs.begin(), vs.end());
     vs.erase(std::unique(vs.begin(), vs.end()), vs.end());
-    if (vs.size() > kMaxValuesPerFeature ||
-        (options.alpha > 0 && vs.size() > kMaxValuesSmoothed)) {
+    if (vs.size() > kMaxValuesPerFeature || (options.alpha > 0 && vs.size() > kMaxValuesSmoothed)) {
       return Status::InvalidInput(
           "feature " + std::to_string(f + 1) + " has " + std::to_string(vs.size()) +
           " values (at most " +
@@ -207,18 +206,17 @@ std::span<const Edge> GraphModel::OutEdges(int f, int32_t q) const { return edge
 
 double GraphModel::Weight(int f, int32_t q, int32_t r) const {
   const auto& e = edges_[f][q];
-  auto it = std::lower_bound(e.begin(), e.end(), r,
-                             [](const Edge& a, int32_t b) { return a.to < b; });
+  auto it =
+      std::lower_bound(e.begin(), e.end(), r, [](const Edge& a, int32_t b) { return a.to < b; });
   if (it == e.end() || it->to != r) return std::numeric_limits<double>::infinity();
   return it->weight;
 }
 
 uint32_t GraphModel::PairCount(size_t p, int32_t parent_value, int32_t child_value) const {
   const auto& v = pair_counts_[p][parent_value];
-  auto it = std::lower_bound(v.begin(), v.end(), child_value,
-                             [](const std::pair<int32_t, uint32_t>& a, int32_t b) {
-                               return a.first < b;
-                             });
+  auto it = std::lower_bound(
+      v.begin(), v.end(), child_value,
+      [](const std::pair<int32_t, uint32_t>& a, int32_t b) { return a.first < b; });
   return it == v.end() || it->first != child_value ? 0 : it->second;
 }
 
@@ -229,8 +227,7 @@ bool GraphModel::Admissible(std::span<const int32_t> state) const {
   return true;
 }
 
-Result<std::vector<int32_t>> GraphModel::Encode(const Token& token,
-                                                const std::string& what) const {
+Result<std::vector<int32_t>> GraphModel::Encode(const Token& token, const std::string& what) const {
   if (token.size() != values_.size()) {
     return Status::InvalidInput(what + ": token '" + FormatToken(token) + "' has " +
                                 std::to_string(token.size()) + " values, the graph has " +
@@ -382,9 +379,8 @@ Result<GraphModel> GraphModel::Parse(std::string_view bytes, const std::string& 
     const size_t nl = bytes.find('\n');
     const std::string_view v = bytes.substr(head.size(), nl == bytes.npos ? 0 : nl - head.size());
     if (v != std::to_string(kVersion)) {
-      return Status::InvalidInput(name + ":1: unsupported graph format version '" +
-                                  std::string(v) + "' (this build reads " +
-                                  std::to_string(kVersion) + ")");
+      return Status::InvalidInput(name + ":1: unsupported graph format version '" + std::string(v) +
+                                  "' (this build reads " + std::to_string(kVersion) + ")");
     }
   }
   if (bytes.empty() || bytes.back() != '\n') {

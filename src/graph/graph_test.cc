@@ -168,15 +168,11 @@ TEST(GraphFile, ContentErrorsNameTheLine) {
             "g.sbg:12: a count must be >= 1");
   EXPECT_EQ(GraphModel::Parse(WithChecksum(head + "0 1 1\n"), "g.sbg").status().message(),
             "g.sbg:13: truncated: expected 'end'");
-  EXPECT_EQ(GraphModel::Parse(WithChecksum(head + "0 1 1\nend\nx\n"), "g.sbg")
-                .status()
-                .message(),
+  EXPECT_EQ(GraphModel::Parse(WithChecksum(head + "0 1 1\nend\nx\n"), "g.sbg").status().message(),
             "g.sbg:14: unexpected content after 'end'");
   std::string unsorted = head;
   unsorted.replace(unsorted.find("a 1\nb 1"), 7, "b 1\na 1");
-  EXPECT_EQ(GraphModel::Parse(WithChecksum(unsorted + "0 1 1\nend\n"), "g.sbg")
-                .status()
-                .message(),
+  EXPECT_EQ(GraphModel::Parse(WithChecksum(unsorted + "0 1 1\nend\n"), "g.sbg").status().message(),
             "g.sbg:10: values are not in ascending order");
 }
 

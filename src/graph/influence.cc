@@ -101,8 +101,9 @@ Result<std::vector<InfluencePair>> ParseInfluenceFile(std::string_view text,
       const std::string_view num = s.substr(0, end);
       auto [p, ec] = std::from_chars(num.data(), num.data() + num.size(), v[i]);
       if (num.empty() || ec != std::errc() || p != num.data() + num.size()) {
-        return Status::InvalidInput(where + ": expected 'child parent' (two 1-based feature "
-                                            "positions), got '" +
+        return Status::InvalidInput(where +
+                                    ": expected 'child parent' (two 1-based feature "
+                                    "positions), got '" +
                                     std::string(Trim(lines[l])) + "'");
       }
       s.remove_prefix(end);
@@ -130,8 +131,7 @@ Result<std::vector<InfluencePair>> ParseInfluenceFile(std::string_view text,
   return pairs;
 }
 
-std::vector<std::vector<double>> MutualInformation(const std::vector<Sequence>& sequences,
-                                                   int k) {
+std::vector<std::vector<double>> MutualInformation(const std::vector<Sequence>& sequences, int k) {
   // Value ids per feature (map order: byte-wise, deterministic).
   std::vector<std::map<std::string_view, int32_t>> ids(k);
   std::vector<std::vector<int32_t>> column(k);

@@ -110,8 +110,8 @@ class Query {
   bool Init() {
     size_t bytes = 0;
     for (int f = 0; f < k_; ++f) {
-      bytes += g_.values(f).size() * (sizeof(double) + sizeof(uint32_t) + sizeof(uint8_t) +
-                                      sizeof(std::vector<LEntry>));
+      bytes += g_.values(f).size() *
+               (sizeof(double) + sizeof(uint32_t) + sizeof(uint8_t) + sizeof(std::vector<LEntry>));
     }
     if (!budget_.Take(bytes)) return false;
     dist_.resize(k_);
@@ -257,7 +257,11 @@ class Query {
 class Generator {
  public:
   Generator(Query* q, const int32_t* state, int depth)
-      : q_(q), state_(state, state + q->k_), depth_(depth), nodes_(&q->budget_), heap_(&q->budget_) {}
+      : q_(q),
+        state_(state, state + q->k_),
+        depth_(depth),
+        nodes_(&q->budget_),
+        heap_(&q->budget_) {}
 
   // Prepares the enumeration and buffers the first successor. False when
   // the budget or the work bound refuses (Query::failure_ says which).
@@ -454,7 +458,8 @@ size_t GeneratorOverhead(int k) { return sizeof(Generator) + size_t(k) * 40; }
 // when the budget runs out.
 class Searcher {
  public:
-  Searcher(Query* q, std::span<const int32_t> from) : q_(q), k_(q->k_), start_(from.begin(), from.end()) {}
+  Searcher(Query* q, std::span<const int32_t> from)
+      : q_(q), k_(q->k_), start_(from.begin(), from.end()) {}
 
   ~Searcher() { FreeGens(); }
   Searcher(const Searcher&) = delete;
@@ -512,8 +517,8 @@ class Searcher {
                     " bytes was reached even depth first";
       } else {
         r->outcome = Outcome::kNoPath;
-        r->reason = "no path with at most " + std::to_string(q_->opt_.max_length) +
-                    " inserted states";
+        r->reason =
+            "no path with at most " + std::to_string(q_->opt_.max_length) + " inserted states";
       }
     }
     return std::move(*r);
@@ -623,9 +628,7 @@ class Searcher {
     return true;
   }
 
-  double Priority(double g, double key_or_h) const {
-    return q_->greedy_ ? key_or_h : g + key_or_h;
-  }
+  double Priority(double g, double key_or_h) const { return q_->greedy_ ? key_or_h : g + key_or_h; }
 
   void Reconstruct(uint32_t n, SearchResult* r) {
     std::vector<std::vector<int32_t>> path;
@@ -638,7 +641,8 @@ class Searcher {
     r->outcome = Outcome::kFound;
     r->inserted.assign(path.begin() + 1, path.end() - 1);
     r->cost = 0;
-    for (size_t i = 0; i + 1 < path.size(); ++i) r->cost += TransitionCost(q_->g_, path[i], path[i + 1]);
+    for (size_t i = 0; i + 1 < path.size(); ++i)
+      r->cost += TransitionCost(q_->g_, path[i], path[i + 1]);
   }
 
   // Returns a lower bound of the cheapest path's cost when it stops on
@@ -754,7 +758,8 @@ class Searcher {
     tt_states_.v().clear();
     tt_used_ = 0;
     size_t slots = 1;
-    while (slots * 2 * (sizeof(TtEntry) + k_ * sizeof(int32_t)) <= tt_cap_bytes_ && slots < (1u << 30)) {
+    while (slots * 2 * (sizeof(TtEntry) + k_ * sizeof(int32_t)) <= tt_cap_bytes_ &&
+           slots < (1u << 30)) {
       slots *= 2;
     }
     tt_ok_ = slots >= 64 && tt_.Reserve(slots) && tt_states_.Reserve(slots / 2 * k_);

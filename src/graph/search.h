@@ -68,10 +68,10 @@ enum class Strategy {
 
 struct SearchOptions {
   Strategy strategy = Strategy::kAStar;
-  int max_length = 60;                    // at most this many inserted states, 0..kMaxLength
+  int max_length = 60;                      // at most this many inserted states, 0..kMaxLength
   size_t memory_bytes = size_t{256} << 20;  // kMinMemoryBytes..kMaxMemoryBytes
-  bool use_influence = true;              // false: every combination is admissible
-  uint64_t max_expanded = 2'000'000;      // expansions before giving up, 1..kMaxExpandedLimit
+  bool use_influence = true;                // false: every combination is admissible
+  uint64_t max_expanded = 2'000'000;        // expansions before giving up, 1..kMaxExpandedLimit
 };
 
 // Checks the ranges documented on SearchOptions. Errors: kInvalidInput.
@@ -84,17 +84,17 @@ enum class Outcome {
 };
 
 struct SearchStats {
-  uint64_t expanded = 0;    // states whose successors were enumerated
-  uint64_t generated = 0;   // successor states kept (not dominated)
-  uint64_t candidates = 0;  // partial assignments examined by the enumerators
-  size_t peak_bytes = 0;    // most bytes charged to the budget at any time
+  uint64_t expanded = 0;     // states whose successors were enumerated
+  uint64_t generated = 0;    // successor states kept (not dominated)
+  uint64_t candidates = 0;   // partial assignments examined by the enumerators
+  size_t peak_bytes = 0;     // most bytes charged to the budget at any time
   bool depth_first = false;  // the memory bound was reached: the depth-first phase ran
-  int iterations = 0;       // depth-first iterations (IDA* thresholds)
+  int iterations = 0;        // depth-first iterations (IDA* thresholds)
 };
 
 struct SearchResult {
   Outcome outcome = Outcome::kNoPath;
-  std::string reason;                         // why not found ("" when found)
+  std::string reason;                          // why not found ("" when found)
   std::vector<std::vector<int32_t>> inserted;  // the states between from and to
   // Sum over every transition from `from` through `inserted` to `to` of the
   // summed feature edge weights (nats); 0 unless found.

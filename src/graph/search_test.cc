@@ -35,9 +35,12 @@ std::vector<Sequence> RandomCorpus(uint64_t seed, int k, int m, int lines, int l
       v[0] = (v[0] + 1 + static_cast<int>(rng() % 2)) % m;
       for (int f = 1; f < k; ++f) {
         const uint64_t r = rng() % 4;
-        if (r == 0) v[f] = v[0];
-        else if (r == 1) v[f] = (v[f] + 1) % m;
-        else if (r == 2) v[f] = static_cast<int>(rng() % m);
+        if (r == 0)
+          v[f] = v[0];
+        else if (r == 1)
+          v[f] = (v[f] + 1) % m;
+        else if (r == 2)
+          v[f] = static_cast<int>(rng() % m);
       }
     }
     out.push_back(std::move(s));
@@ -93,8 +96,8 @@ double Exhaustive(const GraphModel& g, const std::vector<int32_t>& from,
   return best;
 }
 
-double PathCost(const GraphModel& g, const std::vector<int32_t>& from,
-                const SearchResult& r, const std::vector<int32_t>& to) {
+double PathCost(const GraphModel& g, const std::vector<int32_t>& from, const SearchResult& r,
+                const std::vector<int32_t>& to) {
   std::vector<std::vector<int32_t>> path{from};
   path.insert(path.end(), r.inserted.begin(), r.inserted.end());
   path.push_back(to);
@@ -132,7 +135,8 @@ TEST_P(SearchVsExhaustive, CostsMatch) {
     }
     for (int L : {0, 1, 3, 6}) {
       for (bool influence : {true, false}) {
-        const double want = Exhaustive(*g, a, b, L, influence && c.influence != InfluenceMode::kNone);
+        const double want =
+            Exhaustive(*g, a, b, L, influence && c.influence != InfluenceMode::kNone);
         SearchOptions o;
         o.max_length = L;
         o.use_influence = influence;
@@ -182,14 +186,13 @@ TEST_P(SearchVsExhaustive, CostsMatch) {
   EXPECT_GT(compared, 0);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Synthetic, SearchVsExhaustive,
-    ::testing::Values(Case{1, 3, 4, InfluenceMode::kNone, 0, false},
-                      Case{2, 3, 4, InfluenceMode::kLearned, 0, false},
-                      Case{3, 4, 3, InfluenceMode::kLearned, 0, true},
-                      Case{4, 3, 4, InfluenceMode::kLearned, 0.5, false},
-                      Case{5, 2, 6, InfluenceMode::kLearned, 0, false},
-                      Case{6, 4, 3, InfluenceMode::kNone, 0.1, true}));
+INSTANTIATE_TEST_SUITE_P(Synthetic, SearchVsExhaustive,
+                         ::testing::Values(Case{1, 3, 4, InfluenceMode::kNone, 0, false},
+                                           Case{2, 3, 4, InfluenceMode::kLearned, 0, false},
+                                           Case{3, 4, 3, InfluenceMode::kLearned, 0, true},
+                                           Case{4, 3, 4, InfluenceMode::kLearned, 0.5, false},
+                                           Case{5, 2, 6, InfluenceMode::kLearned, 0, false},
+                                           Case{6, 4, 3, InfluenceMode::kNone, 0.1, true}));
 
 }  // namespace
 }  // namespace sb::graph

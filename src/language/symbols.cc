@@ -1,7 +1,5 @@
 #include "language/symbols.h"
 
-#include "base/files.h"
-
 #include <unistd.h>
 
 #include <algorithm>
@@ -11,6 +9,7 @@
 #include <functional>
 #include <set>
 
+#include "base/files.h"
 #include "base/text.h"
 
 namespace sb::language {
@@ -90,14 +89,20 @@ void Walk(const ParseNode& n, MoveFeatures* f, std::set<TypeKey>* types) {
     f->big_move = true;
   }
   if (f->verb.empty()) {
-    if (n.net == "ActionVerbSmall") f->verb = "move";
-    else if (n.net == "ActionVerbBig") f->verb = "dyno";
-    else if (n.net == "Cross") f->verb = "cross";
-    else if (n.net == "FootWork") f->verb = "footwork";
+    if (n.net == "ActionVerbSmall")
+      f->verb = "move";
+    else if (n.net == "ActionVerbBig")
+      f->verb = "dyno";
+    else if (n.net == "Cross")
+      f->verb = "cross";
+    else if (n.net == "FootWork")
+      f->verb = "footwork";
   }
   if (f->move_size.empty()) {
-    if (n.net == "ActionSizeBig") f->move_size = "big";
-    else if (n.net == "ActionSizeSmall") f->move_size = "small";
+    if (n.net == "ActionSizeBig")
+      f->move_size = "big";
+    else if (n.net == "ActionSizeSmall")
+      f->move_size = "small";
   }
   for (const ParseNode& c : n.children) Walk(c, f, types);
 }

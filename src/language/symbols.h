@@ -84,8 +84,7 @@ struct Symbols {
 // Extracts the features from the first (best) parse of `result`; all slots of
 // that parse are combined into one hybrid move ("right-right-angle-crimp" +
 // "rail" -> crimp-rail). Pure function; thread-safe.
-MoveFeatures ExtractFeatures(const ParseResult& result,
-                             SymbolStyle style = SymbolStyle::kProject);
+MoveFeatures ExtractFeatures(const ParseResult& result, SymbolStyle style = SymbolStyle::kProject);
 
 // The symbols of a move, as the original symbolizer wrote them (see top).
 Symbols MakeSymbols(const MoveFeatures& features);

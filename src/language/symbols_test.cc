@@ -210,8 +210,9 @@ TEST(SymbolsTest, ProjectStyleNamesEachHoldTypeOnce) {
   auto own = MoveLanguage::LoadDefault();
   ASSERT_TRUE(own.ok());
   EXPECT_EQ(own->Read("finish on top").symbols.k[0], "[HoldType].[Mantle]");
-  EXPECT_EQ(own->Read("foot on foothold, hand on foot pad sloper").symbols.k[0].find(
-                "[HoldType].[FootHold].[HoldType].[FootHold]"),
+  EXPECT_EQ(own->Read("foot on foothold, hand on foot pad sloper")
+                .symbols.k[0]
+                .find("[HoldType].[FootHold].[HoldType].[FootHold]"),
             std::string::npos);
 }
 
@@ -242,9 +243,15 @@ TEST(SymbolsTest, MoveTextReadsBackToTheSameSymbol) {
   EXPECT_EQ(SymbolToMoveText("[HoldType].[Match]"), "match");
   EXPECT_EQ(lang->HoldPhrase("foot-hook"), "heel hook");
   EXPECT_EQ(lang->HoldPhrase("no-such-type"), "no such type");
-  const char* moves[] = {"big dyno to a small sloping crimp", "cross to pinch",
-                         "heel hook", "L match", "slopey ledge", "huge move to good jug",
-                         "thumb catch sidepull", "finish on top", "undercling flake"};
+  const char* moves[] = {"big dyno to a small sloping crimp",
+                         "cross to pinch",
+                         "heel hook",
+                         "L match",
+                         "slopey ledge",
+                         "huge move to good jug",
+                         "thumb catch sidepull",
+                         "finish on top",
+                         "undercling flake"};
   for (const char* m : moves) {
     const Symbols s = lang->Read(m).symbols;
     ASSERT_NE(s.k[3], "NO_PARSE") << m;

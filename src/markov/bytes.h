@@ -35,8 +35,10 @@ void PutArray(std::string* out, const std::vector<T>& v) {
     out->append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
   } else {
     for (T x : v) {
-      if constexpr (sizeof(T) == 4) PutU32(out, static_cast<uint32_t>(x));
-      else PutU64(out, static_cast<uint64_t>(x));
+      if constexpr (sizeof(T) == 4)
+        PutU32(out, static_cast<uint32_t>(x));
+      else
+        PutU64(out, static_cast<uint64_t>(x));
     }
   }
 }
@@ -117,7 +119,8 @@ inline uint64_t WordFnv1a64(std::string_view data) {
     if constexpr (std::endian::native == std::endian::little) {
       std::memcpy(&w, p + 8 * i, 8);
     } else {
-      for (int b = 0; b < 8; ++b) w |= uint64_t{static_cast<unsigned char>(p[8 * i + b])} << (8 * b);
+      for (int b = 0; b < 8; ++b)
+        w |= uint64_t{static_cast<unsigned char>(p[8 * i + b])} << (8 * b);
     }
     h = (h ^ w) * 0x100000001b3ull;
   }

@@ -121,8 +121,7 @@ PpmCModel::PpmCModel(const ModelSpec& spec, std::span<const int32_t> seq)
   for (int32_t s : seq) ++symbol_counts_[s];
 }
 
-PpmCModel::PpmCModel(const ModelSpec& spec, std::span<const int32_t> seq, LoadOnly)
-    : Model(spec) {
+PpmCModel::PpmCModel(const ModelSpec& spec, std::span<const int32_t> seq, LoadOnly) : Model(spec) {
   symbol_counts_.assign(spec.alphabet_size, 0);
   for (int32_t s : seq) ++symbol_counts_[s];
 }

@@ -50,7 +50,8 @@ std::vector<int32_t> Generate(const Model& model, std::span<const int32_t> start
   const size_t n = static_cast<size_t>(options.no_repeat_ngram);
   std::set<std::vector<int32_t>> ngrams;
   if (n >= 2) {
-    for (size_t i = 0; i + n <= hist.size(); ++i) ngrams.insert({hist.begin() + i, hist.begin() + i + n});
+    for (size_t i = 0; i + n <= hist.size(); ++i)
+      ngrams.insert({hist.begin() + i, hist.begin() + i + n});
   }
   const double inv_t = 1.0 / options.temperature;
   for (int step = 0; step < options.length; ++step) {
@@ -89,7 +90,7 @@ std::vector<int32_t> Generate(const Model& model, std::span<const int32_t> start
       double total = 0;
       for (size_t i = 0; i < cands.size(); ++i) {
         const int32_t s = cands[i];
-        weight[i] = blocked(s, level) ? 0.0
+        weight[i] = blocked(s, level)            ? 0.0
                     : options.temperature == 1.0 ? dist[s]
                                                  : std::pow(dist[s], inv_t);
         total += weight[i];

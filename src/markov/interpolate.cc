@@ -19,7 +19,11 @@ class Search {
  public:
   Search(const Model& m, std::span<const int32_t> before, std::span<const int32_t> after, int j,
          std::vector<int32_t> cands, bool exactly = false)
-      : m_(m), after_(after), j_(j), min_j_(exactly ? j : 0), cands_(std::move(cands)),
+      : m_(m),
+        after_(after),
+        j_(j),
+        min_j_(exactly ? j : 0),
+        cands_(std::move(cands)),
         D_(m.depth()) {
     buf_.assign(before.begin(), before.end());
     head_ = std::min<size_t>(after.size(), D_);
@@ -210,10 +214,9 @@ Result<InsertionResult> BestInsertion(const Model& model, std::span<const int32_
   // merge keeps the sequential answer: the lowest bits, and on a tie the
   // insertion whose first symbol comes first in the cheapest-first order
   // (the empty insertion before all).
-  const bool split = options.threads == 0
-                         ? options.max_insert >= 3 && cands.size() >= 64 &&
-                               std::thread::hardware_concurrency() > 1
-                         : options.threads > 1;
+  const bool split = options.threads == 0 ? options.max_insert >= 3 && cands.size() >= 64 &&
+                                                std::thread::hardware_concurrency() > 1
+                                          : options.threads > 1;
   if (split) {
     Search s0(model, before, after, options.max_insert, cands, options.exactly);
     Search s1(model, before, after, options.max_insert, cands, options.exactly);
@@ -221,8 +224,8 @@ Result<InsertionResult> BestInsertion(const Model& model, std::span<const int32_
     s0.Run(2, 0);
     t.join();
     const double tol = 1e-12 * std::max(1.0, std::fabs(std::min(s0.best, s1.best)));
-    bool take1 = s1.best < s0.best - tol ||
-                 (!(s0.best < s1.best - tol) && s1.best_rank < s0.best_rank);
+    bool take1 =
+        s1.best < s0.best - tol || (!(s0.best < s1.best - tol) && s1.best_rank < s0.best_rank);
     const Search& w = take1 ? s1 : s0;
     r.inserted = w.best_ins;
     r.nodes_visited = s0.nodes + s1.nodes;

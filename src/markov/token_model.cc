@@ -289,9 +289,8 @@ Result<TokenModel> LoadModel(const std::string& path) {
     void* p = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0);
     ::close(fd);
     if (p != MAP_FAILED) {
-      std::shared_ptr<const void> mapping(p, [size](const void* q) {
-        ::munmap(const_cast<void*>(q), size);
-      });
+      std::shared_ptr<const void> mapping(
+          p, [size](const void* q) { ::munmap(const_cast<void*>(q), size); });
       return TokenModel::Parse(std::string_view(static_cast<const char*>(p), size), path,
                                std::move(mapping));
     }

@@ -6,8 +6,8 @@
 
 #include <cstdio>
 #include <cstring>
-#include <random>
 #include <filesystem>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -170,7 +170,7 @@ TEST(ModelFile, ReadsFormatOne) {
     m.model().SaveState(&state);
     std::string v1 = m.Serialize();
     v1.resize(TrainingEnd(v1));  // drop padding, state section and checksum
-    v1[8] = 1;                                   // version 1
+    v1[8] = 1;                   // version 1
     const uint64_t h = Fnv1a(v1);
     for (int i = 0; i < 8; ++i) v1.push_back(static_cast<char>((h >> (8 * i)) & 0xff));
     auto back = TokenModel::Parse(v1, "v1");

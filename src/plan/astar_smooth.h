@@ -43,13 +43,13 @@ struct AStarSmoothOptions {
 
 // One boundary's interpolation.
 struct BoundaryInterpolation {
-  int after = 0;         // the boundary follows move `after` (0-based)
+  int after = 0;          // the boundary follows move `after` (0-based)
   bool searched = false;  // false: a move at the boundary could not be used (see reason)
   graph::Outcome outcome = graph::Outcome::kNoPath;
-  std::string reason;                    // why nothing is inserted ("" when found)
-  std::vector<graph::Token> inserted;    // the inserted feature vectors
-  std::vector<std::string> moves;        // the same as readable moves ("R big move to ...")
-  double cost = 0;                       // nats, move before -> inserted -> move after
+  std::string reason;                  // why nothing is inserted ("" when found)
+  std::vector<graph::Token> inserted;  // the inserted feature vectors
+  std::vector<std::string> moves;      // the same as readable moves ("R big move to ...")
+  double cost = 0;                     // nats, move before -> inserted -> move after
   double direct_cost = std::numeric_limits<double>::infinity();  // nats, +inf: never seen
   graph::SearchStats stats;
 };
@@ -61,8 +61,8 @@ struct BoundaryInterpolation {
 // false. Errors: kInvalidInput when `graph` is not a climbing graph or the
 // options are out of range. Not thread-safe (`lang`).
 Result<std::vector<BoundaryInterpolation>> InterpolateBoundaries(
-    const graph::GraphModel& graph, const chaos::Variation& variation,
-    language::MoveLanguage& lang, const AStarSmoothOptions& options = {});
+    const graph::GraphModel& graph, const chaos::Variation& variation, language::MoveLanguage& lang,
+    const AStarSmoothOptions& options = {});
 
 // The bundled climbing graph (data/models/default.sbg, see FindDataFile), or "".
 std::string DefaultGraphPath();

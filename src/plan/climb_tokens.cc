@@ -128,8 +128,8 @@ Status CheckClimbGraph(const graph::GraphModel& g, const std::string& name) {
   for (int f = 6; f < kClimbFeatures; ++f) {
     for (const std::string& v : g.values(f)) {
       if (v != "yes" && v != "no") {
-        return bad("feature " + std::to_string(f + 1) + " (" +
-                   std::string(ClimbFeatureNames()[f]) + ") has the value '" + v + "'");
+        return bad("feature " + std::to_string(f + 1) + " (" + std::string(ClimbFeatureNames()[f]) +
+                   ") has the value '" + v + "'");
       }
     }
   }

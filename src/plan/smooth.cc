@@ -168,14 +168,14 @@ Result<std::map<std::string, std::string>> SymbolMetadata(const SymbolSource& sr
   return m;
 }
 
-Result<SymbolSource> CheckSmoothingModel(const markov::TokenModel& model,
-                                         const std::string& name) {
+Result<SymbolSource> CheckSmoothingModel(const markov::TokenModel& model, const std::string& name) {
   auto refuse = [&](const std::string& why) {
     return Status::InvalidInput(name + ": cannot smooth with this model: " + why);
   };
   if (!model.has_vocabulary()) {
-    return refuse("its tokens are integer ids, not move symbols; train one with "
-                  "'strangebeta model train --routes' or '--corpus'");
+    return refuse(
+        "its tokens are integer ids, not move symbols; train one with "
+        "'strangebeta model train --routes' or '--corpus'");
   }
   const auto& meta = model.metadata();
   auto get = [&](const char* k) {
@@ -186,9 +186,10 @@ Result<SymbolSource> CheckSmoothingModel(const markov::TokenModel& model,
   src.symbol_set = get("symbol_set");
   src.grammar = get("grammar");
   if (src.symbol_set.empty() || src.grammar.empty()) {
-    return refuse("it does not say which symbol set and grammar made its tokens (a model of "
-                  "a plain token file); train one with 'strangebeta model train --routes' or "
-                  "'--corpus'");
+    return refuse(
+        "it does not say which symbol set and grammar made its tokens (a model of "
+        "a plain token file); train one with 'strangebeta model train --routes' or "
+        "'--corpus'");
   }
   if (!CheckSet(src.symbol_set).ok()) return refuse("unknown symbol set '" + src.symbol_set + "'");
   src.frames = get("frames");

@@ -42,8 +42,8 @@ std::string Fixed(double v, int digits) {
 
 }  // namespace
 
-Result<EvalReport> EvaluateSmoothing(const std::vector<Route>& routes,
-                                     language::MoveLanguage& lang, const EvalOptions& o) {
+Result<EvalReport> EvaluateSmoothing(const std::vector<Route>& routes, language::MoveLanguage& lang,
+                                     const EvalOptions& o) {
   if (o.variations < 1 || o.variations > kMaxEvalVariations) {
     return Status::InvalidInput("variations must be in 1.." + std::to_string(kMaxEvalVariations));
   }
@@ -86,7 +86,8 @@ Result<EvalReport> EvaluateSmoothing(const std::vector<Route>& routes,
   rep.training_moves = static_cast<int>(train_syms.size());
   rep.heldout_moves = static_cast<int>(held_syms.size());
   if (train_syms.size() < 2 || held_syms.size() < 2) {
-    return Status::InvalidInput("too few readable moves to train and judge (need routes in both halves)");
+    return Status::InvalidInput(
+        "too few readable moves to train and judge (need routes in both halves)");
   }
   auto g = graph::GraphModel::Train(sequences, kClimbFeatures, o.graph);
   if (!g.ok()) return g.status();
@@ -137,8 +138,8 @@ Result<EvalReport> EvaluateSmoothing(const std::vector<Route>& routes,
       const std::vector<std::string> ctx(before.begin() + cb, before.end());
       const double direct = JudgeBits(*judge, ctx, {after.front()});
       std::string example = "between '" + moves[j].text + "' (" + HandLetter(moves[j].hand) +
-                            ") and '" + moves[j + 1].text + "' (" +
-                            HandLetter(moves[j + 1].hand) + "):\n";
+                            ") and '" + moves[j + 1].text + "' (" + HandLetter(moves[j + 1].hand) +
+                            "):\n";
       bool astar_inserted = false;
       for (int mi = 0; mi < 2; ++mi) {
         MethodReport& m = rep.methods[mi];
@@ -212,13 +213,13 @@ std::string FormatEvalReport(const EvalReport& r, bool timing) {
   std::string out;
   out += "training routes " + std::to_string(r.training_routes) + " (" +
          std::to_string(r.training_moves) + " readable moves), held-out routes " +
-         std::to_string(r.heldout_routes) + " (" + std::to_string(r.heldout_moves) +
-         " moves)\n";
+         std::to_string(r.heldout_routes) + " (" + std::to_string(r.heldout_moves) + " moves)\n";
   out += "variations " + std::to_string(r.variations) + ", boundaries " +
          std::to_string(r.boundaries) + " (skipped " + std::to_string(r.skipped_boundaries) +
          ": a blank, an unreadable move or a value the graphs never saw)\n\n";
-  out += "method  found            inserted>0  length mean/median/max  judge bits/transition "
-         "(direct)  novel moves  novel symbols";
+  out +=
+      "method  found            inserted>0  length mean/median/max  judge bits/transition "
+      "(direct)  novel moves  novel symbols";
   out += timing ? "  ms/boundary  expanded/boundary\n" : "  expanded/boundary\n";
   for (const MethodReport& m : r.methods) {
     std::vector<int> l = m.lengths;
@@ -231,22 +232,22 @@ std::string FormatEvalReport(const EvalReport& r, bool timing) {
     }
     const double n = l.empty() ? 1.0 : static_cast<double>(l.size());
     char line[512];
-    std::snprintf(
-        line, sizeof line, "%-7s %4d/%-4d %5.1f%%  %10d  %6.2f / %d / %d %18s (%s)  %5d/%-5d  %5d/%-5d",
-        m.name.c_str(), m.found, m.boundaries,
-        m.boundaries ? 100.0 * m.found / m.boundaries : 0.0, some, sum / n,
-        l.empty() ? 0 : l[l.size() / 2], l.empty() ? 0 : l.back(),
-        Fixed(m.found ? m.judge_bits / m.found : 0.0, 2).c_str(),
-        Fixed(m.found ? m.judge_direct_bits / m.found : 0.0, 2).c_str(), m.novel_moves, m.moves,
-        m.novel_symbols, m.moves);
+    std::snprintf(line, sizeof line,
+                  "%-7s %4d/%-4d %5.1f%%  %10d  %6.2f / %d / %d %18s (%s)  %5d/%-5d  %5d/%-5d",
+                  m.name.c_str(), m.found, m.boundaries,
+                  m.boundaries ? 100.0 * m.found / m.boundaries : 0.0, some, sum / n,
+                  l.empty() ? 0 : l[l.size() / 2], l.empty() ? 0 : l.back(),
+                  Fixed(m.found ? m.judge_bits / m.found : 0.0, 2).c_str(),
+                  Fixed(m.found ? m.judge_direct_bits / m.found : 0.0, 2).c_str(), m.novel_moves,
+                  m.moves, m.novel_symbols, m.moves);
     out += line;
     if (timing) {
       out += "  " + Fixed(m.boundaries ? 1000.0 * m.seconds / m.boundaries : 0.0, 2);
     }
     out += "  " + Fixed(m.boundaries ? static_cast<double>(m.expanded) / m.boundaries : 0.0, 0);
     if (m.no_path || m.gave_up) {
-      out += "  (no path " + std::to_string(m.no_path) + ", gave up " +
-             std::to_string(m.gave_up) + ")";
+      out += "  (no path " + std::to_string(m.no_path) + ", gave up " + std::to_string(m.gave_up) +
+             ")";
     }
     out += "\n";
   }

@@ -26,14 +26,14 @@ namespace sb::plan {
 inline constexpr int kMaxEvalVariations = 10000;
 
 struct EvalOptions {
-  int variations = 40;          // pairs of training routes varied, 1..kMaxEvalVariations
-  int max_length = 6;           // A*/greedy: at most this many inserted moves (0..graph::kMaxLength)
-  int vomm_insert = 2;          // VOMM: at most this many inserted symbols (0..4)
-  int depth = 3;                // DE-CTW depth of the VOMM and of the judge (1..32)
+  int variations = 40;  // pairs of training routes varied, 1..kMaxEvalVariations
+  int max_length = 6;   // A*/greedy: at most this many inserted moves (0..graph::kMaxLength)
+  int vomm_insert = 2;  // VOMM: at most this many inserted symbols (0..4)
+  int depth = 3;        // DE-CTW depth of the VOMM and of the judge (1..32)
   uint64_t max_expanded = 200000;  // per A*/greedy search
   size_t memory_bytes = size_t{256} << 20;
-  graph::TrainOptions graph;    // how the feature graphs are trained (default: learned influence)
-  bool timing = true;           // false: report no times (byte-identical output)
+  graph::TrainOptions graph;  // how the feature graphs are trained (default: learned influence)
+  bool timing = true;         // false: report no times (byte-identical output)
   EvalOptions() { graph.influence = graph::InfluenceMode::kLearned; }
 };
 
@@ -58,10 +58,10 @@ struct EvalReport {
   int training_routes = 0, heldout_routes = 0;
   int training_moves = 0, heldout_moves = 0;
   int variations = 0;
-  int boundaries = 0;            // boundaries where both moves are usable by every method
-  int skipped_boundaries = 0;    // a blank, an unreadable move or an unseen feature value
+  int boundaries = 0;                 // boundaries where both moves are usable by every method
+  int skipped_boundaries = 0;         // a blank, an unreadable move or an unseen feature value
   std::vector<MethodReport> methods;  // astar, greedy, vomm
-  std::string example;           // one boundary with the three answers, readable
+  std::string example;                // one boundary with the three answers, readable
 };
 
 // Runs the evaluation on the original (non-variation) routes given, in id
@@ -70,8 +70,8 @@ struct EvalReport {
 // training routes (default preset). Deterministic apart from the times.
 // Errors: kInvalidInput for options out of range or too few usable routes.
 // Not thread-safe (`lang`).
-Result<EvalReport> EvaluateSmoothing(const std::vector<Route>& routes,
-                                     language::MoveLanguage& lang, const EvalOptions& options);
+Result<EvalReport> EvaluateSmoothing(const std::vector<Route>& routes, language::MoveLanguage& lang,
+                                     const EvalOptions& options);
 
 // The report as a text table (docs/dance.md shows one).
 std::string FormatEvalReport(const EvalReport& report, bool timing);
