@@ -565,20 +565,9 @@ class Searcher {
   // in both cost and depth; kills the ones it beats. Returns the node id,
   // kNone when dominated, and sets failure_ on a budget refusal.
   uint32_t AddNode(const int32_t* s, double g, uint32_t depth, uint32_t parent) {
-    if (depth == 0 && q_->IsGoal(s)) {
-      // from == to: the start must not shadow the goal's arrival.
-      if (!nodes_.Push({g, parent, depth, kNone, kNone, true})) {
-        q_->failure_ = Failure::kMemory;
-        return kNone;
-      }
-      for (int f = 0; f < k_; ++f) {
-        if (!states_.Push(s[f])) {
-          q_->failure_ = Failure::kMemory;
-          return kNone;
-        }
-      }
-      return static_cast<uint32_t>(nodes_.size() - 1);
-    }
+    // from == to: the start must not shadow the goal's arrival, so it stays
+    // out of the table.
+    if (depth == 0 && q_->IsGoal(s)) return NewNode(s, g, depth, parent, kNone);
     if ((table_used_ + 1) * 2 > table_.size() && !GrowTable()) return kNone;
     uint32_t* slot = Slot(s);
     // Greedy ignores cost: a state already reached in as few steps is done.
@@ -591,8 +580,18 @@ class Searcher {
       Node& o = nodes_[n];
       if (o.alive && (greedy || g <= o.g) && depth <= o.depth) Kill(n);
     }
+    const uint32_t id = NewNode(s, g, depth, parent, *slot);
+    if (id == kNone) return kNone;
+    if (*slot == kNone) ++table_used_;
+    *slot = id;
+    return id;
+  }
+
+  // Appends a node and its state; kNone (failure_ set) on a budget refusal.
+  uint32_t NewNode(const int32_t* s, double g, uint32_t depth, uint32_t parent,
+                   uint32_t next_same) {
     const uint32_t id = static_cast<uint32_t>(nodes_.size());
-    if (!nodes_.Push({g, parent, depth, *slot, kNone, true})) {
+    if (!nodes_.Push({g, parent, depth, next_same, kNone, true})) {
       q_->failure_ = Failure::kMemory;
       return kNone;
     }
@@ -602,8 +601,6 @@ class Searcher {
         return kNone;
       }
     }
-    if (*slot == kNone) ++table_used_;
-    *slot = id;
     return id;
   }
 

@@ -213,18 +213,35 @@ Symbols Symbolize(const ParseResult& result, SymbolStyle style) {
   return MakeSymbols(ExtractFeatures(result, style));
 }
 
+namespace {
+
+// The parts of a k1..k4 symbol: types[:size:shape][:flags].
+struct SymbolParts {
+  std::string_view types, size, shape, flags;
+};
+
+// False when `symbol` has more than four ':'-separated parts.
+bool SplitSymbol(std::string_view symbol, SymbolParts* p) {
+  std::vector<std::string_view> parts = Split(symbol, ':');
+  if (parts.size() > 4) return false;
+  p->types = parts[0];
+  if (parts.size() >= 3) {
+    p->size = parts[1];
+    p->shape = parts[2];
+    if (parts.size() == 4) p->flags = parts[3];
+  } else if (parts.size() == 2) {
+    p->flags = parts[1];
+  }
+  return true;
+}
+
+}  // namespace
+
 std::string DescribeSymbol(std::string_view symbol) {
   if (symbol == kNoParse) return "no parse";
-  std::vector<std::string_view> parts = Split(symbol, ':');
-  if (parts.size() > 4) return std::string(symbol);
-  std::string_view types = parts[0], size, shape, flags;
-  if (parts.size() >= 3) {
-    size = parts[1];
-    shape = parts[2];
-    if (parts.size() == 4) flags = parts[3];
-  } else if (parts.size() == 2) {
-    flags = parts[1];
-  }
+  SymbolParts sp;
+  if (!SplitSymbol(symbol, &sp)) return std::string(symbol);
+  const std::string_view types = sp.types, size = sp.size, shape = sp.shape, flags = sp.flags;
   std::vector<std::string> out;
   // Types are "[HoldType]..." elements joined by '.'.
   std::string t;
@@ -258,16 +275,9 @@ namespace {
 std::string MoveTextWith(std::string_view symbol,
                          const std::function<std::string(const std::string&)>& phrase) {
   if (symbol == kNoParse || symbol.empty()) return "";
-  std::vector<std::string_view> parts = Split(symbol, ':');
-  if (parts.size() > 4) return "";
-  std::string_view size, shape, flags;
-  if (parts.size() >= 3) {
-    size = parts[1];
-    shape = parts[2];
-    if (parts.size() == 4) flags = parts[3];
-  } else if (parts.size() == 2) {
-    flags = parts[1];
-  }
+  SymbolParts sp;
+  if (!SplitSymbol(symbol, &sp)) return "";
+  const std::string_view size = sp.size, shape = sp.shape, flags = sp.flags;
   bool cross = false, big = false, good = false;
   for (std::string_view fl : Split(flags, '+')) {
     cross = cross || fl == "CROSS";
@@ -276,7 +286,7 @@ std::string MoveTextWith(std::string_view symbol,
   }
   std::string hold;
   bool match = false, next_hold = false;
-  for (std::string_view e : TypeElements(parts[0])) {
+  for (std::string_view e : TypeElements(sp.types)) {
     std::string r = ReadableElement(e);
     if (r == "match") {
       match = true;
