@@ -25,13 +25,23 @@ Result<std::string> ReadFile(const std::string& path) {
   if (std::filesystem::is_directory(path, ec)) {
     return Status::IoError(path + ": is a directory");
   }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (f == nullptr) {
     if (errno == ENOENT) return Status::NotFound(path + ": no such file");
     return Status::IoError(path + ": " + std::strerror(errno));
   }
-  std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) return Status::IoError(path + ": read error");
+  // One read of the whole file when its size is known (regular files),
+  // then whatever follows (pipes, files that grew).
+  std::string data;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (!ec) data.resize(static_cast<size_t>(size));
+  size_t got = data.empty() ? 0 : std::fread(data.data(), 1, data.size(), f);
+  data.resize(got);
+  char buf[65536];
+  for (size_t n; (n = std::fread(buf, 1, sizeof buf, f)) > 0;) data.append(buf, n);
+  const bool failed = std::ferror(f) != 0;
+  std::fclose(f);
+  if (failed) return Status::IoError(path + ": read error");
   return data;
 }
 

@@ -19,6 +19,10 @@ std::vector<std::string_view> Split(std::string_view s, char sep);
 std::vector<std::string_view> SplitLines(std::string_view data);
 // Escapes a string for inclusion in XML/HTML text or attributes.
 std::string XmlEscape(std::string_view s);
+// Byte offset of the first byte that does not start a well-formed UTF-8
+// sequence (RFC 3629: no overlongs, no surrogates, at most U+10FFFF), or
+// std::string_view::npos when all of `s` is valid UTF-8. Pure.
+size_t Utf8ErrorOffset(std::string_view s);
 
 }  // namespace sb
 

@@ -9,6 +9,18 @@
 namespace sb {
 namespace {
 
+TEST(Text, Utf8ErrorOffset) {
+  EXPECT_EQ(Utf8ErrorOffset("plain ascii"), std::string_view::npos);
+  EXPECT_EQ(Utf8ErrorOffset("caf\xc3\xa9 \xe2\x80\x94 \xf0\x9f\xa7\x97"), std::string_view::npos);
+  EXPECT_EQ(Utf8ErrorOffset("ab\xff"), 2u);          // never a lead byte
+  EXPECT_EQ(Utf8ErrorOffset("a\xc3"), 1u);           // truncated
+  EXPECT_EQ(Utf8ErrorOffset("\xc0\xaf"), 0u);        // overlong '/'
+  EXPECT_EQ(Utf8ErrorOffset("x\xe0\x80\xaf"), 1u);   // overlong, 3 bytes
+  EXPECT_EQ(Utf8ErrorOffset("\xed\xa0\x80"), 0u);    // surrogate U+D800
+  EXPECT_EQ(Utf8ErrorOffset("\xf4\x90\x80\x80"), 0u);  // above U+10FFFF
+  EXPECT_EQ(Utf8ErrorOffset("\xc3\x28"), 0u);        // bad continuation
+}
+
 TEST(Text, TrimAndLower) {
   EXPECT_EQ(Trim("  a b \r\n"), "a b");
   EXPECT_EQ(Trim(""), "");

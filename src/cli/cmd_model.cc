@@ -6,7 +6,9 @@
 //   strangebeta model train ... [--group-by user|grade] --corpus DIR [--symbols k1..k4] --out ...
 //   strangebeta model score --model MODEL [--average] [FILE]
 //   strangebeta model generate --model MODEL --length n [--start TOKENS] [--seed S]
-//   strangebeta model interpolate --model MODEL --before TOKENS --after TOKENS --max-insert j
+//       [--temperature T] [--max-run R] [--no-repeat-ngram N] [--format tokens|readable|crdl]
+//   strangebeta model interpolate --model MODEL --before TOKENS --after TOKENS
+//       [--max-insert j | --exactly J]
 //   strangebeta model classify --models M1,M2,... [--labelled] [FILE]
 //   strangebeta model classify --cross-validate --alg A --depth D [--folds k] LABELLED_FILE
 //   strangebeta model classify --cross-validate --group-by user|grade --corpus DIR ...
@@ -23,6 +25,7 @@
 #include "base/text.h"
 #include "cli/cli_util.h"
 #include "cli/commands.h"
+#include "cli/subcommands.h"
 #include "crdl/site_csv.h"
 #include "language/symbols.h"
 #include "markov/classify.h"
@@ -30,6 +33,7 @@
 #include "markov/interpolate.h"
 #include "markov/model.h"
 #include "markov/token_model.h"
+#include "plan/smooth.h"
 
 namespace sb::cli {
 namespace {
@@ -41,6 +45,9 @@ using sb::Move;
 using sb::SiteRoute;
 
 constexpr const char* kCmd = "model";
+// --folds range: at least a training and a test fold; more folds than this
+// retrain per-label models that often for no gain.
+constexpr int kMaxFolds = 1000;
 
 struct Token {
   std::string text;
@@ -127,20 +134,17 @@ std::string NormalGrade(const std::optional<std::string>& g) {
 }
 
 // The corpus routes (the original site's CSV export in DIR) as symbol
-// sequences of set k1..k4 (moves without a parse skipped), labelled by user
-// id or grade ("all" when group_by is empty); routes with no symbols or no
-// grade are left out.
+// sequences of the source's set (moves without a parse skipped), labelled by
+// user id or grade ("all" when group_by is empty); routes with no symbols or
+// no grade are left out.
 Result<std::vector<markov::LabelledRoute>> CorpusRoutes(const std::string& dir,
                                                         const std::string& group_by,
-                                                        const std::string& set) {
-  if (set.size() != 2 || set[0] != 'k' || set[1] < '1' || set[1] > '4') {
-    return Status::InvalidInput("--symbols: expected k1, k2, k3 or k4, got '" + set + "'");
-  }
-  const int k = set[1] - '1';
+                                                        const plan::SymbolSource& src) {
+  auto lang = plan::LoadSymbolLanguage(src);
+  if (!lang.ok()) return Status::InvalidInput("--symbols/--grammar: " + lang.status().message());
+  const int k = src.symbol_set[1] - '1';
   auto site = ReadSiteExport(dir);
   if (!site.ok()) return site.status();
-  auto lang = language::MoveLanguage::LoadDefault();
-  if (!lang.ok()) return lang.status();
   std::vector<markov::LabelledRoute> out;
   for (const SiteRoute& r : site->routes) {
     markov::LabelledRoute lr;
@@ -163,21 +167,19 @@ Result<std::vector<markov::LabelledRoute>> CorpusRoutes(const std::string& dir,
   return out;
 }
 
-// The symbols (set k1..k4) of the moves of CRDL route files, concatenated in
-// order; moves without a parse are skipped.
+// The symbols of the source's set of the moves of CRDL route files,
+// concatenated in order; moves without a parse are skipped.
 Result<std::vector<std::string>> RouteFileSymbols(const std::vector<std::string>& files,
-                                                  const std::string& set) {
-  if (set.size() != 2 || set[0] != 'k' || set[1] < '1' || set[1] > '4') {
-    return Status::InvalidInput("--symbols: expected k1, k2, k3 or k4, got '" + set + "'");
-  }
-  auto lang = language::MoveLanguage::LoadDefault();
-  if (!lang.ok()) return lang.status();
+                                                  const plan::SymbolSource& src) {
+  auto lang = plan::LoadSymbolLanguage(src);
+  if (!lang.ok()) return Status::InvalidInput("--symbols/--grammar: " + lang.status().message());
+  const int k = src.symbol_set[1] - '1';
   std::vector<std::string> out;
   for (const std::string& f : files) {
     auto route = ReadCrdlFile(f);
     if (!route.ok()) return route.status();
     for (const Move& m : route->moves) {
-      std::string sym = lang->SymbolsOf(m.text).k[set[1] - '1'];
+      std::string sym = lang->SymbolsOf(m.text).k[k];
       if (sym != "NO_PARSE" && !sym.empty()) out.push_back(std::move(sym));
     }
   }
@@ -185,23 +187,26 @@ Result<std::vector<std::string>> RouteFileSymbols(const std::vector<std::string>
   return out;
 }
 
-// Metadata of a model trained on symbolized moves (read by vary --smooth).
-std::map<std::string, std::string> SymbolMetadata(const std::string& set) {
-  return {{"grammar", "climbing"}, {"symbol_set", set}};
+// Sets the symbol metadata (read by vary --smooth) on a model.
+Status SetSymbolMetadata(const plan::SymbolSource& src, TokenModel* m) {
+  auto meta = plan::SymbolMetadata(src);
+  if (!meta.ok()) return meta.status();
+  m->set_metadata(std::move(meta).value());
+  return Status::Ok();
 }
 
 // Labelled routes from --corpus (grouped by user or grade) or from a
 // labelled token file (--group-by label).
 Result<std::vector<markov::LabelledRoute>> LoadLabelled(const std::string& group_by,
                                                         const std::string& corpus,
-                                                        const std::string& set,
+                                                        const plan::SymbolSource& src,
                                                         const std::string& file) {
   if (group_by == "user" || group_by == "grade") {
     if (corpus.empty()) {
       return Status::InvalidInput("--group-by " + group_by + " needs --corpus DIR");
     }
     if (!file.empty()) return Status::InvalidInput("give either FILE or --corpus, not both");
-    return CorpusRoutes(corpus, group_by, set);
+    return CorpusRoutes(corpus, group_by, src);
   }
   if (group_by != "label") {
     return Status::InvalidInput("--group-by: expected user, grade or label, got '" + group_by +
@@ -211,6 +216,33 @@ Result<std::vector<markov::LabelledRoute>> LoadLabelled(const std::string& group
   auto data = ReadInput(file);
   if (!data.ok()) return data.status();
   return markov::ParseLabelled(*data, InputName(file));
+}
+
+// --symbols, --grammar, --frames, --phoenix: how move texts become symbols.
+struct SourceOptions {
+  std::string set = "k1";
+  std::string grammar;  // "" = the bundled grammar
+  std::string frames;
+  bool phoenix = false;
+  plan::SymbolSource Source() const {
+    plan::SymbolSource s;
+    s.symbol_set = set;
+    s.grammar = grammar.empty() ? "climbing" : grammar;
+    s.frames = frames;
+    s.phoenix = phoenix;
+    return s;
+  }
+};
+
+void AddSourceOptions(CLI::App* app, SourceOptions* o, const char* set_default_help) {
+  app->add_option("--symbols", o->set, set_default_help)->capture_default_str();
+  app->add_option("--grammar", o->grammar,
+                  "read moves with this Phoenix grammar (.gra) instead of the project's (e.g. "
+                  "../shared/peer/climbing.gra, the original system's); recorded in the model");
+  app->add_option("--frames", o->frames, "frames file for --grammar [frames beside it]");
+  app->add_flag("--phoenix", o->phoenix,
+                "Phoenix tokenization and the original symbolizer's rules (as the original "
+                "system read moves); recorded in the model");
 }
 
 struct SpecOptions {
@@ -234,25 +266,36 @@ Result<ModelSpec> MakeSpec(const SpecOptions& o) {
   spec.algorithm = *alg;
   spec.depth = o.depth;
   spec.alpha = o.alpha;
+  // Ranges are checked before any input is read (the alphabet is set later).
+  if (Status st = markov::ValidateSpec(spec); !st.ok()) {
+    return Status::InvalidInput("--depth/--alpha: " + st.message());
+  }
   return spec;
 }
 
 int Train(const SpecOptions& so, int alphabet, const std::string& out, const std::string& file,
-          const std::string& group_by, const std::string& corpus, const std::string& set,
+          const std::string& group_by, const std::string& corpus, const SourceOptions& source,
           const std::vector<std::string>& route_files) {
+  const plan::SymbolSource src = source.Source();
+  if (route_files.empty() && corpus.empty() &&
+      (!source.grammar.empty() || !source.frames.empty() || source.phoenix)) {
+    return Fail(kCmd, Status::InvalidInput(
+                          "--grammar, --frames and --phoenix read moves: use them with --routes "
+                          "or --corpus"));
+  }
   auto spec = MakeSpec(so);
   if (!spec.ok()) return Fail(kCmd, spec.status());
   if (!route_files.empty()) {
     if (!file.empty() || !corpus.empty() || !group_by.empty() || alphabet > 0) {
-      return Fail(kCmd, Status::InvalidInput(
-                            "--routes trains on CRDL files alone: drop FILE, --corpus, "
-                            "--group-by and --alphabet"));
+      return Fail(kCmd,
+                  Status::InvalidInput("--routes trains on CRDL files alone: drop FILE, --corpus, "
+                                       "--group-by and --alphabet"));
     }
-    auto toks = RouteFileSymbols(route_files, set);
+    auto toks = RouteFileSymbols(route_files, src);
     if (!toks.ok()) return Fail(kCmd, toks.status());
     auto m = TokenModel::FromTokens(*spec, *toks);
     if (!m.ok()) return Fail(kCmd, m.status());
-    m->set_metadata(SymbolMetadata(set));
+    if (Status st = SetSymbolMetadata(src, &*m); !st.ok()) return Fail(kCmd, st);
     Status s = markov::SaveModel(*m, out);
     if (!s.ok()) return Fail(kCmd, s);
     std::fprintf(stderr, "trained %s, depth %d, alphabet %d on %zu symbols of %zu routes -> %s\n",
@@ -264,13 +307,17 @@ int Train(const SpecOptions& so, int alphabet, const std::string& out, const std
     if (alphabet > 0) {
       return Fail(kCmd, Status::InvalidInput("--group-by: --alphabet is not supported"));
     }
-    auto routes = LoadLabelled(group_by, corpus, set, file);
+    auto routes = LoadLabelled(group_by, corpus, src, file);
     if (!routes.ok()) return Fail(kCmd, routes.status());
     auto groups = markov::TrainGroups(*routes, *spec);
     if (!groups.ok()) return Fail(kCmd, groups.status());
     ::mkdir(out.c_str(), 0777);
     for (size_t i = 0; i < groups->labels.size(); ++i) {
-      if (group_by != "label") groups->models[i].set_metadata(SymbolMetadata(set));
+      if (group_by != "label") {
+        if (Status st = SetSymbolMetadata(src, &groups->models[i]); !st.ok()) {
+          return Fail(kCmd, st);
+        }
+      }
       const std::string path = out + "/" + SafeFileName(groups->labels[i]) + ".sbm";
       Status s = markov::SaveModel(groups->models[i], path);
       if (!s.ok()) return Fail(kCmd, s);
@@ -284,13 +331,13 @@ int Train(const SpecOptions& so, int alphabet, const std::string& out, const std
       return Fail(kCmd, Status::InvalidInput("give either FILE or --corpus, not both"));
     if (alphabet > 0)
       return Fail(kCmd, Status::InvalidInput("--corpus: --alphabet is not supported"));
-    auto routes = CorpusRoutes(corpus, "", set);
+    auto routes = CorpusRoutes(corpus, "", src);
     if (!routes.ok()) return Fail(kCmd, routes.status());
     std::vector<std::string> toks;
     for (const auto& r : *routes) toks.insert(toks.end(), r.tokens.begin(), r.tokens.end());
     auto m = TokenModel::FromTokens(*spec, toks);
     if (!m.ok()) return Fail(kCmd, m.status());
-    m->set_metadata(SymbolMetadata(set));
+    if (Status st = SetSymbolMetadata(src, &*m); !st.ok()) return Fail(kCmd, st);
     Status s = markov::SaveModel(*m, out);
     if (!s.ok()) return Fail(kCmd, s);
     std::fprintf(stderr,
@@ -356,39 +403,67 @@ Result<std::vector<int32_t>> EncodeArg(const TokenModel& m, const std::string& t
   return Encode(m, toks, field);
 }
 
-int Generate(const std::string& model_path, int length, const std::string& start,
-             const uint64_t* seed) {
+int Generate(const std::string& model_path, const markov::GenerateOptions& opt,
+             const std::string& start, const std::string& format) {
+  if (Status st = markov::ValidateGenerateOptions(opt); !st.ok()) return Fail(kCmd, st);
   auto m = markov::LoadModel(model_path);
   if (!m.ok()) return Fail(kCmd, m.status());
-  if (length < 0) return Fail(kCmd, Status::InvalidInput("--length must be >= 0"));
+  std::optional<language::MoveLanguage> lang;
+  if (format != "tokens") {
+    auto src = plan::CheckSmoothingModel(*m, model_path);
+    if (!src.ok()) {
+      return Fail(
+          kCmd, Status::InvalidInput("--format " + format +
+                                     " needs a model of move symbols: " + src.status().message()));
+    }
+    auto l = plan::LoadSymbolLanguage(*src);
+    if (!l.ok()) return Fail(kCmd, l.status());
+    lang.emplace(std::move(l).value());
+  }
   auto ids = EncodeArg(*m, start, "--start");
   if (!ids.ok()) return Fail(kCmd, ids.status());
-  markov::GenerateOptions opt;
-  opt.length = length;
-  opt.sample = seed != nullptr;
-  if (seed) opt.seed = *seed;
   const auto gen = markov::Generate(m->model(), *ids, opt);
   std::string out;
-  for (size_t i = 0; i < gen.size(); ++i) {
-    if (i) out += ' ';
-    out += m->Decode(gen[i]);
+  if (format == "tokens") {
+    for (size_t i = 0; i < gen.size(); ++i) {
+      if (i) out += ' ';
+      out += m->Decode(gen[i]);
+    }
+    out += '\n';
+  } else if (format == "readable") {
+    for (int32_t id : gen) out += language::DescribeSymbol(m->Decode(id)) + "\n";
+  } else {  // crdl: hands alternate from R; a move the grammar reads back to the symbol
+    out = "name: generated\nsetter: strangebeta model generate\n---\n";
+    for (size_t i = 0; i < gen.size(); ++i) {
+      std::string text = lang->MoveText(m->Decode(gen[i]));
+      if (text.empty()) text = "move";
+      out += std::string(i % 2 == 0 ? "R " : "L ") + text + "\n";
+    }
+    if (gen.empty()) return Fail(kCmd, Status::InvalidInput("--format crdl needs --length >= 1"));
   }
-  out += '\n';
   return WriteOutput(kCmd, "-", out);
 }
 
 int Interpolate(const std::string& model_path, const std::string& before, const std::string& after,
-                int max_insert) {
+                int max_insert, int exactly) {
+  if (exactly >= 0 && max_insert >= 0) {
+    return Fail(kCmd, Status::InvalidInput("give --max-insert or --exactly, not both"));
+  }
+  markov::InsertionOptions opt;
+  opt.max_insert = exactly >= 0 ? exactly : (max_insert >= 0 ? max_insert : 2);
+  opt.exactly = exactly >= 0;
+  if (opt.max_insert > markov::kMaxInsert) {
+    return Fail(kCmd, Status::InvalidInput(std::string(opt.exactly ? "--exactly" : "--max-insert") +
+                                           " must be in 0.." + std::to_string(markov::kMaxInsert)));
+  }
   auto m = markov::LoadModel(model_path);
   if (!m.ok()) return Fail(kCmd, m.status());
   auto b = EncodeArg(*m, before, "--before");
   if (!b.ok()) return Fail(kCmd, b.status());
   auto a = EncodeArg(*m, after, "--after");
   if (!a.ok()) return Fail(kCmd, a.status());
-  markov::InsertionOptions opt;
-  opt.max_insert = max_insert;
   auto r = markov::BestInsertion(m->model(), *b, *a, opt);
-  if (!r.ok()) return Fail(kCmd, Status::InvalidInput("--max-insert: " + r.status().message()));
+  if (!r.ok()) return Fail(kCmd, r.status());
   std::string out = "insert:";
   for (int32_t id : r->inserted) out += " " + m->Decode(id);
   out += "\nbits_without: " + Fmt(r->baseline_bits) + "\nbits_with: " + Fmt(r->bits) +
@@ -462,157 +537,196 @@ int ClassifyWithModels(const std::vector<std::string>& paths, bool labelled,
 }
 
 int CrossValidate(const SpecOptions& so, int folds, const std::string& file,
-                  const std::string& group_by, const std::string& corpus, const std::string& set) {
+                  const std::string& group_by, const std::string& corpus,
+                  const SourceOptions& source) {
+  if (folds < 2 || folds > kMaxFolds) {
+    return Fail(kCmd, Status::InvalidInput("--folds must be in 2.." + std::to_string(kMaxFolds)));
+  }
   auto spec = MakeSpec(so);
   if (!spec.ok()) return Fail(kCmd, spec.status());
-  auto routes = LoadLabelled(group_by.empty() ? "label" : group_by, corpus, set, file);
+  auto routes = LoadLabelled(group_by.empty() ? "label" : group_by, corpus, source.Source(), file);
   if (!routes.ok()) return Fail(kCmd, routes.status());
   auto rep = markov::CrossValidate(*routes, *spec, folds);
   if (!rep.ok()) return Fail(kCmd, rep.status());
   return WriteOutput(kCmd, "-", markov::FormatReport(*rep));
 }
 
-}  // namespace
-
-int RunModel(const std::vector<std::string>& args) {
+int RunTrain(const std::vector<std::string>& args) {
   CLI::App app{
-      "Variable-order Markov models over symbol sequences (DE-CTW as in the Strange Beta\n"
-      "paper, PPM-C, a Markov chain): train, score, generate, interpolate, classify.\n"
-      "Input files hold whitespace-separated tokens; '-' or no FILE reads stdin.\n"
-      "See docs/markov.md.",
-      "strangebeta model"};
-  app.require_subcommand(1);
-
-  // train
-  CLI::App* train = app.add_subcommand(
-      "train",
-      "Train a model. All lines of FILE are concatenated, in order, into one training "
-      "sequence (as the reference did). Without --alphabet tokens are strings and the "
-      "vocabulary is stored in the model (with one extra id for unknown tokens).");
-  SpecOptions train_spec;
-  AddSpecOptions(train, &train_spec);
+      "Train a model and write the model file (docs/formats.md). From a token FILE: all "
+      "lines are concatenated, in order, into one training sequence (as the reference did); "
+      "without --alphabet tokens are strings and the vocabulary is stored in the model (with "
+      "one extra id for unknown tokens). From --routes or --corpus: moves are read by a "
+      "grammar into symbols of set --symbols, and the grammar is recorded for vary --smooth.",
+      "strangebeta model train"};
+  SpecOptions spec;
+  AddSpecOptions(&app, &spec);
   int alphabet = 0;
-  std::string train_out, train_file, group_by;
-  train
-      ->add_option("--alphabet", alphabet,
-                   "K: tokens are integer ids in [0, K) used as they are (interop with the "
-                   "reference); 0 = string tokens")
-      ->capture_default_str();
-  train->add_option("--out", train_out, "model file to write (with --group-by: a directory)")
-      ->required();
-  std::string corpus, symbol_set = "k1";
-  train->add_option("--group-by", group_by,
-                    "one model per group, written to DIR/<group>.sbm: 'user' or 'grade' (with "
-                    "--corpus), or 'label' (FILE is a labelled token file: label<TAB>tokens per "
-                    "route) [off]");
-  train->add_option("--corpus", corpus,
-                    "train on the original site's CSV export in DIR (public_routes.csv, "
-                    "public_moves.csv), moves symbolized with the project's grammar [off]");
+  std::string out, file, group_by, corpus;
   std::vector<std::string> route_files;
-  train->add_option("--routes", route_files,
-                    "train on the moves of these CRDL route files, symbolized with the "
-                    "project's grammar (how data/models/default.sbm is made) [off]");
-  train->add_option("--symbols", symbol_set,
-                    "symbol set for --corpus and --routes: k1, k2, k3 or k4 (stored in the "
-                    "model for vary --smooth)")
-      ->capture_default_str();
-  train->add_option("file", train_file, "token file [stdin]");
+  SourceOptions source;
+  app.add_option("--alphabet", alphabet,
+                 "K (2..1000000): tokens are integer ids in [0, K) used as they are (interop "
+                 "with the reference); 0 = string tokens")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1000000));
+  app.add_option("--out", out, "model file to write (with --group-by: a directory)")->required();
+  app.add_option("--group-by", group_by,
+                 "one model per group, written to DIR/<group>.sbm: 'user' or 'grade' (with "
+                 "--corpus), or 'label' (FILE is a labelled token file: label<TAB>tokens per "
+                 "route) [off]");
+  app.add_option("--corpus", corpus,
+                 "train on the original site's CSV export in DIR (public_routes.csv, "
+                 "public_moves.csv), moves read by the grammar [off]");
+  app.add_option("--routes", route_files,
+                 "train on the moves of these CRDL route files, read by the grammar (how "
+                 "data/models/default.sbm is made) [off]");
+  AddSourceOptions(&app, &source,
+                   "symbol set for --corpus and --routes: k1, k2, k3 or k4 (stored in the model "
+                   "for vary --smooth)");
+  app.add_option("file", file, "token file [stdin]");
+  if (int rc = ParseArgs(app, args); rc >= 0) return rc;
+  return Train(spec, alphabet, out, file, group_by, corpus, source, route_files);
+}
 
-  // score
-  CLI::App* score = app.add_subcommand(
-      "score",
-      "Print for each input line its total -log2 P (bits, scored from an empty context), one "
-      "number per line (%.17g). Empty lines print 0 (nan with --average).");
-  std::string score_model, score_file;
+int RunScore(const std::vector<std::string>& args) {
+  CLI::App app{
+      "Print for each input line its total -log2 P (bits, scored from an empty "
+      "context), one number per line (%.17g). Empty lines print 0 (nan with --average).",
+      "strangebeta model score"};
+  std::string model, file;
   bool average = false;
-  score->add_option("--model", score_model, "model file")->required();
-  score->add_flag("--average", average, "print bits per symbol instead of total bits [off]");
-  score->add_option("file", score_file, "token lines [stdin]");
+  app.add_option("--model", model, "model file")->required();
+  app.add_flag("--average", average, "print bits per symbol instead of total bits [off]");
+  app.add_option("file", file, "token lines [stdin]");
+  if (int rc = ParseArgs(app, args); rc >= 0) return rc;
+  return Score(model, average, file);
+}
 
-  // generate
-  CLI::App* gen = app.add_subcommand(
-      "generate",
+int RunGenerate(const std::vector<std::string>& args) {
+  CLI::App app{
       "Forward simulation: print --length tokens that follow --start. Greedy (most likely) "
-      "unless --seed is given, then sampled (deterministic for a seed).");
-  std::string gen_model, gen_start;
-  int length = 10;
+      "unless --seed is given, then sampled (deterministic for a seed; --temperature). No "
+      "symbol is repeated more than --max-run times in a row (greedy generation from a "
+      "peaked model otherwise collapses into one repeated symbol), and --no-repeat-ngram N "
+      "forbids repeating any N-gram. --format readable or crdl writes the symbols of a move "
+      "model as readable moves or as a CRDL route.",
+      "strangebeta model generate"};
+  std::string model, start, format = "tokens";
+  markov::GenerateOptions opt;
   uint64_t seed = 0;
-  gen->add_option("--model", gen_model, "model file")->required();
-  gen->add_option("--length", length, "number of tokens to generate")->capture_default_str();
-  gen->add_option("--start", gen_start, "context tokens (space-separated) [empty]");
-  CLI::Option* seed_opt = gen->add_option("--seed", seed, "sample with this PRNG seed [greedy]");
-
-  // interpolate
-  CLI::App* interp = app.add_subcommand(
-      "interpolate",
-      "Exact best insertion of 0..j tokens between --before and --after, minimising "
-      "-log2 P(before + inserted + after). Prints 'insert: ...', bits_without, bits_with, "
-      "bits_saved.");
-  std::string in_model, in_before, in_after;
-  int max_insert = 2;
-  interp->add_option("--model", in_model, "model file")->required();
-  interp->add_option("--before", in_before, "tokens before the boundary [empty]");
-  interp->add_option("--after", in_after, "tokens after the boundary [empty]");
-  interp->add_option("--max-insert", max_insert, "j, at most this many tokens (0..4)")
+  app.add_option("--model", model, "model file")->required();
+  app.add_option(
+         "--length", opt.length,
+         "number of tokens to generate (0.." + std::to_string(markov::kMaxGenerateLength) + ")")
       ->capture_default_str();
+  app.add_option("--start", start, "context tokens (space-separated) [empty]");
+  CLI::Option* seed_opt = app.add_option("--seed", seed, "sample with this PRNG seed [greedy]");
+  app.add_option("--temperature", opt.temperature,
+                 "sampling: draw from P^(1/T); < 1 sharper, > 1 flatter (0 < T <= 100)")
+      ->capture_default_str();
+  app.add_option("--max-run", opt.max_run, "at most this many equal tokens in a row (0 = no limit)")
+      ->capture_default_str();
+  app.add_option("--no-repeat-ngram", opt.no_repeat_ngram,
+                 "never repeat an n-gram of this length (2.." +
+                     std::to_string(markov::kMaxNoRepeatNgram) + "; 0 = off)")
+      ->capture_default_str();
+  app.add_option("--format", format,
+                 "tokens; readable (one move a line, in words); crdl (a route: hands "
+                 "alternate from R; needs a model of move symbols)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"tokens", "readable", "crdl"}));
+  if (int rc = ParseArgs(app, args); rc >= 0) return rc;
+  opt.sample = seed_opt->count() > 0;
+  if (opt.sample) opt.seed = seed;
+  return Generate(model, opt, start, format);
+}
 
-  // classify
-  CLI::App* cls = app.add_subcommand(
-      "classify",
+int RunInterpolate(const std::vector<std::string>& args) {
+  CLI::App app{
+      "Exact best insertion of 0..j tokens (--max-insert j, default 2) or of exactly J tokens "
+      "(--exactly J: the paper's N^J search, even when inserting nothing would be cheaper) "
+      "between --before and --after, minimising -log2 P(before + inserted + after). Prints "
+      "'insert: ...', bits_without, bits_with, bits_saved.",
+      "strangebeta model interpolate"};
+  std::string model, before, after;
+  int max_insert = -1, exactly = -1;
+  app.add_option("--model", model, "model file")->required();
+  app.add_option("--before", before, "tokens before the boundary [empty]");
+  app.add_option("--after", after, "tokens after the boundary [empty]");
+  app.add_option("--max-insert", max_insert, "j: at most this many tokens (0..4) [2]")
+      ->check(CLI::Range(0, markov::kMaxInsert));
+  app.add_option("--exactly", exactly, "J: exactly this many tokens (0..4)")
+      ->check(CLI::Range(0, markov::kMaxInsert));
+  if (int rc = ParseArgs(app, args); rc >= 0) return rc;
+  return Interpolate(model, before, after, max_insert, exactly);
+}
+
+int RunClassify(const std::vector<std::string>& args) {
+  CLI::App app{
       "Recognition: which model gives a route the fewest bits per symbol. With --models, "
       "prints 'label<TAB>bits_per_symbol' per input line (label = model file name without "
       "extension; with --labelled also the true label and a final accuracy line). With "
       "--cross-validate, trains per-label models (a labelled file, or --corpus grouped by "
-      "user or grade) and prints a k-fold accuracy report.");
-  std::vector<std::string> cls_models;
+      "user or grade) and prints a k-fold accuracy report.",
+      "strangebeta model classify"};
+  std::vector<std::string> models;
   bool labelled = false, cross = false;
   int folds = 5;
-  std::string cls_file;
-  SpecOptions cls_spec;
+  std::string file, group = "label", corpus;
+  SpecOptions spec;
+  SourceOptions source;
   // One argument per occurrence (split at commas), so that a FILE after
   // --models M1,M2 is the input and not a third model.
-  cls->add_option("--models", cls_models, "model files (comma-separated or repeated)")
+  app.add_option("--models", models, "model files (comma-separated or repeated)")
       ->delimiter(',')
       ->allow_extra_args(false);
-  cls->add_flag("--labelled", labelled, "input is a labelled token file [off]");
-  cls->add_flag("--cross-validate", cross, "cross-validate per-label models on FILE [off]");
-  cls->add_option("--folds", folds, "k for --cross-validate (route i is in fold i mod k)")
+  app.add_flag("--labelled", labelled, "input is a labelled token file [off]");
+  app.add_flag("--cross-validate", cross, "cross-validate per-label models on FILE [off]");
+  app.add_option("--folds", folds,
+                 "k for --cross-validate, 2.." + std::to_string(kMaxFolds) +
+                     " (route i is in fold i mod k)")
       ->capture_default_str();
-  std::string cls_group = "label", cls_corpus, cls_set = "k1";
-  cls->add_option("--group-by", cls_group,
-                  "labels for --cross-validate: 'label' (FILE is labelled), or 'user' / 'grade' "
-                  "(with --corpus)")
+  app.add_option("--group-by", group,
+                 "labels for --cross-validate: 'label' (FILE is labelled), or 'user' / 'grade' "
+                 "(with --corpus)")
       ->capture_default_str();
-  cls->add_option("--corpus", cls_corpus, "the site's CSV export directory for user/grade [off]");
-  cls->add_option("--symbols", cls_set, "symbol set for --corpus: k1..k4")->capture_default_str();
-  AddSpecOptions(cls, &cls_spec);
-  cls->add_option("file", cls_file, "input [stdin]");
-
+  app.add_option("--corpus", corpus, "the site's CSV export directory for user/grade [off]");
+  AddSourceOptions(&app, &source, "symbol set for --corpus: k1..k4");
+  AddSpecOptions(&app, &spec);
+  app.add_option("file", file, "input [stdin]");
   if (int rc = ParseArgs(app, args); rc >= 0) return rc;
+  if (cross) {
+    if (!models.empty()) {
+      return Fail(kCmd,
+                  Status::InvalidInput("--cross-validate trains its own models; drop --models"));
+    }
+    return CrossValidate(spec, folds, file, group, corpus, source);
+  }
+  if (models.empty()) {
+    return Fail(kCmd, Status::InvalidInput("classify needs --models or --cross-validate"));
+  }
+  return ClassifyWithModels(models, labelled, file);
+}
 
-  if (train->parsed()) {
-    return Train(train_spec, alphabet, train_out, train_file, group_by, corpus, symbol_set,
-                 route_files);
-  }
-  if (score->parsed()) return Score(score_model, average, score_file);
-  if (gen->parsed()) {
-    return Generate(gen_model, length, gen_start, seed_opt->count() > 0 ? &seed : nullptr);
-  }
-  if (interp->parsed()) return Interpolate(in_model, in_before, in_after, max_insert);
-  if (cls->parsed()) {
-    if (cross) {
-      if (!cls_models.empty()) {
-        return Fail(kCmd,
-                    Status::InvalidInput("--cross-validate trains its own models; drop --models"));
-      }
-      return CrossValidate(cls_spec, folds, cls_file, cls_group, cls_corpus, cls_set);
-    }
-    if (cls_models.empty()) {
-      return Fail(kCmd, Status::InvalidInput("classify needs --models or --cross-validate"));
-    }
-    return ClassifyWithModels(cls_models, labelled, cls_file);
-  }
-  return 2;
+}  // namespace
+
+int RunModel(const std::vector<std::string>& args) {
+  static const Subcommand kTable[] = {
+      {"train", "train a model on tokens, CRDL routes or the site corpus", RunTrain},
+      {"score", "bits (-log2 P) of token lines", RunScore},
+      {"generate", "forward simulation (greedy or sampled; tokens, readable moves or CRDL)",
+       RunGenerate},
+      {"interpolate", "the best insertion of up to j (or exactly J) tokens at a boundary",
+       RunInterpolate},
+      {"classify", "recognition with per-label models; cross-validation", RunClassify},
+  };
+  return RunSubcommands(
+      kCmd,
+      "Variable-order Markov models over symbol sequences (DE-CTW as in the Strange Beta\n"
+      "paper, PPM-C, a Markov chain). Input files hold whitespace-separated tokens; '-' or no\n"
+      "FILE reads stdin. See docs/markov.md.",
+      kTable, args);
 }
 
 }  // namespace sb::cli

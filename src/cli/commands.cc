@@ -23,6 +23,8 @@ const Command kCommands[] = {
      RunGrade},
     {"difficulty", "per-move difficulty estimate: train, evaluate (cross-validated), show",
      RunDifficulty},
+    {"graph", "feature-wise transition graphs and A* interpolation (the dance method)",
+     RunGraph},
     {"serve", "run the web app", RunServe},
 };
 

@@ -32,6 +32,7 @@ int RunPick(const std::vector<std::string>& args);
 int RunParse(const std::vector<std::string>& args);
 int RunSymbols(const std::vector<std::string>& args);
 int RunModel(const std::vector<std::string>& args);
+int RunGraph(const std::vector<std::string>& args);
 int RunServe(const std::vector<std::string>& args);
 int RunCheck(const std::vector<std::string>& args);
 int RunStudy(const std::vector<std::string>& args);

@@ -16,11 +16,15 @@
 #include <string>
 #include <vector>
 
+#include "base/files.h"
 #include "cli/commands.h"
+#include "crdl/route.h"
 #include "markov/token_model.h"
 
 namespace sb::cli {
 namespace {
+
+std::string FindShared() { return sb::FindSharedDir(SB_SHARED_DIR); }
 
 std::string Slurp(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -415,6 +419,87 @@ TEST_F(ModelCli, TrainOnRouteFilesStoresTheSymbolSet) {
   EXPECT_FALSE(std::filesystem::exists(P("x.sbm")));
 }
 
+// The original grammar (../shared/peer) can read the moves too; the model
+// records it, and generation writes moves in its words.
+TEST_F(ModelCli, TrainWithThePhoenixGrammarRecordsIt) {
+  const std::string shared = FindShared();
+  if (shared.empty()) GTEST_SKIP() << "../shared not found";
+  const std::string gra = shared + "/peer/climbing.gra";
+  const std::string ex = std::string(SB_SOURCE_DIR) + "/data/examples/";
+  ASSERT_EQ(Run({"train", "--depth", "2", "--symbols", "k1", "--phoenix", "--grammar", gra, "--out",
+                 P("peer.sbm"), "--routes", ex + "crimp-ladder.crdl", ex + "roof-jugs.crdl"}),
+            0)
+      << err_;
+  auto m = markov::LoadModel(P("peer.sbm"));
+  ASSERT_TRUE(m.ok());
+  EXPECT_EQ(m->metadata().at("grammar"), gra);
+  EXPECT_EQ(m->metadata().at("tokenization"), "phoenix");
+  EXPECT_EQ(m->metadata().at("grammar_checksum").size(), 16u);
+  EXPECT_EQ(m->metadata().at("frames"), shared + "/peer/frames");
+  // The peer grammar's hold types are [HoldTypeT] words.
+  bool peer_style = false;
+  for (const std::string& t : m->vocabulary().tokens())
+    peer_style |= t.find("[HoldTypeT]") != std::string::npos;
+  EXPECT_TRUE(peer_style);
+  ASSERT_EQ(Run({"generate", "--model", P("peer.sbm"), "--length", "4", "--format", "crdl"}), 0)
+      << err_;
+  EXPECT_EQ(out_.find("name: generated\n"), 0u) << out_;
+  // --grammar without --routes/--corpus reads no moves.
+  EXPECT_EQ(Run({"train", "--grammar", gra, "--out", P("x.sbm"), P("train.txt")}), 2);
+  EXPECT_NE(err_.find("--routes or --corpus"), std::string::npos) << err_;
+}
+
+TEST_F(ModelCli, GenerateReadableAndCrdl) {
+  const std::string ex = std::string(SB_SOURCE_DIR) + "/data/examples/";
+  std::vector<std::string> args = {"train", "--depth", "2",         "--symbols",
+                                   "k3",    "--out",   P("k3.sbm"), "--routes"};
+  for (const char* f : {"crimp-ladder", "roof-jugs", "slab-dance", "sloper-arete"})
+    args.push_back(ex + f + ".crdl");
+  ASSERT_EQ(Run(args), 0) << err_;
+  ASSERT_EQ(
+      Run({"generate", "--model", P("k3.sbm"), "--length", "8", "--format", "crdl", "--seed", "3"}),
+      0)
+      << err_;
+  const std::string crdl = out_;
+  // The CRDL parses: check it with the route reader.
+  Write("gen.crdl", crdl);
+  auto route = ReadCrdlFile(P("gen.crdl"));
+  ASSERT_TRUE(route.ok()) << route.status().message() << "\n" << crdl;
+  EXPECT_EQ(route->moves.size(), 8u);
+  ASSERT_EQ(Run({"generate", "--model", P("k3.sbm"), "--length", "8", "--format", "readable",
+                 "--seed", "3"}),
+            0);
+  EXPECT_EQ(Lines(out_).size(), 8u);
+  // Greedy never repeats a symbol more than twice in a row by default.
+  ASSERT_EQ(Run({"generate", "--model", P("k3.sbm"), "--length", "40"}), 0);
+  const auto w = Words(out_);
+  for (size_t i = 2; i < w.size(); ++i) EXPECT_FALSE(w[i] == w[i - 1] && w[i] == w[i - 2]);
+  // A plain token model cannot be written as moves; limits are checked first.
+  Train("dectw", "train.txt", "m.sbm", 2);
+  EXPECT_EQ(Run({"generate", "--model", P("m.sbm"), "--format", "crdl"}), 2);
+  EXPECT_NE(err_.find("needs a model of move symbols"), std::string::npos) << err_;
+  EXPECT_EQ(Run({"generate", "--model", P("missing.sbm"), "--length", "2000000"}), 2);
+  EXPECT_NE(err_.find("--length must be in 0..1000000"), std::string::npos) << err_;
+  EXPECT_EQ(Run({"generate", "--model", P("m.sbm"), "--temperature", "0"}), 2);
+  EXPECT_EQ(Run({"generate", "--model", P("m.sbm"), "--no-repeat-ngram", "1"}), 2);
+}
+
+TEST_F(ModelCli, InterpolateExactly) {
+  Write("t.txt", "a b c d a b c d a c b d b b a c d d a b c d c a b d a\n");
+  Train("dectw", "t.txt", "m.sbm", 2);
+  for (const char* j : {"0", "1", "2"}) {
+    ASSERT_EQ(Run({"interpolate", "--model", P("m.sbm"), "--before", "a b", "--after", "c d",
+                   "--exactly", j}),
+              0)
+        << err_;
+    const auto lines = Lines(out_);
+    EXPECT_EQ(Words(lines[0]).size(), 1u + std::stoul(j)) << lines[0];
+  }
+  EXPECT_EQ(Run({"interpolate", "--model", P("m.sbm"), "--exactly", "5"}), 2);
+  EXPECT_EQ(Run({"interpolate", "--model", P("m.sbm"), "--exactly", "1", "--max-insert", "1"}), 2);
+  EXPECT_NE(err_.find("not both"), std::string::npos) << err_;
+}
+
 TEST_F(ModelCli, ClassifyPicksTheRightModel) {
   std::string ab, cd;
   for (int i = 0; i < 30; ++i) {
@@ -513,10 +598,11 @@ TEST_F(ModelCli, UsageErrorsAndHelp) {
   ASSERT_EQ(Run({"score", "--help"}), 0);
   EXPECT_NE(out_.find("--average"), std::string::npos);
   ASSERT_EQ(Run({"generate", "--help"}), 0);
-  for (const char* opt : {"--model", "--length", "--start", "--seed"})
+  for (const char* opt : {"--model", "--length", "--start", "--seed", "--temperature", "--max-run",
+                          "--no-repeat-ngram", "--format"})
     EXPECT_NE(out_.find(opt), std::string::npos) << "generate " << opt;
   ASSERT_EQ(Run({"interpolate", "--help"}), 0);
-  for (const char* opt : {"--model", "--before", "--after", "--max-insert"})
+  for (const char* opt : {"--model", "--before", "--after", "--max-insert", "--exactly"})
     EXPECT_NE(out_.find(opt), std::string::npos) << "interpolate " << opt;
   ASSERT_EQ(Run({"classify", "--help"}), 0);
   for (const char* opt : {"--models", "--labelled", "--cross-validate", "--folds", "--group-by"})

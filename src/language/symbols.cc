@@ -1,15 +1,15 @@
 #include "language/symbols.h"
 
-#include "base/files.h"
-
 #include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <set>
 
+#include "base/files.h"
 #include "base/text.h"
 
 namespace sb::language {
@@ -88,6 +88,22 @@ void Walk(const ParseNode& n, MoveFeatures* f, std::set<TypeKey>* types) {
   } else if (n.net == "ActionSizeBig" || n.net == "ActionVerbBig") {
     f->big_move = true;
   }
+  if (f->verb.empty()) {
+    if (n.net == "ActionVerbSmall")
+      f->verb = "move";
+    else if (n.net == "ActionVerbBig")
+      f->verb = "dyno";
+    else if (n.net == "Cross")
+      f->verb = "cross";
+    else if (n.net == "FootWork")
+      f->verb = "footwork";
+  }
+  if (f->move_size.empty()) {
+    if (n.net == "ActionSizeBig")
+      f->move_size = "big";
+    else if (n.net == "ActionSizeSmall")
+      f->move_size = "small";
+  }
   for (const ParseNode& c : n.children) Walk(c, f, types);
 }
 
@@ -98,8 +114,25 @@ std::string ReadableNet(std::string_view net) {
   return ToLower(net);
 }
 
-// "[HoldType].[HoldTypeT].crimp" -> "crimp", "[HoldType].[SidePull]" -> "sidepull",
-// "[HoldSize].[HoldSizeSmall].[HoldSizeSmallT].small" -> "small".
+// The "[HoldType]..." elements of a k1 string.
+std::vector<std::string_view> TypeElements(std::string_view types) {
+  std::vector<std::string_view> elems;
+  const std::string marker = ".[HoldType].";
+  size_t pos = 0;
+  while (pos < types.size()) {
+    size_t next = types.find(marker, pos + 1);
+    if (next == std::string_view::npos) {
+      elems.push_back(types.substr(pos));
+      break;
+    }
+    elems.push_back(types.substr(pos, next - pos));
+    pos = next + 1;
+  }
+  return elems;
+}
+
+}  // namespace
+
 std::string ReadableElement(std::string_view e) {
   size_t close = e.rfind(']');
   if (close == std::string_view::npos) return std::string(e);
@@ -108,9 +141,7 @@ std::string ReadableElement(std::string_view e) {
   return ReadableNet(e.substr(open + 1, close - open - 1));
 }
 
-}  // namespace
-
-MoveFeatures ExtractFeatures(const ParseResult& result) {
+MoveFeatures ExtractFeatures(const ParseResult& result, SymbolStyle style) {
   MoveFeatures f;
   if (!result.ok()) return f;
   f.parsed = true;
@@ -132,6 +163,16 @@ MoveFeatures ExtractFeatures(const ParseResult& result) {
       generic_done = true;
     }
     printed.push_back(t.printed);
+  }
+  // The project's symbols name each printed type once ("finish on top":
+  // [Mantle] 'finish' and [Mantle] 'top' are one mantle); the original
+  // symbolizer printed one entry per distinct net and first word.
+  if (style == SymbolStyle::kProject) {
+    std::vector<std::string> once;
+    for (std::string& p : printed) {
+      if (std::find(once.begin(), once.end(), p) == once.end()) once.push_back(std::move(p));
+    }
+    printed = std::move(once);
   }
   // A move that names an action but no hold ("bump right", "long left",
   // "dyno") goes to the next hold. Never happens with the original grammar,
@@ -168,36 +209,43 @@ Symbols MakeSymbols(const MoveFeatures& f) {
   return s;
 }
 
-Symbols Symbolize(const ParseResult& result) { return MakeSymbols(ExtractFeatures(result)); }
+Symbols Symbolize(const ParseResult& result, SymbolStyle style) {
+  return MakeSymbols(ExtractFeatures(result, style));
+}
+
+namespace {
+
+// The parts of a k1..k4 symbol: types[:size:shape][:flags].
+struct SymbolParts {
+  std::string_view types, size, shape, flags;
+};
+
+// False when `symbol` has more than four ':'-separated parts.
+bool SplitSymbol(std::string_view symbol, SymbolParts* p) {
+  std::vector<std::string_view> parts = Split(symbol, ':');
+  if (parts.size() > 4) return false;
+  p->types = parts[0];
+  if (parts.size() >= 3) {
+    p->size = parts[1];
+    p->shape = parts[2];
+    if (parts.size() == 4) p->flags = parts[3];
+  } else if (parts.size() == 2) {
+    p->flags = parts[1];
+  }
+  return true;
+}
+
+}  // namespace
 
 std::string DescribeSymbol(std::string_view symbol) {
   if (symbol == kNoParse) return "no parse";
-  std::vector<std::string_view> parts = Split(symbol, ':');
-  if (parts.size() > 4) return std::string(symbol);
-  std::string_view types = parts[0], size, shape, flags;
-  if (parts.size() >= 3) {
-    size = parts[1];
-    shape = parts[2];
-    if (parts.size() == 4) flags = parts[3];
-  } else if (parts.size() == 2) {
-    flags = parts[1];
-  }
+  SymbolParts sp;
+  if (!SplitSymbol(symbol, &sp)) return std::string(symbol);
+  const std::string_view types = sp.types, size = sp.size, shape = sp.shape, flags = sp.flags;
   std::vector<std::string> out;
   // Types are "[HoldType]..." elements joined by '.'.
   std::string t;
-  size_t pos = 0;
-  const std::string_view marker = "[HoldType].";
-  std::vector<std::string_view> elems;
-  while (pos < types.size()) {
-    size_t next = types.find(std::string(".") + std::string(marker), pos + 1);
-    if (next == std::string_view::npos) {
-      elems.push_back(types.substr(pos));
-      break;
-    }
-    elems.push_back(types.substr(pos, next - pos));
-    pos = next + 1;
-  }
-  for (std::string_view e : elems) {
+  for (std::string_view e : TypeElements(types)) {
     if (!t.empty()) t.push_back('-');
     t += ReadableElement(e);
   }
@@ -220,6 +268,90 @@ std::string DescribeSymbol(std::string_view symbol) {
     r += out[i];
   }
   return r;
+}
+
+namespace {
+
+std::string MoveTextWith(std::string_view symbol,
+                         const std::function<std::string(const std::string&)>& phrase) {
+  if (symbol == kNoParse || symbol.empty()) return "";
+  SymbolParts sp;
+  if (!SplitSymbol(symbol, &sp)) return "";
+  const std::string_view size = sp.size, shape = sp.shape, flags = sp.flags;
+  bool cross = false, big = false, good = false;
+  for (std::string_view fl : Split(flags, '+')) {
+    cross = cross || fl == "CROSS";
+    big = big || fl == "BIG";
+    good = good || fl == "GOOD";
+  }
+  std::string hold;
+  bool match = false, next_hold = false;
+  for (std::string_view e : TypeElements(sp.types)) {
+    std::string r = ReadableElement(e);
+    if (r == "match") {
+      match = true;
+      continue;
+    }
+    if (r == "next-hold") {
+      next_hold = true;
+      continue;
+    }
+    if (!hold.empty()) hold += ' ';
+    hold += phrase(r);
+  }
+  std::string desc;
+  for (std::string_view d : {size, shape}) {
+    if (d.empty()) continue;
+    if (!desc.empty()) desc += ' ';
+    desc += ReadableElement(d);
+  }
+  if (good && desc.empty()) desc = "good";  // k3: the flag without its descriptors
+  std::string action = cross ? (big ? "big cross" : "cross") : (big ? "big move" : "");
+  std::string out = action;
+  if (match && hold.empty() && desc.empty()) return out.empty() ? "match" : out + " match";
+  if (!hold.empty() || !desc.empty()) {
+    const std::string target = (desc.empty() ? "" : desc + " ") + (hold.empty() ? "hold" : hold);
+    out = out.empty() ? target : out + " to " + target;
+  } else if (next_hold && out.empty()) {
+    out = "move";
+  }
+  if (match) out += " and match";
+  return out;
+}
+
+std::string Dashless(const std::string& r) {
+  std::string out = r;
+  for (char& c : out)
+    if (c == '-') c = ' ';
+  return out;
+}
+
+}  // namespace
+
+std::string SymbolToMoveText(std::string_view symbol) { return MoveTextWith(symbol, Dashless); }
+
+std::string MoveLanguage::HoldPhrase(std::string_view readable) const {
+  for (const Net& n : grammar_->nets()) {
+    if (n.is_macro || ReadableNet(n.name) != readable) continue;
+    for (const Rule& r : n.rules) {
+      std::string words;
+      bool ok = !r.elems.empty();
+      for (const RuleElem& e : r.elems) {
+        if (e.kind != RuleElem::Kind::kWord || e.optional || e.repeat) {
+          ok = false;
+          break;
+        }
+        if (!words.empty()) words += ' ';
+        words += grammar_->words()[e.id];
+      }
+      if (ok) return words;
+    }
+  }
+  return Dashless(std::string(readable));
+}
+
+std::string MoveLanguage::MoveText(std::string_view symbol) const {
+  return MoveTextWith(symbol, [this](const std::string& r) { return HoldPhrase(r); });
 }
 
 std::string DefaultGrammarDir() {
@@ -259,7 +391,7 @@ Result<MoveLanguage> MoveLanguage::LoadDir(const std::string& dir, Tokenization 
 MoveReading MoveLanguage::Read(std::string_view move_text) {
   MoveReading r;
   r.parse = parser_->Parse(move_text);
-  r.features = ExtractFeatures(r.parse);
+  r.features = ExtractFeatures(r.parse, style());
   r.symbols = MakeSymbols(r.features);
   return r;
 }

@@ -33,6 +33,17 @@
 
 namespace sb::language {
 
+// How hold types are de-duplicated.
+enum class SymbolStyle {
+  // The project's symbols: one entry per printed hold type, so "finish on
+  // top" (two [Mantle] words) is one mantle, not mantle-mantle.
+  kProject,
+  // The original symbolizer's rule, kept exactly for Phoenix compatibility:
+  // entries are distinct by net and first word, so two words of one
+  // non-[HoldTypeT] net print the type twice.
+  kOriginal,
+};
+
 // The features of one parsed move (section 10.2).
 struct MoveFeatures {
   bool parsed = false;
@@ -48,6 +59,13 @@ struct MoveFeatures {
   bool cross = false;       // a [Cross] action appears
   bool big_move = false;    // an [ActionSizeBig] or [ActionVerbBig] appears
   bool has_action = false;  // an [Action] appears
+  // The class of the first action verb: "move" ([ActionVerbSmall]), "dyno"
+  // ([ActionVerbBig]), "cross" ([Cross]), "footwork" ([FootWork]); "" when
+  // the move has no verb (or the grammar has no such nets).
+  std::string verb;
+  // The first action size: "big" ([ActionSizeBig]), "small"
+  // ([ActionSizeSmall]) or "".
+  std::string move_size;
   // True when the hold is only implied: the move names an action but no hold
   // or match ("bump right"); hold_types is then {"[HoldType].[NextHold]"}.
   bool implied_hold() const {
@@ -66,13 +84,25 @@ struct Symbols {
 // Extracts the features from the first (best) parse of `result`; all slots of
 // that parse are combined into one hybrid move ("right-right-angle-crimp" +
 // "rail" -> crimp-rail). Pure function; thread-safe.
-MoveFeatures ExtractFeatures(const ParseResult& result);
+MoveFeatures ExtractFeatures(const ParseResult& result, SymbolStyle style = SymbolStyle::kProject);
 
 // The symbols of a move, as the original symbolizer wrote them (see top).
 Symbols MakeSymbols(const MoveFeatures& features);
 
-// Shortcut: MakeSymbols(ExtractFeatures(result)).
-Symbols Symbolize(const ParseResult& result);
+// Shortcut: MakeSymbols(ExtractFeatures(result, style)).
+Symbols Symbolize(const ParseResult& result, SymbolStyle style = SymbolStyle::kProject);
+
+// The readable name of one element of a symbol: "[HoldType].[HoldTypeT].crimp"
+// -> "crimp", "[HoldType].[SidePull]" -> "sidepull", "[HoldType].[FootHook]"
+// -> "foot-hook", "[HoldSize].[HoldSizeSmall].[HoldSizeSmallT].small" ->
+// "small". Pure.
+std::string ReadableElement(std::string_view element);
+
+// A move text for a symbol of any set, which the project's grammar reads
+// back to the same hold type(s): "[HoldType].[Crimp].[HoldType].[Rail]:...
+// :[HoldShape]...sloping:BIG" -> "big move to sloping crimp rail". The
+// original symbolizer's net names work too. "NO_PARSE" gives "". Pure.
+std::string SymbolToMoveText(std::string_view symbol);
 
 // A readable form of any k1..k4 symbol string, e.g.
 // "[HoldType].[HoldTypeT].crimp.[HoldType].[HoldTypeT].rail:[HoldSize]
@@ -103,7 +133,8 @@ struct MoveReading {
 class MoveLanguage {
  public:
   // `tokenization`: kFolded for the project's grammar (lower-cases, splits
-  // punctuation), kPhoenix to reproduce the original system exactly.
+  // punctuation), kPhoenix to reproduce the original system exactly (with
+  // kPhoenix the symbols also follow SymbolStyle::kOriginal).
   MoveLanguage(std::shared_ptr<const Grammar> grammar, Tokenization tokenization);
 
   // The project's grammar from DefaultGrammarDir(), folded tokenization.
@@ -121,12 +152,25 @@ class MoveLanguage {
   MoveReading Read(std::string_view move_text);
   // Just the symbols (k1..k4) of one move description.
   Symbols SymbolsOf(std::string_view move_text) { return Read(move_text).symbols; }
+  // Words this grammar reads as the hold type named `readable` (a
+  // ReadableElement name): the first rule of that net made only of words
+  // ("foot-hook" -> "heel hook", "crimp" -> "crimp"); for a name no net
+  // has, the name with '-' as blanks.
+  std::string HoldPhrase(std::string_view readable) const;
+  // SymbolToMoveText with this grammar's phrases for the hold types, so the
+  // text reads back to the same types.
+  std::string MoveText(std::string_view symbol) const;
+
   // "how the grammar understood the move": a one-line readable account, e.g.
   // "jug (big, good-hold) — IsMove: Action 'dyno' + Hold 'big jug'", or "no parse".
   std::string Explain(std::string_view move_text);
 
   const Grammar& grammar() const { return *grammar_; }
   Parser& parser() { return *parser_; }
+  Tokenization tokenization() const { return tokenization_; }
+  SymbolStyle style() const {
+    return tokenization_ == Tokenization::kPhoenix ? SymbolStyle::kOriginal : SymbolStyle::kProject;
+  }
 
  private:
   std::shared_ptr<const Grammar> grammar_;

@@ -195,5 +195,72 @@ TEST(OwnGrammarTest, NonMovesDoNotParse) {
   }
 }
 
+TEST(SymbolsTest, ProjectStyleNamesEachHoldTypeOnce) {
+  // "finish on top": two [Mantle] words. The original symbolizer printed
+  // mantle twice (kept with the Phoenix tokenization); the project's once.
+  auto g = Grammar::FromText(kGra, "t.gra", "Frame: IsMove\n\t[Move]\n;\n", "t.frames");
+  ASSERT_TRUE(g.ok());
+  MoveLanguage original(g.value(), Tokenization::kPhoenix);
+  MoveLanguage project(g.value(), Tokenization::kFolded);
+  EXPECT_EQ(original.Read("finish top").symbols.k[0], "[HoldType].[Mantle].[HoldType].[Mantle]");
+  EXPECT_EQ(project.Read("finish top").symbols.k[0], "[HoldType].[Mantle]");
+  // Distinct [HoldTypeT] words stay two types in both.
+  EXPECT_EQ(project.Read("crimp rail").symbols.k[0],
+            "[HoldType].[HoldTypeT].crimp.[HoldType].[HoldTypeT].rail");
+  auto own = MoveLanguage::LoadDefault();
+  ASSERT_TRUE(own.ok());
+  EXPECT_EQ(own->Read("finish on top").symbols.k[0], "[HoldType].[Mantle]");
+  EXPECT_EQ(own->Read("foot on foothold, hand on foot pad sloper")
+                .symbols.k[0]
+                .find("[HoldType].[FootHold].[HoldType].[FootHold]"),
+            std::string::npos);
+}
+
+TEST(SymbolsTest, VerbClassAndMoveSize) {
+  auto lang = MoveLanguage::LoadDefault();
+  ASSERT_TRUE(lang.ok());
+  MoveFeatures a = lang->Read("big dyno to a jug").features;
+  EXPECT_EQ(a.verb, "dyno");
+  EXPECT_EQ(a.move_size, "big");
+  MoveFeatures b = lang->Read("small move to sloping crimp").features;
+  EXPECT_EQ(b.verb, "move");
+  EXPECT_EQ(b.move_size, "small");
+  MoveFeatures c = lang->Read("cross to pinch").features;
+  EXPECT_EQ(c.verb, "cross");
+  EXPECT_TRUE(c.cross);
+  MoveFeatures d = lang->Read("slopey ledge").features;
+  EXPECT_EQ(d.verb, "");
+  EXPECT_EQ(d.move_size, "");
+}
+
+TEST(SymbolsTest, MoveTextReadsBackToTheSameSymbol) {
+  auto lang = MoveLanguage::LoadDefault();
+  ASSERT_TRUE(lang.ok());
+  EXPECT_EQ(SymbolToMoveText("NO_PARSE"), "");
+  EXPECT_EQ(SymbolToMoveText("[HoldType].[Crimp].[HoldType].[Rail]::[HoldShape].[HoldShapeBad]."
+                             "sloping:BIG"),
+            "big move to sloping crimp rail");
+  EXPECT_EQ(SymbolToMoveText("[HoldType].[Match]"), "match");
+  EXPECT_EQ(lang->HoldPhrase("foot-hook"), "heel hook");
+  EXPECT_EQ(lang->HoldPhrase("no-such-type"), "no such type");
+  const char* moves[] = {"big dyno to a small sloping crimp",
+                         "cross to pinch",
+                         "heel hook",
+                         "L match",
+                         "slopey ledge",
+                         "huge move to good jug",
+                         "thumb catch sidepull",
+                         "finish on top",
+                         "undercling flake"};
+  for (const char* m : moves) {
+    const Symbols s = lang->Read(m).symbols;
+    ASSERT_NE(s.k[3], "NO_PARSE") << m;
+    for (int k : {0, 2}) {  // hold types, and with the flags
+      const std::string text = lang->MoveText(s.k[k]);
+      EXPECT_EQ(lang->Read(text).symbols.k[k], s.k[k]) << m << " -> '" << text << "'";
+    }
+  }
+}
+
 }  // namespace
 }  // namespace sb::language

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <utility>
 
+#include "markov/bytes.h"
+
 namespace sb::markov::internal {
 namespace {
 constexpr int kMaxDepth = 32;
@@ -44,6 +46,57 @@ CountTrie::CountTrie(int depth, std::span<const int32_t> seq) {
   for (uint32_t n = 0; n < num_nodes; ++n) off_[n + 1] += off_[n];
 }
 
+void CountTrie::SaveState(std::string* out) const {
+  using internal::PutArray;
+  using internal::PutU64;
+  PutU64(out, total_.size());
+  PutArray(out, off_);
+  PutU64(out, syms_.size());
+  PutArray(out, syms_);
+  PutArray(out, counts_);
+  PutU64(out, edges_.raw_keys().size());
+  PutArray(out, edges_.raw_keys());
+  PutArray(out, edges_.raw_values());
+}
+
+Status CountTrie::LoadState(std::string_view state, int alphabet_size) {
+  auto bad = [](const std::string& why) { return Status::InvalidInput("count trie: " + why); };
+  internal::ByteReader r(state);
+  uint64_t n = 0, e = 0, cap = 0;
+  if (!r.U64(&n) || n == 0 || n >= FlatMap::kNone || !r.Array(n + 1, &off_)) {
+    return bad("truncated nodes");
+  }
+  if (!r.U64(&e) || !r.Array(e, &syms_) || !r.Array(e, &counts_)) return bad("truncated counts");
+  std::vector<uint64_t> keys;
+  std::vector<uint32_t> values;
+  if (!r.U64(&cap) || !r.Array(cap, &keys) || !r.Array(cap, &values)) {
+    return bad("truncated edge table");
+  }
+  if (r.remaining() != 0) return bad("trailing bytes");
+  if (!edges_.Adopt(std::move(keys), std::move(values))) return bad("malformed edge table");
+  if (off_[0] != 0 || off_[n] != e) return bad("offsets do not span the counts");
+  total_.assign(n, 0);
+  for (uint64_t v = 0; v < n; ++v) {
+    if (off_[v + 1] < off_[v]) return bad("offsets are not ascending");
+    for (uint32_t i = off_[v]; i < off_[v + 1]; ++i) {
+      if (syms_[i] < 0 || syms_[i] >= alphabet_size || counts_[i] == 0 ||
+          (i > off_[v] && syms_[i] <= syms_[i - 1])) {
+        return bad("bad symbol count");
+      }
+      total_[v] += counts_[i];
+    }
+  }
+  bool edges_ok = true;
+  edges_.ForEach([&](uint64_t key, uint32_t value) {
+    if ((key >> 32) >= n || (key & 0xffffffffu) >= static_cast<uint64_t>(alphabet_size) ||
+        value >= n || value == 0) {
+      edges_ok = false;
+    }
+  });
+  if (!edges_ok) return bad("bad trie edge");
+  return Status::Ok();
+}
+
 int CountTrie::Walk(const int32_t* hist_end, int len, uint32_t* nodes) const {
   nodes[0] = 0;
   int d = 0;
@@ -64,6 +117,11 @@ uint32_t CountTrie::Count(uint32_t node, int32_t sym) const {
 
 PpmCModel::PpmCModel(const ModelSpec& spec, std::span<const int32_t> seq)
     : Model(spec), trie_(spec.depth, seq) {
+  symbol_counts_.assign(spec.alphabet_size, 0);
+  for (int32_t s : seq) ++symbol_counts_[s];
+}
+
+PpmCModel::PpmCModel(const ModelSpec& spec, std::span<const int32_t> seq, LoadOnly) : Model(spec) {
   symbol_counts_.assign(spec.alphabet_size, 0);
   for (int32_t s : seq) ++symbol_counts_[s];
 }
@@ -149,6 +207,12 @@ uint64_t PpmCModel::ContextKey(std::span<const int32_t> context) const {
 
 MarkovModel::MarkovModel(const ModelSpec& spec, std::span<const int32_t> seq)
     : Model(spec), trie_(spec.depth, seq) {
+  symbol_counts_.assign(spec.alphabet_size, 0);
+  for (int32_t s : seq) ++symbol_counts_[s];
+}
+
+MarkovModel::MarkovModel(const ModelSpec& spec, std::span<const int32_t> seq, LoadOnly)
+    : Model(spec) {
   symbol_counts_.assign(spec.alphabet_size, 0);
   for (int32_t s : seq) ++symbol_counts_[s];
 }

@@ -5,8 +5,11 @@
 
 #include <cstdint>
 #include <span>
+#include <string>
+#include <string_view>
 #include <vector>
 
+#include "base/status.h"
 #include "markov/flat_map.h"
 #include "markov/model.h"
 
@@ -18,6 +21,14 @@ namespace sb::markov::internal {
 class CountTrie {
  public:
   CountTrie(int depth, std::span<const int32_t> seq);
+  CountTrie() = default;  // empty; filled by LoadState
+
+  // Model files: u64 N, (N + 1) x u32 offsets, u64 E, E x u32 symbols,
+  // E x u32 counts, u64 C, C x u64 edge keys, C x u32 edge values.
+  void SaveState(std::string* out) const;
+  // Errors: kInvalidInput when the bytes are not a consistent trie over an
+  // alphabet of `alphabet_size`.
+  Status LoadState(std::string_view state, int alphabet_size);
 
   // Follows the context (most recent symbol at hist_end[-1]) for up to `len`
   // symbols; nodes[0] is the root. Returns the depth reached.
@@ -50,6 +61,9 @@ class CountTrie {
 class PpmCModel final : public Model {
  public:
   PpmCModel(const ModelSpec& spec, std::span<const int32_t> seq);
+  PpmCModel(const ModelSpec& spec, std::span<const int32_t> seq, LoadOnly);
+  void SaveState(std::string* out) const override { trie_.SaveState(out); }
+  Status LoadState(std::string_view state) { return trie_.LoadState(state, spec_.alphabet_size); }
   double Probability(std::span<const int32_t> context, int32_t symbol) const override;
   void Distribution(std::span<const int32_t> context, std::span<double> out) const override;
   uint64_t ContextKey(std::span<const int32_t> context) const override;
@@ -65,6 +79,9 @@ class PpmCModel final : public Model {
 class MarkovModel final : public Model {
  public:
   MarkovModel(const ModelSpec& spec, std::span<const int32_t> seq);
+  MarkovModel(const ModelSpec& spec, std::span<const int32_t> seq, LoadOnly);
+  void SaveState(std::string* out) const override { trie_.SaveState(out); }
+  Status LoadState(std::string_view state) { return trie_.LoadState(state, spec_.alphabet_size); }
   double Probability(std::span<const int32_t> context, int32_t symbol) const override;
   void Distribution(std::span<const int32_t> context, std::span<double> out) const override;
   uint64_t ContextKey(std::span<const int32_t> context) const override;

@@ -1,9 +1,14 @@
 #include "markov/dectw.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <map>
 #include <utility>
+
+#include "markov/bytes.h"
 
 namespace sb::markov::internal {
 namespace {
@@ -30,6 +35,180 @@ DeCtwModel::DeCtwModel(const ModelSpec& spec, std::span<const int32_t> sequence)
   for (int32_t s : sequence) ++symbol_counts_[s];
   BuildDecomposition();
   Learn(sequence);
+  SetTrainedViews();
+}
+
+void DeCtwModel::SetTrainedViews() {
+  v_.trie_state = trie_state_.data();
+  v_.trie_size = trie_state_.size();
+  v_.keys = edges_.raw_keys().data();
+  v_.values = edges_.raw_values().data();
+  v_.mask = edges_.mask();
+  v_.states = nullptr;
+  loaded_ = false;
+}
+
+DeCtwModel::DeCtwModel(const ModelSpec& spec, std::span<const int32_t> sequence, LoadOnly)
+    : Model(spec) {
+  symbol_counts_.assign(spec.alphabet_size, 0);
+  for (int32_t s : sequence) ++symbol_counts_[s];
+  BuildDecomposition();
+}
+
+// State section layout (little-endian; offsets relative to the section,
+// which starts 8-byte aligned in the file): u64 T, T x u32 trie_state, zero
+// padding to 8; u64 C, C x u64 edge keys, C x u32 edge values, padding to 8;
+// u64 S, S x 24-byte records (f64 beta, u16 c0, u16 c1, u32 child0, u32
+// child1, u32 zero).
+namespace {
+
+void PadTo8(std::string* out, size_t start) {
+  while ((out->size() - start) % 8 != 0) out->push_back('\0');
+}
+
+}  // namespace
+
+void DeCtwModel::SaveState(std::string* out) const {
+  using internal::PutU32;
+  using internal::PutU64;
+  const size_t start = out->size();
+  PutU64(out, v_.trie_size);
+  for (size_t i = 0; i < v_.trie_size; ++i) PutU32(out, v_.trie_state[i]);
+  PadTo8(out, start);
+  const size_t cap = v_.mask + 1;
+  PutU64(out, cap);
+  for (size_t i = 0; i < cap; ++i) PutU64(out, v_.keys[i]);
+  for (size_t i = 0; i < cap; ++i) PutU32(out, v_.values[i]);
+  PadTo8(out, start);
+  PutU64(out, num_states_);
+  for (uint32_t i = 0; i < num_states_; ++i) {
+    const State& st = QS(i);
+    internal::PutF64(out, st.beta);
+    PutU32(out, uint32_t{st.c[0]} | (uint32_t{st.c[1]} << 16));
+    PutU32(out, st.child[0]);
+    PutU32(out, st.child[1]);
+    PutU32(out, 0);
+  }
+}
+
+namespace {
+
+// The next array of n elements of T at `*pos` of `s`: in place when aligned
+// on a little-endian host, else copied (converted) into *own.
+template <typename T>
+const T* ArrayAt(std::string_view s, size_t* pos, uint64_t n, std::vector<T>* own) {
+  if (n > (s.size() - *pos) / sizeof(T)) return nullptr;
+  const char* p = s.data() + *pos;
+  *pos += n * sizeof(T);
+  if constexpr (std::endian::native == std::endian::little) {
+    if (reinterpret_cast<uintptr_t>(p) % alignof(T) == 0) return reinterpret_cast<const T*>(p);
+    own->resize(n);
+    std::memcpy(own->data(), p, n * sizeof(T));
+    return own->data();
+  } else {
+    own->resize(n);
+    for (uint64_t i = 0; i < n; ++i) {
+      uint64_t v = 0;
+      for (size_t b = 0; b < sizeof(T); ++b) {
+        v |= uint64_t{static_cast<unsigned char>(p[i * sizeof(T) + b])} << (8 * b);
+      }
+      (*own)[i] = static_cast<T>(v);
+    }
+    return own->data();
+  }
+}
+
+bool U64At(std::string_view s, size_t* pos, uint64_t* v) {
+  if (s.size() - *pos < 8) return false;
+  *v = 0;
+  for (int i = 0; i < 8; ++i) *v |= uint64_t{static_cast<unsigned char>(s[*pos + i])} << (8 * i);
+  *pos += 8;
+  return true;
+}
+
+bool SkipPad(std::string_view s, size_t* pos) {
+  while (*pos % 8 != 0) {
+    if (*pos >= s.size() || s[*pos] != '\0') return false;
+    ++*pos;
+  }
+  return true;
+}
+
+}  // namespace
+
+Status DeCtwModel::LoadState(std::string_view state, std::shared_ptr<const void> backing) {
+  auto bad = [](const std::string& why) { return Status::InvalidInput("DE-CTW state: " + why); };
+  const uint32_t K = static_cast<uint32_t>(spec_.alphabet_size);
+  size_t pos = 0;
+  uint64_t t = 0, cap = 0, ns = 0;
+  Views v;
+  if (!U64At(state, &pos, &t) || t == 0 || t >= kSingleton ||
+      (v.trie_state = ArrayAt(state, &pos, t, &own_trie_)) == nullptr) {
+    return bad("truncated or empty trie");
+  }
+  v.trie_size = t;
+  if (!SkipPad(state, &pos) || !U64At(state, &pos, &cap) || cap < 16 || (cap & (cap - 1)) != 0 ||
+      (v.keys = ArrayAt(state, &pos, cap, &own_keys_)) == nullptr ||
+      (v.values = ArrayAt(state, &pos, cap, &own_values_)) == nullptr) {
+    return bad("truncated or malformed edge table");
+  }
+  v.mask = cap - 1;
+  if (!SkipPad(state, &pos) || !U64At(state, &pos, &ns) || ns >= kSingleton ||
+      ns > (state.size() - pos) / sizeof(State)) {
+    return bad("truncated states");
+  }
+  {
+    // Records: f64 beta, u16 c0, u16 c1, u32 child0, u32 child1, u32 zero
+    // = the State layout on little-endian hosts.
+    const char* p = state.data() + pos;
+    if (std::endian::native == std::endian::little &&
+        reinterpret_cast<uintptr_t>(p) % alignof(State) == 0) {
+      v.states = reinterpret_cast<const State*>(p);
+    } else {
+      own_states_.resize(ns);
+      for (uint64_t i = 0; i < ns; ++i) {
+        internal::ByteReader r(std::string_view(p + i * sizeof(State), sizeof(State)));
+        uint32_t counts = 0;
+        r.F64(&own_states_[i].beta);
+        r.U32(&counts);
+        own_states_[i].c[0] = static_cast<uint16_t>(counts & 0xffff);
+        own_states_[i].c[1] = static_cast<uint16_t>(counts >> 16);
+        r.U32(&own_states_[i].child[0]);
+        r.U32(&own_states_[i].child[1]);
+      }
+      v.states = own_states_.data();
+    }
+    pos += ns * sizeof(State);
+  }
+  if (pos != state.size()) return bad("trailing bytes");
+  // Everything a query follows must stay in range.
+  for (uint64_t i = 0; i < t; ++i) {
+    const uint32_t x = v.trie_state[i];
+    if (x == kNone) continue;
+    if ((x & kSingleton) ? (x & ~kSingleton) >= K : x >= ns) return bad("bad trie state");
+  }
+  uint64_t used = 0;
+  for (uint64_t i = 0; i < cap; ++i) {
+    const uint64_t key = v.keys[i];
+    if (key == FlatMap::kEmpty) continue;
+    ++used;
+    if ((key >> 32) >= t || (key & 0xffffffffu) >= K || v.values[i] >= t || v.values[i] == 0) {
+      return bad("bad trie edge");
+    }
+  }
+  if (used * 2 > cap) return bad("edge table more than half full");
+  for (uint64_t i = 0; i < ns; ++i) {
+    const State& st = v.states[i];
+    if ((st.child[0] != kNone && st.child[0] >= ns) ||
+        (st.child[1] != kNone && st.child[1] >= ns)) {
+      return bad("bad state child");
+    }
+  }
+  v_ = v;
+  num_states_ = static_cast<uint32_t>(ns);
+  loaded_ = true;
+  backing_ = std::move(backing);
+  return Status::Ok();
 }
 
 // Mirrors DecompositionTreeBuilder.buildStatic: a Huffman tree from the
@@ -172,7 +351,7 @@ uint32_t DeCtwModel::Materialize(int32_t symbol) {
 DeCtwModel::View DeCtwModel::Get(Ref r) const {
   View v;
   if ((r & kVirtual) == 0) {
-    const State& s = S(static_cast<uint32_t>(r));
+    const State& s = QS(static_cast<uint32_t>(r));
     v.beta = s.beta;
     v.c[0] = s.c[0];
     v.c[1] = s.c[1];
@@ -192,7 +371,7 @@ DeCtwModel::View DeCtwModel::Get(Ref r) const {
 }
 
 DeCtwModel::Ref DeCtwModel::RootRef(uint32_t trie_node) const {
-  const uint32_t v = trie_state_[trie_node];
+  const uint32_t v = v_.trie_state[trie_node];
   if (v == kNone) return kNoRef;
   if (v & kSingleton) return kVirtual | (Ref{v & ~kSingleton} << 32);
   return v;
@@ -286,7 +465,8 @@ int DeCtwModel::WalkContext(const int32_t* hist_end, int len, uint32_t* nodes) c
   nodes[0] = 0;
   int d = 0;
   while (d < len) {
-    const uint32_t n = edges_.Find(EdgeKey(nodes[d], hist_end[-(d + 1)]));
+    const uint32_t n =
+        FlatMap::FindIn(v_.keys, v_.values, v_.mask, EdgeKey(nodes[d], hist_end[-(d + 1)]));
     if (n == kNone) break;
     nodes[++d] = n;
   }

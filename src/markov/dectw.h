@@ -5,8 +5,11 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <string>
+#include <string_view>
 #include <vector>
 
+#include "base/status.h"
 #include "markov/flat_map.h"
 #include "markov/model.h"
 
@@ -27,6 +30,17 @@ class DeCtwModel final : public Model {
   // Builds the decomposition and trains. `spec`/`sequence` must be valid
   // (checked by Model::Train).
   DeCtwModel(const ModelSpec& spec, std::span<const int32_t> sequence);
+  // Counts and decomposition only; LoadState then fills the trained state.
+  DeCtwModel(const ModelSpec& spec, std::span<const int32_t> sequence, LoadOnly);
+  // The trained state: trie, edge table and binary states (model files;
+  // arrays at 8-byte aligned offsets of the section, states as 24-byte
+  // records, so a loaded model can use the file's bytes in place).
+  void SaveState(std::string* out) const override;
+  // Errors: kInvalidInput when the bytes are not a consistent state. The
+  // model uses `state` in place when it is suitably aligned and the host is
+  // little-endian, keeping `backing` (which must own `state`'s bytes) alive;
+  // otherwise it copies.
+  Status LoadState(std::string_view state, std::shared_ptr<const void> backing);
 
   double Probability(std::span<const int32_t> context, int32_t symbol) const override;
   void Distribution(std::span<const int32_t> context, std::span<double> out) const override;
@@ -44,6 +58,7 @@ class DeCtwModel final : public Model {
     uint16_t c[2];
     uint32_t child[2];
   };
+  static_assert(sizeof(State) == 24, "model files store states as 24-byte records");
   // A state reference: a State index, or a virtual state of a context seen
   // once (kVirtual | symbol << 32 | level on that symbol's path), or kNoRef.
   using Ref = uint64_t;
@@ -90,6 +105,25 @@ class DeCtwModel final : public Model {
   std::vector<uint32_t> trie_state_;  // trie node -> root State index, or kSingleton | symbol
   std::vector<std::unique_ptr<State[]>> chunks_;
   uint32_t num_states_ = 0;
+
+  // What queries read: the training structures above, or a model file's
+  // bytes (or copies of them) after LoadState.
+  struct Views {
+    const uint32_t* trie_state = nullptr;
+    size_t trie_size = 0;
+    const uint64_t* keys = nullptr;
+    const uint32_t* values = nullptr;
+    size_t mask = 0;
+    const State* states = nullptr;  // loaded models; trained ones use chunks_
+  };
+  Views v_;
+  bool loaded_ = false;
+  std::shared_ptr<const void> backing_;
+  std::vector<uint32_t> own_trie_, own_values_;
+  std::vector<uint64_t> own_keys_;
+  std::vector<State> own_states_;
+  void SetTrainedViews();
+  const State& QS(uint32_t i) const { return loaded_ ? v_.states[i] : S(i); }
 };
 
 }  // namespace sb::markov::internal

@@ -18,8 +18,13 @@ namespace {
 class Search {
  public:
   Search(const Model& m, std::span<const int32_t> before, std::span<const int32_t> after, int j,
-         std::vector<int32_t> cands)
-      : m_(m), after_(after), j_(j), cands_(std::move(cands)), D_(m.depth()) {
+         std::vector<int32_t> cands, bool exactly = false)
+      : m_(m),
+        after_(after),
+        j_(j),
+        min_j_(exactly ? j : 0),
+        cands_(std::move(cands)),
+        D_(m.depth()) {
     buf_.assign(before.begin(), before.end());
     head_ = std::min<size_t>(after.size(), D_);
     after_memo_.resize(head_);
@@ -128,7 +133,7 @@ class Search {
   void Dfs(int m, double g) {
     ++nodes;
     // Stop here: score the first head_ symbols of `after`.
-    {
+    if (m >= min_j_) {
       const double a = AfterPart(g);
       if (a < best && (std::isinf(best) || a < best - 1e-12 * std::max(1.0, std::fabs(best)))) {
         best = a;
@@ -159,6 +164,7 @@ class Search {
   const Model& m_;
   std::span<const int32_t> after_;
   int j_;
+  int min_j_;  // shortest insertion scored (j_ with `exactly`)
   std::vector<int32_t> cands_;
   size_t D_;
   size_t head_;
@@ -208,24 +214,23 @@ Result<InsertionResult> BestInsertion(const Model& model, std::span<const int32_
   // merge keeps the sequential answer: the lowest bits, and on a tie the
   // insertion whose first symbol comes first in the cheapest-first order
   // (the empty insertion before all).
-  const bool split = options.threads == 0
-                         ? options.max_insert >= 3 && cands.size() >= 64 &&
-                               std::thread::hardware_concurrency() > 1
-                         : options.threads > 1;
+  const bool split = options.threads == 0 ? options.max_insert >= 3 && cands.size() >= 64 &&
+                                                std::thread::hardware_concurrency() > 1
+                                          : options.threads > 1;
   if (split) {
-    Search s0(model, before, after, options.max_insert, cands);
-    Search s1(model, before, after, options.max_insert, cands);
+    Search s0(model, before, after, options.max_insert, cands, options.exactly);
+    Search s1(model, before, after, options.max_insert, cands, options.exactly);
     std::thread t([&] { s1.Run(2, 1); });
     s0.Run(2, 0);
     t.join();
     const double tol = 1e-12 * std::max(1.0, std::fabs(std::min(s0.best, s1.best)));
-    bool take1 = s1.best < s0.best - tol ||
-                 (!(s0.best < s1.best - tol) && s1.best_rank < s0.best_rank);
+    bool take1 =
+        s1.best < s0.best - tol || (!(s0.best < s1.best - tol) && s1.best_rank < s0.best_rank);
     const Search& w = take1 ? s1 : s0;
     r.inserted = w.best_ins;
     r.nodes_visited = s0.nodes + s1.nodes;
   } else {
-    Search s(model, before, after, options.max_insert, cands);
+    Search s(model, before, after, options.max_insert, cands, options.exactly);
     s.Run();
     r.inserted = s.best_ins;
     r.nodes_visited = s.nodes;
@@ -240,7 +245,7 @@ Result<InsertionResult> BestInsertion(const Model& model, std::span<const int32_
     full.insert(full.end(), r.inserted.begin(), r.inserted.end());
     full.insert(full.end(), after.begin(), after.end());
     r.bits = model.LogLoss(full);
-    if (!(r.bits < r.baseline_bits)) {  // rounding between the two sums
+    if (!options.exactly && !(r.bits < r.baseline_bits)) {  // rounding between the two sums
       r.inserted.clear();
       r.bits = r.baseline_bits;
     }

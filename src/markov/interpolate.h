@@ -20,7 +20,10 @@ namespace sb::markov {
 inline constexpr int kMaxInsert = 4;
 
 struct InsertionOptions {
-  int max_insert = 2;               // j: insert 0..j symbols, 0..kMaxInsert
+  int max_insert = 2;  // j: insert 0..j symbols, 0..kMaxInsert
+  // true: exactly max_insert symbols (the paper's N^j search for one j),
+  // even when inserting nothing would be cheaper.
+  bool exactly = false;
   std::vector<int32_t> candidates;  // symbols that may be inserted; empty = Model::SeenSymbols()
   // 0 = automatic (two threads for max_insert >= 3 with 64+ candidates on a
   // multi-core machine), 1 = one thread. The answer is the same either way.
@@ -36,16 +39,14 @@ struct InsertionResult {
   double saved_bits() const { return baseline_bits - bits; }
 };
 
-// Exact search over all insertions of 0..max_insert candidate symbols
-// (equal to brute force): depth-first branch and bound, children taken in
-// increasing cost order and cut once the inserted symbols alone cost as
-// much as the best complete sequence; only the first `depth` symbols of
-// `after` depend on the insertion, so only those are rescored. On ties the
-// shorter insertion, then the one found first (cheapest first symbols, then
-// lowest id) wins. Errors: kInvalidInput for max_insert outside
-// 0..kMaxInsert or ids outside [0, K). Thread-safe (the model is const).
-// Cost: typically milliseconds for j <= 3 and K ~ 300 on peaked models;
-// the worst case (a flat model) is K^j leaf evaluations.
+// Exact search over all insertions of 0..max_insert candidate symbols (or
+// of exactly max_insert with options.exactly), equal to brute force: depth-first branch and bound,
+// children taken in increasing cost order and cut once the inserted symbols alone cost as much as
+// the best complete sequence; only the first `depth` symbols of `after` depend on the insertion, so
+// only those are rescored. On ties the shorter insertion, then the one found first (cheapest first
+// symbols, then lowest id) wins. Errors: kInvalidInput for max_insert outside 0..kMaxInsert or ids
+// outside [0, K). Thread-safe (the model is const). Cost: typically milliseconds for j <= 3 and K ~
+// 300 on peaked models; the worst case (a flat model) is K^j leaf evaluations.
 Result<InsertionResult> BestInsertion(const Model& model, std::span<const int32_t> before,
                                       std::span<const int32_t> after,
                                       const InsertionOptions& options = {});

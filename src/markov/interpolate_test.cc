@@ -4,9 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
+#include <set>
 #include <vector>
 
 #include "markov/generate.h"
@@ -96,6 +98,66 @@ TEST(Interpolate, EqualsBruteForce) {
   EXPECT_EQ(cases, 3 * 3 * 3 * 4 * 4);
 }
 
+// --exactly J: the best of all K^J insertions of exactly J symbols (the
+// paper's N^j search), even when inserting nothing is cheaper.
+TEST(Interpolate, ExactlyJEqualsBruteForce) {
+  std::mt19937_64 rng(8);
+  int cases = 0, worse_than_nothing = 0;
+  for (Algorithm alg : {Algorithm::kDeCtw, Algorithm::kPpmC, Algorithm::kMarkov}) {
+    for (int k : {3, 6}) {
+      const auto train = Stream(k, 300, 5 + k);
+      auto r = Model::Train({alg, 2, k + 1, 0.5}, train);
+      ASSERT_TRUE(r.ok());
+      const Model& m = **r;
+      const std::vector<int32_t> cands = m.SeenSymbols();
+      for (int trial = 0; trial < 4; ++trial) {
+        std::vector<int32_t> before, after;
+        for (int i = 0; i < 3; ++i) before.push_back(static_cast<int32_t>(rng() % k));
+        for (int i = 0; i < 3; ++i) after.push_back(static_cast<int32_t>(rng() % k));
+        for (int j = 0; j <= 3; ++j) {
+          // Brute force over exactly j symbols.
+          double best = std::numeric_limits<double>::infinity();
+          std::vector<int32_t> cur(j, 0), best_ins;
+          std::vector<size_t> idx(j, 0);
+          for (;;) {
+            for (int i = 0; i < j; ++i) cur[i] = cands[idx[i]];
+            std::vector<int32_t> full = before;
+            full.insert(full.end(), cur.begin(), cur.end());
+            full.insert(full.end(), after.begin(), after.end());
+            const double bits = m.LogLoss(full);
+            if (bits < best) {
+              best = bits;
+              best_ins = cur;
+            }
+            int i = j - 1;
+            while (i >= 0 && ++idx[i] == cands.size()) idx[i--] = 0;
+            if (i < 0) break;
+          }
+          InsertionOptions opt;
+          opt.max_insert = j;
+          opt.exactly = true;
+          for (int threads : {1, 2}) {
+            opt.threads = threads;
+            auto got = BestInsertion(m, before, after, opt);
+            ASSERT_TRUE(got.ok());
+            ASSERT_EQ(static_cast<int>(got->inserted.size()), j);
+            EXPECT_NEAR(got->bits, best, 1e-9 * std::max(1.0, best))
+                << AlgorithmName(alg) << " k " << k << " j " << j;
+          }
+          worse_than_nothing += best > m.LogLoss([&] {
+            std::vector<int32_t> f = before;
+            f.insert(f.end(), after.begin(), after.end());
+            return f;
+          }());
+          ++cases;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(cases, 3 * 2 * 4 * 4);
+  EXPECT_GT(worse_than_nothing, 0);  // the case --exactly exists for
+}
+
 TEST(Interpolate, TwoThreadsGiveTheSequentialAnswer) {
   // Includes brute force with both splits on small alphabets, and the
   // sequential search on a larger one (where the split is used by default).
@@ -148,6 +210,7 @@ TEST(Generate, GreedyAndSeededSamplingAreDeterministic) {
   const std::vector<int32_t> start = {0};
   GenerateOptions greedy;
   greedy.length = 12;
+  greedy.max_run = 0;  // plain greedy
   const auto g1 = Generate(**r, start, greedy);
   ASSERT_EQ(g1.size(), 12u);
   // Greedy picks the most likely symbol each step.
@@ -169,6 +232,61 @@ TEST(Generate, GreedyAndSeededSamplingAreDeterministic) {
   EXPECT_NE(Generate(**r, start, sampled), s1);
   // Sampled text is typical: its bits per symbol are near the model's.
   EXPECT_LT((*r)->LogLoss(s1) / s1.size(), 2.0);
+}
+
+// A peaked model makes plain greedy generation repeat one symbol; max_run
+// and no_repeat_ngram stop it, and temperature sharpens sampling.
+TEST(Generate, RunAndNgramLimits) {
+  std::vector<int32_t> train;
+  for (int i = 0; i < 300; ++i) train.push_back(i % 10 == 9 ? 1 + (i / 10) % 3 : 0);
+  auto r = Model::Train({Algorithm::kDeCtw, 2, 4, 1.0}, train);
+  ASSERT_TRUE(r.ok());
+  GenerateOptions plain;
+  plain.length = 30;
+  plain.max_run = 0;
+  const auto collapsed = Generate(**r, {}, plain);
+  EXPECT_EQ(std::count(collapsed.begin(), collapsed.end(), 0), 30);
+  GenerateOptions runs = plain;
+  runs.max_run = 2;
+  const auto g = Generate(**r, {}, runs);
+  ASSERT_EQ(g.size(), 30u);
+  for (size_t i = 2; i < g.size(); ++i) {
+    EXPECT_FALSE(g[i] == g[i - 1] && g[i] == g[i - 2]) << i;
+  }
+  GenerateOptions ngram = plain;
+  ngram.no_repeat_ngram = 3;
+  ngram.length = 20;
+  const auto h = Generate(**r, {}, ngram);
+  // A trigram repeats only when every continuation of its first two symbols
+  // was used before (the rule is then dropped for that step).
+  std::set<std::vector<int32_t>> seen;
+  for (size_t i = 0; i + 3 <= h.size(); ++i) {
+    const std::vector<int32_t> tri(h.begin() + i, h.begin() + i + 3);
+    if (seen.count(tri)) {
+      for (int32_t c = 0; c < 4; ++c) {
+        EXPECT_TRUE(seen.count({tri[0], tri[1], c})) << "repeat at " << i;
+      }
+    }
+    seen.insert(tri);
+  }
+  EXPECT_GE(seen.size(), 10u);
+  // A cold temperature samples the likely symbol more often than T = 1.
+  GenerateOptions hot = runs, cold = runs;
+  hot.sample = cold.sample = true;
+  hot.length = cold.length = 2000;
+  cold.temperature = 0.3;
+  const auto a = Generate(**r, {}, hot), b = Generate(**r, {}, cold);
+  EXPECT_GT(std::count(b.begin(), b.end(), 0), std::count(a.begin(), a.end(), 0));
+  EXPECT_FALSE(ValidateGenerateOptions({.length = -1}).ok());
+  GenerateOptions bad;
+  bad.temperature = 0;
+  EXPECT_FALSE(ValidateGenerateOptions(bad).ok());
+  bad.temperature = 1;
+  bad.no_repeat_ngram = 1;
+  EXPECT_FALSE(ValidateGenerateOptions(bad).ok());
+  bad.no_repeat_ngram = 0;
+  bad.length = kMaxGenerateLength + 1;
+  EXPECT_FALSE(ValidateGenerateOptions(bad).ok());
 }
 
 TEST(SuggestSmoothing, StringTokensAndUnknowns) {

@@ -90,6 +90,42 @@ Result<std::unique_ptr<Model>> Model::Train(const ModelSpec& spec,
   return m;
 }
 
+Result<std::unique_ptr<Model>> Model::FromState(const ModelSpec& spec,
+                                                std::span<const int32_t> sequence,
+                                                std::string_view state,
+                                                std::shared_ptr<const void> backing) {
+  SB_RETURN_IF_ERROR(ValidateSpec(spec));
+  for (size_t i = 0; i < sequence.size(); ++i) {
+    if (sequence[i] < 0 || sequence[i] >= spec.alphabet_size) {
+      return Status::InvalidInput("symbol out of range at position " + std::to_string(i));
+    }
+  }
+  Status st;
+  std::unique_ptr<Model> m;
+  switch (spec.algorithm) {
+    case Algorithm::kDeCtw: {
+      auto d = std::make_unique<internal::DeCtwModel>(spec, sequence, internal::kLoadOnly);
+      st = d->LoadState(state, std::move(backing));
+      m = std::move(d);
+      break;
+    }
+    case Algorithm::kPpmC: {
+      auto p = std::make_unique<internal::PpmCModel>(spec, sequence, internal::kLoadOnly);
+      st = p->LoadState(state);
+      m = std::move(p);
+      break;
+    }
+    case Algorithm::kMarkov: {
+      auto p = std::make_unique<internal::MarkovModel>(spec, sequence, internal::kLoadOnly);
+      st = p->LoadState(state);
+      m = std::move(p);
+      break;
+    }
+  }
+  if (!st.ok()) return st;
+  return m;
+}
+
 double Model::LogLoss(std::span<const int32_t> sequence,
                       std::span<const int32_t> initial_context) const {
   std::vector<int32_t> buf(initial_context.begin(), initial_context.end());

@@ -8,6 +8,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -90,6 +91,21 @@ class Model {
   // at the end, as the reference did.
   double LogLoss(std::span<const int32_t> sequence,
                  std::span<const int32_t> initial_context = {}) const;
+
+  // Model files (used by token_model.cc): appends the trained structures
+  // (algorithm-specific layout, docs/formats.md "Markov model files") to
+  // `out`, so loading needs no retraining. Deterministic.
+  virtual void SaveState(std::string* out) const = 0;
+  // Rebuilds a model of `spec` trained on `sequence` from bytes written by
+  // SaveState (the sequence gives the symbol counts; nothing is retrained).
+  // DE-CTW uses `state` in place when it can (8-byte aligned, little-endian
+  // host) and then keeps `backing`, which must own those bytes, alive.
+  // Errors: kInvalidInput naming the inconsistency. Never crashes and never
+  // yields a model that reads out of bounds, whatever the bytes.
+  static Result<std::unique_ptr<Model>> FromState(const ModelSpec& spec,
+                                                  std::span<const int32_t> sequence,
+                                                  std::string_view state,
+                                                  std::shared_ptr<const void> backing = nullptr);
 
   // Number of times each id occurs in the training sequence (size K).
   const std::vector<uint32_t>& symbol_counts() const { return symbol_counts_; }

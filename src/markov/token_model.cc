@@ -1,5 +1,10 @@
 #include "markov/token_model.h"
 
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <charconv>
 #include <cstring>
@@ -7,52 +12,24 @@
 
 #include "base/files.h"
 #include "base/hash.h"
+#include "base/text.h"
+#include "markov/bytes.h"
 
 namespace sb::markov {
 namespace {
 
 constexpr char kMagic[8] = {'S', 'B', 'V', 'O', 'M', 'M', '\r', '\n'};
-constexpr uint32_t kVersion = 1;
+// Version 1: parameters, vocabulary, metadata, training sequence (loading
+// retrains); byte-wise FNV-1a. Version 2 (written since): the same plus the
+// trained state, word-wise FNV-1a (internal::WordFnv1a64).
+constexpr uint32_t kVersion1 = 1;
+constexpr uint32_t kVersion = 2;
 constexpr uint32_t kFlagVocabulary = 1;
 constexpr uint32_t kFlagMetadata = 2;
 
-void PutU32(std::string* out, uint32_t v) {
-  for (int i = 0; i < 4; ++i) out->push_back(static_cast<char>((v >> (8 * i)) & 0xff));
-}
-void PutU64(std::string* out, uint64_t v) {
-  for (int i = 0; i < 8; ++i) out->push_back(static_cast<char>((v >> (8 * i)) & 0xff));
-}
-
-class Reader {
- public:
-  explicit Reader(std::string_view b) : b_(b) {}
-  bool U32(uint32_t* v) {
-    if (b_.size() - pos_ < 4) return false;
-    *v = 0;
-    for (int i = 0; i < 4; ++i) *v |= uint32_t{static_cast<unsigned char>(b_[pos_ + i])} << (8 * i);
-    pos_ += 4;
-    return true;
-  }
-  bool U64(uint64_t* v) {
-    if (b_.size() - pos_ < 8) return false;
-    *v = 0;
-    for (int i = 0; i < 8; ++i) *v |= uint64_t{static_cast<unsigned char>(b_[pos_ + i])} << (8 * i);
-    pos_ += 8;
-    return true;
-  }
-  bool Bytes(size_t n, std::string_view* s) {
-    if (b_.size() - pos_ < n) return false;
-    *s = b_.substr(pos_, n);
-    pos_ += n;
-    return true;
-  }
-  size_t remaining() const { return b_.size() - pos_; }
-  size_t pos() const { return pos_; }
-
- private:
-  std::string_view b_;
-  size_t pos_ = 0;
-};
+using internal::ByteReader;
+using internal::PutU32;
+using internal::PutU64;
 
 }  // namespace
 
@@ -157,12 +134,27 @@ std::string TokenModel::Serialize() const {
     }
   }
   PutU64(&out, training_.size());
-  for (int32_t id : training_) PutU32(&out, static_cast<uint32_t>(id));
-  PutU64(&out, Fnv1a64(out));
+  internal::PutArray(&out, training_);
+  // The state section starts 8-byte aligned, so a mapped file can be used in place.
+  while ((out.size() + 8) % 8 != 0) out.push_back('\0');
+  const size_t len_at = out.size();
+  PutU64(&out, 0);
+  const size_t begin = out.size();
+  model_->SaveState(&out);
+  const uint64_t len = out.size() - begin;
+  for (int i = 0; i < 8; ++i) out[len_at + i] = static_cast<char>((len >> (8 * i)) & 0xff);
+  PutU64(&out, internal::WordFnv1a64(out));
   return out;
 }
 
 Result<TokenModel> TokenModel::Parse(std::string_view bytes, const std::string& name) {
+  auto copy = std::make_shared<const std::string>(bytes);
+  const std::string_view view(*copy);
+  return Parse(view, name, std::move(copy));
+}
+
+Result<TokenModel> TokenModel::Parse(std::string_view bytes, const std::string& name,
+                                     std::shared_ptr<const void> backing) {
   auto bad = [&](const std::string& why) {
     return Status::InvalidInput(name + ": not a valid model file: " + why);
   };
@@ -170,20 +162,21 @@ Result<TokenModel> TokenModel::Parse(std::string_view bytes, const std::string& 
     return bad("wrong magic (expected an 'SBVOMM' model)");
   }
   if (bytes.size() < sizeof kMagic + 4 + 8) return bad("truncated header");
-  Reader r(bytes.substr(sizeof kMagic));
+  ByteReader r(bytes.substr(sizeof kMagic, bytes.size() - sizeof kMagic - 8));
   uint32_t version = 0, alg = 0, depth = 0, ab = 0, flags = 0;
   uint64_t alpha_bits = 0;
   r.U32(&version);
-  if (version != kVersion) {
-    return bad("unsupported format version " + std::to_string(version) + " (this build reads 1)");
+  if (version != kVersion && version != kVersion1) {
+    return bad("unsupported format version " + std::to_string(version) +
+               " (this build reads 1 and 2)");
   }
   {
     uint64_t stored = 0;
     for (int i = 0; i < 8; ++i)
       stored |= uint64_t{static_cast<unsigned char>(bytes[bytes.size() - 8 + i])} << (8 * i);
-    if (stored != Fnv1a64(bytes.substr(0, bytes.size() - 8))) {
-      return bad("checksum mismatch (file truncated or corrupted)");
-    }
+    const std::string_view body = bytes.substr(0, bytes.size() - 8);
+    const uint64_t want = version == kVersion1 ? Fnv1a64(body) : internal::WordFnv1a64(body);
+    if (stored != want) return bad("checksum mismatch (file truncated or corrupted)");
   }
   if (!r.U32(&alg) || !r.U32(&depth) || !r.U32(&ab) || !r.U64(&alpha_bits) || !r.U32(&flags)) {
     return bad("truncated header");
@@ -211,6 +204,9 @@ Result<TokenModel> TokenModel::Parse(std::string_view bytes, const std::string& 
       if (t.empty() || (i > 0 && !(tokens.back() < t))) {
         return bad("vocabulary is not sorted and distinct");
       }
+      if (Utf8ErrorOffset(t) != std::string_view::npos || t.find('\0') != t.npos) {
+        return bad("vocabulary token " + std::to_string(i + 1) + " is not valid UTF-8");
+      }
       tokens.emplace_back(t);
     }
   }
@@ -228,24 +224,50 @@ Result<TokenModel> TokenModel::Parse(std::string_view bytes, const std::string& 
       if (k.empty() || v.empty() || (i > 0 && !(last < k))) {
         return bad("metadata keys are not sorted, distinct and non-empty");
       }
+      if (Utf8ErrorOffset(k) != std::string_view::npos ||
+          Utf8ErrorOffset(v) != std::string_view::npos || k.find('\0') != k.npos ||
+          v.find('\0') != v.npos) {
+        return bad("metadata entry " + std::to_string(i + 1) + " is not valid UTF-8");
+      }
       last = k;
       metadata.emplace(std::string(k), std::string(v));
     }
   }
   uint64_t n = 0;
-  if (!r.U64(&n)) return bad("truncated training sequence");
-  if (r.remaining() < 8 || n > (r.remaining() - 8) / 4) return bad("truncated training sequence");
-  if (r.remaining() - 8 != n * 4) return bad("trailing bytes after the training sequence");
-  std::vector<int32_t> ids(n);
+  if (!r.U64(&n) || n > r.remaining() / 4) return bad("truncated training sequence");
+  if (version == kVersion1 && r.remaining() != n * 4) {
+    return bad("trailing bytes after the training sequence");
+  }
+  std::vector<int32_t> ids;
+  r.Array(n, &ids);
   for (uint64_t i = 0; i < n; ++i) {
-    uint32_t v = 0;
-    r.U32(&v);
+    const uint32_t v = static_cast<uint32_t>(ids[i]);
     if (v >= ab) return bad("symbol id out of range at position " + std::to_string(i));
     if (has_vocab && v == ab - 1) return bad("unknown-token id in the training sequence");
-    ids[i] = static_cast<int32_t>(v);
   }
   Vocabulary vocab(std::move(tokens));
-  auto tm = Build(spec, has_vocab, std::move(vocab), std::move(ids));
+  Result<TokenModel> tm = Status::Internal("unset");
+  if (version == kVersion1) {
+    tm = Build(spec, has_vocab, std::move(vocab), std::move(ids));  // retrains
+  } else {
+    uint64_t len = 0;
+    std::string_view state, pad;
+    // Zero padding up to the 8-byte aligned length field.
+    const size_t at = sizeof kMagic + r.pos();
+    if (!r.Bytes((8 - at % 8) % 8, &pad) || pad.find_first_not_of('\0') != std::string_view::npos) {
+      return bad("truncated or bad padding before the trained state");
+    }
+    if (!r.U64(&len) || !r.Bytes(len, &state)) return bad("truncated trained state");
+    if (r.remaining() != 0) return bad("trailing bytes after the trained state");
+    auto m = Model::FromState(spec, ids, state, std::move(backing));
+    if (!m.ok()) return bad(m.status().message());
+    TokenModel t;
+    t.model_ = std::shared_ptr<const Model>(std::move(m).value());
+    t.has_vocab_ = has_vocab;
+    t.vocab_ = std::move(vocab);
+    t.training_ = std::move(ids);
+    tm = std::move(t);
+  }
   if (!tm.ok()) return bad(tm.status().message());
   tm->set_metadata(std::move(metadata));
   return tm;
@@ -256,6 +278,25 @@ Status SaveModel(const TokenModel& model, const std::string& path) {
 }
 
 Result<TokenModel> LoadModel(const std::string& path) {
+  if (Utf8ErrorOffset(path) != std::string_view::npos) {
+    return Status::InvalidInput("model path is not valid UTF-8 (rename the file)");
+  }
+  // Map the file (read-only); fall back to reading it (pipes, empty files).
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  struct stat st {};
+  if (fd >= 0 && ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0) {
+    const size_t size = static_cast<size_t>(st.st_size);
+    void* p = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0);
+    ::close(fd);
+    if (p != MAP_FAILED) {
+      std::shared_ptr<const void> mapping(
+          p, [size](const void* q) { ::munmap(const_cast<void*>(q), size); });
+      return TokenModel::Parse(std::string_view(static_cast<const char*>(p), size), path,
+                               std::move(mapping));
+    }
+  } else if (fd >= 0) {
+    ::close(fd);
+  }
   auto data = ReadFile(path);
   if (!data.ok()) return data.status();
   return TokenModel::Parse(*data, path);

@@ -80,10 +80,17 @@ class TokenModel {
 
   // The model file bytes (format version 1). Deterministic.
   std::string Serialize() const;
-  // Parses model file bytes and rebuilds the model. `name` prefixes errors.
+  // Parses model file bytes and rebuilds the model (format 2: from the
+  // stored trained state; format 1: by retraining). `name` prefixes errors.
   // Errors: kInvalidInput for a wrong magic, unsupported version, bad
-  // checksum, truncated or inconsistent content. Never crashes on any input.
+  // checksum, truncated or inconsistent content, a vocabulary token or
+  // metadata entry that is not valid UTF-8. Never crashes on any input.
+  // Copies `bytes` when the model needs them (DE-CTW uses its state in place).
   static Result<TokenModel> Parse(std::string_view bytes, const std::string& name);
+  // The same over bytes owned by `backing`, which the model may keep alive
+  // instead of copying (LoadModel maps the file and passes the mapping).
+  static Result<TokenModel> Parse(std::string_view bytes, const std::string& name,
+                                  std::shared_ptr<const void> backing);
 
  private:
   TokenModel() = default;
@@ -98,7 +105,10 @@ class TokenModel {
 
 // Writes a model file atomically. Errors: kIoError.
 Status SaveModel(const TokenModel& model, const std::string& path);
-// Reads and parses a model file. Errors: kNotFound / kIoError / kInvalidInput.
+// Reads and parses a model file; the file is mapped into memory read-only
+// and a DE-CTW model reads its trained state from the mapping (nothing is
+// copied or retrained). Errors: kNotFound / kIoError / kInvalidInput (also
+// for a path that is not valid UTF-8).
 Result<TokenModel> LoadModel(const std::string& path);
 
 // Splits text into whitespace-separated tokens (space, tab, CR, LF).

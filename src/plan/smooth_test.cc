@@ -75,5 +75,47 @@ TEST(Smooth, BadModelsAreErrors) {
   EXPECT_EQ(Smooth(junk, &plan).code(), Status::Code::kInvalidInput);
 }
 
+// Models whose symbols smoothing cannot match to the moves are refused
+// with a message saying why, never used silently.
+TEST(Smooth, RefusesModelsItCannotMatch) {
+  RoutePlan plan = ExamplePlan();
+  const std::string dir = ::testing::TempDir();
+  auto save = [&](markov::TokenModel m, const std::string& name) {
+    const std::string path = dir + name;
+    EXPECT_TRUE(markov::SaveModel(m, path).ok());
+    return path;
+  };
+  auto plain = markov::TokenModel::FromTokens({}, {"a", "b", "a"});
+  ASSERT_TRUE(plain.ok());
+  Status s = Smooth(save(*plain, "plain.sbm"), &plan);
+  EXPECT_EQ(s.code(), Status::Code::kInvalidInput);
+  EXPECT_NE(s.message().find("does not say which symbol set and grammar"), std::string::npos);
+  // Metadata claiming k3 for tokens of another shape.
+  auto k1 = markov::TokenModel::FromTokens({}, {"[HoldType].[Jug]", "[HoldType].[Crimp]:x:y"});
+  ASSERT_TRUE(k1.ok());
+  k1->set_metadata({{"grammar", "climbing"}, {"symbol_set", "k3"}});
+  s = Smooth(save(*k1, "shape.sbm"), &plan);
+  EXPECT_NE(s.message().find("is not a symbol of set k3"), std::string::npos) << s.message();
+  // A grammar checksum that is not the bundled grammar's.
+  auto ok = markov::TokenModel::FromTokens({}, {"[HoldType].[Jug]", "[HoldType].[Crimp]:BIG"});
+  ASSERT_TRUE(ok.ok());
+  auto meta = SymbolMetadata({"k3", "climbing", "", false});
+  ASSERT_TRUE(meta.ok()) << meta.status().message();
+  auto changed = *meta;
+  changed["grammar_checksum"] = "0123456789abcdef";
+  ok->set_metadata(changed);
+  s = Smooth(save(*ok, "checksum.sbm"), &plan);
+  EXPECT_NE(s.message().find("another version of the grammar"), std::string::npos) << s.message();
+  ok->set_metadata(*meta);
+  EXPECT_TRUE(Smooth(save(*ok, "good.sbm"), &plan).ok());
+  // An unknown symbol set, a missing grammar file.
+  ok->set_metadata({{"grammar", "climbing"}, {"symbol_set", "k9"}});
+  EXPECT_NE(Smooth(save(*ok, "k9.sbm"), &plan).message().find("unknown symbol set"),
+            std::string::npos);
+  ok->set_metadata({{"grammar", "/nonexistent/x.gra"}, {"symbol_set", "k3"}});
+  EXPECT_NE(Smooth(save(*ok, "gra.sbm"), &plan).message().find("grammar cannot be read"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace sb::plan
