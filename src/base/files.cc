@@ -1,5 +1,7 @@
 #include "base/files.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -7,31 +9,66 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
-#include <iterator>
-#include <sstream>
 #include <vector>
 
 namespace sb {
 
-Result<std::string> ReadFile(const std::string& path) {
+namespace {
+
+// Reads `fd` to its end or until more than `max_bytes` came in.
+Status ReadAll(int fd, const std::string& name, uint64_t max_bytes, std::string* out) {
+  constexpr size_t kChunk = 64 * 1024;
+  for (;;) {
+    size_t old = out->size();
+    out->resize(old + kChunk);
+    ssize_t n = ::read(fd, out->data() + old, kChunk);
+    if (n < 0) {
+      if (errno == EINTR) {
+        out->resize(old);
+        continue;
+      }
+      int err = errno;
+      out->resize(old);
+      return Status::IoError(name + ": " + std::strerror(err));
+    }
+    out->resize(old + static_cast<size_t>(n));
+    if (n == 0) return Status::Ok();
+    if (out->size() > max_bytes) {
+      return Status::InvalidInput(name + ": larger than " + std::to_string(max_bytes) +
+                                  " bytes (the limit for this input)");
+    }
+  }
+}
+
+}  // namespace
+
+Result<std::string> ReadFile(const std::string& path, uint64_t max_bytes) {
+  std::string data;
   if (path == "-") {
-    std::ostringstream ss;
-    ss << std::cin.rdbuf();
-    return ss.str();
+    SB_RETURN_IF_ERROR(ReadAll(STDIN_FILENO, "<stdin>", max_bytes, &data));
+    return data;
   }
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) {
-    return Status::IoError(path + ": is a directory");
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
+  int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) {
     if (errno == ENOENT) return Status::NotFound(path + ": no such file");
     return Status::IoError(path + ": " + std::strerror(errno));
   }
-  std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) return Status::IoError(path + ": read error");
+  struct stat st;
+  Status s;
+  if (::fstat(fd, &st) != 0) {
+    s = Status::IoError(path + ": " + std::strerror(errno));
+  } else if (S_ISDIR(st.st_mode)) {
+    s = Status::IoError(path + ": is a directory");
+  } else if (S_ISREG(st.st_mode) && static_cast<uint64_t>(st.st_size) > max_bytes) {
+    s = Status::InvalidInput(path + ": larger than " + std::to_string(max_bytes) +
+                             " bytes (the limit for this input)");
+  } else {
+    if (S_ISREG(st.st_mode)) data.reserve(static_cast<size_t>(st.st_size));
+    s = ReadAll(fd, path, max_bytes, &data);
+  }
+  ::close(fd);
+  if (!s.ok()) return s;
   return data;
 }
 
@@ -72,21 +109,28 @@ Status WriteFileAtomic(const std::string& path, std::string_view data) {
   return Status::Ok();
 }
 
-std::string FindDataFile(const std::string& relative) {
+std::string FindBundled(Bundle bundle, std::string_view relative, PathKind kind) {
   namespace fs = std::filesystem;
+  const char* folder = bundle == Bundle::kData ? "data" : "web";
+  const char* env_name = bundle == Bundle::kData ? "SB_DATA_DIR" : "SB_WEB_DIR";
   std::error_code ec;
   std::vector<fs::path> roots;
-  if (const char* env = std::getenv("SB_DATA_DIR"); env && *env) roots.emplace_back(env);
+  if (const char* env = std::getenv(env_name); env && *env) roots.emplace_back(env);
 #ifdef SB_SOURCE_DIR
-  roots.push_back(fs::path(SB_SOURCE_DIR) / "data");
+  roots.push_back(fs::path(SB_SOURCE_DIR) / folder);
 #endif
   fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) roots.push_back(exe.parent_path() / ".." / "data");
+  if (!ec) roots.push_back(exe.parent_path() / ".." / folder);
   for (const fs::path& root : roots) {
-    fs::path p = root / relative;
-    if (fs::is_regular_file(p, ec)) return fs::weakly_canonical(p, ec).string();
+    fs::path p = relative.empty() ? root : root / relative;
+    bool found = kind == PathKind::kFile ? fs::is_regular_file(p, ec) : fs::is_directory(p, ec);
+    if (found) return fs::weakly_canonical(p, ec).string();
   }
   return "";
+}
+
+std::string FindDataFile(const std::string& relative) {
+  return FindBundled(Bundle::kData, relative, PathKind::kFile);
 }
 
 std::string FindSharedDir(const std::string& fallback) {
