@@ -1,11 +1,18 @@
-#include "store/csv_io.h"
-
+// CSV import and export through the Routes service (the original site's
+// format, crdl/site_csv.h).
 #include <gtest/gtest.h>
 
+#include "app/app_test_util.h"
+#include "app/routes.h"
+#include "app/variations.h"
 #include "base/files.h"
+#include "crdl/route.h"
 
-namespace sb::store {
+namespace sb::app {
 namespace {
+
+using testing::AppTest;
+using Code = Status::Code;
 
 const char kRoutes[] =
     "route_id,user_id,name,description,created_at,grade,type,is_variation,nna,dim_mask,"
@@ -18,101 +25,129 @@ const char kRoutes[] =
     "75,27,Empty,,2010-01-20 13:12:03.5,,,f,,,,,,,,,,,,f\n";
 const char kMoves[] =
     "route_id,seq_no,hand,move,nnn,delta,error,crux\n"
-    "72,2,L,\"reach, to jug\",f,0,f,f\n"
+    "72,2,L,\"reach, to jug\",f,0,f,t\n"
     "72,1,R,Matched on jug,f,0,f,f\n"
     "73,1,R,match,f,0,f,f\n"
     "74,1,L,reach to jug,f,0,f,f\n"
     "74,2,R,Matched on jug,f,0,f,f\n"
     "99,1,R,orphan,f,0,f,f\n";
 
-TEST(CsvIoTest, ImportsRoutesMovesAndVariationParameters) {
-  Result<CsvImport> im = ParseSiteCsv(kRoutes, kMoves);
+TEST_F(AppTest, ImportsRoutesMovesAndVariationParameters) {
+  Viewer alice = User("alice"), anon;
+  Result<ImportSummary> im = services_->routes.ImportCsv(alice, kRoutes, kMoves);
   ASSERT_TRUE(im.ok()) << im.status().message();
-  ASSERT_EQ(im->routes.size(), 3u);
+  ASSERT_EQ(im->ids.size(), 3u);
   EXPECT_EQ(im->skipped.size(), 2u);  // route 75 has no moves; route 99 unknown
-  const ImportedRoute& base = im->routes[0];
-  EXPECT_EQ(base.route.Name(), "Base");
-  EXPECT_EQ(base.route.Meta("grade").value_or(""), "V4");
-  EXPECT_EQ(base.route.Meta("type").value_or(""), "Bouldering");
-  EXPECT_FALSE(base.route.Meta("style").has_value());  // description stays free text
-  ASSERT_EQ(base.route.moves.size(), 2u);
-  EXPECT_EQ(base.route.moves[0].text, "Matched on jug");  // ordered by seq_no
-  EXPECT_EQ(base.route.moves[1].hand, Hand::kLeft);
-  // The printed CRDL parses back to the same route.
-  Result<Route> back = ParseCrdl(PrintCrdl(base.route), "x");
-  ASSERT_TRUE(back.ok()) << back.status().message();
-  EXPECT_EQ(*back, base.route);
+  EXPECT_EQ(im->ids[0].first, 72);
+  Result<store::RouteRecord> base = services_->routes.Get(anon, im->ids[0].second);
+  ASSERT_TRUE(base.ok());
+  EXPECT_EQ(base->name, "Base");
+  EXPECT_EQ(base->grade, "V4");
+  EXPECT_EQ(base->owner_id, alice.user_id);
+  Result<Route> route = ParseCrdl(base->crdl, "x");
+  ASSERT_TRUE(route.ok()) << route.status().message();
+  EXPECT_FALSE(route->Meta("style").has_value());  // description stays free text
+  EXPECT_EQ(route->Meta("type").value_or(""), "Bouldering");
+  ASSERT_EQ(route->moves.size(), 2u);
+  EXPECT_EQ(route->moves[0].text, "Matched on jug");  // ordered by seq_no
+  EXPECT_TRUE(route->moves[1].crux);                  // the crux column
 
-  const ImportedRoute& v = im->routes[2];
-  ASSERT_TRUE(v.is_variation);
-  ASSERT_TRUE(v.params.has_value());
-  EXPECT_EQ(v.params->mapping.mask, chaos::kMaskX | chaos::kMaskZ);
-  EXPECT_EQ(v.params->mapping.max_repeat, 1);
-  EXPECT_EQ(v.params->integrator, chaos::IntegratorKind::kRkf45);
-  EXPECT_DOUBLE_EQ(v.params->var_ic[0], -16.0);
-  EXPECT_EQ(v.legacy_inputs, (std::vector<int64_t>{72, 73}));
-
-  std::vector<RouteRecord> recs = ToRecords(*im, 5, [](const chaos::VaryParams&) { return "{}"; });
-  ASSERT_EQ(recs.size(), 3u);
-  ASSERT_EQ(recs[2].inputs.size(), 2u);
-  EXPECT_EQ(recs[2].inputs[0].batch_index, 0);
-  EXPECT_EQ(recs[2].inputs[1].batch_index, 1);
-  EXPECT_EQ(recs[2].params_json, "{}");
-  EXPECT_EQ(recs[0].owner_id, 5);
+  int64_t vid = im->ids[2].second;
+  Result<PlanView> v = services_->variations.Plan(anon, vid);
+  ASSERT_TRUE(v.ok()) << v.status().message();
+  const chaos::VaryParams& p = v->plan->variation.params;
+  EXPECT_EQ(p.mapping.mask, chaos::kMaskX | chaos::kMaskZ);
+  EXPECT_EQ(p.mapping.max_repeat, 1);
+  EXPECT_EQ(p.integrator, chaos::IntegratorKind::kRkf45);
+  EXPECT_DOUBLE_EQ(p.var_ic[0], -16.0);
+  ASSERT_EQ(v->record.inputs.size(), 2u);  // linked to 72 and 73 of the same import
+  EXPECT_EQ(v->record.inputs[0].route_id, im->ids[0].second);
+  EXPECT_EQ(v->record.inputs[1].route_id, im->ids[1].second);
+  EXPECT_EQ(services_->routes.ImportCsv(anon, kRoutes, kMoves).status().code(),
+            Code::kUnauthenticated);
 }
 
-TEST(CsvIoTest, ExportReimportsToTheSameRoutes) {
-  Result<CsvImport> im = ParseSiteCsv(kRoutes, kMoves);
-  ASSERT_TRUE(im.ok());
-  std::vector<RouteRecord> recs = ToRecords(*im, 1, [](const chaos::VaryParams&) { return "p"; });
-  for (size_t i = 0; i < recs.size(); ++i) recs[i].id = static_cast<int64_t>(i + 1);
-  CsvExport ex = ExportSiteCsv(recs, [&](const std::string&) -> std::optional<chaos::VaryParams> {
-    return im->routes[2].params;
-  });
-  Result<CsvImport> again = ParseSiteCsv(ex.routes_csv, ex.moves_csv);
+TEST_F(AppTest, ExportReimportsToTheSameRoutes) {
+  Viewer alice = User("alice"), bob = User("bob");
+  Result<ImportSummary> im = services_->routes.ImportCsv(alice, kRoutes, kMoves);
+  ASSERT_TRUE(im.ok()) << im.status().message();
+  Result<CsvFiles> ex = services_->routes.ExportCsv(alice, true);
+  ASSERT_TRUE(ex.ok());
+  EXPECT_NE(ex->routes_csv.find("Variation on 72,73"), std::string::npos);
+  EXPECT_NE(ex->routes_csv.find(",B,101,1,0,0,-13,-12,52,-16,-12,52,t"), std::string::npos);
+  EXPECT_NE(ex->moves_csv.find(",L,\"reach, to jug\",f,0,f,t"), std::string::npos);
+  EXPECT_EQ(services_->routes.ExportCsv(bob, true)->routes_csv.find("Base"), std::string::npos);
+  Result<ImportSummary> again = services_->routes.ImportCsv(bob, ex->routes_csv, ex->moves_csv);
   ASSERT_TRUE(again.ok()) << again.status().message();
-  ASSERT_EQ(again->routes.size(), im->routes.size());
-  for (size_t i = 0; i < recs.size(); ++i) {
-    EXPECT_EQ(again->routes[i].route, im->routes[i].route) << i;
+  ASSERT_EQ(again->ids.size(), im->ids.size());
+  for (size_t i = 0; i < im->ids.size(); ++i) {
+    Result<store::RouteRecord> x = services_->routes.Get(bob, im->ids[i].second);
+    Result<store::RouteRecord> y = services_->routes.Get(bob, again->ids[i].second);
+    ASSERT_TRUE(x.ok() && y.ok());
+    EXPECT_EQ(*ParseCrdl(x->crdl, "x"), *ParseCrdl(y->crdl, "y")) << i;
   }
-  EXPECT_EQ(again->routes[2].params->mapping.mask, im->routes[2].params->mapping.mask);
-  EXPECT_EQ(again->routes[2].params->var_ic, im->routes[2].params->var_ic);
 }
 
-TEST(CsvIoTest, RefusesBrokenFilesWithAPlace) {
-  EXPECT_FALSE(ParseSiteCsv("name\nx\n", kMoves).ok());  // no route_id column
-  Result<CsvImport> r = ParseSiteCsv(kRoutes, "route_id,seq_no,hand,move\n72,1,X,jug\n");
-  ASSERT_FALSE(r.ok());
-  EXPECT_NE(r.status().message().find("moves.csv"), std::string::npos);
-  EXPECT_NE(r.status().message().find("hand"), std::string::npos);
-  EXPECT_FALSE(ParseSiteCsv(kRoutes, "route_id,seq_no,hand,move\n\"72,1,R,jug\n").ok());
-  EXPECT_FALSE(ParseSiteCsv("", "").ok());
+TEST_F(AppTest, HostileRowsAreRefusedWithAPlaceAndNothingIsStored) {
+  Viewer alice = User("alice");
+  const std::string head =
+      "route_id,name,is_variation,nna,dim_mask,transient,rx,ry,rz,vx,vy,vz\n"
+      "1,Base,f,,,,,,,,,\n";
+  const std::string moves = "route_id,seq_no,hand,move\n1,1,R,jug\n1,2,L,crimp\n2,1,R,jug\n";
+  struct Case {
+    std::string row;
+    std::string message;
+  };
+  const Case cases[] = {
+      {"2,V,t,B,101,0,nan,-12,52,-16,-12,52", "routes.csv:3: rx: not a finite number: \"nan\""},
+      {"2,V,t,B,101,0,-13,-12,52,inf,-12,52", "routes.csv:3: vx: not a finite number: \"inf\""},
+      {"2,V,t,B,101,0,-13,-12,52,1e300,-12,52", "routes.csv:3: the trajectory diverged"},
+      {"2,V,t,B,101,999999999,-13,-12,52,-16,-12,52", "routes.csv:3: transient: expected"},
+      {"2,V,t,B,101,200000,-13,-12,52,-16,-12,52", "routes.csv:3: transient: at most 100000"},
+  };
+  for (const Case& c : cases) {
+    Result<ImportSummary> im = services_->routes.ImportCsv(alice, head + c.row + "\n", moves);
+    ASSERT_FALSE(im.ok()) << c.row;
+    EXPECT_EQ(im.status().code(), Code::kInvalidInput);
+    EXPECT_EQ(im.status().message().rfind(c.message, 0), 0u) << im.status().message();
+  }
+  EXPECT_EQ(services_->routes.List(alice, {})->size(), 0u);  // nothing half-imported
+  Result<ImportSummary> nul = services_->routes.ImportCsv(
+      alice, "route_id,name\n1,x\n", std::string("route_id,seq_no,hand,move\n1,1,R,a\0b\n", 36));
+  ASSERT_FALSE(nul.ok());
+  EXPECT_EQ(nul.status().message().rfind("routes.csv:2: route 1: NUL byte", 0), 0u)
+      << nul.status().message();
+  Options small = TestOptions();
+  small.limits.max_import_routes = 1;
+  Reopen(small);
+  EXPECT_EQ(services_->routes.ImportCsv(alice, kRoutes, kMoves).status().message(),
+            "at most 1 routes per import");
 }
 
-TEST(CsvIoTest, ImportsTheOriginalCorpus) {
+TEST_F(AppTest, ImportsTheOriginalCorpusAndEveryPlanBuilds) {
   std::string shared = FindSharedDir(SB_SHARED_DIR);
   if (shared.empty()) GTEST_SKIP() << "../shared is absent";
   Result<std::string> routes = ReadFile(shared + "/corpus/public_routes.csv");
   Result<std::string> moves = ReadFile(shared + "/corpus/public_moves.csv");
   if (!routes.ok() || !moves.ok()) GTEST_SKIP() << "corpus CSV files are absent";
-  Result<CsvImport> im = ParseSiteCsv(*routes, *moves);
+  Viewer gym = User("gym");
+  Result<ImportSummary> im = services_->routes.ImportCsv(gym, *routes, *moves);
   ASSERT_TRUE(im.ok()) << im.status().message();
-  EXPECT_GT(im->routes.size(), 500u);
-  size_t moves_total = 0, variations = 0, linked = 0;
-  for (const ImportedRoute& r : im->routes) {
-    moves_total += r.route.moves.size();
-    Result<Route> back = ParseCrdl(PrintCrdl(r.route), "x");
-    ASSERT_TRUE(back.ok()) << r.legacy_id << ": " << back.status().message();
-    EXPECT_EQ(back->moves.size(), r.route.moves.size());
-    if (r.is_variation) {
-      ++variations;
-      if (!r.legacy_inputs.empty()) ++linked;
-    }
+  EXPECT_GT(im->ids.size(), 500u);
+  RouteQuery q;
+  q.variations = true;
+  q.limit = 5000;
+  Result<std::vector<store::RouteRecord>> vs = services_->routes.List(gym, q);
+  ASSERT_TRUE(vs.ok());
+  EXPECT_GT(vs->size(), 100u);
+  size_t linked = 0;
+  for (const store::RouteRecord& r : *vs) {
+    Result<PlanView> p = services_->variations.Plan(gym, r.id);
+    ASSERT_TRUE(p.ok()) << r.id << ": " << p.status().message();
+    linked += !p->record.inputs.empty();
   }
-  EXPECT_GT(moves_total, 6000u);
-  EXPECT_GT(variations, 0u);
-  EXPECT_GT(linked, variations / 2);
+  EXPECT_GT(linked, vs->size() / 2);
 }
 
 }  // namespace
-}  // namespace sb::store
+}  // namespace sb::app

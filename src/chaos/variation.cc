@@ -175,6 +175,8 @@ Result<VaryParams> ParamsFromSiteColumns(const std::map<std::string, std::string
     }
   }
   if (std::string v = get("max_repeat"); !v.empty()) {
+    // The site wrote -1 for "off" in a few rows.
+    if (v == "-1") v = "0";
     if (!ParseInt(v, &p.mapping.max_repeat) || p.mapping.max_repeat < 0 ||
         p.mapping.max_repeat > kMaxRepeat) {
       return bad("max_repeat", "expected a whole number 0.." + std::to_string(kMaxRepeat) +

@@ -58,7 +58,7 @@ Result<VaryParams> ParamsFromJson(std::string_view json_text);
 // The original site's variation columns (crdl/site_csv.h: nna, dim_mask,
 // max_repeat, transient, rx, ry, rz, vx, vy, vz) decoded with the site's
 // engine settings (Lorenz 16/45/4, RKF45, step 0.015). Empty columns keep the
-// default; an unusable dim_mask (the site stored "000" for some Dabby
+// default; max_repeat -1 (the site's "off") reads as 0; an unusable dim_mask (the site stored "000" for some Dabby
 // variations) keeps the default and is described in `notes`. Errors:
 // kInvalidInput located at `where` naming the column for values that are not
 // numbers in range (nan, inf, 1e300 ICs) or parameters Validate refuses.

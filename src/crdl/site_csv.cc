@@ -121,14 +121,10 @@ Result<MoveRow> ReadMoveRow(const Table& t, size_t i) {
   row.move.text = OneLine(t.Get(i, "move"));
   row.move.crux = Trim(t.Get(i, "crux")) == "t";
   // Read the text as a CRDL move line would be, so it prints back the same.
-  CrdlLine l = ScanCrdlLine("R " + row.move.text, CrdlSection::kMoves);
-  if (l.kind == CrdlLineKind::kMove) {
-    row.move.crux = row.move.crux || l.crux;
-    row.move.text = std::string(l.text);
-  } else {
-    row.move.crux = row.move.crux || l.crux;
-    row.move.text = "?";
-  }
+  const std::string line = "R " + row.move.text;
+  CrdlLine l = ScanCrdlLine(line, CrdlSection::kMoves);
+  row.move.crux = row.move.crux || l.crux;
+  row.move.text = l.kind == CrdlLineKind::kMove ? std::string(l.text) : "?";
   return row;
 }
 

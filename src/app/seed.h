@@ -1,0 +1,35 @@
+// First-run content for a fresh database: the demo account and the bundled
+// example routes (`strangebeta serve`).
+#ifndef SB_APP_SEED_H_
+#define SB_APP_SEED_H_
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "base/status.h"
+#include "store/store.h"
+
+namespace sb::app {
+
+inline constexpr char kDemoUser[] = "demo";
+inline constexpr char kDemoPassword[] = "strangebeta-demo";
+
+// Creates the demo account (kDemoUser / kDemoPassword) when absent. Returns
+// its user id. `fast_hash` uses the cheapest argon2id cost (tests).
+// Errors from the store.
+Result<int64_t> EnsureDemoAccount(store::Store* store, bool fast_hash = false);
+
+// Imports every *.crdl file of `dir` (sorted by name) as a public route owned
+// by `owner`, in one transaction. Files that do not parse are skipped and
+// reported in `skipped` ("path:line:col: reason"). A missing directory
+// imports nothing (not an error). Returns the number imported.
+Result<int> SeedExamples(store::Store* store, const std::string& dir, int64_t owner,
+                         std::vector<std::string>* skipped);
+
+// The bundled examples (data/examples, see sb::FindBundled); "" when absent.
+std::string DefaultExamplesDir();
+
+}  // namespace sb::app
+
+#endif  // SB_APP_SEED_H_
