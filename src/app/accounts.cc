@@ -90,7 +90,9 @@ Result<NewSession> Accounts::LogIn(std::string_view username, std::string_view p
   const int frees[2] = {policy.pair_free_attempts, policy.address_free_attempts};
   for (int k = 0; k < 2; ++k) {
     int64_t delay = DelayAfter(c[k].count - 1, frees[k], policy.max_delay_seconds);
-    if (delay > 0) wait = std::max(wait, c[k].previous_at + delay - now);
+    // Whole seconds: more than `delay` of them apart guarantees that at
+    // least `delay` real seconds passed.
+    if (delay > 0) wait = std::max(wait, c[k].previous_at + delay + 1 - now);
   }
   if (wait > 0) {
     // A refused attempt does not count: the delay grows with the attempts
@@ -116,7 +118,10 @@ Result<NewSession> Accounts::LogIn(std::string_view username, std::string_view p
     ok = VerifyBounded(password, user.ok() ? user->password_hash : DummyHash()) && user.ok();
   }
   if (!ok) return Status::Unauthenticated("wrong user name or password");
+  // Only failures count: a success clears its pair and is taken back from
+  // the address and account counts.
   SB_RETURN_IF_ERROR(store_->ClearAttempts(pair_key));
+  SB_RETURN_IF_ERROR(store_->UndoAttempts({address_key, account_key}, now));
   NewSession out;
   out.token = store::RandomToken();
   out.session.id_hash = store::HashToken(out.token);

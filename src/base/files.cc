@@ -41,12 +41,31 @@ Status ReadAll(int fd, const std::string& name, uint64_t max_bytes, std::string*
   }
 }
 
+// Standard input through std::cin (so callers and tests may redirect it).
+Status ReadStdin(uint64_t max_bytes, std::string* out) {
+  constexpr size_t kChunk = 64 * 1024;
+  for (;;) {
+    size_t old = out->size();
+    out->resize(old + kChunk);
+    std::cin.read(out->data() + old, kChunk);
+    out->resize(old + static_cast<size_t>(std::cin.gcount()));
+    if (out->size() > max_bytes) {
+      return Status::InvalidInput("<stdin>: larger than " + std::to_string(max_bytes) +
+                                  " bytes (the limit for this input)");
+    }
+    if (!std::cin) {
+      if (std::cin.bad()) return Status::IoError("<stdin>: read error");
+      return Status::Ok();
+    }
+  }
+}
+
 }  // namespace
 
 Result<std::string> ReadFile(const std::string& path, uint64_t max_bytes) {
   std::string data;
   if (path == "-") {
-    SB_RETURN_IF_ERROR(ReadAll(STDIN_FILENO, "<stdin>", max_bytes, &data));
+    SB_RETURN_IF_ERROR(ReadStdin(max_bytes, &data));
     return data;
   }
   int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);

@@ -16,4 +16,6 @@ void LogError(std::string_view message) {
   std::fflush(stderr);
 }
 
+void LogInfo(std::string_view message) { LogError(message); }
+
 }  // namespace sb

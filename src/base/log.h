@@ -10,6 +10,8 @@ namespace sb {
 // Writes "strangebeta: <message>\n" to standard error as one write.
 // Thread-safe (lines from different threads never interleave).
 void LogError(std::string_view message);
+// The same for information (access-log lines).
+void LogInfo(std::string_view message);
 
 }  // namespace sb
 
