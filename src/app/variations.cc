@@ -60,6 +60,7 @@ size_t PlanCache::size() {
 namespace {
 
 const char kNoSuggestions[] = "No suggestions: the model found no insertion that reads better.";
+const char kNoSmoothing[] = "the smoothing model is not available on this server";
 
 Status NoVariation(int64_t id) { return Status::NotFound("no variation " + std::to_string(id)); }
 
@@ -106,7 +107,8 @@ Result<PlanCache::Entry> Rebuild(const store::RouteRecord& rec, const std::strin
   }
   Status st = plan::Smooth(model, &e.plan);
   if (!st.ok()) {
-    e.note = "Smoothing was requested but is not available: " + st.message();
+    LogError("smoothing: " + st.message());
+    e.note = std::string("Smoothing was requested but ") + kNoSmoothing + ".";
   } else if (e.plan.smoothing.empty()) {
     e.note = kNoSuggestions;
   }
@@ -164,6 +166,11 @@ Result<CreatedVariation> Variations::Create(const Viewer& v, const VariationRequ
   SmoothingRequest smoothing{req.smooth, options_.smoothing_model, 0.0};
   CreatedVariation out;
   SB_ASSIGN_OR_RETURN(out.plan, BuildPlan(inputs, req.params, smoothing, &out.smoothing));
+  if (!out.smoothing.status.ok()) {
+    // The reason names server files: logged here, summarised for the client.
+    LogError("smoothing: " + out.smoothing.status.message());
+    out.smoothing.status = Status::NotFound(kNoSmoothing);
+  }
 
   // The variation, stored like a route: its moves as CRDL, its parameters,
   // its plan and a snapshot of every input.

@@ -95,7 +95,9 @@ class Variations {
   Variations(store::Store* store, const Options& options, PlanCache* plans);
 
   // Makes and stores a variation owned by the viewer from visible routes.
-  // Errors: kUnauthenticated; kInvalidInput naming the field ("routes: ...",
+  // When the smoothing model cannot be used, the variation is made without it
+  // and the outcome says so (the detailed reason, naming server files, is
+  // only logged). Errors: kUnauthenticated; kInvalidInput naming the field ("routes: ...",
   // "skip: at most 100000 on this server", the engine's messages);
   // kNotFound "no route N".
   Result<CreatedVariation> Create(const Viewer& v, const VariationRequest& request);

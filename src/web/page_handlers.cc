@@ -2,6 +2,7 @@
 #include <set>
 
 #include "app/feedback.h"
+#include "app/routes.h"
 #include "base/text.h"
 #include "crdl/route.h"
 #include "plan/pdf.h"
@@ -72,7 +73,7 @@ void PageRoute(Exchange& x) {
   if (Result<Route> parsed = ParseCrdl(r->crdl, "route"); parsed.ok()) {
     readings = app::MoveReadings(*parsed);
   }
-  Html(x, RoutePage(x.caller.page(), *r, readings));
+  Html(x, RoutePage(x.caller.page(), *r, app::IsOwner(*r, x.caller.viewer), readings));
 }
 
 void PageVary(Exchange& x) {

@@ -176,7 +176,7 @@ std::string EditorPage(const PageViewer& v, const std::optional<store::RouteReco
   return Layout(v, title, b, "page-editor");
 }
 
-std::string RoutePage(const PageViewer& v, const store::RouteRecord& r,
+std::string RoutePage(const PageViewer& v, const store::RouteRecord& r, bool can_change,
                       const std::vector<std::string>& readings) {
   std::string b = "<h1>" + E(r.name) + "</h1>\n";
   b += "<p class=\"byline\">";
@@ -196,7 +196,7 @@ std::string RoutePage(const PageViewer& v, const store::RouteRecord& r,
   b += "<p class=\"actions no-print\"><a class=\"button\" id=\"vary-this\" href=\"/vary?routes=" +
        id + "\">Vary this route</a> <a href=\"/api/routes/" + id +
        ".crdl\" download>Download CRDL</a>";
-  if (v.logged_in && r.owner_id && *r.owner_id == v.user_id) {
+  if (can_change) {
     b += " <a class=\"button\" href=\"/routes/" + id +
          "/edit\" id=\"edit\">Edit</a>"
          " <button type=\"button\" class=\"danger\" id=\"delete-route\" data-id=\"" +

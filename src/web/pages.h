@@ -34,10 +34,11 @@ std::string RouteListPage(const PageViewer& v, const std::vector<store::RouteRec
 std::string LoginPage(const PageViewer& v, bool signup);
 // The CRDL editor with live feedback; `route` = nullopt for a new route.
 std::string EditorPage(const PageViewer& v, const std::optional<store::RouteRecord>& route);
-// "/routes/{id}". `readings[i]` = how the grammar read move i ("" when it does
-// not parse; an empty vector when the grammar is not available). Crux moves
-// are marked.
-std::string RoutePage(const PageViewer& v, const store::RouteRecord& route,
+// "/routes/{id}". `can_change` = the viewer may edit and delete it (the
+// ownership rule, app::IsOwner). `readings[i]` = how the grammar read move i
+// ("" when it does not parse; an empty vector when the grammar is not
+// available). Crux moves are marked.
+std::string RoutePage(const PageViewer& v, const store::RouteRecord& route, bool can_change,
                       const std::vector<std::string>& readings = {});
 // "/vary": `routes` = the routes the viewer may vary; `selected` = ids ticked.
 std::string VaryPage(const PageViewer& v, const std::vector<store::RouteRecord>& routes,
