@@ -332,6 +332,17 @@ TEST_F(ApiTest, ADeletedPrivateVariationNeverShowsAgain) {
   }
 }
 
+TEST_F(ApiTest, APortAlreadyServedIsRefused) {
+  auto s = store::OpenSqliteStore((dir_ / "other.db").string());
+  ASSERT_TRUE(s.ok());
+  ServerOptions o;
+  o.threads = 2;
+  Server second(s->get(), o);
+  Result<int> port = second.Bind("127.0.0.1", server_->port());
+  EXPECT_FALSE(port.ok());
+  EXPECT_EQ(port.status().code(), Status::Code::kIoError);
+}
+
 TEST_F(ApiTest, CsrfTokenRequiredWithASessionCookie) {
   Client c = NewClient();
   c.SignUp("alice");

@@ -86,6 +86,14 @@ struct HttpTransport::Impl {
           on_error(Convert(q), 500, &out);
           Send(out, s);
         });
+    // SO_REUSEADDR only: the library's default adds SO_REUSEPORT, which lets a
+    // second server bind the same port and silently take half the connections.
+    http.set_socket_options([](socket_t sock) {
+      int yes = 1;
+      if (setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes) != 0) {
+        LogError("cannot set SO_REUSEADDR on the listening socket");
+      }
+    });
     int n = options.threads > 0 ? options.threads : 32;
     http.new_task_queue = [n] { return new httplib::ThreadPool(n); };
     // Headers and body go out in separate writes: without TCP_NODELAY, Nagle
