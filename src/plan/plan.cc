@@ -147,7 +147,7 @@ std::string RenderText(const RoutePlan& plan) {
   size_t next = 0;
   for (size_t j = 0; j < moves.size(); ++j) {
     const auto& m = moves[j];
-    char num[16];
+    char num[24];
     std::snprintf(num, sizeof num, "%3zu", j + 1);
     out += std::string(num) + "  " + HandLetter(m.hand) + "     " + Pad(MoveText(m), w) +
            (m.changed ? "  changed  " : "  kept     ") + Provenance(plan, m) + "\n";

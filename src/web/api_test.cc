@@ -716,7 +716,9 @@ TEST_F(ApiTest, ImportsTheOriginalCorpusAndRebuildsEveryPlan) {
     std::string id = std::to_string(r["id"].get<int64_t>());
     ++variations;
     EXPECT_EQ(c.Status("GET", "/variations/" + id), 200) << id;
-    if (variations % 20 == 0) EXPECT_EQ(c.Status("GET", "/variations/" + id + ".pdf"), 200) << id;
+    if (variations % 20 == 0) {
+      EXPECT_EQ(c.Status("GET", "/variations/" + id + ".pdf"), 200) << id;
+    }
   }
   EXPECT_GT(variations, 100);
   // Export gives the same number of routes back.
