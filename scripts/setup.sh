@@ -12,6 +12,7 @@ PACKAGES=(
   wrk chromium chromium-driver nodejs npm
   poppler-utils fonts-dejavu-core
   libboost-dev python3-scipy
+  python3 curl
 )
 
 missing=()

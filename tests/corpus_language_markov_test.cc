@@ -61,7 +61,9 @@ TEST(CorpusLanguageMarkov, SymbolSequencesTrainAndScore) {
       // Better than a uniform model everywhere; clearly better on the small
       // symbol sets (k2/k4 meet many unseen size/shape words in held-out routes).
       EXPECT_LT(bits / n, uniform) << "k" << k + 1;
-      if (k == 0 || k == 2) EXPECT_LT(bits / n, 0.9 * uniform) << "k" << k + 1;
+      if (k == 0 || k == 2) {
+        EXPECT_LT(bits / n, 0.9 * uniform) << "k" << k + 1;
+      }
     }
   }
 }

@@ -86,8 +86,8 @@
         const note = document.createElement('span');
         note.className = 'reading';
         if (l.kind === 'move') {
-          note.textContent = (l.hand === 'L' ? 'left hand' : 'right hand') + ' · ' +
-            (r.data.language ? (l.parsed ? l.reading : 'not understood by the grammar') : l.move);
+          note.textContent = (l.hand === 'L' ? 'left hand' : 'right hand') + (l.crux ? ' · crux' : '') +
+            ' · ' + (r.data.language ? (l.parsed ? l.reading : 'not understood by the grammar') : l.move);
         } else if (l.kind === 'error') {
           note.textContent = l.error || 'not a move: start with L or R';
         } else if (l.kind === 'meta') {

@@ -2,11 +2,11 @@
 
 namespace sb {
 
-Result<std::vector<CsvRow>> ParseCsv(std::string_view text, std::string_view name) {
-  std::vector<CsvRow> rows;
+Result<CsvTable> ParseCsv(std::string_view text, std::string_view name) {
+  CsvTable table;
   CsvRow row;
   std::string field;
-  size_t line = 1, quote_line = 0;
+  int line = 1, col = 1, row_line = 1, quote_line = 0, quote_col = 0;
   bool in_quotes = false, field_started = false;
   auto end_field = [&] {
     row.push_back(std::move(field));
@@ -15,21 +15,27 @@ Result<std::vector<CsvRow>> ParseCsv(std::string_view text, std::string_view nam
   };
   auto end_row = [&] {
     end_field();
-    rows.push_back(std::move(row));
+    table.rows.push_back(std::move(row));
+    table.lines.push_back(row_line);
     row.clear();
   };
-  for (size_t i = 0; i < text.size(); ++i) {
+  auto where = [&](int l, int c) { return SourceLocation{std::string(name), l, c}; };
+  for (size_t i = 0; i < text.size(); ++i, ++col) {
     char c = text[i];
     if (in_quotes) {
       if (c == '"') {
         if (i + 1 < text.size() && text[i + 1] == '"') {
           field += '"';
           ++i;
+          ++col;
         } else {
           in_quotes = false;
         }
       } else {
-        if (c == '\n') ++line;
+        if (c == '\n') {
+          ++line;
+          col = 0;
+        }
         field += c;
       }
       continue;
@@ -37,12 +43,12 @@ Result<std::vector<CsvRow>> ParseCsv(std::string_view text, std::string_view nam
     switch (c) {
       case '"':
         if (field_started && !field.empty()) {
-          return Status::InvalidInput(std::string(name) + ":" + std::to_string(line) +
-                                      ": quote inside an unquoted field");
+          return Status::InvalidInputAt(where(line, col), "quote inside an unquoted field");
         }
         in_quotes = true;
         field_started = true;
         quote_line = line;
+        quote_col = col;
         break;
       case ',':
         end_field();
@@ -54,6 +60,8 @@ Result<std::vector<CsvRow>> ParseCsv(std::string_view text, std::string_view nam
       case '\n':
         end_row();
         ++line;
+        col = 0;
+        row_line = line;
         break;
       default:
         field += c;
@@ -61,11 +69,10 @@ Result<std::vector<CsvRow>> ParseCsv(std::string_view text, std::string_view nam
     }
   }
   if (in_quotes) {
-    return Status::InvalidInput(std::string(name) + ":" + std::to_string(quote_line) +
-                                ": unterminated quoted field");
+    return Status::InvalidInputAt(where(quote_line, quote_col), "unterminated quoted field");
   }
   if (field_started || !field.empty() || !row.empty()) end_row();
-  return rows;
+  return table;
 }
 
 std::string FormatCsvRow(const CsvRow& row) {

@@ -6,24 +6,30 @@ namespace sb {
 namespace {
 
 TEST(Csv, QuotedFieldsSpanLinesAndEscapeQuotes) {
-  auto rows = ParseCsv("a,b,c\r\n1,\"x, \"\"y\"\"\nz\",\n", "t.csv");
-  ASSERT_TRUE(rows.ok()) << rows.status().message();
-  ASSERT_EQ(rows->size(), 2u);
-  EXPECT_EQ((*rows)[1][1], "x, \"y\"\nz");
-  EXPECT_EQ((*rows)[1][2], "");
+  auto t = ParseCsv("a,b,c\r\n1,\"x, \"\"y\"\"\nz\",\n2,b,c\n", "t.csv");
+  ASSERT_TRUE(t.ok()) << t.status().message();
+  ASSERT_EQ(t->rows.size(), 3u);
+  EXPECT_EQ(t->rows[1][1], "x, \"y\"\nz");
+  EXPECT_EQ(t->rows[1][2], "");
+  // Physical lines: the quoted field spans lines 2-3, so the next row is on 4.
+  EXPECT_EQ(t->lines, (std::vector<int>{1, 2, 4}));
 }
 
 TEST(Csv, RoundTrip) {
   CsvRow row = {"plain", "with,comma", "with \"quote\"", "multi\nline", ""};
-  auto rows = ParseCsv(FormatCsvRow(row), "t");
-  ASSERT_TRUE(rows.ok());
-  EXPECT_EQ((*rows)[0], row);
+  auto t = ParseCsv(FormatCsvRow(row), "t");
+  ASSERT_TRUE(t.ok());
+  EXPECT_EQ(t->rows[0], row);
 }
 
 TEST(Csv, Errors) {
   EXPECT_EQ(ParseCsv("a\n\"open,\n", "t.csv").status().message(),
-            "t.csv:2: unterminated quoted field");
-  EXPECT_FALSE(ParseCsv("ab\"c\n", "t.csv").ok());
+            "t.csv:2:1: unterminated quoted field");
+  Result<CsvTable> bad = ParseCsv("x\n\"a\nb\",ab\"c\n", "t.csv");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.status().message(), "t.csv:3:6: quote inside an unquoted field");
+  ASSERT_TRUE(bad.status().location().has_value());
+  EXPECT_EQ(bad.status().location()->line, 3);
 }
 
 }  // namespace

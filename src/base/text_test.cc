@@ -9,18 +9,6 @@
 namespace sb {
 namespace {
 
-TEST(Text, Utf8ErrorOffset) {
-  EXPECT_EQ(Utf8ErrorOffset("plain ascii"), std::string_view::npos);
-  EXPECT_EQ(Utf8ErrorOffset("caf\xc3\xa9 \xe2\x80\x94 \xf0\x9f\xa7\x97"), std::string_view::npos);
-  EXPECT_EQ(Utf8ErrorOffset("ab\xff"), 2u);          // never a lead byte
-  EXPECT_EQ(Utf8ErrorOffset("a\xc3"), 1u);           // truncated
-  EXPECT_EQ(Utf8ErrorOffset("\xc0\xaf"), 0u);        // overlong '/'
-  EXPECT_EQ(Utf8ErrorOffset("x\xe0\x80\xaf"), 1u);   // overlong, 3 bytes
-  EXPECT_EQ(Utf8ErrorOffset("\xed\xa0\x80"), 0u);    // surrogate U+D800
-  EXPECT_EQ(Utf8ErrorOffset("\xf4\x90\x80\x80"), 0u);  // above U+10FFFF
-  EXPECT_EQ(Utf8ErrorOffset("\xc3\x28"), 0u);        // bad continuation
-}
-
 TEST(Text, TrimAndLower) {
   EXPECT_EQ(Trim("  a b \r\n"), "a b");
   EXPECT_EQ(Trim(""), "");
@@ -37,6 +25,48 @@ TEST(Text, SplitLinesHandlesCrlfAndFinalNewline) {
 }
 
 TEST(Text, XmlEscape) { EXPECT_EQ(XmlEscape("<a&'\">"), "&lt;a&amp;&#39;&quot;&gt;"); }
+
+TEST(Text, Utf8ValidationIsStrict) {
+  EXPECT_EQ(FindInvalidUtf8("plain caf\xC3\xA9 \xE2\x82\xAC \xF0\x9F\xA7\x97"), std::string::npos);
+  EXPECT_EQ(FindInvalidUtf8("ab\xED\xA0\x80"), 2u);          // surrogate U+D800
+  EXPECT_EQ(FindInvalidUtf8("\xF4\x90\x80\x80"), 0u);        // U+110000
+  EXPECT_EQ(FindInvalidUtf8("x\xC0\xAF"), 1u);                // overlong '/'
+  EXPECT_EQ(FindInvalidUtf8("\xE0\x80\xAF"), 0u);             // overlong, 3 bytes
+  EXPECT_EQ(FindInvalidUtf8("\xF0\x80\x80\xAF"), 0u);         // overlong, 4 bytes
+  EXPECT_EQ(FindInvalidUtf8("\xE2\x82"), 0u);                 // truncated
+  EXPECT_EQ(FindInvalidUtf8("\x80"), 0u);                      // stray continuation
+  EXPECT_EQ(FindInvalidUtf8("ab\xff"), 2u);                   // never a lead byte
+  EXPECT_EQ(FindInvalidUtf8("a\xc3"), 1u);                    // truncated at the end
+  EXPECT_EQ(FindInvalidUtf8("\xc3\x28"), 0u);                 // bad continuation
+  EXPECT_EQ(ToValidUtf8("a\xFF" "b\xED\xA0\x80"), "a\xEF\xBF\xBD" "b\xEF\xBF\xBD\xEF\xBF\xBD\xEF\xBF\xBD");
+}
+
+TEST(Text, JsonStringsAreAlwaysValid) {
+  EXPECT_EQ(JsonString("a\"b\\c\n\x01"), "\"a\\\"b\\\\c\\n\\u0001\"");
+  EXPECT_EQ(JsonString("caf\xC3\xA9"), "\"caf\xC3\xA9\"");
+  EXPECT_EQ(JsonString("\xFF"), "\"\xEF\xBF\xBD\"");
+  EXPECT_TRUE(EqualsIgnoreCase("MaTcH", "match"));
+  EXPECT_FALSE(EqualsIgnoreCase("match", "matches"));
+}
+
+TEST(Files, ReadsStopAtTheLimit) {
+  Result<std::string> zero = ReadFile("/dev/zero", 1 << 20);
+  ASSERT_FALSE(zero.ok());
+  EXPECT_EQ(zero.status().code(), Status::Code::kInvalidInput);
+  EXPECT_NE(zero.status().message().find("larger than 1048576 bytes"), std::string::npos);
+  std::string path = ::testing::TempDir() + "sb_files_limit.txt";
+  ASSERT_TRUE(WriteFileAtomic(path, "0123456789").ok());
+  EXPECT_FALSE(ReadFile(path, 9).ok());
+  EXPECT_EQ(*ReadFile(path, 10), "0123456789");
+  EXPECT_FALSE(ReadFile("/").ok());
+}
+
+TEST(Files, FindsBundledFolders) {
+  EXPECT_FALSE(FindBundled(Bundle::kData, "examples", PathKind::kDirectory).empty());
+  EXPECT_FALSE(FindBundled(Bundle::kWeb, "app.js", PathKind::kFile).empty());
+  EXPECT_TRUE(FindBundled(Bundle::kData, "examples", PathKind::kFile).empty());
+  EXPECT_TRUE(FindDataFile("no/such/file").empty());
+}
 
 TEST(Files, AtomicWriteThenRead) {
   std::string path = ::testing::TempDir() + "sb_files_test.txt";

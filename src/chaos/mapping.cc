@@ -66,7 +66,7 @@ constexpr size_t kBruteForceMax = 64;
 using Cand = std::pair<double, int>;
 }  // namespace
 
-struct NearestIndex::Tree {
+struct NearestIndex::Grid {
   int dims = 0;
   int axis[3] = {0, 0, 0};          // state component of each grid axis
   double lo[3] = {0, 0, 0};         // grid origin
@@ -86,7 +86,7 @@ struct NearestIndex::Tree {
 NearestIndex::NearestIndex(const std::vector<State>& points, DimMask mask)
     : points_(points), mask_(mask) {
   if (points_.size() <= kBruteForceMax || mask_ == 0) return;
-  auto t = std::make_unique<Tree>();
+  auto t = std::make_unique<Grid>();
   for (int i = 0; i < 3; ++i) {
     if (mask_ & (1u << i)) t->axis[t->dims++] = i;
   }
@@ -134,7 +134,7 @@ NearestIndex::NearestIndex(const std::vector<State>& points, DimMask mask)
     t->index[slot] = static_cast<int>(i);
     for (int a = 0; a < t->dims; ++a) t->coords[slot * t->dims + a] = points_[i][t->axis[a]];
   }
-  tree_ = std::move(t);
+  grid_ = std::move(t);
 }
 
 NearestIndex::~NearestIndex() = default;
@@ -156,10 +156,10 @@ void Offer(std::vector<Cand>& heap, size_t k, Cand c) {
 }  // namespace
 
 // The k nearest (distance, index) pairs in ascending order.
-static std::vector<Cand> GridSearch(const NearestIndex::Tree& t, const std::vector<State>& pts,
+static std::vector<Cand> GridSearch(const NearestIndex::Grid& t, const std::vector<State>& pts,
                                     DimMask mask, const State& q, size_t k);
 
-std::vector<Cand> GridSearch(const NearestIndex::Tree& t, const std::vector<State>& pts,
+std::vector<Cand> GridSearch(const NearestIndex::Grid& t, const std::vector<State>& pts,
                              DimMask mask, const State& q, size_t k) {
   (void)pts;
   (void)mask;
@@ -237,7 +237,7 @@ std::vector<Cand> GridSearch(const NearestIndex::Tree& t, const std::vector<Stat
 
 int NearestIndex::Nearest(const State& q) const {
   if (points_.empty()) return -1;
-  if (!tree_) {
+  if (!grid_) {
     int best = 0;
     double best_d = MaskedDist2(q, points_[0], mask_);
     for (size_t i = 1; i < points_.size(); ++i) {
@@ -249,20 +249,20 @@ int NearestIndex::Nearest(const State& q) const {
     }
     return best;
   }
-  return GridSearch(*tree_, points_, mask_, q, 1)[0].second;
+  return GridSearch(*grid_, points_, mask_, q, 1)[0].second;
 }
 
 std::vector<int> NearestIndex::KNearest(const State& q, int k) const {
   size_t want = std::min<size_t>(k > 0 ? k : 0, points_.size());
   if (want == 0) return {};
   std::vector<Cand> cand;
-  if (!tree_) {
+  if (!grid_) {
     for (size_t i = 0; i < points_.size(); ++i) {
       cand.emplace_back(MaskedDist2(q, points_[i], mask_), static_cast<int>(i));
     }
     std::sort(cand.begin(), cand.end());
   } else {
-    cand = GridSearch(*tree_, points_, mask_, q, want);
+    cand = GridSearch(*grid_, points_, mask_, q, want);
   }
   std::vector<int> out;
   for (size_t i = 0; i < cand.size() && out.size() < want; ++i) out.push_back(cand[i].second);

@@ -71,12 +71,12 @@ class NearestIndex {
   std::vector<int> KNearest(const State& q, int k) const;
   size_t size() const { return points_.size(); }
 
-  struct Tree;  // the grid (implementation detail)
+  struct Grid;  // the bucket grid (implementation detail)
 
  private:
   std::vector<State> points_;
   DimMask mask_;
-  std::unique_ptr<Tree> tree_;  // null for small sets (brute force)
+  std::unique_ptr<Grid> grid_;  // null for small sets (brute force)
 };
 
 // Maps each variation point j to a reference index k(j), or -1 for a blank

@@ -2,8 +2,10 @@
 #ifndef SB_CHAOS_VARIATION_H_
 #define SB_CHAOS_VARIATION_H_
 
+#include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "base/status.h"
@@ -12,6 +14,15 @@
 #include "crdl/route.h"
 
 namespace sb::chaos {
+
+// Limits of the parameters, checked by VaryParams::Validate (the one place).
+// skip: at most 10^7 transient steps. The landscape's map files store skip in
+// that range, so every variation can also be mapped; 10^7 RK4 steps of two
+// trajectories take about a second.
+inline constexpr int kMaxSkip = 10'000'000;
+// max_repeat: 0 (off) to 10^6, more than any route's moves; it is a count of
+// consecutive uses of one source move, so a larger value has no effect.
+inline constexpr int kMaxRepeat = 1'000'000;
 
 // Every parameter of a variation. Defaults are the "default" preset.
 struct VaryParams {
@@ -27,10 +38,35 @@ struct VaryParams {
   // The named preset: "default" (IC_v -16,-12,52; skip 0) or "more"
   // (IC_v -16,-13.5,52; skip 100). Errors name the unknown preset.
   static Result<VaryParams> Preset(std::string_view name);
-  // Checks ranges (step > 0 and finite, skip >= 0, finite ICs and params,
-  // max_repeat >= 0, mask non-empty). Errors name the field.
+  // Checks every range: step > 0 and finite, skip in 0..kMaxSkip, finite
+  // ICs and system parameters, max_repeat in 0..kMaxRepeat, mask a subset of
+  // x, y, z. Errors are kInvalidInput naming the field ("skip: ...").
   Status Validate() const;
 };
+
+// The parameters as a JSON object (the "parameters" of docs/formats.md:
+// preset, system, params, integrator, step, ref_ic, var_ic, skip, mapping,
+// mask, dabby_direction, max_repeat), compact, keys in alphabetical order.
+// Deterministic; pure.
+std::string ParamsToJson(const VaryParams& p);
+// The inverse, from the text of a JSON object; fields not named above are
+// ignored, missing ones take the preset's (or the default preset's) values.
+// Errors: kInvalidInput naming the field ("step: expected a number"),
+// "parameters: ..." for text that is not a JSON object. Pure.
+Result<VaryParams> ParamsFromJson(std::string_view json_text);
+
+// The original site's variation columns (crdl/site_csv.h: nna, dim_mask,
+// max_repeat, transient, rx, ry, rz, vx, vy, vz) decoded with the site's
+// engine settings (Lorenz 16/45/4, RKF45, step 0.015). Empty columns keep the
+// default; max_repeat -1 (the site's "off") reads as 0; an unusable dim_mask (the site stored "000" for some Dabby
+// variations) keeps the default and is described in `notes`. Errors:
+// kInvalidInput located at `where` naming the column for values that are not
+// numbers in range (nan, inf, 1e300 ICs) or parameters Validate refuses.
+Result<VaryParams> ParamsFromSiteColumns(const std::map<std::string, std::string>& columns,
+                                         const SourceLocation& where,
+                                         std::vector<std::string>* notes);
+// The same columns for `p` (prec_trunc "0"). Deterministic.
+std::map<std::string, std::string> SiteColumnsFromParams(const VaryParams& p);
 
 // A route given to Vary, with the name the plan shows for it.
 struct InputRoute {
@@ -51,6 +87,7 @@ struct VariedMove {
   std::string text;                 // empty for a blank
   std::optional<SourceRef> source;  // nullopt for a blank (Dabby rule)
   bool changed = false;             // source index != position
+  bool crux = false;                // the source move is flagged as a crux
   std::vector<std::string> notes;   // e.g. "(match?)"
 };
 
@@ -66,7 +103,7 @@ struct Variation {
 // The input moves after match handling, concatenated in input order: a move
 // whose text is "match" takes the text of the previous move of the other hand
 // in the same route (keeping its own hand) and the note "(match?)"; a leading
-// match with no such move is kept as is.
+// match with no such move is kept as is. Each keeps its source's crux flag.
 std::vector<VariedMove> PrepareMoves(const std::vector<InputRoute>& inputs);
 // The same with the match rule given per input move: `is_match` holds one
 // entry per input move in concatenation order (e.g. the grammar's reading,

@@ -114,5 +114,91 @@ TEST(Variation, DabbyBlanks) {
   }
 }
 
+TEST(Variation, CruxFlagsComeFromTheSourceMove) {
+  auto a = MakeRoute("a", "---\nR a0\nL a1 (crux)\nR a2\nL match\n");
+  auto moves = PrepareMoves({a});
+  EXPECT_FALSE(moves[0].crux);
+  EXPECT_TRUE(moves[1].crux);
+  VaryParams p = *VaryParams::Preset("more");
+  auto v = Vary({a}, p);
+  ASSERT_TRUE(v.ok());
+  for (const VariedMove& m : v->moves) {
+    ASSERT_TRUE(m.source.has_value());
+    EXPECT_EQ(m.crux, m.source->move == 1) << m.text;
+  }
+}
+
+TEST(VaryParamsCodec, JsonRoundTrip) {
+  VaryParams p = *VaryParams::Preset("more");
+  p.system = System::Rossler(0.1, 0.3, 6);
+  p.integrator = IntegratorKind::kRkf45;
+  p.mapping.kind = MappingKind::kDabby;
+  p.mapping.dabby_direction = DabbyDirection::kBelow;
+  p.mapping.max_repeat = 2;
+  p.mapping.mask = kMaskY;
+  auto back = ParamsFromJson(ParamsToJson(p));
+  ASSERT_TRUE(back.ok()) << back.status().message();
+  EXPECT_EQ(ParamsToJson(*back), ParamsToJson(p));
+  EXPECT_EQ(ParamsToJson(VaryParams()),
+            R"({"dabby_direction":"above","integrator":"rk4","mapping":"euclidean","mask":"101",)"
+            R"("max_repeat":0,"params":[16.0,45.0,4.0],"preset":"default","ref_ic":[-13.0,-12.0,)"
+            R"(52.0],"skip":0,"step":0.015,"system":"lorenz","var_ic":[-16.0,-12.0,52.0]})");
+}
+
+TEST(VaryParamsCodec, JsonErrorsNameTheField) {
+  EXPECT_EQ(ParamsFromJson(R"({"step":"x"})").status().message(), "step: expected a number");
+  EXPECT_EQ(ParamsFromJson(R"({"var_ic":[1,2]})").status().message(),
+            "var_ic: expected an array of 3 numbers");
+  EXPECT_EQ(ParamsFromJson(R"({"mask":"000"})").status().message(),
+            "mask: mask \"000\" selects no dimension");
+  EXPECT_EQ(ParamsFromJson(R"({"skip":-1})").status().message(),
+            "skip: must be between 0 and 10000000");
+  EXPECT_EQ(ParamsFromJson(R"({"skip":18446744073709551615})").status().message(),
+            "skip: must be between 0 and 10000000");
+  EXPECT_FALSE(ParamsFromJson(R"({"skip":10000001})").ok());
+  EXPECT_TRUE(ParamsFromJson(R"({"skip":10000000})").ok());
+  EXPECT_FALSE(ParamsFromJson(R"({"preset":"wild"})").ok());
+  EXPECT_EQ(ParamsFromJson("[]").status().message(), "parameters: expected an object");
+  EXPECT_EQ(ParamsFromJson("{").status().message(), "parameters: malformed JSON");
+  auto sys = ParamsFromJson(R"({"system":"rossler","routes":[1,2]})");  // other fields ignored
+  ASSERT_TRUE(sys.ok());
+  EXPECT_EQ(sys->system.params[2], 5.7);
+  auto tri = ParamsFromJson(R"({"var_ic":"-15, -12, 52"})");
+  ASSERT_TRUE(tri.ok());
+  EXPECT_EQ(tri->var_ic[0], -15);
+}
+
+TEST(VaryParamsCodec, SiteColumnsRoundTripAndAreValidated) {
+  std::map<std::string, std::string> c = {{"nna", "B"},          {"dim_mask", "011"},
+                                          {"max_repeat", "1"},   {"transient", "100"},
+                                          {"rx", "-13.0"},       {"ry", "-12"},
+                                          {"rz", "52"},          {"vx", "-16.5"},
+                                          {"vy", ""},            {"vz", "52"}};
+  SourceLocation at{"routes.csv", 7, 0};
+  std::vector<std::string> notes;
+  auto p = ParamsFromSiteColumns(c, at, &notes);
+  ASSERT_TRUE(p.ok()) << p.status().message();
+  EXPECT_EQ(p->integrator, IntegratorKind::kRkf45);
+  EXPECT_EQ(p->mapping.mask, kMaskY | kMaskZ);
+  EXPECT_EQ(p->skip, 100);
+  EXPECT_EQ(p->var_ic, (State{-16.5, -12, 52}));  // vy empty: the default
+  auto back = ParamsFromSiteColumns(SiteColumnsFromParams(*p), at, nullptr);
+  ASSERT_TRUE(back.ok());
+  EXPECT_EQ(ParamsToJson(*back), ParamsToJson(*p));
+  c["dim_mask"] = "000";
+  ASSERT_TRUE(ParamsFromSiteColumns(c, at, &notes).ok());
+  EXPECT_EQ(notes.size(), 1u);
+  c["dim_mask"] = "101";
+  for (const char* bad : {"nan", "inf", "1e400", "x"}) {
+    c["rx"] = bad;
+    auto r = ParamsFromSiteColumns(c, at, nullptr);
+    ASSERT_FALSE(r.ok()) << bad;
+    EXPECT_EQ(r.status().message().rfind("routes.csv:7: rx: not a finite number", 0), 0u);
+  }
+  c["rx"] = "-13";
+  c["transient"] = "99999999";
+  EXPECT_FALSE(ParamsFromSiteColumns(c, at, nullptr).ok());
+}
+
 }  // namespace
 }  // namespace sb::chaos

@@ -1,11 +1,8 @@
 #include "cli/cli_util.h"
 
-#include <charconv>
-#include <cmath>
 #include <cstdio>
 
 #include "base/files.h"
-#include "base/text.h"
 
 namespace sb::cli {
 
@@ -25,22 +22,6 @@ int ParseArgs(CLI::App& app, const std::vector<std::string>& args) {
     return 2;
   }
   return -1;
-}
-
-Result<std::array<double, 3>> ParseTriple(const std::string& s, const std::string& field) {
-  auto parts = Split(s, ',');
-  std::array<double, 3> out{};
-  if (parts.size() != 3) {
-    return Status::InvalidInput(field + ": expected three numbers x,y,z, got \"" + s + "\"");
-  }
-  for (int i = 0; i < 3; ++i) {
-    std::string_view t = Trim(parts[i]);
-    auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), out[i]);
-    if (t.empty() || ec != std::errc() || p != t.data() + t.size() || !std::isfinite(out[i])) {
-      return Status::InvalidInput(field + ": expected three numbers x,y,z, got \"" + s + "\"");
-    }
-  }
-  return out;
 }
 
 int Fail(const char* cmd, const Status& s) {

@@ -2,7 +2,6 @@
 #ifndef SB_CLI_CLI_UTIL_H_
 #define SB_CLI_CLI_UTIL_H_
 
-#include <array>
 #include <string>
 #include <vector>
 
@@ -16,9 +15,6 @@ namespace sb::cli {
 // when the command should go on, or the exit code to return now: 0 after
 // --help, 2 after a usage error (message on stderr).
 int ParseArgs(CLI::App& app, const std::vector<std::string>& args);
-
-// Parses "x,y,z" into three finite doubles; errors name `field`.
-Result<std::array<double, 3>> ParseTriple(const std::string& s, const std::string& field);
 
 // Prints "strangebeta <cmd>: message" to stderr and returns the exit code for
 // the status (2 for invalid input / not found, 1 otherwise).

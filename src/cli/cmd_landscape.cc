@@ -5,18 +5,14 @@
 //   strangebeta landscape render MAP (--png FILE | --csv FILE) [--metric M]
 //                                    [--plane P] [--at V]
 //   strangebeta landscape info MAP
-#include <unistd.h>
-
-#include <chrono>
 #include <cstdio>
-#include <functional>
-#include <memory>
 #include <optional>
 
+#include "base/number.h"
 #include "chaos/variation.h"
+#include "cli/chaos_options.h"
 #include "cli/cli_util.h"
 #include "cli/commands.h"
-#include "crdl/route.h"
 #include "landscape/backend.h"
 #include "landscape/landscape.h"
 #include "landscape/map_file.h"
@@ -26,191 +22,11 @@ namespace sb::cli {
 
 namespace {
 
-// Option storage for a scan (shared by landscape and pick).
-struct ScanOpts {
-  int grid = 100;
-  double spacing = 0.01;
-  std::optional<int> length;
-  std::vector<std::string> routes;
-  std::string preset = "default";
-  std::optional<std::string> system, params, integrator, ref_ic, center, mask;
-  std::optional<double> step;
-  std::optional<int> skip;
-  std::string plane = "cube";
-  std::string isa = "auto";
-  int threads = 0;
-  bool no_progress = false;
-  bool mpi = false;
-  bool time = false;
-};
-
-void ProgressBar(uint64_t done, uint64_t total) {
-  static bool finished = false;
-  if (done == 0) finished = false;
-  if (finished) return;
-  const int width = 40;
-  int filled = total ? static_cast<int>(done * width / total) : width;
-  std::string bar(static_cast<size_t>(filled), '#');
-  bar.resize(width, '.');
-  std::fprintf(stderr, "\rscanning [%s] %3d%% %llu/%llu ICs", bar.c_str(),
-               total ? static_cast<int>(done * 100 / total) : 100,
-               static_cast<unsigned long long>(done), static_cast<unsigned long long>(total));
-  if (done >= total) {
-    std::fputc('\n', stderr);
-    finished = true;
-  }
-  std::fflush(stderr);
-}
-
 Status Bad(const char* opt, const Status& s) {
   return Status::InvalidInput(std::string(opt) + ": " + s.message());
 }
 
 }  // namespace
-
-// Adds the scan options to `app`. The returned function, called after
-// parsing, builds the parameters and region and runs the scan through
-// landscape::DefaultBackend() (progress bar on a terminal). `given` receives
-// every added option so callers can tell whether any was used. Shared with
-// cmd_pick.cc (declared there). Not thread-safe (CLI use only).
-std::function<Result<landscape::LandscapeMap>()> AddScanOptions(CLI::App& app,
-                                                                std::vector<CLI::Option*>* given) {
-  auto o = std::make_shared<ScanOpts>();
-  auto add = [&](CLI::Option* opt) { given->push_back(opt); };
-  add(app.add_option("--grid", o->grid, "N, grid points per axis (N^3 ICs, or N^2 with --plane)")
-          ->capture_default_str());
-  add(app.add_option("--spacing", o->spacing, "s, grid spacing in state space")
-          ->capture_default_str());
-  add(app.add_option("--length", o->length, "n, moves per variation (trajectory points) [30]"));
-  add(app.add_option("--route", o->routes,
-                     "take n from these CRDL routes (their moves, concatenated, after match "
-                     "handling) instead of --length"));
-  add(app.add_option(
-             "--preset", o->preset,
-             "variation preset the other options start from (default: skip 0; more: skip 100)")
-          ->capture_default_str());
-  add(app.add_option("--system", o->system, "ODE system: lorenz or rossler [lorenz]"));
-  add(app.add_option("--params", o->params,
-                     "system parameters a,b,c [lorenz 16,45,4; rossler 0.2,0.2,5.7]"));
-  add(app.add_option("--integrator", o->integrator, "rk4 or rkf45 [rk4]"));
-  add(app.add_option("--step", o->step, "integrator step h [0.015]"));
-  add(app.add_option("--ref-ic", o->ref_ic, "reference initial condition x,y,z [-13,-12,52]"));
-  add(app.add_option("--center", o->center, "centre of the grid x,y,z [the reference IC]"));
-  add(app.add_option("--skip", o->skip,
-                     "transient steps dropped before the first point [preset's]"));
-  add(app.add_option("--mask", o->mask,
-                     "dimensions in the nearest-point distance, xyz digits (110 = x and y) "
-                     "[preset's: 101]"));
-  add(app.add_option("--plane", o->plane,
-                     "cube (all N^3 ICs) or the N x N slice through the centre: xy, xz, yz")
-          ->capture_default_str());
-  add(app.add_option("--threads", o->threads, "worker threads (per MPI rank); 0 = all cores")
-          ->capture_default_str());
-  add(app.add_option("--isa", o->isa, "SIMD kernel: auto, generic, avx2, avx512 (same results)")
-          ->capture_default_str());
-  add(app.add_flag("--no-progress", o->no_progress,
-                   "no progress bar (it is shown only when stderr is a terminal)"));
-  add(app.add_flag("--mpi", o->mpi,
-                   "require the MPI backend: run 'mpirun -np K strangebeta-mpi ...'"));
-  add(app.add_flag("--time", o->time, "print 'scan_seconds X' to stderr after the scan"));
-
-  return [o]() -> Result<landscape::LandscapeMap> {
-    auto vp = chaos::VaryParams::Preset(o->preset);
-    if (!vp.ok()) return Bad("--preset", vp.status());
-    int length = 30;
-    if (o->length && !o->routes.empty()) {
-      return Status::InvalidInput("--length and --route: give one, not both");
-    }
-    if (o->length) length = *o->length;
-    if (!o->routes.empty()) {
-      std::vector<chaos::InputRoute> inputs;
-      for (const std::string& f : o->routes) {
-        auto r = ReadCrdlFile(f);
-        if (!r.ok()) return r.status();
-        inputs.push_back({r->Name(RouteFileStem(f)), std::move(*r)});
-      }
-      length = static_cast<int>(chaos::PrepareMoves(inputs).size());
-    }
-    landscape::ScanParams p = landscape::ScanParams::FromVary(*vp, length);
-    if (o->system) {
-      auto k = chaos::ParseSystemKind(*o->system);
-      if (!k.ok()) return Bad("--system", k.status());
-      p.system = {*k, chaos::DefaultParams(*k)};
-    }
-    if (o->params) {
-      auto t = ParseTriple(*o->params, "--params");
-      if (!t.ok()) return t.status();
-      p.system.params = *t;
-    }
-    if (o->integrator) {
-      auto k = chaos::ParseIntegratorKind(*o->integrator);
-      if (!k.ok()) return Bad("--integrator", k.status());
-      p.integrator = *k;
-    }
-    if (o->step) p.step = *o->step;
-    if (o->ref_ic) {
-      auto t = ParseTriple(*o->ref_ic, "--ref-ic");
-      if (!t.ok()) return t.status();
-      p.ref_ic = *t;
-    }
-    if (o->skip) p.skip = *o->skip;
-    if (o->mask) {
-      auto m = chaos::ParseMask(*o->mask);
-      if (!m.ok()) return Bad("--mask", m.status());
-      p.mask = *m;
-    }
-    if (Status s = p.Validate(); !s.ok()) return Status::InvalidInput("--" + s.message());
-    auto plane = landscape::ParsePlane(o->plane);
-    if (!plane.ok()) return Status::InvalidInput("--" + plane.status().message());
-    landscape::Region r = landscape::Region::Around(p.ref_ic, o->grid, o->spacing, *plane);
-    if (o->center) {
-      auto t = ParseTriple(*o->center, "--center");
-      if (!t.ok()) return t.status();
-      r.center = *t;
-    }
-    if (Status s = r.Validate(); !s.ok()) return Status::InvalidInput("--" + s.message());
-    landscape::ScanOptions so;
-    if (o->threads < 0) return Status::InvalidInput("--threads: must be >= 0");
-    so.threads = o->threads;
-    if (o->isa == "auto") {
-      so.isa = landscape::Isa::kAuto;
-    } else if (o->isa == "generic") {
-      so.isa = landscape::Isa::kGeneric;
-    } else if (o->isa == "avx2") {
-      so.isa = landscape::Isa::kAvx2;
-    } else if (o->isa == "avx512") {
-      so.isa = landscape::Isa::kAvx512;
-    } else {
-      return Status::InvalidInput("--isa: unknown value \"" + o->isa +
-                                  "\" (auto, generic, avx2 or avx512)");
-    }
-    if (!landscape::IsaSupported(so.isa)) {
-      return Status::InvalidInput("--isa: " + o->isa + " is not supported on this CPU");
-    }
-    landscape::ScanBackend& backend = landscape::DefaultBackend();
-    if (o->mpi && std::string(backend.Name()) != "mpi") {
-      return Status::InvalidInput(
-          "--mpi: this binary has no MPI backend; run 'mpirun -np K strangebeta-mpi ...'");
-    }
-    if (!o->no_progress && backend.IsRoot() && isatty(STDERR_FILENO)) so.progress = ProgressBar;
-    auto t0 = std::chrono::steady_clock::now();
-    auto map = backend.Scan(p, r, so);
-    if (o->time && backend.IsRoot() && map.ok()) {
-      double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      std::string shares;
-      for (double t : backend.LastShareSeconds()) {
-        char buf[32];
-        std::snprintf(buf, sizeof buf, " %.3f", t);
-        shares += buf;
-      }
-      std::fprintf(stderr, "scan_seconds %.3f (%llu ICs, %d process%s, %s)%s%s\n", sec,
-                   static_cast<unsigned long long>(r.size()), backend.Processes(),
-                   backend.Processes() == 1 ? "" : "es", backend.Name(),
-                   shares.empty() ? "" : "; per-rank seconds", shares.c_str());
-    }
-    return map;
-  };
-}
 
 namespace {
 
@@ -254,15 +70,17 @@ int RunInfo(const std::string& map_path) {
   if (!map.ok()) return Fail("landscape info", map.status());
   const landscape::ScanParams& p = map->params;
   const landscape::Region& r = map->region;
-  std::printf("system %s %.17g %.17g %.17g\n", chaos::SystemKindName(p.system.kind),
-              p.system.params[0], p.system.params[1], p.system.params[2]);
-  std::printf("integrator %s\nstep %.17g\n", chaos::IntegratorKindName(p.integrator), p.step);
-  std::printf("ref_ic %.17g %.17g %.17g\n", p.ref_ic[0], p.ref_ic[1], p.ref_ic[2]);
-  std::printf("skip %d\nlength %d\nmask %s\n", p.skip, p.length, chaos::MaskString(p.mask).c_str());
-  std::printf("plane %s\ngrid %d\nspacing %.17g\n", landscape::PlaneName(r.plane), r.grid,
-              r.spacing);
-  std::printf("center %.17g %.17g %.17g\nics %llu\n", r.center[0], r.center[1], r.center[2],
-              static_cast<unsigned long long>(map->size()));
+  auto g = [](double v) { return FormatDouble(v, 17); };
+  auto g3 = [&](const chaos::State& s) { return g(s[0]) + " " + g(s[1]) + " " + g(s[2]); };
+  std::string out = std::string("system ") + chaos::SystemKindName(p.system.kind) + " " +
+                    g3(p.system.params) + "\nintegrator " +
+                    chaos::IntegratorKindName(p.integrator) + "\nstep " + g(p.step) +
+                    "\nref_ic " + g3(p.ref_ic) + "\nskip " + std::to_string(p.skip) +
+                    "\nlength " + std::to_string(p.length) + "\nmask " +
+                    chaos::MaskString(p.mask) + "\nplane " + landscape::PlaneName(r.plane) +
+                    "\ngrid " + std::to_string(r.grid) + "\nspacing " + g(r.spacing) +
+                    "\ncenter " + g3(r.center) + "\nics " + std::to_string(map->size()) + "\n";
+  std::fputs(out.c_str(), stdout);
   std::fputs(landscape::FormatSummary(landscape::Summarize(*map)).c_str(), stdout);
   return 0;
 }

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <functional>
 
+#include "base/number.h"
+#include "cli/chaos_options.h"
 #include "cli/cli_util.h"
 #include "cli/commands.h"
 #include "landscape/backend.h"
@@ -12,11 +14,6 @@
 #include "landscape/pick.h"
 
 namespace sb::cli {
-
-// Defined in cmd_landscape.cc: adds the landscape scan options to `app`;
-// the returned function runs the scan they describe after parsing.
-std::function<Result<landscape::LandscapeMap>()> AddScanOptions(CLI::App& app,
-                                                                std::vector<CLI::Option*>* given);
 
 int RunPick(const std::vector<std::string>& args) {
   CLI::App app{
@@ -60,10 +57,9 @@ int RunPick(const std::vector<std::string>& args) {
   if (!picked.ok()) return Fail("pick", Status::InvalidInput("--" + picked.status().message()));
   std::string out = "# x y z effect change\n";
   for (const landscape::Candidate& c : *picked) {
-    char line[256];
-    std::snprintf(line, sizeof line, "%.17g %.17g %.17g %d %.17g\n", c.ic[0], c.ic[1], c.ic[2],
-                  c.effect, c.change);
-    out += line;
+    out += FormatDouble(c.ic[0], 17) + " " + FormatDouble(c.ic[1], 17) + " " +
+           FormatDouble(c.ic[2], 17) + " " + std::to_string(c.effect) + " " +
+           FormatDouble(c.change, 17) + "\n";
   }
   std::fputs(out.c_str(), stdout);
   if (static_cast<int>(picked->size()) < req.count) {

@@ -6,10 +6,10 @@
 #include <filesystem>
 #include <thread>
 
+#include "app/seed.h"
 #include "cli/cli_util.h"
 #include "cli/commands.h"
 #include "store/sqlite_store.h"
-#include "web/seed.h"
 #include "web/server.h"
 
 namespace sb::cli {
@@ -44,7 +44,9 @@ int RunServe(const std::vector<std::string>& args) {
 
   std::error_code ec;
   std::filesystem::path parent = std::filesystem::path(db).parent_path();
-  if (!parent.empty()) std::filesystem::create_directories(parent, ec);
+  if (!parent.empty() && !std::filesystem::create_directories(parent, ec) && ec) {
+    return Fail("serve", Status::IoError(parent.string() + ": " + ec.message()));
+  }
   Result<std::unique_ptr<store::Store>> st = store::OpenSqliteStore(db);
   if (!st.ok()) return Fail("serve", st.status());
   store::Store* store = st->get();
@@ -54,11 +56,11 @@ int RunServe(const std::vector<std::string>& args) {
   if (!users.ok()) return Fail("serve", users.status());
   bool fresh = *users == 0;
   if (fresh && !no_seed) {
-    Result<int64_t> demo = web::EnsureDemoAccount(store);
+    Result<int64_t> demo = app::EnsureDemoAccount(store);
     if (!demo.ok()) return Fail("serve", demo.status());
-    std::string dir = seed_dir.empty() ? web::DefaultExamplesDir() : seed_dir;
+    std::string dir = seed_dir.empty() ? app::DefaultExamplesDir() : seed_dir;
     std::vector<std::string> skipped;
-    Result<int> n = web::SeedExamples(store, dir, *demo, &skipped);
+    Result<int> n = app::SeedExamples(store, dir, *demo, &skipped);
     if (!n.ok()) return Fail("serve", n.status());
     for (const std::string& s : skipped) std::fprintf(stderr, "serve: skipped %s\n", s.c_str());
     std::printf("seeded %d example route%s%s%s\n", *n, *n == 1 ? "" : "s",
@@ -88,8 +90,8 @@ int RunServe(const std::vector<std::string>& args) {
   std::string shown = host == "0.0.0.0" ? "127.0.0.1" : host;
   std::printf("strangebeta web app on http://%s:%d/ (database %s)\n", shown.c_str(), *bound,
               db.c_str());
-  if (store->FindUserByName(web::kDemoUser).ok()) {
-    std::printf("demo account: user %s, password %s\n", web::kDemoUser, web::kDemoPassword);
+  if (store->FindUserByName(app::kDemoUser).ok()) {
+    std::printf("demo account: user %s, password %s\n", app::kDemoUser, app::kDemoPassword);
   }
   std::printf("press Ctrl-C to stop\n");
   std::fflush(stdout);

@@ -6,6 +6,7 @@
 
 #include "base/files.h"
 #include "base/text.h"
+#include "crdl/scan.h"
 
 namespace sb {
 
@@ -16,10 +17,6 @@ std::optional<Hand> ParseHand(std::string_view word) {
   if (lw == "l" || lw == "left") return Hand::kLeft;
   if (lw == "r" || lw == "right") return Hand::kRight;
   return std::nullopt;
-}
-
-static bool EqualsIgnoreCase(std::string_view a, std::string_view b) {
-  return ToLower(a) == ToLower(b);
 }
 
 std::optional<std::string> Route::Meta(std::string_view key) const {
@@ -51,110 +48,56 @@ bool IsMatchText(std::string_view text) {
   return ToLower(Trim(t)) == "match";
 }
 
-namespace {
-
-// Returns the byte offset of the first invalid UTF-8 sequence, or npos.
-size_t FindInvalidUtf8(std::string_view s) {
-  size_t i = 0;
-  while (i < s.size()) {
-    unsigned char c = static_cast<unsigned char>(s[i]);
-    size_t len = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xE ? 3 : (c >> 3) == 0x1E ? 4 : 0;
-    if (len == 0 || i + len > s.size()) return i;
-    for (size_t k = 1; k < len; ++k) {
-      if ((static_cast<unsigned char>(s[i + k]) >> 6) != 0x2) return i;
-    }
-    if (len == 2 && c < 0xC2) return i;  // overlong
-    i += len;
-  }
-  return std::string_view::npos;
-}
-
-bool IsKeyChar(char c) {
-  return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-';
-}
-
-// Splits "key: value" when the line has that form.
-bool SplitMeta(std::string_view line, std::string* key, std::string* value) {
-  size_t colon = line.find(':');
-  if (colon == std::string_view::npos || colon == 0) return false;
-  for (size_t i = 0; i < colon; ++i) {
-    if (!IsKeyChar(line[i])) return false;
-  }
-  // "http://..." style values in free text must not turn into metadata.
-  if (colon + 1 < line.size() && line[colon + 1] != ' ' && line[colon + 1] != '\t') return false;
-  *key = std::string(line.substr(0, colon));
-  *value = std::string(Trim(line.substr(colon + 1)));
-  return true;
-}
-
-std::string Where(std::string_view file, size_t line, size_t col) {
-  return std::string(file) + ":" + std::to_string(line) + ":" + std::to_string(col) + ": ";
-}
-
-}  // namespace
-
 Result<Route> ParseCrdl(std::string_view text, std::string_view filename) {
-  if (text.size() >= 3 && text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
-  std::vector<std::string_view> lines = SplitLines(text);
+  auto at = [&](size_t line, size_t col) {
+    return SourceLocation{std::string(filename), static_cast<int>(line), static_cast<int>(col)};
+  };
+  if (text.size() > kMaxCrdlBytes) {
+    return Status::InvalidInputAt(at(1, 1), "larger than " + std::to_string(kMaxCrdlBytes) +
+                                                " bytes (the limit for a CRDL text)");
+  }
+  std::vector<std::string_view> lines = SplitCrdlLines(text);
   Route route;
+  CrdlSection section = CrdlSection::kHeader;
   size_t sep = lines.size();
   for (size_t i = 0; i < lines.size(); ++i) {
     std::string_view line = lines[i];
     if (size_t bad = FindInvalidUtf8(line); bad != std::string_view::npos) {
-      return Status::InvalidInput(Where(filename, i + 1, bad + 1) + "invalid UTF-8");
+      return Status::InvalidInputAt(at(i + 1, bad + 1), "invalid UTF-8");
     }
-    if (line.find('\0') != std::string_view::npos) {
-      return Status::InvalidInput(Where(filename, i + 1, line.find('\0') + 1) + "NUL byte in text");
+    if (size_t nul = line.find('\0'); nul != std::string_view::npos) {
+      return Status::InvalidInputAt(at(i + 1, nul + 1), "NUL byte in text");
     }
-    if (sep == lines.size()) {
-      if (Trim(line) == "---") {
-        if (line != "---") {
-          return Status::InvalidInput(Where(filename, i + 1, 1) +
-                                      "the separator line must be exactly \"---\"");
-        }
+    CrdlLine l = ScanCrdlLine(line, section);
+    switch (l.kind) {
+      case CrdlLineKind::kSeparator:
         sep = i;
-        continue;
-      }
-      std::string key, value;
-      if (SplitMeta(line, &key, &value)) {
-        route.header.push_back({key, value});
-      } else {
-        route.header.push_back({"", std::string(line)});
-      }
-      continue;
+        section = CrdlSection::kMoves;
+        break;
+      case CrdlLineKind::kMeta:
+        route.header.push_back({std::string(l.key), std::string(l.value)});
+        break;
+      case CrdlLineKind::kBlank:
+      case CrdlLineKind::kDescription:
+        if (section == CrdlSection::kHeader) route.header.push_back({"", std::string(line)});
+        break;
+      case CrdlLineKind::kComment:
+        break;
+      case CrdlLineKind::kMove:
+        route.moves.push_back({l.hand, std::string(l.text), static_cast<int>(i + 1), l.crux});
+        break;
+      case CrdlLineKind::kBadSeparator:
+      case CrdlLineKind::kBadHand:
+      case CrdlLineKind::kEmptyMove:
+        return Status::InvalidInputAt(at(i + 1, l.column), CrdlLineError(l));
     }
-    // Move section.
-    std::string_view body = line;
-    size_t indent = 0;
-    while (indent < body.size() && (body[indent] == ' ' || body[indent] == '\t')) ++indent;
-    std::string_view rest = Trim(body);
-    if (rest.empty() || rest.front() == '#') continue;
-    size_t word_end = 0;
-    while (word_end < rest.size() && rest[word_end] != ' ' && rest[word_end] != '\t') ++word_end;
-    std::string_view word = rest.substr(0, word_end);
-    Move move;
-    std::optional<Hand> hand = ParseHand(word);
-    if (!hand) {
-      std::string shown(word.substr(0, 20));
-      return Status::InvalidInput(Where(filename, i + 1, indent + 1) +
-                                  "expected hand L or R, got \"" + shown + "\"");
-    }
-    move.hand = *hand;
-    std::string_view move_text = Trim(rest.substr(word_end));
-    if (move_text.empty()) {
-      return Status::InvalidInput(Where(filename, i + 1, indent + word_end + 1) +
-                                  "empty move text after hand " + HandLetter(move.hand));
-    }
-    move.text = std::string(move_text);
-    move.line = static_cast<int>(i + 1);
-    route.moves.push_back(std::move(move));
   }
   if (sep == lines.size()) {
-    return Status::InvalidInput(Where(filename, lines.empty() ? 1 : lines.size(), 1) +
-                                "missing \"---\" line between the header and the moves");
+    return Status::InvalidInputAt(at(lines.empty() ? 1 : lines.size(), 1),
+                                  "missing \"---\" line between the header and the moves");
   }
   if (route.moves.empty()) {
-    return Status::InvalidInput(Where(filename, sep + 1, 1) + "route has no moves after \"---\"");
+    return Status::InvalidInputAt(at(sep + 1, 1), "route has no moves after \"---\"");
   }
   // Trailing blank description lines carry no information; dropping them makes
   // PrintCrdl ∘ ParseCrdl stable.
@@ -171,7 +114,7 @@ std::string RouteFileStem(const std::string& path) {
 }
 
 Result<Route> ReadCrdlFile(const std::string& path) {
-  Result<std::string> data = ReadFile(path);
+  Result<std::string> data = ReadFile(path, kMaxCrdlBytes);
   if (!data.ok()) return data.status();
   return ParseCrdl(*data, path == "-" ? "<stdin>" : path);
 }
@@ -193,6 +136,10 @@ std::string PrintCrdl(const Route& route) {
     out += HandLetter(m.hand);
     out += ' ';
     out += m.text;
+    if (m.crux) {
+      out += ' ';
+      out += kCruxMarker;
+    }
     out += '\n';
   }
   return out;

@@ -1,11 +1,12 @@
 #include "crdl/site_csv.h"
 
 #include <algorithm>
-#include <charconv>
 
 #include "base/csv.h"
 #include "base/files.h"
+#include "base/number.h"
 #include "base/text.h"
+#include "crdl/scan.h"
 
 namespace sb {
 
@@ -20,35 +21,123 @@ const char* const kMoveColumns[] = {"route_id", "seq_no", "hand", "move",
 const char* const kParamColumns[] = {"nna", "dim_mask", "max_repeat", "prec_trunc", "transient",
                                      "rx", "ry", "rz", "vx", "vy", "vz"};
 
-// Column name -> index, checked against the required names.
-Result<std::map<std::string, size_t>> Columns(const std::vector<CsvRow>& rows,
-                                              std::string_view file,
-                                              std::initializer_list<const char*> required) {
-  if (rows.empty()) return Status::InvalidInput(std::string(file) + ":1: empty file");
-  std::map<std::string, size_t> cols;
-  for (size_t i = 0; i < rows[0].size(); ++i) cols[std::string(Trim(rows[0][i]))] = i;
-  for (const char* r : required) {
-    if (!cols.count(r)) {
-      return Status::InvalidInput(std::string(file) + ":1: missing column \"" + r + "\"");
+// One CSV file with its columns found by header name.
+class Table {
+ public:
+  Table(CsvTable t, std::string_view name) : t_(std::move(t)), name_(name) {}
+
+  Status FindColumns(std::initializer_list<const char*> required) {
+    if (t_.rows.empty()) return Status::InvalidInputAt({name_, 1, 0}, "empty file");
+    for (size_t i = 0; i < t_.rows[0].size(); ++i) cols_[std::string(Trim(t_.rows[0][i]))] = i;
+    for (const char* r : required) {
+      if (!cols_.count(r)) {
+        return Status::InvalidInputAt({name_, 1, 0},
+                                      std::string("missing column \"") + r + "\"");
+      }
     }
+    return Status::Ok();
   }
-  return cols;
+  size_t rows() const { return t_.rows.size(); }
+  int line(size_t row) const { return t_.lines[row]; }
+  bool Blank(size_t row) const { return t_.rows[row].size() == 1 && Trim(t_.rows[row][0]).empty(); }
+  std::string Get(size_t row, const char* column) const {
+    auto it = cols_.find(column);
+    const CsvRow& r = t_.rows[row];
+    return it != cols_.end() && it->second < r.size() ? r[it->second] : std::string();
+  }
+  Status Error(size_t row, std::string reason) const {
+    return Status::InvalidInputAt({name_, line(row), 0}, std::move(reason));
+  }
+  Result<int> Int(size_t row, const char* column) const {
+    std::string raw = Get(row, column);
+    std::string_view s = Trim(raw);
+    int v = 0;
+    if (!ParseInt(s, &v)) {
+      return Error(row, std::string(column) + ": not a whole number: \"" +
+                            std::string(s.substr(0, 20)) + "\"");
+    }
+    return v;
+  }
+
+ private:
+  CsvTable t_;
+  std::string name_;
+  std::map<std::string, size_t> cols_;
+};
+
+// Newlines, CRs and tabs become spaces; both ends trimmed.
+std::string OneLine(std::string_view s) {
+  std::string out(Trim(s));
+  for (char& c : out) {
+    if (c == '\n' || c == '\r' || c == '\t') c = ' ';
+  }
+  return out;
 }
 
-Result<int> ToInt(std::string_view s, std::string_view file, size_t record,
-                  std::string_view column) {
-  s = Trim(s);
-  int v = 0;
-  auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-  if (ec != std::errc() || p != s.data() + s.size()) {
-    return Status::InvalidInput(std::string(file) + ": record " + std::to_string(record) + ": " +
-                                std::string(column) + ": not a whole number: \"" +
-                                std::string(s.substr(0, 20)) + "\"");
+Result<SiteRoute> ReadRouteRow(const Table& t, size_t i) {
+  SiteRoute r;
+  r.line = t.line(i);
+  SB_ASSIGN_OR_RETURN(r.id, t.Int(i, "route_id"));
+  if (!Trim(t.Get(i, "user_id")).empty()) {  // optional column
+    SB_ASSIGN_OR_RETURN(r.user_id, t.Int(i, "user_id"));
   }
-  return v;
+  r.is_variation = Trim(t.Get(i, "is_variation")) == "t";
+  std::string pub(Trim(t.Get(i, "is_public")));
+  r.is_public = pub.empty() || pub == "t";
+  r.created_at = std::string(Trim(t.Get(i, "created_at")).substr(0, 19));
+  std::string name = OneLine(t.Get(i, "name"));
+  r.route.SetMeta("name", name.empty() ? "route " + std::to_string(r.id) : name);
+  if (std::string g = OneLine(t.Get(i, "grade")); !g.empty()) r.route.SetMeta("grade", g);
+  if (std::string ty = OneLine(t.Get(i, "type")); !ty.empty()) r.route.SetMeta("type", ty);
+  std::string description = t.Get(i, "description");
+  for (std::string_view line : SplitLines(description)) {
+    std::string text(line);
+    // The export doubled single quotes ("what''s"); undo that.
+    for (size_t p; (p = text.find("''")) != std::string::npos;) text.replace(p, 2, "'");
+    r.route.header.push_back({"", SafeHeaderText(text)});
+  }
+  while (!r.route.header.empty() && r.route.header.back().key.empty() &&
+         Trim(r.route.header.back().value).empty()) {
+    r.route.header.pop_back();
+  }
+  if (r.is_variation) {
+    for (const char* p : kParamColumns) r.params[p] = std::string(Trim(t.Get(i, p)));
+  }
+  return r;
+}
+
+struct MoveRow {
+  int seq;
+  Move move;
+};
+
+Result<MoveRow> ReadMoveRow(const Table& t, size_t i) {
+  MoveRow row;
+  SB_ASSIGN_OR_RETURN(row.seq, t.Int(i, "seq_no"));
+  std::string hand = ToLower(Trim(t.Get(i, "hand")));
+  std::optional<Hand> parsed = ParseHand(hand);
+  if (!parsed) return t.Error(i, "hand: expected L or R, got \"" + hand.substr(0, 20) + "\"");
+  row.move.hand = *parsed;
+  row.move.text = OneLine(t.Get(i, "move"));
+  const std::string crux = ToLower(Trim(t.Get(i, "crux")));  // PostgreSQL's t, or true
+  row.move.crux = crux == "t" || crux == "true";
+  // Read the text as a CRDL move line would be, so it prints back the same.
+  const std::string line = "R " + row.move.text;
+  CrdlLine l = ScanCrdlLine(line, CrdlSection::kMoves);
+  row.move.crux = row.move.crux || l.crux;
+  row.move.text = l.kind == CrdlLineKind::kMove ? std::string(l.text) : "?";
+  return row;
 }
 
 }  // namespace
+
+std::string SafeHeaderText(std::string_view line) {
+  std::string s = OneLine(line);
+  CrdlLineKind kind = ScanCrdlLine(s, CrdlSection::kHeader).kind;
+  if (kind == CrdlLineKind::kSeparator || kind == CrdlLineKind::kBadSeparator) return "- - -";
+  if (kind == CrdlLineKind::kMeta) return " " + s;  // a leading space keeps it free text
+  return s;
+}
 
 int SiteExport::Find(int id) const {
   auto it = std::lower_bound(routes.begin(), routes.end(), id,
@@ -58,94 +147,43 @@ int SiteExport::Find(int id) const {
 
 Result<SiteExport> ParseSiteExport(std::string_view routes_csv, std::string_view routes_name,
                                    std::string_view moves_csv, std::string_view moves_name) {
-  auto rrows = ParseCsv(routes_csv, routes_name);
-  if (!rrows.ok()) return rrows.status();
-  auto mrows = ParseCsv(moves_csv, moves_name);
-  if (!mrows.ok()) return mrows.status();
-  auto rc = Columns(*rrows, routes_name, {"route_id", "name"});
-  if (!rc.ok()) return rc.status();
-  auto mc = Columns(*mrows, moves_name, {"route_id", "seq_no", "hand", "move"});
-  if (!mc.ok()) return mc.status();
-  auto col = [](const std::map<std::string, size_t>& c, const CsvRow& row,
-                const char* name) -> std::string {
-    auto it = c.find(name);
-    return it != c.end() && it->second < row.size() ? row[it->second] : std::string();
-  };
+  SB_ASSIGN_OR_RETURN(CsvTable rcsv, ParseCsv(routes_csv, routes_name));
+  SB_ASSIGN_OR_RETURN(CsvTable mcsv, ParseCsv(moves_csv, moves_name));
+  Table rt(std::move(rcsv), routes_name), mt(std::move(mcsv), moves_name);
+  SB_RETURN_IF_ERROR(rt.FindColumns({"route_id", "name"}));
+  SB_RETURN_IF_ERROR(mt.FindColumns({"route_id", "seq_no", "hand", "move"}));
 
   SiteExport e;
-  for (size_t i = 1; i < rrows->size(); ++i) {
-    const CsvRow& row = (*rrows)[i];
-    if (row.size() == 1 && Trim(row[0]).empty()) continue;
-    SiteRoute r;
-    auto id = ToInt(col(*rc, row, "route_id"), routes_name, i, "route_id");
-    if (!id.ok()) return id.status();
-    r.id = *id;
-    if (std::string u = col(*rc, row, "user_id"); !Trim(u).empty()) {  // optional column
-      auto user = ToInt(u, routes_name, i, "user_id");
-      if (!user.ok()) return user.status();
-      r.user_id = *user;
-    }
-    r.is_variation = col(*rc, row, "is_variation") == "t";
-    std::string pub = col(*rc, row, "is_public");
-    r.is_public = pub.empty() || pub == "t";
-    r.created_at = col(*rc, row, "created_at");
-    r.route.SetMeta("name", std::string(Trim(col(*rc, row, "name"))));
-    if (std::string g(Trim(col(*rc, row, "grade"))); !g.empty()) r.route.SetMeta("grade", g);
-    if (std::string t(Trim(col(*rc, row, "type"))); !t.empty()) r.route.SetMeta("type", t);
-    std::string desc = col(*rc, row, "description");
-    for (std::string_view line : SplitLines(desc)) r.route.header.push_back({"", std::string(line)});
-    while (!r.route.header.empty() && r.route.header.back().key.empty() &&
-           Trim(r.route.header.back().value).empty()) {
-      r.route.header.pop_back();
-    }
-    if (r.is_variation) {
-      for (const char* p : kParamColumns) r.params[p] = col(*rc, row, p);
+  std::map<int, int> first_line;  // route id -> line of its row
+  for (size_t i = 1; i < rt.rows(); ++i) {
+    if (rt.Blank(i)) continue;
+    SB_ASSIGN_OR_RETURN(SiteRoute r, ReadRouteRow(rt, i));
+    auto [it, inserted] = first_line.emplace(r.id, r.line);
+    if (!inserted) {
+      return rt.Error(i, "route_id " + std::to_string(r.id) + " appears twice (first on line " +
+                             std::to_string(it->second) + ")");
     }
     e.routes.push_back(std::move(r));
   }
   std::sort(e.routes.begin(), e.routes.end(),
             [](const SiteRoute& a, const SiteRoute& b) { return a.id < b.id; });
-  for (size_t i = 1; i < e.routes.size(); ++i) {
-    if (e.routes[i].id == e.routes[i - 1].id) {
-      return Status::InvalidInput(std::string(routes_name) + ": route_id " +
-                                  std::to_string(e.routes[i].id) + " appears twice");
-    }
-  }
 
-  struct Row {
-    int seq;
-    Move move;
-  };
-  std::map<int, std::vector<Row>> by_route;
-  for (size_t i = 1; i < mrows->size(); ++i) {
-    const CsvRow& row = (*mrows)[i];
-    if (row.size() == 1 && Trim(row[0]).empty()) continue;
-    auto id = ToInt(col(*mc, row, "route_id"), moves_name, i, "route_id");
-    if (!id.ok()) return id.status();
-    auto seq = ToInt(col(*mc, row, "seq_no"), moves_name, i, "seq_no");
-    if (!seq.ok()) return seq.status();
-    if (e.Find(*id) < 0) {
+  std::map<int, std::vector<MoveRow>> by_route;
+  for (size_t i = 1; i < mt.rows(); ++i) {
+    if (mt.Blank(i)) continue;
+    SB_ASSIGN_OR_RETURN(int id, mt.Int(i, "route_id"));
+    SB_ASSIGN_OR_RETURN(MoveRow row, ReadMoveRow(mt, i));
+    if (e.Find(id) < 0) {
       ++e.orphan_moves;  // e.g. moves of private routes left out of the routes file
       continue;
     }
-    std::string hand = ToLower(Trim(col(*mc, row, "hand")));
-    Move m;
-    std::optional<Hand> parsed = ParseHand(hand);
-    if (!parsed) {
-      return Status::InvalidInput(std::string(moves_name) + ": record " + std::to_string(i) +
-                                  ": hand: expected L or R, got \"" + hand + "\"");
-    }
-    m.hand = *parsed;
-    m.text = std::string(Trim(col(*mc, row, "move")));
-    std::string crux = ToLower(Trim(col(*mc, row, "crux")));
-    m.crux = crux == "t" || crux == "true";
-    by_route[*id].push_back({*seq, std::move(m)});
+    by_route[id].push_back(std::move(row));
   }
   for (auto& [id, rows] : by_route) {
     std::stable_sort(rows.begin(), rows.end(),
-                     [](const Row& a, const Row& b) { return a.seq < b.seq; });
+                     [](const MoveRow& a, const MoveRow& b) { return a.seq < b.seq; });
     SiteRoute& r = e.routes[e.Find(id)];
-    for (Row& row : rows) {
+    for (MoveRow& row : rows) {
       r.seq_nos.push_back(row.seq);
       r.route.moves.push_back(std::move(row.move));
     }
@@ -155,11 +193,9 @@ Result<SiteExport> ParseSiteExport(std::string_view routes_csv, std::string_view
 
 Result<SiteExport> ReadSiteExport(const std::string& dir) {
   std::string rp = dir + "/public_routes.csv", mp = dir + "/public_moves.csv";
-  auto r = ReadFile(rp);
-  if (!r.ok()) return r.status();
-  auto m = ReadFile(mp);
-  if (!m.ok()) return m.status();
-  return ParseSiteExport(*r, rp, *m, mp);
+  SB_ASSIGN_OR_RETURN(std::string r, ReadFile(rp, kMaxSiteCsvBytes));
+  SB_ASSIGN_OR_RETURN(std::string m, ReadFile(mp, kMaxSiteCsvBytes));
+  return ParseSiteExport(r, rp, m, mp);
 }
 
 void FormatSiteExport(const SiteExport& e, std::string* routes_csv, std::string* moves_csv) {
@@ -172,7 +208,7 @@ void FormatSiteExport(const SiteExport& e, std::string* routes_csv, std::string*
     for (const HeaderLine& h : r.route.header) {
       if (!h.key.empty()) continue;
       if (!desc.empty()) desc += '\n';
-      desc += h.value;
+      desc += Trim(h.value);
     }
     auto p = [&](const char* k) {
       auto it = r.params.find(k);
@@ -185,10 +221,10 @@ void FormatSiteExport(const SiteExport& e, std::string* routes_csv, std::string*
     row.push_back(r.is_public ? "t" : "f");
     *routes_csv += FormatCsvRow(row);
     for (size_t i = 0; i < r.route.moves.size(); ++i) {
+      const Move& m = r.route.moves[i];
       int seq = i < r.seq_nos.size() ? r.seq_nos[i] : static_cast<int>(i) + 1;
-      *moves_csv += FormatCsvRow({std::to_string(r.id), std::to_string(seq),
-                                  HandLetter(r.route.moves[i].hand), r.route.moves[i].text, "f",
-                                  "0", "f", "f"});
+      *moves_csv += FormatCsvRow({std::to_string(r.id), std::to_string(seq), HandLetter(m.hand),
+                                  m.text, "f", "0", "f", m.crux ? "t" : "f"});
     }
   }
 }
@@ -198,10 +234,8 @@ std::vector<int> VariationInputIds(const std::string& name) {
   if (name.rfind(prefix, 0) != 0) return {};
   std::vector<int> ids;
   for (std::string_view part : Split(std::string_view(name).substr(prefix.size()), ',')) {
-    part = Trim(part);
     int v = 0;
-    auto [p, ec] = std::from_chars(part.data(), part.data() + part.size(), v);
-    if (ec != std::errc() || p != part.data() + part.size()) return {};
+    if (!ParseInt(Trim(part), &v)) return {};
     ids.push_back(v);
   }
   std::sort(ids.begin(), ids.end());

@@ -60,10 +60,10 @@ TEST(SiteCsv, FormatRoundTrips) {
 TEST(SiteCsv, ErrorsNameFileRecordAndColumn) {
   auto bad_id = ParseSiteExport(kRoutes, "r.csv",
                                 "route_id,seq_no,hand,move\nx,1,L,jug\n", "m.csv");
-  EXPECT_EQ(bad_id.status().message(), "m.csv: record 1: route_id: not a whole number: \"x\"");
+  EXPECT_EQ(bad_id.status().message(), "m.csv:2: route_id: not a whole number: \"x\"");
   auto bad_hand = ParseSiteExport(kRoutes, "r.csv", "route_id,seq_no,hand,move\n2,1,Q,jug\n",
                                   "m.csv");
-  EXPECT_EQ(bad_hand.status().message(), "m.csv: record 1: hand: expected L or R, got \"q\"");
+  EXPECT_EQ(bad_hand.status().message(), "m.csv:2: hand: expected L or R, got \"q\"");
   auto missing = ParseSiteExport("route_id,title\n1,a\n", "r.csv", kMoves, "m.csv");
   EXPECT_EQ(missing.status().message(), "r.csv:1: missing column \"name\"");
   auto minimal = ParseSiteExport("route_id,name\n2,a\n", "r.csv", "route_id,seq_no,hand,move\n2,1,L,jug\n", "m.csv");
@@ -72,7 +72,55 @@ TEST(SiteCsv, ErrorsNameFileRecordAndColumn) {
   EXPECT_FALSE(minimal->routes[0].is_variation);
   auto dup = ParseSiteExport(
       "route_id,user_id,name,is_variation\n1,1,a,f\n1,1,b,f\n", "r.csv", kMoves, "m.csv");
-  EXPECT_FALSE(dup.ok());
+  EXPECT_EQ(dup.status().message(), "r.csv:3: route_id 1 appears twice (first on line 2)");
+  // After a quoted field spanning lines, errors still name the physical line.
+  auto late = ParseSiteExport(kRoutes, "r.csv",
+                              "route_id,seq_no,hand,move\n2,1,L,\"two\nlines\"\n2,x,R,jug\n",
+                              "m.csv");
+  EXPECT_EQ(late.status().message(), "m.csv:4: seq_no: not a whole number: \"x\"");
+  ASSERT_TRUE(late.status().location().has_value());
+  EXPECT_EQ(late.status().location()->line, 4);
+}
+
+TEST(SiteCsv, RoutesPrintAsValidCrdlAndCruxesRoundTrip) {
+  const char* routes =
+      "route_id,name,description\n"
+      "1,,\"Like, who set it\n---\nstyle: crimpy\nwhat''s this\"\n";
+  const char* moves =
+      "route_id,seq_no,hand,move,crux\n"
+      "1,1,R,\"jug\twith\ntabs\",f\n"
+      "1,2,L,small crimp,t\n"
+      "1,3,R,sloper (crux),f\n"
+      "1,4,L,,f\n";
+  auto e = ParseSiteExport(routes, "r.csv", moves, "m.csv");
+  ASSERT_TRUE(e.ok()) << e.status().message();
+  const Route& r = e->routes[0].route;
+  EXPECT_EQ(r.Name(), "route 1");
+  EXPECT_FALSE(r.Meta("style").has_value());  // description stays free text
+  ASSERT_EQ(r.moves.size(), 4u);
+  EXPECT_EQ(r.moves[0].text, "jug with tabs");
+  EXPECT_FALSE(r.moves[0].crux);
+  EXPECT_TRUE(r.moves[1].crux);
+  EXPECT_TRUE(r.moves[2].crux);
+  EXPECT_EQ(r.moves[2].text, "sloper");
+  EXPECT_EQ(r.moves[3].text, "?");
+  Result<Route> back = ParseCrdl(PrintCrdl(r), "x");
+  ASSERT_TRUE(back.ok()) << back.status().message();
+  EXPECT_EQ(*back, r);
+  std::string rc, mc;
+  FormatSiteExport(*e, &rc, &mc);
+  EXPECT_NE(mc.find("1,2,L,small crimp,f,0,f,t\n"), std::string::npos) << mc;
+  auto again = ParseSiteExport(rc, "r2", mc, "m2");
+  ASSERT_TRUE(again.ok()) << again.status().message();
+  EXPECT_EQ(again->routes[0].route, r);
+}
+
+TEST(SiteCsv, SafeHeaderText) {
+  EXPECT_EQ(SafeHeaderText("---"), "- - -");
+  EXPECT_EQ(SafeHeaderText(" --- "), "- - -");
+  EXPECT_EQ(SafeHeaderText("key: value"), " key: value");
+  EXPECT_EQ(SafeHeaderText("a:b"), "a:b");
+  EXPECT_EQ(SafeHeaderText("two\nlines"), "two lines");
 }
 
 }  // namespace

@@ -175,7 +175,7 @@ Status CheckMetadata(const std::string& k, const std::string& v) {
       return Status::InvalidInput("metadata key '" + k + "' may only use a-z, 0-9, _ and -");
     }
   }
-  if (v.empty() || v.size() > 1024 || Utf8ErrorOffset(v) != std::string_view::npos) {
+  if (v.empty() || v.size() > 1024 || FindInvalidUtf8(v) != std::string_view::npos) {
     return Status::InvalidInput("metadata value of '" + k + "' must be 1..1024 bytes of UTF-8");
   }
   for (unsigned char c : v) {
@@ -465,7 +465,7 @@ Result<GraphModel> GraphModel::Parse(std::string_view bytes, const std::string& 
     for (uint64_t q = 0; q < m; ++q) {
       SB_RETURN_IF_ERROR(in.Fields("", 2, &f));
       auto tok = ParseToken(f[0], 1, "value");
-      if (!tok.ok() || Utf8ErrorOffset(f[0]) != std::string_view::npos) {
+      if (!tok.ok() || FindInvalidUtf8(f[0]) != std::string_view::npos) {
         return in.Error("bad value '" + std::string(f[0]) + "' (non-empty UTF-8, no '|')");
       }
       if (q > 0 && !(g.values_[ft].back() < f[0])) {
@@ -525,7 +525,7 @@ Status SaveGraph(const GraphModel& graph, const std::string& path) {
 }
 
 Result<GraphModel> LoadGraph(const std::string& path) {
-  if (Utf8ErrorOffset(path) != std::string_view::npos) {
+  if (FindInvalidUtf8(path) != std::string_view::npos) {
     return Status::InvalidInput("graph path is not valid UTF-8");
   }
   auto data = ReadFile(path);

@@ -83,7 +83,7 @@ Status ValidateInfluence(const std::vector<InfluencePair>& pairs, int k) {
 
 Result<std::vector<InfluencePair>> ParseInfluenceFile(std::string_view text,
                                                       const std::string& name, int k) {
-  if (size_t bad = Utf8ErrorOffset(text); bad != std::string_view::npos) {
+  if (size_t bad = FindInvalidUtf8(text); bad != std::string_view::npos) {
     return Status::InvalidInput(name + ": invalid UTF-8 at byte " + std::to_string(bad));
   }
   std::vector<InfluencePair> pairs;

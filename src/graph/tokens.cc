@@ -60,7 +60,7 @@ std::string FormatToken(const Token& token) {
 }
 
 Result<TokenFile> ParseTokenFile(std::string_view text, const std::string& name, int k) {
-  if (size_t bad = Utf8ErrorOffset(text); bad != std::string_view::npos) {
+  if (size_t bad = FindInvalidUtf8(text); bad != std::string_view::npos) {
     size_t line = 1, col = 1;
     for (size_t i = 0; i < bad; ++i) {
       if (text[i] == '\n') {

@@ -9,6 +9,7 @@
 #include <new>
 #include <thread>
 
+#include "base/number.h"
 #include "base/text.h"
 #include "landscape/kernel.h"
 
@@ -20,11 +21,7 @@ bool Finite3(const chaos::State& s) {
   return std::isfinite(s[0]) && std::isfinite(s[1]) && std::isfinite(s[2]);
 }
 
-std::string Fmt(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
+std::string Fmt(double v) { return FormatDouble(v, 17); }
 
 std::string IcString(const chaos::State& s) {
   std::string out = "(";
@@ -75,8 +72,8 @@ Status ScanParams::Validate() const {
     if (!std::isfinite(p)) return Status::InvalidInput("params: must be finite numbers");
   }
   if (!Finite3(ref_ic)) return Status::InvalidInput("ref-ic: must be finite numbers");
-  if (skip < 0 || skip > 10000000) {
-    return Status::InvalidInput("skip: must be in 0..10000000, got " + std::to_string(skip));
+  if (skip < 0 || skip > chaos::kMaxSkip) {  // the one skip limit (chaos/variation.h)
+    return Status::InvalidInput("skip: must be in 0.." + std::to_string(chaos::kMaxSkip) + ", got " + std::to_string(skip));
   }
   if (length < 1 || length > kMaxLength) {
     return Status::InvalidInput("length: must be in 1.." + std::to_string(kMaxLength) + ", got " +

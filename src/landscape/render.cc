@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "base/number.h"
 #include "base/text.h"
 
 namespace sb::landscape {
@@ -14,11 +15,7 @@ namespace {
 
 const char kAxisName[3] = {'x', 'y', 'z'};
 
-std::string G17(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
+std::string G17(double v) { return FormatDouble(v, 17); }
 
 std::string Short(double v) {
   char buf[40];

@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <cstdio>
 
+#include "base/text.h"
+
 namespace sb::language {
 
 namespace {
@@ -462,38 +464,7 @@ void AppendPhoenixNode(const ParseNode& n, std::string* out) {
   for (const ParseNode& c : n.children) AppendPhoenixNode(c, out);
 }
 
-void AppendJsonString(std::string_view s, std::string* out) {
-  out->push_back('"');
-  for (char c : s) {
-    unsigned char u = static_cast<unsigned char>(c);
-    switch (c) {
-      case '"':
-        out->append("\\\"");
-        break;
-      case '\\':
-        out->append("\\\\");
-        break;
-      case '\n':
-        out->append("\\n");
-        break;
-      case '\t':
-        out->append("\\t");
-        break;
-      case '\r':
-        out->append("\\r");
-        break;
-      default:
-        if (u < 0x20) {
-          char b[8];
-          std::snprintf(b, sizeof b, "\\u%04x", u);
-          out->append(b);
-        } else {
-          out->push_back(c);
-        }
-    }
-  }
-  out->push_back('"');
-}
+void AppendJsonString(std::string_view s, std::string* out) { sb::AppendJsonString(out, s); }
 
 void AppendJsonNode(const ParseNode& n, std::string* out) {
   if (n.is_word()) {

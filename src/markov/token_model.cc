@@ -204,7 +204,7 @@ Result<TokenModel> TokenModel::Parse(std::string_view bytes, const std::string& 
       if (t.empty() || (i > 0 && !(tokens.back() < t))) {
         return bad("vocabulary is not sorted and distinct");
       }
-      if (Utf8ErrorOffset(t) != std::string_view::npos || t.find('\0') != t.npos) {
+      if (FindInvalidUtf8(t) != std::string_view::npos || t.find('\0') != t.npos) {
         return bad("vocabulary token " + std::to_string(i + 1) + " is not valid UTF-8");
       }
       tokens.emplace_back(t);
@@ -224,8 +224,8 @@ Result<TokenModel> TokenModel::Parse(std::string_view bytes, const std::string& 
       if (k.empty() || v.empty() || (i > 0 && !(last < k))) {
         return bad("metadata keys are not sorted, distinct and non-empty");
       }
-      if (Utf8ErrorOffset(k) != std::string_view::npos ||
-          Utf8ErrorOffset(v) != std::string_view::npos || k.find('\0') != k.npos ||
+      if (FindInvalidUtf8(k) != std::string_view::npos ||
+          FindInvalidUtf8(v) != std::string_view::npos || k.find('\0') != k.npos ||
           v.find('\0') != v.npos) {
         return bad("metadata entry " + std::to_string(i + 1) + " is not valid UTF-8");
       }
@@ -278,7 +278,7 @@ Status SaveModel(const TokenModel& model, const std::string& path) {
 }
 
 Result<TokenModel> LoadModel(const std::string& path) {
-  if (Utf8ErrorOffset(path) != std::string_view::npos) {
+  if (FindInvalidUtf8(path) != std::string_view::npos) {
     return Status::InvalidInput("model path is not valid UTF-8 (rename the file)");
   }
   // Map the file (read-only); fall back to reading it (pipes, empty files).

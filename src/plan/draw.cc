@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-#include "plan/format.h"
+#include "base/number.h"
 
 namespace sb::plan {
 
@@ -78,13 +78,13 @@ void DrawTrajectory(cairo_t* cr, const RoutePlan& plan, double width, double hei
     cairo_move_to(cr, px(t), bottom);
     cairo_line_to(cr, px(t), bottom + 4);
     cairo_stroke(cr);
-    Text(cr, px(t), bottom + 7, FormatNumber(std::abs(t) < sx * 1e-9 ? 0.0 : t), 0.5, 0);
+    Text(cr, px(t), bottom + 7, FormatDouble(std::abs(t) < sx * 1e-9 ? 0.0 : t), 0.5, 0);
   }
   for (double t = std::ceil(zmin / sz) * sz; t <= zmax; t += sz) {
     cairo_move_to(cr, left - 4, pz(t));
     cairo_line_to(cr, left, pz(t));
     cairo_stroke(cr);
-    Text(cr, left - 7, pz(t), FormatNumber(std::abs(t) < sz * 1e-9 ? 0.0 : t), 1, 0.5);
+    Text(cr, left - 7, pz(t), FormatDouble(std::abs(t) < sz * 1e-9 ? 0.0 : t), 1, 0.5);
   }
   cairo_set_font_size(cr, 12);
   Text(cr, (left + right) / 2, height - 6, "x", 0.5, 1);

@@ -1,5 +1,6 @@
 // Cairo drawing of a plan's trajectory picture (paper figure 2), shared by the
-// SVG renderer here and the PDF/PNG renderers of the web app.
+// SVG and PDF renderers of this module. Internal to plan/: it is the one
+// header with a cairo type, and no other module includes it.
 #ifndef SB_PLAN_DRAW_H_
 #define SB_PLAN_DRAW_H_
 

@@ -3,29 +3,24 @@
 #include <cairo-svg.h>
 #include <cairo.h>
 
-#include <charconv>
-#include <cmath>
-#include <set>
+#include <array>
+#include <cstdio>
 
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "base/number.h"
 #include "base/text.h"
 #include "plan/draw.h"
-#include "plan/format.h"
 
 namespace sb::plan {
 
 using chaos::VaryParams;
 using nlohmann::json;
 
-std::string FormatNumber(double v) {
-  if (v == 0) v = 0;  // no "-0"
-  char buf[64];
-  auto [p, ec] = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, p);
-}
-
-std::string FormatTriple(const std::array<double, 3>& v) {
-  return FormatNumber(v[0]) + "," + FormatNumber(v[1]) + "," + FormatNumber(v[2]);
-}
+namespace {
+std::string FormatNumber(double v) { return FormatDouble(v); }
+}  // namespace
 
 Result<Format> ParseFormat(std::string_view s) {
   std::string l = ToLower(s);
@@ -39,106 +34,6 @@ Result<Format> ParseFormat(std::string_view s) {
 
 // ---------------------------------------------------------------------------
 // Parameters.
-
-json ParamsToJson(const VaryParams& p) {
-  json j;
-  j["preset"] = p.preset;
-  j["system"] = chaos::SystemKindName(p.system.kind);
-  j["params"] = p.system.params;
-  j["integrator"] = chaos::IntegratorKindName(p.integrator);
-  j["step"] = p.step;
-  j["ref_ic"] = p.ref_ic;
-  j["var_ic"] = p.var_ic;
-  j["skip"] = p.skip;
-  j["mapping"] = chaos::MappingKindName(p.mapping.kind);
-  j["mask"] = chaos::MaskString(p.mapping.mask);
-  j["dabby_direction"] = chaos::DabbyDirectionName(p.mapping.dabby_direction);
-  j["max_repeat"] = p.mapping.max_repeat;
-  return j;
-}
-
-namespace {
-
-Status FieldError(const std::string& field, const std::string& what) {
-  return Status::InvalidInput(field + ": " + what);
-}
-
-Status GetTriple(const json& j, const char* field, std::array<double, 3>* out) {
-  if (!j.contains(field)) return Status::Ok();
-  const json& v = j.at(field);
-  if (v.is_string()) {
-    auto parts = Split(v.get<std::string>(), ',');
-    if (parts.size() != 3) return FieldError(field, "expected three numbers x,y,z");
-    for (int i = 0; i < 3; ++i) {
-      std::string_view t = Trim(parts[i]);
-      auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), (*out)[i]);
-      if (ec != std::errc() || p != t.data() + t.size() || t.empty()) {
-        return FieldError(field, "expected three numbers x,y,z");
-      }
-    }
-    return Status::Ok();
-  }
-  if (!v.is_array() || v.size() != 3) return FieldError(field, "expected an array of 3 numbers");
-  for (int i = 0; i < 3; ++i) {
-    if (!v[i].is_number()) return FieldError(field, "expected an array of 3 numbers");
-    (*out)[i] = v[i].get<double>();
-  }
-  return Status::Ok();
-}
-
-template <typename T, typename ParseFn>
-Status GetEnum(const json& j, const char* field, ParseFn parse, T* out) {
-  if (!j.contains(field)) return Status::Ok();
-  if (!j.at(field).is_string()) return FieldError(field, "expected a string");
-  auto r = parse(j.at(field).get<std::string>());
-  if (!r.ok()) return FieldError(field, r.status().message());
-  *out = *r;
-  return Status::Ok();
-}
-
-Status GetInt(const json& j, const char* field, int lo, int hi, int* out) {
-  if (!j.contains(field)) return Status::Ok();
-  const json& v = j.at(field);
-  if (!v.is_number_integer()) return FieldError(field, "expected a whole number");
-  long long x = v.get<long long>();
-  if (x < lo || x > hi) {
-    return FieldError(field, "must be between " + std::to_string(lo) + " and " +
-                                 std::to_string(hi));
-  }
-  *out = static_cast<int>(x);
-  return Status::Ok();
-}
-
-}  // namespace
-
-Result<VaryParams> ParamsFromJson(const json& j) {
-  if (!j.is_object()) return Status::InvalidInput("parameters: expected an object");
-  VaryParams p;
-  if (j.contains("preset")) {
-    if (!j["preset"].is_string()) return FieldError("preset", "expected a string");
-    auto pr = VaryParams::Preset(j["preset"].get<std::string>());
-    if (!pr.ok()) return FieldError("preset", pr.status().message());
-    p = *pr;
-  }
-  SB_RETURN_IF_ERROR(GetEnum(j, "system", chaos::ParseSystemKind, &p.system.kind));
-  if (j.contains("system") && !j.contains("params")) p.system.params = chaos::DefaultParams(p.system.kind);
-  SB_RETURN_IF_ERROR(GetTriple(j, "params", &p.system.params));
-  SB_RETURN_IF_ERROR(GetEnum(j, "integrator", chaos::ParseIntegratorKind, &p.integrator));
-  if (j.contains("step")) {
-    if (!j["step"].is_number()) return FieldError("step", "expected a number");
-    p.step = j["step"].get<double>();
-  }
-  SB_RETURN_IF_ERROR(GetTriple(j, "ref_ic", &p.ref_ic));
-  SB_RETURN_IF_ERROR(GetTriple(j, "var_ic", &p.var_ic));
-  SB_RETURN_IF_ERROR(GetInt(j, "skip", 0, 100000000, &p.skip));
-  SB_RETURN_IF_ERROR(GetEnum(j, "mapping", chaos::ParseMappingKind, &p.mapping.kind));
-  SB_RETURN_IF_ERROR(GetEnum(j, "mask", chaos::ParseMask, &p.mapping.mask));
-  SB_RETURN_IF_ERROR(
-      GetEnum(j, "dabby_direction", chaos::ParseDabbyDirection, &p.mapping.dabby_direction));
-  SB_RETURN_IF_ERROR(GetInt(j, "max_repeat", 0, 1000000, &p.mapping.max_repeat));
-  SB_RETURN_IF_ERROR(p.Validate());
-  return p;
-}
 
 std::string ReproduceOptions(const VaryParams& p) {
   std::string s = "--system " + std::string(chaos::SystemKindName(p.system.kind)) +
@@ -194,6 +89,7 @@ std::string Provenance(const RoutePlan& plan, const chaos::VariedMove& m) {
 
 std::string MoveText(const chaos::VariedMove& m) {
   std::string t = m.source ? m.text : "________ (fill in)";
+  if (m.crux) t += " (crux)";
   for (const auto& n : m.notes) {
     if (n.rfind("(blank", 0) == 0) continue;
     t += " " + n;
@@ -251,7 +147,7 @@ std::string RenderText(const RoutePlan& plan) {
   size_t next = 0;
   for (size_t j = 0; j < moves.size(); ++j) {
     const auto& m = moves[j];
-    char num[16];
+    char num[24];
     std::snprintf(num, sizeof num, "%3zu", j + 1);
     out += std::string(num) + "  " + HandLetter(m.hand) + "     " + Pad(MoveText(m), w) +
            (m.changed ? "  changed  " : "  kept     ") + Provenance(plan, m) + "\n";
@@ -324,74 +220,7 @@ std::string RenderMarkdown(const RoutePlan& plan) {
 // ---------------------------------------------------------------------------
 // JSON and SVG.
 
-json ToJson(const RoutePlan& plan) {
-  json j;
-  j["parameters"] = ParamsToJson(plan.variation.params);
-  json inputs = json::array();
-  for (const auto& in : plan.variation.inputs) {
-    inputs.push_back({{"name", in.name}, {"moves", in.route.moves.size()}});
-  }
-  j["inputs"] = inputs;
-  json moves = json::array();
-  for (const auto& m : plan.variation.moves) {
-    json jm;
-    jm["hand"] = HandLetter(m.hand);
-    jm["text"] = m.text;
-    if (m.source) {
-      jm["source"] = {{"route", m.source->route}, {"move", m.source->move}};
-    } else {
-      jm["source"] = nullptr;
-    }
-    jm["changed"] = m.changed;
-    jm["notes"] = m.notes;
-    moves.push_back(jm);
-  }
-  j["moves"] = moves;
-  j["reference"] = plan.variation.reference;
-  j["variation"] = plan.variation.variation;
-  if (!plan.smoothing_model.empty()) {
-    json sm = json::array();
-    for (const auto& s : plan.smoothing) {
-      json ins = json::array();
-      for (const auto& m : s.moves) {
-        ins.push_back({{"hand", m.hand}, {"symbol", m.symbol}, {"description", m.description}});
-      }
-      sm.push_back({{"after", s.after},
-                    {"insert", ins},
-                    {"bits_before", s.bits_before},
-                    {"bits_after", s.bits_after},
-                    {"bits_saved", s.bits_saved()}});
-    }
-    j["smoothing"] = {{"model", plan.smoothing_model}, {"suggestions", sm}};
-  }
-  return j;
-}
-
 namespace {
-
-// JSON string literal (quotes included). Input is valid UTF-8 (CRDL checks
-// it), so only quotes, backslashes and control characters need escapes.
-void AppendJsonString(std::string* out, std::string_view s) {
-  out->push_back('"');
-  for (char c : s) {
-    switch (c) {
-      case '"': *out += "\\\""; break;
-      case '\\': *out += "\\\\"; break;
-      case '\n': *out += "\\n"; break;
-      case '\r': *out += "\\r"; break;
-      case '\t': *out += "\\t"; break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          char buf[8];
-          std::snprintf(buf, sizeof buf, "\\u%04x", c);
-          *out += buf;
-        } else {
-          out->push_back(c);
-        }
-    }
-  }
-  out->push_back('"');
-}
 
 void AppendPoints(std::string* out, const char* key, const std::vector<chaos::State>& pts) {
   *out += "  \"";
@@ -405,7 +234,65 @@ void AppendPoints(std::string* out, const char* key, const std::vector<chaos::St
   *out += pts.empty() ? "]" : "\n  ]";
 }
 
+void AppendMoves(std::string* out, const chaos::Variation& v) {
+  *out += "[";
+  for (size_t j = 0; j < v.moves.size(); ++j) {
+    const auto& m = v.moves[j];
+    *out += j ? ",\n    {\"hand\": \"" : "\n    {\"hand\": \"";
+    *out += HandLetter(m.hand);
+    *out += "\", \"text\": ";
+    AppendJsonString(out, m.text);
+    if (m.source) {
+      *out += ", \"source\": {\"route\": " + std::to_string(m.source->route) +
+              ", \"move\": " + std::to_string(m.source->move) + "}";
+    } else {
+      *out += ", \"source\": null";
+    }
+    *out += m.changed ? ", \"changed\": true" : ", \"changed\": false";
+    *out += m.crux ? ", \"crux\": true, \"notes\": [" : ", \"crux\": false, \"notes\": [";
+    for (size_t k = 0; k < m.notes.size(); ++k) {
+      if (k) *out += ", ";
+      AppendJsonString(out, m.notes[k]);
+    }
+    *out += "]}";
+  }
+  *out += v.moves.empty() ? "]" : "\n  ]";
+}
+
+// A JSON number; non-finite values (never produced by the engine) as null.
+std::string JsonNumber(double v) { return std::isfinite(v) ? FormatNumber(v) : "null"; }
+
+void AppendSmoothing(std::string* out, const RoutePlan& plan) {
+  *out += "{\"model\": ";
+  AppendJsonString(out, plan.smoothing_model);
+  *out += ", \"suggestions\": [";
+  for (size_t i = 0; i < plan.smoothing.size(); ++i) {
+    const Suggestion& s = plan.smoothing[i];
+    *out += i ? ", {\"after\": " : "{\"after\": ";
+    *out += std::to_string(s.after) + ", \"insert\": [";
+    for (size_t k = 0; k < s.moves.size(); ++k) {
+      *out += k ? ", {\"hand\": " : "{\"hand\": ";
+      AppendJsonString(out, s.moves[k].hand);
+      *out += ", \"symbol\": ";
+      AppendJsonString(out, s.moves[k].symbol);
+      *out += ", \"description\": ";
+      AppendJsonString(out, s.moves[k].description);
+      *out += "}";
+    }
+    *out += "], \"bits_before\": " + JsonNumber(s.bits_before) +
+            ", \"bits_after\": " + JsonNumber(s.bits_after) +
+            ", \"bits_saved\": " + JsonNumber(s.bits_saved()) + "}";
+  }
+  *out += "]}";
+}
+
 }  // namespace
+
+std::string RenderMovesJson(const RoutePlan& plan) {
+  std::string out;
+  AppendMoves(&out, plan.variation);
+  return out;
+}
 
 std::string RenderJson(const RoutePlan& plan) {
   // Written directly rather than through a document tree: one line per move
@@ -413,43 +300,28 @@ std::string RenderJson(const RoutePlan& plan) {
   const auto& v = plan.variation;
   std::string out;
   out.reserve(256 + v.moves.size() * 150);
-  out += "{\n  \"parameters\": " + ParamsToJson(v.params).dump() + ",\n  \"inputs\": [";
+  out += "{\n  \"parameters\": " + chaos::ParamsToJson(v.params) + ",\n  \"inputs\": [";
   for (size_t i = 0; i < v.inputs.size(); ++i) {
     out += i ? ", {\"name\": " : "{\"name\": ";
     AppendJsonString(&out, v.inputs[i].name);
     out += ", \"moves\": " + std::to_string(v.inputs[i].route.moves.size()) + "}";
   }
-  out += "],\n  \"moves\": [";
-  for (size_t j = 0; j < v.moves.size(); ++j) {
-    const auto& m = v.moves[j];
-    out += j ? ",\n    {\"hand\": \"" : "\n    {\"hand\": \"";
-    out += HandLetter(m.hand);
-    out += "\", \"text\": ";
-    AppendJsonString(&out, m.text);
-    if (m.source) {
-      out += ", \"source\": {\"route\": " + std::to_string(m.source->route) +
-             ", \"move\": " + std::to_string(m.source->move) + "}";
-    } else {
-      out += ", \"source\": null";
-    }
-    out += m.changed ? ", \"changed\": true, \"notes\": [" : ", \"changed\": false, \"notes\": [";
-    for (size_t k = 0; k < m.notes.size(); ++k) {
-      if (k) out += ", ";
-      AppendJsonString(&out, m.notes[k]);
-    }
-    out += "]}";
-  }
-  out += v.moves.empty() ? "],\n" : "\n  ],\n";
+  out += "],\n  \"moves\": ";
+  AppendMoves(&out, v);
+  out += ",\n";
   AppendPoints(&out, "reference", v.reference);
   out += ",\n";
   AppendPoints(&out, "variation", v.variation);
-  json full = ToJson(RoutePlan{chaos::Variation{}, plan.smoothing, plan.smoothing_model});
-  if (full.contains("smoothing")) out += ",\n  \"smoothing\": " + full["smoothing"].dump();
+  if (!plan.smoothing_model.empty()) {
+    out += ",\n  \"smoothing\": ";
+    AppendSmoothing(&out, plan);
+  }
   out += "\n}\n";
   return out;
 }
 
-bool SmoothingFromJson(const json& j, RoutePlan* plan) {
+bool SmoothingFromJson(std::string_view plan_json, RoutePlan* plan) {
+  json j = json::parse(plan_json, nullptr, /*allow_exceptions=*/false);
   if (!j.is_object() || !j.contains("smoothing")) return false;
   const json& sm = j["smoothing"];
   if (!sm.is_object() || !sm.contains("model") || !sm["model"].is_string() ||

@@ -4,9 +4,8 @@
 #define SB_PLAN_PLAN_H_
 
 #include <string>
+#include <string_view>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "base/status.h"
 #include "chaos/variation.h"
@@ -38,24 +37,24 @@ enum class Format { kText, kMarkdown, kJson, kSvg };
 // "text", "markdown" (also "md"), "json", "svg".
 Result<Format> ParseFormat(std::string_view s);
 
-// Every parameter as JSON (the "parameters" object of docs/formats.md).
-nlohmann::json ParamsToJson(const chaos::VaryParams& p);
-// The inverse; missing fields take the preset's (or default preset's) values.
-// Errors: kInvalidInput naming the field.
-Result<chaos::VaryParams> ParamsFromJson(const nlohmann::json& j);
 // The `strangebeta vary` options that reproduce these parameters.
 std::string ReproduceOptions(const chaos::VaryParams& p);
 
-// Renderers. Deterministic: the same plan gives byte-identical output.
+// Renderers. Deterministic: the same plan gives byte-identical output; they
+// never fail or throw (text that is not valid UTF-8 is replaced in JSON).
+// Crux moves are marked "(crux)" in text, Markdown and PDF.
 std::string RenderText(const RoutePlan& plan);
 std::string RenderMarkdown(const RoutePlan& plan);
-nlohmann::json ToJson(const RoutePlan& plan);
-std::string RenderJson(const RoutePlan& plan);  // the same as ToJson, one move per line
+// The JSON plan of docs/formats.md ("vary --format json"): one line per
+// top-level field, per move and per trajectory point.
+std::string RenderJson(const RoutePlan& plan);
+// Only its "moves" array (the same text as in RenderJson).
+std::string RenderMovesJson(const RoutePlan& plan);
 // Restores plan->smoothing and plan->smoothing_model from the "smoothing"
-// member of a ToJson document (so a stored plan shows the suggestions made
-// when it was created). Returns false, leaving the plan unchanged, when `j`
-// has no well-formed "smoothing" member.
-bool SmoothingFromJson(const nlohmann::json& j, RoutePlan* plan);
+// member of a RenderJson document (so a stored plan shows the suggestions
+// made when it was created). Returns false, leaving the plan unchanged, when
+// the text has no well-formed "smoothing" member.
+bool SmoothingFromJson(std::string_view plan_json, RoutePlan* plan);
 // The trajectory picture (paper figure 2): reference black, variation blue,
 // grey association lines, x–z projection, labelled axes.
 std::string RenderTrajectorySvg(const RoutePlan& plan);

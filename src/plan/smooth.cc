@@ -92,8 +92,8 @@ Result<std::pair<std::string, std::string>> GrammarFiles(const SymbolSource& src
     return std::make_pair((fs::path(dir) / "climbing.gra").string(),
                           (fs::path(dir) / "frames").string());
   }
-  if (Utf8ErrorOffset(src.grammar) != std::string_view::npos ||
-      Utf8ErrorOffset(src.frames) != std::string_view::npos) {
+  if (FindInvalidUtf8(src.grammar) != std::string_view::npos ||
+      FindInvalidUtf8(src.frames) != std::string_view::npos) {
     return Status::InvalidInput("grammar paths must be valid UTF-8");
   }
   const std::string frames =

@@ -2,7 +2,21 @@
 
 #include <sodium.h>
 
+#include <cstdio>
+#include <cstdlib>
+
 namespace sb::store {
+
+namespace {
+// Tokens must be random: without a working libsodium the process stops
+// rather than hand out predictable session ids.
+void RequireCrypto() {
+  if (sodium_init() < 0) {
+    std::fputs("strangebeta: libsodium failed to initialise\n", stderr);
+    std::abort();
+  }
+}
+}  // namespace
 
 Status InitCrypto() {
   if (sodium_init() < 0) return Status::Internal("libsodium failed to initialise");
@@ -37,14 +51,14 @@ std::string Hex(const unsigned char* p, size_t n) {
 }  // namespace
 
 std::string RandomToken() {
-  InitCrypto();
+  RequireCrypto();
   unsigned char buf[32];
   randombytes_buf(buf, sizeof buf);
   return Hex(buf, sizeof buf);
 }
 
 std::string HashToken(std::string_view token) {
-  InitCrypto();
+  RequireCrypto();
   unsigned char out[32];
   crypto_generichash(out, sizeof out, reinterpret_cast<const unsigned char*>(token.data()),
                      token.size(), nullptr, 0);

@@ -7,6 +7,8 @@
 #include <string_view>
 #include <utility>
 
+#include "base/log.h"
+
 namespace sb::store {
 
 namespace {
@@ -65,6 +67,38 @@ CREATE INDEX variation_inputs_route ON variation_inputs(route_id);
 CREATE INDEX sessions_user ON sessions(user_id);
 CREATE INDEX login_failures_key ON login_failures(key, at);
 ALTER TABLE routes ADD COLUMN smooth INTEGER NOT NULL DEFAULT 0;
+)sql",
+    // 3: route ids are never reused (AUTOINCREMENT): a deleted private
+    // variation's id can no longer name a new row that caches or links keyed
+    // by id would show in its place. SQLite cannot add AUTOINCREMENT in place,
+    // so the table is rebuilt (foreign keys are off while migrations run).
+    // Log-in failures become throttling attempts.
+    R"sql(
+CREATE TABLE routes_new (
+  id           INTEGER PRIMARY KEY AUTOINCREMENT,
+  owner_id     INTEGER REFERENCES users(id) ON DELETE SET NULL,
+  name         TEXT NOT NULL,
+  grade        TEXT NOT NULL DEFAULT '',
+  setter       TEXT NOT NULL DEFAULT '',
+  crdl         TEXT NOT NULL,
+  move_count   INTEGER NOT NULL DEFAULT 0,
+  is_public    INTEGER NOT NULL DEFAULT 1,
+  is_variation INTEGER NOT NULL DEFAULT 0,
+  params_json  TEXT NOT NULL DEFAULT '',
+  plan_json    TEXT NOT NULL DEFAULT '',
+  created_at   TEXT NOT NULL,
+  updated_at   TEXT NOT NULL,
+  smooth       INTEGER NOT NULL DEFAULT 0
+);
+INSERT INTO routes_new(id, owner_id, name, grade, setter, crdl, move_count, is_public,
+                       is_variation, params_json, plan_json, created_at, updated_at, smooth)
+  SELECT id, owner_id, name, grade, setter, crdl, move_count, is_public, is_variation,
+         params_json, plan_json, created_at, updated_at, smooth FROM routes;
+DROP TABLE routes;
+ALTER TABLE routes_new RENAME TO routes;
+CREATE INDEX routes_owner ON routes(owner_id);
+CREATE INDEX routes_public ON routes(is_public, id);
+ALTER TABLE login_failures RENAME TO attempts;
 )sql",
 };
 static_assert(sizeof(kMigrations) / sizeof(kMigrations[0]) == kSchemaVersion);
@@ -130,11 +164,12 @@ class SqliteStore final : public Store {
   ~SqliteStore() override { sqlite3_close_v2(db_); }
 
   Status Init() {
-    SB_RETURN_IF_ERROR(Exec("PRAGMA foreign_keys = ON"));
     SB_RETURN_IF_ERROR(Exec("PRAGMA busy_timeout = 5000"));
     {
+      // In-memory databases answer "memory"; that is fine. A database that
+      // cannot switch (read-only, locked) is refused by the first write.
       Stmt s(db_, "PRAGMA journal_mode = WAL");
-      s.Step();  // in-memory databases answer "memory"; that is fine
+      if (int rc = s.Step(); rc != SQLITE_ROW && rc != SQLITE_DONE) return s.Error("journal mode");
     }
     SB_RETURN_IF_ERROR(Exec("PRAGMA synchronous = NORMAL"));
     int version = SchemaVersionLocked();
@@ -143,17 +178,21 @@ class SqliteStore final : public Store {
                                   " is newer than this program's (" +
                                   std::to_string(kSchemaVersion) + ")");
     }
+    // Migrations that rebuild a table need foreign keys off (dropping the old
+    // table must not cascade); they are checked before each commit.
+    SB_RETURN_IF_ERROR(Exec("PRAGMA foreign_keys = OFF"));
     for (int v = version; v < kSchemaVersion; ++v) {
       SB_RETURN_IF_ERROR(Exec("BEGIN IMMEDIATE"));
       Status st = Exec(kMigrations[v]);
+      if (st.ok()) st = ForeignKeysHold();
       if (st.ok()) st = Exec("PRAGMA user_version = " + std::to_string(v + 1));
+      if (st.ok()) st = Exec("COMMIT");
       if (!st.ok()) {
-        Exec("ROLLBACK");
+        Rollback();
         return Status::IoError("migration " + std::to_string(v + 1) + ": " + st.message());
       }
-      SB_RETURN_IF_ERROR(Exec("COMMIT"));
     }
-    return Status::Ok();
+    return Exec("PRAGMA foreign_keys = ON");
   }
 
   int SchemaVersion() override {
@@ -199,7 +238,7 @@ class SqliteStore final : public Store {
       // Expired sessions are dropped here so the table stays small.
       Stmt d(db_, "DELETE FROM sessions WHERE expires_at <= ?");
       d.Bind(1, static_cast<int64_t>(std::time(nullptr)));
-      d.Step();
+      if (d.Step() != SQLITE_DONE) return d.Error("drop expired sessions");
     }
     Stmt s(db_,
            "INSERT INTO sessions(id_hash, user_id, csrf, created_at, expires_at) "
@@ -239,33 +278,36 @@ class SqliteStore final : public Store {
     return Status::Ok();
   }
 
-  Status RecordLoginFailure(const std::string& key, int64_t now) override {
+  Result<std::vector<AttemptCount>> RecordAttempts(const std::vector<std::string>& keys,
+                                                   int64_t now, int64_t since) override {
     std::lock_guard<std::mutex> lock(mu_);
-    // Old entries are dropped here so the table stays small.
-    {
-      Stmt d(db_, "DELETE FROM login_failures WHERE at < ?");
-      d.Bind(1, now - 24 * 3600);
-      d.Step();
+    SB_RETURN_IF_ERROR(Exec("BEGIN IMMEDIATE"));
+    Result<std::vector<AttemptCount>> out = RecordAttemptsLocked(keys, now, since);
+    Status st = out.ok() ? Exec("COMMIT") : out.status();
+    if (!st.ok()) {
+      Rollback();
+      return st;
     }
-    Stmt s(db_, "INSERT INTO login_failures(key, at) VALUES(?,?)");
-    s.Bind(1, key).Bind(2, now);
-    if (s.Step() != SQLITE_DONE) return s.Error("record log-in failure");
+    return out;
+  }
+
+  Status UndoAttempts(const std::vector<std::string>& keys, int64_t at) override {
+    std::lock_guard<std::mutex> lock(mu_);
+    for (const std::string& key : keys) {
+      Stmt s(db_,
+             "DELETE FROM attempts WHERE rowid = (SELECT rowid FROM attempts WHERE key = ? AND "
+             "at = ? ORDER BY rowid DESC LIMIT 1)");
+      s.Bind(1, key).Bind(2, at);
+      if (s.Step() != SQLITE_DONE) return s.Error("undo attempt");
+    }
     return Status::Ok();
   }
 
-  Result<int> CountLoginFailures(const std::string& key, int64_t since) override {
+  Status ClearAttempts(const std::string& key) override {
     std::lock_guard<std::mutex> lock(mu_);
-    Stmt s(db_, "SELECT COUNT(*) FROM login_failures WHERE key = ? AND at >= ?");
-    s.Bind(1, key).Bind(2, since);
-    if (s.Step() != SQLITE_ROW) return s.Error("count log-in failures");
-    return static_cast<int>(s.Int(0));
-  }
-
-  Status ClearLoginFailures(const std::string& key) override {
-    std::lock_guard<std::mutex> lock(mu_);
-    Stmt s(db_, "DELETE FROM login_failures WHERE key = ?");
+    Stmt s(db_, "DELETE FROM attempts WHERE key = ?");
     s.Bind(1, key);
-    if (s.Step() != SQLITE_DONE) return s.Error("clear log-in failures");
+    if (s.Step() != SQLITE_DONE) return s.Error("clear attempts");
     return Status::Ok();
   }
 
@@ -273,13 +315,9 @@ class SqliteStore final : public Store {
     std::lock_guard<std::mutex> lock(mu_);
     SB_RETURN_IF_ERROR(Exec("BEGIN IMMEDIATE"));
     Result<int64_t> id = InsertLocked(route, {});
-    if (!id.ok()) {
-      Exec("ROLLBACK");
-      return id.status();
-    }
-    Status st = Exec("COMMIT");
+    Status st = id.ok() ? Exec("COMMIT") : id.status();
     if (!st.ok()) {
-      Exec("ROLLBACK");
+      Rollback();
       return st;
     }
     return id;
@@ -290,17 +328,18 @@ class SqliteStore final : public Store {
     SB_RETURN_IF_ERROR(Exec("BEGIN IMMEDIATE"));
     std::vector<int64_t> ids;
     ids.reserve(routes.size());
+    Status st;
     for (const RouteRecord& r : routes) {
       Result<int64_t> id = InsertLocked(r, ids);
       if (!id.ok()) {
-        Exec("ROLLBACK");
-        return id.status();
+        st = id.status();
+        break;
       }
       ids.push_back(*id);
     }
-    Status st = Exec("COMMIT");
+    if (st.ok()) st = Exec("COMMIT");
     if (!st.ok()) {
-      Exec("ROLLBACK");
+      Rollback();
       return st;
     }
     return ids;
@@ -402,13 +441,14 @@ class SqliteStore final : public Store {
               "SELECT route_id, name, crdl FROM variation_inputs WHERE variation_id = ? "
               "ORDER BY position");
       in.Bind(1, r.id);
-      while (in.Step() == SQLITE_ROW) {
+      while ((rc = in.Step()) == SQLITE_ROW) {
         VariationInput vi;
         if (!in.IsNull(0)) vi.route_id = in.Int(0);
         vi.name = in.Text(1);
         vi.crdl = in.Text(2);
         r.inputs.push_back(std::move(vi));
       }
+      if (rc != SQLITE_DONE) return in.Error("all variation inputs");
     }
     return out;
   }
@@ -500,6 +540,44 @@ class SqliteStore final : public Store {
     return id;
   }
 
+  Result<std::vector<AttemptCount>> RecordAttemptsLocked(const std::vector<std::string>& keys,
+                                                         int64_t now, int64_t since) {
+    // Old entries are dropped here so the table stays small.
+    Stmt d(db_, "DELETE FROM attempts WHERE at < ?");
+    d.Bind(1, now - kAttemptRetentionSeconds);
+    if (d.Step() != SQLITE_DONE) return d.Error("drop old attempts");
+    std::vector<AttemptCount> out;
+    for (const std::string& key : keys) {
+      AttemptCount c;
+      Stmt prev(db_, "SELECT COUNT(*), ifnull(MAX(at), 0) FROM attempts WHERE key = ? AND at >= ?");
+      prev.Bind(1, key).Bind(2, since);
+      if (prev.Step() != SQLITE_ROW) return prev.Error("count attempts");
+      c.count = static_cast<int>(prev.Int(0)) + 1;
+      c.previous_at = prev.Int(1);
+      Stmt ins(db_, "INSERT INTO attempts(key, at) VALUES(?,?)");
+      ins.Bind(1, key).Bind(2, now);
+      if (ins.Step() != SQLITE_DONE) return ins.Error("record attempt");
+      out.push_back(c);
+    }
+    return out;
+  }
+
+  // Ends the open transaction after a failure. A failed ROLLBACK cannot be
+  // reported to the caller (who already has the first error): it is logged.
+  void Rollback() {
+    Status st = Exec("ROLLBACK");
+    if (!st.ok()) LogError("database rollback failed: " + st.message());
+  }
+
+  // The foreign keys of every row hold (checked while they are off).
+  Status ForeignKeysHold() {
+    Stmt s(db_, "PRAGMA foreign_key_check");
+    int rc = s.Step();
+    if (rc == SQLITE_DONE) return Status::Ok();
+    if (rc == SQLITE_ROW) return Status::Internal("a foreign key does not hold in " + s.Text(0));
+    return s.Error("foreign key check");
+  }
+
   int SchemaVersionLocked() {
     Stmt s(db_, "PRAGMA user_version");
     return s.Step() == SQLITE_ROW ? static_cast<int>(s.Int(0)) : 0;
@@ -514,6 +592,9 @@ class SqliteStore final : public Store {
     }
     return Status::Ok();
   }
+
+  // How long throttling attempts are kept (longer than any window).
+  static constexpr int64_t kAttemptRetentionSeconds = 24 * 3600;
 
   sqlite3* db_;
   std::mutex mu_;

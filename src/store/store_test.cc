@@ -7,8 +7,12 @@
 #include <thread>
 
 #include "base/files.h"
+#include <sqlite3.h>
+
+#include <atomic>
+#include <set>
+
 #include "store/auth.h"
-#include "store/csv_io.h"
 #include "store/sqlite_store.h"
 
 namespace sb::store {
@@ -84,13 +88,113 @@ TEST_F(StoreTest, SessionsExpireAndAreDeleted) {
   EXPECT_FALSE(s->FindSession(HashToken("tok"), 0).ok());
 }
 
-TEST_F(StoreTest, LoginFailuresAreCountedInAWindow) {
+TEST_F(StoreTest, AttemptsAreCountedInAWindow) {
   auto s = Open();
-  for (int i = 0; i < 3; ++i) ASSERT_TRUE(s->RecordLoginFailure("user:a", 100 + i).ok());
-  EXPECT_EQ(*s->CountLoginFailures("user:a", 101), 2);
-  EXPECT_EQ(*s->CountLoginFailures("user:b", 0), 0);
-  ASSERT_TRUE(s->ClearLoginFailures("user:a").ok());
-  EXPECT_EQ(*s->CountLoginFailures("user:a", 0), 0);
+  for (int i = 0; i < 3; ++i) ASSERT_TRUE(s->RecordAttempts({"acct:a"}, 100 + i, 0).ok());
+  Result<std::vector<AttemptCount>> c = s->RecordAttempts({"acct:a", "acct:b"}, 110, 101);
+  ASSERT_TRUE(c.ok());
+  EXPECT_EQ((*c)[0].count, 3);  // 101, 102 and this one
+  EXPECT_EQ((*c)[0].previous_at, 102);
+  EXPECT_EQ((*c)[1].count, 1);
+  EXPECT_EQ((*c)[1].previous_at, 0);
+  ASSERT_TRUE(s->UndoAttempts({"acct:a"}, 110).ok());
+  EXPECT_EQ((*s->RecordAttempts({"acct:a"}, 110, 101))[0].count, 3);  // the undone one is gone
+  ASSERT_TRUE(s->ClearAttempts("acct:a").ok());
+  EXPECT_EQ((*s->RecordAttempts({"acct:a"}, 111, 0))[0].count, 1);
+  // Attempts older than a day are dropped.
+  EXPECT_EQ((*s->RecordAttempts({"acct:b"}, 110 + 2 * 86400, 0))[0].count, 1);
+}
+
+TEST_F(StoreTest, ConcurrentAttemptsSeeDistinctCounts) {
+  auto s = Open();
+  std::vector<std::thread> ts;
+  std::mutex mu;
+  std::multiset<int> seen;
+  for (int t = 0; t < 16; ++t) {
+    ts.emplace_back([&] {
+      Result<std::vector<AttemptCount>> c = s->RecordAttempts({"k"}, 1000, 0);
+      ASSERT_TRUE(c.ok());
+      std::lock_guard<std::mutex> lock(mu);
+      seen.insert((*c)[0].count);
+    });
+  }
+  for (auto& t : ts) t.join();
+  std::multiset<int> want;
+  for (int i = 1; i <= 16; ++i) want.insert(i);
+  EXPECT_EQ(seen, want);
+}
+
+TEST_F(StoreTest, RouteIdsAreNeverReused) {
+  auto s = Open();
+  int64_t a = *s->InsertRoute(MakeRoute(std::nullopt, "A"));
+  int64_t b = *s->InsertRoute(MakeRoute(std::nullopt, "B"));
+  ASSERT_TRUE(s->DeleteRoute(b).ok());
+  int64_t c = *s->InsertRoute(MakeRoute(std::nullopt, "C"));
+  EXPECT_GT(c, b);
+  s.reset();
+  s = Open();  // not even after a restart
+  ASSERT_TRUE(s->DeleteRoute(c).ok());
+  EXPECT_GT(*s->InsertRoute(MakeRoute(std::nullopt, "D")), c);
+  EXPECT_EQ(s->GetRoute(a)->name, "A");
+}
+
+TEST_F(StoreTest, MigratesAVersion2DatabaseKeepingRowsAndLinks) {
+  // A database as version 2 left it: route ids without AUTOINCREMENT.
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(path_.c_str(), &db), SQLITE_OK);
+  const char* v2 = R"sql(
+CREATE TABLE users (id INTEGER PRIMARY KEY, username TEXT NOT NULL UNIQUE COLLATE NOCASE,
+  password_hash TEXT NOT NULL, created_at TEXT NOT NULL);
+CREATE TABLE sessions (id_hash TEXT PRIMARY KEY, user_id INTEGER NOT NULL REFERENCES users(id)
+  ON DELETE CASCADE, csrf TEXT NOT NULL, created_at INTEGER NOT NULL, expires_at INTEGER NOT NULL);
+CREATE TABLE login_failures (key TEXT NOT NULL, at INTEGER NOT NULL);
+CREATE TABLE routes (id INTEGER PRIMARY KEY, owner_id INTEGER REFERENCES users(id) ON DELETE SET
+  NULL, name TEXT NOT NULL, grade TEXT NOT NULL DEFAULT '', setter TEXT NOT NULL DEFAULT '',
+  crdl TEXT NOT NULL, move_count INTEGER NOT NULL DEFAULT 0, is_public INTEGER NOT NULL DEFAULT 1,
+  is_variation INTEGER NOT NULL DEFAULT 0, params_json TEXT NOT NULL DEFAULT '',
+  plan_json TEXT NOT NULL DEFAULT '', created_at TEXT NOT NULL, updated_at TEXT NOT NULL);
+CREATE TABLE variation_inputs (variation_id INTEGER NOT NULL REFERENCES routes(id) ON DELETE
+  CASCADE, position INTEGER NOT NULL, route_id INTEGER REFERENCES routes(id) ON DELETE SET NULL,
+  name TEXT NOT NULL, crdl TEXT NOT NULL, PRIMARY KEY (variation_id, position));
+CREATE INDEX routes_owner ON routes(owner_id);
+CREATE INDEX routes_public ON routes(is_public, id);
+CREATE INDEX variation_inputs_route ON variation_inputs(route_id);
+CREATE INDEX sessions_user ON sessions(user_id);
+CREATE INDEX login_failures_key ON login_failures(key, at);
+ALTER TABLE routes ADD COLUMN smooth INTEGER NOT NULL DEFAULT 0;
+INSERT INTO users VALUES (1, 'alice', 'h', '2020-01-01 00:00:00');
+INSERT INTO routes(id, owner_id, name, crdl, created_at, updated_at)
+  VALUES (5, 1, 'Five', 'name: Five
+---
+R jug
+', 'x', 'x');
+INSERT INTO routes(id, owner_id, name, crdl, is_variation, smooth, created_at, updated_at)
+  VALUES (6, 1, 'Variation on 5', 'x', 1, 1, 'x', 'x');
+INSERT INTO variation_inputs VALUES (6, 0, 5, 'Five', 'name: Five
+---
+R jug
+');
+INSERT INTO login_failures VALUES ('user:alice', 100);
+PRAGMA user_version = 2;
+)sql";
+  ASSERT_EQ(sqlite3_exec(db, v2, nullptr, nullptr, nullptr), SQLITE_OK) << sqlite3_errmsg(db);
+  sqlite3_close(db);
+  auto s = Open();
+  ASSERT_TRUE(s);
+  EXPECT_EQ(s->SchemaVersion(), 3);
+  Result<RouteRecord> v = s->GetRoute(6);
+  ASSERT_TRUE(v.ok());
+  EXPECT_TRUE(v->smooth);
+  ASSERT_EQ(v->inputs.size(), 1u);
+  EXPECT_EQ(v->inputs[0].route_id, 5);
+  EXPECT_EQ(v->owner_name, "alice");
+  ASSERT_TRUE(s->DeleteRoute(5).ok());  // foreign keys are on again: the link is cleared
+  ASSERT_EQ(s->GetRoute(6)->inputs.size(), 1u);
+  EXPECT_FALSE(s->GetRoute(6)->inputs[0].route_id.has_value());
+  ASSERT_TRUE(s->DeleteRoute(6).ok());
+  EXPECT_EQ(*s->InsertRoute(MakeRoute(1, "New")), 7);  // 6 is not reused
+  EXPECT_EQ(s->ListRoutes({})->size(), 1u);
+  EXPECT_EQ((*s->RecordAttempts({"user:alice"}, 200, 0))[0].count, 2);
 }
 
 TEST_F(StoreTest, RoutesVisibilityAndFilters) {
@@ -174,7 +278,9 @@ TEST_F(StoreTest, ConcurrentWritersDoNotLoseRows) {
   std::vector<std::thread> ts;
   for (int t = 0; t < 4; ++t) {
     ts.emplace_back([&, t] {
-      for (int i = 0; i < 25; ++i) s->InsertRoute(MakeRoute(std::nullopt, "r" + std::to_string(t)));
+      for (int i = 0; i < 25; ++i) {
+        EXPECT_TRUE(s->InsertRoute(MakeRoute(std::nullopt, "r" + std::to_string(t))).ok());
+      }
     });
   }
   for (auto& t : ts) t.join();

@@ -11,7 +11,6 @@
 
 #include "base/files.h"
 #include "store/sqlite_store.h"
-#include "web/seed.h"
 #include "web/server.h"
 
 namespace sb::web {
@@ -51,14 +50,14 @@ class Running {
     EXPECT_TRUE(s.ok()) << s.status().message();
     store_ = std::move(s).value();
     ServerOptions o;
-    o.fast_password_hashing = true;
+    o.app.fast_password_hashing = true;
     o.max_body_bytes = max_body;
     o.threads = 4;
     server_ = std::make_unique<Server>(store_.get(), o);
     Result<int> port = server_->Bind("127.0.0.1", 0);
     EXPECT_TRUE(port.ok());
     port_ = *port;
-    thread_ = std::thread([this] { server_->Run(); });
+    thread_ = std::thread([this] { EXPECT_TRUE(server_->Run().ok()); });
     server_->WaitUntilReady();
   }
   ~Running() {
@@ -81,19 +80,19 @@ class Client {
   explicit Client(int port) : http_("127.0.0.1", port) { http_.set_read_timeout(30); }
 
   httplib::Result Send(const std::string& method, const std::string& path,
-                       const std::string& body = "", bool with_csrf = true) {
-    httplib::Headers h;
+                       const std::string& body = "", bool with_csrf = true,
+                       const char* type = "application/json", httplib::Headers h = {}) {
     if (!cookie_.empty()) h.emplace("Cookie", cookie_);
     if (with_csrf && !csrf_.empty()) h.emplace("X-CSRF-Token", csrf_);
-    const char* type = "application/json";
     if (method == "GET") return http_.Get(path.c_str(), h);
     if (method == "POST") return http_.Post(path.c_str(), h, body, type);
     if (method == "PUT") return http_.Put(path.c_str(), h, body, type);
+    if (method == "PATCH") return http_.Patch(path.c_str(), h, body, type);
     return http_.Delete(path.c_str(), h, body, type);
   }
   int Status(const std::string& method, const std::string& path, const std::string& body = "",
-             bool with_csrf = true) {
-    auto r = Send(method, path, body, with_csrf);
+             bool with_csrf = true, const char* type = "application/json") {
+    auto r = Send(method, path, body, with_csrf, type);
     return r ? r->status : -1;
   }
   json Json(const std::string& method, const std::string& path, const std::string& body,
@@ -220,6 +219,128 @@ TEST_F(ApiTest, FailedLogInsAreRateLimited) {
   // Other users are not affected.
   c.SignUp("bob");
   EXPECT_TRUE(c.LogIn("bob"));
+}
+
+
+TEST_F(ApiTest, SecurityHeadersOnEveryResponse) {
+  Client c = NewClient();
+  std::vector<httplib::Result> rs;
+  rs.push_back(c.Send("GET", "/"));
+  rs.push_back(c.Send("GET", "/api/routes"));
+  rs.push_back(c.Send("GET", "/no/such/page"));
+  rs.push_back(c.Send("GET", "/static/app.css"));
+  rs.push_back(c.Send("POST", "/api/users", std::string(300 * 1024, 'a')));  // 413
+  rs.push_back(c.Send("PATCH", "/api/routes"));                             // 405
+  for (const httplib::Result& r : rs) {
+    ASSERT_TRUE(r);
+    EXPECT_NE(r->get_header_value("Content-Security-Policy").find("frame-ancestors 'none'"),
+              std::string::npos)
+        << r->status;
+    EXPECT_EQ(r->get_header_value("X-Content-Type-Options"), "nosniff") << r->status;
+    EXPECT_EQ(r->get_header_value("X-Frame-Options"), "DENY") << r->status;
+    EXPECT_EQ(r->get_header_value("Referrer-Policy"), "same-origin") << r->status;
+  }
+  EXPECT_EQ(rs[4]->status, 413);
+  EXPECT_EQ(rs[5]->status, 405);
+}
+
+TEST_F(ApiTest, StateChangingRequestsMustBeJsonAndSameOrigin) {
+  Client c = NewClient();
+  c.SignUp("alice");
+  const std::string creds = R"({"username":"alice","password":"password123"})";
+  // A form or text/plain body from another site (log-in CSRF) is refused.
+  auto plain = c.Send("POST", "/api/sessions", creds, true, "text/plain");
+  ASSERT_TRUE(plain);
+  EXPECT_EQ(plain->status, 415);
+  EXPECT_EQ(c.Status("POST", "/api/sessions", creds, true, "application/x-www-form-urlencoded"),
+            415);
+  auto foreign = c.Send("POST", "/api/sessions", creds, true, "application/json",
+                        {{"Origin", "http://evil.example"}});
+  ASSERT_TRUE(foreign);
+  EXPECT_EQ(foreign->status, 403);
+  EXPECT_TRUE(foreign->get_header_value("Set-Cookie").empty());
+  auto same = c.Send("POST", "/api/sessions", creds, true, "application/json; charset=utf-8",
+                     {{"Origin", "http://127.0.0.1:" + std::to_string(server_->port())}});
+  ASSERT_TRUE(same);
+  EXPECT_EQ(same->status, 200);
+  // Reads are not affected.
+  EXPECT_EQ(c.Status("GET", "/api/routes", "", true, "text/plain"), 200);
+}
+
+TEST_F(ApiTest, PrivateAndAbsentVariationsAreRefusedIdentically) {
+  Client alice = NewClient(), anon = NewClient();
+  alice.SignUp("alice");
+  ASSERT_TRUE(alice.LogIn("alice"));
+  int64_t a = AddRoute(alice, kRoute);
+  json v = alice.Json("POST", "/api/variations", json{{"routes", {a}}, {"public", false}}.dump(),
+                      201);
+  int64_t hidden = v["id"];
+  int64_t absent = hidden + 1000;
+  auto h = anon.Send("GET", "/api/variations/" + std::to_string(hidden));
+  auto n = anon.Send("GET", "/api/variations/" + std::to_string(absent));
+  ASSERT_TRUE(h && n);
+  EXPECT_EQ(h->status, 404);
+  EXPECT_EQ(h->status, n->status);
+  // The bodies differ only by the id asked for.
+  std::string hb = h->body, nb = n->body;
+  hb.replace(hb.find(std::to_string(hidden)), std::to_string(hidden).size(), "N");
+  nb.replace(nb.find(std::to_string(absent)), std::to_string(absent).size(), "N");
+  EXPECT_EQ(hb, nb);
+  EXPECT_EQ(alice.Status("GET", "/api/variations/" + std::to_string(hidden)), 200);
+}
+
+// Issue 11: a user deletes a private variation; the next variation must not
+// show it to anyone, in any form (HTML, JSON, PDF, SVG).
+TEST_F(ApiTest, ADeletedPrivateVariationNeverShowsAgain) {
+  Client alice = NewClient(), bob = NewClient(), anon = NewClient();
+  alice.SignUp("alice");
+  bob.SignUp("bob");
+  ASSERT_TRUE(alice.LogIn("alice"));
+  ASSERT_TRUE(bob.LogIn("bob"));
+  int64_t a = AddRoute(alice, "name: Secret Wall\n---\nR hidden crimp zeta\nL hidden pinch zeta\n",
+                       false);
+  json v = alice.Json("POST", "/api/variations",
+                      json{{"routes", {a}}, {"public", false}, {"name", "Secret Plan"}}.dump(), 201);
+  std::string id = std::to_string(v["id"].get<int64_t>());
+  const std::vector<std::string> views = {"/variations/" + id, "/api/variations/" + id,
+                                          "/variations/" + id + ".pdf",
+                                          "/variations/" + id + ".svg"};
+  for (const std::string& p : views) EXPECT_EQ(alice.Status("GET", p), 200) << p;  // cached now
+  for (const std::string& p : views) EXPECT_EQ(anon.Status("GET", p), 404) << p;
+  EXPECT_EQ(alice.Status("DELETE", "/api/routes/" + id), 204);
+  EXPECT_EQ(alice.Status("DELETE", "/api/routes/" + std::to_string(a)), 204);
+  // Someone else makes variations now; none of them takes the old id.
+  int64_t b = AddRoute(bob, kRoute2);
+  std::vector<std::string> fresh;
+  for (int i = 0; i < 3; ++i) {
+    json w = bob.Json("POST", "/api/variations", json{{"routes", {b}}}.dump(), 201);
+    EXPECT_NE(w["id"].dump(), id);
+    fresh.push_back(w["id"].dump());
+  }
+  for (Client* c : {&alice, &bob, &anon}) {
+    for (const std::string& p : views) EXPECT_EQ(c->Status("GET", p), 404) << p;
+    for (const std::string& f : fresh) {
+      for (const std::string& p : {"/variations/" + f, "/api/variations/" + f,
+                                   "/variations/" + f + ".svg"}) {
+        auto r = c->Send("GET", p);
+        ASSERT_TRUE(r);
+        EXPECT_EQ(r->status, 200) << p;
+        EXPECT_EQ(r->body.find("Secret"), std::string::npos) << p;
+        EXPECT_EQ(r->body.find("zeta"), std::string::npos) << p;
+      }
+    }
+  }
+}
+
+TEST_F(ApiTest, APortAlreadyServedIsRefused) {
+  auto s = store::OpenSqliteStore((dir_ / "other.db").string());
+  ASSERT_TRUE(s.ok());
+  ServerOptions o;
+  o.threads = 2;
+  Server second(s->get(), o);
+  Result<int> port = second.Bind("127.0.0.1", server_->port());
+  EXPECT_FALSE(port.ok());
+  EXPECT_EQ(port.status().code(), Status::Code::kIoError);
 }
 
 TEST_F(ApiTest, CsrfTokenRequiredWithASessionCookie) {
@@ -595,7 +716,9 @@ TEST_F(ApiTest, ImportsTheOriginalCorpusAndRebuildsEveryPlan) {
     std::string id = std::to_string(r["id"].get<int64_t>());
     ++variations;
     EXPECT_EQ(c.Status("GET", "/variations/" + id), 200) << id;
-    if (variations % 20 == 0) EXPECT_EQ(c.Status("GET", "/variations/" + id + ".pdf"), 200) << id;
+    if (variations % 20 == 0) {
+      EXPECT_EQ(c.Status("GET", "/variations/" + id + ".pdf"), 200) << id;
+    }
   }
   EXPECT_GT(variations, 100);
   // Export gives the same number of routes back.
@@ -609,31 +732,6 @@ TEST_F(ApiTest, ImportsTheOriginalCorpusAndRebuildsEveryPlan) {
   json again = c2.Json("POST", "/api/import/csv",
                        json{{"routes_csv", ex->body}, {"moves_csv", exm->body}}.dump(), 201);
   EXPECT_EQ(again["imported"], im["imported"]);
-}
-
-TEST(SeedTest, DemoAccountAndExamples) {
-  fs::path dir = fs::temp_directory_path() / ("sb_seed_test_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir / "ex");
-  ASSERT_TRUE(WriteFileAtomic((dir / "ex" / "b.crdl").string(), "name: B\n---\nR jug\n").ok());
-  ASSERT_TRUE(WriteFileAtomic((dir / "ex" / "a.crdl").string(), "---\nL crimp\n").ok());
-  ASSERT_TRUE(WriteFileAtomic((dir / "ex" / "bad.crdl").string(), "no separator\n").ok());
-  auto s = store::OpenSqliteStore((dir / "s.db").string());
-  ASSERT_TRUE(s.ok());
-  Result<int64_t> demo = EnsureDemoAccount(s->get(), true);
-  ASSERT_TRUE(demo.ok());
-  EXPECT_EQ(*EnsureDemoAccount(s->get(), true), *demo);
-  std::vector<std::string> skipped;
-  Result<int> n = SeedExamples(s->get(), (dir / "ex").string(), *demo, &skipped);
-  ASSERT_TRUE(n.ok());
-  EXPECT_EQ(*n, 2);
-  EXPECT_EQ(skipped.size(), 1u);
-  auto all = (*s)->AllRoutes(std::nullopt);
-  ASSERT_EQ(all->size(), 2u);
-  EXPECT_EQ((*all)[0].name, "a");  // the file stem names an unnamed route
-  EXPECT_EQ((*all)[1].name, "B");
-  EXPECT_EQ(*SeedExamples(s->get(), (dir / "nope").string(), *demo, nullptr), 0);
-  fs::remove_all(dir);
 }
 
 }  // namespace

@@ -7,7 +7,7 @@
 
 #include "base/text.h"
 #include "crdl/route.h"
-#include "plan/format.h"
+#include "base/number.h"
 
 namespace sb::web {
 
@@ -15,7 +15,7 @@ namespace {
 
 std::string E(std::string_view s) { return XmlEscape(s); }
 
-std::string Layout(const Viewer& v, const std::string& title, const std::string& body,
+std::string Layout(const PageViewer& v, const std::string& title, const std::string& body,
                    const std::string& page_class = "") {
   std::string h;
   h += "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n";
@@ -64,8 +64,10 @@ std::string MovesTable(const Route& route, const std::vector<std::string>& readi
                   std::string(show ? "<th>How the grammar reads it</th>" : "") +
                   "</tr></thead><tbody>\n";
   for (size_t i = 0; i < route.moves.size(); ++i) {
-    h += "<tr><td class=\"num\">" + std::to_string(i + 1) + "</td><td class=\"hand\">" +
-         HandLetter(route.moves[i].hand) + "</td><td>" + E(route.moves[i].text) + "</td>";
+    h += "<tr" + std::string(route.moves[i].crux ? " class=\"crux\"" : "") +
+         "><td class=\"num\">" + std::to_string(i + 1) + "</td><td class=\"hand\">" +
+         HandLetter(route.moves[i].hand) + "</td><td>" + E(route.moves[i].text) +
+         (route.moves[i].crux ? " <span class=\"tag crux\">crux</span>" : "") + "</td>";
     if (show) {
       std::string r = i < readings.size() ? readings[i] : "";
       h += r.empty() ? "<td class=\"reading unparsed\">not understood</td>"
@@ -106,7 +108,7 @@ const char kNewRouteTemplate[] =
 
 }  // namespace
 
-std::string RouteListPage(const Viewer& v, const std::vector<store::RouteRecord>& routes,
+std::string RouteListPage(const PageViewer& v, const std::vector<store::RouteRecord>& routes,
                           const ListQuery& q) {
   std::string b = "<h1>Routes</h1>\n";
   b += "<form class=\"search no-print\" method=\"get\" action=\"/\">"
@@ -130,7 +132,7 @@ std::string RouteListPage(const Viewer& v, const std::vector<store::RouteRecord>
   return Layout(v, "Routes", b);
 }
 
-std::string LoginPage(const Viewer& v, bool signup) {
+std::string LoginPage(const PageViewer& v, bool signup) {
   std::string title = signup ? "Sign up" : "Log in";
   std::string b = "<h1>" + title + "</h1>\n";
   b += std::string("<form id=\"") + (signup ? "signup-form" : "login-form") +
@@ -150,7 +152,7 @@ std::string LoginPage(const Viewer& v, bool signup) {
   return Layout(v, title, b);
 }
 
-std::string EditorPage(const Viewer& v, const std::optional<store::RouteRecord>& route) {
+std::string EditorPage(const PageViewer& v, const std::optional<store::RouteRecord>& route) {
   std::string b;
   if (!v.logged_in) {
     b = "<h1>Route editor</h1><p>Please <a href=\"/login\">log in</a> to add or edit routes.</p>";
@@ -174,7 +176,7 @@ std::string EditorPage(const Viewer& v, const std::optional<store::RouteRecord>&
   return Layout(v, title, b, "page-editor");
 }
 
-std::string RoutePage(const Viewer& v, const store::RouteRecord& r,
+std::string RoutePage(const PageViewer& v, const store::RouteRecord& r, bool can_change,
                       const std::vector<std::string>& readings) {
   std::string b = "<h1>" + E(r.name) + "</h1>\n";
   b += "<p class=\"byline\">";
@@ -194,7 +196,7 @@ std::string RoutePage(const Viewer& v, const store::RouteRecord& r,
   b += "<p class=\"actions no-print\"><a class=\"button\" id=\"vary-this\" href=\"/vary?routes=" +
        id + "\">Vary this route</a> <a href=\"/api/routes/" + id +
        ".crdl\" download>Download CRDL</a>";
-  if (v.logged_in && r.owner_id && *r.owner_id == v.user_id) {
+  if (can_change) {
     b += " <a class=\"button\" href=\"/routes/" + id +
          "/edit\" id=\"edit\">Edit</a>"
          " <button type=\"button\" class=\"danger\" id=\"delete-route\" data-id=\"" +
@@ -204,8 +206,8 @@ std::string RoutePage(const Viewer& v, const store::RouteRecord& r,
   return Layout(v, r.name, b);
 }
 
-std::string VaryPage(const Viewer& v, const std::vector<store::RouteRecord>& routes,
-                     const std::vector<int64_t>& selected, bool maps_available) {
+std::string VaryPage(const PageViewer& v, const std::vector<store::RouteRecord>& routes,
+                     const std::vector<int64_t>& selected) {
   std::set<int64_t> sel(selected.begin(), selected.end());
   std::string b = "<h1>Vary routes</h1>\n";
   if (!v.logged_in) {
@@ -245,7 +247,7 @@ std::string VaryPage(const Viewer& v, const std::vector<store::RouteRecord>& rou
        "<label>Max repeat <input id=\"max_repeat\" placeholder=\"0\"></label>\n"
        "</div></details></fieldset>\n";
   b += "<fieldset><legend>3. Initial condition map</legend>\n";
-  if (maps_available) {
+  {
     b += "<p class=\"hint\">Each pixel is a variation IC in the x–y plane through the reference "
          "IC; colour shows the <em>effect</em> (moves changed) or the <em>change</em> (mean "
          "distance moved). Click to use that IC.</p>\n"
@@ -261,15 +263,13 @@ std::string VaryPage(const Viewer& v, const std::vector<store::RouteRecord>& rou
          "<label>Change <input id=\"pick-change\" type=\"number\" min=\"0\" step=\"0.5\" "
          "value=\"2\"></label><button type=\"button\" id=\"pick\">Suggest</button>"
          "<ol id=\"candidates\"></ol></div></div>\n";
-  } else {
-    b += "<p class=\"hint\">IC maps need the landscape module, which is not in this build.</p>";
   }
   b += "</fieldset>\n<p><button type=\"submit\" id=\"generate\">Generate variation</button> "
        "<span class=\"msg\" id=\"vary-msg\" role=\"alert\"></span></p>\n</form>\n";
   return Layout(v, "Vary", b, "page-vary");
 }
 
-std::string PlanPage(const Viewer& v, const store::RouteRecord& rec, const plan::RoutePlan& plan,
+std::string PlanPage(const PageViewer& v, const store::RouteRecord& rec, const plan::RoutePlan& plan,
                      const std::string& smoothing_note) {
   const chaos::Variation& var = plan.variation;
   const chaos::VaryParams& p = var.params;
@@ -303,6 +303,7 @@ std::string PlanPage(const Viewer& v, const store::RouteRecord& rec, const plan:
                     "><td class=\"num\">" + std::to_string(i + 1) + "</td><td class=\"hand\">" +
                     HandLetter(m.hand) + "</td><td>" +
                     (m.text.empty() ? "<em>(blank)</em>" : E(m.text));
+    if (m.crux) r += " <span class=\"tag crux\">crux</span>";
     for (const std::string& n : m.notes) r += " <span class=\"note\">" + E(n) + "</span>";
     r += "</td><td>";
     if (m.source && m.source->route >= 0 &&
@@ -357,10 +358,10 @@ std::string PlanPage(const Viewer& v, const store::RouteRecord& rec, const plan:
   b += "<p class=\"summary\">" + std::to_string(changed) + " of " +
        std::to_string(var.moves.size()) + " moves changed (highlighted).</p>\n";
   b += "<section class=\"params\"><h2>Parameters</h2><p>Preset " + E(p.preset) + "; system " +
-       chaos::SystemKindName(p.system.kind) + " (" + plan::FormatTriple(p.system.params) +
+       chaos::SystemKindName(p.system.kind) + " (" + FormatTriple(p.system.params) +
        "); integrator " + chaos::IntegratorKindName(p.integrator) + ", step " +
-       plan::FormatNumber(p.step) + ", skip " + std::to_string(p.skip) + "; reference IC (" +
-       plan::FormatTriple(p.ref_ic) + "), variation IC (" + plan::FormatTriple(p.var_ic) +
+       FormatDouble(p.step) + ", skip " + std::to_string(p.skip) + "; reference IC (" +
+       FormatTriple(p.ref_ic) + "), variation IC (" + FormatTriple(p.var_ic) +
        "); mapping " + chaos::MappingKindName(p.mapping.kind) + ", mask " +
        chaos::MaskString(p.mapping.mask) +
        (p.mapping.max_repeat ? ", max repeat " + std::to_string(p.mapping.max_repeat) : "") +
@@ -385,7 +386,7 @@ std::string PlanPage(const Viewer& v, const store::RouteRecord& rec, const plan:
   return Layout(v, rec.name, b, "page-plan");
 }
 
-std::string ImportPage(const Viewer& v) {
+std::string ImportPage(const PageViewer& v) {
   std::string b = "<h1>Import and export</h1>\n";
   if (v.logged_in) {
     b += "<section class=\"card\"><h2>Import CRDL files</h2><input type=\"file\" id=\"crdl-files\" "
@@ -406,7 +407,7 @@ std::string ImportPage(const Viewer& v) {
   return Layout(v, "Import and export", b);
 }
 
-std::string ErrorPage(const Viewer& v, int status, const std::string& message) {
+std::string ErrorPage(const PageViewer& v, int status, const std::string& message) {
   return Layout(v, "Error " + std::to_string(status),
                 "<h1>" + std::to_string(status) + "</h1><p class=\"error\">" + E(message) +
                     "</p><p><a href=\"/\">Back to the routes</a></p>");

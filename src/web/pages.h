@@ -15,7 +15,7 @@ namespace sb::web {
 
 // Who is looking: a logged-in user (with the session's CSRF token, put in a
 // <meta> tag for the scripts) or nobody.
-struct Viewer {
+struct PageViewer {
   bool logged_in = false;
   int64_t user_id = 0;
   std::string username;
@@ -28,28 +28,29 @@ struct ListQuery {
 };
 
 // "/": the route list with the search form.
-std::string RouteListPage(const Viewer& v, const std::vector<store::RouteRecord>& routes,
+std::string RouteListPage(const PageViewer& v, const std::vector<store::RouteRecord>& routes,
                           const ListQuery& query);
 // "/login" or (signup) "/signup": the account form.
-std::string LoginPage(const Viewer& v, bool signup);
+std::string LoginPage(const PageViewer& v, bool signup);
 // The CRDL editor with live feedback; `route` = nullopt for a new route.
-std::string EditorPage(const Viewer& v, const std::optional<store::RouteRecord>& route);
-// "/routes/{id}". `readings[i]` = how the grammar read move i ("" when unknown; empty vector
-// when the language module is absent).
-std::string RoutePage(const Viewer& v, const store::RouteRecord& route,
+std::string EditorPage(const PageViewer& v, const std::optional<store::RouteRecord>& route);
+// "/routes/{id}". `can_change` = the viewer may edit and delete it (the
+// ownership rule, app::IsOwner). `readings[i]` = how the grammar read move i
+// ("" when it does not parse; an empty vector when the grammar is not
+// available). Crux moves are marked.
+std::string RoutePage(const PageViewer& v, const store::RouteRecord& route, bool can_change,
                       const std::vector<std::string>& readings = {});
-// "/vary": `routes` = the routes the viewer may vary; `selected` = ids ticked;
-// `maps_available` = whether the IC map can be shown.
-std::string VaryPage(const Viewer& v, const std::vector<store::RouteRecord>& routes,
-                     const std::vector<int64_t>& selected, bool maps_available);
-// "/variations/{id}": the route plan. `smoothing_note` explains missing
-// smoothing ("" when none is needed).
-std::string PlanPage(const Viewer& v, const store::RouteRecord& record, const plan::RoutePlan& plan,
+// "/vary": `routes` = the routes the viewer may vary; `selected` = ids ticked.
+std::string VaryPage(const PageViewer& v, const std::vector<store::RouteRecord>& routes,
+                     const std::vector<int64_t>& selected);
+// "/variations/{id}": the route plan (crux moves marked). `smoothing_note`
+// explains missing smoothing ("" when none is needed).
+std::string PlanPage(const PageViewer& v, const store::RouteRecord& record, const plan::RoutePlan& plan,
                      const std::string& smoothing_note);
 // "/import": CRDL and CSV import, CSV export links.
-std::string ImportPage(const Viewer& v);
+std::string ImportPage(const PageViewer& v);
 // An error page for `status` with a message (escaped).
-std::string ErrorPage(const Viewer& v, int status, const std::string& message);
+std::string ErrorPage(const PageViewer& v, int status, const std::string& message);
 
 }  // namespace sb::web
 

@@ -8,7 +8,9 @@
 //   Result<int> port = server.Bind("127.0.0.1", 8080);   // 0 = any free port
 //   server.Run();                                          // blocks until Stop()
 //
-// No HTTP library types appear in this header.
+// The web layer decodes requests, calls the application layer (app/), maps
+// its Status to an HTTP status in one place (errors.cc) and renders. No HTTP
+// library types appear outside http_transport.cc.
 #ifndef SB_WEB_SERVER_H_
 #define SB_WEB_SERVER_H_
 
@@ -16,25 +18,22 @@
 #include <memory>
 #include <string>
 
+#include "app/options.h"
 #include "base/status.h"
 #include "store/store.h"
 
 namespace sb::web {
 
 struct ServerOptions {
+  // The application layer's limits, log-in policy and caches.
+  app::Options app;
   // Directory of the static assets (app.css, app.js) served under /static/;
   // "" = DefaultStaticDir().
   std::string static_dir;
-  // Request bodies above this many bytes get 413.
+  // Request bodies above this many bytes get 413 (2 MiB: a route is a few
+  // KB; a CSV import of the original site's whole corpus needs a bigger
+  // server setting).
   size_t max_body_bytes = 2 * 1024 * 1024;
-  // Cheapest argon2id cost (tests only; never in production).
-  bool fast_password_hashing = false;
-  // Session lifetime.
-  int session_seconds = 30 * 24 * 3600;
-  // Failed log-ins allowed per user name (and 4x that per client address)
-  // within `login_window_seconds`; more get 429.
-  int login_failure_limit = 5;
-  int login_window_seconds = 15 * 60;
   // Worker threads (0 = max(32, 4 x cores)). Each open keep-alive connection
   // holds one worker, so this bounds the concurrent connections served.
   int threads = 0;
@@ -44,9 +43,8 @@ struct ServerOptions {
   bool access_log = false;
 };
 
-// The directory holding the bundled web assets: $SB_WEB_DIR, else
-// <source dir>/web (compiled in), else <executable dir>/../web. "" when none
-// exists.
+// The directory holding the bundled web assets (sb::FindBundled(Bundle::kWeb));
+// "" when none exists.
 std::string DefaultStaticDir();
 
 // The HTTP server. Does not own `store`, which must outlive it. Handlers run

@@ -1,14 +1,14 @@
-#include "web/pdf.h"
+#include "plan/pdf.h"
 
 #include <cairo-pdf.h>
 #include <cairo.h>
 
 #include <algorithm>
 
+#include "base/number.h"
 #include "plan/draw.h"
-#include "plan/format.h"
 
-namespace sb::web {
+namespace sb::plan {
 
 namespace {
 
@@ -45,7 +45,7 @@ void Text(cairo_t* cr, double x, double y, const std::string& text, double max_w
 
 }  // namespace
 
-Result<std::string> RenderPlanPdf(const plan::RoutePlan& plan, const std::string& title,
+Result<std::string> RenderPdf(const RoutePlan& plan, const std::string& title,
                                   Paper paper) {
   const double W = paper == Paper::kA4 ? 595.28 : 612.0;
   const double H = paper == Paper::kA4 ? 841.89 : 792.0;
@@ -76,15 +76,15 @@ Result<std::string> RenderPlanPdf(const plan::RoutePlan& plan, const std::string
   y += 11;
   std::string params1 =
       std::string("Preset ") + p.preset + "; system " + chaos::SystemKindName(p.system.kind) +
-      " (" + plan::FormatTriple(p.system.params) + "), " + chaos::IntegratorKindName(p.integrator) +
-      " step " + plan::FormatNumber(p.step) + ", skip " + std::to_string(p.skip) + "; mapping " +
+      " (" + FormatTriple(p.system.params) + "), " + chaos::IntegratorKindName(p.integrator) +
+      " step " + FormatDouble(p.step) + ", skip " + std::to_string(p.skip) + "; mapping " +
       chaos::MappingKindName(p.mapping.kind) + ", mask " + chaos::MaskString(p.mapping.mask);
   if (p.mapping.max_repeat) params1 += ", max repeat " + std::to_string(p.mapping.max_repeat);
   Text(cr, M, y, params1, W - 2 * M);
   y += 11;
   Text(cr, M, y,
-       "Reference IC (" + plan::FormatTriple(p.ref_ic) + "), variation IC (" +
-           plan::FormatTriple(p.var_ic) + ")",
+       "Reference IC (" + FormatTriple(p.ref_ic) + "), variation IC (" +
+           FormatTriple(p.var_ic) + ")",
        W - 2 * M);
   y += 8;
 
@@ -126,6 +126,7 @@ Result<std::string> RenderPlanPdf(const plan::RoutePlan& plan, const std::string
       Text(cr, x0, yy, std::to_string(i + 1), font * 2.4);
       Text(cr, x0 + font * 2.4, yy, HandLetter(m.hand), font * 3.2);
       std::string text = m.text.empty() ? "(blank)" : m.text;
+      if (m.crux) text += " (crux)";
       for (const std::string& note : m.notes) text += " " + note;
       Text(cr, x0 + font * 6.0, yy, text, col_w * 0.72 - font * 6.0 - 4);
       std::string src = "-";
@@ -148,7 +149,7 @@ Result<std::string> RenderPlanPdf(const plan::RoutePlan& plan, const std::string
   double pic_top = std::min(H - M - pic_h, table_end + 24);
   cairo_save(cr);
   cairo_translate(cr, M, pic_top);
-  plan::DrawTrajectory(cr, plan, W - 2 * M, pic_h);
+  DrawTrajectory(cr, plan, W - 2 * M, pic_h);
   cairo_restore(cr);
 
   cairo_show_page(cr);
@@ -162,4 +163,4 @@ Result<std::string> RenderPlanPdf(const plan::RoutePlan& plan, const std::string
   return out;
 }
 
-}  // namespace sb::web
+}  // namespace sb::plan

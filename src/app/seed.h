@@ -1,15 +1,16 @@
 // First-run content for a fresh database: the demo account and the bundled
-// example routes.
-#ifndef SB_WEB_SEED_H_
-#define SB_WEB_SEED_H_
+// example routes (`strangebeta serve`).
+#ifndef SB_APP_SEED_H_
+#define SB_APP_SEED_H_
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
 #include "base/status.h"
 #include "store/store.h"
 
-namespace sb::web {
+namespace sb::app {
 
 inline constexpr char kDemoUser[] = "demo";
 inline constexpr char kDemoPassword[] = "strangebeta-demo";
@@ -26,10 +27,9 @@ Result<int64_t> EnsureDemoAccount(store::Store* store, bool fast_hash = false);
 Result<int> SeedExamples(store::Store* store, const std::string& dir, int64_t owner,
                          std::vector<std::string>* skipped);
 
-// The bundled examples: $SB_DATA_DIR/examples, else <source dir>/data/examples,
-// else <executable dir>/../data/examples; "" when none exists.
+// The bundled examples (data/examples, see sb::FindBundled); "" when absent.
 std::string DefaultExamplesDir();
 
-}  // namespace sb::web
+}  // namespace sb::app
 
-#endif  // SB_WEB_SEED_H_
+#endif  // SB_APP_SEED_H_

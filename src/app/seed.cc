@@ -1,15 +1,13 @@
-#include "web/seed.h"
-
-#include <unistd.h>
+#include "app/seed.h"
 
 #include <algorithm>
-#include <cstdlib>
 #include <filesystem>
 
+#include "base/files.h"
 #include "crdl/route.h"
 #include "store/auth.h"
 
-namespace sb::web {
+namespace sb::app {
 
 namespace fs = std::filesystem;
 
@@ -17,9 +15,8 @@ Result<int64_t> EnsureDemoAccount(store::Store* store, bool fast_hash) {
   Result<store::User> u = store->FindUserByName(kDemoUser);
   if (u.ok()) return u->id;
   if (u.status().code() != Status::Code::kNotFound) return u.status();
-  Result<std::string> hash = store::HashPassword(kDemoPassword, fast_hash);
-  if (!hash.ok()) return hash.status();
-  return store->CreateUser(kDemoUser, *hash);
+  SB_ASSIGN_OR_RETURN(std::string hash, store::HashPassword(kDemoPassword, fast_hash));
+  return store->CreateUser(kDemoUser, hash);
 }
 
 Result<int> SeedExamples(store::Store* store, const std::string& dir, int64_t owner,
@@ -50,31 +47,10 @@ Result<int> SeedExamples(store::Store* store, const std::string& dir, int64_t ow
     records.push_back(std::move(rec));
   }
   if (records.empty()) return 0;
-  Result<std::vector<int64_t>> ids = store->InsertRoutes(records);
-  if (!ids.ok()) return ids.status();
-  return static_cast<int>(ids->size());
+  SB_ASSIGN_OR_RETURN(std::vector<int64_t> ids, store->InsertRoutes(records));
+  return static_cast<int>(ids.size());
 }
 
-std::string DefaultExamplesDir() {
-  std::error_code ec;
-  if (const char* d = std::getenv("SB_DATA_DIR")) {
-    fs::path p = fs::path(d) / "examples";
-    if (fs::is_directory(p, ec)) return p.string();
-  }
-#ifdef SB_SOURCE_DIR
-  {
-    fs::path p = fs::path(SB_SOURCE_DIR) / "data" / "examples";
-    if (fs::is_directory(p, ec)) return p.string();
-  }
-#endif
-  char buf[4096];
-  ssize_t n = readlink("/proc/self/exe", buf, sizeof buf - 1);
-  if (n > 0) {
-    buf[n] = '\0';
-    fs::path p = fs::path(buf).parent_path() / ".." / "data" / "examples";
-    if (fs::is_directory(p, ec)) return p.lexically_normal().string();
-  }
-  return "";
-}
+std::string DefaultExamplesDir() { return FindBundled(Bundle::kData, "examples", PathKind::kDirectory); }
 
-}  // namespace sb::web
+}  // namespace sb::app

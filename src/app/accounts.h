@@ -1,0 +1,67 @@
+// Accounts: sign-up, log-in with the throttling policy, sessions.
+#ifndef SB_APP_ACCOUNTS_H_
+#define SB_APP_ACCOUNTS_H_
+
+#include <memory>
+#include <mutex>
+#include <semaphore>
+#include <string>
+#include <string_view>
+
+#include "app/clock.h"
+#include "app/options.h"
+#include "base/status.h"
+#include "store/store.h"
+
+namespace sb::app {
+
+// A session just opened: the cookie token (never stored; only its hash is)
+// and the stored session.
+struct NewSession {
+  std::string token;
+  store::Session session;
+};
+
+// Thread-safe: every method may run on many threads at once. Does not own
+// `store` or `clock`, which must outlive it.
+class Accounts {
+ public:
+  Accounts(store::Store* store, const Options& options, Clock* clock);
+
+  // Creates an account. Errors: kInvalidInput naming the field (user name
+  // 1-40 of A-Z a-z 0-9 _ - .; password 8-1024 bytes), kConflict when the name
+  // is taken (ignoring case), kResourceExhausted when `address` made too many
+  // sign-ups this hour, kIoError when the store fails.
+  Result<store::User> SignUp(std::string_view username, std::string_view password,
+                             std::string_view address);
+
+  // Checks the credentials and opens a session. Unknown names cost the same
+  // argon2id work as known ones. Errors: kUnauthenticated "wrong user name or
+  // password" (the same for both), kResourceExhausted when throttled (then
+  // *retry_after_seconds, when given, says how long to wait), kIoError when
+  // the store cannot record the attempt (fails closed: no password check).
+  Result<NewSession> LogIn(std::string_view username, std::string_view password,
+                           std::string_view address, int* retry_after_seconds = nullptr);
+
+  // The session of a cookie token. kNotFound when none, expired or malformed.
+  Result<store::Session> SessionOf(std::string_view token);
+
+  // Ends the session of a token (nothing happens for an unknown one).
+  Status LogOut(std::string_view token);
+
+ private:
+  // argon2id verification, at most max_parallel_password_checks at once.
+  bool VerifyBounded(std::string_view password, const std::string& hash);
+  const std::string& DummyHash();
+
+  store::Store* store_;
+  const Options options_;
+  Clock* clock_;
+  std::counting_semaphore<1024> checks_;
+  std::once_flag dummy_once_;
+  std::string dummy_hash_;
+};
+
+}  // namespace sb::app
+
+#endif  // SB_APP_ACCOUNTS_H_

@@ -1,0 +1,51 @@
+// How a CRDL text reads: the route editor's live feedback (every line
+// classified by crdl's scanner, moves read by the grammar) and the readings
+// shown on route pages.
+#ifndef SB_APP_FEEDBACK_H_
+#define SB_APP_FEEDBACK_H_
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "base/status.h"
+#include "crdl/route.h"
+
+namespace sb::app {
+
+struct EditorLine {
+  int line = 0;
+  // "meta", "description", "separator", "move", "comment", "blank", "error".
+  std::string kind;
+  std::string text;     // the line as written
+  std::string hand;     // moves: "L" or "R"
+  std::string move;     // moves: the text, without a crux marker
+  bool crux = false;    // moves: ends in " (crux)"
+  bool parsed = false;  // moves: the grammar found a parse
+  std::string reading;  // moves: how the grammar read it ("" without the grammar)
+  std::string error;    // errors: why
+};
+
+struct EditorFeedback {
+  bool ok = false;                      // the whole text parses as a route
+  std::optional<SourceLocation> error;  // where the parser stopped, when not ok
+  std::string error_reason;
+  bool language = false;  // whether readings are available
+  std::vector<EditorLine> lines;
+  int moves = 0;
+};
+
+// Never fails, whatever the bytes. Thread-safe.
+EditorFeedback ReadForEditor(std::string_view crdl);
+
+// For each move of `route`: how the grammar reads it ("" when it does not
+// parse). Empty when the grammar is not available. Thread-safe.
+std::vector<std::string> MoveReadings(const Route& route);
+
+// Whether the move grammar (data/grammar) could be loaded. Thread-safe.
+bool LanguageAvailable();
+
+}  // namespace sb::app
+
+#endif  // SB_APP_FEEDBACK_H_

@@ -1,0 +1,68 @@
+#include "app/feedback.h"
+
+#include <gtest/gtest.h>
+
+namespace sb::app {
+namespace {
+
+TEST(FeedbackTest, ClassifiesEveryLineAndLocatesTheError) {
+  EditorFeedback f =
+      ReadForEditor("name: Test\nA free line\n---\nR big jug (crux)\n# note\n\nX oops\n");
+  EXPECT_FALSE(f.ok);
+  ASSERT_TRUE(f.error.has_value());
+  EXPECT_EQ(f.error->line, 7);
+  EXPECT_EQ(f.error->column, 1);
+  EXPECT_EQ(f.error_reason, "expected hand L or R, got \"X\"");
+  ASSERT_EQ(f.lines.size(), 7u);
+  EXPECT_EQ(f.lines[0].kind, "meta");
+  EXPECT_EQ(f.lines[1].kind, "description");
+  EXPECT_EQ(f.lines[2].kind, "separator");
+  EXPECT_EQ(f.lines[3].kind, "move");
+  EXPECT_EQ(f.lines[3].hand, "R");
+  EXPECT_EQ(f.lines[3].move, "big jug");
+  EXPECT_TRUE(f.lines[3].crux);
+  EXPECT_EQ(f.lines[4].kind, "comment");
+  EXPECT_EQ(f.lines[5].kind, "blank");
+  EXPECT_EQ(f.lines[6].kind, "error");
+  EXPECT_EQ(f.lines[6].error, f.error_reason);
+  EXPECT_EQ(f.moves, 1);
+  if (f.language) {
+    EXPECT_TRUE(f.lines[3].parsed);
+    EXPECT_FALSE(f.lines[3].reading.empty());
+  }
+}
+
+TEST(FeedbackTest, AgreesWithTheParserOnMetadata) {
+  // "a:b" is description for the parser, so for the editor too.
+  EditorFeedback f = ReadForEditor("a:b\nkey: v\n---\nR x\n");
+  EXPECT_TRUE(f.ok);
+  EXPECT_EQ(f.lines[0].kind, "description");
+  EXPECT_EQ(f.lines[1].kind, "meta");
+}
+
+TEST(FeedbackTest, NeverFailsOnOddBytes) {
+  for (std::string s :
+       {std::string(), std::string("\xEF\xBB\xBF---\nL x\r\n"),
+        std::string("\xff\xfe\n---\nR \xc3\n"), std::string(1, '\0'), std::string("---"),
+        std::string("---\nR a\xED\xA0\x80\n")}) {
+    EditorFeedback f = ReadForEditor(s);
+    EXPECT_TRUE(f.ok || f.error.has_value()) << s;
+  }
+  EditorFeedback bad = ReadForEditor("---\nR a\xED\xA0\x80\n");
+  ASSERT_TRUE(bad.error.has_value());
+  EXPECT_EQ(bad.error->line, 2);
+  EXPECT_EQ(bad.lines[1].kind, "error");
+}
+
+TEST(FeedbackTest, MoveReadings) {
+  Result<Route> r = ParseCrdl("---\nR big jug\nL zzzz qqqq\n", "r");
+  ASSERT_TRUE(r.ok());
+  std::vector<std::string> readings = MoveReadings(*r);
+  if (!LanguageAvailable()) GTEST_SKIP() << "no grammar";
+  ASSERT_EQ(readings.size(), 2u);
+  EXPECT_FALSE(readings[0].empty());
+  EXPECT_TRUE(readings[1].empty());
+}
+
+}  // namespace
+}  // namespace sb::app

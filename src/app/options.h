@@ -1,0 +1,83 @@
+// The application layer's settings: the limits a shared server puts on top of
+// the engine's own (chaos::VaryParams::Validate, landscape::ScanParams), the
+// log-in throttling policy and the caches. Every limit is one named field
+// with its reason; `strangebeta serve` and the tests set them.
+#ifndef SB_APP_OPTIONS_H_
+#define SB_APP_OPTIONS_H_
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace sb::app {
+
+// Work one request may ask for (checked before the work starts).
+struct Limits {
+  // Input routes per variation or IC map: more is not a route anyone sets.
+  size_t max_vary_routes = 50;
+  // Moves in all inputs of one variation: a plan of 5,000 moves already
+  // prints 50 to a page, and the mapping stays under ~10 ms.
+  int max_vary_moves = 5000;
+  // Transient steps of a variation made on the server: 10^5 RK4 steps cost
+  // ~10 ms; the engine allows 10^7 (a second of CPU) for the command line.
+  int max_vary_skip = 100000;
+  // IC map slices: grid points per axis (201^2 = 40,401 ICs, ~50 ms), moves
+  // per trajectory and transient steps, for the same reason.
+  int max_map_grid = 201;
+  int max_map_length = 2000;
+  int max_map_skip = 100000;
+  // IC picker candidates per request.
+  int max_pick_count = 100;
+  // Routes per CSV import (the original site's whole corpus is ~900).
+  size_t max_import_routes = 10000;
+  // Rows in one route list (more are cut to this), and the default.
+  int max_list_rows = 5000;
+  int default_list_rows = 500;
+};
+
+// Log-in and sign-up throttling (docs/web.md, "Log-in throttling"). Every
+// attempt is recorded before the password is checked; beyond the free
+// attempts within the window, attempts must wait a delay that doubles per
+// further attempt (up to max_delay_seconds) since the previous one, per
+// (account, address) pair and per address. Failures against an account from
+// all addresses together only slow every attempt on it down (at most
+// account_delay_cap_seconds), so strangers cannot lock its owner out.
+struct LoginPolicy {
+  int window_seconds = 15 * 60;
+  int pair_free_attempts = 5;      // per account and address
+  int address_free_attempts = 20;  // per address, over all accounts
+  int account_free_attempts = 20;  // per account, over all addresses
+  int max_delay_seconds = 15 * 60;
+  double account_delay_cap_seconds = 2.0;
+  // Sign-ups per address per hour (accounts cost an argon2id hash each).
+  int signups_per_address_per_hour = 10;
+  // argon2id checks running at once: each needs 64 MiB and ~50 ms of a core.
+  int max_parallel_password_checks = 2;
+};
+
+struct Options {
+  Limits limits;
+  LoginPolicy login;
+  int session_seconds = 30 * 24 * 3600;
+  // Cheapest argon2id cost (tests only; never in production).
+  bool fast_password_hashing = false;
+  // Rebuilt plans and IC map slices kept in memory (keyed by content).
+  size_t plan_cache_entries = 64;
+  size_t map_cache_entries = 32;
+  // The model that smooths variations made with "smooth": true.
+  std::string smoothing_model = "default";
+};
+
+// Who is asking: a logged-in user or nobody, and from where.
+struct Viewer {
+  std::optional<int64_t> user_id;  // nullopt: not logged in
+  std::string username;
+  std::string address;  // the client's network address (throttling)
+
+  bool logged_in() const { return user_id.has_value(); }
+};
+
+}  // namespace sb::app
+
+#endif  // SB_APP_OPTIONS_H_

@@ -1,0 +1,13 @@
+#include "app/services.h"
+
+namespace sb::app {
+
+Services::Services(store::Store* store, const Options& opts, Clock* clock)
+    : options(opts),
+      plans(opts.plan_cache_entries),
+      accounts(store, opts, clock),
+      routes(store, opts, &plans),
+      variations(store, opts, &plans),
+      maps(store, opts) {}
+
+}  // namespace sb::app

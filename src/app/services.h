@@ -1,0 +1,34 @@
+// The application layer in one object: what the web app and the CLI call.
+//
+//   auto store = store::OpenSqliteStore("var/strangebeta.db");
+//   app::Services services(store->get(), app::Options{});
+//   services.routes.List(viewer, {});
+#ifndef SB_APP_SERVICES_H_
+#define SB_APP_SERVICES_H_
+
+#include "app/accounts.h"
+#include "app/clock.h"
+#include "app/maps.h"
+#include "app/options.h"
+#include "app/routes.h"
+#include "app/variations.h"
+#include "store/store.h"
+
+namespace sb::app {
+
+// Owns the caches the services share; does not own `store` or `clock`.
+// Thread-safe.
+struct Services {
+  Services(store::Store* store, const Options& options, Clock* clock = &SystemClock());
+
+  const Options options;
+  PlanCache plans;
+  Accounts accounts;
+  Routes routes;
+  Variations variations;
+  Maps maps;
+};
+
+}  // namespace sb::app
+
+#endif  // SB_APP_SERVICES_H_

@@ -1,0 +1,230 @@
+#include "app/variations.h"
+
+#include <algorithm>
+
+#include "app/routes.h"
+#include "base/log.h"
+#include "base/text.h"
+#include "crdl/route.h"
+#include "plan/smooth.h"
+
+namespace sb::app {
+
+Result<plan::RoutePlan> BuildPlan(std::vector<chaos::InputRoute> inputs,
+                                  const chaos::VaryParams& params,
+                                  const SmoothingRequest& smoothing, SmoothingOutcome* outcome) {
+  SB_ASSIGN_OR_RETURN(chaos::Variation v, chaos::Vary(std::move(inputs), params));
+  plan::RoutePlan p;
+  p.variation = std::move(v);
+  SmoothingOutcome o;
+  o.requested = smoothing.enabled;
+  if (smoothing.enabled) {
+    o.status = plan::Smooth(smoothing.model, &p, smoothing.min_bits);
+    o.applied = o.status.ok();
+  }
+  if (outcome) *outcome = std::move(o);
+  return p;
+}
+
+// ---------------------------------------------------------------------------
+
+std::shared_ptr<const PlanCache::Entry> PlanCache::Find(int64_t id, const std::string& content) {
+  std::lock_guard<std::mutex> lock(mu_);
+  auto it = entries_.find(id);
+  if (it == entries_.end() || it->second->content != content) return nullptr;
+  return it->second;
+}
+
+void PlanCache::Put(int64_t id, std::shared_ptr<const Entry> entry) {
+  std::lock_guard<std::mutex> lock(mu_);
+  if (entries_.count(id) == 0) order_.push_back(id);
+  entries_[id] = std::move(entry);
+  while (order_.size() > capacity_) {
+    entries_.erase(order_.front());
+    order_.pop_front();
+  }
+}
+
+void PlanCache::Forget(int64_t id) {
+  std::lock_guard<std::mutex> lock(mu_);
+  if (entries_.erase(id)) order_.erase(std::find(order_.begin(), order_.end(), id));
+}
+
+size_t PlanCache::size() {
+  std::lock_guard<std::mutex> lock(mu_);
+  return entries_.size();
+}
+
+// ---------------------------------------------------------------------------
+
+namespace {
+
+const char kNoSuggestions[] = "No suggestions: the model found no insertion that reads better.";
+const char kNoSmoothing[] = "the smoothing model is not available on this server";
+
+Status NoVariation(int64_t id) { return Status::NotFound("no variation " + std::to_string(id)); }
+
+// Everything a stored variation's plan is built from.
+std::string PlanContent(const store::RouteRecord& rec) {
+  std::string c = rec.params_json;
+  auto add = [&](const std::string& s) {
+    c += '\x1f';
+    c += std::to_string(s.size());
+    c += ':';
+    c += s;
+  };
+  add(rec.smooth ? "smooth" : "");
+  add(rec.plan_json);
+  add(rec.name);
+  add(rec.crdl);
+  for (const store::VariationInput& vi : rec.inputs) {
+    add(vi.name);
+    add(vi.crdl);
+  }
+  return c;
+}
+
+// Rebuilds the plan of a stored variation from its input snapshots and
+// parameters. The suggestions made when it was created are taken as stored
+// with it; variations stored without them are smoothed again.
+Result<PlanCache::Entry> Rebuild(const store::RouteRecord& rec, const std::string& model) {
+  SB_ASSIGN_OR_RETURN(chaos::VaryParams params, chaos::ParamsFromJson(rec.params_json));
+  std::vector<chaos::InputRoute> inputs;
+  for (const store::VariationInput& vi : rec.inputs) {
+    SB_ASSIGN_OR_RETURN(Route r, ParseCrdl(vi.crdl, vi.name));
+    inputs.push_back({vi.name, std::move(r)});
+  }
+  if (inputs.empty()) {  // an imported variation without linked inputs: its own moves
+    SB_ASSIGN_OR_RETURN(Route r, ParseCrdl(rec.crdl, rec.name));
+    inputs.push_back({rec.name, std::move(r)});
+  }
+  PlanCache::Entry e;
+  SB_ASSIGN_OR_RETURN(e.plan, BuildPlan(std::move(inputs), params, {}, nullptr));
+  if (!rec.smooth) return e;
+  if (!rec.plan_json.empty() && plan::SmoothingFromJson(rec.plan_json, &e.plan)) {
+    if (e.plan.smoothing.empty()) e.note = kNoSuggestions;
+    return e;
+  }
+  Status st = plan::Smooth(model, &e.plan);
+  if (!st.ok()) {
+    LogError("smoothing: " + st.message());
+    e.note = std::string("Smoothing was requested but ") + kNoSmoothing + ".";
+  } else if (e.plan.smoothing.empty()) {
+    e.note = kNoSuggestions;
+  }
+  return e;
+}
+
+// A variation's name on one line; "Variation on 3,9" when none is given.
+std::string VariationName(const std::string& asked, const std::vector<int64_t>& ids) {
+  std::string name(Trim(asked));
+  if (name.empty()) {
+    name = "Variation on ";
+    for (size_t i = 0; i < ids.size(); ++i) name += (i ? "," : "") + std::to_string(ids[i]);
+  }
+  for (char& c : name) {
+    if (c == '\n' || c == '\r') c = ' ';
+  }
+  return name;
+}
+
+}  // namespace
+
+Variations::Variations(store::Store* store, const Options& options, PlanCache* plans)
+    : store_(store), options_(options), plans_(plans) {}
+
+Result<CreatedVariation> Variations::Create(const Viewer& v, const VariationRequest& req) {
+  if (!v.logged_in()) return Status::Unauthenticated("log in first");
+  const Limits& lim = options_.limits;
+  if (req.routes.empty()) {
+    return Status::InvalidInput("routes: expected a non-empty array of route ids");
+  }
+  if (req.routes.size() > lim.max_vary_routes) {
+    return Status::InvalidInput("routes: at most " + std::to_string(lim.max_vary_routes));
+  }
+  SB_RETURN_IF_ERROR(req.params.Validate());
+  if (req.params.skip > lim.max_vary_skip) {
+    return Status::InvalidInput("skip: at most " + std::to_string(lim.max_vary_skip) +
+                                " on this server");
+  }
+  Routes routes(store_, options_, plans_);
+  std::vector<store::RouteRecord> recs;
+  std::vector<chaos::InputRoute> inputs;
+  int total_moves = 0;
+  for (int64_t id : req.routes) {
+    SB_ASSIGN_OR_RETURN(store::RouteRecord r, routes.Get(v, id));
+    Result<Route> route = ParseCrdl(r.crdl, r.name);
+    if (!route.ok()) return route.status().WithPrefix("route " + std::to_string(id));
+    total_moves += static_cast<int>(route->moves.size());
+    if (total_moves > lim.max_vary_moves) {
+      return Status::InvalidInput("routes: at most " + std::to_string(lim.max_vary_moves) +
+                                  " moves in all");
+    }
+    inputs.push_back({r.name, std::move(route).value()});
+    recs.push_back(std::move(r));
+  }
+  SmoothingRequest smoothing{req.smooth, options_.smoothing_model, 0.0};
+  CreatedVariation out;
+  SB_ASSIGN_OR_RETURN(out.plan, BuildPlan(inputs, req.params, smoothing, &out.smoothing));
+  if (!out.smoothing.status.ok()) {
+    // The reason names server files: logged here, summarised for the client.
+    LogError("smoothing: " + out.smoothing.status.message());
+    out.smoothing.status = Status::NotFound(kNoSmoothing);
+  }
+
+  // The variation, stored like a route: its moves as CRDL, its parameters,
+  // its plan and a snapshot of every input.
+  std::string ids;
+  for (size_t i = 0; i < recs.size(); ++i) ids += (i ? "," : "") + std::to_string(recs[i].id);
+  store::RouteRecord rec;
+  rec.name = VariationName(req.name, req.routes);
+  Route varied;
+  varied.header.push_back({"name", rec.name});
+  varied.header.push_back({"varied-from", ids});
+  for (const chaos::VariedMove& m : out.plan.variation.moves) {
+    varied.moves.push_back({m.hand, m.text.empty() ? "(blank)" : m.text, 0, m.crux});
+  }
+  rec.owner_id = v.user_id;
+  rec.crdl = PrintCrdl(varied);
+  rec.move_count = static_cast<int>(varied.moves.size());
+  rec.is_public = req.is_public;
+  rec.is_variation = true;
+  rec.smooth = req.smooth;
+  rec.params_json = chaos::ParamsToJson(req.params);
+  rec.plan_json = plan::RenderJson(out.plan);
+  for (size_t i = 0; i < recs.size(); ++i) {
+    store::VariationInput vi;
+    vi.route_id = recs[i].id;
+    vi.name = inputs[i].name;
+    vi.crdl = recs[i].crdl;
+    rec.inputs.push_back(std::move(vi));
+  }
+  SB_ASSIGN_OR_RETURN(out.id, store_->InsertRoute(rec));
+  return out;
+}
+
+Result<PlanView> Variations::Plan(const Viewer& v, int64_t id) {
+  Result<store::RouteRecord> r = store_->GetRoute(id);
+  if (!r.ok()) return r.status().code() == Status::Code::kNotFound ? NoVariation(id) : r.status();
+  if (!IsVisible(*r, v) || !r->is_variation) return NoVariation(id);
+  std::string content = PlanContent(*r);
+  std::shared_ptr<const PlanCache::Entry> entry = plans_->Find(id, content);
+  if (!entry) {
+    Result<PlanCache::Entry> built = Rebuild(*r, options_.smoothing_model);
+    if (!built.ok()) {
+      LogError("variation " + std::to_string(id) + ": cannot rebuild the plan: " +
+               built.status().message());
+      return Status::Internal("cannot rebuild the plan of variation " + std::to_string(id));
+    }
+    built->content = std::move(content);
+    entry = std::make_shared<const PlanCache::Entry>(std::move(built).value());
+    plans_->Put(id, entry);
+  }
+  PlanView out;
+  out.record = std::move(r).value();
+  out.plan = std::shared_ptr<const plan::RoutePlan>(entry, &entry->plan);
+  out.smoothing_note = entry->note;
+  return out;
+}
+
+}  // namespace sb::app

@@ -1,0 +1,69 @@
+// JSON API: accounts and sessions.
+#include "web/handlers.h"
+
+namespace sb::web {
+
+using nlohmann::json;
+
+namespace {
+
+std::string SessionCookie(const ServerOptions& o, const std::string& value, int max_age) {
+  return std::string(kSessionCookie) + "=" + value + "; Path=/; HttpOnly; SameSite=Lax; Max-Age=" +
+         std::to_string(max_age) + (o.secure_cookie ? "; Secure" : "");
+}
+
+// {"username", "password"} from the body.
+Status Credentials(const Request& req, std::string* user, std::string* pass) {
+  SB_ASSIGN_OR_RETURN(json body, BodyObject(req));
+  SB_ASSIGN_OR_RETURN(*user, StringField(body, "username"));
+  SB_ASSIGN_OR_RETURN(*pass, StringField(body, "password"));
+  return Status::Ok();
+}
+
+}  // namespace
+
+void PostUsers(Exchange& x) {
+  std::string user, pass;
+  if (Status s = Credentials(x.req, &user, &pass); !s.ok()) return ApiError(x, s);
+  Result<store::User> u = x.services.accounts.SignUp(user, pass, x.caller.viewer.address);
+  if (!u.ok()) return ApiError(x, u.status());
+  ReplyJson(x.res, 201, json{{"id", u->id}, {"username", u->username}});
+}
+
+void PostSessions(Exchange& x) {
+  std::string user, pass;
+  if (Status s = Credentials(x.req, &user, &pass); !s.ok()) return ApiError(x, s);
+  int retry_after = 0;
+  Result<app::NewSession> s =
+      x.services.accounts.LogIn(user, pass, x.caller.viewer.address, &retry_after);
+  if (!s.ok()) {
+    if (retry_after > 0) x.res.SetHeader("Retry-After", std::to_string(retry_after));
+    return ApiError(x, s.status());
+  }
+  x.res.SetHeader("Set-Cookie",
+                  SessionCookie(x.options, s->token, x.services.options.session_seconds));
+  ReplyJson(x.res, 200,
+            json{{"csrf", s->session.csrf},
+                 {"username", s->session.username},
+                 {"id", s->session.user_id}});
+}
+
+void DeleteSessions(Exchange& x) {
+  if (Status s = x.services.accounts.LogOut(x.caller.session_token); !s.ok()) {
+    return ApiError(x, s);
+  }
+  x.res.SetHeader("Set-Cookie", SessionCookie(x.options, "", 0));
+  x.res.status = 204;
+}
+
+void GetSession(Exchange& x) {
+  const app::Viewer& v = x.caller.viewer;
+  if (!v.logged_in()) return ReplyJson(x.res, 200, json{{"logged_in", false}});
+  ReplyJson(x.res, 200,
+            json{{"logged_in", true},
+                 {"username", v.username},
+                 {"id", *v.user_id},
+                 {"csrf", x.caller.csrf}});
+}
+
+}  // namespace sb::web

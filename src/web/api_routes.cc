@@ -1,0 +1,158 @@
+// JSON API: routes, the editor's feedback, CSV import and export.
+#include "app/feedback.h"
+#include "web/handlers.h"
+
+namespace sb::web {
+
+using nlohmann::json;
+
+namespace {
+const char kNoRoute[] = "no such route";
+}  // namespace
+
+void ListRoutes(Exchange& x) {
+  app::RouteQuery q;
+  q.grade = x.req.Query("grade").value_or("");
+  q.setter = x.req.Query("setter").value_or("");
+  q.text = x.req.Query("q").value_or(x.req.Query("text").value_or(""));
+  std::string var = x.req.Query("variations").value_or("");
+  if (var == "0" || var == "false") q.variations = false;
+  if (var == "1" || var == "true") q.variations = true;
+  if (std::optional<std::string> lim = x.req.Query("limit")) {
+    std::optional<int64_t> n = ParseId(*lim);
+    if (!n) return ApiError(x, Status::InvalidInput("limit: expected a positive integer"));
+    q.limit = static_cast<int>(std::min<int64_t>(*n, 1 << 30));
+  }
+  Result<std::vector<store::RouteRecord>> rs = x.services.routes.List(x.caller.viewer, q);
+  if (!rs.ok()) return ApiError(x, rs.status());
+  json arr = json::array();
+  for (const store::RouteRecord& r : *rs) arr.push_back(RouteSummaryJson(r));
+  ReplyJson(x.res, 200, json{{"routes", arr}});
+}
+
+void GetRoute(Exchange& x) {
+  Result<int64_t> id = PathId(x.req, kNoRoute);
+  if (!id.ok()) return ApiError(x, id.status());
+  Result<store::RouteRecord> r = x.services.routes.Get(x.caller.viewer, *id);
+  if (!r.ok()) return ApiError(x, r.status());
+  ReplyJson(x.res, 200, RouteJson(*r));
+}
+
+void GetRouteCrdl(Exchange& x) {
+  Result<int64_t> id = PathId(x.req, kNoRoute);
+  if (!id.ok()) return ApiError(x, id.status());
+  Result<store::RouteRecord> r = x.services.routes.Get(x.caller.viewer, *id);
+  if (!r.ok()) return ApiError(x, r.status());
+  x.res.SetHeader("Content-Disposition",
+                  "attachment; filename=\"route-" + std::to_string(*id) + ".crdl\"");
+  x.res.SetBody(200, r->crdl, "text/plain; charset=utf-8");
+}
+
+void PostRoute(Exchange& x) {
+  Result<json> body = BodyObject(x.req);
+  if (!body.ok()) return ApiError(x, body.status());
+  Result<std::string> crdl = StringField(*body, "crdl");
+  if (!crdl.ok()) return ApiError(x, crdl.status());
+  Result<bool> pub = BoolField(*body, "public", true);
+  if (!pub.ok()) return ApiError(x, pub.status());
+  Result<int64_t> id = x.services.routes.Create(x.caller.viewer, *crdl, *pub);
+  if (!id.ok()) return ApiError(x, id.status());
+  x.res.SetHeader("Location", "/routes/" + std::to_string(*id));
+  ReplyJson(x.res, 201, json{{"id", *id}});
+}
+
+void PutRoute(Exchange& x) {
+  // Who may change which route comes first; then what the body asks.
+  Result<int64_t> id = PathId(x.req, kNoRoute);
+  if (!id.ok()) return ApiError(x, id.status());
+  if (Result<store::RouteRecord> r = x.services.routes.GetOwned(x.caller.viewer, *id); !r.ok()) {
+    return ApiError(x, r.status());
+  }
+  Result<json> body = BodyObject(x.req);
+  if (!body.ok()) return ApiError(x, body.status());
+  app::RouteEdit edit;
+  if (body->contains("crdl")) {
+    Result<std::string> crdl = StringField(*body, "crdl");
+    if (!crdl.ok()) return ApiError(x, crdl.status());
+    edit.crdl = *crdl;
+  }
+  if (body->contains("public")) {
+    Result<bool> pub = BoolField(*body, "public", true);
+    if (!pub.ok()) return ApiError(x, pub.status());
+    edit.is_public = *pub;
+  }
+  if (Status s = x.services.routes.Update(x.caller.viewer, *id, edit); !s.ok()) {
+    return ApiError(x, s);
+  }
+  ReplyJson(x.res, 200, json{{"id", *id}});
+}
+
+void DeleteRoute(Exchange& x) {
+  Result<int64_t> id = PathId(x.req, kNoRoute);
+  if (!id.ok()) return ApiError(x, id.status());
+  if (Status s = x.services.routes.Delete(x.caller.viewer, *id); !s.ok()) return ApiError(x, s);
+  x.res.status = 204;
+}
+
+void PostFeedback(Exchange& x) {
+  Result<json> body = BodyObject(x.req);
+  if (!body.ok()) return ApiError(x, body.status());
+  Result<std::string> crdl = StringField(*body, "crdl");
+  if (!crdl.ok()) return ApiError(x, crdl.status());
+  app::EditorFeedback f = app::ReadForEditor(*crdl);
+  json out;
+  out["ok"] = f.ok;
+  out["error"] = f.error ? json{{"line", f.error->line},
+                                {"column", f.error->column},
+                                {"message", f.error_reason}}
+                         : json();
+  if (!f.ok && !f.error) out["error"] = {{"line", 0}, {"column", 0}, {"message", f.error_reason}};
+  out["language"] = f.language;
+  json lines = json::array();
+  for (const app::EditorLine& l : f.lines) {
+    json j{{"line", l.line}, {"kind", l.kind}, {"text", l.text}};
+    if (l.kind == "move") {
+      j["hand"] = l.hand;
+      j["move"] = l.move;
+      j["crux"] = l.crux;
+      j["parsed"] = l.parsed;
+      j["reading"] = l.reading;
+    }
+    if (!l.error.empty()) j["error"] = l.error;
+    lines.push_back(std::move(j));
+  }
+  out["lines"] = std::move(lines);
+  out["moves"] = f.moves;
+  ReplyJson(x.res, 200, out);
+}
+
+void PostImportCsv(Exchange& x) {
+  Result<json> body = BodyObject(x.req);
+  if (!body.ok()) return ApiError(x, body.status());
+  Result<std::string> routes = StringField(*body, "routes_csv");
+  if (!routes.ok()) return ApiError(x, routes.status());
+  Result<std::string> moves = StringField(*body, "moves_csv");
+  if (!moves.ok()) return ApiError(x, moves.status());
+  Result<app::ImportSummary> im = x.services.routes.ImportCsv(x.caller.viewer, *routes, *moves);
+  if (!im.ok()) return ApiError(x, im.status());
+  json ids = json::object();
+  for (const auto& [legacy, id] : im->ids) ids[std::to_string(legacy)] = id;
+  ReplyJson(x.res, 201,
+            json{{"imported", im->ids.size()}, {"ids", ids}, {"skipped", im->skipped}});
+}
+
+namespace {
+void Export(Exchange& x, bool routes_file) {
+  bool mine = x.req.Query("mine").value_or("") == "1";
+  Result<app::CsvFiles> ex = x.services.routes.ExportCsv(x.caller.viewer, mine);
+  if (!ex.ok()) return ApiError(x, ex.status());
+  x.res.SetHeader("Content-Disposition", std::string("attachment; filename=\"") +
+                                             (routes_file ? "routes" : "moves") + ".csv\"");
+  x.res.SetBody(200, routes_file ? ex->routes_csv : ex->moves_csv, "text/csv; charset=utf-8");
+}
+}  // namespace
+
+void GetExportRoutes(Exchange& x) { Export(x, true); }
+void GetExportMoves(Exchange& x) { Export(x, false); }
+
+}  // namespace sb::web

@@ -1,0 +1,180 @@
+// JSON API: variations, their plans, IC maps and the IC picker.
+#include <climits>
+#include <cmath>
+
+#include "base/number.h"
+#include "base/text.h"
+#include "chaos/variation.h"
+#include "plan/plan.h"
+#include "web/handlers.h"
+
+namespace sb::web {
+
+using nlohmann::json;
+
+namespace {
+
+// "1,2,3" -> ids; kInvalidInput for anything else.
+Result<std::vector<int64_t>> IdList(const std::string& s, const char* field) {
+  std::vector<int64_t> out;
+  if (s.empty()) return out;
+  for (std::string_view part : Split(s, ',')) {
+    std::optional<int64_t> id = ParseId(std::string(Trim(part)));
+    if (!id) return Status::InvalidInput(std::string(field) + ": expected comma-separated route ids");
+    out.push_back(*id);
+  }
+  return out;
+}
+
+// Route ids of a JSON array; ids no route can have (0, negative, too large)
+// become 0, which the service reports as absent.
+Result<std::vector<int64_t>> IdArray(const json& body, const char* field) {
+  if (!body.contains(field) || !body[field].is_array()) {
+    return Status::InvalidInput(std::string(field) + ": expected a non-empty array of route ids");
+  }
+  std::vector<int64_t> out;
+  for (const json& e : body[field]) {
+    if (!e.is_number_integer()) {
+      return Status::InvalidInput(std::string(field) + ": expected route ids (integers)");
+    }
+    bool too_big = e.is_number_unsigned() && e.get<uint64_t>() > INT64_MAX;
+    int64_t id = too_big ? 0 : e.get<int64_t>();
+    out.push_back(id > 0 ? id : 0);
+  }
+  return out;
+}
+
+double Round3(double v) { return std::round(v * 1000.0) / 1000.0; }
+
+// The map query: routes (for n) or n, params (JSON) or preset, plane, grid,
+// spacing.
+Result<app::MapQuery> MapQueryOf(const Request& req) {
+  app::MapQuery q;
+  json pj = json::object();
+  if (std::optional<std::string> p = req.Query("params")) {
+    pj = json::parse(*p, nullptr, false);
+    if (pj.is_discarded() || !pj.is_object()) {
+      return Status::InvalidInput("params: expected a JSON object");
+    }
+  }
+  if (std::optional<std::string> preset = req.Query("preset")) pj["preset"] = *preset;
+  SB_ASSIGN_OR_RETURN(q.params, chaos::ParamsFromJson(pj.dump()));
+  SB_ASSIGN_OR_RETURN(q.routes, IdList(req.Query("routes").value_or(""), "routes"));
+  auto whole = [&](const char* name, int* out) -> Status {
+    std::optional<std::string> v = req.Query(name);
+    if (!v) return Status::Ok();
+    std::optional<int64_t> n = ParseId(*v);
+    if (!n) return Status::InvalidInput(std::string(name) + ": expected a positive whole number");
+    *out = static_cast<int>(std::min<int64_t>(*n, INT_MAX));
+    return Status::Ok();
+  };
+  int n = 0;
+  SB_RETURN_IF_ERROR(whole("n", &n));
+  if (n > 0) q.length = n;
+  SB_RETURN_IF_ERROR(whole("grid", &q.grid));
+  if (std::optional<std::string> plane = req.Query("plane")) q.plane = *plane;
+  if (std::optional<std::string> s = req.Query("spacing")) {
+    if (!ParseDouble(*s, &q.spacing)) return Status::InvalidInput("spacing: expected a number");
+  }
+  return q;
+}
+
+}  // namespace
+
+void PostVariation(Exchange& x) {
+  Result<json> body = BodyObject(x.req);
+  if (!body.ok()) return ApiError(x, body.status());
+  app::VariationRequest vr;
+  Result<std::vector<int64_t>> ids = IdArray(*body, "routes");
+  if (!ids.ok()) return ApiError(x, ids.status());
+  vr.routes = std::move(ids).value();
+  Result<bool> smooth = BoolField(*body, "smooth", false);
+  if (!smooth.ok()) return ApiError(x, smooth.status());
+  vr.smooth = *smooth;
+  Result<bool> pub = BoolField(*body, "public", true);
+  if (!pub.ok()) return ApiError(x, pub.status());
+  vr.is_public = *pub;
+  if (body->contains("name") && (*body)["name"].is_string()) vr.name = (*body)["name"];
+  Result<chaos::VaryParams> params = chaos::ParamsFromJson(x.req.body);
+  if (!params.ok()) return ApiError(x, params.status());
+  vr.params = *params;
+  Result<app::CreatedVariation> v = x.services.variations.Create(x.caller.viewer, vr);
+  if (!v.ok()) return ApiError(x, v.status());
+  json smoothing{{"requested", v->smoothing.requested}, {"applied", v->smoothing.applied}};
+  if (!v->smoothing.status.ok()) smoothing["reason"] = v->smoothing.status.message();
+  std::string url = "/variations/" + std::to_string(v->id);
+  x.res.SetHeader("Location", url);
+  ReplyJson(x.res, 201,
+            json{{"id", v->id},
+                 {"url", url},
+                 {"moves", json::parse(plan::RenderMovesJson(v->plan))},
+                 {"smoothing", smoothing}});
+}
+
+void GetVariation(Exchange& x) {
+  Result<int64_t> id = PathId(x.req, "no such variation");
+  if (!id.ok()) return ApiError(x, id.status());
+  Result<app::PlanView> p = x.services.variations.Plan(x.caller.viewer, *id);
+  if (!p.ok()) return ApiError(x, p.status());
+  // The route object with the plan (the `vary --format json` text) spliced in.
+  ReplyJson(x.res, 200, RouteJson(p->record));
+  x.res.body.pop_back();  // the closing brace
+  x.res.body += ",\"plan\":" + plan::RenderJson(*p->plan) + "}";
+}
+
+void GetLandscape(Exchange& x) {
+  Result<app::MapQuery> q = MapQueryOf(x.req);
+  if (!q.ok()) return ApiError(x, q.status());
+  Result<std::shared_ptr<const app::MapSlice>> slice = x.services.maps.Slice(x.caller.viewer, *q);
+  if (!slice.ok()) return ApiError(x, slice.status());
+  const app::MapSlice& s = **slice;
+  json change = json::array();
+  for (double c : s.change) change.push_back(Round3(c));
+  ReplyJson(x.res, 200,
+            json{{"plane", s.plane},
+                 {"axes", s.axes},
+                 {"grid", s.grid},
+                 {"spacing", s.spacing},
+                 {"center", s.center},
+                 {"length", s.length},
+                 {"x", s.x},
+                 {"y", s.y},
+                 {"effect", s.effect},
+                 {"change", std::move(change)}});
+}
+
+void GetPick(Exchange& x) {
+  Result<app::MapQuery> q = MapQueryOf(x.req);
+  if (!q.ok()) return ApiError(x, q.status());
+  // Numbers of the query; absent ones keep their defaults.
+  auto number = [&](const char* name, std::optional<double>* out) -> Status {
+    std::optional<std::string> v = x.req.Query(name);
+    if (!v) return Status::Ok();
+    double d = 0;
+    if (!ParseDouble(*v, &d)) return Status::InvalidInput(std::string(name) + ": expected a number");
+    *out = d;
+    return Status::Ok();
+  };
+  std::optional<double> effect, change, count;
+  for (Status s : {number("effect", &effect), number("change", &change), number("count", &count)}) {
+    if (!s.ok()) return ApiError(x, s);
+  }
+  app::PickQuery pick;
+  pick.effect = effect;
+  if (change) pick.change = *change;
+  // Counts outside int range are refused by the service as out of range.
+  if (count) pick.count = *count >= 1 && *count <= 1e6 ? static_cast<int>(*count) : 0;
+  Result<std::vector<landscape::Candidate>> c = x.services.maps.Pick(x.caller.viewer, *q, pick);
+  if (!c.ok()) return ApiError(x, c.status());
+  json out = json::array();
+  for (const landscape::Candidate& k : *c) {
+    out.push_back({{"ic", k.ic},
+                   {"effect", k.effect},
+                   {"change", Round3(k.change)},
+                   {"index", k.index},
+                   {"score", k.score}});
+  }
+  ReplyJson(x.res, 200, json{{"candidates", out}});
+}
+
+}  // namespace sb::web

@@ -1,0 +1,109 @@
+// Internal to web/: what a request handler gets, the handlers of every area
+// (api_*.cc, page_handlers.cc, static_files.cc) and the helpers they share.
+// The routing table that binds them to paths is in server.cc.
+#ifndef SB_WEB_HANDLERS_H_
+#define SB_WEB_HANDLERS_H_
+
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "app/services.h"
+#include "base/status.h"
+#include "store/store.h"
+#include "web/http.h"
+#include "web/pages.h"
+#include "web/server.h"
+
+namespace sb::web {
+
+// The session cookie.
+inline constexpr char kSessionCookie[] = "sb_session";
+
+// Who is asking (app::Viewer) plus what the web layer knows of the session.
+struct Caller {
+  app::Viewer viewer;
+  std::string csrf;           // the session's CSRF token ("" when anonymous)
+  std::string session_token;  // the cookie value, when it names a session
+
+  // The page renderers' view of the caller.
+  PageViewer page() const;
+};
+
+// One request being handled.
+struct Exchange {
+  app::Services& services;
+  const ServerOptions& options;
+  const Request& req;
+  const Caller& caller;
+  Response& res;
+};
+
+using Handler = void (*)(Exchange& x);
+
+// ---- the one mapping from Status to HTTP (errors.cc) -----------------------
+// 400 invalid input, 401 unauthenticated, 403 permission, 404 not found,
+// 409 conflict, 429 resource exhausted, 500 otherwise. Internal errors are
+// logged with the request and answered "internal error".
+int HttpStatusOf(const Status& s);
+// {"error": message} (plus "line", "column", "reason" for located errors).
+void ApiError(Exchange& x, const Status& s);
+// The HTML error page for `s`.
+void PageError(Exchange& x, const Status& s);
+
+// ---- JSON helpers (api_util.cc) ---------------------------------------------
+void ReplyJson(Response& res, int status, const nlohmann::json& body);
+// The body as a JSON object. kInvalidInput "malformed JSON body" or
+// "the body must be a JSON object".
+Result<nlohmann::json> BodyObject(const Request& req);
+Result<std::string> StringField(const nlohmann::json& body, const char* field);
+// `fallback` when absent; kInvalidInput when not a boolean.
+Result<bool> BoolField(const nlohmann::json& body, const char* field, bool fallback);
+// A path or query id: a positive decimal; nullopt otherwise.
+std::optional<int64_t> ParseId(const std::string& s);
+// The path parameter "id"; kNotFound `missing` when it is not an id.
+Result<int64_t> PathId(const Request& req, const std::string& missing);
+nlohmann::json RouteSummaryJson(const store::RouteRecord& r);
+nlohmann::json RouteJson(const store::RouteRecord& r);
+
+// ---- handlers -----------------------------------------------------------
+// api_accounts.cc
+void PostUsers(Exchange& x);
+void PostSessions(Exchange& x);
+void DeleteSessions(Exchange& x);
+void GetSession(Exchange& x);
+// api_routes.cc
+void ListRoutes(Exchange& x);
+void GetRoute(Exchange& x);
+void GetRouteCrdl(Exchange& x);
+void PostRoute(Exchange& x);
+void PutRoute(Exchange& x);
+void DeleteRoute(Exchange& x);
+void PostFeedback(Exchange& x);
+void PostImportCsv(Exchange& x);
+void GetExportRoutes(Exchange& x);
+void GetExportMoves(Exchange& x);
+// api_variations.cc
+void PostVariation(Exchange& x);
+void GetVariation(Exchange& x);
+void GetLandscape(Exchange& x);
+void GetPick(Exchange& x);
+// page_handlers.cc
+void PageIndex(Exchange& x);
+void PageLogin(Exchange& x);
+void PageSignup(Exchange& x);
+void PageNewRoute(Exchange& x);
+void PageEditRoute(Exchange& x);
+void PageRoute(Exchange& x);
+void PageVary(Exchange& x);
+void PageImport(Exchange& x);
+void PagePlan(Exchange& x);
+void PagePlanPdf(Exchange& x);
+void PagePlanSvg(Exchange& x);
+// static_files.cc
+void GetStatic(Exchange& x);
+
+}  // namespace sb::web
+
+#endif  // SB_WEB_HANDLERS_H_
