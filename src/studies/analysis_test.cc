@@ -13,7 +13,7 @@
 
 #include "studies/boxplot.h"
 #include "studies/simulate.h"
-#include "studies/test_util.h"
+#include "studies/studies_test_util.h"
 
 namespace sb::studies {
 namespace {

@@ -1,7 +1,6 @@
 #include "studies/responses.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -9,6 +8,7 @@
 
 #include "base/csv.h"
 #include "base/files.h"
+#include "base/number.h"
 #include "base/text.h"
 
 namespace sb::studies {
@@ -31,30 +31,19 @@ std::string Where(std::string_view name, const Response& r) {
   return std::string(name) + ": participant \"" + r.participant + "\" route \"" + r.route + "\": ";
 }
 
-bool ParseInt(std::string_view s, long long* out) {
-  auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), *out);
-  return !s.empty() && ec == std::errc() && p == s.data() + s.size();
-}
-
-bool ParseDouble(std::string_view s, double* out) {
-  auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), *out);
-  return !s.empty() && ec == std::errc() && p == s.data() + s.size() && std::isfinite(*out);
-}
-
 // Splits one physical line into trimmed CSV fields (quotes allowed within the
-// line). Errors name `name:line`.
+// line). Errors are located at `name:line`.
 Result<std::vector<std::string>> SplitRow(std::string_view line, std::string_view name,
                                           int line_no) {
-  Result<std::vector<CsvRow>> rows = ParseCsv(line, "");
+  Result<CsvTable> rows = ParseCsv(line, name);
   if (!rows.ok()) {
-    std::string msg = rows.status().message();  // ":1: reason" for the one line
-    if (size_t p = msg.find(": "); p != std::string::npos) msg = msg.substr(p + 2);
+    std::string msg = rows.status().reason();
     if (msg == "unterminated quoted field") msg += " (a quoted field may not span lines)";
-    return Status::InvalidInput(At(name, line_no) + msg);
+    return Status::InvalidInputAt({std::string(name), line_no, 0}, msg);
   }
   std::vector<std::string> fields;
-  if (!rows->empty()) {
-    for (std::string& f : rows->front()) fields.emplace_back(Trim(f));
+  if (!rows->rows.empty()) {
+    for (std::string& f : rows->rows.front()) fields.emplace_back(Trim(f));
   }
   return fields;
 }

@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "studies/simulate.h"
-#include "studies/test_util.h"
+#include "studies/studies_test_util.h"
 
 namespace sb::studies {
 namespace {

@@ -11,7 +11,7 @@
 #include <numeric>
 #include <random>
 
-#include "studies/test_util.h"
+#include "studies/studies_test_util.h"
 
 namespace sb::studies {
 namespace {

@@ -1,7 +1,7 @@
 // Test helpers: response rows; running src/studies/scipy_reference.py under
 // Debian's /usr/bin/python3 + python3-scipy and comparing numbers to 1e-9.
-#ifndef SB_STUDIES_TEST_UTIL_H_
-#define SB_STUDIES_TEST_UTIL_H_
+#ifndef SB_STUDIES_STUDIES_TEST_UTIL_H_
+#define SB_STUDIES_STUDIES_TEST_UTIL_H_
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -95,4 +95,4 @@ inline ::testing::AssertionResult Close(double mine, const nlohmann::json& ref) 
 
 }  // namespace sb::studies::testing
 
-#endif  // SB_STUDIES_TEST_UTIL_H_
+#endif  // SB_STUDIES_STUDIES_TEST_UTIL_H_
