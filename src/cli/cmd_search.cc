@@ -4,13 +4,14 @@
 //
 //   strangebeta search ROUTES... [--keep-start] [--keep-finish] [--crux-window A,B]
 //       [--alternate-hands] [--max-repeat N] [--match text|grammar] [--effect E]
-//       [--change C] [variation and grid options] [--format text|json]
-#include <cstdio>
+//       [--change C] [vary's chaos options] [grid options] [--format text|json]
 #include <nlohmann/json.hpp>
 #include <optional>
 
+#include "app/setting.h"
 #include "chaos/search.h"
 #include "chaos/variation.h"
+#include "cli/chaos_options.h"
 #include "cli/cli_util.h"
 #include "cli/commands.h"
 #include "cli/setting_options.h"
@@ -25,7 +26,7 @@ constexpr const char* kCmd = "search";
 
 nlohmann::json Ic(const chaos::State& s) { return {s[0], s[1], s[2]}; }
 
-nlohmann::json ReportJson(const SettingOutcome& o, const plan::RoutePlan& rp) {
+nlohmann::json ReportJson(const app::SettingOutcome& o, const plan::RoutePlan& rp) {
   nlohmann::json j;
   if (o.search) {
     const chaos::SearchResult& s = *o.search;
@@ -73,7 +74,7 @@ nlohmann::json ReportJson(const SettingOutcome& o, const plan::RoutePlan& rp) {
         {"first", prof.hardest_first}, {"last", prof.hardest_last}, {"mean", prof.hardest_mean}};
   }
   j["move_facts"] = moves;
-  j["plan"] = plan::ToJson(rp);
+  j["plan"] = nlohmann::json::parse(plan::RenderJson(rp));
   return j;
 }
 
@@ -87,22 +88,12 @@ int RunSearch(const std::vector<std::string>& args) {
       "The moves always come from the chaotic mapping. See docs/setting.md.",
       "strangebeta search"};
   std::vector<std::string> files;
-  std::string preset = "default", format = "text", out;
-  std::optional<std::string> var_ic, ref_ic, mask, integrator;
-  std::optional<int> skip;
-  int max_repeat = 0;
+  std::string format = "text", out;
+  ChaosOptions chaos_options;
   std::optional<double> effect, change;
   double effect_tol = chaos::kDefaultEffectTolerance, change_tol = chaos::kDefaultChangeTolerance;
   app.add_option("routes", files, "CRDL route files ('-' = stdin)")->required();
-  app.add_option("--preset", preset, "default or more (as vary)")->capture_default_str();
-  app.add_option("--var-ic", var_ic, "the variation IC asked for, x,y,z [preset's]");
-  app.add_option("--ref-ic", ref_ic, "reference IC x,y,z [-13,-12,52]");
-  app.add_option("--skip", skip, "transient steps dropped [preset's]");
-  app.add_option("--mask", mask, "dimensions in the distance, e.g. 101 [101]");
-  app.add_option("--integrator", integrator, "rk4 or rkf45 [rk4]");
-  app.add_option("--max-repeat", max_repeat,
-                 "at most N consecutive uses of the same move (the mapping's rule); 0 = off")
-      ->capture_default_str();
+  AddChaosOptions(app, ChaosOptionSet::kVary, &chaos_options);
   app.add_option("--effect", effect, "target effect (moves changed) [off]");
   app.add_option("--change", change, "target change (mean distance moved) [off]");
   app.add_option("--effect-tolerance", effect_tol, "allowed |effect - target|")
@@ -117,33 +108,8 @@ int RunSearch(const std::vector<std::string>& args) {
   app.add_option("-o,--output", out, "write to FILE instead of standard output");
   if (int rc = ParseArgs(app, args); rc >= 0) return rc;
 
-  auto p = chaos::VaryParams::Preset(preset);
-  if (!p.ok()) return Fail(kCmd, Status::InvalidInput("--preset: " + p.status().message()));
-  chaos::VaryParams vp = *p;
-  if (var_ic) {
-    auto t = ParseTriple(*var_ic, "--var-ic");
-    if (!t.ok()) return Fail(kCmd, t.status());
-    vp.var_ic = *t;
-  }
-  if (ref_ic) {
-    auto t = ParseTriple(*ref_ic, "--ref-ic");
-    if (!t.ok()) return Fail(kCmd, t.status());
-    vp.ref_ic = *t;
-  }
-  if (skip) vp.skip = *skip;
-  if (mask) {
-    auto m = chaos::ParseMask(*mask);
-    if (!m.ok()) return Fail(kCmd, Status::InvalidInput("--mask: " + m.status().message()));
-    vp.mapping.mask = *m;
-  }
-  if (integrator) {
-    auto k = chaos::ParseIntegratorKind(*integrator);
-    if (!k.ok()) return Fail(kCmd, Status::InvalidInput("--integrator: " + k.status().message()));
-    vp.integrator = *k;
-  }
-  vp.mapping.max_repeat = max_repeat;
-  if (Status s = vp.Validate(); !s.ok())
-    return Fail(kCmd, Status::InvalidInput("--" + s.message()));
+  Result<chaos::VaryParams> vp = ResolveChaosOptions(chaos_options);
+  if (!vp.ok()) return Fail(kCmd, vp.status());
   auto req = ResolveSettingOptions(setting);
   if (!req.ok()) return Fail(kCmd, req.status());
   req->constraints.target_effect = effect;
@@ -160,7 +126,7 @@ int RunSearch(const std::vector<std::string>& args) {
     if (!r.ok()) return Fail(kCmd, r.status());
     inputs.push_back({r->Name(RouteFileStem(f)), std::move(*r)});
   }
-  auto outcome = VaryWithSetting(std::move(inputs), vp, *req);
+  auto outcome = app::VaryWithSetting(std::move(inputs), *vp, *req);
   if (!outcome.ok()) return Fail(kCmd, outcome.status());
   plan::RoutePlan rp{outcome->variation, {}, ""};
   if (format == "json") return WriteOutput(kCmd, out, ReportJson(*outcome, rp).dump() + "\n");

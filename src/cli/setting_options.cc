@@ -1,9 +1,6 @@
 #include "cli/setting_options.h"
 
-#include <charconv>
-#include <cstdio>
-
-#include "language/symbols.h"
+#include "base/number.h"
 
 namespace sb::cli {
 
@@ -31,8 +28,8 @@ void AddSettingOptions(CLI::App& app, SettingOptions* o) {
       ->capture_default_str();
 }
 
-Result<SettingRequest> ResolveSettingOptions(const SettingOptions& o) {
-  SettingRequest r;
+Result<app::SettingRequest> ResolveSettingOptions(const SettingOptions& o) {
+  app::SettingRequest r;
   auto bad = [](const char* opt, const Status& s) {
     return Status::InvalidInput(std::string(opt) + ": " + s.message());
   };
@@ -54,81 +51,14 @@ Result<SettingRequest> ResolveSettingOptions(const SettingOptions& o) {
   return r;
 }
 
-Result<chaos::MoveFacts> InputFacts(const std::vector<chaos::InputRoute>& inputs,
-                                    difficulty::MatchRule match, std::vector<bool>* is_match) {
-  chaos::MoveFacts f;
-  f.crux = chaos::CruxFlags(inputs);
-  is_match->clear();
-  std::string model_path = difficulty::DefaultModelPath();
-  if (model_path.empty() && match == difficulty::MatchRule::kText) return f;
-  auto lang = language::MoveLanguage::LoadDefault();
-  if (!lang.ok()) return lang.status();
-  if (!model_path.empty()) {
-    auto model = difficulty::ReadModelFile(model_path);
-    if (!model.ok()) return model.status();
-    difficulty::Estimator est(std::move(*model));
-    for (const chaos::InputRoute& in : inputs) {
-      std::vector<double> d = est.Estimate(in.route, *lang);
-      f.difficulty.insert(f.difficulty.end(), d.begin(), d.end());
-    }
-  }
-  if (match == difficulty::MatchRule::kGrammar) {
-    for (const chaos::InputRoute& in : inputs) {
-      std::vector<bool> m = difficulty::GrammarMatchFlags(in.route, *lang);
-      is_match->insert(is_match->end(), m.begin(), m.end());
-    }
-  }
-  return f;
-}
 
-Result<SettingOutcome> VaryWithSetting(std::vector<chaos::InputRoute> inputs,
-                                       const chaos::VaryParams& params,
-                                       const SettingRequest& request) {
-  std::vector<bool> is_match;
-  auto facts = InputFacts(inputs, request.match, &is_match);
-  if (!facts.ok()) return facts.status();
-  SettingOutcome out;
-  out.facts = std::move(*facts);
-  if (request.constraints.Any()) {
-    auto r = chaos::SearchVariation(inputs, params, out.facts, request.constraints, request.grid,
-                                    is_match);
-    if (!r.ok()) return r.status();
-    out.variation = std::move(r->variation);
-    r->variation = chaos::Variation{};
-    out.search = std::move(*r);
-  } else {
-    auto v = chaos::Vary(std::move(inputs), params, is_match);
-    if (!v.ok()) return v.status();
-    out.variation = std::move(*v);
-  }
-  out.warnings = plan::Warn(out.variation, out.facts);
-  return out;
-}
-
-namespace {
-
-// Shortest round-trip form, so `vary --var-ic` reads back exactly this IC.
-std::string Shortest(double v) {
-  if (v == 0) v = 0;  // no "-0"
-  char buf[64];
-  auto [p, ec] = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, p);
-}
-
-std::string IcText(const chaos::State& s) {
-  return Shortest(s[0]) + "," + Shortest(s[1]) + "," + Shortest(s[2]);
-}
-
-}  // namespace
-
-std::string FormatSettingReport(const SettingOutcome& o) {
+std::string FormatSettingReport(const app::SettingOutcome& o) {
   std::string out;
   if (o.search) {
     const chaos::SearchResult& s = *o.search;
-    char dist[64];
-    std::snprintf(dist, sizeof dist, "%.4g", s.distance);
-    out += "# search: IC " + IcText(s.used_ic) + " used, " + dist + " from " +
-           IcText(s.requested_ic) + " asked for (" + std::to_string(s.evaluated) +
+    out += "# search: IC " + FormatTriple(s.used_ic) + " used, " + FormatDouble(s.distance, 4) +
+           " from " +
+           FormatTriple(s.requested_ic) + " asked for (" + std::to_string(s.evaluated) +
            " ICs evaluated)\n";
     for (const chaos::ConstraintOutcome& c : s.outcomes) {
       out += std::string("#   ") + chaos::ConstraintName(c.constraint) + ": " +

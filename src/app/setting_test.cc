@@ -1,0 +1,81 @@
+// The setter's workflow as a service: facts of the input moves, a plain
+// variation when nothing is asked, the IC search when a constraint is.
+#include "app/setting.h"
+
+#include <gtest/gtest.h>
+
+#include "crdl/route.h"
+
+namespace sb::app {
+namespace {
+
+std::vector<chaos::InputRoute> Inputs() {
+  auto a = ParseCrdl("name: A\n---\nR jug\nL small crimp (crux)\nR sloper\nL pinch\nR match\n",
+                     "a.crdl");
+  auto b = ParseCrdl("name: B\n---\nL undercling\nR gaston\nL pocket\nR jug finish\n", "b.crdl");
+  EXPECT_TRUE(a.ok() && b.ok());
+  return {{"A", std::move(*a)}, {"B", std::move(*b)}};
+}
+
+TEST(Setting, InputFactsCarryTheCruxFlagsAndOneEstimatePerMove) {
+  std::vector<bool> is_match = {true};
+  auto f = InputFacts(Inputs(), difficulty::MatchRule::kText, &is_match);
+  ASSERT_TRUE(f.ok()) << f.status().message();
+  EXPECT_EQ(f->crux, (std::vector<bool>{false, true, false, false, false, false, false, false,
+                                        false}));
+  EXPECT_TRUE(is_match.empty());  // the text rule needs no flags
+  if (!difficulty::DefaultModelPath().empty()) {
+    EXPECT_EQ(f->difficulty.size(), 9u);
+  }
+}
+
+TEST(Setting, GrammarMatchRuleGivesOneFlagPerMove) {
+  std::vector<bool> is_match;
+  auto f = InputFacts(Inputs(), difficulty::MatchRule::kGrammar, &is_match);
+  ASSERT_TRUE(f.ok()) << f.status().message();
+  ASSERT_EQ(is_match.size(), 9u);
+  EXPECT_TRUE(is_match[4]);  // "match"
+  EXPECT_FALSE(is_match[0]);
+}
+
+TEST(Setting, WithoutConstraintsItIsExactlyVary) {
+  chaos::VaryParams p;
+  auto plain = chaos::Vary(Inputs(), p);
+  ASSERT_TRUE(plain.ok());
+  auto out = VaryWithSetting(Inputs(), p, SettingRequest{});
+  ASSERT_TRUE(out.ok()) << out.status().message();
+  EXPECT_FALSE(out->search.has_value());
+  ASSERT_EQ(out->variation.moves.size(), plain->moves.size());
+  for (size_t i = 0; i < plain->moves.size(); ++i) {
+    EXPECT_EQ(out->variation.moves[i].text, plain->moves[i].text) << i;
+    EXPECT_EQ(out->variation.mapping[i], plain->mapping[i]) << i;
+  }
+  EXPECT_FALSE(out->warnings.summary.message.empty());
+}
+
+TEST(Setting, ConstraintsRunTheSearchAndHold) {
+  SettingRequest req;
+  req.constraints.keep_start = true;
+  req.constraints.keep_finish = true;
+  auto out = VaryWithSetting(Inputs(), chaos::VaryParams{}, req);
+  ASSERT_TRUE(out.ok()) << out.status().message();
+  ASSERT_TRUE(out->search.has_value());
+  for (const chaos::ConstraintOutcome& c : out->search->outcomes) EXPECT_TRUE(c.held);
+  EXPECT_EQ(out->variation.moves.front().text, "jug");
+  EXPECT_EQ(out->variation.moves.back().text, "jug finish");
+  EXPECT_TRUE(out->search->variation.moves.empty());  // moved into out->variation
+}
+
+TEST(Setting, AnUnmetConstraintIsNotFoundNamingIt) {
+  SettingRequest req;
+  req.constraints.crux_window = chaos::CruxWindow{0.0, 0.01};
+  req.grid.radius = 2;
+  auto out = VaryWithSetting(Inputs(), chaos::VaryParams{}, req);
+  ASSERT_FALSE(out.ok());
+  EXPECT_EQ(out.status().code(), Status::Code::kNotFound);
+  EXPECT_NE(out.status().message().find("crux-window"), std::string::npos)
+      << out.status().message();
+}
+
+}  // namespace
+}  // namespace sb::app
