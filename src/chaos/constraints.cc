@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "base/number.h"
 #include "base/text.h"
 
 namespace sb::chaos {
@@ -57,11 +58,7 @@ Result<CruxWindow> ParseCruxWindow(std::string_view s) {
   double v[2];
   for (int i = 0; i < 2; ++i) {
     std::string t(Trim(parts[i]));
-    char* end = nullptr;
-    v[i] = t.empty() ? NAN : std::strtod(t.c_str(), &end);
-    if (t.empty() || end != t.c_str() + t.size() || !std::isfinite(v[i])) {
-      return bad("\"" + t + "\" is not a number");
-    }
+    if (!ParseDouble(t, &v[i])) return bad("\"" + t + "\" is not a number");
   }
   CruxWindow w{v[0], v[1]};
   if (w.begin < 0 || w.end > 1 || w.begin > w.end) {

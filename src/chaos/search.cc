@@ -7,6 +7,7 @@
 #include <memory>
 #include <thread>
 
+#include "base/number.h"
 #include "base/text.h"
 
 // GCC vector types as by-value arguments of inline templates: no ABI crosses
@@ -176,9 +177,13 @@ bool Finite(const State& s) {
 }
 
 std::string IcText(const State& s) {
-  char buf[128];
-  std::snprintf(buf, sizeof buf, "(%.17g, %.17g, %.17g)", s[0], s[1], s[2]);
-  return buf;
+  std::string out = "(";
+  out += FormatDouble(s[0], 17);
+  out += ", ";
+  out += FormatDouble(s[1], 17);
+  out += ", ";
+  out += FormatDouble(s[2], 17);
+  return out + ")";
 }
 
 constexpr uint32_t kDiverged = 1u << 31;

@@ -11,6 +11,8 @@
 #include <vector>
 
 #include "base/files.h"
+#include "base/number.h"
+#include "base/text.h"
 #include "cli/cli_util.h"
 #include "cli/commands.h"
 #include "crdl/route.h"
@@ -32,28 +34,7 @@ constexpr const char* kCmd = "grade";
 // the routes (~20 per discipline on the corpus), the usual choice.
 constexpr int kDefaultFolds = 5;
 
-std::string Fmt(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v + 0.0);
-  return buf;
-}
-
-std::string JsonString(std::string_view s) {
-  std::string o = "\"";
-  for (unsigned char c : s) {
-    if (c == '"' || c == '\\') {
-      o.push_back('\\');
-      o.push_back(static_cast<char>(c));
-    } else if (c < 0x20) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04x", c);
-      o += buf;
-    } else {
-      o.push_back(static_cast<char>(c));
-    }
-  }
-  return o + "\"";
-}
+std::string Fmt(double v) { return FormatDouble(v, 17); }
 
 Status CheckFormat(const std::string& format) {
   if (format == "text" || format == "json") return Status::Ok();

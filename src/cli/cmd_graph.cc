@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "base/files.h"
+#include "base/number.h"
 #include "base/text.h"
 #include "cli/cli_util.h"
 #include "cli/commands.h"
@@ -37,11 +38,7 @@ constexpr const char* kCmd = "graph";
 // --memory-mb range (graph::kMinMemoryBytes..kMaxMemoryBytes in MiB).
 constexpr int kMaxMemoryMb = static_cast<int>(graph::kMaxMemoryBytes >> 20);
 
-std::string Fmt(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v + 0.0);
-  return buf;
-}
+std::string Fmt(double v) { return FormatDouble(v, 17); }
 
 // Climbing tokens (plan/climb_tokens.h) of CRDL route files or of the site
 // export's original routes, read with the project's grammar.

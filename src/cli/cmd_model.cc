@@ -14,7 +14,6 @@
 //   strangebeta model classify --cross-validate --group-by user|grade --corpus DIR ...
 #include <sys/stat.h>
 
-#include <charconv>
 #include <cstdio>
 #include <optional>
 #include <string>
@@ -22,6 +21,7 @@
 #include <vector>
 
 #include "base/files.h"
+#include "base/number.h"
 #include "base/text.h"
 #include "cli/cli_util.h"
 #include "cli/commands.h"
@@ -90,8 +90,7 @@ Result<std::vector<int32_t>> IdsOf(const std::vector<Token>& toks, int k, const 
   ids.reserve(toks.size());
   for (const Token& t : toks) {
     int32_t v = -1;
-    auto [p, ec] = std::from_chars(t.text.data(), t.text.data() + t.text.size(), v);
-    if (ec != std::errc() || p != t.text.data() + t.text.size() || v < 0 || v >= k) {
+    if (!ParseInt(t.text, &v) || v < 0 || v >= k) {
       return Status::InvalidInput(name + ":" + std::to_string(t.line) + ":" +
                                   std::to_string(t.col) + ": token '" + t.text +
                                   "' is not an integer in [0, " + std::to_string(k) + ")");
@@ -110,11 +109,7 @@ Result<std::vector<int32_t>> Encode(const TokenModel& m, const std::vector<Token
   return ids;
 }
 
-std::string Fmt(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.17g", v + 0.0);  // no "-0"
-  return buf;
-}
+std::string Fmt(double v) { return FormatDouble(v, 17); }
 
 // Keeps letters, digits, '.', '-', '_'; everything else becomes '_'.
 std::string SafeFileName(const std::string& label) {

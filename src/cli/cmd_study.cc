@@ -7,13 +7,13 @@
 //   strangebeta study simulate [--instrument ...] [--routes 4] [--participants 44] [--seed N]
 //                              [--missing P] [--quality Q1,Q2,...] [-o FILE]
 //   strangebeta study instrument brc|pilot|I.json
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
 
 #include "base/files.h"
+#include "base/number.h"
 #include "base/text.h"
 #include "cli/cli_util.h"
 #include "cli/commands.h"
@@ -68,8 +68,7 @@ Result<std::vector<double>> ParseQuality(const std::string& s) {
   std::vector<double> out;
   for (const std::string& part : CommaList(s)) {
     double v;
-    auto [p, ec] = std::from_chars(part.data(), part.data() + part.size(), v);
-    if (ec != std::errc() || p != part.data() + part.size() || !std::isfinite(v)) {
+    if (!ParseDouble(part, &v)) {
       return Status::InvalidInput("--quality: \"" + part + "\" is not a number");
     }
     out.push_back(v);

@@ -10,6 +10,7 @@
 
 #include "base/files.h"
 #include "base/hash.h"
+#include "base/number.h"
 #include "base/text.h"
 
 namespace sb::difficulty {
@@ -41,11 +42,7 @@ void AddPosition(int j, int n, Features* f) {
   (*f)["inv-length"] = 1.0 / n;
 }
 
-std::string Fmt17(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
+std::string Fmt17(double v) { return FormatDouble(v, 17); }
 
 Dataset MakeDataset(const std::vector<const PreparedRoute*>& routes,
                     const std::vector<std::string>& names) {
@@ -346,17 +343,9 @@ Result<Model> ParseModel(std::string_view text, std::string_view filename) {
     }
     return w;
   };
-  auto number = [](const std::string& s, double* v) {
-    char* end = nullptr;
-    *v = std::strtod(s.c_str(), &end);
-    return !s.empty() && end == s.c_str() + s.size() && std::isfinite(*v);
-  };
+  auto number = [](const std::string& s, double* v) { return ParseDouble(s, v); };
   auto integer = [](const std::string& s, int* v) {
-    char* end = nullptr;
-    long x = std::strtol(s.c_str(), &end, 10);
-    if (s.empty() || end != s.c_str() + s.size() || x < 0 || x > 1000000000) return false;
-    *v = static_cast<int>(x);
-    return true;
+    return ParseInt(s, v) && *v >= 0 && *v <= 1000000000;
   };
 
   if (next() != kMagic) return err(1, "the first line must be \"" + std::string(kMagic) + "\"");

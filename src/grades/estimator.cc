@@ -10,6 +10,7 @@
 
 #include "base/files.h"
 #include "base/hash.h"
+#include "base/number.h"
 #include "base/text.h"
 
 namespace sb::grades {
@@ -150,11 +151,7 @@ Result<double> ChooseL2(const Matrix& X, const std::vector<int>& band, const std
   return candidates[chosen];
 }
 
-std::string Fmt(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v + 0.0);
-  return buf;
-}
+std::string Fmt(double v) { return FormatDouble(v, 17); }
 
 Status CheckReadings(const std::vector<const TrainingRoute*>& routes, bool* with_difficulty) {
   *with_difficulty = !routes.empty() && !routes[0]->reading.move_difficulty.empty();
@@ -294,10 +291,11 @@ class Reader {
 
 template <typename T>
 bool ParseNumber(std::string_view s, T* v) {
-  auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), *v);
-  if (ec != std::errc() || p != s.data() + s.size()) return false;
-  if constexpr (std::is_floating_point_v<T>) return std::isfinite(*v);
-  return true;
+  if constexpr (std::is_floating_point_v<T>) {
+    return ParseDouble(s, v);
+  } else {
+    return ParseInt(s, v);
+  }
 }
 
 template <typename T>

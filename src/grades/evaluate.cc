@@ -7,6 +7,7 @@
 #include <map>
 #include <numeric>
 
+#include "base/number.h"
 #include "base/text.h"
 
 namespace sb::grades {
@@ -85,11 +86,7 @@ int LowerMedianBand(std::vector<int> bands) {
   return bands[(bands.size() - 1) / 2];
 }
 
-std::string Fmt(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v + 0.0);
-  return buf;
-}
+std::string Fmt(double v) { return FormatDouble(v, 17); }
 
 std::string MetricsJson(const Metrics& m) {
   return "{\"exact\":" + Fmt(m.exact) + ",\"within_one\":" + Fmt(m.within_one) +

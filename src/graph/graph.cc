@@ -1,13 +1,13 @@
 #include "graph/graph.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <utility>
 
 #include "base/files.h"
 #include "base/hash.h"
+#include "base/number.h"
 #include "base/text.h"
 
 namespace sb::graph {
@@ -33,11 +33,7 @@ uint64_t Key(int32_t a, int32_t b) {
   return (uint64_t{static_cast<uint32_t>(a)} << 32) | static_cast<uint32_t>(b);
 }
 
-std::string Num(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v + 0.0);
-  return buf;
-}
+std::string Num(double v) { return FormatDouble(v, 17); }
 
 }  // namespace
 
@@ -332,8 +328,7 @@ class LineReader {
     return Status::Ok();
   }
   Status U64(std::string_view s, uint64_t max, uint64_t* v) {
-    auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), *v);
-    if (s.empty() || ec != std::errc() || p != s.data() + s.size() || *v > max) {
+    if (!ParseInt(s, v) || *v > max) {
       return Error("'" + std::string(s) + "' is not an integer in 0.." + std::to_string(max));
     }
     return Status::Ok();
@@ -410,10 +405,9 @@ Result<GraphModel> GraphModel::Parse(std::string_view bytes, const std::string& 
   GraphModel g;
   SB_RETURN_IF_ERROR(in.Fields("alpha", 2, &f));
   {
-    const std::string a(f[1]);
-    char* end = nullptr;
-    g.options_.alpha = std::strtod(a.c_str(), &end);
-    if (a.empty() || *end != '\0') return in.Error("alpha '" + a + "' is not a number");
+    if (!ParseDouble(f[1], &g.options_.alpha)) {
+      return in.Error("alpha '" + std::string(f[1]) + "' is not a number");
+    }
   }
   SB_RETURN_IF_ERROR(in.Fields("reverse-edges", 2, &f));
   SB_RETURN_IF_ERROR(in.U64(f[1], 1, &v));

@@ -1,13 +1,13 @@
 #include "graph/influence.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <map>
 #include <numeric>
 #include <set>
 #include <utility>
 
+#include "base/number.h"
 #include "base/text.h"
 
 namespace sb::graph {
@@ -99,8 +99,7 @@ Result<std::vector<InfluencePair>> ParseInfluenceFile(std::string_view text,
       size_t end = 0;
       while (end < s.size() && s[end] != ' ' && s[end] != '\t') ++end;
       const std::string_view num = s.substr(0, end);
-      auto [p, ec] = std::from_chars(num.data(), num.data() + num.size(), v[i]);
-      if (num.empty() || ec != std::errc() || p != num.data() + num.size()) {
+      if (!ParseInt(num, &v[i])) {
         return Status::InvalidInput(where +
                                     ": expected 'child parent' (two 1-based feature "
                                     "positions), got '" +

@@ -6,12 +6,12 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <charconv>
 #include <cstring>
 #include <utility>
 
 #include "base/files.h"
 #include "base/hash.h"
+#include "base/number.h"
 #include "base/text.h"
 #include "markov/bytes.h"
 
@@ -89,10 +89,7 @@ Result<std::vector<int32_t>> TokenModel::Encode(const std::vector<std::string>& 
       continue;
     }
     int32_t v = -1;
-    const char* b = tokens[i].data();
-    const char* e = b + tokens[i].size();
-    auto [p, ec] = std::from_chars(b, e, v);
-    if (ec != std::errc() || p != e || v < 0 || v >= spec().alphabet_size) {
+    if (!ParseInt(tokens[i], &v) || v < 0 || v >= spec().alphabet_size) {
       return Status::InvalidInput("token " + std::to_string(i + 1) + " '" + tokens[i] +
                                   "' is not an integer in [0, " +
                                   std::to_string(spec().alphabet_size) + ")");

@@ -318,13 +318,7 @@ std::string FormatResponsesCsv(const ResponseTable& table, const Instrument& in)
     if (table.has_rank) row.push_back(opt(r.rank));
     if (table.has_order) row.push_back(opt(r.order));
     if (table.has_ability) {
-      std::string a;
-      if (r.ability) {
-        char buf[64];
-        auto [p, ec] = std::to_chars(buf, buf + sizeof buf, *r.ability);
-        a.assign(buf, p);
-      }
-      row.push_back(a);
+      row.push_back(r.ability ? FormatDouble(*r.ability) : std::string());
     }
     out += FormatCsvRow(row);
   }
