@@ -91,9 +91,9 @@ Result<std::vector<int32_t>> IdsOf(const std::vector<Token>& toks, int k, const 
   for (const Token& t : toks) {
     int32_t v = -1;
     if (!ParseInt(t.text, &v) || v < 0 || v >= k) {
-      return Status::InvalidInput(name + ":" + std::to_string(t.line) + ":" +
-                                  std::to_string(t.col) + ": token '" + t.text +
-                                  "' is not an integer in [0, " + std::to_string(k) + ")");
+      return Status::InvalidInputAt(
+          {name, static_cast<int>(t.line), static_cast<int>(t.col)},
+          "token '" + t.text + "' is not an integer in [0, " + std::to_string(k) + ")");
     }
     ids.push_back(v);
   }
@@ -494,8 +494,7 @@ int ClassifyWithModels(const std::vector<std::string>& paths, bool labelled,
   auto classify = [&](const std::vector<std::string>& toks, int line) -> Status {
     auto c = markov::Classify(ptrs, toks);
     if (!c.ok()) {
-      return Status::InvalidInput(name + ":" + std::to_string(line) +
-                                  ":1: " + c.status().message());
+      return Status::InvalidInputAt({name, line, 1}, c.status().message());
     }
     out += labels[c->best] + "\t" + Fmt(c->bits_per_symbol[c->best]);
     return Status::Ok();

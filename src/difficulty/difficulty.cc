@@ -332,8 +332,8 @@ Result<Model> ParseModel(std::string_view text, std::string_view filename) {
   std::vector<std::string_view> lines = SplitLines(text);
   size_t ln = 0;
   auto err = [&](size_t line, const std::string& why) {
-    return Status::InvalidInput(std::string(filename) + ":" + std::to_string(line) +
-                                ": not a valid difficulty model: " + why);
+    return Status::InvalidInputAt({std::string(filename), static_cast<int>(line), 0},
+                                  "not a valid difficulty model: " + why);
   };
   auto next = [&]() -> std::string_view { return ln < lines.size() ? lines[ln++] : ""; };
   auto words = [](std::string_view l) {

@@ -266,8 +266,8 @@ class Reader {
   bool done() const { return i_ >= lines_.size(); }
   int line() const { return static_cast<int>(i_) + 1; }
   Status Error(const std::string& why) const {
-    return Status::InvalidInput(name_ + ":" + std::to_string(std::min(i_ + 1, lines_.size())) +
-                                ": not a valid grade estimator file: " + why);
+    return Status::InvalidInputAt({name_, static_cast<int>(std::min(i_ + 1, lines_.size())), 0},
+                                  "not a valid grade estimator file: " + why);
   }
   // The next line's words; its first word must be `key`.
   Result<std::vector<std::string_view>> Expect(std::string_view key) {
@@ -687,7 +687,7 @@ Result<GradeEstimator> GradeEstimator::Parse(std::string_view bytes, const std::
   if (Fnv1a64(body) != want) return bad("checksum mismatch (the file is damaged)");
   std::vector<std::string_view> lines = SplitLines(body);
   Reader r(std::move(lines), name);
-  (void)r.Expect(kMagic);
+  if (auto magic = r.Expect(kMagic); !magic.ok()) return magic.status();
   auto set = r.Expect("symbol_set");
   if (!set.ok()) return set.status();
   GradeEstimator e;

@@ -309,7 +309,7 @@ class LineReader {
     return true;
   }
   Status Error(const std::string& why) const {
-    return Status::InvalidInput(name_ + ":" + std::to_string(line_no_) + ": " + why);
+    return Status::InvalidInputAt({name_, static_cast<int>(line_no_), 0}, why);
   }
   // Reads a line "keyword v1 v2 ..." into fields.
   Status Fields(std::string_view keyword, size_t n, std::vector<std::string_view>* fields) {

@@ -90,7 +90,6 @@ Result<std::vector<InfluencePair>> ParseInfluenceFile(std::string_view text,
   std::set<std::pair<int, int>> seen;
   const auto lines = SplitLines(text);
   for (size_t l = 0; l < lines.size(); ++l) {
-    const std::string where = name + ":" + std::to_string(l + 1);
     std::string_view s = Trim(lines[l]);
     if (s.empty() || s.front() == '#') continue;
     int v[2] = {0, 0};
@@ -100,31 +99,34 @@ Result<std::vector<InfluencePair>> ParseInfluenceFile(std::string_view text,
       while (end < s.size() && s[end] != ' ' && s[end] != '\t') ++end;
       const std::string_view num = s.substr(0, end);
       if (!ParseInt(num, &v[i])) {
-        return Status::InvalidInput(where +
-                                    ": expected 'child parent' (two 1-based feature "
-                                    "positions), got '" +
-                                    std::string(Trim(lines[l])) + "'");
+        return Status::InvalidInputAt({name, static_cast<int>(l + 1), 0},
+                                      "expected 'child parent' (two 1-based feature "
+                                      "positions), got '" +
+                                          std::string(Trim(lines[l])) + "'");
       }
       s.remove_prefix(end);
     }
     if (!Trim(s).empty()) {
-      return Status::InvalidInput(where + ": expected 'child parent', got trailing text '" +
-                                  std::string(Trim(s)) + "'");
+      return Status::InvalidInputAt(
+          {name, static_cast<int>(l + 1), 0},
+          "expected 'child parent', got trailing text '" + std::string(Trim(s)) + "'");
     }
     InfluencePair p{v[0] - 1, v[1] - 1};
     if (Status st = CheckPair(p, k); !st.ok()) {
-      return Status::InvalidInput(where + ": " + st.message());
+      return Status::InvalidInputAt({name, static_cast<int>(l + 1), 0}, "" + st.message());
     }
     if (!seen.insert({p.child, p.parent}).second) {
-      return Status::InvalidInput(where + ": pair '" + PairText(p) + "' is given twice");
+      return Status::InvalidInputAt({name, static_cast<int>(l + 1), 0},
+                                    "pair '" + PairText(p) + "' is given twice");
     }
     if (pairs.size() == kMaxInfluencePairs) {
-      return Status::InvalidInput(where + ": more than " + std::to_string(kMaxInfluencePairs) +
-                                  " pairs");
+      return Status::InvalidInputAt({name, static_cast<int>(l + 1), 0},
+                                    "more than " + std::to_string(kMaxInfluencePairs) + " pairs");
     }
     pairs.push_back(p);
     if (HasCycle(pairs, k)) {
-      return Status::InvalidInput(where + ": pair '" + PairText(p) + "' closes a cycle");
+      return Status::InvalidInputAt({name, static_cast<int>(l + 1), 0},
+                                    "pair '" + PairText(p) + "' closes a cycle");
     }
   }
   return pairs;

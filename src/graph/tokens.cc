@@ -70,7 +70,8 @@ Result<TokenFile> ParseTokenFile(std::string_view text, const std::string& name,
         ++col;
       }
     }
-    return Status::InvalidInput(Where(name, line, col) + ": invalid UTF-8");
+    return Status::InvalidInputAt({name, static_cast<int>(line), static_cast<int>(col)},
+                                  "invalid UTF-8");
   }
   TokenFile out;
   out.k = k;
@@ -87,8 +88,8 @@ Result<TokenFile> ParseTokenFile(std::string_view text, const std::string& name,
       while (j < s.size() && !IsBlank(s[j])) ++j;
       if (j > i) {
         if (out.tokens == kMaxTokens) {
-          return Status::InvalidInput(Where(name, l + 1, i + 1) + ": more than " +
-                                      std::to_string(kMaxTokens) + " tokens");
+          return Status::InvalidInputAt({name, static_cast<int>(l + 1), static_cast<int>(i + 1)},
+                                        "more than " + std::to_string(kMaxTokens) + " tokens");
         }
         auto t = ParseToken(s.substr(i, j - i), out.k, Where(name, l + 1, i + 1));
         if (!t.ok()) return t.status();

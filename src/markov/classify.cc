@@ -13,20 +13,22 @@ Result<std::vector<LabelledRoute>> ParseLabelled(std::string_view text, const st
   const auto lines = SplitLines(text);
   for (size_t i = 0; i < lines.size(); ++i) {
     const std::string_view line = lines[i];
-    const std::string where = name + ":" + std::to_string(i + 1) + ":";
     if (Trim(line).empty() || line.front() == '#') continue;
     const size_t tab = line.find('\t');
     if (tab == std::string_view::npos) {
-      return Status::InvalidInput(where + "1: expected 'label<TAB>tokens'");
+      return Status::InvalidInputAt({name, static_cast<int>(i + 1), 1},
+                                    "expected 'label<TAB>tokens'");
     }
     const std::string_view label = Trim(line.substr(0, tab));
-    if (label.empty()) return Status::InvalidInput(where + "1: empty label");
+    if (label.empty())
+      return Status::InvalidInputAt({name, static_cast<int>(i + 1), 1}, "empty label");
     LabelledRoute r;
     r.label = std::string(label);
     r.tokens = Tokenize(line.substr(tab + 1));
     r.line = static_cast<int>(i + 1);
     if (r.tokens.empty()) {
-      return Status::InvalidInput(where + std::to_string(tab + 2) + ": route has no tokens");
+      return Status::InvalidInputAt({name, static_cast<int>(i + 1), static_cast<int>(tab + 2)},
+                                    "route has no tokens");
     }
     out.push_back(std::move(r));
   }

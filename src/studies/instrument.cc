@@ -99,8 +99,8 @@ Status SyntaxError(std::string_view text, std::string_view name, const json::par
   if (size_t p = what.find("column "); p != std::string::npos) {
     if (size_t q = what.find(": ", p); q != std::string::npos) detail = what.substr(q + 2);
   }
-  return Status::InvalidInput(std::string(name) + ":" + std::to_string(line) + ":" +
-                              std::to_string(col) + ": JSON syntax error: " + detail);
+  return Status::InvalidInputAt({std::string(name), static_cast<int>(line), static_cast<int>(col)},
+                                "JSON syntax error: " + detail);
 }
 
 Status ReadScale(const json& j, std::string_view name, Instrument* out) {

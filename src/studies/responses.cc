@@ -21,14 +21,12 @@ struct Columns {
   int rank = -1, order = -1, ability = -1;
 };
 
-std::string At(std::string_view name, int line) {
-  return std::string(name) + ":" + std::to_string(line) + ": ";
-}
-
-// Where a row is for messages: "name:line: " or "name: participant "p" route "r": ".
-std::string Where(std::string_view name, const Response& r) {
-  if (r.line > 0) return At(name, r.line);
-  return std::string(name) + ": participant \"" + r.participant + "\" route \"" + r.route + "\": ";
+// An error in a row: located at "name:line" when the row came from a file,
+// else "name: participant "p" route "r": reason".
+Status RowError(std::string_view name, const Response& r, const std::string& reason) {
+  if (r.line > 0) return Status::InvalidInputAt({std::string(name), r.line, 0}, reason);
+  return Status::InvalidInput(std::string(name) + ": participant \"" + r.participant +
+                              "\" route \"" + r.route + "\": " + reason);
 }
 
 // Splits one physical line into trimmed CSV fields (quotes allowed within the
@@ -51,9 +49,9 @@ Result<std::vector<std::string>> SplitRow(std::string_view line, std::string_vie
 Result<Columns> ReadHeader(const std::vector<std::string>& header, std::string_view name,
                            const Instrument& in) {
   if (header.size() < 2 || header[0] != "participant" || header[1] != "route") {
-    return Status::InvalidInput(At(name, 1) +
-                                "header must start with \"participant,route\" followed by the "
-                                "item ids (e.g. participant,route,q1,q2,...)");
+    return Status::InvalidInputAt({std::string(name), 1, 0},
+                                  "header must start with \"participant,route\" followed by the "
+                                  "item ids (e.g. participant,route,q1,q2,...)");
   }
   Columns c;
   c.count = header.size();
@@ -63,7 +61,8 @@ Result<Columns> ReadHeader(const std::vector<std::string>& header, std::string_v
   for (size_t k = 0; k < header.size(); ++k) {
     const std::string& h = header[k];
     if (!names.insert(h).second) {
-      return Status::InvalidInput(At(name, 1) + "column \"" + h + "\" appears twice");
+      return Status::InvalidInputAt({std::string(name), 1, 0},
+                                    "column \"" + h + "\" appears twice");
     }
     if (k < 2) continue;
     if (h == "rank") {
@@ -76,14 +75,17 @@ Result<Columns> ReadHeader(const std::vector<std::string>& header, std::string_v
       c.item_of[k] = i;
       seen[size_t(i)] = 1;
     } else {
-      return Status::InvalidInput(At(name, 1) + "column \"" + h +
-                                  "\" is neither an item of the instrument nor rank, order or "
-                                  "ability");
+      return Status::InvalidInputAt(
+          {std::string(name), 1, 0},
+          "column \"" + h +
+              "\" is neither an item of the instrument nor rank, order or "
+              "ability");
     }
   }
   for (size_t i = 0; i < in.items.size(); ++i) {
     if (!seen[i]) {
-      return Status::InvalidInput(At(name, 1) + "no column for item \"" + in.items[i].id + "\"");
+      return Status::InvalidInputAt({std::string(name), 1, 0},
+                                    "no column for item \"" + in.items[i].id + "\"");
     }
   }
   return c;
@@ -95,8 +97,9 @@ Status ReadPosition(const std::string& field, const char* what, std::string_view
   if (field.empty()) return Status::Ok();
   long long v;
   if (!ParseInt(field, &v) || v < 1 || v > static_cast<long long>(kMaxRoutes)) {
-    return Status::InvalidInput(At(name, line) + what + " \"" + field +
-                                "\" is not an integer from 1 to the number of routes");
+    return Status::InvalidInputAt(
+        {std::string(name), line, 0},
+        std::string(what) + " \"" + field + "\" is not an integer from 1 to the number of routes");
   }
   *out = int(v);
   return Status::Ok();
@@ -105,8 +108,9 @@ Status ReadPosition(const std::string& field, const char* what, std::string_view
 Result<Response> ReadRow(const std::vector<std::string>& f, const Columns& c, std::string_view name,
                          int line, const Instrument& in) {
   if (f.size() != c.count) {
-    return Status::InvalidInput(At(name, line) + "expected " + std::to_string(c.count) +
-                                " fields like the header, got " + std::to_string(f.size()));
+    return Status::InvalidInputAt({std::string(name), line, 0},
+                                  "expected " + std::to_string(c.count) +
+                                      " fields like the header, got " + std::to_string(f.size()));
   }
   Response r;
   r.line = line;
@@ -117,16 +121,17 @@ Result<Response> ReadRow(const std::vector<std::string>& f, const Columns& c, st
     if (c.item_of[k] < 0 || f[k].empty()) continue;
     long long v;
     if (!ParseInt(f[k], &v)) {
-      return Status::InvalidInput(At(name, line) + "item " + in.items[size_t(c.item_of[k])].id +
-                                  ": \"" + f[k] +
-                                  "\" is not an integer (leave it empty for no "
-                                  "answer)");
+      return Status::InvalidInputAt({std::string(name), line, 0},
+                                    "item " + in.items[size_t(c.item_of[k])].id + ": \"" + f[k] +
+                                        "\" is not an integer (leave it empty for no "
+                                        "answer)");
     }
     if (v < in.scale_min || v > in.scale_max) {
-      return Status::InvalidInput(At(name, line) + "item " + in.items[size_t(c.item_of[k])].id +
-                                  ": answer " + f[k] + " outside the scale [" +
-                                  std::to_string(in.scale_min) + ", " +
-                                  std::to_string(in.scale_max) + "]");
+      return Status::InvalidInputAt({std::string(name), line, 0},
+                                    "item " + in.items[size_t(c.item_of[k])].id + ": answer " +
+                                        f[k] + " outside the scale [" +
+                                        std::to_string(in.scale_min) + ", " +
+                                        std::to_string(in.scale_max) + "]");
     }
     r.answers[size_t(c.item_of[k])] = int(v);
   }
@@ -137,9 +142,11 @@ Result<Response> ReadRow(const std::vector<std::string>& f, const Columns& c, st
   if (c.ability >= 0 && !f[size_t(c.ability)].empty()) {
     double a;
     if (!ParseDouble(f[size_t(c.ability)], &a) || std::abs(a) > kMaxAbility) {
-      return Status::InvalidInput(At(name, line) + "ability \"" + f[size_t(c.ability)] +
-                                  "\" is not a number (grades are given as numbers, e.g. 5.11c "
-                                  "-> 11.5)");
+      return Status::InvalidInputAt(
+          {std::string(name), line, 0},
+          "ability \"" + f[size_t(c.ability)] +
+              "\" is not a number (grades are given as numbers, e.g. 5.11c "
+              "-> 11.5)");
     }
     r.ability = a;
   }
@@ -152,9 +159,9 @@ Status CheckLabel(const std::string& s, const char* what, std::string_view name,
     return static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f;
   });
   if (s.empty() || s.size() > kMaxLabelLength || !clean || Trim(s) != s) {
-    return Status::InvalidInput(Where(name, r) + what + " must be 1-" +
-                                std::to_string(kMaxLabelLength) +
-                                " bytes without control characters or surrounding spaces");
+    return RowError(name, r,
+                    std::string(what) + " must be 1-" + std::to_string(kMaxLabelLength) +
+                        " bytes without control characters or surrounding spaces");
   }
   return Status::Ok();
 }
@@ -195,20 +202,22 @@ Status ValidateResponses(const ResponseTable& table, const Instrument& in, std::
     SB_RETURN_IF_ERROR(CheckLabel(r.participant, "participant", name, r));
     SB_RETURN_IF_ERROR(CheckLabel(r.route, "route", name, r));
     if (r.answers.size() != in.items.size()) {
-      return Status::InvalidInput(Where(name, r) + "expected " + std::to_string(in.items.size()) +
-                                  " answers, got " + std::to_string(r.answers.size()));
+      return RowError(name, r,
+                      "expected " + std::to_string(in.items.size()) + " answers, got " +
+                          std::to_string(r.answers.size()));
     }
     for (size_t i = 0; i < r.answers.size(); ++i) {
       if (r.answers[i] && (*r.answers[i] < in.scale_min || *r.answers[i] > in.scale_max)) {
-        return Status::InvalidInput(Where(name, r) + "item " + in.items[i].id + ": answer " +
-                                    std::to_string(*r.answers[i]) + " outside the scale");
+        return RowError(name, r,
+                        "item " + in.items[i].id + ": answer " + std::to_string(*r.answers[i]) +
+                            " outside the scale");
       }
     }
     auto [pos, fresh] = seen.emplace(std::make_pair(r.participant, r.route), &r);
     if (!fresh) {
-      return Status::InvalidInput(Where(name, r) + "participant \"" + r.participant +
-                                  "\" answered route \"" + r.route + "\" twice (first on " +
-                                  LineRef(*pos->second) + ")");
+      return RowError(name, r,
+                      "participant \"" + r.participant + "\" answered route \"" + r.route +
+                          "\" twice (first on " + LineRef(*pos->second) + ")");
     }
     participants.insert(r.participant);
     routes.insert(r.route);
@@ -217,25 +226,26 @@ Status ValidateResponses(const ResponseTable& table, const Instrument& in, std::
                                   std::to_string(kMaxParticipants) + " participants");
     }
     if (routes.size() > kMaxRoutes) {
-      return Status::InvalidInput(Where(name, r) + "more than " + std::to_string(kMaxRoutes) +
-                                  " routes");
+      return RowError(name, r, "more than " + std::to_string(kMaxRoutes) + " routes");
     }
     if (r.ability) {
       if (!std::isfinite(*r.ability) || std::abs(*r.ability) > kMaxAbility) {
-        return Status::InvalidInput(Where(name, r) + "ability out of range");
+        return RowError(name, r, "ability out of range");
       }
       auto [a, first] = ability_of.emplace(r.participant, &r);
       if (!first && *a->second->ability != *r.ability) {
-        return Status::InvalidInput(Where(name, r) + "participant \"" + r.participant +
-                                    "\" has a different ability on " + LineRef(*a->second));
+        return RowError(name, r,
+                        "participant \"" + r.participant + "\" has a different ability on " +
+                            LineRef(*a->second));
       }
     }
     if (r.order) {
       auto [o, first] = order_of.emplace(std::make_pair(r.participant, *r.order), &r);
       if (!first) {
-        return Status::InvalidInput(Where(name, r) + "participant \"" + r.participant +
-                                    "\" gives climbing order " + std::to_string(*r.order) +
-                                    " to two routes (also on " + LineRef(*o->second) + ")");
+        return RowError(name, r,
+                        "participant \"" + r.participant + "\" gives climbing order " +
+                            std::to_string(*r.order) + " to two routes (also on " +
+                            LineRef(*o->second) + ")");
       }
     }
   }
@@ -243,8 +253,9 @@ Status ValidateResponses(const ResponseTable& table, const Instrument& in, std::
   for (const Response& r : table.rows) {
     if ((r.rank && (*r.rank < 1 || *r.rank > nroutes)) ||
         (r.order && (*r.order < 1 || *r.order > nroutes))) {
-      return Status::InvalidInput(Where(name, r) + "rank and order must lie in 1.." +
-                                  std::to_string(nroutes) + " (the number of routes)");
+      return RowError(
+          name, r,
+          "rank and order must lie in 1.." + std::to_string(nroutes) + " (the number of routes)");
     }
   }
   return Status::Ok();
@@ -274,7 +285,8 @@ Result<ResponseTable> ParseResponsesCsv(std::string_view text, std::string_view 
     Result<std::vector<std::string>> fields = SplitRow(lines[l], name, line);
     if (!fields.ok()) return fields.status();
     if (!have_header) {
-      if (line != 1) return Status::InvalidInput(At(name, line) + "the header must be line 1");
+      if (line != 1)
+        return Status::InvalidInputAt({std::string(name), line, 0}, "the header must be line 1");
       Result<Columns> c = ReadHeader(*fields, name, in);
       if (!c.ok()) return c.status();
       cols = std::move(*c);

@@ -85,6 +85,15 @@ TEST(Responses, RowErrorsNameTheLine) {
             "R.csv:2: rank and order must lie in 1..1 (the number of routes)");
 }
 
+TEST(Responses, ErrorLocationsAreData) {
+  Result<ResponseTable> r =
+      ParseResponsesCsv(std::string(kHeader) + "p1,1,1,2,x,4,5,1,1,10\n", "R.csv", Pilot());
+  ASSERT_FALSE(r.ok());
+  ASSERT_TRUE(r.status().location().has_value());
+  EXPECT_EQ(*r.status().location(), (SourceLocation{"R.csv", 2, 0}));
+  EXPECT_EQ(r.status().reason(), "item q3: \"x\" is not an integer (leave it empty for no answer)");
+}
+
 TEST(Responses, BallotStuffingIsAnErrorNamingBothLines) {
   const std::string h = kHeader;
   EXPECT_EQ(Error(h + "p1,1,1,2,3,4,5,1,1,10\np2,1,1,2,3,4,5,1,1,10\np1,1,5,5,5,5,5,1,1,10\n"),
