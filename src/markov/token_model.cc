@@ -21,7 +21,7 @@ namespace {
 constexpr char kMagic[8] = {'S', 'B', 'V', 'O', 'M', 'M', '\r', '\n'};
 // Version 1: parameters, vocabulary, metadata, training sequence (loading
 // retrains); byte-wise FNV-1a. Version 2 (written since): the same plus the
-// trained state, word-wise FNV-1a (internal::WordFnv1a64).
+// trained state, word-wise FNV-1a (WordFnv1a64).
 constexpr uint32_t kVersion1 = 1;
 constexpr uint32_t kVersion = 2;
 constexpr uint32_t kFlagVocabulary = 1;
@@ -140,7 +140,7 @@ std::string TokenModel::Serialize() const {
   model_->SaveState(&out);
   const uint64_t len = out.size() - begin;
   for (int i = 0; i < 8; ++i) out[len_at + i] = static_cast<char>((len >> (8 * i)) & 0xff);
-  PutU64(&out, internal::WordFnv1a64(out));
+  PutU64(&out, WordFnv1a64(out));
   return out;
 }
 
@@ -172,7 +172,7 @@ Result<TokenModel> TokenModel::Parse(std::string_view bytes, const std::string& 
     for (int i = 0; i < 8; ++i)
       stored |= uint64_t{static_cast<unsigned char>(bytes[bytes.size() - 8 + i])} << (8 * i);
     const std::string_view body = bytes.substr(0, bytes.size() - 8);
-    const uint64_t want = version == kVersion1 ? Fnv1a64(body) : internal::WordFnv1a64(body);
+    const uint64_t want = version == kVersion1 ? Fnv1a64(body) : WordFnv1a64(body);
     if (stored != want) return bad("checksum mismatch (file truncated or corrupted)");
   }
   if (!r.U32(&alg) || !r.U32(&depth) || !r.U32(&ab) || !r.U64(&alpha_bits) || !r.U32(&flags)) {

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "base/hash.h"
 #include "markov/bytes.h"
 
 namespace sb::markov {
@@ -57,7 +58,7 @@ size_t TrainingEnd(const std::string& b) {
 // Recomputes the trailing checksum (format 2) after editing a file's bytes.
 std::string Reseal(std::string bytes) {
   bytes.resize(bytes.size() - 8);
-  const uint64_t h = internal::WordFnv1a64(bytes);
+  const uint64_t h = WordFnv1a64(bytes);
   for (int i = 0; i < 8; ++i) bytes.push_back(static_cast<char>((h >> (8 * i)) & 0xff));
   return bytes;
 }
