@@ -21,8 +21,8 @@ TEST(Setting, InputFactsCarryTheCruxFlagsAndOneEstimatePerMove) {
   std::vector<bool> is_match = {true};
   auto f = InputFacts(Inputs(), difficulty::MatchRule::kText, &is_match);
   ASSERT_TRUE(f.ok()) << f.status().message();
-  EXPECT_EQ(f->crux, (std::vector<bool>{false, true, false, false, false, false, false, false,
-                                        false}));
+  EXPECT_EQ(f->crux,
+            (std::vector<bool>{false, true, false, false, false, false, false, false, false}));
   EXPECT_TRUE(is_match.empty());  // the text rule needs no flags
   if (!difficulty::DefaultModelPath().empty()) {
     EXPECT_EQ(f->difficulty.size(), 9u);

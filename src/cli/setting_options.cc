@@ -51,14 +51,12 @@ Result<app::SettingRequest> ResolveSettingOptions(const SettingOptions& o) {
   return r;
 }
 
-
 std::string FormatSettingReport(const app::SettingOutcome& o) {
   std::string out;
   if (o.search) {
     const chaos::SearchResult& s = *o.search;
     out += "# search: IC " + FormatTriple(s.used_ic) + " used, " + FormatDouble(s.distance, 4) +
-           " from " +
-           FormatTriple(s.requested_ic) + " asked for (" + std::to_string(s.evaluated) +
+           " from " + FormatTriple(s.requested_ic) + " asked for (" + std::to_string(s.evaluated) +
            " ICs evaluated)\n";
     for (const chaos::ConstraintOutcome& c : s.outcomes) {
       out += std::string("#   ") + chaos::ConstraintName(c.constraint) + ": " +
