@@ -68,7 +68,9 @@ struct ParserOptions {
   size_t max_parses = 256;
   // Only the first max_words in-vocabulary words of a line are parsed (the
   // rest are ignored), which bounds time and stack depth on absurd input.
-  size_t max_words = 64;
+  // At most kMaxWordsPerLine (larger values are clamped to it): the grammar's
+  // depth check (Grammar::max_parse_depth) assumes lines no longer.
+  size_t max_words = kMaxWordsPerLine;
 };
 
 // Parses lines with one grammar. Holds scratch buffers, so one Parser must not
@@ -82,7 +84,8 @@ class Parser {
   Parser& operator=(const Parser&) = delete;
 
   // Parses one line of text (no newline). Never fails: no parse is an empty
-  // ParseResult::parses.
+  // ParseResult::parses. Time is polynomial in the line's kept words for any
+  // grammar; stack depth is at most grammar().max_parse_depth() frames.
   ParseResult Parse(std::string_view text);
 
   // Appends exactly what Phoenix prints for `text` (EXTRACT:y, ALL_PARSES:y,
