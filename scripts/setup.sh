@@ -11,6 +11,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   wrk chromium chromium-driver nodejs npm
   poppler-utils fonts-dejavu-core
+  clang libclang-rt-dev
 )
 
 missing=()

@@ -515,10 +515,40 @@ void AppendPhoenixNode(const ParseNode& n, std::string* out) {
   for (const ParseNode& c : n.children) AppendPhoenixNode(c, out);
 }
 
+// Length of the well-formed UTF-8 sequence starting at s[i] (no overlongs,
+// surrogates or code points above U+10FFFF), or 0.
+size_t Utf8Length(std::string_view s, size_t i) {
+  unsigned char c = static_cast<unsigned char>(s[i]);
+  size_t len = c < 0x80 ? 1 : (c >> 5) == 6 ? 2 : (c >> 4) == 14 ? 3 : (c >> 3) == 30 ? 4 : 0;
+  if (len == 0 || i + len > s.size()) return 0;
+  uint32_t cp = len == 1 ? c : c & (0x7fu >> len);
+  for (size_t k = 1; k < len; ++k) {
+    unsigned char d = static_cast<unsigned char>(s[i + k]);
+    if ((d >> 6) != 2) return 0;
+    cp = (cp << 6) | (d & 0x3fu);
+  }
+  static const uint32_t kMin[5] = {0, 0, 0x80, 0x800, 0x10000};
+  if (cp < kMin[len] || cp > 0x10ffff || (cp >= 0xd800 && cp <= 0xdfff)) return 0;
+  return len;
+}
+
+// A JSON string; bytes that are not well-formed UTF-8 become U+FFFD, so the
+// output is valid JSON whatever the input line holds.
 void AppendJsonString(std::string_view s, std::string* out) {
   out->push_back('"');
-  for (char c : s) {
+  for (size_t i = 0; i < s.size(); ++i) {
+    char c = s[i];
     unsigned char u = static_cast<unsigned char>(c);
+    if (u >= 0x80) {
+      size_t len = Utf8Length(s, i);
+      if (len == 0) {
+        out->append("\ufffd");
+      } else {
+        out->append(s.substr(i, len));
+        i += len - 1;
+      }
+      continue;
+    }
     switch (c) {
       case '"':
         out->append("\\\"");

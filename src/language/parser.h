@@ -114,7 +114,8 @@ std::string FormatPhoenix(std::string_view text, const ParseResult& result);
 std::string FormatReadable(std::string_view text, const ParseResult& result);
 // One JSON object (one line): {"text":..., "words":[...], "parses":[{"slots":
 // [{"frame":..., "begin":..., "end":..., "words":[...], "tree":{"net":...,
-// "children":[...]}}]}]}; word leaves are JSON strings.
+// "children":[...]}}]}]}; word leaves are JSON strings. Always valid JSON:
+// bytes of the text that are not well-formed UTF-8 print as U+FFFD.
 std::string FormatJson(std::string_view text, const ParseResult& result);
 // The slot's tree in Phoenix notation: "[Move].[Hold].[HoldType].[HoldTypeT].jug ".
 std::string PhoenixSlotString(const ParseNode& tree);

@@ -262,3 +262,22 @@ TEST(ParserTest, MaxWordsIsClampedToTheGrammarLimit) {
 
 }  // namespace
 }  // namespace sb::language
+
+namespace sb::language {
+namespace {
+
+TEST(ParserTest, JsonIsValidForAnyBytes) {
+  // Found by fuzz_grammar: a stray byte (here 0xb0, a lone continuation
+  // byte) went into the JSON string as it was; now it is U+FFFD.
+  Parser p(Make(kMoves, kMoveFrames));
+  std::string text = "sloper to \xb0he right \xc3\xa9 \xed\xa0\x80 \xf4\x90\x80\x80 \xc0\xaf";
+  std::string json = FormatJson(text, p.Parse(text));
+  const std::string r = "\xef\xbf\xbd";  // U+FFFD
+  EXPECT_EQ(json.find("{\"text\":\"sloper to " + r + "he right \xc3\xa9 " + r + r + r + " " + r +
+                      r + r + r + " " + r + r + "\""),
+            0u)
+      << json;
+}
+
+}  // namespace
+}  // namespace sb::language

@@ -67,7 +67,8 @@ Status GetTriple(const json& j, const char* field, std::array<double, 3>* out) {
   if (!j.contains(field)) return Status::Ok();
   const json& v = j.at(field);
   if (v.is_string()) {
-    auto parts = Split(v.get<std::string>(), ',');
+    const std::string text = v.get<std::string>();  // Split's views point into it
+    auto parts = Split(text, ',');
     if (parts.size() != 3) return FieldError(field, "expected three numbers x,y,z");
     for (int i = 0; i < 3; ++i) {
       std::string_view t = Trim(parts[i]);
