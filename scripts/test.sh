@@ -8,20 +8,23 @@
 set -euo pipefail
 build=${1:-build}
 cd "$(dirname "$0")/.."
+stage() { echo "== $1 (at ${SECONDS} s)"; }
+stage "ctest $build"
 ctest --test-dir "$build" --output-on-failure -j "$(nproc)" --timeout 600
 for t in tests/*.sh; do
   [[ -e "$t" ]] || continue
-  echo "== $t"
+  stage "$t"
   bash "$t" "$build"
 done
 status=0
 if [[ "${SB_TEST_SANITIZE:-1}" != 0 ]]; then
-  echo "== scripts/sanitize.sh"
+  stage scripts/sanitize.sh
   bash scripts/sanitize.sh || status=1
 fi
 fuzz_seconds=${SB_TEST_FUZZ_SECONDS:-25}
 if [[ "$fuzz_seconds" != 0 ]]; then
-  echo "== scripts/fuzz.sh $fuzz_seconds"
+  stage "scripts/fuzz.sh $fuzz_seconds"
   bash scripts/fuzz.sh "$fuzz_seconds" || status=1
 fi
+stage "done, status $status"
 exit $status

@@ -6,8 +6,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 
-#include "base/files.h"
 #include "base/text.h"
 
 namespace sb::language {
@@ -32,14 +32,19 @@ bool IsMacroName(std::string_view t) {
 
 // Reads at most `limit` bytes of `path`; a longer file (or an endless one such
 // as /dev/zero) is an error naming the limit. Same errors as sb::ReadFile.
+// "-" reads standard input.
 Result<std::string> ReadBounded(const std::string& path, size_t limit, const char* what) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) return Status::IoError(path + ": is a directory");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    if (errno == ENOENT) return Status::NotFound(path + ": no such file");
-    return Status::IoError(path + ": " + std::strerror(errno));
+  std::ifstream file;
+  if (path != "-") {
+    file.open(path, std::ios::binary);
+    if (!file) {
+      if (errno == ENOENT) return Status::NotFound(path + ": no such file");
+      return Status::IoError(path + ": " + std::strerror(errno));
+    }
   }
+  std::istream& in = path == "-" ? std::cin : file;
   std::string data;
   char buf[1 << 16];
   while (in) {
