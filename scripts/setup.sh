@@ -13,6 +13,7 @@ PACKAGES=(
   poppler-utils fonts-dejavu-core
   libboost-dev python3-scipy
   python3 curl
+  clang libclang-rt-dev
 )
 
 missing=()
