@@ -121,12 +121,12 @@
     refresh();
     $('#save').addEventListener('click', async () => {
       const id = editor.dataset.routeId;
-      const body = { crdl: ta.value, public: $('#public').checked };
+      const body = { crdl: ta.value, public: $('#public').value === '1' };
       const r = id ? await api('PUT', '/api/routes/' + id, body) : await api('POST', '/api/routes', body);
       if (r.status === 200 || r.status === 201) {
         location.href = '/routes/' + (id || r.data.id);
       } else {
-        say($('#save-msg'), (r.data && r.data.error) || ('error ' + r.status));
+        say($('#save-msg'), humane((r.data && r.data.error) || ('error ' + r.status)));
       }
     });
   }

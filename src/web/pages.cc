@@ -220,6 +220,10 @@ std::string LoginPage(const PageViewer& v, bool signup) {
        title +
        "</button>"
        "<p class=\"msg\" id=\"form-msg\" role=\"alert\"></p></form>\n";
+  if (signup) {
+    b += "<p class=\"hint\" id=\"signup-rules\">User name: 1 to 40 letters, digits, dots, dashes "
+         "or underscores. Password: at least 8 characters.</p>\n";
+  }
   b += signup ? "<p>Already have an account? <a href=\"/login\">Log in</a>.</p>"
               : "<p>No account yet? <a href=\"/signup\">Sign up</a>.</p>";
   return Layout(v, title, b);
@@ -238,10 +242,14 @@ std::string EditorPage(const PageViewer& v, const std::optional<store::RouteReco
        "with L or R. Each move shows how the grammar reads it.</p>\n";
   b += "<div class=\"editor\" id=\"editor\" data-route-id=\"" +
        (route ? std::to_string(route->id) : std::string()) + "\">\n";
-  b += "<div class=\"pane\"><textarea id=\"crdl\" spellcheck=\"false\" rows=\"22\">" +
-       E(route ? route->crdl : std::string(kNewRouteTemplate)) + "</textarea>\n";
-  b += "<label class=\"inline\"><input type=\"checkbox\" id=\"public\"" +
-       std::string(!route || route->is_public ? " checked" : "") + "> Public</label>\n";
+  b += "<div class=\"pane\"><textarea id=\"crdl\" spellcheck=\"false\" rows=\"22\" "
+       "placeholder=\"" + E(kNewRouteTemplate) + "\">" + E(route ? route->crdl : std::string()) +
+       "</textarea>\n";
+  // Variations of private routes are private by default (and cannot be public).
+  const bool pub = route ? route->is_public : true;
+  b += "<label class=\"inline\">Who can see it <select id=\"public\"><option value=\"1\"" +
+       std::string(pub ? " selected" : "") + ">public: everyone</option><option value=\"0\"" +
+       std::string(pub ? "" : " selected") + ">private: only me</option></select></label>\n";
   b += "<button type=\"button\" id=\"save\">Save route</button> <span class=\"msg\" "
        "id=\"save-msg\" role=\"alert\"></span></div>\n";
   b += "<div class=\"pane\"><h2>How it reads</h2><ol class=\"feedback\" id=\"feedback\"></ol>"
