@@ -94,8 +94,17 @@
         const note = document.createElement('span');
         note.className = 'reading';
         if (l.kind === 'move') {
+          // The climbing part of the reading ("jug (big, good-hold)"), not the parser's internals.
+          const climbing = (l.reading || '').split(' — ')[0];
           note.textContent = (l.hand === 'L' ? 'left hand' : 'right hand') + (l.crux ? ' · crux' : '') +
-            ' · ' + (r.data.language ? (l.parsed ? l.reading : 'not understood by the grammar') : l.move);
+            ' · ' + (r.data.language ? (l.parsed ? climbing : 'not understood as a move') : l.move);
+          for (const d of (l.did_you_mean || [])) {
+            const dy = document.createElement('span');
+            dy.className = 'did-you-mean';
+            dy.textContent = ' · unknown word "' + d.word + '": did you mean "' + d.suggestion + '"?';
+            note.appendChild(dy);
+            li.classList.add('unparsed');
+          }
         } else if (l.kind === 'error') {
           note.textContent = l.error || 'not a move: start with L or R';
         } else if (l.kind === 'meta') {

@@ -111,6 +111,9 @@ void PostFeedback(Exchange& x) {
       j["crux"] = l.crux;
       j["parsed"] = l.parsed;
       j["reading"] = l.reading;
+      json dym = json::array();
+      for (const auto& [word, near] : l.did_you_mean) dym.push_back({{"word", word}, {"suggestion", near}});
+      j["did_you_mean"] = dym;
     }
     if (!l.error.empty()) j["error"] = l.error;
     lines.push_back(std::move(j));

@@ -40,6 +40,7 @@ std::string Layout(const PageViewer& v, const std::string& title, const std::str
   h += "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n";
   h += "<title>" + E(title) + " · Strange Beta</title>\n";
   if (v.logged_in) h += "<meta name=\"csrf-token\" content=\"" + E(v.csrf) + "\">\n";
+  h += "<link rel=\"icon\" href=\"/static/favicon.svg\" type=\"image/svg+xml\">\n";
   h += "<link rel=\"stylesheet\" href=\"/static/app.css\">\n";
   h += "<script src=\"/static/app.js\" defer></script>\n</head>\n";
   h += "<body class=\"" + E(page_class) + "\">\n<header class=\"top no-print\">\n";
@@ -79,7 +80,7 @@ std::string RouteRows(const std::vector<store::RouteRecord>& routes) {
 std::string MovesTable(const Route& route, const std::vector<std::string>& readings) {
   bool show = !readings.empty();
   std::string h = "<table class=\"moves\"><thead><tr><th>#</th><th>Hand</th><th>Move</th>" +
-                  std::string(show ? "<th>How the grammar reads it</th>" : "") +
+                  std::string(show ? "<th>How it reads</th>" : "") +
                   "</tr></thead><tbody>\n";
   for (size_t i = 0; i < route.moves.size(); ++i) {
     h += "<tr" + std::string(route.moves[i].crux ? " class=\"crux\"" : "") +
@@ -89,7 +90,7 @@ std::string MovesTable(const Route& route, const std::vector<std::string>& readi
     if (show) {
       std::string r = i < readings.size() ? readings[i] : "";
       h += r.empty() ? "<td class=\"reading unparsed\">not understood</td>"
-                     : "<td class=\"reading\">" + E(r) + "</td>";
+                     : "<td class=\"reading\">" + E(r.substr(0, r.find(" \xE2\x80\x94 "))) + "</td>";
     }
     h += "</tr>\n";
   }

@@ -32,6 +32,14 @@ module.exports = async (t) => {
   t.state.routeId = Number(page.url().match(/\/routes\/(\d+)$/)[1]);
   check((await page.textContent('h1')).includes('Browser Test Arete'), 'route saved and shown');
   await shot('05-route');
+  // An unknown word gets a did-you-mean from the grammar's vocabulary.
+  await page.goto(base + '/routes/new');
+  await page.fill('#crdl', 'name: Typo\n---\nR crmip\n');
+  await page.waitForSelector('#feedback .did-you-mean');
+  check((await page.textContent('#feedback .did-you-mean')).includes('"crimp"'), '"crmip" is flagged: did you mean "crimp"?');
+  await shot('04b-editor-did-you-mean');
+  const icon = await page.request.get(base + '/static/favicon.svg');
+  check(icon.status() === 200 && (await page.$('link[rel=icon]')) !== null, 'the pages have a favicon');
   await page.goto(base + '/?q=arete');
   check((await page.textContent('#route-list')).includes('Browser Test Arete'), 'search finds the route');
 };
