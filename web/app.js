@@ -438,6 +438,15 @@
   // ---- plan page ----
   const printBtn = $('#print');
   if (printBtn) printBtn.addEventListener('click', () => window.print());
+  const plan = $('#plan');
+  if (plan && new URLSearchParams(location.search).get('existing') === '1') {
+    const p = document.createElement('p');
+    p.className = 'notice no-print';
+    p.id = 'existing';
+    p.textContent = 'You made this variation before from the same routes and parameters: here it is. ' +
+      'Tick "Make a new copy" on the vary page for a second one.';
+    plan.parentNode.insertBefore(p, plan);
+  }
 
   // ---- import page ----
   const importCrdl = $('#import-crdl');

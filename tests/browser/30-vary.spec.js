@@ -64,7 +64,8 @@ module.exports = async (t) => {
   check(page.url() === formUrl, 'the form URL is the same after Back');
   // The same form again returns the same variation.
   await Promise.all([page.waitForURL(/\/variations\/\d+/), page.click('#generate')]);
-  check(Number(page.url().match(/\/variations\/(\d+)/)[1]) === varId, 'generating the same form again gives the same variation');
+  check(Number(page.url().match(/\/variations\/(\d+)/)[1]) === varId && await page.isVisible('#existing'),
+        'generating the same form again gives the same variation, and says so');
   // A reload of a shared link restores the form too.
   await page.goto(formUrl);
   const again = await page.$$eval('#chosen li', (ls) => ls.map((l) => Number(l.dataset.id)));
