@@ -7,10 +7,11 @@ PACKAGES=(
   build-essential cmake pkg-config ninja-build
   libcli11-dev nlohmann-json3-dev
   libsqlite3-dev libcpp-httplib-dev libcairo2-dev libsodium-dev
+  libpango1.0-dev libqrencode-dev
   libopenmpi-dev openmpi-bin
   libgtest-dev libgmock-dev libbenchmark-dev
   wrk chromium chromium-driver nodejs npm
-  poppler-utils fonts-dejavu-core
+  poppler-utils fonts-dejavu-core fonts-noto-cjk zbar-tools
   libboost-dev python3-scipy
   python3 curl
   clang libclang-rt-dev

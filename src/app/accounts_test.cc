@@ -181,6 +181,15 @@ class NoCountStore final : public store::Store {
   Result<std::vector<store::RouteRecord>> ListRoutes(const store::RouteFilter& f) override {
     return s_->ListRoutes(f);
   }
+  Result<int64_t> CountRoutes(const store::RouteFilter& f) override {
+    return s_->CountRoutes(f);
+  }
+  Result<int64_t> FindVariationByKey(int64_t owner, const std::string& key) override {
+    return s_->FindVariationByKey(owner, key);
+  }
+  Status UpdateRouteMetadata(const store::RouteRecord& r) override {
+    return s_->UpdateRouteMetadata(r);
+  }
   Result<std::vector<store::RouteRecord>> AllRoutes(std::optional<int64_t> o) override {
     return s_->AllRoutes(o);
   }

@@ -2,6 +2,7 @@
 
 #include <sqlite3.h>
 
+#include <algorithm>
 #include <ctime>
 #include <mutex>
 #include <string_view>
@@ -100,6 +101,36 @@ CREATE INDEX routes_owner ON routes(owner_id);
 CREATE INDEX routes_public ON routes(is_public, id);
 ALTER TABLE login_failures RENAME TO attempts;
 )sql",
+    // 4: route metadata (hold colour, wall, date set, the grade's discipline
+    // and normalised value; filled by the application layer, meta_version
+    // says which version filled a row), the request digest of a variation
+    // (the same request twice finds the first), and every route a variation
+    // was made from, transitively (the visibility rule checks them all).
+    R"sql(
+ALTER TABLE routes ADD COLUMN colour TEXT NOT NULL DEFAULT '';
+ALTER TABLE routes ADD COLUMN wall TEXT NOT NULL DEFAULT '';
+ALTER TABLE routes ADD COLUMN set_on TEXT NOT NULL DEFAULT '';
+ALTER TABLE routes ADD COLUMN grade_discipline TEXT NOT NULL DEFAULT '';
+ALTER TABLE routes ADD COLUMN grade_value REAL;
+ALTER TABLE routes ADD COLUMN meta_version INTEGER NOT NULL DEFAULT 0;
+ALTER TABLE routes ADD COLUMN request_key TEXT NOT NULL DEFAULT '';
+CREATE INDEX routes_grade ON routes(grade_discipline, grade_value);
+CREATE INDEX routes_request ON routes(owner_id, request_key);
+CREATE TABLE route_sources (
+  variation_id INTEGER NOT NULL REFERENCES routes(id) ON DELETE CASCADE,
+  route_id     INTEGER NOT NULL REFERENCES routes(id) ON DELETE CASCADE,
+  PRIMARY KEY (variation_id, route_id)
+);
+CREATE INDEX route_sources_route ON route_sources(route_id);
+WITH RECURSIVE closure(variation_id, route_id) AS (
+  SELECT variation_id, route_id FROM variation_inputs WHERE route_id IS NOT NULL
+  UNION
+  SELECT c.variation_id, vi.route_id FROM closure c
+    JOIN variation_inputs vi ON vi.variation_id = c.route_id
+    WHERE vi.route_id IS NOT NULL)
+INSERT OR IGNORE INTO route_sources(variation_id, route_id)
+  SELECT variation_id, route_id FROM closure WHERE variation_id <> route_id;
+)sql",
 };
 static_assert(sizeof(kMigrations) / sizeof(kMigrations[0]) == kSchemaVersion);
 
@@ -131,6 +162,18 @@ class Stmt {
     sqlite3_bind_text(s_, i, v.data(), static_cast<int>(v.size()), SQLITE_TRANSIENT);
     return *this;
   }
+  Stmt& Bind(int i, double v) {
+    sqlite3_bind_double(s_, i, v);
+    return *this;
+  }
+  Stmt& Bind(int i, std::optional<double> v) {
+    if (v) {
+      sqlite3_bind_double(s_, i, *v);
+    } else {
+      sqlite3_bind_null(s_, i);
+    }
+    return *this;
+  }
   Stmt& Bind(int i, std::optional<int64_t> v) {
     if (v) {
       sqlite3_bind_int64(s_, i, *v);
@@ -142,6 +185,7 @@ class Stmt {
   // SQLITE_ROW, SQLITE_DONE or an error code.
   int Step() { return prepared() ? sqlite3_step(s_) : rc_; }
   int64_t Int(int col) { return sqlite3_column_int64(s_, col); }
+  double Double(int col) { return sqlite3_column_double(s_, col); }
   bool IsNull(int col) { return sqlite3_column_type(s_, col) == SQLITE_NULL; }
   std::string Text(int col) {
     const unsigned char* p = sqlite3_column_text(s_, col);
@@ -349,7 +393,8 @@ class SqliteStore final : public Store {
     std::lock_guard<std::mutex> lock(mu_);
     Stmt s(db_,
            "UPDATE routes SET crdl = ?, name = ?, grade = ?, setter = ?, is_public = ?, "
-           "move_count = ?, updated_at = ? WHERE id = ?");
+           "move_count = ?, updated_at = ?, colour = ?, wall = ?, set_on = ?, "
+           "grade_discipline = ?, grade_value = ?, meta_version = ?, request_key = ? WHERE id = ?");
     s.Bind(1, route.crdl)
         .Bind(2, route.name)
         .Bind(3, route.grade)
@@ -357,8 +402,35 @@ class SqliteStore final : public Store {
         .Bind(5, static_cast<int64_t>(route.is_public))
         .Bind(6, static_cast<int64_t>(route.move_count))
         .Bind(7, NowText())
-        .Bind(8, route.id);
+        .Bind(8, route.colour)
+        .Bind(9, route.wall)
+        .Bind(10, route.set_on)
+        .Bind(11, route.grade_discipline)
+        .Bind(12, route.grade_value)
+        .Bind(13, static_cast<int64_t>(route.meta_version))
+        .Bind(14, route.request_key)
+        .Bind(15, route.id);
     if (s.Step() != SQLITE_DONE) return s.Error("update route");
+    if (sqlite3_changes(db_) == 0) return Status::NotFound("no route " + std::to_string(route.id));
+    return Status::Ok();
+  }
+
+  Status UpdateRouteMetadata(const RouteRecord& route) override {
+    std::lock_guard<std::mutex> lock(mu_);
+    Stmt s(db_,
+           "UPDATE routes SET name = ?, grade = ?, setter = ?, colour = ?, wall = ?, set_on = ?, "
+           "grade_discipline = ?, grade_value = ?, meta_version = ? WHERE id = ?");
+    s.Bind(1, route.name)
+        .Bind(2, route.grade)
+        .Bind(3, route.setter)
+        .Bind(4, route.colour)
+        .Bind(5, route.wall)
+        .Bind(6, route.set_on)
+        .Bind(7, route.grade_discipline)
+        .Bind(8, route.grade_value)
+        .Bind(9, static_cast<int64_t>(route.meta_version))
+        .Bind(10, route.id);
+    if (s.Step() != SQLITE_DONE) return s.Error("update route metadata");
     if (sqlite3_changes(db_) == 0) return Status::NotFound("no route " + std::to_string(route.id));
     return Status::Ok();
   }
@@ -381,47 +453,46 @@ class SqliteStore final : public Store {
     if (rc == SQLITE_DONE) return Status::NotFound("no route " + std::to_string(id));
     if (rc != SQLITE_ROW) return s.Error("get route");
     RouteRecord r = ReadRoute(s, true);
-    Stmt in(db_,
-            "SELECT route_id, name, crdl FROM variation_inputs WHERE variation_id = ? "
-            "ORDER BY position");
-    in.Bind(1, id);
-    while ((rc = in.Step()) == SQLITE_ROW) {
-      VariationInput vi;
-      if (!in.IsNull(0)) vi.route_id = in.Int(0);
-      vi.name = in.Text(1);
-      vi.crdl = in.Text(2);
-      r.inputs.push_back(std::move(vi));
-    }
-    if (rc != SQLITE_DONE) return in.Error("get variation inputs");
+    SB_RETURN_IF_ERROR(ReadLinks(&r));
     return r;
   }
 
   Result<std::vector<RouteRecord>> ListRoutes(const RouteFilter& f) override {
     std::lock_guard<std::mutex> lock(mu_);
-    std::string sql = std::string(kSelect) + " WHERE (r.is_public = 1 OR r.owner_id = ?1)";
-    if (!f.grade.empty()) sql += " AND r.grade = ?2 COLLATE NOCASE";
-    if (!f.setter.empty())
-      sql +=
-          " AND (instr(lower(r.setter), lower(?3)) > 0 OR "
-          "instr(lower(ifnull(u.username,'')), lower(?3)) > 0)";
-    if (!f.text.empty())
-      sql +=
-          " AND (instr(lower(r.name), lower(?4)) > 0 OR "
-          "instr(lower(r.crdl), lower(?4)) > 0)";
-    if (f.is_variation)
-      sql += *f.is_variation ? " AND r.is_variation = 1" : " AND r.is_variation = 0";
-    sql += " ORDER BY r.id DESC LIMIT ?5";
+    Where w = FilterWhere(f);
+    size_t n = 2 + w.texts.size() + w.numbers.size();
+    std::string sql = std::string(kSelect) + w.sql + OrderBy(f.sort) + " LIMIT ?" +
+                      std::to_string(n) + " OFFSET ?" + std::to_string(n + 1);
     Stmt s(db_, sql);
-    s.Bind(1, f.viewer.value_or(-1));
-    if (!f.grade.empty()) s.Bind(2, f.grade);
-    if (!f.setter.empty()) s.Bind(3, f.setter);
-    if (!f.text.empty()) s.Bind(4, f.text);
-    s.Bind(5, static_cast<int64_t>(f.limit));
+    BindWhere(s, f, w);
+    s.Bind(static_cast<int>(n), static_cast<int64_t>(std::max(0, f.limit)));
+    s.Bind(static_cast<int>(n + 1), static_cast<int64_t>(std::max(0, f.offset)));
     std::vector<RouteRecord> out;
     int rc;
     while ((rc = s.Step()) == SQLITE_ROW) out.push_back(ReadRoute(s, false));
     if (rc != SQLITE_DONE) return s.Error("list routes");
     return out;
+  }
+
+  Result<int64_t> CountRoutes(const RouteFilter& f) override {
+    std::lock_guard<std::mutex> lock(mu_);
+    Where w = FilterWhere(f);
+    Stmt s(db_, "SELECT COUNT(*) FROM routes r LEFT JOIN users u ON u.id = r.owner_id" + w.sql);
+    BindWhere(s, f, w);
+    if (s.Step() != SQLITE_ROW) return s.Error("count routes");
+    return s.Int(0);
+  }
+
+  Result<int64_t> FindVariationByKey(int64_t owner, const std::string& request_key) override {
+    std::lock_guard<std::mutex> lock(mu_);
+    Stmt s(db_,
+           "SELECT id FROM routes WHERE owner_id = ? AND request_key = ? AND request_key <> '' "
+           "AND is_variation = 1 ORDER BY id DESC LIMIT 1");
+    s.Bind(1, owner).Bind(2, request_key);
+    int rc = s.Step();
+    if (rc == SQLITE_DONE) return Status::NotFound("no such variation");
+    if (rc != SQLITE_ROW) return s.Error("find variation");
+    return s.Int(0);
   }
 
   Result<std::vector<RouteRecord>> AllRoutes(std::optional<int64_t> owner) override {
@@ -435,21 +506,7 @@ class SqliteStore final : public Store {
     int rc;
     while ((rc = s.Step()) == SQLITE_ROW) out.push_back(ReadRoute(s, true));
     if (rc != SQLITE_DONE) return s.Error("all routes");
-    for (RouteRecord& r : out) {
-      if (!r.is_variation) continue;
-      Stmt in(db_,
-              "SELECT route_id, name, crdl FROM variation_inputs WHERE variation_id = ? "
-              "ORDER BY position");
-      in.Bind(1, r.id);
-      while ((rc = in.Step()) == SQLITE_ROW) {
-        VariationInput vi;
-        if (!in.IsNull(0)) vi.route_id = in.Int(0);
-        vi.name = in.Text(1);
-        vi.crdl = in.Text(2);
-        r.inputs.push_back(std::move(vi));
-      }
-      if (rc != SQLITE_DONE) return in.Error("all variation inputs");
-    }
+    for (RouteRecord& r : out) SB_RETURN_IF_ERROR(ReadLinks(&r));
     return out;
   }
 
@@ -457,7 +514,17 @@ class SqliteStore final : public Store {
   static constexpr const char* kSelect =
       "SELECT r.id, r.owner_id, ifnull(u.username,''), r.name, r.grade, r.setter, r.crdl, "
       "r.is_public, r.is_variation, r.params_json, r.plan_json, r.smooth, r.created_at, "
-      "r.updated_at, r.move_count FROM routes r LEFT JOIN users u ON u.id = r.owner_id";
+      "r.updated_at, r.move_count, r.colour, r.wall, r.set_on, r.grade_discipline, "
+      "r.grade_value, r.meta_version, r.request_key "
+      "FROM routes r LEFT JOIN users u ON u.id = r.owner_id";
+
+  // The visibility rule in SQL (?1 = the viewer, -1 for none): the row is
+  // public or the viewer's, and so is every route it was made from. The
+  // application layer's app::IsVisible is the same rule over RouteRecord.
+  static constexpr const char* kVisible =
+      "(r.is_public = 1 OR r.owner_id = ?1) AND NOT EXISTS (SELECT 1 FROM route_sources s "
+      "JOIN routes src ON src.id = s.route_id WHERE s.variation_id = r.id AND src.is_public = 0 "
+      "AND (src.owner_id IS NULL OR src.owner_id <> ?1))";
 
   static RouteRecord ReadRoute(Stmt& s, bool full) {
     RouteRecord r;
@@ -476,7 +543,109 @@ class SqliteStore final : public Store {
     r.created_at = s.Text(12);
     r.updated_at = s.Text(13);
     r.move_count = static_cast<int>(s.Int(14));
+    r.colour = s.Text(15);
+    r.wall = s.Text(16);
+    r.set_on = s.Text(17);
+    r.grade_discipline = s.Text(18);
+    if (!s.IsNull(19)) r.grade_value = s.Double(19);
+    r.meta_version = static_cast<int>(s.Int(20));
+    r.request_key = s.Text(21);
     return r;
+  }
+
+  // Inputs and sources of a variation (no-op for routes).
+  Status ReadLinks(RouteRecord* r) {
+    if (!r->is_variation) return Status::Ok();
+    Stmt in(db_,
+            "SELECT route_id, name, crdl FROM variation_inputs WHERE variation_id = ? "
+            "ORDER BY position");
+    in.Bind(1, r->id);
+    int rc;
+    while ((rc = in.Step()) == SQLITE_ROW) {
+      VariationInput vi;
+      if (!in.IsNull(0)) vi.route_id = in.Int(0);
+      vi.name = in.Text(1);
+      vi.crdl = in.Text(2);
+      r->inputs.push_back(std::move(vi));
+    }
+    if (rc != SQLITE_DONE) return in.Error("get variation inputs");
+    Stmt src(db_,
+             "SELECT src.id, src.is_public, src.owner_id FROM route_sources s JOIN routes src "
+             "ON src.id = s.route_id WHERE s.variation_id = ? ORDER BY src.id");
+    src.Bind(1, r->id);
+    while ((rc = src.Step()) == SQLITE_ROW) {
+      SourceRoute sr;
+      sr.route_id = src.Int(0);
+      sr.is_public = src.Int(1) != 0;
+      if (!src.IsNull(2)) sr.owner_id = src.Int(2);
+      r->sources.push_back(sr);
+    }
+    if (rc != SQLITE_DONE) return src.Error("get variation sources");
+    return Status::Ok();
+  }
+
+  // The WHERE clause and its bound values of a route filter (parameter 1 is
+  // the viewer; the others are numbered from 2).
+  struct Where {
+    std::string sql;
+    std::vector<std::string> texts;  // bound as ?2, ?3, ... in order
+    std::vector<double> numbers;     // bound after the texts
+  };
+  static Where FilterWhere(const RouteFilter& f) {
+    Where w;
+    w.sql = std::string(" WHERE ") + kVisible;
+    auto text = [&](const std::string& v) {
+      w.texts.push_back(v);
+      return "?" + std::to_string(1 + w.texts.size());
+    };
+    if (!f.grade.empty()) w.sql += " AND r.grade = " + text(f.grade) + " COLLATE NOCASE";
+    if (!f.setter.empty()) {
+      std::string p = text(f.setter);
+      w.sql += " AND (instr(lower(r.setter), lower(" + p + ")) > 0 OR instr(lower(ifnull(" +
+               "u.username,'')), lower(" + p + ")) > 0)";
+    }
+    if (!f.text.empty()) {
+      std::string p = text(f.text);
+      w.sql += " AND (instr(lower(r.name), lower(" + p + ")) > 0 OR instr(lower(r.crdl), lower(" +
+               p + ")) > 0 OR instr(lower(ifnull(u.username,'')), lower(" + p + ")) > 0)";
+    }
+    if (!f.wall.empty()) w.sql += " AND instr(lower(r.wall), lower(" + text(f.wall) + ")) > 0";
+    if (f.is_variation) {
+      w.sql += *f.is_variation ? " AND r.is_variation = 1" : " AND r.is_variation = 0";
+    }
+    if (f.owner) w.sql += " AND r.owner_id = " + std::to_string(*f.owner);
+    if (!f.grade_discipline.empty()) {
+      w.sql += " AND r.grade_discipline = " + text(f.grade_discipline) +
+               " AND r.grade_value IS NOT NULL";
+      size_t first = 2 + w.texts.size();
+      if (f.grade_min) {
+        w.sql += " AND r.grade_value >= ?" + std::to_string(first + w.numbers.size());
+        w.numbers.push_back(*f.grade_min);
+      }
+      if (f.grade_max) {
+        w.sql += " AND r.grade_value <= ?" + std::to_string(first + w.numbers.size());
+        w.numbers.push_back(*f.grade_max);
+      }
+    }
+    return w;
+  }
+  static void BindWhere(Stmt& s, const RouteFilter& f, const Where& w) {
+    s.Bind(1, f.viewer.value_or(-1));
+    int i = 2;
+    for (const std::string& t : w.texts) s.Bind(i++, t);
+    for (double d : w.numbers) s.Bind(i++, d);
+  }
+  static const char* OrderBy(RouteSort sort) {
+    switch (sort) {
+      case RouteSort::kNewest: return " ORDER BY r.id DESC";
+      case RouteSort::kOldest: return " ORDER BY r.id ASC";
+      case RouteSort::kName: return " ORDER BY r.name COLLATE NOCASE, r.id";
+      case RouteSort::kEasiest:
+        return " ORDER BY (r.grade_value IS NULL), r.grade_discipline, r.grade_value, r.id";
+      case RouteSort::kHardest:
+        return " ORDER BY (r.grade_value IS NULL), r.grade_discipline, r.grade_value DESC, r.id";
+    }
+    return " ORDER BY r.id DESC";
   }
 
   Result<User> ReadUser(Stmt& s, const std::string& not_found) {
@@ -496,8 +665,9 @@ class SqliteStore final : public Store {
     std::string now = r.created_at.empty() ? NowText() : r.created_at;
     Stmt s(db_,
            "INSERT INTO routes(owner_id, name, grade, setter, crdl, move_count, is_public, "
-           "is_variation, params_json, plan_json, smooth, created_at, updated_at) "
-           "VALUES(?,?,?,?,?,?,?,?,?,?,?,?,?)");
+           "is_variation, params_json, plan_json, smooth, created_at, updated_at, colour, wall, "
+           "set_on, grade_discipline, grade_value, meta_version, request_key) "
+           "VALUES(?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?)");
     s.Bind(1, r.owner_id)
         .Bind(2, r.name)
         .Bind(3, r.grade)
@@ -510,7 +680,14 @@ class SqliteStore final : public Store {
         .Bind(10, r.plan_json)
         .Bind(11, static_cast<int64_t>(r.smooth))
         .Bind(12, now)
-        .Bind(13, now);
+        .Bind(13, now)
+        .Bind(14, r.colour)
+        .Bind(15, r.wall)
+        .Bind(16, r.set_on)
+        .Bind(17, r.grade_discipline)
+        .Bind(18, r.grade_value)
+        .Bind(19, static_cast<int64_t>(r.meta_version))
+        .Bind(20, r.request_key);
     if (s.Step() != SQLITE_DONE) return s.Error("insert route");
     int64_t id = sqlite3_last_insert_rowid(db_);
     for (size_t i = 0; i < r.inputs.size(); ++i) {
@@ -536,6 +713,16 @@ class SqliteStore final : public Store {
                                 " does not exist");
       }
       if (rc != SQLITE_DONE) return in.Error("insert variation input");
+    }
+    if (!r.inputs.empty()) {
+      // Its sources: the inputs and, transitively, what they were made from.
+      Stmt src(db_,
+               "INSERT OR IGNORE INTO route_sources(variation_id, route_id) "
+               "SELECT ?1, route_id FROM variation_inputs WHERE variation_id = ?1 AND "
+               "route_id IS NOT NULL UNION SELECT ?1, s.route_id FROM route_sources s JOIN "
+               "variation_inputs vi ON s.variation_id = vi.route_id WHERE vi.variation_id = ?1");
+      src.Bind(1, id);
+      if (src.Step() != SQLITE_DONE) return src.Error("insert variation sources");
     }
     return id;
   }
