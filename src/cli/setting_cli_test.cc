@@ -240,6 +240,53 @@ TEST_F(SettingCli, AStarSmoothingSuggestionsCarryTheirMethod) {
   EXPECT_NE(err.find("none.sbg"), std::string::npos) << err;
 }
 
+TEST_F(SettingCli, VaryTokensVariesSequencesAndNamesPositions) {
+  std::ofstream(dir_ / "ode.txt") << "# Ode\nE4|q\nE4|q\nF4|q\nG4|q\nG4|q\nF4|q\nE4|q\nD4|q\n";
+  std::ofstream(dir_ / "tw.txt") << "C4|q\nC4|q\nG4|q\nG4|q\nA4|q\nA4|q\nG4|h\n";
+  std::string ode = (dir_ / "ode.txt").string(), tw = (dir_ / "tw.txt").string();
+  std::vector<std::string> args = {"--tokens", ode, "--tokens", tw, "--keep-start",
+                                   "--max-repeat", "2", "--format", "json"};
+  ASSERT_EQ(Run(RunVary, args), 0);
+  std::string first = out_;
+  ASSERT_EQ(Run(RunVary, args), 0);
+  EXPECT_EQ(out_, first);
+  auto j = nlohmann::json::parse(first);
+  EXPECT_EQ(j["kind"], "tokens");
+  ASSERT_EQ(j["positions"].size(), 15u);
+  EXPECT_EQ(j["positions"][0]["source"]["position"], 0);
+  EXPECT_EQ(j["inputs"][0]["name"], "ode");
+  EXPECT_TRUE(j["search"].is_object());
+  ASSERT_EQ(Run(RunVary, {"--tokens", ode}), 0);
+  EXPECT_NE(out_.find("token"), std::string::npos) << out_;
+  // A* over a graph of the tokens bridges the seams.
+  std::ofstream(dir_ / "melody.tok") << "E4|q E4|q F4|q G4|q G4|q F4|q E4|q D4|q\n"
+                                        "C4|q C4|q G4|q G4|q A4|q A4|q G4|h\n";
+  std::string graph = (dir_ / "melody.sbg").string();
+  ASSERT_EQ(Run(RunGraph, {"train", "--out", graph, (dir_ / "melody.tok").string()}), 0);
+  ASSERT_EQ(Run(RunVary, {"--tokens", ode, "--tokens", tw, "--smooth-method", "astar",
+                          "--smooth", graph, "--format", "json"}),
+            0);
+  auto a = nlohmann::json::parse(out_);
+  EXPECT_EQ(a["smoothing"]["method"], "astar");
+  // What tokens cannot take is refused naming the option; so is a bad file or a mix.
+  std::string err;
+  for (const char* opt : {"--alternate-hands", "--crux-window"}) {
+    std::vector<std::string> bad = {"--tokens", ode, opt};
+    if (std::string(opt) == "--crux-window") bad.push_back("0.2,0.8");
+    EXPECT_EQ(Run(RunVary, bad, &err), 2);
+    EXPECT_NE(err.find(opt), std::string::npos) << err;
+  }
+  EXPECT_EQ(Run(RunVary, {"--tokens", ode, "--match", "grammar"}, &err), 2);
+  EXPECT_NE(err.find("--match"), std::string::npos) << err;
+  EXPECT_EQ(Run(RunVary, {"--tokens", ode, "--smooth", "default"}, &err), 2);
+  EXPECT_NE(err.find("--smooth-method"), std::string::npos) << err;
+  std::ofstream(dir_ / "bad.txt") << "E4|q\nE4|q D4|q\n";
+  EXPECT_EQ(Run(RunVary, {"--tokens", (dir_ / "bad.txt").string()}, &err), 2);
+  EXPECT_NE(err.find("bad.txt:2:5:"), std::string::npos) << err;
+  EXPECT_EQ(Run(RunVary, {Example("edge-crack"), "--tokens", ode}, &err), 2);
+  EXPECT_NE(err.find("--tokens"), std::string::npos) << err;
+}
+
 TEST_F(SettingCli, PickKeepsOnlyCandidatesMeetingTheConstraints) {
   std::vector<std::string> args = {"--effect", "20", "--change", "5", "--grid", "11",
                                    "--plane", "xy", "--count", "3", "--keep-start",
