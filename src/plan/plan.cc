@@ -441,6 +441,14 @@ std::vector<std::string> AnnotationLines(const RoutePlan& plan) {
 
 }  // namespace
 
+std::vector<std::string> PlanNotes(const RoutePlan& plan) {
+  std::vector<std::string> out = AnnotationLines(plan);
+  if (plan.profile && plan.profile->hardest_first >= 0) {
+    out.push_back("Hardest stretch: " + HardestText(plan));
+  }
+  return out;
+}
+
 std::string RenderText(const RoutePlan& plan) {
   const auto& moves = plan.variation.moves;
   const Words words = WordsOf(plan);

@@ -148,6 +148,12 @@ std::string ReproduceOptions(const chaos::VaryParams& p, const SetterOptions& se
 // change summary, and the difficulty profile (a column of estimates, the
 // hardest stretch marked "*"). Token plans name positions and tokens.
 std::string RenderText(const RoutePlan& plan);
+// The annotations as the text plan prints them above its table, one line per
+// element (pages and cards show them): the estimated grade, the IC search and
+// each constraint ("  keep-start: held (...)", indented), the warnings, the
+// change summary, and "Hardest stretch: moves 14-19 (mean estimate 0.31)".
+// Empty for a plan without annotations. Pure; deterministic.
+std::vector<std::string> PlanNotes(const RoutePlan& plan);
 std::string RenderMarkdown(const RoutePlan& plan);
 // The JSON plan of docs/formats.md ("vary --format json"): one line per
 // top-level field, per move and per trajectory point. Route plans have

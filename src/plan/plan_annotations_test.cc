@@ -155,6 +155,19 @@ TEST(PlanAnnotations, TextAndMarkdownShowTheAnnotations) {
   }
 }
 
+TEST(PlanAnnotations, PlanNotesListTheAnnotationsForPages) {
+  RoutePlan p = Annotated();
+  std::vector<std::string> notes = PlanNotes(p);
+  ASSERT_FALSE(notes.empty());
+  std::string all;
+  for (const std::string& n : notes) all += n + "\n";
+  EXPECT_NE(all.find("5.10"), std::string::npos) << all;
+  EXPECT_NE(all.find("keep-start: held"), std::string::npos) << all;
+  EXPECT_NE(all.find("Summary: "), std::string::npos) << all;
+  EXPECT_NE(all.find("Hardest stretch: "), std::string::npos) << all;
+  EXPECT_TRUE(PlanNotes(RoutePlan{p.variation, {}, ""}).empty());
+}
+
 TEST(PlanAnnotations, SuggestionCostsReadRightForBothMethods) {
   Suggestion v;
   v.bits_before = 10;

@@ -365,8 +365,15 @@ std::string PlanPage(const PageViewer& v, const store::RouteRecord& rec, const p
        "); mapping " + chaos::MappingKindName(p.mapping.kind) + ", mask " +
        chaos::MaskString(p.mapping.mask) +
        (p.mapping.max_repeat ? ", max repeat " + std::to_string(p.mapping.max_repeat) : "") +
-       ".</p><p class=\"repro no-print\"><code>strangebeta vary " + E(plan::ReproduceOptions(p)) +
+       ".</p><p class=\"repro no-print\"><code>strangebeta vary " + E(plan::ReproduceOptions(p, plan.setter)) +
        " ROUTES…</code></p>\n";
+  // The setter's annotations (issues 13, 15): grade estimate, IC search,
+  // warnings, change summary, hardest stretch (plan::PlanNotes).
+  if (std::vector<std::string> notes = plan::PlanNotes(plan); !notes.empty()) {
+    b += "<h2>Setter's notes</h2><ul class=\"plan-notes\">";
+    for (const std::string& n : notes) b += "<li>" + E(n) + "</li>";
+    b += "</ul>\n";
+  }
   b += "<h2>Smoothing</h2><p>";
   if (!plan.smoothing.empty()) {
     b += std::to_string(plan.smoothing.size()) + " suggestion(s) from " + E(plan.smoothing_model) +
