@@ -370,9 +370,10 @@ std::string PlanPage(const PageViewer& v, const store::RouteRecord& rec, const p
   // The setter's annotations (issues 13, 15): grade estimate, IC search,
   // warnings, change summary, hardest stretch (plan::PlanNotes).
   if (std::vector<std::string> notes = plan::PlanNotes(plan); !notes.empty()) {
-    b += "<h2>Setter's notes</h2><ul class=\"plan-notes\">";
+    // Screen only: the printed sheet is the card's layout (one page).
+    b += "<div class=\"plan-notes no-print\"><h2>Setter's notes</h2><ul>";
     for (const std::string& n : notes) b += "<li>" + E(n) + "</li>";
-    b += "</ul>\n";
+    b += "</ul></div>\n";
   }
   b += "<h2>Smoothing</h2><p>";
   if (!plan.smoothing.empty()) {
