@@ -421,6 +421,46 @@ TEST_F(ApiTest, BadCrdlNamesLineAndReason) {
   EXPECT_EQ(c.Status("POST", "/api/routes", "{\"crdl\":\"name: \xff\n---\nR b\n\"}"), 400);
 }
 
+TEST_F(ApiTest, VariationsTakeTheSettersFieldsAndReturnTheAnnotations) {
+  Client c = NewClient(), anon = NewClient();
+  c.SignUp("alice");
+  ASSERT_TRUE(c.LogIn("alice"));
+  int64_t a = AddRoute(c, kRoute), b = AddRoute(c, kRoute2);
+  json v = c.Json("POST", "/api/variations",
+                  json{{"routes", {a, b}},
+                       {"keep_start", true},
+                       {"keep_finish", true},
+                       {"max_repeat", 2},
+                       {"match", "grammar"},
+                       {"search_radius", 30}}
+                      .dump(),
+                  201);
+  int64_t vid = v["id"];
+  json stored = anon.Json("GET", "/api/routes/" + std::to_string(vid), "", 200);
+  EXPECT_EQ(stored["parameters"]["keep_start"], true);
+  EXPECT_EQ(stored["parameters"]["match"], "grammar");
+  json plan = anon.Json("GET", "/api/variations/" + std::to_string(vid), "", 200)["plan"];
+  EXPECT_EQ(plan["moves"], v["moves"]);
+  ASSERT_TRUE(plan["search"].is_object()) << plan.dump().substr(0, 300);
+  for (const json& k : plan["search"]["constraints"]) EXPECT_TRUE(k["held"].get<bool>());
+  EXPECT_TRUE(plan["warnings"].is_array());
+  EXPECT_TRUE(plan["profile"].is_object());
+  EXPECT_TRUE(plan["grades"].is_object());
+  EXPECT_TRUE(plan["moves"][0].contains("crux"));
+  EXPECT_TRUE(plan["moves"][0].contains("difficulty"));
+  // Bad fields are refused by name, before any work.
+  for (const auto& [body, field] : std::vector<std::pair<json, std::string>>{
+           {json{{"routes", {a}}, {"crux_window", {0.9, 0.1}}}, "crux_window"},
+           {json{{"routes", {a}}, {"keep_start", "yes"}}, "keep_start"},
+           {json{{"routes", {a}}, {"match", "both"}}, "match"},
+           {json{{"routes", {a}}, {"smooth_method", "spline"}}, "smooth_method"},
+           {json{{"routes", {a}}, {"keep_start", true}, {"search_radius", 1000}},
+            "search_radius"}}) {
+    json e = c.Json("POST", "/api/variations", body.dump(), 400);
+    EXPECT_NE(e.dump().find(field), std::string::npos) << e.dump();
+  }
+}
+
 TEST_F(ApiTest, VariationsAreStoredLikeRoutesAndCanBeVaried) {
   Client c = NewClient(), anon = NewClient();
   c.SignUp("alice");
