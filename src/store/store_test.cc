@@ -181,7 +181,7 @@ PRAGMA user_version = 2;
   sqlite3_close(db);
   auto s = Open();
   ASSERT_TRUE(s);
-  EXPECT_EQ(s->SchemaVersion(), 3);
+  EXPECT_EQ(s->SchemaVersion(), kSchemaVersion);
   Result<RouteRecord> v = s->GetRoute(6);
   ASSERT_TRUE(v.ok());
   EXPECT_TRUE(v->smooth);
