@@ -8,6 +8,8 @@ Services::Services(store::Store* store, const Options& opts, Clock* clock)
       accounts(store, opts, clock),
       routes(store, opts, &plans),
       variations(store, opts, &plans),
-      maps(store, opts) {}
+      maps(store, opts),
+      climber_feedback(store, opts, clock),
+      studies(store, opts, clock) {}
 
 }  // namespace sb::app
