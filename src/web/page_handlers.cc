@@ -6,6 +6,7 @@
 #include "base/text.h"
 #include "crdl/route.h"
 #include "plan/pdf.h"
+#include "web/climber_handlers.h"
 #include "web/handlers.h"
 
 namespace sb::web {
@@ -15,6 +16,14 @@ namespace {
 void Html(Exchange& x, const std::string& html) {
   x.res.SetHeader("Cache-Control", "no-store");
   x.res.SetBody(200, html, "text/html; charset=utf-8");
+}
+
+// `page` with `block` (the climbers' consensus, climber_handlers.h) at the
+// end of its <main>.
+std::string WithBlock(std::string page, const std::string& block) {
+  size_t at = page.rfind("</main>");
+  if (at != std::string::npos) page.insert(at, block);
+  return page;
 }
 
 // "1,2,x" -> the ids that parse (the vary page's preselection).
@@ -73,7 +82,8 @@ void PageRoute(Exchange& x) {
   if (Result<Route> parsed = ParseCrdl(r->crdl, "route"); parsed.ok()) {
     readings = app::MoveReadings(*parsed);
   }
-  Html(x, RoutePage(x.caller.page(), *r, app::IsOwner(*r, x.caller.viewer), readings));
+  Html(x, WithBlock(RoutePage(x.caller.page(), *r, app::IsOwner(*r, x.caller.viewer), readings),
+                    ConsensusBlock(x, *r)));
 }
 
 void PageVary(Exchange& x) {
@@ -106,7 +116,8 @@ Result<app::PlanView> PlanOf(Exchange& x) {
 void PagePlan(Exchange& x) {
   Result<app::PlanView> p = PlanOf(x);
   if (!p.ok()) return PageError(x, p.status());
-  Html(x, PlanPage(x.caller.page(), p->record, *p->plan, p->smoothing_note));
+  Html(x, WithBlock(PlanPage(x.caller.page(), p->record, *p->plan, p->smoothing_note),
+                    ConsensusBlock(x, p->record)));
 }
 
 void PagePlanSvg(Exchange& x) {
