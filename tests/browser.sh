@@ -42,4 +42,6 @@ done
 echo "browser.sh: server at $url"
 
 SB_CHROMIUM="$chromium" node "$root/tests/browser/run.js" "$url" "$out"
+# The climbers' pages and the worked example of docs/studies.md (needs the CLI).
+SB_CHROMIUM="$chromium" node "$root/tests/browser/climbers.spec.js" "$url" "$out" "$build"
 echo "browser.sh: screenshots in $out"

@@ -25,7 +25,9 @@ const char kAssets[] =
 // value and the JSON pointer of `study analyze --format json` it equals.
 std::string Num(double v, const std::string& key) {
   char buf[64];
-  if (std::isfinite(v)) {
+  if (std::isfinite(v) && v != 0 && std::abs(v) < 0.001) {
+    std::snprintf(buf, sizeof buf, "%.1e", v);  // small p-values stay readable
+  } else if (std::isfinite(v)) {
     std::snprintf(buf, sizeof buf, "%.3f", v);
   } else {
     std::snprintf(buf, sizeof buf, "–");
