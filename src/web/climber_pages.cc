@@ -124,7 +124,7 @@ std::string Checkbox(const char* id, const char* label, bool on) {
 
 std::string ConsensusHtml(const app::GradeSummary& grade, int64_t route_id, bool owner,
                           int min_votes_shown) {
-  std::string h = "<section class=\"climbers-consensus\"><h2>Climbers</h2>\n" +
+  std::string h = "<section class=\"climbers-consensus no-print\"><h2>Climbers</h2>\n" +
                   GradeBlock(grade, min_votes_shown);
   h += "<p><a href=\"/r/" + Id(route_id) + "\" id=\"feedback-link\">Rate this route</a>";
   if (owner) {
