@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <ctime>
+#include <map>
 #include <mutex>
 #include <string_view>
 #include <utility>
@@ -131,6 +132,72 @@ WITH RECURSIVE closure(variation_id, route_id) AS (
 INSERT OR IGNORE INTO route_sources(variation_id, route_id)
   SELECT variation_id, route_id FROM closure WHERE variation_id <> route_id;
 )sql",
+    // 5: climbers' feedback on routes, and studies (docs/web.md). Plain SQL
+    // so every backend can port it: answers are text (store::EncodeAnswers),
+    // participants are token hashes, every multi-row change is one
+    // transaction.
+    R"sql(
+CREATE TABLE feedback (
+  id              INTEGER PRIMARY KEY AUTOINCREMENT,
+  route_id        INTEGER NOT NULL REFERENCES routes(id) ON DELETE CASCADE,
+  participant     TEXT NOT NULL,
+  instrument      TEXT NOT NULL,
+  answers         TEXT NOT NULL,
+  felt_grade      TEXT NOT NULL DEFAULT '',
+  felt_canonical  TEXT NOT NULL DEFAULT '',
+  felt_discipline TEXT NOT NULL DEFAULT '',
+  felt_value      DOUBLE PRECISION,
+  comment         TEXT NOT NULL DEFAULT '',
+  created_at      TEXT NOT NULL,
+  updated_at      TEXT NOT NULL,
+  UNIQUE (route_id, participant)
+);
+CREATE TABLE studies (
+  id              INTEGER PRIMARY KEY AUTOINCREMENT,
+  owner_id        INTEGER NOT NULL REFERENCES users(id) ON DELETE CASCADE,
+  name            TEXT NOT NULL,
+  instrument_json TEXT NOT NULL,
+  demographics    INTEGER NOT NULL DEFAULT 1,
+  ask_rank        INTEGER NOT NULL DEFAULT 1,
+  ask_order       INTEGER NOT NULL DEFAULT 1,
+  is_open         INTEGER NOT NULL DEFAULT 1,
+  created_at      TEXT NOT NULL,
+  updated_at      TEXT NOT NULL
+);
+CREATE INDEX studies_owner ON studies(owner_id, id);
+CREATE TABLE study_routes (
+  study_id INTEGER NOT NULL REFERENCES studies(id) ON DELETE CASCADE,
+  position INTEGER NOT NULL,
+  route_id INTEGER REFERENCES routes(id) ON DELETE SET NULL,
+  name     TEXT NOT NULL,
+  PRIMARY KEY (study_id, position)
+);
+CREATE INDEX study_routes_route ON study_routes(route_id);
+CREATE TABLE study_responses (
+  id          INTEGER PRIMARY KEY AUTOINCREMENT,
+  study_id    INTEGER NOT NULL REFERENCES studies(id) ON DELETE CASCADE,
+  participant TEXT NOT NULL,
+  seq         INTEGER NOT NULL,
+  ability     DOUBLE PRECISION,
+  created_at  TEXT NOT NULL,
+  UNIQUE (study_id, participant),
+  UNIQUE (study_id, seq)
+);
+CREATE TABLE study_answers (
+  response_id INTEGER NOT NULL REFERENCES study_responses(id) ON DELETE CASCADE,
+  position    INTEGER NOT NULL,
+  answers     TEXT NOT NULL,
+  route_rank  INTEGER,
+  climb_order INTEGER,
+  PRIMARY KEY (response_id, position)
+);
+CREATE TABLE study_demographics (
+  response_id INTEGER NOT NULL REFERENCES study_responses(id) ON DELETE CASCADE,
+  question    TEXT NOT NULL,
+  answer      TEXT NOT NULL,
+  PRIMARY KEY (response_id, question)
+);
+)sql",
 };
 static_assert(sizeof(kMigrations) / sizeof(kMigrations[0]) == kSchemaVersion);
 
@@ -182,10 +249,29 @@ class Stmt {
     }
     return *this;
   }
+  Stmt& Bind(int i, std::optional<int> v) {
+    return Bind(i, v ? std::optional<int64_t>(*v) : std::nullopt);
+  }
+  Stmt& Bind(int i, std::optional<double> v) {
+    if (v) {
+      sqlite3_bind_double(s_, i, *v);
+    } else {
+      sqlite3_bind_null(s_, i);
+    }
+    return *this;
+  }
   // SQLITE_ROW, SQLITE_DONE or an error code.
   int Step() { return prepared() ? sqlite3_step(s_) : rc_; }
   int64_t Int(int col) { return sqlite3_column_int64(s_, col); }
   double Double(int col) { return sqlite3_column_double(s_, col); }
+  std::optional<int> OptInt(int col) {
+    if (IsNull(col)) return std::nullopt;
+    return static_cast<int>(Int(col));
+  }
+  std::optional<double> OptDouble(int col) {
+    if (IsNull(col)) return std::nullopt;
+    return Double(col);
+  }
   bool IsNull(int col) { return sqlite3_column_type(s_, col) == SQLITE_NULL; }
   std::string Text(int col) {
     const unsigned char* p = sqlite3_column_text(s_, col);
@@ -510,9 +596,190 @@ class SqliteStore final : public Store {
     return out;
   }
 
+  // ---- climbers' feedback ----------------------------------------------------
+
+  Result<int64_t> PutFeedback(const FeedbackRecord& f) override {
+    std::lock_guard<std::mutex> lock(mu_);
+    std::string now = NowText();
+    // One statement, so a concurrent submission of the same participant
+    // cannot make a second row (UNIQUE (route_id, participant)).
+    Stmt s(db_,
+           "INSERT INTO feedback(route_id, participant, instrument, answers, felt_grade, "
+           "felt_canonical, felt_discipline, felt_value, comment, created_at, updated_at) "
+           "VALUES(?,?,?,?,?,?,?,?,?,?,?) ON CONFLICT(route_id, participant) DO UPDATE SET "
+           "instrument = excluded.instrument, answers = excluded.answers, "
+           "felt_grade = excluded.felt_grade, felt_canonical = excluded.felt_canonical, "
+           "felt_discipline = excluded.felt_discipline, felt_value = excluded.felt_value, "
+           "comment = excluded.comment, updated_at = excluded.updated_at");
+    s.Bind(1, f.route_id)
+        .Bind(2, f.participant)
+        .Bind(3, f.instrument)
+        .Bind(4, EncodeAnswers(f.answers))
+        .Bind(5, f.felt_grade)
+        .Bind(6, f.felt_canonical)
+        .Bind(7, f.felt_discipline)
+        .Bind(8, f.felt_value)
+        .Bind(9, f.comment)
+        .Bind(10, now)
+        .Bind(11, now);
+    int rc = s.Step();
+    if (rc == SQLITE_CONSTRAINT) {
+      return Status::NotFound("no route " + std::to_string(f.route_id));
+    }
+    if (rc != SQLITE_DONE) return s.Error("put feedback");
+    Stmt id(db_, "SELECT id FROM feedback WHERE route_id = ? AND participant = ?");
+    id.Bind(1, f.route_id).Bind(2, f.participant);
+    if (id.Step() != SQLITE_ROW) return id.Error("put feedback");
+    return id.Int(0);
+  }
+
+  Result<std::optional<FeedbackRecord>> FindFeedback(int64_t route_id,
+                                                     const std::string& participant) override {
+    std::lock_guard<std::mutex> lock(mu_);
+    Stmt s(db_, std::string(kFeedbackSelect) + " WHERE route_id = ? AND participant = ?");
+    s.Bind(1, route_id).Bind(2, participant);
+    SB_ASSIGN_OR_RETURN(std::vector<FeedbackRecord> rows, ReadFeedbackRows(s));
+    if (rows.empty()) return std::optional<FeedbackRecord>();
+    return std::optional<FeedbackRecord>(std::move(rows[0]));
+  }
+
+  Result<std::vector<FeedbackRecord>> ListFeedback(int64_t route_id) override {
+    std::lock_guard<std::mutex> lock(mu_);
+    Stmt s(db_, std::string(kFeedbackSelect) + " WHERE route_id = ? ORDER BY id");
+    s.Bind(1, route_id);
+    return ReadFeedbackRows(s);
+  }
+
+  Result<std::vector<FeedbackRecord>> FeedbackOnRoutesOf(int64_t owner_id) override {
+    std::lock_guard<std::mutex> lock(mu_);
+    Stmt s(db_, std::string(kFeedbackSelect) +
+                    " WHERE route_id IN (SELECT id FROM routes WHERE owner_id = ?) "
+                    "ORDER BY route_id, id");
+    s.Bind(1, owner_id);
+    return ReadFeedbackRows(s);
+  }
+
+  // ---- studies ---------------------------------------------------------------
+
+  Result<int64_t> InsertStudy(const StudyRecord& st) override {
+    std::lock_guard<std::mutex> lock(mu_);
+    SB_RETURN_IF_ERROR(Exec("BEGIN IMMEDIATE"));
+    Result<int64_t> id = InsertStudyLocked(st);
+    Status done = id.ok() ? Exec("COMMIT") : id.status();
+    if (!done.ok()) {
+      Rollback();
+      return done;
+    }
+    return id;
+  }
+
+  Status UpdateStudy(const StudyRecord& st, bool definition_changes) override {
+    std::lock_guard<std::mutex> lock(mu_);
+    SB_RETURN_IF_ERROR(Exec("BEGIN IMMEDIATE"));
+    Status done = UpdateStudyLocked(st, definition_changes);
+    if (done.ok()) done = Exec("COMMIT");
+    if (!done.ok()) Rollback();
+    return done;
+  }
+
+  Result<StudyRecord> GetStudy(int64_t id) override {
+    std::lock_guard<std::mutex> lock(mu_);
+    Stmt s(db_, std::string(kStudySelect) + " WHERE s.id = ?");
+    s.Bind(1, id);
+    SB_ASSIGN_OR_RETURN(std::vector<StudyRecord> rows, ReadStudies(s));
+    if (rows.empty()) return Status::NotFound("no study " + std::to_string(id));
+    return std::move(rows[0]);
+  }
+
+  Result<std::vector<StudyRecord>> ListStudies(int64_t owner_id) override {
+    std::lock_guard<std::mutex> lock(mu_);
+    Stmt s(db_, std::string(kStudySelect) + " WHERE s.owner_id = ? ORDER BY s.id DESC");
+    s.Bind(1, owner_id);
+    return ReadStudies(s);
+  }
+
+  Result<int> InsertStudyResponse(const StudyResponseRecord& r, int max_responses) override {
+    std::lock_guard<std::mutex> lock(mu_);
+    SB_RETURN_IF_ERROR(Exec("BEGIN IMMEDIATE"));
+    Result<int> seq = InsertStudyResponseLocked(r, max_responses);
+    Status done = seq.ok() ? Exec("COMMIT") : seq.status();
+    if (!done.ok()) {
+      Rollback();
+      return done;
+    }
+    return seq;
+  }
+
+  Result<bool> HasStudyResponse(int64_t study_id, const std::string& participant) override {
+    std::lock_guard<std::mutex> lock(mu_);
+    Stmt s(db_, "SELECT 1 FROM study_responses WHERE study_id = ? AND participant = ?");
+    s.Bind(1, study_id).Bind(2, participant);
+    int rc = s.Step();
+    if (rc == SQLITE_ROW) return true;
+    if (rc == SQLITE_DONE) return false;
+    return s.Error("find study response");
+  }
+
+  Result<std::vector<StudyResponseRecord>> ListStudyResponses(int64_t study_id) override {
+    std::lock_guard<std::mutex> lock(mu_);
+    std::vector<StudyResponseRecord> out;
+    std::map<int64_t, size_t> index;  // response id -> position in out
+    {
+      Stmt s(db_,
+             "SELECT id, study_id, participant, seq, ability, created_at FROM study_responses "
+             "WHERE study_id = ? ORDER BY seq");
+      s.Bind(1, study_id);
+      int rc;
+      while ((rc = s.Step()) == SQLITE_ROW) {
+        StudyResponseRecord r;
+        r.id = s.Int(0);
+        r.study_id = s.Int(1);
+        r.participant = s.Text(2);
+        r.seq = static_cast<int>(s.Int(3));
+        r.ability = s.OptDouble(4);
+        r.created_at = s.Text(5);
+        index[r.id] = out.size();
+        out.push_back(std::move(r));
+      }
+      if (rc != SQLITE_DONE) return s.Error("list study responses");
+    }
+    Stmt a(db_,
+           "SELECT a.response_id, a.position, a.answers, a.route_rank, a.climb_order "
+           "FROM study_answers a JOIN study_responses r ON r.id = a.response_id "
+           "WHERE r.study_id = ? ORDER BY a.response_id, a.position");
+    a.Bind(1, study_id);
+    int rc;
+    while ((rc = a.Step()) == SQLITE_ROW) {
+      auto it = index.find(a.Int(0));
+      if (it == index.end()) continue;
+      StudyAnswer ans;
+      ans.position = static_cast<int>(a.Int(1));
+      Result<Answers> decoded = DecodeAnswers(a.Text(2));
+      if (!decoded.ok())
+        return Status::IoError("study " + std::to_string(study_id) + ": " +
+                               decoded.status().message());
+      ans.answers = std::move(decoded).value();
+      ans.rank = a.OptInt(3);
+      ans.order = a.OptInt(4);
+      out[it->second].answers.push_back(std::move(ans));
+    }
+    if (rc != SQLITE_DONE) return a.Error("list study answers");
+    Stmt d(db_,
+           "SELECT d.response_id, d.question, d.answer FROM study_demographics d "
+           "JOIN study_responses r ON r.id = d.response_id WHERE r.study_id = ? "
+           "ORDER BY d.response_id, d.question");
+    d.Bind(1, study_id);
+    while ((rc = d.Step()) == SQLITE_ROW) {
+      auto it = index.find(d.Int(0));
+      if (it != index.end()) out[it->second].demographics.emplace_back(d.Text(1), d.Text(2));
+    }
+    if (rc != SQLITE_DONE) return d.Error("list study demographics");
+    return out;
+  }
+
  private:
   static constexpr const char* kSelect =
-      "SELECT r.id, r.owner_id, ifnull(u.username,''), r.name, r.grade, r.setter, r.crdl, "
+      "SELECT r.id, r.owner_id, COALESCE(u.username, ''), r.name, r.grade, r.setter, r.crdl, "
       "r.is_public, r.is_variation, r.params_json, r.plan_json, r.smooth, r.created_at, "
       "r.updated_at, r.move_count, r.colour, r.wall, r.set_on, r.grade_discipline, "
       "r.grade_value, r.meta_version, r.request_key "
@@ -646,6 +913,210 @@ class SqliteStore final : public Store {
         return " ORDER BY (r.grade_value IS NULL), r.grade_discipline, r.grade_value DESC, r.id";
     }
     return " ORDER BY r.id DESC";
+  }
+
+  static constexpr const char* kFeedbackSelect =
+      "SELECT id, route_id, participant, instrument, answers, felt_grade, felt_canonical, "
+      "felt_discipline, felt_value, comment, created_at, updated_at FROM feedback";
+
+  static Result<std::vector<FeedbackRecord>> ReadFeedbackRows(Stmt& s) {
+    std::vector<FeedbackRecord> out;
+    int rc;
+    while ((rc = s.Step()) == SQLITE_ROW) {
+      FeedbackRecord f;
+      f.id = s.Int(0);
+      f.route_id = s.Int(1);
+      f.participant = s.Text(2);
+      f.instrument = s.Text(3);
+      Result<Answers> answers = DecodeAnswers(s.Text(4));
+      if (!answers.ok()) {
+        return Status::IoError("feedback " + std::to_string(f.id) + ": " +
+                               answers.status().message());
+      }
+      f.answers = std::move(answers).value();
+      f.felt_grade = s.Text(5);
+      f.felt_canonical = s.Text(6);
+      f.felt_discipline = s.Text(7);
+      f.felt_value = s.OptDouble(8);
+      f.comment = s.Text(9);
+      f.created_at = s.Text(10);
+      f.updated_at = s.Text(11);
+      out.push_back(std::move(f));
+    }
+    if (rc != SQLITE_DONE) return s.Error("read feedback");
+    return out;
+  }
+
+  static constexpr const char* kStudySelect =
+      "SELECT s.id, s.owner_id, COALESCE(u.username, ''), s.name, s.instrument_json, "
+      "s.demographics, s.ask_rank, s.ask_order, s.is_open, s.created_at, s.updated_at, "
+      "(SELECT COUNT(*) FROM study_responses r WHERE r.study_id = s.id) "
+      "FROM studies s LEFT JOIN users u ON u.id = s.owner_id";
+
+  // The studies of a prepared kStudySelect, with their routes.
+  Result<std::vector<StudyRecord>> ReadStudies(Stmt& s) {
+    std::vector<StudyRecord> out;
+    int rc;
+    while ((rc = s.Step()) == SQLITE_ROW) {
+      StudyRecord st;
+      st.id = s.Int(0);
+      st.owner_id = s.Int(1);
+      st.owner_name = s.Text(2);
+      st.name = s.Text(3);
+      st.instrument_json = s.Text(4);
+      st.demographics = s.Int(5) != 0;
+      st.ask_rank = s.Int(6) != 0;
+      st.ask_order = s.Int(7) != 0;
+      st.is_open = s.Int(8) != 0;
+      st.created_at = s.Text(9);
+      st.updated_at = s.Text(10);
+      st.responses = static_cast<int>(s.Int(11));
+      out.push_back(std::move(st));
+    }
+    if (rc != SQLITE_DONE) return s.Error("read studies");
+    for (StudyRecord& st : out) {
+      Stmt r(db_,
+             "SELECT position, route_id, name FROM study_routes WHERE study_id = ? "
+             "ORDER BY position");
+      r.Bind(1, st.id);
+      while ((rc = r.Step()) == SQLITE_ROW) {
+        StudyRoute sr;
+        sr.position = static_cast<int>(r.Int(0));
+        if (!r.IsNull(1)) sr.route_id = r.Int(1);
+        sr.name = r.Text(2);
+        st.routes.push_back(std::move(sr));
+      }
+      if (rc != SQLITE_DONE) return r.Error("read study routes");
+    }
+    return out;
+  }
+
+  // Inside a transaction: the study's routes replace any stored ones.
+  Status WriteStudyRoutes(int64_t study_id, const std::vector<StudyRoute>& routes) {
+    Stmt d(db_, "DELETE FROM study_routes WHERE study_id = ?");
+    d.Bind(1, study_id);
+    if (d.Step() != SQLITE_DONE) return d.Error("replace study routes");
+    for (const StudyRoute& sr : routes) {
+      Stmt in(db_, "INSERT INTO study_routes(study_id, position, route_id, name) VALUES(?,?,?,?)");
+      in.Bind(1, study_id)
+          .Bind(2, static_cast<int64_t>(sr.position))
+          .Bind(3, sr.route_id)
+          .Bind(4, sr.name);
+      int rc = in.Step();
+      if (rc == SQLITE_CONSTRAINT) {
+        return Status::InvalidInput("study routes: position " + std::to_string(sr.position) +
+                                    " twice or route " + std::to_string(sr.route_id.value_or(0)) +
+                                    " unknown");
+      }
+      if (rc != SQLITE_DONE) return in.Error("insert study route");
+    }
+    return Status::Ok();
+  }
+
+  Result<int64_t> InsertStudyLocked(const StudyRecord& st) {
+    std::string now = NowText();
+    Stmt s(db_,
+           "INSERT INTO studies(owner_id, name, instrument_json, demographics, ask_rank, "
+           "ask_order, is_open, created_at, updated_at) VALUES(?,?,?,?,?,?,?,?,?)");
+    s.Bind(1, st.owner_id)
+        .Bind(2, st.name)
+        .Bind(3, st.instrument_json)
+        .Bind(4, static_cast<int64_t>(st.demographics))
+        .Bind(5, static_cast<int64_t>(st.ask_rank))
+        .Bind(6, static_cast<int64_t>(st.ask_order))
+        .Bind(7, static_cast<int64_t>(st.is_open))
+        .Bind(8, now)
+        .Bind(9, now);
+    int rc = s.Step();
+    if (rc == SQLITE_CONSTRAINT) return Status::NotFound("no user " + std::to_string(st.owner_id));
+    if (rc != SQLITE_DONE) return s.Error("insert study");
+    int64_t id = sqlite3_last_insert_rowid(db_);
+    SB_RETURN_IF_ERROR(WriteStudyRoutes(id, st.routes));
+    return id;
+  }
+
+  Status UpdateStudyLocked(const StudyRecord& st, bool definition_changes) {
+    Stmt c(db_,
+           "SELECT (SELECT COUNT(*) FROM study_responses WHERE study_id = s.id) FROM studies s "
+           "WHERE s.id = ?");
+    c.Bind(1, st.id);
+    int rc = c.Step();
+    if (rc == SQLITE_DONE) return Status::NotFound("no study " + std::to_string(st.id));
+    if (rc != SQLITE_ROW) return c.Error("update study");
+    if (definition_changes && c.Int(0) > 0) {
+      return Status::Conflict(
+          "the study has responses: its routes, instrument and questions can no longer change");
+    }
+    Stmt s(db_,
+           "UPDATE studies SET name = ?, instrument_json = ?, demographics = ?, ask_rank = ?, "
+           "ask_order = ?, is_open = ?, updated_at = ? WHERE id = ?");
+    s.Bind(1, st.name)
+        .Bind(2, st.instrument_json)
+        .Bind(3, static_cast<int64_t>(st.demographics))
+        .Bind(4, static_cast<int64_t>(st.ask_rank))
+        .Bind(5, static_cast<int64_t>(st.ask_order))
+        .Bind(6, static_cast<int64_t>(st.is_open))
+        .Bind(7, NowText())
+        .Bind(8, st.id);
+    if (s.Step() != SQLITE_DONE) return s.Error("update study");
+    if (definition_changes) SB_RETURN_IF_ERROR(WriteStudyRoutes(st.id, st.routes));
+    return Status::Ok();
+  }
+
+  Result<int> InsertStudyResponseLocked(const StudyResponseRecord& r, int max_responses) {
+    Stmt c(db_,
+           "SELECT s.is_open, (SELECT COUNT(*) FROM study_responses WHERE study_id = s.id), "
+           "(SELECT COALESCE(MAX(seq), 0) FROM study_responses WHERE study_id = s.id), "
+           "(SELECT COUNT(*) FROM study_responses WHERE study_id = s.id AND participant = ?) "
+           "FROM studies s WHERE s.id = ?");
+    c.Bind(1, r.participant).Bind(2, r.study_id);
+    int rc = c.Step();
+    if (rc == SQLITE_DONE) return Status::NotFound("no study " + std::to_string(r.study_id));
+    if (rc != SQLITE_ROW) return c.Error("insert study response");
+    if (c.Int(0) == 0) return Status::Conflict("this study is closed");
+    if (c.Int(3) > 0) return Status::Conflict("you have already answered this study");
+    if (c.Int(1) >= max_responses) {
+      return Status::Conflict("this study has reached its limit of " +
+                              std::to_string(max_responses) + " responses");
+    }
+    int seq = static_cast<int>(c.Int(2)) + 1;
+    Stmt s(db_,
+           "INSERT INTO study_responses(study_id, participant, seq, ability, created_at) "
+           "VALUES(?,?,?,?,?)");
+    s.Bind(1, r.study_id)
+        .Bind(2, r.participant)
+        .Bind(3, static_cast<int64_t>(seq))
+        .Bind(4, r.ability)
+        .Bind(5, NowText());
+    rc = s.Step();
+    if (rc == SQLITE_CONSTRAINT) return Status::Conflict("you have already answered this study");
+    if (rc != SQLITE_DONE) return s.Error("insert study response");
+    int64_t id = sqlite3_last_insert_rowid(db_);
+    for (const StudyAnswer& a : r.answers) {
+      Stmt in(db_,
+              "INSERT INTO study_answers(response_id, position, answers, route_rank, climb_order) "
+              "VALUES(?,?,?,?,?)");
+      in.Bind(1, id)
+          .Bind(2, static_cast<int64_t>(a.position))
+          .Bind(3, EncodeAnswers(a.answers))
+          .Bind(4, a.rank)
+          .Bind(5, a.order);
+      rc = in.Step();
+      if (rc == SQLITE_CONSTRAINT) {
+        return Status::InvalidInput("route " + std::to_string(a.position) + " answered twice");
+      }
+      if (rc != SQLITE_DONE) return in.Error("insert study answers");
+    }
+    for (const auto& [question, answer] : r.demographics) {
+      Stmt in(db_, "INSERT INTO study_demographics(response_id, question, answer) VALUES(?,?,?)");
+      in.Bind(1, id).Bind(2, question).Bind(3, answer);
+      rc = in.Step();
+      if (rc == SQLITE_CONSTRAINT) {
+        return Status::InvalidInput(question + ": answered twice");
+      }
+      if (rc != SQLITE_DONE) return in.Error("insert study demographics");
+    }
+    return seq;
   }
 
   Result<User> ReadUser(Stmt& s, const std::string& not_found) {

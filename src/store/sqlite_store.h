@@ -20,7 +20,7 @@ namespace sb::store {
 Result<std::unique_ptr<Store>> OpenSqliteStore(const std::string& path);
 
 // The schema version this program writes.
-inline constexpr int kSchemaVersion = 4;
+inline constexpr int kSchemaVersion = 5;
 
 }  // namespace sb::store
 

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "base/status.h"
@@ -136,6 +137,83 @@ struct RouteFilter {
   int limit = 500;
 };
 
+// ---- climbers' feedback and studies (migration 5, docs/web.md) ----------
+
+// A climber's answers to a questionnaire: one per item in instrument order,
+// nullopt for no answer. Stored as text (EncodeAnswers).
+using Answers = std::vector<std::optional<int>>;
+
+// One climber's feedback on one route or variation (at most one per
+// participant and route; a new submission replaces it). `participant` is the
+// hash of the climber's random token (store::HashToken), never the token.
+struct FeedbackRecord {
+  int64_t id = 0;
+  int64_t route_id = 0;
+  std::string participant;
+  std::string instrument;  // the instrument's name when answered
+  Answers answers;
+  std::string felt_grade;            // as typed ("" = none)
+  std::string felt_canonical;        // its normal spelling
+  std::string felt_discipline;       // "roped" / "bouldering" (the axis of felt_value)
+  std::optional<double> felt_value;  // normalised difficulty; nullopt = no felt grade
+  std::string comment;
+  std::string created_at;  // "YYYY-MM-DD HH:MM:SS" UTC
+  std::string updated_at;
+};
+
+// One route of a study under its neutral label `position` (1..k).
+struct StudyRoute {
+  int position = 0;
+  std::optional<int64_t> route_id;  // nullopt once the route is deleted
+  std::string name;                 // the route's name when the study was defined
+};
+
+// A study: a set of routes shown to climbers under neutral labels, an
+// instrument (JSON in the studies file format) and which other questions
+// are asked. `responses` is filled by GetStudy/ListStudies.
+struct StudyRecord {
+  int64_t id = 0;
+  int64_t owner_id = 0;
+  std::string owner_name;
+  std::string name;
+  std::string instrument_json;
+  bool demographics = true;  // the paper's table 6 questions
+  bool ask_rank = true;      // rank the routes
+  bool ask_order = true;     // the order they were climbed in
+  bool is_open = true;
+  std::vector<StudyRoute> routes;  // position order
+  int responses = 0;
+  std::string created_at;
+  std::string updated_at;
+};
+
+// One participant's answers about one route of a study.
+struct StudyAnswer {
+  int position = 0;  // the route's label
+  Answers answers;
+  std::optional<int> rank;   // 1 = best
+  std::optional<int> order;  // 1 = climbed first
+};
+
+// One participant's response to a whole study. `seq` (1, 2, ... per study,
+// assigned by InsertStudyResponse) names the participant in exports.
+struct StudyResponseRecord {
+  int64_t id = 0;
+  int64_t study_id = 0;
+  std::string participant;  // token hash, as FeedbackRecord
+  int seq = 0;
+  std::vector<StudyAnswer> answers;                               // position order
+  std::vector<std::pair<std::string, std::string>> demographics;  // (question id, answer)
+  std::optional<double> ability;
+  std::string created_at;
+};
+
+// Answers as stored: a JSON array of integers and nulls, no spaces
+// ("[2,-1,null,0]", "[]"). Pure.
+std::string EncodeAnswers(const Answers& answers);
+// The inverse. kInvalidInput when the text is not such an array.
+Result<Answers> DecodeAnswers(const std::string& text);
+
 // The storage interface. Implementations must be safe to call from many
 // threads at once (the web server's worker pool) and must make every
 // multi-row change atomic. Errors: kNotFound for unknown ids, kConflict for
@@ -204,6 +282,42 @@ class Store {
   // Inserts many routes in one transaction (import); returns their ids in
   // order. Nothing is written when any insert fails.
   virtual Result<std::vector<int64_t>> InsertRoutes(const std::vector<RouteRecord>& routes) = 0;
+
+  // Climbers' feedback. PutFeedback inserts or replaces (keyed by route
+  // and participant; created_at survives a replacement) and returns the
+  // row id; kNotFound when the route does not exist.
+  virtual Result<int64_t> PutFeedback(const FeedbackRecord& feedback) = 0;
+  // The participant's feedback on a route; nullopt when none.
+  virtual Result<std::optional<FeedbackRecord>> FindFeedback(int64_t route_id,
+                                                             const std::string& participant) = 0;
+  // Every feedback on a route, oldest first.
+  virtual Result<std::vector<FeedbackRecord>> ListFeedback(int64_t route_id) = 0;
+  // Every feedback on the routes `owner_id` owns, by route id then age.
+  virtual Result<std::vector<FeedbackRecord>> FeedbackOnRoutesOf(int64_t owner_id) = 0;
+
+  // Studies. InsertStudy writes the study and its routes in one transaction
+  // (ignores id, owner_name, responses and the times) and returns the id.
+  virtual Result<int64_t> InsertStudy(const StudyRecord& study) = 0;
+  // Replaces name, instrument, the question flags, is_open and the routes in
+  // one transaction. With `definition_changes` it refuses (kConflict) once
+  // the study has responses, checked in the same transaction; kNotFound for
+  // an unknown id.
+  virtual Status UpdateStudy(const StudyRecord& study, bool definition_changes) = 0;
+  // One study with its routes and response count; kNotFound when absent.
+  virtual Result<StudyRecord> GetStudy(int64_t id) = 0;
+  // An owner's studies, newest first, with routes and response counts.
+  virtual Result<std::vector<StudyRecord>> ListStudies(int64_t owner_id) = 0;
+  // Stores one participant's response (rows, answers and demographics) in
+  // one transaction and returns its seq. Refused with kConflict when the
+  // study is closed, when the participant has already answered it, or when
+  // it already has `max_responses` responses (all checked in the
+  // transaction); kNotFound for an unknown study.
+  virtual Result<int> InsertStudyResponse(const StudyResponseRecord& response,
+                                          int max_responses) = 0;
+  // Whether the participant has answered the study.
+  virtual Result<bool> HasStudyResponse(int64_t study_id, const std::string& participant) = 0;
+  // Every response of a study in seq order, with answers and demographics.
+  virtual Result<std::vector<StudyResponseRecord>> ListStudyResponses(int64_t study_id) = 0;
 
   // The schema version now in force (migrations applied).
   virtual int SchemaVersion() = 0;

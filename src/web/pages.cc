@@ -520,6 +520,11 @@ std::string ImportPage(const PageViewer& v) {
   return Layout(v, "Import and export", b);
 }
 
+std::string PageLayout(const PageViewer& v, const std::string& title, const std::string& body,
+                       const std::string& page_class) {
+  return Layout(v, title, body, page_class);
+}
+
 std::string ErrorPage(const PageViewer& v, int status, const std::string& message) {
   return Layout(v, "Error " + std::to_string(status),
                 "<h1>" + std::to_string(status) + "</h1><p class=\"error\">" + E(message) +
