@@ -187,13 +187,4 @@ void PagePlanPdf(Exchange& x) {
   x.res.SetBody(200, *pdf, "application/pdf");
 }
 
-void PageShortLink(Exchange& x) {
-  Result<int64_t> id = PathId(x.req, "No such route.");
-  if (!id.ok()) return PageError(x, id.status());
-  Result<store::RouteRecord> r = x.services.routes.Get(x.caller.viewer, *id);
-  if (!r.ok()) return PageError(x, r.status());
-  x.res.status = 302;
-  x.res.SetHeader("Location", (r->is_variation ? "/variations/" : "/routes/") + std::to_string(*id));
-}
-
 }  // namespace sb::web
