@@ -34,7 +34,8 @@ int RunServe(const std::vector<std::string>& args) {
   app.add_flag("--no-seed", no_seed, "do not seed a fresh database");
   app.add_option("--static", static_dir, "directory of the web assets (default: bundled web/)");
   app.add_option("--threads", threads,
-                 "worker threads = concurrent connections (default max(32, 4 x cores))")
+                 "worker threads running requests (default 4 x cores, at least 8); open "
+                 "connections wait on the I/O threads, not on workers")
       ->check(CLI::Range(0, 256));
   bool secure_cookie = false;
   app.add_flag("--secure-cookies", secure_cookie,
