@@ -252,14 +252,6 @@ class Stmt {
   Stmt& Bind(int i, std::optional<int> v) {
     return Bind(i, v ? std::optional<int64_t>(*v) : std::nullopt);
   }
-  Stmt& Bind(int i, std::optional<double> v) {
-    if (v) {
-      sqlite3_bind_double(s_, i, *v);
-    } else {
-      sqlite3_bind_null(s_, i);
-    }
-    return *this;
-  }
   // SQLITE_ROW, SQLITE_DONE or an error code.
   int Step() { return prepared() ? sqlite3_step(s_) : rc_; }
   int64_t Int(int col) { return sqlite3_column_int64(s_, col); }
