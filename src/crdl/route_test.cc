@@ -124,7 +124,7 @@ TEST(Crdl, PrintIsAFixedPoint) {
   for (const char* text :
        {"name: a\r\r\nfree text\r\r\r\n---\r\nR jug\r\r\n",
         "\xEF\xBB\xBF\xEF\xBB\xBFname: x\n---\nR jug\n", "\xEF\xBB\xBF\xEF\xBB\xBF---\nL a (crux)\r\r\n",
-        "desc \t\n\n\n---\nleft  x  y  \n"}) {
+        "desc \t\n\n\n---\nleft  x  y  \n", "\r\r\na\n---\nL m"}) {
     auto r = ParseCrdl(text, "t");
     ASSERT_TRUE(r.ok()) << r.status().message();
     std::string once = PrintCrdl(*r);
