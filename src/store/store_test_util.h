@@ -33,6 +33,14 @@ inline std::string BackendName(const ::testing::TestParamInfo<Backend>& info) {
   return info.param == Backend::kSqlite ? "sqlite" : "postgresql";
 }
 
+// The backend that suites written once with TEST_F (the app and web API
+// tests) run on: $SB_TEST_BACKEND = "postgresql" or "sqlite" (the default).
+// ctest registers those suites twice, once per backend (cmake/sb_module.cmake).
+inline Backend BackendFromEnvironment() {
+  const char* b = std::getenv("SB_TEST_BACKEND");
+  return b && std::string(b) == "postgresql" ? Backend::kPostgres : Backend::kSqlite;
+}
+
 // True when Debian's PostgreSQL server binaries are installed.
 inline bool PostgresInstalled() {
   std::error_code ec;
