@@ -2,6 +2,7 @@
 #include <libpq-fe.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cstdlib>
 #include <map>
 
@@ -12,6 +13,9 @@
 namespace sb::store::sql {
 
 namespace {
+
+// The type OID of float8 (DOUBLE PRECISION), pg_type.dat.
+constexpr Oid kFloat8Oid = 701;
 
 // Owns a PGresult.
 struct ResultDeleter {
@@ -69,6 +73,8 @@ class PgConnection final : public Connection {
         text[i] = std::to_string(*v);
       } else if (const std::string* t = std::get_if<std::string>(&params[i])) {
         text[i] = *t;
+      } else if (const double* d = std::get_if<double>(&params[i])) {
+        text[i] = DoubleText(*d);
       } else {
         continue;  // NULL
       }
@@ -83,11 +89,21 @@ class PgConnection final : public Connection {
     int rows = PQntuples(r.get());
     for (int c = 0; c < cols; ++c) out.columns.push_back(PQfname(r.get(), c));
     out.rows.reserve(rows);
+    // float8 columns are re-printed as the SQLite driver prints doubles
+    // (DoubleText), so both backends give the same text for the same value.
+    std::vector<bool> is_double(cols);
+    for (int c = 0; c < cols; ++c) is_double[c] = PQftype(r.get(), c) == kFloat8Oid;
     for (int i = 0; i < rows; ++i) {
       std::vector<std::optional<std::string>> row(cols);
       for (int c = 0; c < cols; ++c) {
         if (PQgetisnull(r.get(), i, c)) continue;
         row[c] = std::string(PQgetvalue(r.get(), i, c), PQgetlength(r.get(), i, c));
+        if (is_double[c]) {
+          double v = 0;
+          const std::string& t = *row[c];
+          auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+          if (ec == std::errc() && end == t.data() + t.size()) row[c] = DoubleText(v);
+        }
       }
       out.rows.push_back(std::move(row));
     }

@@ -25,6 +25,21 @@ std::optional<int64_t> Rows::OptInt(size_t row, size_t col) const {
   return v;
 }
 
+std::optional<double> Rows::OptDouble(size_t row, size_t col) const {
+  const std::optional<std::string>& cell = rows[row][col];
+  if (!cell) return std::nullopt;
+  double v = 0;
+  auto [end, ec] = std::from_chars(cell->data(), cell->data() + cell->size(), v);
+  if (ec != std::errc() || end != cell->data() + cell->size()) return 0.0;
+  return v;
+}
+
+std::string DoubleText(double v) {
+  char buf[64];
+  auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
+  return ec == std::errc() ? std::string(buf, end) : std::string("0");
+}
+
 Status CheckText(const std::vector<Value>& params) {
   for (size_t i = 0; i < params.size(); ++i) {
     const std::string* t = std::get_if<std::string>(&params[i]);

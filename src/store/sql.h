@@ -31,11 +31,18 @@ enum class Dialect { kSqlite, kPostgres };
 // "sqlite" or "postgresql".
 const char* DialectName(Dialect d);
 
-// A statement parameter: NULL, an integer or text.
-using Value = std::variant<std::monostate, int64_t, std::string>;
+// A statement parameter: NULL, an integer, text or a double.
+using Value = std::variant<std::monostate, int64_t, std::string, double>;
 
-// A nullable integer parameter.
+// Nullable parameters.
 inline Value Nullable(std::optional<int64_t> v) { return v ? Value(*v) : Value(); }
+inline Value Nullable(std::optional<int> v) { return v ? Value(int64_t{*v}) : Value(); }
+inline Value Nullable(std::optional<double> v) { return v ? Value(*v) : Value(); }
+
+// A double as both drivers pass it and read it back as text: the shortest
+// decimal that reads back to the same double (std::to_chars), so values
+// round-trip exactly and print the same on either backend.
+std::string DoubleText(double v);
 
 // The rows of a query, every cell as text (integers in decimal) or NULL.
 struct Rows {
@@ -50,6 +57,8 @@ struct Rows {
   // The cell as an integer (0 for NULL or non-numbers).
   int64_t Int(size_t row, size_t col) const;
   std::optional<int64_t> OptInt(size_t row, size_t col) const;
+  // The cell as a double; nullopt for NULL (0 for non-numbers).
+  std::optional<double> OptDouble(size_t row, size_t col) const;
 };
 
 // OK when every text parameter can be stored by both backends alike:

@@ -43,7 +43,12 @@ class SqliteConnection final : public Connection {
       while ((rc = sqlite3_step(s)) == SQLITE_ROW) {
         std::vector<std::optional<std::string>> row(n);
         for (int i = 0; i < n; ++i) {
-          if (sqlite3_column_type(s, i) == SQLITE_NULL) continue;
+          int type = sqlite3_column_type(s, i);
+          if (type == SQLITE_NULL) continue;
+          if (type == SQLITE_FLOAT) {
+            row[i] = DoubleText(sqlite3_column_double(s, i));
+            continue;
+          }
           const unsigned char* p = sqlite3_column_text(s, i);
           row[i] = std::string(reinterpret_cast<const char*>(p), sqlite3_column_bytes(s, i));
         }
@@ -163,6 +168,8 @@ class SqliteConnection final : public Connection {
         rc = sqlite3_bind_int64(s, idx, *v);
       } else if (const std::string* t = std::get_if<std::string>(&params[i])) {
         rc = sqlite3_bind_text64(s, idx, t->data(), t->size(), SQLITE_TRANSIENT, SQLITE_UTF8);
+      } else if (const double* d = std::get_if<double>(&params[i])) {
+        rc = sqlite3_bind_double(s, idx, *d);
       } else {
         rc = sqlite3_bind_null(s, idx);
       }

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "base/status.h"
@@ -52,10 +53,24 @@ struct VariationInput {
   std::string crdl;
 };
 
+// A route a variation was made from, directly or through other variations
+// (the transitive closure of the input links, kept while the route exists),
+// with what the visibility rule needs to know of it.
+struct SourceRoute {
+  int64_t route_id = 0;
+  bool is_public = true;
+  std::optional<int64_t> owner_id;
+};
+
 // A route or a variation ("variations are stored like routes"). For a
 // variation `is_variation` is set, `params_json` holds every generation
 // parameter (chaos::ParamsToJson), `plan_json` the plan (plan::RenderJson) and
 // `inputs` the input links in input order.
+//
+// The metadata columns (name, grade, setter, colour, wall, set_on and the
+// normalised grade) are copies of the CRDL header, which stays the source of
+// truth; the application layer fills them (app/routes.h) and marks the rows
+// it filled with its `meta_version`.
 struct RouteRecord {
   int64_t id = 0;
   std::optional<int64_t> owner_id;  // nullopt for seeded/orphaned routes
@@ -73,18 +88,131 @@ struct RouteRecord {
   std::string created_at;
   std::string updated_at;
   int move_count = 0;
+  // Schema 4: route metadata (copied from the CRDL header).
+  std::string colour;            // hold colour ("colour:" / "color:")
+  std::string wall;              // wall or area ("wall:")
+  std::string set_on;            // the date it was set ("date:"), as typed
+  std::string grade_discipline;  // "roped", "bouldering" or "" (grade unreadable or absent)
+  std::optional<double> grade_value;  // difficulty on that discipline's axis (src/grades)
+  int meta_version = 0;               // which version of the app filled the columns above
+  // Variations: a digest of what they were generated from (inputs and
+  // parameters), so the same request twice can find the first; "" once the
+  // setter edits the moves (and for routes).
+  std::string request_key;
+  // Variations: every route they were made from, transitively (GetRoute and
+  // AllRoutes fill it; ListRoutes does not).
+  std::vector<SourceRoute> sources;
 };
 
-// Filters for ListRoutes. Empty strings do not filter. `viewer` = the
-// caller's user id (their private routes are included), nullopt for none.
+// The orders a route list can have.
+enum class RouteSort {
+  kNewest,   // id descending
+  kOldest,   // id ascending
+  kName,     // name (ignoring case), then id
+  kEasiest,  // ungraded last; then discipline ("bouldering" < "roped"), value, id
+  kHardest,  // ungraded last; then discipline, value descending, id
+};
+
+// Filters for ListRoutes and CountRoutes. Empty strings do not filter.
+// `viewer` = the caller's user id, nullopt for none: rows are those the
+// visibility rule lets the viewer see (public or the viewer's own, and for a
+// variation every source route too — docs/web.md).
 struct RouteFilter {
   std::optional<int64_t> viewer;
   std::string grade;   // exact, case-insensitive
   std::string setter;  // substring of setter metadata or owner name, case-insensitive
-  std::string text;    // substring of name, description or moves, case-insensitive
+  // Substring of the name, the CRDL (description, metadata such as grade,
+  // setter, wall, and the moves) or the owner's name, case-insensitive.
+  std::string text;
+  std::string wall;  // substring of the wall, case-insensitive
   std::optional<bool> is_variation;
+  std::optional<int64_t> owner;  // only this owner's routes
+  // Difficulty range: routes of `grade_discipline` whose grade_value lies in
+  // [grade_min, grade_max] (either bound may be absent). Ignored when
+  // grade_discipline is empty.
+  std::string grade_discipline;
+  std::optional<double> grade_min, grade_max;
+  RouteSort sort = RouteSort::kNewest;
+  int offset = 0;  // rows skipped (paging)
   int limit = 500;
 };
+
+// ---- climbers' feedback and studies (migration 5, docs/web.md) ----------
+
+// A climber's answers to a questionnaire: one per item in instrument order,
+// nullopt for no answer. Stored as text (EncodeAnswers).
+using Answers = std::vector<std::optional<int>>;
+
+// One climber's feedback on one route or variation (at most one per
+// participant and route; a new submission replaces it). `participant` is the
+// hash of the climber's random token (store::HashToken), never the token.
+struct FeedbackRecord {
+  int64_t id = 0;
+  int64_t route_id = 0;
+  std::string participant;
+  std::string instrument;  // the instrument's name when answered
+  Answers answers;
+  std::string felt_grade;            // as typed ("" = none)
+  std::string felt_canonical;        // its normal spelling
+  std::string felt_discipline;       // "roped" / "bouldering" (the axis of felt_value)
+  std::optional<double> felt_value;  // normalised difficulty; nullopt = no felt grade
+  std::string comment;
+  std::string created_at;  // "YYYY-MM-DD HH:MM:SS" UTC
+  std::string updated_at;
+};
+
+// One route of a study under its neutral label `position` (1..k).
+struct StudyRoute {
+  int position = 0;
+  std::optional<int64_t> route_id;  // nullopt once the route is deleted
+  std::string name;                 // the route's name when the study was defined
+};
+
+// A study: a set of routes shown to climbers under neutral labels, an
+// instrument (JSON in the studies file format) and which other questions
+// are asked. `responses` is filled by GetStudy/ListStudies.
+struct StudyRecord {
+  int64_t id = 0;
+  int64_t owner_id = 0;
+  std::string owner_name;
+  std::string name;
+  std::string instrument_json;
+  bool demographics = true;  // the paper's table 6 questions
+  bool ask_rank = true;      // rank the routes
+  bool ask_order = true;     // the order they were climbed in
+  bool is_open = true;
+  std::vector<StudyRoute> routes;  // position order
+  int responses = 0;
+  std::string created_at;
+  std::string updated_at;
+};
+
+// One participant's answers about one route of a study.
+struct StudyAnswer {
+  int position = 0;  // the route's label
+  Answers answers;
+  std::optional<int> rank;   // 1 = best
+  std::optional<int> order;  // 1 = climbed first
+};
+
+// One participant's response to a whole study. `seq` (1, 2, ... per study,
+// assigned by InsertStudyResponse) names the participant in exports.
+struct StudyResponseRecord {
+  int64_t id = 0;
+  int64_t study_id = 0;
+  std::string participant;  // token hash, as FeedbackRecord
+  int seq = 0;
+  std::vector<StudyAnswer> answers;                               // position order
+  std::vector<std::pair<std::string, std::string>> demographics;  // (question id, answer)
+  std::optional<double> ability;
+  std::string created_at;
+};
+
+// Answers as stored: a JSON array of integers and nulls, no spaces
+// ("[2,-1,null,0]", "[]"). Pure.
+std::string EncodeAnswers(const Answers& answers);
+// The inverse. kInvalidInput when the text is not such an array.
+Result<Answers> DecodeAnswers(const std::string& text);
 
 // The storage interface. Implementations must be safe to call from many
 // threads at once (the web server's worker pool) and must make every
@@ -123,25 +251,73 @@ class Store {
   virtual Status ClearAttempts(const std::string& key) = 0;
 
   // Routes and variations. InsertRoute ignores `id`, `created_at`,
-  // `updated_at` and `owner_name` and returns the new id; the variation's
-  // inputs are written in the same transaction. Ids are never reused, not
+  // `updated_at`, `owner_name` and `sources` and returns the new id; the
+  // variation's inputs and its sources (its inputs and their sources) are
+  // written in the same transaction. Ids are never reused, not
   // even the id of a deleted route (so nothing keyed by id can outlive it).
   virtual Result<int64_t> InsertRoute(const RouteRecord& route) = 0;
-  // Replaces crdl, name, grade, setter and is_public of an existing route.
+  // Replaces crdl, move_count, is_public, request_key and the metadata
+  // columns (see UpdateRouteMetadata) of an existing route.
   virtual Status UpdateRoute(const RouteRecord& route) = 0;
   // Deletes a route; variations made from it keep their input snapshots.
   virtual Status DeleteRoute(int64_t id) = 0;
   // One route with its inputs; kNotFound when absent.
   virtual Result<RouteRecord> GetRoute(int64_t id) = 0;
-  // Visible routes (public ones and the viewer's own), newest first, without
-  // `crdl`, `plan_json` or `inputs` filled in.
+  // The routes the filter selects (see RouteFilter; visibility included), in
+  // its order, `offset` and `limit` applied, without `crdl`, `plan_json`,
+  // `inputs` or `sources` filled in.
   virtual Result<std::vector<RouteRecord>> ListRoutes(const RouteFilter& filter) = 0;
-  // Every route (private ones too) in id order, with crdl and params (for
-  // export). `owner` restricts to one owner when set.
+  // How many rows the filter selects without offset and limit.
+  virtual Result<int64_t> CountRoutes(const RouteFilter& filter) = 0;
+  // The newest variation of `owner` with this request_key; kNotFound when none.
+  virtual Result<int64_t> FindVariationByKey(int64_t owner, const std::string& request_key) = 0;
+  // Writes only the metadata columns (name, grade, setter, colour, wall,
+  // set_on, grade_discipline, grade_value, meta_version) of an existing route,
+  // leaving updated_at: for refreshing them when their derivation changes.
+  virtual Status UpdateRouteMetadata(const RouteRecord& route) = 0;
+  // Every route (private ones too) in id order, with crdl, params, inputs and
+  // sources (for export and metadata refreshes). `owner` restricts to one
+  // owner when set.
   virtual Result<std::vector<RouteRecord>> AllRoutes(std::optional<int64_t> owner) = 0;
   // Inserts many routes in one transaction (import); returns their ids in
   // order. Nothing is written when any insert fails.
   virtual Result<std::vector<int64_t>> InsertRoutes(const std::vector<RouteRecord>& routes) = 0;
+
+  // Climbers' feedback. PutFeedback inserts or replaces (keyed by route
+  // and participant; created_at survives a replacement) and returns the
+  // row id; kNotFound when the route does not exist.
+  virtual Result<int64_t> PutFeedback(const FeedbackRecord& feedback) = 0;
+  // The participant's feedback on a route; nullopt when none.
+  virtual Result<std::optional<FeedbackRecord>> FindFeedback(int64_t route_id,
+                                                             const std::string& participant) = 0;
+  // Every feedback on a route, oldest first.
+  virtual Result<std::vector<FeedbackRecord>> ListFeedback(int64_t route_id) = 0;
+  // Every feedback on the routes `owner_id` owns, by route id then age.
+  virtual Result<std::vector<FeedbackRecord>> FeedbackOnRoutesOf(int64_t owner_id) = 0;
+
+  // Studies. InsertStudy writes the study and its routes in one transaction
+  // (ignores id, owner_name, responses and the times) and returns the id.
+  virtual Result<int64_t> InsertStudy(const StudyRecord& study) = 0;
+  // Replaces name, instrument, the question flags, is_open and the routes in
+  // one transaction. With `definition_changes` it refuses (kConflict) once
+  // the study has responses, checked in the same transaction; kNotFound for
+  // an unknown id.
+  virtual Status UpdateStudy(const StudyRecord& study, bool definition_changes) = 0;
+  // One study with its routes and response count; kNotFound when absent.
+  virtual Result<StudyRecord> GetStudy(int64_t id) = 0;
+  // An owner's studies, newest first, with routes and response counts.
+  virtual Result<std::vector<StudyRecord>> ListStudies(int64_t owner_id) = 0;
+  // Stores one participant's response (rows, answers and demographics) in
+  // one transaction and returns its seq. Refused with kConflict when the
+  // study is closed, when the participant has already answered it, or when
+  // it already has `max_responses` responses (all checked in the
+  // transaction); kNotFound for an unknown study.
+  virtual Result<int> InsertStudyResponse(const StudyResponseRecord& response,
+                                          int max_responses) = 0;
+  // Whether the participant has answered the study.
+  virtual Result<bool> HasStudyResponse(int64_t study_id, const std::string& participant) = 0;
+  // Every response of a study in seq order, with answers and demographics.
+  virtual Result<std::vector<StudyResponseRecord>> ListStudyResponses(int64_t study_id) = 0;
 
   // The schema version now in force (migrations applied).
   virtual int SchemaVersion() = 0;

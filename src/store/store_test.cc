@@ -305,6 +305,67 @@ TEST_P(StoreTest, RefusesNewerSchema) {
   EXPECT_NE(s.status().message().find("newer"), std::string::npos) << s.status().message();
 }
 
+// Schema 4: metadata columns, paging, difficulty order, request keys and the
+// transitive visibility of variations.
+TEST_P(StoreTest, RouteMetadataPagingAndVariationSources) {
+  auto s = Open();
+  int64_t alice = *s->CreateUser("alice", "h"), bob = *s->CreateUser("bob", "h");
+  RouteRecord hidden = MakeRoute(alice, "Hidden", /*pub=*/false);
+  hidden.grade_discipline = "bouldering";
+  hidden.grade_value = 6.0;
+  hidden.colour = "yellow";
+  int64_t h = *s->InsertRoute(hidden);
+  for (int i = 0; i < 5; ++i) {
+    RouteRecord r = MakeRoute(bob, "Open " + std::to_string(i));
+    r.grade_discipline = "bouldering";
+    r.grade_value = i;
+    r.wall = i == 2 ? "The Cave" : "slab";
+    ASSERT_TRUE(s->InsertRoute(r).ok());
+  }
+  // A public variation of the private route, and one of that variation.
+  RouteRecord v = MakeRoute(bob, "V1");
+  v.is_variation = true;
+  v.request_key = "k1";
+  v.inputs.push_back({.route_id = h, .name = "Hidden", .crdl = hidden.crdl});
+  int64_t v1 = *s->InsertRoute(v);
+  RouteRecord w = MakeRoute(bob, "V2");
+  w.is_variation = true;
+  w.inputs.push_back({.route_id = v1, .name = "V1", .crdl = v.crdl});
+  int64_t v2 = *s->InsertRoute(w);
+  Result<RouteRecord> got = s->GetRoute(v2);
+  ASSERT_TRUE(got.ok());
+  ASSERT_EQ(got->sources.size(), 2u);  // V1 and, through it, Hidden
+  EXPECT_EQ(s->GetRoute(h)->colour, "yellow");
+
+  RouteFilter f;
+  f.viewer = bob;  // Bob owns V1 and V2, but they are made from alice's private route
+  EXPECT_EQ(*s->CountRoutes(f), 5);
+  f.viewer = alice;
+  EXPECT_EQ(*s->CountRoutes(f), 8);
+  f.viewer.reset();
+  f.limit = 2;
+  f.offset = 1;
+  f.sort = RouteSort::kHardest;
+  Result<std::vector<RouteRecord>> page = s->ListRoutes(f);
+  ASSERT_EQ(page->size(), 2u);
+  EXPECT_EQ((*page)[0].name, "Open 3");
+  f = {};
+  f.wall = "cave";
+  EXPECT_EQ(*s->CountRoutes(f), 1);
+  f = {};
+  f.grade_discipline = "bouldering";
+  f.grade_min = 1.5;
+  f.grade_max = 3.0;
+  EXPECT_EQ(*s->CountRoutes(f), 2);
+
+  EXPECT_EQ(*s->FindVariationByKey(bob, "k1"), v1);
+  EXPECT_EQ(s->FindVariationByKey(alice, "k1").status().code(), Status::Code::kNotFound);
+  RouteRecord meta = *s->GetRoute(h);
+  meta.wall = "north";
+  ASSERT_TRUE(s->UpdateRouteMetadata(meta).ok());
+  EXPECT_EQ(s->GetRoute(h)->wall, "north");
+}
+
 TEST(AuthTest, PasswordsHashWithArgon2id) {
   Result<std::string> h = HashPassword("correct horse", /*fast=*/true);
   ASSERT_TRUE(h.ok());
