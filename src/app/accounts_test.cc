@@ -87,11 +87,9 @@ TEST_F(AppTest, FailuresFromOneAddressGetAGrowingDelay) {
   // ...refused attempts do not count, so hammering does not extend it...
   for (int i = 0; i < 50; ++i) (void)a.LogIn("alice", "wrong-password", "9.9.9.9");
   clock_.Advance(1);
-  EXPECT_EQ(a.LogIn("alice", "password123", "9.9.9.9").status().code(),
-            Code::kResourceExhausted);
+  EXPECT_EQ(a.LogIn("alice", "password123", "9.9.9.9").status().code(), Code::kResourceExhausted);
   clock_.Advance(1);
-  EXPECT_EQ(a.LogIn("alice", "wrong-password", "9.9.9.9").status().code(),
-            Code::kUnauthenticated);
+  EXPECT_EQ(a.LogIn("alice", "wrong-password", "9.9.9.9").status().code(), Code::kUnauthenticated);
   // ...and each failure that was checked doubles the delay.
   EXPECT_EQ(a.LogIn("alice", "password123", "9.9.9.9", &retry).status().code(),
             Code::kResourceExhausted);
@@ -166,8 +164,8 @@ class NoCountStore final : public store::Store {
     return s_->FindSession(h, now);
   }
   Status DeleteSession(const std::string& h) override { return s_->DeleteSession(h); }
-  Result<std::vector<store::AttemptCount>> RecordAttempts(const std::vector<std::string>&,
-                                                          int64_t, int64_t) override {
+  Result<std::vector<store::AttemptCount>> RecordAttempts(const std::vector<std::string>&, int64_t,
+                                                          int64_t) override {
     return Status::IoError("disk I/O error");
   }
   Status UndoAttempts(const std::vector<std::string>& k, int64_t at) override {
@@ -181,11 +179,50 @@ class NoCountStore final : public store::Store {
   Result<std::vector<store::RouteRecord>> ListRoutes(const store::RouteFilter& f) override {
     return s_->ListRoutes(f);
   }
+  Result<int64_t> CountRoutes(const store::RouteFilter& f) override {
+    return s_->CountRoutes(f);
+  }
+  Result<int64_t> FindVariationByKey(int64_t owner, const std::string& key) override {
+    return s_->FindVariationByKey(owner, key);
+  }
+  Status UpdateRouteMetadata(const store::RouteRecord& r) override {
+    return s_->UpdateRouteMetadata(r);
+  }
   Result<std::vector<store::RouteRecord>> AllRoutes(std::optional<int64_t> o) override {
     return s_->AllRoutes(o);
   }
   Result<std::vector<int64_t>> InsertRoutes(const std::vector<store::RouteRecord>& r) override {
     return s_->InsertRoutes(r);
+  }
+  Result<int64_t> PutFeedback(const store::FeedbackRecord& f) override {
+    return s_->PutFeedback(f);
+  }
+  Result<std::optional<store::FeedbackRecord>> FindFeedback(int64_t r,
+                                                            const std::string& p) override {
+    return s_->FindFeedback(r, p);
+  }
+  Result<std::vector<store::FeedbackRecord>> ListFeedback(int64_t r) override {
+    return s_->ListFeedback(r);
+  }
+  Result<std::vector<store::FeedbackRecord>> FeedbackOnRoutesOf(int64_t o) override {
+    return s_->FeedbackOnRoutesOf(o);
+  }
+  Result<int64_t> InsertStudy(const store::StudyRecord& st) override { return s_->InsertStudy(st); }
+  Status UpdateStudy(const store::StudyRecord& st, bool d) override {
+    return s_->UpdateStudy(st, d);
+  }
+  Result<store::StudyRecord> GetStudy(int64_t id) override { return s_->GetStudy(id); }
+  Result<std::vector<store::StudyRecord>> ListStudies(int64_t o) override {
+    return s_->ListStudies(o);
+  }
+  Result<int> InsertStudyResponse(const store::StudyResponseRecord& r, int m) override {
+    return s_->InsertStudyResponse(r, m);
+  }
+  Result<bool> HasStudyResponse(int64_t id, const std::string& p) override {
+    return s_->HasStudyResponse(id, p);
+  }
+  Result<std::vector<store::StudyResponseRecord>> ListStudyResponses(int64_t id) override {
+    return s_->ListStudyResponses(id);
   }
   int SchemaVersion() override { return s_->SchemaVersion(); }
 
