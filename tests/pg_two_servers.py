@@ -266,6 +266,26 @@ def run_checks(a, b):
         if st != 404:
             fail(f"a deleted variation still answers {st} on {base}")
 
+    # A public variation of a public route, read by a stranger on B (its plan
+    # now cached there); the owner makes both private on A: B must refuse
+    # both at once (its cache is keyed by content and checked against a
+    # fresh read).
+    st, _, text = owner.send("POST", "/api/routes", {
+        "crdl": "name: shown\n---\nR jug\nL crimp\nR sloper\nL pinch\n", "public": True})
+    shown = json.loads(text)["id"]
+    st, _, text = owner.send("POST", "/api/variations", {"routes": [shown], "public": True})
+    shown_var = json.loads(text)["id"]
+    for path in (f"/api/routes/{shown}", f"/api/variations/{shown_var}"):
+        if anon_b.send("GET", path)[0] != 200:
+            fail(f"a stranger cannot read public {path} on B")
+    for rid in (shown, shown_var):
+        if owner.send("PUT", f"/api/routes/{rid}", {"public": False})[0] != 200:
+            fail(f"making {rid} private on A")
+    for path in (f"/api/routes/{shown}", f"/api/variations/{shown_var}"):
+        st = anon_b.send("GET", path)[0]
+        if st != 404:
+            fail(f"{path} made private on A still answers {st} to a stranger on B")
+
     # Throttling across processes: concurrent wrong guesses over A and B.
     results = []
     lock = threading.Lock()
