@@ -2,8 +2,11 @@
 BUILD ?= build
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
+# Seconds per input format for `make fuzz` (`make test` fuzzes each for
+# SB_TEST_FUZZ_SECONDS, default 25; docs/testing.md).
+FUZZ_SECONDS ?= 60
 
-.PHONY: all setup configure build test run bench clean
+.PHONY: all setup configure build test test-sanitize fuzz run bench clean
 
 all: build
 
@@ -16,8 +19,17 @@ configure: setup
 build: configure
 	@cmake --build $(BUILD) -j $(JOBS)
 
+# The normal suite, then the sanitizer suite and bounded fuzzing.
 test: build
 	@bash scripts/test.sh $(BUILD)
+
+# Unit and API tests under AddressSanitizer + UBSan (build-sanitize/).
+test-sanitize: setup
+	@JOBS=$(JOBS) bash scripts/sanitize.sh
+
+# libFuzzer harnesses, FUZZ_SECONDS per format (build-fuzz/, clang).
+fuzz: setup
+	@JOBS=$(JOBS) bash scripts/fuzz.sh $(FUZZ_SECONDS)
 
 run: build
 	@bash scripts/run.sh $(BUILD)
@@ -26,4 +38,4 @@ bench: build
 	@bash scripts/bench.sh $(BUILD)
 
 clean:
-	rm -rf $(BUILD)
+	rm -rf $(BUILD) build-sanitize build-fuzz

@@ -2,6 +2,8 @@
 // The target: a 1,000,000-move input varied in under 1 s.
 #include <benchmark/benchmark.h>
 
+#include <vector>
+
 #include "chaos/variation.h"
 
 namespace {
@@ -49,6 +51,31 @@ void BM_MapTrajectory(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * n);
 }
 BENCHMARK(BM_MapTrajectory)->Arg(1000000)->Unit(benchmark::kMillisecond);
+
+// max_repeat 1 over n moves: classes = one move repeated (range 1 = 1: every
+// point blocked after the first, the worst case of the next-nearest search)
+// or runs of 500 moves alternating between two texts (range 1 = 2).
+void BM_MapTrajectoryMaxRepeat(benchmark::State& state) {
+  int n = static_cast<int>(state.range(0));
+  auto sys = sb::chaos::System::Lorenz();
+  auto ref = sb::chaos::Trajectory(sys, sb::chaos::IntegratorKind::kRk4, 0.015, {-13, -12, 52}, 0, n);
+  auto var = sb::chaos::Trajectory(sys, sb::chaos::IntegratorKind::kRk4, 0.015, {-16, -12, 52}, 0, n);
+  sb::chaos::MappingOptions o;
+  o.max_repeat = 1;
+  std::vector<int> cls(n);
+  for (int i = 0; i < n; ++i) cls[i] = state.range(1) == 1 ? 0 : i / 500 % 2;
+  for (auto _ : state) {
+    auto k = sb::chaos::MapTrajectory(ref, var, o, cls);
+    benchmark::DoNotOptimize(k);
+  }
+  state.SetItemsProcessed(state.iterations() * n);
+}
+BENCHMARK(BM_MapTrajectoryMaxRepeat)
+    ->Args({10000, 1})
+    ->Args({10000, 2})
+    ->Args({1000000, 1})
+    ->Args({1000000, 2})
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -7,13 +7,15 @@ PACKAGES=(
   build-essential cmake pkg-config ninja-build
   libcli11-dev nlohmann-json3-dev
   libsqlite3-dev sqlite3 libcpp-httplib-dev libcairo2-dev libsodium-dev
+  libpango1.0-dev libqrencode-dev
   libpq-dev postgresql
   libopenmpi-dev openmpi-bin
   libgtest-dev libgmock-dev libbenchmark-dev
   wrk chromium chromium-driver nodejs npm
-  poppler-utils fonts-dejavu-core
+  poppler-utils fonts-dejavu-core fonts-noto-cjk zbar-tools
   libboost-dev python3-scipy
   python3 curl
+  clang libclang-rt-dev
 )
 
 missing=()

@@ -1,12 +1,30 @@
 #!/usr/bin/env bash
 # Runs every test suite: the GoogleTest binaries through ctest, then the
-# command-line and browser tests. Usage: scripts/test.sh BUILD_DIR
+# command-line and browser tests, then the sanitizer suite (scripts/sanitize.sh)
+# and bounded fuzzing of every input format (scripts/fuzz.sh).
+# Usage: scripts/test.sh BUILD_DIR
+# SB_TEST_SANITIZE=0 skips the sanitizer suite; SB_TEST_FUZZ_SECONDS (25)
+# sets the fuzzing time per format, 0 skips it. docs/testing.md.
 set -euo pipefail
 build=${1:-build}
 cd "$(dirname "$0")/.."
+stage() { echo "== $1 (at ${SECONDS} s)"; }
+stage "ctest $build"
 ctest --test-dir "$build" --output-on-failure -j "$(nproc)" --timeout 600
 for t in tests/*.sh; do
   [[ -e "$t" ]] || continue
-  echo "== $t"
+  stage "$t"
   bash "$t" "$build"
 done
+status=0
+if [[ "${SB_TEST_SANITIZE:-1}" != 0 ]]; then
+  stage scripts/sanitize.sh
+  bash scripts/sanitize.sh || status=1
+fi
+fuzz_seconds=${SB_TEST_FUZZ_SECONDS:-25}
+if [[ "$fuzz_seconds" != 0 ]]; then
+  stage "scripts/fuzz.sh $fuzz_seconds"
+  bash scripts/fuzz.sh "$fuzz_seconds" || status=1
+fi
+stage "done, status $status"
+exit $status

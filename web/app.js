@@ -23,6 +23,14 @@
     return { status: res.status, data };
   }
 
+  // Error messages name form fields by their labels, not internal names.
+  const LABELS = { var_ic: 'Variation IC', ref_ic: 'Reference IC', max_repeat: 'Max repeat', skip: 'Skip',
+    step: 'Step', params: 'System parameters', mask: 'Mask', system: 'System', integrator: 'Integrator',
+    mapping: 'Mapping', preset: 'Preset', routes: 'Routes', public: 'Visibility' };
+  function humane(msg) {
+    return String(msg).replace(/^([a-z_]+):/, (m, k) => (LABELS[k] || k) + ':');
+  }
+
   function say(el, text, ok) {
     if (!el) return;
     el.textContent = text;
@@ -86,8 +94,17 @@
         const note = document.createElement('span');
         note.className = 'reading';
         if (l.kind === 'move') {
+          // The climbing part of the reading ("jug (big, good-hold)"), not the parser's internals.
+          const climbing = (l.reading || '').split(' — ')[0];
           note.textContent = (l.hand === 'L' ? 'left hand' : 'right hand') + (l.crux ? ' · crux' : '') +
-            ' · ' + (r.data.language ? (l.parsed ? l.reading : 'not understood by the grammar') : l.move);
+            ' · ' + (r.data.language ? (l.parsed ? climbing : 'not understood as a move') : l.move);
+          for (const d of (l.did_you_mean || [])) {
+            const dy = document.createElement('span');
+            dy.className = 'did-you-mean';
+            dy.textContent = ' · unknown word "' + d.word + '": did you mean "' + d.suggestion + '"?';
+            note.appendChild(dy);
+            li.classList.add('unparsed');
+          }
         } else if (l.kind === 'error') {
           note.textContent = l.error || 'not a move: start with L or R';
         } else if (l.kind === 'meta') {
@@ -113,12 +130,12 @@
     refresh();
     $('#save').addEventListener('click', async () => {
       const id = editor.dataset.routeId;
-      const body = { crdl: ta.value, public: $('#public').checked };
+      const body = { crdl: ta.value, public: $('#public').value === '1' };
       const r = id ? await api('PUT', '/api/routes/' + id, body) : await api('POST', '/api/routes', body);
       if (r.status === 200 || r.status === 201) {
         location.href = '/routes/' + (id || r.data.id);
       } else {
-        say($('#save-msg'), (r.data && r.data.error) || ('error ' + r.status));
+        say($('#save-msg'), humane((r.data && r.data.error) || ('error ' + r.status)));
       }
     });
   }
@@ -138,8 +155,106 @@
     const canvas = $('#icmap');
     let map = null;      // the last slice
     let picked = null;   // [i, j] grid cell
-    const selectedRoutes = () =>
-      Array.from(document.querySelectorAll('input[name=route]:checked')).map((c) => Number(c.value));
+    let suggested = [];  // grid indices of suggested ICs
+    const FIELDS = ['preset', 'system', 'params', 'integrator', 'step', 'ref_ic', 'var_ic', 'skip',
+      'mapping', 'mask', 'max_repeat', 'name', 'grade', 'colour', 'wall', 'setter', 'date', 'notes',
+      'visibility', 'metric'];
+    const chosen = $('#chosen');
+    const selectedRoutes = () => Array.from(chosen.querySelectorAll('li')).map((li) => Number(li.dataset.id));
+
+    // The whole form state lives in the URL (replaceState), so Back, reload and shared links
+    // restore it; the server renders the routes named there, in that order.
+    function saveState() {
+      const q = new URLSearchParams();
+      const ids = selectedRoutes();
+      if (ids.length) q.set('routes', ids.join(','));
+      for (const k of FIELDS) {
+        const el = $('#' + k);
+        if (el && el.value.trim() && !(k === 'preset' && el.value === 'default') && !(k === 'metric' && el.value === 'effect')) q.set(k, el.value);
+      }
+      if ($('#smooth').checked) q.set('smooth', '1');
+      if ($('#duplicate') && $('#duplicate').checked) q.set('duplicate', '1');
+      if ($('#route-find').value.trim()) q.set('find', $('#route-find').value.trim());
+      const s = q.toString();
+      history.replaceState(null, '', '/vary' + (s ? '?' + s : ''));
+    }
+    function loadState() {
+      const q = new URLSearchParams(location.search);
+      for (const k of FIELDS) {
+        const el = $('#' + k);
+        if (el && q.has(k)) el.value = q.get(k);
+      }
+      $('#smooth').checked = q.get('smooth') === '1';
+      if ($('#duplicate')) $('#duplicate').checked = q.get('duplicate') === '1';
+      if (['system', 'params', 'integrator', 'step', 'ref_ic', 'var_ic', 'skip', 'mapping', 'mask', 'max_repeat'].some((k) => q.has(k))) $('#advanced').open = true;
+    }
+    loadState();
+
+    function chosenItem(id, name, moves, extra) {
+      const li = document.createElement('li');
+      li.dataset.id = id; li.dataset.moves = moves; li.dataset.name = name;
+      const n = document.createElement('span'); n.className = 'pick-name'; n.textContent = name;
+      const small = document.createElement('small'); small.textContent = ' (' + moves + ' moves' + extra + ') ';
+      const btns = document.createElement('span'); btns.className = 'pick-buttons';
+      for (const [cls, label, text] of [['up', 'Move up', '↑'], ['down', 'Move down', '↓'], ['remove', 'Remove', '✕']]) {
+        const b = document.createElement('button'); b.type = 'button'; b.className = cls;
+        b.textContent = text; b.setAttribute('aria-label', label + ' ' + name); btns.appendChild(b);
+      }
+      li.append(n, small, btns);
+      return li;
+    }
+    function routesChanged() {
+      const e = $('#chosen-empty');
+      if (e) e.hidden = selectedRoutes().length > 0;
+      const names = Array.from(chosen.querySelectorAll('li')).map((li) => li.dataset.name);
+      $('#name').placeholder = names.length ? 'Variation of ' + (names.length <= 3 ? names.slice(0, -1).join(', ') + (names.length > 1 ? ' and ' : '') + names[names.length - 1] : names[0] + ', ' + names[1] + ' and ' + (names.length - 2) + ' more') : 'Variation of the chosen routes';
+      saveState();
+      loadMap();
+    }
+    chosen.addEventListener('click', (ev) => {
+      const b = ev.target.closest('button'); if (!b) return;
+      const li = b.closest('li');
+      if (b.classList.contains('up') && li.previousElementSibling) chosen.insertBefore(li, li.previousElementSibling);
+      else if (b.classList.contains('down') && li.nextElementSibling) chosen.insertBefore(li.nextElementSibling, li);
+      else if (b.classList.contains('remove')) li.remove();
+      else return;
+      routesChanged();
+    });
+    function foundItem(r) {
+      const li = document.createElement('li');
+      li.dataset.id = r.id; li.dataset.moves = r.moves; li.dataset.name = r.name;
+      const n = document.createElement('span'); n.className = 'pick-name'; n.textContent = r.name;
+      const small = document.createElement('small');
+      small.textContent = ' (' + r.moves + ' moves' + (r.grade ? ', ' + r.grade : '') + (r.public ? '' : ', private') + ') ';
+      const b = document.createElement('button'); b.type = 'button'; b.className = 'add'; b.textContent = 'Add';
+      b.setAttribute('aria-label', 'Add ' + r.name);
+      li.append(n, small, b);
+      return li;
+    }
+    $('#found').addEventListener('click', (ev) => {
+      const b = ev.target.closest('button.add'); if (!b) return;
+      const li = b.closest('li');
+      const small = li.querySelector('small').textContent.replace(/^\s*\(\d+ moves/, '').replace(/\)\s*$/, '');
+      chosen.appendChild(chosenItem(li.dataset.id, li.dataset.name, li.dataset.moves, small));
+      routesChanged();
+    });
+    let findSeq = 0, findTimer = null, foundOffset = $('#found').children.length;
+    async function find(more) {
+      const mine = ++findSeq;
+      const q = new URLSearchParams({ limit: '20', offset: String(more ? foundOffset : 0) });
+      if ($('#route-find').value.trim()) q.set('q', $('#route-find').value.trim());
+      const r = await api('GET', '/api/routes?' + q.toString());
+      if (mine !== findSeq || r.status !== 200) return;
+      if (!more) { $('#found').innerHTML = ''; foundOffset = 0; }
+      for (const x of r.data.routes) $('#found').appendChild(foundItem(x));
+      foundOffset += r.data.routes.length;
+      $('#found-count').textContent = r.data.total + ' routes';
+      $('#found-more').hidden = foundOffset >= r.data.total;
+    }
+    $('#route-find').addEventListener('input', () => { clearTimeout(findTimer); findTimer = setTimeout(() => { find(false); saveState(); }, 200); });
+    $('#route-find').addEventListener('keydown', (ev) => { if (ev.key === 'Enter') { ev.preventDefault(); find(false); } });
+    $('#found-more').addEventListener('click', () => find(true));
+
     function params() {
       const p = { preset: $('#preset').value };
       for (const k of ['system', 'integrator', 'mapping']) if ($('#' + k).value) p[k] = $('#' + k).value;
@@ -148,40 +263,96 @@
       for (const k of ['skip', 'max_repeat']) if ($('#' + k).value.trim()) p[k] = parseInt($('#' + k).value, 10);
       return p;
     }
-    function colour(t) {  // 0..1 -> dark blue .. yellow
-      const stops = [[13, 8, 135], [126, 3, 168], [204, 71, 120], [248, 149, 64], [240, 249, 33]];
+    // The paper's figure 4: warm colours for little variation, cold for much.
+    function colour(t) {  // 0 (little) .. 1 (much): red .. yellow .. green .. blue
+      const stops = [[178, 24, 43], [244, 165, 130], [253, 219, 120], [146, 197, 222], [33, 102, 172], [22, 40, 110]];
       const x = Math.max(0, Math.min(1, t)) * (stops.length - 1);
       const i = Math.min(stops.length - 2, Math.floor(x)), f = x - i;
       const c = stops[i].map((v, k) => Math.round(v + f * (stops[i + 1][k] - v)));
       return 'rgb(' + c.join(',') + ')';
     }
+    const round = (v) => Math.round(v * 1e6) / 1e6;
+    function maxOf(vals) { let m = 0; for (const v of vals) m = Math.max(m, v); return m; }
+    function legend() {
+      const el = $('#map-legend'); if (!el || !map) return;
+      const metrics = $('#metric').value === 'both' ? ['effect', 'change'] : [$('#metric').value];
+      el.innerHTML = '';
+      for (const m of metrics) {
+        const max = maxOf(map[m]);
+        const row = document.createElement('div'); row.className = 'legend-row';
+        const lo = document.createElement('span'); lo.textContent = m + ' 0';
+        const bar = document.createElement('span'); bar.className = 'legend-bar';
+        bar.style.background = 'linear-gradient(to right,' + [0, .2, .4, .6, .8, 1].map(colour).join(',') + ')';
+        const hi = document.createElement('span');
+        hi.textContent = (m === 'effect' ? max + ' of ' + map.length + ' moves change' : Math.round(max * 100) / 100 + ' (mean distance)');
+        row.append(lo, bar, hi); el.appendChild(row);
+      }
+      const note = document.createElement('div'); note.className = 'hint';
+      note.textContent = 'warm = little variation, cold = much';
+      el.appendChild(note);
+    }
+    function cellOf(ic) {  // grid cell of an IC in the map's plane, or null when outside
+      if (!map) return null;
+      const n = map.grid, ax = map.axes;
+      const i = Math.round((ic[ax[0]] - map.x[0]) / (map.x[1] - map.x[0]));
+      const j = Math.round((ic[ax[1]] - map.y[0]) / (map.y[1] - map.y[0]));
+      return i >= 0 && i < n && j >= 0 && j < n ? [i, j] : null;
+    }
     function draw() {
       if (!canvas || !map) return;
       const ctx = canvas.getContext('2d');
-      const n = map.grid, cell = canvas.width / n;
-      const metric = $('#metric').value;
-      const vals = map[metric];
-      let max = 0;
-      for (const v of vals) max = Math.max(max, v);
-      for (let j = 0; j < n; j++) {
-        for (let i = 0; i < n; i++) {
+      const both = $('#metric').value === 'both';
+      const metrics = both ? ['effect', 'change'] : [$('#metric').value];
+      const n = map.grid, w = canvas.width / metrics.length, cell = w / n, H = canvas.height, ch = H / n;
+      ctx.clearRect(0, 0, canvas.width, H);
+      metrics.forEach((m, p) => {
+        const vals = map[m], max = maxOf(vals), x0 = p * w;
+        for (let j = 0; j < n; j++) for (let i = 0; i < n; i++) {
           ctx.fillStyle = colour(max ? vals[j * n + i] / max : 0);
-          // y grows upwards
-          ctx.fillRect(i * cell, canvas.height - (j + 1) * cell, Math.ceil(cell), Math.ceil(cell));
+          ctx.fillRect(x0 + i * cell, H - (j + 1) * ch, Math.ceil(cell), Math.ceil(ch));
         }
-      }
-      // The reference IC at the centre.
-      const c = Math.floor(n / 2);
-      ctx.strokeStyle = '#fff';
-      ctx.strokeRect(c * cell, canvas.height - (c + 1) * cell, cell, cell);
-      if (picked) {
-        ctx.strokeStyle = '#0f0';
-        ctx.lineWidth = 2;
-        ctx.strokeRect(picked[0] * cell - 2, canvas.height - (picked[1] + 1) * cell - 2, cell + 4, cell + 4);
-        ctx.lineWidth = 1;
-      }
-      $('#map-info').textContent = metric + ' 0..' + (Math.round(max * 100) / 100) + ' over ' +
-        map.length + ' moves; axes ' + 'xyz'[map.axes[0]] + ' (right), ' + 'xyz'[map.axes[1]] + ' (up)';
+        const mark = (c, shape, color) => {
+          if (!c) return;
+          const cx = x0 + (c[0] + 0.5) * cell, cy = H - (c[1] + 0.5) * ch, r = Math.max(4, cell * 0.8);
+          ctx.lineWidth = 2; ctx.strokeStyle = '#000'; ctx.fillStyle = color;
+          ctx.beginPath();
+          if (shape === 'circle') ctx.arc(cx, cy, r, 0, 2 * Math.PI);
+          else if (shape === 'square') ctx.rect(cx - r, cy - r, 2 * r, 2 * r);
+          else if (shape === 'diamond') { ctx.moveTo(cx, cy - r); ctx.lineTo(cx + r, cy); ctx.lineTo(cx, cy + r); ctx.lineTo(cx - r, cy); ctx.closePath(); }
+          else { ctx.arc(cx, cy, r * 0.7, 0, 2 * Math.PI); ctx.fill(); }
+          ctx.stroke();
+          ctx.lineWidth = 1;
+        };
+        mark([Math.floor(n / 2), Math.floor(n / 2)], 'circle');
+        mark(cellOf([-16, -12, 52]), 'square'); mark(cellOf([-16, -13.5, 52]), 'square');
+        for (const k of suggested) mark([k % n, Math.floor(k / n)], 'diamond');
+        const cur = $('#var_ic').value.split(',').map(Number);
+        if (picked) mark(picked, 'dot', '#fff');
+        else if (cur.length === 3 && cur.every(Number.isFinite)) mark(cellOf(cur), 'dot', '#fff');
+        if (both) { ctx.fillStyle = '#000'; ctx.font = '12px sans-serif'; ctx.fillText(m, x0 + 4, 14); }
+      });
+      $('#map-info').textContent = map.length + ' moves; axes ' + 'xyz'[map.axes[0]] + ' (right), ' + 'xyz'[map.axes[1]] + ' (up)';
+      legend();
+    }
+    function cellAt(ev) {
+      const rect = canvas.getBoundingClientRect();
+      const panes = $('#metric').value === 'both' ? 2 : 1, n = map.grid;
+      let fx = (ev.clientX - rect.left) / rect.width * panes;
+      fx -= Math.floor(Math.min(fx, panes - 1e-9));
+      const i = Math.min(n - 1, Math.max(0, Math.floor(fx * n)));
+      const j = Math.min(n - 1, Math.max(0, Math.floor((rect.bottom - ev.clientY) / rect.height * n)));
+      return [i, j];
+    }
+    function icOf(c) {
+      const ic = map.center.slice();
+      ic[map.axes[0]] = map.x[c[0]];
+      ic[map.axes[1]] = map.y[c[1]];
+      return ic.map(round);
+    }
+    function readout(c, prefix) {
+      const k = c[1] * map.grid + c[0];
+      $('#map-readout').textContent = prefix + ' IC ' + icOf(c).join(', ') + ': ' + map.effect[k] + ' of ' +
+        map.length + ' moves change; change ' + (Math.round(map.change[k] * 100) / 100);
     }
     async function loadMap() {
       if (!canvas) return;
@@ -194,27 +365,20 @@
       const r = await api('GET', '/api/landscape?' + q.toString());
       if (r.status !== 200) { $('#map-info').textContent = (r.data && r.data.error) || 'no map'; return; }
       map = r.data;
+      canvas.width = $('#metric').value === 'both' ? 820 : 410;
       canvas.dataset.ready = '1';
       draw();
     }
     if (canvas) {
+      canvas.addEventListener('mousemove', (ev) => { if (map) readout(cellAt(ev), 'Hover:'); });
       canvas.addEventListener('click', (ev) => {
         if (!map) return;
-        const rect = canvas.getBoundingClientRect();
-        const n = map.grid;
-        const i = Math.min(n - 1, Math.max(0, Math.floor((ev.clientX - rect.left) / rect.width * n)));
-        const j = Math.min(n - 1, Math.max(0, Math.floor((rect.bottom - ev.clientY) / rect.height * n)));
-        picked = [i, j];
-        const ic = map.center.slice();
-        ic[map.axes[0]] = map.x[i];
-        ic[map.axes[1]] = map.y[j];
-        const round = (v) => Math.round(v * 1e6) / 1e6;
-        $('#var_ic').value = ic.map(round).join(',');
-        $('#advanced').open = true;
-        const k = j * n + i;
-        $('#map-info').textContent = 'variation IC ' + $('#var_ic').value + ': effect ' + map.effect[k] +
-          ' of ' + map.length + ' moves, change ' + map.change[k];
+        ev.preventDefault();
+        picked = cellAt(ev);
+        $('#var_ic').value = icOf(picked).join(',');
+        readout(picked, 'Chosen:');
         draw();
+        saveState();
       });
       $('#pick').addEventListener('click', async () => {
         const p = params();
@@ -228,44 +392,61 @@
         const list = $('#candidates');
         list.innerHTML = '';
         if (r.status !== 200) { list.textContent = (r.data && r.data.error) || 'no candidates'; return; }
+        suggested = r.data.candidates.map((c) => c.index);
         for (const c of r.data.candidates) {
           const li = document.createElement('li');
           const b = document.createElement('button');
           b.type = 'button';
           b.className = 'link-dark';
-          const round = (v) => Math.round(v * 1e6) / 1e6;
-          b.textContent = c.ic.map(round).join(', ') + ' — effect ' + c.effect + ', change ' + c.change;
+          b.textContent = c.ic.map(round).join(', ') + ' — ' + c.effect + ' moves change, change ' + c.change;
           b.addEventListener('click', () => {
             $('#var_ic').value = c.ic.map(round).join(',');
-            $('#advanced').open = true;
-            if (map) picked = [c.index % map.grid, Math.floor(c.index / map.grid)];
+            if (map) { picked = [c.index % map.grid, Math.floor(c.index / map.grid)]; readout(picked, 'Chosen:'); }
             draw();
+            saveState();
           });
           li.appendChild(b);
           list.appendChild(li);
         }
+        draw();
       });
-      $('#metric').addEventListener('change', draw);
+      $('#metric').addEventListener('change', () => { canvas.width = $('#metric').value === 'both' ? 820 : 410; draw(); saveState(); });
       $('#map-refresh').addEventListener('click', loadMap);
-      for (const c of document.querySelectorAll('input[name=route]')) c.addEventListener('change', loadMap);
       $('#preset').addEventListener('change', loadMap);
       loadMap();
     }
+    varyForm.addEventListener('input', saveState);
+    varyForm.addEventListener('change', saveState);
+    routesChanged();
     varyForm.addEventListener('submit', async (ev) => {
       ev.preventDefault();
       const ids = selectedRoutes();
+      if (!csrf()) return say($('#vary-msg'), 'Log in first to generate a variation.');
       if (!ids.length) return say($('#vary-msg'), 'Choose at least one route.');
+      saveState();
       const body = Object.assign(params(), { routes: ids, smooth: $('#smooth').checked });
+      for (const k of ['name', 'grade', 'colour', 'wall', 'setter', 'date', 'notes']) if ($('#' + k).value.trim()) body[k] = $('#' + k).value.trim();
+      if ($('#visibility').value) body.public = $('#visibility').value === 'public';
+      if ($('#duplicate').checked) body.duplicate = true;
       say($('#vary-msg'), 'Generating…', true);
       const r = await api('POST', '/api/variations', body);
-      if (r.status === 201) { location.href = '/variations/' + r.data.id; return; }
-      say($('#vary-msg'), (r.data && r.data.error) || ('error ' + r.status));
+      if (r.status === 201 || r.status === 200) { location.href = '/variations/' + r.data.id + (r.data.existing ? '?existing=1' : ''); return; }
+      say($('#vary-msg'), humane((r.data && r.data.error) || ('error ' + r.status)));
     });
   }
 
   // ---- plan page ----
   const printBtn = $('#print');
   if (printBtn) printBtn.addEventListener('click', () => window.print());
+  const plan = $('#plan');
+  if (plan && new URLSearchParams(location.search).get('existing') === '1') {
+    const p = document.createElement('p');
+    p.className = 'notice no-print';
+    p.id = 'existing';
+    p.textContent = 'You made this variation before from the same routes and parameters: here it is. ' +
+      'Tick "Make a new copy" on the vary page for a second one.';
+    plan.parentNode.insertBefore(p, plan);
+  }
 
   // ---- import page ----
   const importCrdl = $('#import-crdl');

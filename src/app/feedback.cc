@@ -1,5 +1,6 @@
 #include "app/feedback.h"
 
+#include <algorithm>
 #include <memory>
 #include <mutex>
 
@@ -40,7 +41,59 @@ const char* KindName(CrdlLineKind k) {
   return "error";
 }
 
+// Optimal string alignment distance, stopping early above `cap`.
+int Distance(std::string_view a, std::string_view b, int cap) {
+  const size_t n = a.size(), m = b.size();
+  if ((n > m ? n - m : m - n) > static_cast<size_t>(cap)) return cap + 1;
+  std::vector<std::vector<int>> d(n + 1, std::vector<int>(m + 1));
+  for (size_t i = 0; i <= n; ++i) d[i][0] = static_cast<int>(i);
+  for (size_t j = 0; j <= m; ++j) d[0][j] = static_cast<int>(j);
+  for (size_t i = 1; i <= n; ++i) {
+    for (size_t j = 1; j <= m; ++j) {
+      int cost = a[i - 1] == b[j - 1] ? 0 : 1;
+      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) {
+        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+      }
+    }
+  }
+  return d[n][m];
+}
+
+// The lower-case alphabetic words of a move text.
+std::vector<std::string> Words(std::string_view text) {
+  std::vector<std::string> out;
+  std::string w;
+  for (char c : text) {
+    if ((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z')) {
+      w += static_cast<char>(c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c);
+    } else if (!w.empty()) {
+      out.push_back(std::move(w));
+      w.clear();
+    }
+  }
+  if (!w.empty()) out.push_back(std::move(w));
+  return out;
+}
+
 }  // namespace
+
+std::string DidYouMean(std::string_view word, const std::vector<std::string>& vocabulary) {
+  if (word.size() < 3) return "";
+  const int cap = word.size() <= 4 ? 1 : 2;
+  std::string best;
+  int best_d = cap + 1;
+  for (const std::string& v : vocabulary) {
+    if (v == word) return "";
+    if (v.size() < 3) continue;
+    int d = Distance(word, v, cap);
+    if (d < best_d) {
+      best_d = d;
+      best = v;
+    }
+  }
+  return best_d <= cap ? best : "";
+}
 
 bool LanguageAvailable() { return ThreadLanguage() != nullptr; }
 
@@ -74,6 +127,12 @@ EditorFeedback ReadForEditor(std::string_view crdl) {
       if (lang) {
         l.parsed = lang->Read(c.text).parse.ok();
         l.reading = lang->Explain(c.text);
+        const language::Grammar& g = lang->grammar();
+        for (const std::string& w : Words(c.text)) {
+          if (g.WordId(w) >= 0) continue;
+          std::string near = DidYouMean(w, g.words());
+          if (!near.empty()) l.did_you_mean.emplace_back(w, near);
+        }
       }
     }
     // The parser's verdict wins (invalid UTF-8, NUL bytes, a missing "---").

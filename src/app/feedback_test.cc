@@ -66,3 +66,27 @@ TEST(FeedbackTest, MoveReadings) {
 
 }  // namespace
 }  // namespace sb::app
+
+namespace sb::app {
+namespace {
+
+TEST(DidYouMeanTest, SuggestsTheClosestVocabularyWord) {
+  const std::vector<std::string> vocab = {"crimp", "sidepull", "jug", "sloper", "pinch"};
+  EXPECT_EQ(DidYouMean("crmip", vocab), "crimp");  // two swaps away at most
+  EXPECT_EQ(DidYouMean("slpoer", vocab), "sloper");
+  EXPECT_EQ(DidYouMean("crimp", vocab), "");       // known words need nothing
+  EXPECT_EQ(DidYouMean("zanzibar", vocab), "");    // nothing close
+  EXPECT_EQ(DidYouMean("ju", vocab), "");          // too short to guess
+}
+
+TEST(DidYouMeanTest, TheEditorFlagsAMisspeltHold) {
+  if (!LanguageAvailable()) GTEST_SKIP() << "no grammar";
+  EditorFeedback f = ReadForEditor("name: t\n---\nR crmip\n");
+  ASSERT_EQ(f.lines.size(), 3u);
+  ASSERT_EQ(f.lines[2].did_you_mean.size(), 1u);
+  EXPECT_EQ(f.lines[2].did_you_mean[0].first, "crmip");
+  EXPECT_EQ(f.lines[2].did_you_mean[0].second, "crimp");
+}
+
+}  // namespace
+}  // namespace sb::app

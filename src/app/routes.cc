@@ -5,6 +5,7 @@
 
 #include "app/variations.h"
 #include "base/text.h"
+#include "grades/evaluate.h"
 #include "chaos/variation.h"
 #include "crdl/route.h"
 #include "crdl/site_csv.h"
@@ -12,7 +13,45 @@
 namespace sb::app {
 
 bool IsVisible(const store::RouteRecord& r, const Viewer& v) {
-  return r.is_public || IsOwner(r, v);
+  if (!r.is_public && !IsOwner(r, v)) return false;
+  for (const store::SourceRoute& s : r.sources) {
+    bool owns = v.user_id && s.owner_id && *s.owner_id == *v.user_id;
+    if (!s.is_public && !owns) return false;
+  }
+  return true;
+}
+
+bool HasPrivateSource(const store::RouteRecord& r, bool self) {
+  if (self && !r.is_public) return true;
+  for (const store::SourceRoute& s : r.sources) {
+    if (!s.is_public) return true;
+  }
+  return false;
+}
+
+void FillMetadata(const Route& route, store::RouteRecord* rec, const std::string& fallback_name) {
+  auto meta = [&](std::initializer_list<const char*> keys) {
+    for (const char* k : keys) {
+      if (std::optional<std::string> v = route.Meta(k)) return std::string(Trim(*v));
+    }
+    return std::string();
+  };
+  rec->name = route.Name(fallback_name);
+  rec->grade = meta({"grade"});
+  rec->setter = meta({"setter"});
+  rec->colour = meta({"colour", "color"});
+  rec->wall = meta({"wall", "area"});
+  rec->set_on = meta({"date"});
+  rec->move_count = static_cast<int>(route.moves.size());
+  rec->grade_discipline.clear();
+  rec->grade_value.reset();
+  // An unreadable grade is kept as typed, without a value (it cannot be
+  // sorted or filtered by difficulty); the editor says why.
+  if (Result<grades::RouteGrade> g = grades::GradeOfRoute(route, "route"); g.ok()) {
+    rec->grade_discipline = grades::DisciplineName(g->discipline);
+    rec->grade_value = g->value;
+  }
+  rec->meta_version = kRouteMetaVersion;
 }
 
 bool IsOwner(const store::RouteRecord& r, const Viewer& v) {
@@ -23,15 +62,65 @@ namespace {
 
 Status NoRoute(int64_t id) { return Status::NotFound("no route " + std::to_string(id)); }
 
-// Name, grade, setter, move count and CRDL of a record from its text.
+// The metadata and CRDL of a record from its text.
 Status FillFromCrdl(std::string_view crdl, store::RouteRecord* rec) {
   SB_ASSIGN_OR_RETURN(Route r, ParseCrdl(crdl, "route.crdl"));
-  rec->name = r.Name("untitled");
-  rec->grade = r.Meta("grade").value_or("");
-  rec->setter = r.Meta("setter").value_or("");
+  FillMetadata(r, rec);
   rec->crdl = std::string(crdl);
-  rec->move_count = static_cast<int>(r.moves.size());
   return Status::Ok();
+}
+
+// The moves of a CRDL text as "hand text" lines ("" when it does not parse).
+std::string MoveLines(std::string_view crdl) {
+  Result<Route> r = ParseCrdl(crdl, "route.crdl");
+  if (!r.ok()) return "";
+  std::string out;
+  for (const Move& m : r->moves) {
+    out += HandLetter(m.hand);
+    out += ' ';
+    out += m.text;
+    out += m.crux ? " (crux)\n" : "\n";
+  }
+  return out;
+}
+
+// A difficulty range [lo, hi] on one discipline's axis from one grade (its
+// band) or two (from the lower band's bottom to the upper band's top).
+struct GradeRange {
+  grades::Discipline discipline;
+  std::optional<double> lo, hi;
+};
+
+// The band of `value` as a closed range: Band(v) = ceil(v - 1/2), so band b
+// holds (b - 1/2, b + 1/2]; grades are multiples of 1/8, so the open end is
+// moved in by less than that.
+constexpr double kBandEdge = 1e-6;
+double BandLow(double value) { return grades::Band(value) - 0.5 + kBandEdge; }
+double BandHigh(double value) { return grades::Band(value) + 0.5; }
+
+Result<std::optional<GradeRange>> RangeOf(const RouteQuery& q) {
+  if (q.grade_from.empty() && q.grade_to.empty()) return std::optional<GradeRange>();
+  std::optional<grades::Grade> from, to;
+  if (!q.grade_from.empty()) {
+    SB_ASSIGN_OR_RETURN(from, grades::ParseGrade(q.grade_from, {}, "from grade"));
+  }
+  if (!q.grade_to.empty()) {
+    SB_ASSIGN_OR_RETURN(to, grades::ParseGrade(q.grade_to, {}, "to grade"));
+  }
+  GradeRange r;
+  r.discipline = from ? from->discipline() : to->discipline();
+  if (from) r.lo = BandLow(grades::Difficulty(*from, r.discipline));
+  if (to) r.hi = BandHigh(grades::Difficulty(*to, r.discipline));
+  return std::optional<GradeRange>(r);
+}
+
+Result<store::RouteSort> SortOf(const std::string& s) {
+  if (s.empty() || s == "newest") return store::RouteSort::kNewest;
+  if (s == "oldest") return store::RouteSort::kOldest;
+  if (s == "name") return store::RouteSort::kName;
+  if (s == "easiest") return store::RouteSort::kEasiest;
+  if (s == "hardest") return store::RouteSort::kHardest;
+  return Status::InvalidInput("sort: expected newest, oldest, name, easiest or hardest");
 }
 
 }  // namespace
@@ -40,18 +129,68 @@ Routes::Routes(store::Store* store, const Options& options, PlanCache* plans)
     : store_(store), options_(options), plans_(plans) {}
 
 Result<std::vector<store::RouteRecord>> Routes::List(const Viewer& v, const RouteQuery& q) {
+  SB_ASSIGN_OR_RETURN(RoutePage page, Search(v, q));
+  return std::move(page.routes);
+}
+
+Result<RoutePage> Routes::Search(const Viewer& v, const RouteQuery& q) {
   store::RouteFilter f;
   f.viewer = v.user_id;
-  f.text = q.text;
-  f.grade = q.grade;
-  f.setter = q.setter;
+  f.text = std::string(Trim(q.text));
+  f.setter = std::string(Trim(q.setter));
+  f.wall = std::string(Trim(q.wall));
   f.is_variation = q.variations;
+  if (q.mine) f.owner = v.user_id.value_or(-1);
   f.limit = options_.limits.default_list_rows;
   if (q.limit) {
     if (*q.limit < 1) return Status::InvalidInput("limit: expected a positive integer");
     f.limit = std::min(*q.limit, options_.limits.max_list_rows);
   }
-  return store_->ListRoutes(f);
+  if (q.offset < 0) return Status::InvalidInput("offset: expected 0 or more");
+  f.offset = q.offset;
+  SB_ASSIGN_OR_RETURN(f.sort, SortOf(q.sort));
+  std::string grade(Trim(q.grade));
+  if (!grade.empty()) {
+    // A grade filters by its band across scales; other text by the typed grade.
+    if (Result<grades::Grade> g = grades::ParseGrade(grade, {}, "grade"); g.ok()) {
+      f.grade_discipline = grades::DisciplineName(g->discipline());
+      f.grade_min = BandLow(g->value);
+      f.grade_max = BandHigh(g->value);
+    } else {
+      f.grade = grade;
+    }
+  }
+  SB_ASSIGN_OR_RETURN(std::optional<GradeRange> range, RangeOf(q));
+  if (range) {
+    if (!f.grade_discipline.empty() &&
+        f.grade_discipline != grades::DisciplineName(range->discipline)) {
+      return Status::InvalidInput("grade: '" + grade + "' and the grade range are of different "
+                                  "disciplines (bouldering and roped)");
+    }
+    f.grade_discipline = grades::DisciplineName(range->discipline);
+    if (range->lo) f.grade_min = f.grade_min ? std::max(*f.grade_min, *range->lo) : *range->lo;
+    if (range->hi) f.grade_max = f.grade_max ? std::min(*f.grade_max, *range->hi) : *range->hi;
+  }
+  RoutePage page;
+  page.offset = f.offset;
+  page.limit = f.limit;
+  SB_ASSIGN_OR_RETURN(page.routes, store_->ListRoutes(f));
+  SB_ASSIGN_OR_RETURN(page.total, store_->CountRoutes(f));
+  return page;
+}
+
+Result<int> Routes::RefreshMetadata() {
+  SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> all, store_->AllRoutes(std::nullopt));
+  int changed = 0;
+  for (store::RouteRecord& rec : all) {
+    if (rec.meta_version >= kRouteMetaVersion) continue;
+    Result<Route> r = ParseCrdl(rec.crdl, "route " + std::to_string(rec.id));
+    if (!r.ok()) continue;  // stored text always parses; nothing to derive otherwise
+    FillMetadata(*r, &rec, rec.name);
+    SB_RETURN_IF_ERROR(store_->UpdateRouteMetadata(rec));
+    ++changed;
+  }
+  return changed;
 }
 
 Result<store::RouteRecord> Routes::Get(const Viewer& v, int64_t id) {
@@ -79,10 +218,39 @@ Result<int64_t> Routes::Create(const Viewer& v, std::string_view crdl, bool is_p
 
 Status Routes::Update(const Viewer& v, int64_t id, const RouteEdit& edit) {
   SB_ASSIGN_OR_RETURN(store::RouteRecord r, GetOwned(v, id));
-  if (edit.crdl) SB_RETURN_IF_ERROR(FillFromCrdl(*edit.crdl, &r));
-  if (edit.is_public) r.is_public = *edit.is_public;
+  const bool was_public = r.is_public;
+  if (edit.crdl) {
+    // A variation whose moves the setter edits is no longer what its request
+    // made: the same request makes a new one.
+    if (r.is_variation && MoveLines(*edit.crdl) != MoveLines(r.crdl)) r.request_key.clear();
+    SB_RETURN_IF_ERROR(FillFromCrdl(*edit.crdl, &r));
+  }
+  if (edit.is_public) {
+    if (*edit.is_public && HasPrivateSource(r, false)) {
+      return Status::InvalidInput(kPrivateSourceMessage);
+    }
+    r.is_public = *edit.is_public;
+  }
   SB_RETURN_IF_ERROR(store_->UpdateRoute(r));
   plans_->Forget(id);
+  if (was_public && !r.is_public) SB_RETURN_IF_ERROR(HideOwnVariationsOf(v, id));
+  return Status::Ok();
+}
+
+// The owner's public variations made from a route they just made private
+// follow it (a variation of a private route is private); other people's
+// variations of it are hidden from everyone else by the visibility rule.
+Status Routes::HideOwnVariationsOf(const Viewer& v, int64_t id) {
+  SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> mine, store_->AllRoutes(v.user_id));
+  for (store::RouteRecord& rec : mine) {
+    if (!rec.is_variation || !rec.is_public) continue;
+    bool from = std::any_of(rec.sources.begin(), rec.sources.end(),
+                            [&](const store::SourceRoute& s) { return s.route_id == id; });
+    if (!from) continue;
+    rec.is_public = false;
+    SB_RETURN_IF_ERROR(store_->UpdateRoute(rec));
+    plans_->Forget(rec.id);
+  }
   return Status::Ok();
 }
 
@@ -142,11 +310,8 @@ Result<ImportSummary> Routes::ImportCsv(const Viewer& v, std::string_view routes
     Imported im{&sr, {}, {}};
     store::RouteRecord& rec = im.record;
     rec.owner_id = v.user_id;
-    rec.name = sr.route.Name();
-    rec.grade = sr.route.Meta("grade").value_or("");
-    rec.setter = sr.route.Meta("setter").value_or("");
+    FillMetadata(sr.route, &rec, sr.route.Name());
     rec.crdl = std::move(crdl);
-    rec.move_count = static_cast<int>(sr.route.moves.size());
     rec.is_public = sr.is_public;
     rec.is_variation = sr.is_variation;
     rec.created_at = sr.created_at;
@@ -166,6 +331,11 @@ Result<ImportSummary> Routes::ImportCsv(const Viewer& v, std::string_view routes
         if (it == position.end()) continue;  // input not in this import: no link
         const Imported& in = batch[it->second];
         im.inputs.push_back(it->second);
+        if (rec.is_public && !in.record.is_public) {
+          rec.is_public = false;
+          out.skipped.push_back(where + "made private: it is a variation of private route " +
+                                std::to_string(legacy));
+        }
         inputs.push_back({in.record.name, in.site->route});
         total += in.record.move_count;
       }

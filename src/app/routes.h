@@ -12,19 +12,46 @@
 
 #include "app/options.h"
 #include "base/status.h"
+#include "crdl/route.h"
 #include "store/store.h"
 
 namespace sb::app {
 
 class PlanCache;
 
+// The version of the metadata columns this code fills (RouteRecord::
+// meta_version). Bump it when their derivation changes: RefreshMetadata then
+// recomputes every older row from its CRDL.
+inline constexpr int kRouteMetaVersion = 1;
+
 // The list filters (empty strings do not filter).
 struct RouteQuery {
-  std::string text;                // in name, description or moves, ignoring case
-  std::string grade;               // exact, ignoring case
+  // In the name, the CRDL (description, metadata such as grade, setter, wall
+  // and colour, the moves) or the owner's name, ignoring case.
+  std::string text;
+  // A grade in any scale ("V4", "6B+", "5.10a"): the routes of that grade's
+  // band in its discipline, whatever scale they were typed in; text that is
+  // not a grade matches the typed grade exactly, ignoring case.
+  std::string grade;
+  // A difficulty range, each end a grade in any scale (inclusive, by band;
+  // `grade_to` is converted to `grade_from`'s discipline when they differ).
+  std::string grade_from, grade_to;
   std::string setter;              // in setter metadata or owner name, ignoring case
+  std::string wall;                // in the wall, ignoring case
   std::optional<bool> variations;  // only variations (true) or only routes (false)
+  bool mine = false;               // only the viewer's own routes
+  // "newest" (default), "oldest", "name", "easiest", "hardest".
+  std::string sort;
+  int offset = 0;                  // rows skipped (paging), >= 0
   std::optional<int> limit;        // rows; default and cap from Limits
+};
+
+// One page of a route list.
+struct RoutePage {
+  std::vector<store::RouteRecord> routes;
+  int64_t total = 0;  // rows matching the query, all pages
+  int offset = 0;
+  int limit = 0;
 };
 
 // What an edit changes (unset fields stay).
@@ -43,8 +70,27 @@ struct CsvFiles {
   std::string moves_csv;
 };
 
-// The visibility rule: public routes, and the viewer's own.
+// The visibility rule: a route is visible when it is public or the viewer's
+// own, and — for a variation — so is every route it was made from (its
+// `sources`, transitively): a private route's moves never reach anyone else
+// through a variation. store::RouteFilter applies the same rule in the
+// database for lists.
 bool IsVisible(const store::RouteRecord& r, const Viewer& v);
+// Whether any source of a variation (or the route itself when `self`) is
+// private: such a variation must stay private.
+bool HasPrivateSource(const store::RouteRecord& r, bool self);
+
+// Fills the record's name (or `fallback_name`), grade (typed, discipline and
+// normalised value through src/grades; an unreadable grade is kept as typed,
+// without a value), setter, colour ("colour:" or "color:"), wall ("wall:" or
+// "area:"), set_on ("date:"), move_count and meta_version from `route`'s
+// header. Pure.
+void FillMetadata(const Route& route, store::RouteRecord* rec,
+                  const std::string& fallback_name = "untitled");
+// Why a variation of a private route cannot be made public.
+inline constexpr char kPrivateSourceMessage[] =
+    "public: a variation of a private route stays private (make the route public first)";
+
 // The ownership rule: only the owner (a logged-in user) may change a route.
 bool IsOwner(const store::RouteRecord& r, const Viewer& v);
 
@@ -55,6 +101,10 @@ class Routes {
 
   // Visible routes, newest first. Errors: kInvalidInput for a limit < 1.
   Result<std::vector<store::RouteRecord>> List(const Viewer& v, const RouteQuery& q);
+  // One page of the visible routes matching `q`, with the total. Errors:
+  // kInvalidInput naming the field (limit < 1, offset < 0, an unknown sort,
+  // a grade range end that is not a grade).
+  Result<RoutePage> Search(const Viewer& v, const RouteQuery& q);
   // One visible route. Absent and invisible routes give the same
   // kNotFound "no route N".
   Result<store::RouteRecord> Get(const Viewer& v, int64_t id);
@@ -83,7 +133,14 @@ class Routes {
   // format; ids are the database's.
   Result<CsvFiles> ExportCsv(const Viewer& v, bool mine);
 
+  // Recomputes the metadata columns of every route filled by an older
+  // version (meta_version < kRouteMetaVersion) from its CRDL; returns how
+  // many rows changed. Run when the server starts. Errors: the store's.
+  Result<int> RefreshMetadata();
+
  private:
+  Status HideOwnVariationsOf(const Viewer& v, int64_t id);
+
   store::Store* store_;
   const Options options_;
   PlanCache* plans_;

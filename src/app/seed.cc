@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "app/routes.h"
 #include "base/files.h"
 #include "crdl/route.h"
 #include "store/auth.h"
@@ -37,12 +38,9 @@ Result<int> SeedExamples(store::Store* store, const std::string& dir, int64_t ow
     }
     store::RouteRecord rec;
     rec.owner_id = owner;
-    rec.name = r->Name(RouteFileStem(f));
-    if (!r->Meta("name")) r->SetMeta("name", rec.name);
-    rec.grade = r->Meta("grade").value_or("");
-    rec.setter = r->Meta("setter").value_or("");
+    if (!r->Meta("name")) r->SetMeta("name", r->Name(RouteFileStem(f)));
+    FillMetadata(*r, &rec);
     rec.crdl = PrintCrdl(*r);
-    rec.move_count = static_cast<int>(r->moves.size());
     rec.is_public = true;
     records.push_back(std::move(rec));
   }

@@ -1,5 +1,7 @@
 #include "app/services.h"
 
+#include "base/log.h"
+
 namespace sb::app {
 
 Services::Services(store::Store* store, const Options& opts, Clock* clock)
@@ -8,6 +10,11 @@ Services::Services(store::Store* store, const Options& opts, Clock* clock)
       accounts(store, opts, clock),
       routes(store, opts, &plans),
       variations(store, opts, &plans),
-      maps(store, opts) {}
+      maps(store, opts) {
+  // Rows written by an older version get their metadata columns (grades,
+  // colour, wall, ...) derived again; a failure leaves them as they were.
+  Result<int> refreshed = routes.RefreshMetadata();
+  if (!refreshed.ok()) LogError("route metadata: " + refreshed.status().message());
+}
 
 }  // namespace sb::app

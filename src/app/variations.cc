@@ -84,6 +84,14 @@ std::string PlanContent(const store::RouteRecord& rec) {
   return c;
 }
 
+// The plan showing the moves as the setter left them (the variation's CRDL).
+Result<PlanCache::Entry> WithEdits(const store::RouteRecord& rec, PlanCache::Entry e) {
+  if (rec.inputs.empty()) return e;  // an imported variation shown as its own moves
+  SB_ASSIGN_OR_RETURN(Route edited, ParseCrdl(rec.crdl, rec.name));
+  e.edits = ApplyEdits(edited, &e.plan);
+  return e;
+}
+
 // Rebuilds the plan of a stored variation from its input snapshots and
 // parameters. The suggestions made when it was created are taken as stored
 // with it; variations stored without them are smoothed again.
@@ -100,10 +108,10 @@ Result<PlanCache::Entry> Rebuild(const store::RouteRecord& rec, const std::strin
   }
   PlanCache::Entry e;
   SB_ASSIGN_OR_RETURN(e.plan, BuildPlan(std::move(inputs), params, {}, nullptr));
-  if (!rec.smooth) return e;
+  if (!rec.smooth) return WithEdits(rec, std::move(e));
   if (!rec.plan_json.empty() && plan::SmoothingFromJson(rec.plan_json, &e.plan)) {
     if (e.plan.smoothing.empty()) e.note = kNoSuggestions;
-    return e;
+    return WithEdits(rec, std::move(e));
   }
   Status st = plan::Smooth(model, &e.plan);
   if (!st.ok()) {
@@ -112,20 +120,7 @@ Result<PlanCache::Entry> Rebuild(const store::RouteRecord& rec, const std::strin
   } else if (e.plan.smoothing.empty()) {
     e.note = kNoSuggestions;
   }
-  return e;
-}
-
-// A variation's name on one line; "Variation on 3,9" when none is given.
-std::string VariationName(const std::string& asked, const std::vector<int64_t>& ids) {
-  std::string name(Trim(asked));
-  if (name.empty()) {
-    name = "Variation on ";
-    for (size_t i = 0; i < ids.size(); ++i) name += (i ? "," : "") + std::to_string(ids[i]);
-  }
-  for (char& c : name) {
-    if (c == '\n' || c == '\r') c = ' ';
-  }
-  return name;
+  return WithEdits(rec, std::move(e));
 }
 
 }  // namespace
@@ -143,6 +138,7 @@ Result<CreatedVariation> Variations::Create(const Viewer& v, const VariationRequ
     return Status::InvalidInput("routes: at most " + std::to_string(lim.max_vary_routes));
   }
   SB_RETURN_IF_ERROR(req.params.Validate());
+  SB_RETURN_IF_ERROR(ValidateMetadata(req.meta));
   if (req.params.skip > lim.max_vary_skip) {
     return Status::InvalidInput("skip: at most " + std::to_string(lim.max_vary_skip) +
                                 " on this server");
@@ -163,6 +159,28 @@ Result<CreatedVariation> Variations::Create(const Viewer& v, const VariationRequ
     inputs.push_back({r.name, std::move(route).value()});
     recs.push_back(std::move(r));
   }
+  SB_ASSIGN_OR_RETURN(bool is_public, VariationVisibility(recs, req.is_public));
+  const std::string params_json = chaos::ParamsToJson(req.params);
+  const std::string key = RequestKey(params_json, req.smooth, recs);
+  if (!req.duplicate) {
+    // The same request made before: that variation, not a second copy.
+    Result<int64_t> found = store_->FindVariationByKey(*v.user_id, key);
+    if (found.ok()) {
+      Result<store::RouteRecord> old = store_->GetRoute(*found);
+      if (old.ok() && SameRequest(*old, params_json, req.smooth, recs)) {
+        SB_ASSIGN_OR_RETURN(PlanView view, Plan(v, *found));
+        CreatedVariation out;
+        out.id = *found;
+        out.plan = *view.plan;
+        out.smoothing.requested = old->smooth;
+        out.smoothing.applied = !view.plan->smoothing_model.empty();
+        out.existing = true;
+        return out;
+      }
+    } else if (found.status().code() != Status::Code::kNotFound) {
+      return found.status();
+    }
+  }
   SmoothingRequest smoothing{req.smooth, options_.smoothing_model, 0.0};
   CreatedVariation out;
   SB_ASSIGN_OR_RETURN(out.plan, BuildPlan(inputs, req.params, smoothing, &out.smoothing));
@@ -172,25 +190,27 @@ Result<CreatedVariation> Variations::Create(const Viewer& v, const VariationRequ
     out.smoothing.status = Status::NotFound(kNoSmoothing);
   }
 
-  // The variation, stored like a route: its moves as CRDL, its parameters,
-  // its plan and a snapshot of every input.
-  std::string ids;
-  for (size_t i = 0; i < recs.size(); ++i) ids += (i ? "," : "") + std::to_string(recs[i].id);
-  store::RouteRecord rec;
-  rec.name = VariationName(req.name, req.routes);
-  Route varied;
-  varied.header.push_back({"name", rec.name});
-  varied.header.push_back({"varied-from", ids});
-  for (const chaos::VariedMove& m : out.plan.variation.moves) {
-    varied.moves.push_back({m.hand, m.text.empty() ? "(blank)" : m.text, 0, m.crux});
+  // The variation, stored like a route: its metadata and moves as CRDL, its
+  // parameters, its plan and a snapshot of every input.
+  VariationMetadata meta = req.meta;
+  if (Trim(meta.name).empty()) {
+    std::vector<std::string> names;
+    for (const chaos::InputRoute& in : inputs) names.push_back(in.name);
+    meta.name = DefaultVariationName(names);
   }
+  if (Trim(meta.setter).empty()) meta.setter = v.username;
+  std::vector<int64_t> ids;
+  for (const store::RouteRecord& r : recs) ids.push_back(r.id);
+  Route varied = VariationRoute(meta, ids, out.plan.variation);
+  store::RouteRecord rec;
+  FillMetadata(varied, &rec);
   rec.owner_id = v.user_id;
   rec.crdl = PrintCrdl(varied);
-  rec.move_count = static_cast<int>(varied.moves.size());
-  rec.is_public = req.is_public;
+  rec.is_public = is_public;
   rec.is_variation = true;
   rec.smooth = req.smooth;
-  rec.params_json = chaos::ParamsToJson(req.params);
+  rec.params_json = params_json;
+  rec.request_key = key;
   rec.plan_json = plan::RenderJson(out.plan);
   for (size_t i = 0; i < recs.size(); ++i) {
     store::VariationInput vi;
@@ -224,6 +244,7 @@ Result<PlanView> Variations::Plan(const Viewer& v, int64_t id) {
   out.record = std::move(r).value();
   out.plan = std::shared_ptr<const plan::RoutePlan>(entry, &entry->plan);
   out.smoothing_note = entry->note;
+  out.edits = entry->edits;
   return out;
 }
 

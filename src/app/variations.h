@@ -8,10 +8,12 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "app/options.h"
+#include "app/variation_meta.h"
 #include "base/status.h"
 #include "chaos/variation.h"
 #include "plan/plan.h"
@@ -52,6 +54,7 @@ class PlanCache {
     std::string content;  // what the plan was built from
     plan::RoutePlan plan;
     std::string note;  // why smoothing is missing, when it is
+    EditSummary edits;
   };
   explicit PlanCache(size_t capacity) : capacity_(capacity) {}
   // The entry for `id` when it was built from `content`; null otherwise.
@@ -72,14 +75,22 @@ struct VariationRequest {
   std::vector<int64_t> routes;  // input route ids, concatenated in this order
   chaos::VaryParams params;
   bool smooth = false;
-  bool is_public = true;
-  std::string name;  // "" = "Variation on 3,9"
+  // nullopt: private when any input is private (app::VariationVisibility),
+  // else public.
+  std::optional<bool> is_public;
+  // Name ("" = from the inputs' names), grade, colour, wall, setter ("" = the
+  // owner), date ("" = today), notes (app/variation_meta.h).
+  VariationMetadata meta;
+  // Make a new variation even when this owner already made one from the same
+  // request (else that one is returned, `existing` set).
+  bool duplicate = false;
 };
 
 struct CreatedVariation {
   int64_t id = 0;
   plan::RoutePlan plan;
   SmoothingOutcome smoothing;
+  bool existing = false;  // the same request had made it before
 };
 
 // A stored variation with its plan.
@@ -87,6 +98,7 @@ struct PlanView {
   store::RouteRecord record;
   std::shared_ptr<const plan::RoutePlan> plan;
   std::string smoothing_note;  // "" unless smoothing was asked for and is missing
+  EditSummary edits;           // what the setter's editing changed (app::ApplyEdits)
 };
 
 // Thread-safe. Does not own `store` or `plans`.
@@ -94,7 +106,10 @@ class Variations {
  public:
   Variations(store::Store* store, const Options& options, PlanCache* plans);
 
-  // Makes and stores a variation owned by the viewer from visible routes.
+  // Makes and stores a variation owned by the viewer from visible routes,
+  // named and described by `request.meta`, private by the rule of
+  // VariationVisibility; the same request made again returns the first
+  // variation (`existing`) unless `duplicate` is set.
   // When the smoothing model cannot be used, the variation is made without it
   // and the outcome says so (the detailed reason, naming server files, is
   // only logged). Errors: kUnauthenticated; kInvalidInput naming the field ("routes: ...",

@@ -25,7 +25,7 @@ TEST_F(AppTest, VariationsAreStoredLikeRoutesAndTheirPlansRebuilt) {
   Result<store::RouteRecord> stored = services_->routes.Get(anon, v->id);
   ASSERT_TRUE(stored.ok());
   EXPECT_TRUE(stored->is_variation);
-  EXPECT_EQ(stored->name, "Variation on " + std::to_string(a) + "," + std::to_string(b));
+  EXPECT_EQ(stored->name, "Variation of Crimp Ladder and Slab Dance");
   ASSERT_EQ(stored->inputs.size(), 2u);
   EXPECT_EQ(stored->inputs[1].route_id, b);
   // The stored CRDL keeps the cruxes of the moves it came from.
@@ -96,6 +96,7 @@ TEST_F(AppTest, SmoothingIsReportedWhetherOrNotItRan) {
   Options missing = TestOptions();
   missing.smoothing_model = (dir_ / "no-such.sbm").string();
   Reopen(missing);
+  req.duplicate = true;  // the same request again would return the first
   Result<CreatedVariation> w = services_->variations.Create(alice, req);
   ASSERT_TRUE(w.ok());  // made anyway
   EXPECT_FALSE(w->smoothing.applied);
@@ -110,7 +111,7 @@ TEST_F(AppTest, ADeletedPrivateVariationLeavesNothingBehind) {
   VariationRequest req;
   req.routes = {a};
   req.is_public = false;
-  req.name = "Secret plan";
+  req.meta.name = "Secret plan";
   Result<CreatedVariation> secret = services_->variations.Create(alice, req);
   ASSERT_TRUE(secret.ok());
   ASSERT_TRUE(services_->variations.Plan(alice, secret->id).ok());  // cached now

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <thread>
 
 #include "base/text.h"
@@ -68,13 +69,13 @@ using Cand = std::pair<double, int>;
 
 struct NearestIndex::Grid {
   int dims = 0;
-  int axis[3] = {0, 0, 0};          // state component of each grid axis
-  double lo[3] = {0, 0, 0};         // grid origin
-  double cell = 1.0;                // cell edge length
-  long g[3] = {1, 1, 1};            // cells per axis
-  std::vector<uint32_t> start;      // CSR: points of cell c are [start[c], start[c+1])
-  std::vector<int> index;           // original index of each stored point
-  std::vector<double> coords;       // stored points' coordinates, dims per point
+  int axis[3] = {0, 0, 0};      // state component of each grid axis
+  double lo[3] = {0, 0, 0};     // grid origin
+  double cell = 1.0;            // cell edge length
+  long g[3] = {1, 1, 1};        // cells per axis
+  std::vector<uint32_t> start;  // CSR: points of cell c are [start[c], start[c+1])
+  std::vector<int> index;       // original index of each stored point
+  std::vector<double> coords;   // stored points' coordinates, dims per point
 
   long CellOf(int a, double v) const {
     double f = std::floor((v - lo[a]) / cell);
@@ -270,61 +271,231 @@ std::vector<int> NearestIndex::KNearest(const State& q, int k) const {
 }
 
 // ---------------------------------------------------------------------------
-// Mapping.
+// Nearest point outside one class, for max_repeat: a k-d tree whose nodes
+// know when all their points share a class, so a query skips whole subtrees
+// of the excluded class. Exact: the answer is the least (MaskedDist2, index)
+// among points of another class, as a scan in that order would find it.
 
 namespace {
 
-// Candidate references for point v in Dabby's rule, best first, at most `limit`.
-// `order` holds reference indices sorted by (x, index).
-std::vector<int> DabbyCandidates(const std::vector<State>& ref, const std::vector<int>& order,
-                                 double vx, DabbyDirection dir, size_t limit) {
-  std::vector<int> out;
-  if (dir == DabbyDirection::kAbove) {
-    auto it = std::lower_bound(order.begin(), order.end(), vx,
-                               [&](int i, double x) { return ref[i][0] < x; });
-    for (; it != order.end() && out.size() < limit; ++it) out.push_back(*it);
-  } else {
-    // Largest x <= vx; among equal x the lowest index first.
-    auto it = std::upper_bound(order.begin(), order.end(), vx,
-                               [&](double x, int i) { return x < ref[i][0]; });
-    while (it != order.begin() && out.size() < limit) {
-      auto group_end = it;
-      double gx = ref[*(it - 1)][0];
-      auto group_begin = it - 1;
-      while (group_begin != order.begin() && ref[*(group_begin - 1)][0] == gx) --group_begin;
-      for (auto g = group_begin; g != group_end && out.size() < limit; ++g) out.push_back(*g);
-      it = group_begin;
+class ClassNearest {
+ public:
+  ClassNearest(const std::vector<State>& points, DimMask mask, const std::vector<int>& cls)
+      : points_(points), mask_(mask), cls_(cls) {
+    for (int i = 0; i < 3; ++i) {
+      if (mask & (1u << i)) axis_[dims_++] = i;
+    }
+    const size_t n = points.size();
+    bool finite = n > kBruteForceMax && dims_ > 0;
+    for (size_t i = 0; i < n && finite; ++i) {
+      for (int a = 0; a < dims_; ++a) finite = finite && std::isfinite(points[i][axis_[a]]);
+    }
+    if (!finite) return;  // small or non-finite: linear scans
+    perm_.resize(n);
+    coords_.resize(n * dims_);
+    double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+    for (size_t i = 0; i < n; ++i) {
+      perm_[i] = static_cast<int>(i);
+      for (int a = 0; a < dims_; ++a) {
+        double v = points[i][axis_[a]];
+        coords_[i * dims_ + a] = v;
+        lo[a] = i ? std::min(lo[a], v) : v;
+        hi[a] = i ? std::max(hi[a], v) : v;
+      }
+    }
+    nodes_.reserve(2 * n / kLeaf + 2);
+    Build(0, n, lo, hi);
+  }
+
+  // The point of least (MaskedDist2, index) whose class is not `excluded`;
+  // -1 when every point is of that class. Thread-compatible (const).
+  int Query(const State& q, int excluded) const {
+    std::pair<double, int> best{std::numeric_limits<double>::infinity(),
+                                std::numeric_limits<int>::max()};
+    bool found = false;
+    auto offer = [&](int i) {
+      if (cls_[i] == excluded) return;
+      std::pair<double, int> c{MaskedDist2(q, points_[i], mask_), i};
+      if (!found || c < best) best = c;
+      found = true;
+    };
+    if (nodes_.empty()) {
+      for (size_t i = 0; i < points_.size(); ++i) offer(static_cast<int>(i));
+      return found ? best.second : -1;
+    }
+    double qa[3];
+    for (int a = 0; a < dims_; ++a) qa[a] = q[axis_[a]];
+    std::vector<int> stack{0};
+    while (!stack.empty()) {
+      const Node& nd = nodes_[stack.back()];
+      stack.pop_back();
+      if (nd.uniform && nd.cls == excluded) continue;  // the whole subtree is excluded
+      // A lower bound of every point's distance, summed like MaskedDist2:
+      // rounding is monotone, so it never exceeds a point's computed value.
+      if (found && Bound(nd, qa) > best.first) continue;
+      if (nd.left < 0) {
+        for (uint32_t s = nd.begin; s < nd.end; ++s) {
+          int i = perm_[s];
+          if (cls_[i] == excluded) continue;
+          double d = 0.0;  // the same sum, in the same order, as MaskedDist2
+          for (int a = 0; a < dims_; ++a) {
+            double t = qa[a] - Coord(i, a);
+            d += t * t;
+          }
+          std::pair<double, int> c{d, i};
+          if (!found || c < best) best = c;
+          found = true;
+        }
+        continue;
+      }
+      const Node& l = nodes_[nd.left];
+      const Node& r = nodes_[nd.right];
+      // The nearer child is searched first (pushed last).
+      bool left_first = Bound(l, qa) <= Bound(r, qa);
+      stack.push_back(left_first ? nd.right : nd.left);
+      stack.push_back(left_first ? nd.left : nd.right);
+    }
+    return found ? best.second : -1;
+  }
+
+ private:
+  static constexpr size_t kLeaf = 8;
+  struct Node {
+    double lo[3], hi[3];  // bounding box over the masked axes
+    uint32_t begin, end;  // perm_ range
+    int left = -1, right = -1;
+    bool uniform = true;  // every point is of class `cls`
+    int cls = 0;
+  };
+
+  double Bound(const Node& nd, const double* qa) const {
+    double d = 0.0;
+    for (int a = 0; a < dims_; ++a) {
+      double t = 0.0;
+      if (qa[a] < nd.lo[a]) {
+        t = nd.lo[a] - qa[a];
+      } else if (qa[a] > nd.hi[a]) {
+        t = qa[a] - nd.hi[a];
+      }
+      d += t * t;
+    }
+    return d;
+  }
+
+  double Coord(int i, int a) const { return coords_[static_cast<size_t>(i) * dims_ + a]; }
+
+  // Builds the subtree over perm_[begin, end), whose points lie in the box
+  // [lo, hi] (loose: the parent's box cut at its split); returns its node.
+  // Splits at the median of the box's widest axis, so the depth is
+  // log2(n / kLeaf); a node's own box is the tight one, from its children.
+  int Build(size_t begin, size_t end, const double* lo, const double* hi) {
+    int id = static_cast<int>(nodes_.size());
+    nodes_.emplace_back();
+    Node nd;
+    nd.begin = static_cast<uint32_t>(begin);
+    nd.end = static_cast<uint32_t>(end);
+    if (end - begin <= kLeaf) {
+      nd.cls = cls_[perm_[begin]];
+      for (int a = 0; a < dims_; ++a) nd.lo[a] = nd.hi[a] = Coord(perm_[begin], a);
+      for (size_t s = begin; s < end; ++s) {
+        for (int a = 0; a < dims_; ++a) {
+          nd.lo[a] = std::min(nd.lo[a], Coord(perm_[s], a));
+          nd.hi[a] = std::max(nd.hi[a], Coord(perm_[s], a));
+        }
+        if (cls_[perm_[s]] != nd.cls) nd.uniform = false;
+      }
+    } else {
+      int w = 0;
+      for (int a = 1; a < dims_; ++a) {
+        if (hi[a] - lo[a] > hi[w] - lo[w]) w = a;
+      }
+      size_t mid = begin + (end - begin) / 2;
+      std::nth_element(perm_.begin() + static_cast<std::ptrdiff_t>(begin),
+                       perm_.begin() + static_cast<std::ptrdiff_t>(mid),
+                       perm_.begin() + static_cast<std::ptrdiff_t>(end), [&](int x, int y) {
+                         double px = Coord(x, w), py = Coord(y, w);
+                         return px != py ? px < py : x < y;
+                       });
+      double left_hi[3] = {hi[0], hi[1], hi[2]}, right_lo[3] = {lo[0], lo[1], lo[2]};
+      left_hi[w] = right_lo[w] = Coord(perm_[mid], w);
+      nd.left = Build(begin, mid, lo, left_hi);
+      nd.right = Build(mid, end, right_lo, hi);
+      const Node& l = nodes_[nd.left];
+      const Node& r = nodes_[nd.right];
+      for (int a = 0; a < dims_; ++a) {
+        nd.lo[a] = std::min(l.lo[a], r.lo[a]);
+        nd.hi[a] = std::max(l.hi[a], r.hi[a]);
+      }
+      nd.cls = l.cls;
+      nd.uniform = l.uniform && r.uniform && l.cls == r.cls;
+    }
+    nodes_[id] = nd;
+    return id;
+  }
+
+  const std::vector<State>& points_;
+  DimMask mask_;
+  const std::vector<int>& cls_;
+  int dims_ = 0;
+  int axis_[3] = {0, 0, 0};
+  std::vector<double> coords_;  // masked coordinates, dims_ per point, by index
+  std::vector<int> perm_;
+  std::vector<Node> nodes_;
+};
+
+// For sequence `seq` of reference indices: next[i] = the first j > i whose
+// class differs from seq[i]'s (seq.size() when none), so "the first entry
+// from i on not of seq[i]'s class" is one lookup.
+std::vector<size_t> NextOtherClass(const std::vector<int>& seq, const std::vector<int>& cls) {
+  std::vector<size_t> next(seq.size());
+  for (size_t i = seq.size(); i-- > 0;) {
+    if (i + 1 == seq.size()) {
+      next[i] = seq.size();
+    } else {
+      next[i] = cls[seq[i + 1]] != cls[seq[i]] ? i + 1 : next[i + 1];
     }
   }
-  return out;
+  return next;
 }
 
 }  // namespace
 
+// ---------------------------------------------------------------------------
+// Mapping.
+
 std::vector<int> MapTrajectory(const std::vector<State>& reference,
-                               const std::vector<State>& variation,
-                               const MappingOptions& options,
+                               const std::vector<State>& variation, const MappingOptions& options,
                                const std::vector<int>& move_class) {
   const size_t n = variation.size();
   std::vector<int> k(n, -1);
   if (reference.empty()) return k;
-  auto cls = [&](int i) { return move_class.empty() ? i : move_class[i]; };
+  std::vector<int> cls = move_class;
+  if (cls.empty() && options.max_repeat > 0) {
+    cls.resize(reference.size());
+    for (size_t i = 0; i < cls.size(); ++i) cls[i] = static_cast<int>(i);
+  }
 
-  // The run of equal classes ending at position j-1, and its class.
+  // The run of equal classes ending at position j-1, and its class. When
+  // the nearest candidate would make the run too long, the answer is the
+  // first candidate, in the rule's order, of another class (or the nearest
+  // when there is none): the next-nearest search the definition describes,
+  // found without listing the candidates in between.
   int run_class = -1;
   int run_len = 0;
-  auto allowed = [&](int cand) {
-    return options.max_repeat <= 0 || cls(cand) != run_class || run_len < options.max_repeat;
+  auto blocked = [&](int cand) {
+    return options.max_repeat > 0 && cand >= 0 && cls[cand] == run_class &&
+           run_len >= options.max_repeat;
   };
   auto accept = [&](int j, int cand) {
     k[j] = cand;
+    if (options.max_repeat <= 0) return;
     if (cand < 0) {
       run_class = -1;
       run_len = 0;
-    } else if (cls(cand) == run_class) {
+    } else if (cls[cand] == run_class) {
       ++run_len;
     } else {
-      run_class = cls(cand);
+      run_class = cls[cand];
       run_len = 1;
     }
   };
@@ -348,42 +519,82 @@ std::vector<int> MapTrajectory(const std::vector<State>& reference,
       for (auto& th : pool) th.join();
       return k;
     }
+    // Usually one of the few nearest is of another class; when none of the
+    // 64 nearest is (one move repeated over much of the route), the
+    // class-aware tree answers (built once, on first need).
+    std::optional<ClassNearest> other;
     for (size_t j = 0; j < n; ++j) {
       int best = index.Nearest(variation[j]);
-      if (!allowed(best)) {
-        // Next-nearest candidates, widening the search until one is allowed.
-        int chosen = best;
-        for (int want = 8;; want *= 4) {
-          std::vector<int> cands = index.KNearest(variation[j], want);
-          auto it = std::find_if(cands.begin(), cands.end(), allowed);
-          if (it != cands.end()) {
-            chosen = *it;
+      if (blocked(best)) {
+        bool found = false;
+        for (int want : {8, 64}) {
+          std::vector<int> near = index.KNearest(variation[j], want);
+          auto it = std::find_if(near.begin(), near.end(), [&](int c) { return !blocked(c); });
+          if (it != near.end()) {
+            best = *it;
+            found = true;
             break;
           }
-          if (cands.size() >= reference.size()) break;  // none allowed: keep the nearest
+          if (near.size() >= reference.size()) break;
         }
-        best = chosen;
+        if (!found) {
+          if (!other) other.emplace(reference, options.mask, cls);
+          int alt = other->Query(variation[j], run_class);
+          if (alt >= 0) best = alt;  // none of another class: keep the nearest
+        }
       }
       accept(static_cast<int>(j), best);
     }
     return k;
   }
 
+  // Dabby: reference indices sorted by (x, index). Above: candidates are
+  // this order from the first x >= v. Below: groups of equal x from the
+  // largest x <= v downwards, each in index order; `below` lists the groups
+  // in that order and below_start[g] is where group g (ascending) begins.
   std::vector<int> order(reference.size());
   for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
   std::stable_sort(order.begin(), order.end(),
                    [&](int a, int b) { return reference[a][0] < reference[b][0]; });
+  const bool above = options.dabby_direction == DabbyDirection::kAbove;
+  std::vector<int> group_of(order.size());
+  std::vector<size_t> group_begin;
+  for (size_t i = 0; i < order.size(); ++i) {
+    if (i == 0 || reference[order[i]][0] != reference[order[i - 1]][0]) group_begin.push_back(i);
+    group_of[i] = static_cast<int>(group_begin.size()) - 1;
+  }
+  std::vector<int> below;
+  std::vector<size_t> below_start(group_begin.size());
+  if (!above) {
+    below.reserve(order.size());
+    for (size_t g = group_begin.size(); g-- > 0;) {
+      below_start[g] = below.size();
+      size_t end = g + 1 < group_begin.size() ? group_begin[g + 1] : order.size();
+      below.insert(below.end(), order.begin() + static_cast<std::ptrdiff_t>(group_begin[g]),
+                   order.begin() + static_cast<std::ptrdiff_t>(end));
+    }
+  }
+  const std::vector<int>& seq = above ? order : below;
+  std::vector<size_t> next;
+  if (options.max_repeat > 0) next = NextOtherClass(seq, cls);
   for (size_t j = 0; j < n; ++j) {
     double vx = variation[j][0];
-    std::vector<int> cands =
-        DabbyCandidates(reference, order, vx, options.dabby_direction, 1);
-    int best = cands.empty() ? -1 : cands[0];
-    if (best >= 0 && !allowed(best)) {
-      std::vector<int> all = DabbyCandidates(reference, order, vx, options.dabby_direction,
-                                             reference.size());
-      auto it = std::find_if(all.begin(), all.end(), allowed);
-      if (it != all.end()) best = *it;
+    size_t start = seq.size();  // none
+    if (above) {
+      start = static_cast<size_t>(
+          std::lower_bound(order.begin(), order.end(), vx,
+                           [&](int i, double x) { return reference[i][0] < x; }) -
+          order.begin());
+    } else {
+      size_t u = static_cast<size_t>(
+          std::upper_bound(order.begin(), order.end(), vx,
+                           [&](double x, int i) { return x < reference[i][0]; }) -
+          order.begin());
+      if (u > 0) start = below_start[group_of[u - 1]];
     }
+    int best = start < seq.size() ? seq[start] : -1;
+    // seq[start] is of the blocked class: the first entry after it of another.
+    if (blocked(best) && next[start] < seq.size()) best = seq[next[start]];
     accept(static_cast<int>(j), best);
   }
   return k;

@@ -89,6 +89,9 @@ struct VariedMove {
   bool changed = false;             // source index != position
   bool crux = false;                // the source move is flagged as a crux
   std::vector<std::string> notes;   // e.g. "(match?)"
+  // A move the setter wrote into the variation by editing it (no source;
+  // set by app::ApplyEdits, never by Vary).
+  bool added = false;
 };
 
 struct Variation {

@@ -49,6 +49,10 @@ int RunServe(const std::vector<std::string>& args) {
   app.add_flag("--secure-cookies", secure_cookie,
                "mark the session cookie Secure (when behind an HTTPS proxy)");
   app.add_flag("--log", log, "print one line per request to stderr");
+  std::string base_url;
+  app.add_option("--base-url", base_url,
+                 "the server's public address for links printed on route cards' QR codes "
+                 "(e.g. https://gym.example.org; default: the address it listens on)");
   if (int rc = ParseArgs(app, args); rc >= 0) return rc;
 
   std::error_code ec;
@@ -82,6 +86,7 @@ int RunServe(const std::vector<std::string>& args) {
   options.threads = threads;
   options.access_log = log;
   options.secure_cookie = secure_cookie;
+  options.base_url = base_url;
   if (options.static_dir.empty() && web::DefaultStaticDir().empty()) {
     std::fprintf(stderr, "serve: warning: web assets (web/app.js) not found; pages lack style\n");
   }

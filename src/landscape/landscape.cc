@@ -72,8 +72,14 @@ Status ScanParams::Validate() const {
     if (!std::isfinite(p)) return Status::InvalidInput("params: must be finite numbers");
   }
   if (!Finite3(ref_ic)) return Status::InvalidInput("ref-ic: must be finite numbers");
+  for (double v : ref_ic) {
+    if (std::fabs(v) > kMaxAbsCoordinate) {
+      return Status::InvalidInput("ref-ic: " + Fmt(v) + " is outside [-1e6, 1e6]");
+    }
+  }
   if (skip < 0 || skip > chaos::kMaxSkip) {  // the one skip limit (chaos/variation.h)
-    return Status::InvalidInput("skip: must be in 0.." + std::to_string(chaos::kMaxSkip) + ", got " + std::to_string(skip));
+    return Status::InvalidInput("skip: must be in 0.." + std::to_string(chaos::kMaxSkip) +
+                                ", got " + std::to_string(skip));
   }
   if (length < 1 || length > kMaxLength) {
     return Status::InvalidInput("length: must be in 1.." + std::to_string(kMaxLength) + ", got " +
@@ -117,20 +123,53 @@ Region Region::Around(const chaos::State& center, int grid, double spacing, Plan
 }
 
 Status Region::Validate() const {
-  if (grid < 1 || grid > (1 << 20)) {
-    return Status::InvalidInput("grid: must be in 1..1048576, got " + std::to_string(grid));
+  if (grid < 1 || grid > kMaxGrid) {
+    return Status::InvalidInput("grid: must be in 1.." + std::to_string(kMaxGrid) + ", got " +
+                                std::to_string(grid));
   }
-  if (!(std::isfinite(spacing) && spacing > 0)) {
-    return Status::InvalidInput("spacing: must be a finite number > 0, got " + Fmt(spacing));
-  }
-  if (!Finite3(center)) return Status::InvalidInput("center: must be finite numbers");
   if (static_cast<int>(plane) < 0 || static_cast<int>(plane) > 3) {
     return Status::InvalidInput("plane: invalid");
   }
-  double total = std::pow(static_cast<double>(grid), dims());
-  if (total > std::ldexp(1.0, 40)) {
+  if (size() > kMaxIcs) {
     return Status::InvalidInput("grid: " + std::to_string(grid) + "^" + std::to_string(dims()) +
-                                " ICs is more than 2^40");
+                                " = " + std::to_string(size()) + " ICs is more than 2^30 (" +
+                                std::to_string(kMaxIcs) + ")");
+  }
+  if (!Finite3(center)) return Status::InvalidInput("center: must be finite numbers");
+  if (!(std::isfinite(spacing) && spacing > 0)) {
+    return Status::InvalidInput("spacing: must be a finite number > 0, got " + Fmt(spacing));
+  }
+  // The largest |coordinate| of any grid point (unscanned axes: the centre).
+  double largest = 0;
+  std::array<int, 3> ax = axes();
+  for (int a = 0; a < 3; ++a) {
+    bool scanned = a == ax[0] || a == ax[1] || (dims() == 3 && a == ax[2]);
+    double lo = scanned ? Coord(a, 0) : center[a], hi = scanned ? Coord(a, grid - 1) : center[a];
+    largest = std::max({largest, std::fabs(lo), std::fabs(hi)});
+  }
+  if (!(largest <= kMaxAbsCoordinate)) {
+    return Status::InvalidInput("center: the grid reaches " + Fmt(largest) +
+                                ", outside [-1e6, 1e6] (centre +- grid/2 x spacing)");
+  }
+  double min_spacing = kMinRelativeSpacing * std::max(1.0, largest);
+  if (spacing < min_spacing) {
+    return Status::InvalidInput("spacing: " + Fmt(spacing) + " is below " + Fmt(min_spacing) +
+                                " (1e-9 x the largest |coordinate|, at least 1e-9)");
+  }
+  return Status::Ok();
+}
+
+Status ValidateScan(const ScanParams& params, const Region& region) {
+  SB_RETURN_IF_ERROR(params.Validate());
+  SB_RETURN_IF_ERROR(region.Validate());
+  const double n = params.length;
+  double work = static_cast<double>(region.size()) * (params.skip + n + n * n);
+  if (work > static_cast<double>(kMaxScanWork)) {
+    return Status::InvalidInput("grid: " + std::to_string(region.size()) + " ICs x (skip " +
+                                std::to_string(params.skip) + " + n " +
+                                std::to_string(params.length) +
+                                " + n^2) is more than 2^50 steps and distances (" +
+                                std::to_string(kMaxScanWork) + "); scan a smaller grid or plane");
   }
   return Status::Ok();
 }
@@ -211,8 +250,7 @@ const char* IsaName(Isa isa) {
 
 Status ScanRange(const ScanParams& params, const Region& region, uint64_t first, uint64_t count,
                  uint16_t* effect, uint32_t* displacement, const ScanOptions& options) {
-  SB_RETURN_IF_ERROR(params.Validate());
-  SB_RETURN_IF_ERROR(region.Validate());
+  SB_RETURN_IF_ERROR(ValidateScan(params, region));
   const uint64_t total = region.size();
   if (first > total || count > total - first) {
     return Status::InvalidInput("scan range [" + std::to_string(first) + ", " +
@@ -324,8 +362,7 @@ Status ScanRange(const ScanParams& params, const Region& region, uint64_t first,
 
 Result<LandscapeMap> Scan(const ScanParams& params, const Region& region,
                           const ScanOptions& options) {
-  SB_RETURN_IF_ERROR(params.Validate());
-  SB_RETURN_IF_ERROR(region.Validate());
+  SB_RETURN_IF_ERROR(ValidateScan(params, region));
   LandscapeMap map;
   map.params = params;
   map.region = region;

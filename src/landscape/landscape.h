@@ -45,14 +45,35 @@ struct ScanParams {
 
   // The scan parameters of a variation (Euclidean mapping only) with n moves.
   static ScanParams FromVary(const chaos::VaryParams& vary, int length);
-  // Checks ranges: finite step > 0, finite params and ref IC, 0 <= skip <=
-  // 10^7, 1 <= length <= kMaxLength, non-empty mask within "111". Errors are
-  // kInvalidInput naming the field.
+  // Checks ranges: finite step > 0, finite params, ref IC within
+  // kMaxAbsCoordinate, 0 <= skip <= chaos::kMaxSkip, 1 <= length <= kMaxLength,
+  // non-empty mask within "111". Errors are kInvalidInput naming the field.
   Status Validate() const;
 };
 
+// Limits of scans, regions and map files (docs/landscape.md, "Limits"),
+// checked by ScanParams::Validate, Region::Validate and ValidateScan before
+// any work or allocation; map files are held to the same.
+//
 // The largest supported n (effect is stored in 16 bits).
 inline constexpr int kMaxLength = 65535;
+// Grid points per axis: a plane of kMaxGrid^2 ICs is kMaxIcs.
+inline constexpr int kMaxGrid = 32768;
+// ICs in one region: the whole map is held in memory at 6 bytes per IC
+// (6 GiB at the limit, by the scanning process or MPI rank 0 and by readers).
+inline constexpr uint64_t kMaxIcs = uint64_t{1} << 30;
+// |coordinate| of the reference IC, the grid centre and every grid point.
+// The attractors live within |x| < 100; beyond 10^6 grid coordinates and
+// axis ticks lose the precision that tells neighbouring points apart.
+inline constexpr double kMaxAbsCoordinate = 1e6;
+// spacing >= kMinRelativeSpacing * max(1, largest |grid coordinate|): keeps
+// neighbouring grid points (and axis ticks) at least ~2^22 float64 steps
+// apart, and rules out zero and denormal spacings.
+inline constexpr double kMinRelativeSpacing = 1e-9;
+// Work of one scan, ICs x (skip + n + n^2) (integration steps plus distance
+// evaluations): 2^50 is about 4.6 core-days on the project's machine, an
+// hour on the paper's 128-CPU cluster; more is never going to finish.
+inline constexpr uint64_t kMaxScanWork = uint64_t{1} << 50;
 
 // Which ICs a scan covers: the full N^3 cube, or the N x N slice through
 // `center` parallel to a coordinate plane.
@@ -76,8 +97,10 @@ struct Region {
   // The region of the issue/paper: centred on the reference IC.
   static Region Around(const chaos::State& center, int grid, double spacing,
                        Plane plane = Plane::kCube);
-  // Checks 1 <= N <= 1048576, finite spacing > 0, finite center, and at most
-  // 2^40 ICs. Errors are kInvalidInput naming the field.
+  // Checks 1 <= N <= kMaxGrid, at most kMaxIcs ICs, every grid coordinate
+  // within kMaxAbsCoordinate, spacing finite and at least kMinRelativeSpacing
+  // x max(1, largest |coordinate|), a valid plane. Errors are kInvalidInput
+  // naming the field.
   Status Validate() const;
   // Number of scanned axes (3 or 2) and which they are (0 = x, 1 = y, 2 = z),
   // fastest first; axes()[dims()..] are unused.
@@ -126,6 +149,10 @@ struct ScanOptions {
   // may be empty. Not called from workers.
   std::function<void(uint64_t done, uint64_t total)> progress;
 };
+
+// ScanParams::Validate, Region::Validate, and the scan's work within
+// kMaxScanWork. Errors are kInvalidInput naming the field. Pure.
+Status ValidateScan(const ScanParams& params, const Region& region);
 
 // Scans every IC of `region`. Errors: kInvalidInput for bad parameters or
 // region, or when a trajectory (reference or variation) becomes non-finite

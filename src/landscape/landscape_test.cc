@@ -331,3 +331,47 @@ TEST(Region, ParsePlaneAndIndexing) {
 
 }  // namespace
 }  // namespace sb::landscape
+
+namespace sb::landscape {
+namespace {
+
+// The limits of docs/landscape.md, each refused before any work or
+// allocation (a 65536-point plane would need 24 GiB for its map).
+TEST(Limits, SizesThatCannotBeProducedAreRefused) {
+  ScanParams p;
+  auto msg = [&](const Region& r) {
+    Status s = ValidateScan(p, r);
+    return s.ok() ? std::string("ok") : s.message();
+  };
+  EXPECT_EQ(msg(Region::Around(p.ref_ic, 65536, 0.01, Plane::kXY)),
+            "grid: must be in 1..32768, got 65536");
+  EXPECT_EQ(msg(Region::Around(p.ref_ic, 1025, 0.01)),
+            "grid: 1025^3 = 1076890625 ICs is more than 2^30 (1073741824)");
+  EXPECT_EQ(msg(Region::Around(p.ref_ic, 1024, 0.01)), "ok");
+  EXPECT_EQ(msg(Region::Around(p.ref_ic, kMaxGrid, 0.001, Plane::kXZ)), "ok");
+  // Coordinates and spacing.
+  EXPECT_NE(msg(Region::Around({1.4e17, 0, 0}, 1, 32, Plane::kXY)).find("center: the grid reaches"),
+            std::string::npos);
+  EXPECT_NE(msg(Region::Around(p.ref_ic, 10, 2e5)).find("outside [-1e6, 1e6]"), std::string::npos);
+  EXPECT_NE(msg(Region::Around(p.ref_ic, 1, 5e-324))
+                .find("spacing: 4.9406564584124654e-324 is below 5.2000000000000002e-08"),
+            std::string::npos)
+      << msg(Region::Around(p.ref_ic, 1, 5e-324));
+  EXPECT_NE(msg(Region::Around({900000, 0, 0}, 3, 1e-4, Plane::kXY)).find("spacing"),
+            std::string::npos);
+  EXPECT_EQ(msg(Region::Around({900000, 0, 0}, 3, 1e-3, Plane::kXY)), "ok");
+  // Reference IC and work.
+  p.ref_ic = {2e6, 0, 0};
+  EXPECT_EQ(msg(Region::Around({0, 0, 0}, 3, 0.1)), "ref-ic: 2000000 is outside [-1e6, 1e6]");
+  p = ScanParams();
+  p.length = kMaxLength;
+  Status work = ValidateScan(p, Region::Around(p.ref_ic, 100, 0.01));
+  EXPECT_NE(work.message().find("is more than 2^50 steps and distances"), std::string::npos)
+      << work.message();
+  auto scan = Scan(p, Region::Around(p.ref_ic, 100, 0.01));
+  ASSERT_FALSE(scan.ok());
+  EXPECT_EQ(scan.status().message(), work.message());
+}
+
+}  // namespace
+}  // namespace sb::landscape

@@ -1,6 +1,10 @@
 #include "landscape/map_file.h"
 
+#include <algorithm>
+#include <cerrno>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 
 #include "base/files.h"
 #include "base/hash.h"
@@ -75,8 +79,13 @@ std::string EncodeMap(const LandscapeMap& map) {
   return std::move(w.out());
 }
 
-Result<LandscapeMap> DecodeMap(std::string_view d, std::string_view name) {
-  const std::string n(name);
+namespace {
+
+// Checks the magic and the header (the first kMapHeaderSize bytes of `d`,
+// which must be there) into m->params and m->region; *total receives the
+// size of the whole file the header implies. Errors name `n` and, for
+// fields, the byte offset.
+Status DecodeHeader(std::string_view d, const std::string& n, LandscapeMap* m, uint64_t* total) {
   auto bad = [&](size_t off, const char* field, const std::string& why) {
     return Status::InvalidInput(n + ": offset " + std::to_string(off) + " (" + field + "): " + why);
   };
@@ -98,9 +107,8 @@ Result<LandscapeMap> DecodeMap(std::string_view d, std::string_view name) {
     return bad(12, "header_size",
                std::to_string(header_size) + " is not " + std::to_string(kMapHeaderSize));
   }
-  LandscapeMap m;
-  ScanParams& p = m.params;
-  Region& r = m.region;
+  ScanParams& p = m->params;
+  Region& r = m->region;
   uint32_t system = static_cast<uint32_t>(ReadLe(d, 16, 4));
   if (system > 1) return bad(16, "system", std::to_string(system) + " is not 0 or 1");
   p.system.kind = system == 0 ? chaos::SystemKind::kLorenz : chaos::SystemKind::kRossler;
@@ -111,7 +119,9 @@ Result<LandscapeMap> DecodeMap(std::string_view d, std::string_view name) {
   p.step = ReadF64(d, 48);
   for (int i = 0; i < 3; ++i) p.ref_ic[i] = ReadF64(d, 56 + 8 * i);
   uint32_t skip = static_cast<uint32_t>(ReadLe(d, 80, 4));
-  if (skip > 10000000) return bad(80, "skip", std::to_string(skip) + " is out of range");
+  if (skip > static_cast<uint32_t>(chaos::kMaxSkip)) {
+    return bad(80, "skip", std::to_string(skip) + " is out of range");
+  }
   p.skip = static_cast<int>(skip);
   uint32_t length = static_cast<uint32_t>(ReadLe(d, 84, 4));
   if (length < 1 || length > static_cast<uint32_t>(kMaxLength)) {
@@ -124,22 +134,40 @@ Result<LandscapeMap> DecodeMap(std::string_view d, std::string_view name) {
   if (plane > 3) return bad(92, "plane", std::to_string(plane) + " is not 0..3");
   r.plane = static_cast<Plane>(plane);
   uint32_t grid = static_cast<uint32_t>(ReadLe(d, 96, 4));
-  if (grid < 1 || grid > (1u << 20))
-    return bad(96, "grid", std::to_string(grid) + " is out of range");
+  if (grid < 1 || grid > static_cast<uint32_t>(kMaxGrid)) {
+    return bad(96, "grid", std::to_string(grid) + " is not 1.." + std::to_string(kMaxGrid));
+  }
   r.grid = static_cast<int>(grid);
+  uint32_t reserved = static_cast<uint32_t>(ReadLe(d, 100, 4));
+  if (reserved != 0) return bad(100, "reserved", std::to_string(reserved) + " is not 0");
   r.spacing = ReadF64(d, 104);
   for (int i = 0; i < 3; ++i) r.center[i] = ReadF64(d, 112 + 8 * i);
-  Status ps = p.Validate();
-  if (!ps.ok()) return Status::InvalidInput(n + ": header: " + ps.message());
-  Status rs = r.Validate();
-  if (!rs.ok()) return Status::InvalidInput(n + ": header: " + rs.message());
+  // The same ranges as a scan: finite numbers, coordinates and spacing
+  // within the limits (so rendering and picking stay exact and bounded).
+  Status vs = ValidateScan(p, r);
+  if (!vs.ok()) return Status::InvalidInput(n + ": header: " + vs.message());
   uint64_t count = ReadLe(d, 136, 8);
   if (count != r.size()) {
     return bad(136, "count",
                std::to_string(count) + " does not match the region's " + std::to_string(r.size()) +
                    " ICs");
   }
-  const uint64_t want = kMapHeaderSize + count * 6 + 8;
+  *total = kMapHeaderSize + count * 6 + 8;
+  return Status::Ok();
+}
+
+}  // namespace
+
+Result<LandscapeMap> DecodeMap(std::string_view d, std::string_view name) {
+  const std::string n(name);
+  auto bad = [&](size_t off, const char* field, const std::string& why) {
+    return Status::InvalidInput(n + ": offset " + std::to_string(off) + " (" + field + "): " + why);
+  };
+  LandscapeMap m;
+  uint64_t want = 0;
+  SB_RETURN_IF_ERROR(DecodeHeader(d, n, &m, &want));
+  const uint64_t count = m.region.size();
+  const ScanParams& p = m.params;
   if (d.size() != want) {
     return Status::InvalidInput(n + ": " + (d.size() < want ? "truncated" : "trailing data") +
                                 ": " + std::to_string(d.size()) + " bytes, expected " +
@@ -176,9 +204,34 @@ Status WriteMapFile(const std::string& path, const LandscapeMap& map) {
 }
 
 Result<LandscapeMap> ReadMapFile(const std::string& path) {
-  Result<std::string> data = ReadFile(path);
-  if (!data.ok()) return data.status();
-  return DecodeMap(*data, path);
+  // The header first: the file's size follows from it, so a damaged or
+  // endless file is refused before reading (or allocating) more.
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) return Status::IoError(path + ": is a directory");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    if (errno == ENOENT) return Status::NotFound(path + ": no such file");
+    return Status::IoError(path + ": " + std::strerror(errno));
+  }
+  std::string data(kMapHeaderSize, '\0');
+  in.read(data.data(), static_cast<std::streamsize>(data.size()));
+  data.resize(static_cast<size_t>(in.gcount()));
+  if (in.bad()) return Status::IoError(path + ": read error");
+  if (data.size() == kMapHeaderSize) {
+    uint64_t want = 0;
+    LandscapeMap header;
+    SB_RETURN_IF_ERROR(DecodeHeader(data, path, &header, &want));
+    // In chunks, so memory grows with what the file really holds; one
+    // byte more than the header says shows trailing data.
+    char buf[1 << 16];
+    while (in && data.size() <= want) {
+      in.read(buf,
+              static_cast<std::streamsize>(std::min<uint64_t>(sizeof buf, want + 1 - data.size())));
+      data.append(buf, static_cast<size_t>(in.gcount()));
+    }
+    if (in.bad()) return Status::IoError(path + ": read error");
+  }
+  return DecodeMap(data, path);
 }
 
 }  // namespace sb::landscape

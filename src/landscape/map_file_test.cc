@@ -2,9 +2,13 @@
 #include "landscape/map_file.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
+
+#include "base/files.h"
 
 namespace sb::landscape {
 namespace {
@@ -108,6 +112,62 @@ TEST(MapFile, BadHeaderFieldsNameTheField) {
   r = DecodeMap("hello world", "h.map");
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.status().message().find("magic"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace sb::landscape
+
+namespace sb::landscape {
+namespace {
+
+// A map whose header values are out of range, encoded as a writer would
+// (EncodeMap does not check): the reader refuses it, naming the field.
+std::string WithRegion(double center_x, double spacing, int grid) {
+  LandscapeMap m;
+  m.params.length = 3;
+  m.region = Region::Around({center_x, 0, 0}, grid, spacing, Plane::kXY);
+  m.effect.assign(m.region.size(), 0);
+  m.displacement.assign(m.region.size(), 0);
+  return EncodeMap(m);
+}
+
+TEST(MapFile, HeaderValuesOutsideTheLimitsAreRefused) {
+  // These made `landscape render` loop forever (axis ticks at 1.4e17 step
+  // 10) or convert infinities to int.
+  auto r = DecodeMap(WithRegion(1.4e17, 32, 1), "far.map");
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().message().rfind("far.map: header: center: the grid reaches 1.4e+17", 0), 0u)
+      << r.status().message();
+  r = DecodeMap(WithRegion(0, 5e-324, 1), "tiny.map");
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().message().rfind("tiny.map: header: spacing: ", 0), 0u)
+      << r.status().message();
+  r = DecodeMap(WithRegion(0, INFINITY, 2), "inf.map");
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.status().message().find("spacing"), std::string::npos);
+  EXPECT_TRUE(DecodeMap(WithRegion(5, 0.5, 2), "ok.map").ok());
+}
+
+TEST(MapFile, FilesAreCheckedBeforeTheyAreReadWhole) {
+  // Endless or lying files end after the header: /dev/zero has no magic;
+  // a header claiming 2^30 ICs over a few bytes is truncated (no 6 GiB
+  // allocation first).
+  auto z = ReadMapFile("/dev/zero");
+  ASSERT_FALSE(z.ok());
+  EXPECT_NE(z.status().message().find("bad magic"), std::string::npos);
+  std::string bytes = WithRegion(0, 1e-3, 2);
+  bytes.resize(kMapHeaderSize + 1000);
+  // grid (offset 96) = 32768 and count (136) = 2^30 in the header.
+  for (int i = 0; i < 4; ++i) bytes[96 + i] = static_cast<char>((kMaxGrid >> (8 * i)) & 0xff);
+  for (int i = 0; i < 8; ++i) bytes[136 + i] = static_cast<char>(((kMaxIcs) >> (8 * i)) & 0xff);
+  std::string path = (std::filesystem::temp_directory_path() /
+                      ("sb_map_big_" + std::to_string(::getpid()) + ".map"))
+                         .string();
+  ASSERT_TRUE(WriteFileAtomic(path, bytes).ok());
+  auto big = ReadMapFile(path);
+  std::remove(path.c_str());
+  ASSERT_FALSE(big.ok());
+  EXPECT_EQ(big.status().message(), path + ": truncated: 1144 bytes, expected 6442451096");
 }
 
 }  // namespace

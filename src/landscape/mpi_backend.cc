@@ -53,8 +53,7 @@ MpiBackend::MpiBackend() {
 Result<LandscapeMap> MpiBackend::Scan(const ScanParams& params, const Region& region,
                                       const ScanOptions& options) {
   // Validation is deterministic, so every rank agrees without talking.
-  SB_RETURN_IF_ERROR(params.Validate());
-  SB_RETURN_IF_ERROR(region.Validate());
+  SB_RETURN_IF_ERROR(ValidateScan(params, region));
   const uint64_t total = region.size();
   uint64_t lo, hi;
   Block(total, size_, rank_, &lo, &hi);

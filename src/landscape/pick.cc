@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <unordered_map>
 
 namespace sb::landscape {
 
@@ -34,24 +35,49 @@ Result<std::vector<Candidate>> Pick(const LandscapeMap& map, const PickRequest& 
     return score[a] != score[b] ? score[a] < score[b] : a < b;
   });
 
+  // Taken ICs by bucket of sep x sep (x sep) grid steps. Two taken ICs are
+  // >= sep apart on some axis, so a bucket holds at most one, and any taken
+  // IC nearer than sep to g lies in g's bucket or a neighbouring one: each
+  // check looks at <= 27 buckets, not at every IC taken so far.
+  const int dims = map.region.dims();
+  const std::array<int, 3> axes = map.region.axes();
+  const uint64_t per_axis = static_cast<uint64_t>(map.region.grid / sep) + 3;
+  auto bucket_key = [&](const std::array<int, 3>& b) {
+    uint64_t k = 0;
+    for (int d = 0; d < dims; ++d) k = k * per_axis + static_cast<uint64_t>(b[d] + 1);
+    return k;
+  };
+  std::unordered_map<uint64_t, std::array<int, 3>> taken;
   std::vector<Candidate> out;
-  std::vector<std::array<int, 3>> taken;
   for (uint64_t i : order) {
     if (static_cast<int>(out.size()) >= req.count) break;
     std::array<int, 3> g = map.region.GridIndex(i);
+    std::array<int, 3> home = {0, 0, 0};
+    for (int d = 0; d < dims; ++d) home[d] = g[axes[d]] / sep;
     bool far = true;
-    for (const auto& t : taken) {
+    for (int step = 0; step < 27 && far; ++step) {
+      std::array<int, 3> b = home;
+      int rest = step;
+      bool used = true;
+      for (int d = 0; d < 3; ++d, rest /= 3) {
+        int off = rest % 3 - 1;
+        if (d >= dims) {
+          used = used && off == 0;  // unscanned: one bucket
+        } else {
+          b[d] += off;
+        }
+      }
+      if (!used) continue;
+      auto it = taken.find(bucket_key(b));
+      if (it == taken.end()) continue;
       int cheb = 0;
       for (int a = 0; a < 3; ++a) {
-        if (g[a] >= 0) cheb = std::max(cheb, std::abs(g[a] - t[a]));
+        if (g[a] >= 0) cheb = std::max(cheb, std::abs(g[a] - it->second[a]));
       }
-      if (cheb < sep) {
-        far = false;
-        break;
-      }
+      far = cheb >= sep;
     }
     if (!far) continue;
-    taken.push_back(g);
+    taken.emplace(bucket_key(home), g);
     Candidate c;
     c.index = i;
     c.ic = map.IcAt(i);

@@ -26,7 +26,7 @@ std::string Short(double v) {
 // Hot-to-cold colour map of figure 4: t = 0 red, 0.5 yellow-green, 1 purple
 // (hue 0..270 degrees at full saturation).
 void Colour(double t, double rgb[3]) {
-  t = std::clamp(t, 0.0, 1.0);
+  t = t >= 0 ? std::min(t, 1.0) : 0.0;  // also NaN
   double h = t * 270.0 / 60.0;
   int sector = static_cast<int>(std::floor(h));
   double f = h - sector, v = 0.95, q = v * (1 - f), p = 0.0, tt = v * f;
@@ -63,23 +63,32 @@ void Colour(double t, double rgb[3]) {
   rgb[2] = b;
 }
 
-// About `want` round-number ticks covering [lo, hi].
+// About `want` round-number ticks covering [lo, hi]: multiples k x step of
+// a step 1, 2 or 5 x 10^m. Never more than 4 x want + 8 ticks, and only for
+// finite ranges whose multiples k are exact integers (|k| < 2^52), so a
+// range far from 0 relative to its width (a map file at x = 1e17 with
+// spacing 32) cannot loop forever; otherwise the single tick lo.
 std::vector<double> Ticks(double lo, double hi, int want, int* decimals) {
-  std::vector<double> t;
+  *decimals = 2;
   double range = hi - lo;
-  if (!(range > 0)) {
-    *decimals = 2;
-    return {lo};
-  }
+  if (!(std::isfinite(lo) && std::isfinite(hi) && range > 0) || want < 1) return {lo};
   double raw = range / want;
   double mag = std::pow(10.0, std::floor(std::log10(raw)));
+  if (!(mag > 0 && std::isfinite(mag))) return {lo};
   double step = mag;
   for (double m : {1.0, 2.0, 5.0, 10.0}) {
     step = m * mag;
     if (step >= raw * (1 - 1e-9)) break;
   }
-  *decimals = std::max(0, static_cast<int>(-std::floor(std::log10(step) + 1e-9)));
-  for (double k = std::ceil(lo / step - 1e-9); k * step <= hi + step * 1e-9; k += 1) {
+  double dec = -std::floor(std::log10(step) + 1e-9);
+  *decimals = dec > 0 ? static_cast<int>(std::min(dec, 17.0)) : 0;
+  const double first = std::ceil(lo / step - 1e-9);
+  const double exact = std::ldexp(1.0, 52);
+  if (!(std::fabs(first) < exact && std::fabs(hi / step) < exact)) return {lo};
+  std::vector<double> t;
+  for (int i = 0; i < 4 * want + 8; ++i) {
+    double k = first + i;
+    if (!(k * step <= hi + step * 1e-9)) break;
     t.push_back(k * step);
   }
   return t;
@@ -119,6 +128,12 @@ const char* MetricName(Metric m) { return m == Metric::kEffect ? "effect" : "cha
 Result<Slice> ExtractSlice(const LandscapeMap& map, std::optional<Plane> plane,
                            std::optional<double> at) {
   const Region& r = map.region;
+  if (r.grid > kMaxSliceGrid) {
+    return Status::InvalidInput("grid: slices of " + std::to_string(r.grid) + " x " +
+                                std::to_string(r.grid) + " points are larger than " +
+                                std::to_string(kMaxSliceGrid) + " x " +
+                                std::to_string(kMaxSliceGrid) + " (limit)");
+  }
   if (map.size() != r.size() || map.displacement.size() != map.size()) {
     return Status::InvalidInput("map: data size does not match its region");
   }
@@ -223,8 +238,11 @@ std::string SliceCsv(const Slice& s) {
 
 Result<std::string> RenderPng(const Slice& s, Metric metric) {
   const int n = s.size;
-  if (n < 1 || s.effect.size() != static_cast<size_t>(n) * n) {
-    return Status::InvalidInput("slice: empty");
+  if (n < 1 || n > kMaxSliceGrid || s.effect.size() != static_cast<size_t>(n) * n ||
+      s.change.size() != s.effect.size() || s.u.size() != static_cast<size_t>(n) ||
+      s.v.size() != static_cast<size_t>(n)) {
+    return Status::InvalidInput("slice: empty, inconsistent or wider than " +
+                                std::to_string(kMaxSliceGrid));
   }
   const int cell = std::max(1, std::min(12, 600 / n));
   const int plot = cell * n;

@@ -34,11 +34,17 @@ struct Slice {
   ScanParams params;  // the map's, for captions
 };
 
+// The widest slice ExtractSlice takes: a slice holds 20 bytes per cell and
+// its PNG at least one pixel per cell (4096^2 cells: 335 MB + a 75 MB image).
+// Larger maps (only MPI scans make them) are read by info and pick.
+inline constexpr int kMaxSliceGrid = 4096;
+
 // The slice of `map` in `plane` (default: the map's own plane, or xy for a
 // cube) at fixed coordinate `at` (default: the region centre's). `at` selects
 // the nearest grid layer and must lie within half a spacing of one. Errors
-// (kInvalidInput): a plane other than the map's for a slice map, or `at`
-// outside the map (the message gives the valid range). Pure; thread-safe.
+// (kInvalidInput): a plane other than the map's for a slice map, `at`
+// outside the map (the message gives the valid range), or a grid wider than
+// kMaxSliceGrid. Pure; thread-safe.
 Result<Slice> ExtractSlice(const LandscapeMap& map, std::optional<Plane> plane,
                            std::optional<double> at);
 

@@ -75,3 +75,42 @@ TEST(Render, PngAndCsv) {
 
 }  // namespace
 }  // namespace sb::landscape
+
+namespace sb::landscape {
+namespace {
+
+// A slice made by hand at the given place (not through a validated map).
+Slice HandSlice(double center, double spacing) {
+  LandscapeMap m;
+  m.params.length = 3;
+  m.region = Region::Around({center, 1, 1}, 1, spacing, Plane::kXY);
+  m.effect = {1};
+  m.displacement = {1};
+  auto s = ExtractSlice(m, std::nullopt, std::nullopt);
+  EXPECT_TRUE(s.ok()) << s.status().ToString();
+  return *s;
+}
+
+TEST(Render, AxisTicksEndForEveryRange) {
+  // k += 1 stopped changing k above 2^53 and the tick loop ran forever;
+  // a denormal spacing gave a zero step and inf decimals. Now both draw.
+  for (auto [c, sp] : {std::pair{1.4e17, 32.0}, std::pair{0.0, 5e-324}, std::pair{1e300, 1.0}}) {
+    auto png = RenderPng(HandSlice(c, sp), Metric::kEffect);
+    ASSERT_TRUE(png.ok()) << c << " " << sp;
+    EXPECT_EQ(png->substr(1, 3), "PNG");
+  }
+}
+
+TEST(Render, SlicesWiderThanTheLimitAreRefused) {
+  LandscapeMap m;
+  m.params.length = 3;
+  m.region = Region::Around({0, 0, 0}, kMaxSliceGrid + 1, 0.01, Plane::kXY);
+  // No data needed: the size check comes first.
+  auto s = ExtractSlice(m, std::nullopt, std::nullopt);
+  ASSERT_FALSE(s.ok());
+  EXPECT_EQ(s.status().message(),
+            "grid: slices of 4097 x 4097 points are larger than 4096 x 4096 (limit)");
+}
+
+}  // namespace
+}  // namespace sb::landscape

@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iostream>
 
-#include "base/files.h"
 #include "base/text.h"
 
 namespace sb::language {
@@ -27,6 +30,49 @@ bool IsMacroName(std::string_view t) {
   return upper;
 }
 
+// Reads at most `limit` bytes of `path`; a longer file (or an endless one such
+// as /dev/zero) is an error naming the limit. Same errors as sb::ReadFile.
+// "-" reads standard input.
+Result<std::string> ReadBounded(const std::string& path, size_t limit, const char* what) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) return Status::IoError(path + ": is a directory");
+  std::ifstream file;
+  if (path != "-") {
+    file.open(path, std::ios::binary);
+    if (!file) {
+      if (errno == ENOENT) return Status::NotFound(path + ": no such file");
+      return Status::IoError(path + ": " + std::strerror(errno));
+    }
+  }
+  std::istream& in = path == "-" ? std::cin : file;
+  std::string data;
+  char buf[1 << 16];
+  while (in) {
+    in.read(buf, sizeof buf);
+    data.append(buf, static_cast<size_t>(in.gcount()));
+    if (data.size() > limit) {
+      return Status::InvalidInput(path + ":1:1: " + what + " larger than " + std::to_string(limit) +
+                                  " bytes (limit)");
+    }
+  }
+  if (in.bad()) return Status::IoError(path + ": read error");
+  return data;
+}
+
+// "[A] -> [B] -> [C]" for a chain of nets, eliding the middle of long ones.
+std::string NetPath(const std::vector<Net>& nets, const std::vector<int>& path) {
+  std::string s;
+  for (size_t i = 0; i < path.size(); ++i) {
+    if (path.size() > 12 && i == 6) {
+      s += "... (" + std::to_string(path.size() - 11) + " more) -> ";
+      i = path.size() - 6;
+    }
+    s += nets[path[i]].qualified;
+    if (i + 1 < path.size()) s += " -> ";
+  }
+  return s;
+}
+
 // A call waiting for resolution once every file has been read.
 struct PendingCall {
   int net;      // the calling net
@@ -46,7 +92,13 @@ class GrammarBuilder {
   explicit GrammarBuilder(Grammar::IncludeReader include) : include_(std::move(include)) {}
 
   Status ReadGra(std::string_view text, const std::string& name, int depth) {
-    if (depth > 16) return Status::InvalidInput(name + ": #include nested too deeply");
+    total_bytes_ += text.size();
+    if (total_bytes_ > kMaxGrammarBytes) {
+      return Status::InvalidInput(name +
+                                  ":1:1: grammar text (with #include'd files) is larger "
+                                  "than " +
+                                  std::to_string(kMaxGrammarBytes) + " bytes (limit)");
+    }
     auto lines = SplitLines(text);
     for (size_t i = 0; i < lines.size(); ++i) {
       SB_RETURN_IF_ERROR(GraLine(lines[i], name, static_cast<int>(i) + 1, depth));
@@ -67,6 +119,10 @@ class GrammarBuilder {
         return Status::InvalidInput(Loc(file, line, first + 1) + "#include needs a file name");
       if (!include_)
         return Status::InvalidInput(Loc(file, line, first + 1) + "#include is not available here");
+      if (depth + 1 > kMaxIncludeDepth) {
+        return Status::InvalidInput(Loc(file, line, first + 1) + "#include nested more than " +
+                                    std::to_string(kMaxIncludeDepth) + " deep (limit)");
+      }
       auto r = include_(file, std::string(arg));
       if (!r.ok()) {
         return Status(r.status().code() == Status::Code::kInvalidInput
@@ -101,6 +157,7 @@ class GrammarBuilder {
                                     "] already defined at " + old.file + ":" +
                                     std::to_string(old.line));
       }
+      SB_RETURN_IF_ERROR(CheckNetCount(file, line, col));
       Net n;
       n.name = name;
       n.qualified = "[" + name + "]";
@@ -138,6 +195,7 @@ class GrammarBuilder {
         return Status::InvalidInput(Loc(file, line, col) + "macro " + mname +
                                     " already defined in " + g_->nets_[cur_owner_].qualified);
       }
+      SB_RETURN_IF_ERROR(CheckNetCount(file, line, col));
       Net n;
       n.name = mname;
       n.qualified = g_->nets_[cur_owner_].qualified + "." + mname;
@@ -151,6 +209,14 @@ class GrammarBuilder {
     }
     return Status::InvalidInput(Loc(file, line, col) + "unexpected text '" + std::string(t) +
                                 "' (expected [Net], (rule), MACRO or ';')");
+  }
+
+  Status CheckNetCount(const std::string& file, int line, int col) {
+    if (g_->nets_.size() >= kMaxNets) {
+      return Status::InvalidInput(Loc(file, line, col) + "more than " + std::to_string(kMaxNets) +
+                                  " nets and macros (limit)");
+    }
+    return Status::Ok();
   }
 
   Status CheckHasRules(const std::string& file, int line, int col) {
@@ -179,6 +245,10 @@ class GrammarBuilder {
                                     "'");
       }
     }
+    if (++rule_count_ > kMaxRules) {
+      return Status::InvalidInput(Loc(file, line, col) + "more than " + std::to_string(kMaxRules) +
+                                  " rules (limit)");
+    }
     Rule rule;
     rule.line = line;
     Net& net = g_->nets_[cur_net_];
@@ -190,6 +260,10 @@ class GrammarBuilder {
       while (end < inner.size() && inner[end] != ' ' && inner[end] != '\t') ++end;
       std::string_view tok = inner.substr(pos, end - pos);
       int tcol = col + 1 + static_cast<int>(pos);
+      if (rule.elems.size() >= kMaxRuleElements) {
+        return Status::InvalidInput(Loc(file, line, tcol) + "rule has more than " +
+                                    std::to_string(kMaxRuleElements) + " elements (limit)");
+      }
       RuleElem e;
       if (tok.starts_with("+*") || tok.starts_with("*+")) {
         e.optional = e.repeat = true;
@@ -223,6 +297,10 @@ class GrammarBuilder {
         }
         e.kind = RuleElem::Kind::kWord;
         e.id = WordId(tok);
+        if (e.id < 0) {
+          return Status::InvalidInput(Loc(file, line, tcol) + "more than " +
+                                      std::to_string(kMaxVocabulary) + " distinct words (limit)");
+        }
       }
       rule.elems.push_back(e);
       pos = end;
@@ -232,9 +310,11 @@ class GrammarBuilder {
     return Status::Ok();
   }
 
+  // The id of word `w`, added when new; -1 when the vocabulary is full.
   int WordId(std::string_view w) {
     auto it = g_->word_ids_.find(std::string(w));
     if (it != g_->word_ids_.end()) return it->second;
+    if (g_->words_.size() >= kMaxVocabulary) return -1;
     int id = static_cast<int>(g_->words_.size());
     g_->words_.emplace_back(w);
     g_->word_ids_.emplace(std::string(w), id);
@@ -267,108 +347,244 @@ class GrammarBuilder {
       }
       g_->nets_[p.net].rules[p.rule].elems[p.elem].id = target;
     }
+    SB_RETURN_IF_ERROR(CheckTableSize(name));
+    ComputeNullable();
     SB_RETURN_IF_ERROR(CheckRecursion());
     ComputeFirst();
+    return CheckDepth();
+  }
+
+  Status CheckTableSize(const std::string& name) {
+    uint64_t bits = static_cast<uint64_t>(g_->nets_.size()) * g_->words_.size();
+    if (bits > kMaxFirstTableBits) {
+      return Status::InvalidInput(name + ":1:1: " + std::to_string(g_->nets_.size()) + " nets x " +
+                                  std::to_string(g_->words_.size()) + " words is more than " +
+                                  std::to_string(kMaxFirstTableBits) + " pairs (limit)");
+    }
     return Status::Ok();
   }
 
-  void ComputeFirst() {
+  static bool Skippable(const RuleElem& e, const std::vector<Net>& nets) {
+    return e.optional || (e.kind == RuleElem::Kind::kNet && nets[e.id].nullable);
+  }
+
+  // Net::nullable, the least fixpoint, in time linear in the grammar: each
+  // rule counts its elements not yet known to be skippable; a net becoming
+  // nullable decrements the counts of the rules that call it.
+  void ComputeNullable() {
     auto& nets = g_->nets_;
-    size_t nw = g_->words_.size();
-    g_->first_.assign(nets.size() * nw, 0);
-    bool changed = true;
-    while (changed) {
-      changed = false;
-      for (size_t i = 0; i < nets.size(); ++i) {
-        uint8_t* fi = &g_->first_[i * nw];
-        for (const Rule& r : nets[i].rules) {
-          for (const RuleElem& e : r.elems) {
-            if (e.kind == RuleElem::Kind::kWord) {
-              if (!fi[e.id]) {
-                fi[e.id] = 1;
-                changed = true;
-              }
-            } else {
-              const uint8_t* fs = &g_->first_[static_cast<size_t>(e.id) * nw];
-              for (size_t w = 0; w < nw; ++w) {
-                if (fs[w] && !fi[w]) {
-                  fi[w] = 1;
-                  changed = true;
-                }
-              }
-            }
-            bool skippable = e.optional || (e.kind == RuleElem::Kind::kNet && nets[e.id].nullable);
-            if (!skippable) break;
-          }
+    struct RuleRef {
+      int net;
+      size_t rule;
+    };
+    std::vector<std::vector<RuleRef>> callers(nets.size());  // per net: calling rules
+    std::vector<std::vector<int>> pending(nets.size());      // per net, per rule: count
+    std::vector<int> queue;
+    for (size_t i = 0; i < nets.size(); ++i) {
+      nets[i].nullable = false;
+      pending[i].resize(nets[i].rules.size());
+      for (size_t r = 0; r < nets[i].rules.size(); ++r) {
+        int count = 0;
+        for (const RuleElem& e : nets[i].rules[r].elems) {
+          if (e.optional) continue;
+          ++count;
+          if (e.kind == RuleElem::Kind::kNet) callers[e.id].push_back({static_cast<int>(i), r});
+        }
+        pending[i][r] = count;
+        if (count == 0 && !nets[i].nullable) {
+          nets[i].nullable = true;
+          queue.push_back(static_cast<int>(i));
+        }
+      }
+    }
+    for (size_t q = 0; q < queue.size(); ++q) {
+      for (const RuleRef& c : callers[queue[q]]) {  // once per required call of the net
+        if (--pending[c.net][c.rule] == 0 && !nets[c.net].nullable) {
+          nets[c.net].nullable = true;
+          queue.push_back(c.net);
         }
       }
     }
   }
 
-  Status CheckRecursion() {
-    auto& nets = g_->nets_;
-    // Nullable fixpoint.
-    bool changed = true;
-    while (changed) {
-      changed = false;
-      for (Net& n : nets) {
-        if (n.nullable) continue;
-        for (const Rule& r : n.rules) {
-          bool all = std::all_of(r.elems.begin(), r.elems.end(), [&](const RuleElem& e) {
-            return e.optional || (e.kind == RuleElem::Kind::kNet && nets[e.id].nullable);
-          });
-          if (all) {
-            n.nullable = true;
-            changed = true;
-            break;
-          }
-        }
-      }
-    }
-    // Left-call graph: nets reachable at the same word position.
-    size_t n = nets.size();
-    std::vector<std::vector<int>> left(n);
-    for (size_t i = 0; i < n; ++i) {
+  // Left calls: for each net, the nets its rules can call before consuming a
+  // word (each at most once, in first-seen order).
+  std::vector<std::vector<int>> LeftCalls() const {
+    const auto& nets = g_->nets_;
+    std::vector<std::vector<int>> left(nets.size());
+    std::vector<int> seen(nets.size(), -1);
+    for (size_t i = 0; i < nets.size(); ++i) {
       for (const Rule& r : nets[i].rules) {
         for (const RuleElem& e : r.elems) {
-          if (e.kind == RuleElem::Kind::kNet) left[i].push_back(e.id);
-          bool skippable = e.optional || (e.kind == RuleElem::Kind::kNet && nets[e.id].nullable);
-          if (!skippable) break;
+          if (e.kind == RuleElem::Kind::kNet && seen[e.id] != static_cast<int>(i)) {
+            seen[e.id] = static_cast<int>(i);
+            left[i].push_back(e.id);
+          }
+          if (!Skippable(e, nets)) break;
         }
       }
     }
-    std::vector<int> color(n, 0), stack;
-    std::function<int(int)> dfs = [&](int v) -> int {
-      color[v] = 1;
-      stack.push_back(v);
-      for (int w : left[v]) {
-        if (color[w] == 1) return w;
-        if (color[w] == 0) {
-          int c = dfs(w);
-          if (c >= 0) return c;
-        }
-      }
-      color[v] = 2;
-      stack.pop_back();
-      return -1;
-    };
+    return left;
+  }
+
+  // Rejects left recursion (a cycle of left calls) and leaves in topo_ the
+  // nets ordered so that every net comes after the nets it left-calls
+  // (Kahn's algorithm; no recursion).
+  Status CheckRecursion() {
+    const auto& nets = g_->nets_;
+    const size_t n = nets.size();
+    left_ = LeftCalls();
+    std::vector<int> callers(n, 0);  // unprocessed left callers of each net
+    for (const auto& l : left_) {
+      for (int w : l) ++callers[w];
+    }
+    std::vector<int> order;  // callers before callees
+    order.reserve(n);
     for (size_t i = 0; i < n; ++i) {
-      if (color[i] != 0) continue;
-      stack.clear();
-      int c = dfs(static_cast<int>(i));
-      if (c >= 0) {
-        std::string path;
-        auto it = std::find(stack.begin(), stack.end(), c);
-        for (; it != stack.end(); ++it) path += nets[*it].qualified + " -> ";
-        path += nets[c].qualified;
-        return Status::InvalidInput(Loc(nets[c].file, nets[c].line, 1) +
-                                    "left recursion the parser cannot handle: " + path);
+      if (callers[i] == 0) order.push_back(static_cast<int>(i));
+    }
+    for (size_t q = 0; q < order.size(); ++q) {
+      for (int w : left_[order[q]]) {
+        if (--callers[w] == 0) order.push_back(w);
       }
     }
+    if (order.size() < n) {
+      // The nets left over still have left callers, all of them left over
+      // too: walk back along callers until a net repeats; that is a cycle.
+      std::vector<std::vector<int>> back(n);
+      for (size_t i = 0; i < n; ++i) {
+        if (callers[i] == 0) continue;
+        for (int w : left_[i]) back[w].push_back(static_cast<int>(i));
+      }
+      int v = 0;
+      while (callers[v] == 0) ++v;
+      std::vector<int> step(n, -1), walk;
+      while (step[v] < 0) {
+        step[v] = static_cast<int>(walk.size());
+        walk.push_back(v);
+        v = back[v].front();
+      }
+      // walk[step[v]..] is the cycle, each net called by the next: reverse
+      // it into call order and start at its lowest net.
+      std::vector<int> cycle(walk.begin() + step[v], walk.end());
+      std::reverse(cycle.begin(), cycle.end());
+      std::rotate(cycle.begin(), std::min_element(cycle.begin(), cycle.end()), cycle.end());
+      cycle.push_back(cycle.front());
+      const Net& c = nets[cycle.front()];
+      return Status::InvalidInput(
+          Loc(c.file, c.line, 1) +
+          "left recursion the parser cannot handle: " + NetPath(nets, cycle));
+    }
+    topo_.assign(order.rbegin(), order.rend());  // callees first
+    return Status::Ok();
+  }
+
+  // FIRST sets as bit rows, one pass over the nets with callees first (the
+  // left calls form a DAG): time O(left calls x words / 64).
+  void ComputeFirst() {
+    const auto& nets = g_->nets_;
+    const size_t stride = (g_->words_.size() + 63) / 64;
+    g_->first_stride_ = stride;
+    g_->first_.assign(nets.size() * stride, 0);
+    for (int i : topo_) {
+      uint64_t* fi = &g_->first_[static_cast<size_t>(i) * stride];
+      for (const Rule& r : nets[i].rules) {
+        for (const RuleElem& e : r.elems) {
+          if (e.kind == RuleElem::Kind::kWord) {
+            fi[e.id / 64] |= uint64_t{1} << (e.id % 64);
+          } else {
+            const uint64_t* fs = &g_->first_[static_cast<size_t>(e.id) * stride];
+            for (size_t w = 0; w < stride; ++w) fi[w] |= fs[w];
+          }
+          if (!Skippable(e, nets)) break;
+        }
+      }
+    }
+  }
+
+  // Frames(A, r): the deepest chain of parser frames below matching net A
+  // with r words left (docs/language.md, "Limits"): one frame for A, then for
+  // a rule one Walk frame per element stepped over and one to record its end;
+  // a call at element k, reached after at least c words (c = elements before
+  // k that cannot match empty), adds Frames(B, r - c). Callees with the same r
+  // come first in topo_, smaller r in earlier rounds, so one pass per r
+  // suffices: O(kMaxWordsPerLine x calls), no recursion.
+  struct DepthEdge {
+    int frames;  // Walk frames on the stack when the call is made: k + 1
+    int words;   // c
+    int callee;
+  };
+
+  Status CheckDepth() {
+    const auto& nets = g_->nets_;
+    const size_t n = nets.size();
+    std::vector<std::vector<DepthEdge>> edges(n);
+    std::vector<int64_t> rule_end(n, 0);  // deepest rule end: elements + 2
+    for (size_t i = 0; i < n; ++i) {
+      for (const Rule& rule : nets[i].rules) {
+        rule_end[i] = std::max<int64_t>(rule_end[i], static_cast<int64_t>(rule.elems.size()) + 2);
+        int consumed = 0;
+        for (size_t k = 0; k < rule.elems.size() && consumed <= kMaxWordsPerLine; ++k) {
+          const RuleElem& e = rule.elems[k];
+          if (e.kind == RuleElem::Kind::kNet) {
+            edges[i].push_back({static_cast<int>(k) + 1, consumed, e.id});
+          }
+          if (!Skippable(e, nets)) ++consumed;
+        }
+      }
+    }
+    const int words = kMaxWordsPerLine;
+    std::vector<int64_t> f(n * (words + 1), 0);
+    auto at = [&](int net, int r) -> int64_t& {
+      return f[static_cast<size_t>(net) * (words + 1) + static_cast<size_t>(r)];
+    };
+    // Frames(v, r) and, in *deepest, the callee on its deepest chain (-1: none).
+    auto frames_of = [&](int v, int r, std::pair<int, int>* deepest) {
+      int64_t best = rule_end[v];
+      if (deepest) *deepest = {-1, 0};
+      for (const DepthEdge& e : edges[v]) {
+        int left = r - e.words;
+        if (left < 0 || (left == 0 && !nets[e.callee].nullable)) continue;
+        int64_t d = e.frames + at(e.callee, left);
+        if (d > best) {
+          best = d;
+          if (deepest) *deepest = {e.callee, left};
+        }
+      }
+      return best + 1;  // the net's own frame
+    };
+    for (int r = 0; r <= words; ++r) {
+      for (int i : topo_) at(i, r) = frames_of(i, r, nullptr);
+    }
+    int worst = 0;
+    for (size_t i = 1; i < n; ++i) {
+      if (at(static_cast<int>(i), words) > at(worst, words)) worst = static_cast<int>(i);
+    }
+    // Repetitions add one frame per extra word matched: at most `words`.
+    int64_t depth = n == 0 ? 0 : at(worst, words) + words;
+    if (depth > kMaxParseDepth) {
+      std::vector<int> path{worst};
+      std::pair<int, int> to{worst, words};
+      while (path.size() <= n) {
+        frames_of(to.first, to.second, &to);
+        if (to.first < 0) break;
+        path.push_back(to.first);
+      }
+      const Net& w = nets[worst];
+      return Status::InvalidInput(Loc(w.file, w.line, 1) + "nets nest too deep: a line of " +
+                                  std::to_string(words) + " words can take the parser " +
+                                  std::to_string(depth) + " frames deep (limit " +
+                                  std::to_string(kMaxParseDepth) + "): " + NetPath(nets, path));
+    }
+    g_->max_parse_depth_ = static_cast<int>(depth);
     return Status::Ok();
   }
 
   Status ReadFrames(std::string_view text, const std::string& file) {
+    if (text.size() > kMaxFramesBytes) {
+      return Status::InvalidInput(file + ":1:1: frames file larger than " +
+                                  std::to_string(kMaxFramesBytes) + " bytes (limit)");
+    }
     auto lines = SplitLines(text);
     int cur = -1;
     int line_no = 0;
@@ -442,6 +658,11 @@ class GrammarBuilder {
         g_->slot_nets_.push_back({net, static_cast<int>(f)});
       }
     }
+    if (g_->slot_nets_.size() > kMaxSlotNets) {
+      return Status::InvalidInput(file + ":1:1: frames list " +
+                                  std::to_string(g_->slot_nets_.size()) + " slots, more than " +
+                                  std::to_string(kMaxSlotNets) + " (limit)");
+    }
     return Status::Ok();
   }
 
@@ -453,6 +674,10 @@ class GrammarBuilder {
   int cur_owner_ = -1;  // top-level net of the current definition
   std::unordered_map<int, std::unordered_map<std::string, int>> macros_;  // by owner net
   std::vector<PendingCall> pending_;
+  size_t total_bytes_ = 0;  // grammar text read, includes counted each time
+  size_t rule_count_ = 0;
+  std::vector<std::vector<int>> left_;  // left calls per net
+  std::vector<int> topo_;               // nets, left-callees first
 };
 
 int Grammar::WordId(std::string_view w) const {
@@ -479,9 +704,9 @@ Result<std::shared_ptr<const Grammar>> Grammar::FromText(std::string_view gra,
 
 Result<std::shared_ptr<const Grammar>> Grammar::Load(const std::string& gra_path,
                                                      const std::string& frames_path) {
-  auto gra = ReadFile(gra_path);
+  auto gra = ReadBounded(gra_path, kMaxGrammarBytes, "grammar file");
   if (!gra.ok()) return gra.status();
-  auto frames = ReadFile(frames_path);
+  auto frames = ReadBounded(frames_path, kMaxFramesBytes, "frames file");
   if (!frames.ok()) return frames.status();
   IncludeReader reader =
       [](const std::string& from,
@@ -489,7 +714,7 @@ Result<std::shared_ptr<const Grammar>> Grammar::Load(const std::string& gra_path
     namespace fs = std::filesystem;
     fs::path p(target);
     if (p.is_relative()) p = fs::path(from).parent_path() / p;
-    auto text = ReadFile(p.string());
+    auto text = ReadBounded(p.string(), kMaxGrammarBytes, "grammar file");
     if (!text.ok()) return text.status();
     return std::make_pair(std::move(text.value()), p.string());
   };

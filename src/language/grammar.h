@@ -28,6 +28,42 @@
 
 namespace sb::language {
 
+// Limits of grammar and frames files, checked while reading, before any
+// analysis or parsing work (docs/language.md, "Limits"). A file over a limit
+// is refused with "file:line:col: ..." naming the limit.
+//
+// Bytes of grammar text read in all, #include'd files counted each time they
+// are read (so an include cycle or fan-out cannot multiply the work).
+inline constexpr size_t kMaxGrammarBytes = 4u << 20;
+// Bytes of a frames file.
+inline constexpr size_t kMaxFramesBytes = 1u << 20;
+// #include nesting.
+inline constexpr int kMaxIncludeDepth = 16;
+// Nets and macros together (each costs a row of the FIRST table and a
+// per-position memo when parsing).
+inline constexpr size_t kMaxNets = 10000;
+// Rules (alternatives) in all nets and macros together.
+inline constexpr size_t kMaxRules = 100000;
+// Elements (words and calls) in one rule: a rule is walked element by
+// element, one stack frame each.
+inline constexpr size_t kMaxRuleElements = 64;
+// Distinct vocabulary words.
+inline constexpr size_t kMaxVocabulary = 65536;
+// Nets x vocabulary words: the FIRST table holds one bit per pair (32 MiB).
+inline constexpr uint64_t kMaxFirstTableBits = uint64_t{1} << 28;
+// (net, frame) slots over all frames: every slot net is tried at every word
+// position of every line.
+inline constexpr size_t kMaxSlotNets = 256;
+// In-vocabulary words of one line the parser considers (the rest of a line is
+// ignored); ParserOptions::max_words is at most this.
+inline constexpr int kMaxWordsPerLine = 64;
+// The parser walks rules and nets recursively. For every net, the deepest
+// chain of parser frames a line of kMaxWordsPerLine words can cause (one per
+// net entered and one per rule element stepped over, see
+// Grammar::max_parse_depth) must stay within this, so parsing never
+// overflows the stack; parse trees are at most this deep too.
+inline constexpr int kMaxParseDepth = 4096;
+
 // One element of a rule: a word or a call of a net (macros are nets too).
 struct RuleElem {
   enum class Kind : uint8_t { kWord, kNet };
@@ -74,7 +110,9 @@ class Grammar {
   // "file:line:col: reason": unbalanced parentheses, undefined net or macro,
   // a rule outside a net, a net without rules, duplicate net, unknown frame
   // net, left recursion (a net that can call itself without consuming a
-  // word), a frame without nets; kNotFound/kIoError when a file is missing.
+  // word), a frame without nets, a limit above exceeded (kMax*); kNotFound/
+  // kIoError when a file is missing or unreadable. Loading takes time and
+  // memory near-linear in the grammar's size (no recursion on the input).
   static Result<std::shared_ptr<const Grammar>> Load(const std::string& gra_path,
                                                      const std::string& frames_path);
 
@@ -106,8 +144,14 @@ class Grammar {
   // True when a match of `net` can begin with word `word` (its FIRST set);
   // the parser uses it to skip nets that cannot match at a position.
   bool CanStartWith(int net, int word) const {
-    return first_[static_cast<size_t>(net) * words_.size() + static_cast<size_t>(word)] != 0;
+    return (first_[static_cast<size_t>(net) * first_stride_ + static_cast<size_t>(word) / 64] >>
+            (static_cast<unsigned>(word) % 64)) &
+           1u;
   }
+  // The deepest chain of parser frames (nets entered plus rule elements
+  // stepped over) any line of kMaxWordsPerLine words can cause; at most
+  // kMaxParseDepth. Parse trees are no deeper.
+  int max_parse_depth() const { return max_parse_depth_; }
 
  private:
   friend class GrammarBuilder;
@@ -117,7 +161,9 @@ class Grammar {
   std::unordered_map<std::string, int> word_ids_;
   std::unordered_map<std::string, int> net_ids_;  // top-level nets only
   std::vector<SlotNet> slot_nets_;
-  std::vector<uint8_t> first_;  // nets x words
+  std::vector<uint64_t> first_;  // nets x words bits, first_stride_ words per net
+  size_t first_stride_ = 0;
+  int max_parse_depth_ = 0;
 };
 
 }  // namespace sb::language

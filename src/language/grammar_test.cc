@@ -204,3 +204,128 @@ TEST(GrammarTest, ShippedGrammarLoads) {
 
 }  // namespace
 }  // namespace sb::language
+
+namespace sb::language {
+namespace {
+
+// [N0] calls [N1] calls ... [N(n-1)], each net also matching its own word.
+std::string Chain(int n) {
+  std::string gra;
+  for (int i = 0; i < n; ++i) {
+    gra += "[" + std::string(i == 0 ? "Top" : "N" + std::to_string(i)) + "]\n";
+    if (i + 1 < n) gra += "\t([N" + std::to_string(i + 1) + "])\n";
+    gra += "\t(w" + std::to_string(i) + ")\n;\n";
+  }
+  return gra;
+}
+
+TEST(GrammarLimitsTest, LongChainsLoadInOnePassAndParse) {
+  // FIRST sets by one pass over the left-call DAG: a 1,500-net chain with
+  // 1,500 words used to need 1,500 fixpoint rounds over every net and word.
+  auto g = Load(Chain(1500));
+  ASSERT_TRUE(g.ok()) << g.status().message();
+  const Grammar& gr = **g;
+  EXPECT_TRUE(gr.CanStartWith(0, gr.WordId("w1499")));
+  EXPECT_TRUE(gr.CanStartWith(1498, gr.WordId("w1499")));
+  EXPECT_FALSE(gr.CanStartWith(1499, gr.WordId("w0")));
+  EXPECT_GT(gr.max_parse_depth(), 3000);
+  EXPECT_LE(gr.max_parse_depth(), kMaxParseDepth);
+  std::string out = Phoenix(*g, "w1499");
+  EXPECT_EQ(out.find(";;; w1499\nPARSE_0:\nF:[Top].[N1].[N2]."), 0u) << out.substr(0, 200);
+  EXPECT_NE(out.find("[N1499].w1499 \nEND_PARSE"), std::string::npos);
+}
+
+TEST(GrammarLimitsTest, TooDeepNestingIsAnErrorNotAStackOverflow) {
+  // 10,000 nets deep overflowed the parser's stack; now the load refuses it.
+  std::string err = Error(Chain(10000));
+  EXPECT_EQ(err.find("t.gra:1:1: nets nest too deep: a line of 64 words can take the parser "), 0u)
+      << err;
+  EXPECT_NE(err.find("(limit 4096): [Top] -> [N1] -> [N2]"), std::string::npos) << err;
+  EXPECT_NE(err.find("-> [N9999]"), std::string::npos) << err;
+  // Right recursion counts every word a line can feed it: a net that
+  // re-enters itself after each word, through 40 nets, is too deep for
+  // 64 words (40 x 64 x 2 frames) although its static chain is short.
+  std::string gra = "[Top]\n\t(w *[N1])\n;\n";
+  for (int i = 1; i < 40; ++i) {
+    gra += "[N" + std::to_string(i) + "]\n\t([" +
+           (i + 1 < 40 ? "N" + std::to_string(i + 1) : "Top") + "])\n;\n";
+  }
+  err = Error(gra);
+  EXPECT_NE(err.find("nets nest too deep"), std::string::npos) << err;
+  // The same loop through 10 nets is fine.
+  gra = "[Top]\n\t(w *[N1])\n;\n";
+  for (int i = 1; i < 10; ++i) {
+    gra += "[N" + std::to_string(i) + "]\n\t([" +
+           (i + 1 < 10 ? "N" + std::to_string(i + 1) : "Top") + "])\n;\n";
+  }
+  EXPECT_EQ(Error(gra), "");
+}
+
+TEST(GrammarLimitsTest, RecursionCheckIsIterative) {
+  // A left-recursive cycle through 9,000 nets (the recursive check
+  // overflowed at 30,000): found without recursion, reported from its
+  // lowest net.
+  std::string gra;
+  for (int i = 0; i < 9000; ++i) {
+    gra += "[" + std::string(i == 0 ? "Top" : "N" + std::to_string(i)) + "]\n\t([" +
+           (i + 1 < 9000 ? "N" + std::to_string(i + 1) : "Top") + "] x)\n;\n";
+  }
+  std::string err = Error(gra);
+  EXPECT_EQ(err.find("t.gra:1:1: left recursion the parser cannot handle: [Top] -> [N1] -> "), 0u)
+      << err.substr(0, 300);
+  EXPECT_NE(err.find("[N8999] -> [Top]"), std::string::npos) << err.substr(0, 300);
+}
+
+TEST(GrammarLimitsTest, CountsAndSizesAreLimited) {
+  // Nets.
+  std::string many;
+  for (size_t i = 0; i <= kMaxNets; ++i) many += "[N" + std::to_string(i) + "]\n\t(a)\n;\n";
+  EXPECT_EQ(Error(many).find("t.gra:" + std::to_string(3 * kMaxNets + 1) +
+                             ":1: more than 10000 nets and macros (limit)"),
+            0u)
+      << Error(many);
+  // Elements per rule.
+  std::string rule = "[Top]\n\t(";
+  for (size_t i = 0; i <= kMaxRuleElements; ++i) rule += "a ";
+  rule += ")\n;\n";
+  EXPECT_NE(Error(rule).find("t.gra:2:131: rule has more than 64 elements (limit)"),
+            std::string::npos)
+      << Error(rule);
+  // Bytes, includes counted each time they are read: a file including
+  // itself twice per level would read 2^16 copies.
+  auto self = [](const std::string&,
+                 const std::string&) -> Result<std::pair<std::string, std::string>> {
+    return std::make_pair(std::string(300000, '#') + "\n#include self\n#include self\n",
+                          std::string("self"));
+  };
+  auto r =
+      Grammar::FromText("#include self\n[Top]\n\t(a)\n;\n", "t.gra", kFrames, "t.frames", self);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.status().message().find("larger than 4194304 bytes (limit)"), std::string::npos)
+      << r.status().message();
+  // Include depth.
+  auto deep = [](const std::string&,
+                 const std::string&) -> Result<std::pair<std::string, std::string>> {
+    return std::make_pair(std::string("#include again\n"), std::string("again"));
+  };
+  r = Grammar::FromText("#include again\n", "t.gra", kFrames, "t.frames", deep);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().message(), "again:1:1: #include nested more than 16 deep (limit)");
+  // Slot nets.
+  std::string nets, frames = "Frame: F\n";
+  for (size_t i = 0; i <= kMaxSlotNets; ++i) {
+    nets += "[" + std::string(i == 0 ? "Top" : "N" + std::to_string(i)) + "]\n\t(a)\n;\n";
+    frames += "\t[" + std::string(i == 0 ? "Top" : "N" + std::to_string(i)) + "]\n";
+  }
+  frames += ";\n";
+  EXPECT_EQ(Error(nets, frames), "t.frames:1:1: frames list 257 slots, more than 256 (limit)");
+}
+
+TEST(GrammarLimitsTest, EndlessFilesAreRefusedWhileReading) {
+  auto r = Grammar::Load("/dev/zero", "/dev/zero");
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().message(), "/dev/zero:1:1: grammar file larger than 4194304 bytes (limit)");
+}
+
+}  // namespace
+}  // namespace sb::language

@@ -96,13 +96,33 @@ struct Parser::Impl {
 
   // Walk-state memo: a rule position (element, word, repeating) reached again
   // within one net match with at least as many children as before cannot
-  // yield a better tree, so it is not explored again. This keeps repetition
-  // (`+[Hold]`) polynomial instead of enumerating every segmentation.
-  std::vector<std::vector<int>> rule_base;  // per net, per rule: first element id
+  // yield a better tree (every continuation was already tried with fewer or
+  // as many children, and earlier), so it is not explored again. This keeps
+  // every rule polynomial: `(*w *w ... *w)` and `+[Hold]` alike, instead of
+  // enumerating every way to skip or segment. Stamps are per MatchNet call
+  // (`epoch`); a call of a net nested in a call of the same net (right
+  // recursion) logs the stamps it overwrites and restores them on return.
+  std::vector<std::vector<int>> rule_base;  // per net, per rule: first element id, or -1
   size_t total_elems = 0;
   std::vector<uint32_t> vstamp;
   std::vector<int32_t> vcount;
   uint32_t epoch = 0;
+  std::vector<int> active;  // per net: MatchNet calls of it in progress
+  struct Saved {
+    size_t vi;
+    uint32_t stamp;
+    int32_t count;
+  };
+  std::vector<Saved> undo;
+
+  // One MatchNet call in progress.
+  struct Call {
+    int net;
+    size_t key;   // memo index of (net, pos)
+    size_t base;  // cstack size at entry
+    uint32_t ep;  // its stamp
+    bool log;     // save overwritten stamps (a call of the same net is below)
+  };
 
   struct PathRec {
     int prev;  // -1: none
@@ -127,14 +147,20 @@ struct Parser::Impl {
     }
     nnets = g.nets().size();
     rule_base.resize(nnets);
+    active.assign(nnets, 0);
     for (size_t i = 0; i < nnets; ++i) {
       for (const Rule& r : g.nets()[i].rules) {
-        // Only rules with a repetition can revisit a state many times; the
-        // others skip the memo (rule_base -1).
-        bool rep = false;
-        for (const RuleElem& e : r.elems) rep = rep || e.repeat;
-        rule_base[i].push_back(rep ? static_cast<int>(total_elems) : -1);
-        if (rep) total_elems += r.elems.size();
+        // A rule can reach one of its states twice only if an element
+        // repeats, or it has two or more elements and one of them can match
+        // in more than one way (optional or a net); the others skip the memo.
+        bool repeats = false, branches = false;
+        for (const RuleElem& e : r.elems) {
+          repeats = repeats || e.repeat;
+          branches = branches || e.optional || e.kind == RuleElem::Kind::kNet;
+        }
+        bool memo_rule = repeats || (branches && r.elems.size() >= 2);
+        rule_base[i].push_back(memo_rule ? static_cast<int>(total_elems) : -1);
+        if (memo_rule) total_elems += r.elems.size();
       }
     }
   }
@@ -179,6 +205,12 @@ struct Parser::Impl {
       vstamp.resize(vneed, 0);
       vcount.resize(vneed, 0);
     }
+    // A line makes at most nets x (words + 1) calls: far fewer than 2^31, so
+    // stamps never wrap within a line.
+    if (epoch > (1u << 31)) {
+      std::fill(vstamp.begin(), vstamp.end(), 0);
+      epoch = 0;
+    }
   }
 
   const std::vector<MatchEnd>& MatchNet(int net, int pos) {
@@ -188,15 +220,19 @@ struct Parser::Impl {
     if (state[key] != 0) return memo[key];
     state[key] = 1;
     touched.push_back(static_cast<int>(key));
-    size_t base = cstack.size();
-    if (++epoch == 0) {  // wrapped: forget every stamp
-      std::fill(vstamp.begin(), vstamp.end(), 0);
-      epoch = 1;
-    }
-    uint32_t ep = epoch;
+    const Call call{net, key, cstack.size(), ++epoch, active[net] > 0};
+    size_t undo_mark = undo.size();
+    ++active[net];
     const auto& rules = g.nets()[net].rules;
     for (size_t ri = 0; ri < rules.size(); ++ri) {
-      Walk(net, key, base, rules[ri], rule_base[net][ri], 0, pos, false, ep);
+      Walk(call, rules[ri], rule_base[net][ri], 0, pos, false);
+    }
+    --active[net];
+    while (undo.size() > undo_mark) {  // give the enclosing call of this net its stamps back
+      const Saved& sv = undo.back();
+      vstamp[sv.vi] = sv.stamp;
+      vcount[sv.vi] = sv.count;
+      undo.pop_back();
     }
     state[key] = 2;
     return memo[key];
@@ -234,11 +270,11 @@ struct Parser::Impl {
   }
 
   // Matches rule elements from `k` at word `pos`. `again`: element k already
-  // matched at least once and may only repeat.
-  void Walk(int net, size_t key, size_t base, const Rule& r, int rbase, size_t k, int pos,
-            bool again, uint32_t ep) {
+  // matched at least once and may only repeat. Recursion depth is bounded by
+  // the grammar (Grammar::max_parse_depth).
+  void Walk(const Call& c, const Rule& r, int rbase, size_t k, int pos, bool again) {
     if (k == r.elems.size()) {
-      Record(net, key, base, pos);
+      Record(c.net, c.key, c.base, pos);
       return;
     }
     if (rbase >= 0) {
@@ -246,9 +282,13 @@ struct Parser::Impl {
                    static_cast<size_t>(pos)) *
                       2 +
                   (again ? 1 : 0);
-      int32_t have = static_cast<int32_t>(cstack.size() - base);
-      if (vstamp[vi] == ep && vcount[vi] <= have) return;
-      vstamp[vi] = ep;
+      int32_t have = static_cast<int32_t>(cstack.size() - c.base);
+      if (vstamp[vi] == c.ep) {
+        if (vcount[vi] <= have) return;
+      } else if (c.log) {
+        undo.push_back({vi, vstamp[vi], vcount[vi]});
+      }
+      vstamp[vi] = c.ep;
       vcount[vi] = have;
     }
     const RuleElem& e = r.elems[k];
@@ -256,8 +296,8 @@ struct Parser::Impl {
       if (e.kind == RuleElem::Kind::kWord) {
         if (words[pos] == e.id) {
           cstack.push_back(-pos - 1);
-          Walk(net, key, base, r, rbase, k + 1, pos + 1, false, ep);
-          if (e.repeat) Walk(net, key, base, r, rbase, k, pos + 1, true, ep);
+          Walk(c, r, rbase, k + 1, pos + 1, false);
+          if (e.repeat) Walk(c, r, rbase, k, pos + 1, true);
           cstack.pop_back();
         }
       } else {
@@ -267,13 +307,13 @@ struct Parser::Impl {
           MatchEnd me = sub[i];
           int pushed = PushChild(me.node);
           // Moving on is tried before another repetition (shorter matches first).
-          if (!(again && me.end == pos)) Walk(net, key, base, r, rbase, k + 1, me.end, false, ep);
-          if (e.repeat && me.end > pos) Walk(net, key, base, r, rbase, k, me.end, true, ep);
+          if (!(again && me.end == pos)) Walk(c, r, rbase, k + 1, me.end, false);
+          if (e.repeat && me.end > pos) Walk(c, r, rbase, k, me.end, true);
           cstack.resize(cstack.size() - static_cast<size_t>(pushed));
         }
       }
     }
-    if (e.optional && !again) Walk(net, key, base, r, rbase, k + 1, pos, false, ep);
+    if (e.optional && !again) Walk(c, r, rbase, k + 1, pos, false);
   }
 
   static bool Better(const PathRec& a, const PathRec& b) {
@@ -320,7 +360,11 @@ struct Parser::Impl {
                       me.end,       pr.covered + (me.end - i),
                       pr.slots + 1, pr.frames + (pr.frame != sn.frame ? 1 : 0)};
             auto& list = ends[me.end];
-            if (!list.empty() && Better(paths[list[0]], q)) continue;
+            if (!list.empty()) {
+              const PathRec& head = paths[list[0]];
+              // Worse, or tied with the list full: Offer would drop it.
+              if (Better(head, q) || (Same(head, q) && list.size() >= opt.max_parses)) continue;
+            }
             paths.push_back(q);
             Offer(&list, static_cast<int>(paths.size()) - 1);
           }
@@ -383,10 +427,19 @@ struct Parser::Impl {
   }
 };
 
+namespace {
+
+ParserOptions Clamped(ParserOptions o) {
+  o.max_words = std::min<size_t>(o.max_words, kMaxWordsPerLine);
+  return o;
+}
+
+}  // namespace
+
 Parser::Parser(std::shared_ptr<const Grammar> grammar, ParserOptions options)
     : grammar_(std::move(grammar)),
-      options_(options),
-      impl_(std::make_unique<Impl>(*grammar_, options)) {}
+      options_(Clamped(options)),
+      impl_(std::make_unique<Impl>(*grammar_, options_)) {}
 
 Parser::~Parser() = default;
 

@@ -68,7 +68,9 @@ struct ParserOptions {
   size_t max_parses = 256;
   // Only the first max_words in-vocabulary words of a line are parsed (the
   // rest are ignored), which bounds time and stack depth on absurd input.
-  size_t max_words = 64;
+  // At most kMaxWordsPerLine (larger values are clamped to it): the grammar's
+  // depth check (Grammar::max_parse_depth) assumes lines no longer.
+  size_t max_words = kMaxWordsPerLine;
 };
 
 // Parses lines with one grammar. Holds scratch buffers, so one Parser must not
@@ -82,7 +84,8 @@ class Parser {
   Parser& operator=(const Parser&) = delete;
 
   // Parses one line of text (no newline). Never fails: no parse is an empty
-  // ParseResult::parses.
+  // ParseResult::parses. Time is polynomial in the line's kept words for any
+  // grammar; stack depth is at most grammar().max_parse_depth() frames.
   ParseResult Parse(std::string_view text);
 
   // Appends exactly what Phoenix prints for `text` (EXTRACT:y, ALL_PARSES:y,
@@ -111,7 +114,8 @@ std::string FormatPhoenix(std::string_view text, const ParseResult& result);
 std::string FormatReadable(std::string_view text, const ParseResult& result);
 // One JSON object (one line): {"text":..., "words":[...], "parses":[{"slots":
 // [{"frame":..., "begin":..., "end":..., "words":[...], "tree":{"net":...,
-// "children":[...]}}]}]}; word leaves are JSON strings.
+// "children":[...]}}]}]}; word leaves are JSON strings. Always valid JSON:
+// bytes of the text that are not well-formed UTF-8 print as U+FFFD.
 std::string FormatJson(std::string_view text, const ParseResult& result);
 // The slot's tree in Phoenix notation: "[Move].[Hold].[HoldType].[HoldTypeT].jug ".
 std::string PhoenixSlotString(const ParseNode& tree);

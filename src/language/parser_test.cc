@@ -219,3 +219,65 @@ TEST(ParserTest, RepetitionIsNotExponentialAndLinesAreCapped) {
 
 }  // namespace
 }  // namespace sb::language
+
+namespace sb::language {
+namespace {
+
+TEST(ParserTest, OptionalWordsArePolynomial) {
+  // One rule of 64 optional words over a 64-word line: 2^64 ways to choose
+  // which elements match; the walk memo explores each (element, word) once.
+  std::string rule = "[M]\n\t(";
+  for (int i = 0; i < kMaxWordsPerLine; ++i) rule += i % 2 ? "*w " : "*v ";
+  rule += ")\n;\n";
+  Parser p(Make(rule, "Frame: F\n\t[M]\n;\n"));
+  std::string text;
+  for (int i = 0; i < kMaxWordsPerLine; ++i) text += "w ";
+  ParseResult r = p.Parse(text);
+  // Every other element is "w": one slot takes 32 of them, another the rest.
+  ASSERT_EQ(r.parses.size(), 1u);
+  EXPECT_EQ(r.covered, 64);
+  ASSERT_EQ(r.parses[0].slots.size(), 2u);
+  EXPECT_EQ(r.parses[0].slots[0].end, 32);
+}
+
+TEST(ParserTest, RightRecursionWithOptionalWords) {
+  // [L] inside [L], each level with a run of optional words: every level's
+  // walk memo is put back after the nested call of the same net returns.
+  auto g = Make("[L]\n\t(*a *a *a *a *a *a *a *a *a *a *a *a b *[L])\n;\n", "Frame: F\n\t[L]\n;\n");
+  Parser p(g);
+  std::string text;
+  for (int i = 0; i < 5; ++i) text += "a a a a a a a a a a b ";
+  ParseResult r = p.Parse(text);
+  ASSERT_EQ(r.parses.size(), 1u);
+  EXPECT_EQ(r.covered, 55);
+  EXPECT_EQ(r.parses[0].slots.size(), 1u);
+}
+
+TEST(ParserTest, MaxWordsIsClampedToTheGrammarLimit) {
+  ParserOptions o;
+  o.max_words = 1000;
+  Parser p(Make(kMoves, kMoveFrames), o);
+  EXPECT_EQ(p.options().max_words, static_cast<size_t>(kMaxWordsPerLine));
+}
+
+}  // namespace
+}  // namespace sb::language
+
+namespace sb::language {
+namespace {
+
+TEST(ParserTest, JsonIsValidForAnyBytes) {
+  // Found by fuzz_grammar: a stray byte (here 0xb0, a lone continuation
+  // byte) went into the JSON string as it was; now it is U+FFFD.
+  Parser p(Make(kMoves, kMoveFrames));
+  std::string text = "sloper to \xb0he right \xc3\xa9 \xed\xa0\x80 \xf4\x90\x80\x80 \xc0\xaf";
+  std::string json = FormatJson(text, p.Parse(text));
+  const std::string r = "\xef\xbf\xbd";  // U+FFFD
+  EXPECT_EQ(json.find("{\"text\":\"sloper to " + r + "he right \xc3\xa9 " + r + r + r + " " + r +
+                      r + r + r + " " + r + r + "\""),
+            0u)
+      << json;
+}
+
+}  // namespace
+}  // namespace sb::language

@@ -88,7 +88,7 @@ std::string Provenance(const RoutePlan& plan, const chaos::VariedMove& m) {
 }
 
 std::string MoveText(const chaos::VariedMove& m) {
-  std::string t = m.source ? m.text : "________ (fill in)";
+  std::string t = m.source || m.added ? m.text : "________ (fill in)";
   if (m.crux) t += " (crux)";
   for (const auto& n : m.notes) {
     if (n.rfind("(blank", 0) == 0) continue;
@@ -249,6 +249,7 @@ void AppendMoves(std::string* out, const chaos::Variation& v) {
       *out += ", \"source\": null";
     }
     *out += m.changed ? ", \"changed\": true" : ", \"changed\": false";
+    if (m.added) *out += ", \"added\": true";
     *out += m.crux ? ", \"crux\": true, \"notes\": [" : ", \"crux\": false, \"notes\": [";
     for (size_t k = 0; k < m.notes.size(); ++k) {
       if (k) *out += ", ";

@@ -11,23 +11,17 @@ const char kNoRoute[] = "no such route";
 }  // namespace
 
 void ListRoutes(Exchange& x) {
-  app::RouteQuery q;
-  q.grade = x.req.Query("grade").value_or("");
-  q.setter = x.req.Query("setter").value_or("");
-  q.text = x.req.Query("q").value_or(x.req.Query("text").value_or(""));
-  std::string var = x.req.Query("variations").value_or("");
-  if (var == "0" || var == "false") q.variations = false;
-  if (var == "1" || var == "true") q.variations = true;
-  if (std::optional<std::string> lim = x.req.Query("limit")) {
-    std::optional<int64_t> n = ParseId(*lim);
-    if (!n) return ApiError(x, Status::InvalidInput("limit: expected a positive integer"));
-    q.limit = static_cast<int>(std::min<int64_t>(*n, 1 << 30));
-  }
-  Result<std::vector<store::RouteRecord>> rs = x.services.routes.List(x.caller.viewer, q);
-  if (!rs.ok()) return ApiError(x, rs.status());
+  Result<app::RouteQuery> q = RouteQueryOf(x.req);
+  if (!q.ok()) return ApiError(x, q.status());
+  Result<app::RoutePage> page = x.services.routes.Search(x.caller.viewer, *q);
+  if (!page.ok()) return ApiError(x, page.status());
   json arr = json::array();
-  for (const store::RouteRecord& r : *rs) arr.push_back(RouteSummaryJson(r));
-  ReplyJson(x.res, 200, json{{"routes", arr}});
+  for (const store::RouteRecord& r : page->routes) arr.push_back(RouteSummaryJson(r));
+  ReplyJson(x.res, 200,
+            json{{"routes", arr},
+                 {"total", page->total},
+                 {"offset", page->offset},
+                 {"limit", page->limit}});
 }
 
 void GetRoute(Exchange& x) {
@@ -117,6 +111,9 @@ void PostFeedback(Exchange& x) {
       j["crux"] = l.crux;
       j["parsed"] = l.parsed;
       j["reading"] = l.reading;
+      json dym = json::array();
+      for (const auto& [word, near] : l.did_you_mean) dym.push_back({{"word", word}, {"suggestion", near}});
+      j["did_you_mean"] = dym;
     }
     if (!l.error.empty()) j["error"] = l.error;
     lines.push_back(std::move(j));

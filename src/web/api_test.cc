@@ -315,7 +315,8 @@ TEST_F(ApiTest, ADeletedPrivateVariationNeverShowsAgain) {
   int64_t b = AddRoute(bob, kRoute2);
   std::vector<std::string> fresh;
   for (int i = 0; i < 3; ++i) {
-    json w = bob.Json("POST", "/api/variations", json{{"routes", {b}}}.dump(), 201);
+    json w = bob.Json("POST", "/api/variations",
+                      json{{"routes", {b}}, {"duplicate", true}}.dump(), 201);
     EXPECT_NE(w["id"].dump(), id);
     fresh.push_back(w["id"].dump());
   }
@@ -511,7 +512,12 @@ TEST_F(ApiTest, PlanPagesSvgAndPdf) {
   auto page = anon.Send("GET", "/variations/" + id);
   ASSERT_TRUE(page);
   EXPECT_EQ(page->status, 200);
-  EXPECT_NE(page->body.find("Chaotic route plan"), std::string::npos);
+  EXPECT_NE(page->body.find("class=\"card-name\""), std::string::npos);
+  EXPECT_NE(page->body.find("/r/" + id), std::string::npos);  // the QR code's link
+  auto short_link = anon.Send("GET", "/r/" + id);
+  ASSERT_TRUE(short_link);
+  EXPECT_EQ(short_link->status, 302);
+  EXPECT_EQ(short_link->get_header_value("Location"), "/variations/" + id);
   EXPECT_NE(page->body.find("<svg"), std::string::npos);
   auto svg = anon.Send("GET", "/variations/" + id + ".svg");
   ASSERT_TRUE(svg);
@@ -522,6 +528,11 @@ TEST_F(ApiTest, PlanPagesSvgAndPdf) {
   EXPECT_EQ(pdf->status, 200);
   EXPECT_EQ(pdf->get_header_value("Content-Type"), "application/pdf");
   EXPECT_EQ(pdf->body.rfind("%PDF-", 0), 0u);
+  EXPECT_EQ(pdf->get_header_value("Content-Disposition").rfind("attachment; filename=\"", 0), 0u);
+  EXPECT_NE(pdf->get_header_value("Content-Disposition").find("-a4.pdf"), std::string::npos);
+  auto letter = anon.Send("GET", "/variations/" + id + ".pdf?paper=letter");
+  ASSERT_TRUE(letter);
+  EXPECT_NE(letter->body.find("612 792"), std::string::npos);  // Letter media box
   EXPECT_NE(pdf->body.find("/Count 1"), std::string::npos);  // one page
   auto pdf2 = anon.Send("GET", "/variations/" + id + ".pdf");
   EXPECT_EQ(pdf->body, pdf2->body);  // deterministic
@@ -689,7 +700,9 @@ TEST_F(ApiTest, EverythingSurvivesARestart) {
   EXPECT_EQ(again.Status("GET", "/api/routes/" + std::to_string(p)), 200);
   Client anon = NewClient();
   EXPECT_EQ(anon.Status("GET", "/api/routes/" + std::to_string(p)), 404);
-  json plan = anon.Json("GET", "/api/variations/" + v["id"].dump(), "", 200)["plan"];
+  // The variation is private (one input is): its owner still gets the same plan.
+  EXPECT_EQ(anon.Status("GET", "/api/variations/" + v["id"].dump()), 404);
+  json plan = again.Json("GET", "/api/variations/" + v["id"].dump(), "", 200)["plan"];
   EXPECT_EQ(plan["moves"], v["moves"]);
   // Passwords still verify; names are still taken.
   Client fresh = NewClient();

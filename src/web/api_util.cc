@@ -1,4 +1,7 @@
 // Helpers of the JSON API: body decoding and the route JSON objects.
+#include <algorithm>
+#include <cctype>
+
 #include "base/number.h"
 #include "crdl/route.h"
 #include "web/handlers.h"
@@ -56,6 +59,50 @@ Result<int64_t> PathId(const Request& req, const std::string& missing) {
   return *id;
 }
 
+Result<app::RouteQuery> RouteQueryOf(const Request& req) {
+  app::RouteQuery q;
+  q.grade = req.Query("grade").value_or("");
+  q.grade_from = req.Query("from").value_or("");
+  q.grade_to = req.Query("to").value_or("");
+  q.setter = req.Query("setter").value_or("");
+  q.wall = req.Query("wall").value_or("");
+  q.text = req.Query("q").value_or(req.Query("text").value_or(""));
+  q.sort = req.Query("sort").value_or("");
+  std::string var = req.Query("variations").value_or("");
+  if (var == "0" || var == "false") q.variations = false;
+  if (var == "1" || var == "true") q.variations = true;
+  std::string mine = req.Query("mine").value_or("");
+  q.mine = mine == "1" || mine == "true";
+  if (std::optional<std::string> lim = req.Query("limit"); lim && !lim->empty()) {
+    std::optional<int64_t> n = ParseId(*lim);
+    if (!n) return Status::InvalidInput("limit: expected a positive whole number");
+    q.limit = static_cast<int>(std::min<int64_t>(*n, 1 << 30));
+  }
+  if (std::optional<std::string> off = req.Query("offset"); off && !off->empty() && *off != "0") {
+    std::optional<int64_t> n = ParseId(*off);
+    if (!n) return Status::InvalidInput("offset: expected a whole number, 0 or more");
+    q.offset = static_cast<int>(std::min<int64_t>(*n, 1 << 30));
+  }
+  return q;
+}
+
+std::string AttachmentHeader(const std::string& name, const std::string& ext) {
+  std::string file;
+  bool dash = false;
+  for (unsigned char c : name) {
+    if (std::isalnum(c) || c == '_' || c == '-') {
+      if (dash && !file.empty()) file += '-';
+      dash = false;
+      file += static_cast<char>(c);
+    } else {
+      dash = true;
+    }
+    if (file.size() >= 80) break;
+  }
+  if (file.empty()) file = "route";
+  return "attachment; filename=\"" + file + ext + "\"";
+}
+
 json RouteSummaryJson(const store::RouteRecord& r) {
   return json{{"id", r.id},
               {"name", r.name},
@@ -65,6 +112,9 @@ json RouteSummaryJson(const store::RouteRecord& r) {
               {"public", r.is_public},
               {"is_variation", r.is_variation},
               {"moves", r.move_count},
+              {"colour", r.colour},
+              {"wall", r.wall},
+              {"date", r.set_on},
               {"created_at", r.created_at},
               {"updated_at", r.updated_at}};
 }

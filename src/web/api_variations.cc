@@ -91,10 +91,25 @@ void PostVariation(Exchange& x) {
   Result<bool> smooth = BoolField(*body, "smooth", false);
   if (!smooth.ok()) return ApiError(x, smooth.status());
   vr.smooth = *smooth;
-  Result<bool> pub = BoolField(*body, "public", true);
-  if (!pub.ok()) return ApiError(x, pub.status());
-  vr.is_public = *pub;
-  if (body->contains("name") && (*body)["name"].is_string()) vr.name = (*body)["name"];
+  if (body->contains("public")) {
+    Result<bool> pub = BoolField(*body, "public", false);
+    if (!pub.ok()) return ApiError(x, pub.status());
+    vr.is_public = *pub;
+  }
+  Result<bool> dup = BoolField(*body, "duplicate", false);
+  if (!dup.ok()) return ApiError(x, dup.status());
+  vr.duplicate = *dup;
+  const std::pair<const char*, std::string*> meta[] = {
+      {"name", &vr.meta.name},     {"grade", &vr.meta.grade},   {"colour", &vr.meta.colour},
+      {"wall", &vr.meta.wall},     {"setter", &vr.meta.setter}, {"date", &vr.meta.date},
+      {"notes", &vr.meta.notes}};
+  for (const auto& [field, out] : meta) {
+    if (!body->contains(field)) continue;
+    if (!(*body)[field].is_string()) {
+      return ApiError(x, Status::InvalidInput(std::string(field) + ": expected text"));
+    }
+    *out = (*body)[field].get<std::string>();
+  }
   Result<chaos::VaryParams> params = chaos::ParamsFromJson(x.req.body);
   if (!params.ok()) return ApiError(x, params.status());
   vr.params = *params;
@@ -104,9 +119,10 @@ void PostVariation(Exchange& x) {
   if (!v->smoothing.status.ok()) smoothing["reason"] = v->smoothing.status.message();
   std::string url = "/variations/" + std::to_string(v->id);
   x.res.SetHeader("Location", url);
-  ReplyJson(x.res, 201,
+  ReplyJson(x.res, v->existing ? 200 : 201,
             json{{"id", v->id},
                  {"url", url},
+                 {"existing", v->existing},
                  {"moves", json::parse(plan::RenderMovesJson(v->plan))},
                  {"smoothing", smoothing}});
 }

@@ -64,6 +64,14 @@ Result<bool> BoolField(const nlohmann::json& body, const char* field, bool fallb
 std::optional<int64_t> ParseId(const std::string& s);
 // The path parameter "id"; kNotFound `missing` when it is not an id.
 Result<int64_t> PathId(const Request& req, const std::string& missing);
+// The route list's query parameters (q or text, grade, from, to, setter,
+// wall, variations = 0/1, mine = 1, sort, offset, limit), shared by "/" and
+// /api/routes. kInvalidInput naming the parameter when a number is malformed.
+Result<app::RouteQuery> RouteQueryOf(const Request& req);
+// A download's Content-Disposition: attachment with a file name made from
+// `name` (letters, digits, '-' and '_' kept, other runs become '-'; "route"
+// when nothing is left) and `ext` (".pdf").
+std::string AttachmentHeader(const std::string& name, const std::string& ext);
 nlohmann::json RouteSummaryJson(const store::RouteRecord& r);
 nlohmann::json RouteJson(const store::RouteRecord& r);
 
@@ -100,6 +108,11 @@ void PageVary(Exchange& x);
 void PageImport(Exchange& x);
 void PagePlan(Exchange& x);
 void PagePlanPdf(Exchange& x);
+// "/r/{id}": redirects to the route's or variation's page (the route
+// card's QR code links here).
+void PageShortLink(Exchange& x);
+// The absolute /r/{id} link of a route (ServerOptions::base_url or the Host).
+std::string ShortLink(Exchange& x, int64_t id);
 void PagePlanSvg(Exchange& x);
 // static_files.cc
 void GetStatic(Exchange& x);

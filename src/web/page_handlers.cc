@@ -1,10 +1,12 @@
 // Server-rendered pages: each asks a service and renders (web/pages.h).
 #include <set>
+#include <utility>
 
 #include "app/feedback.h"
 #include "app/routes.h"
 #include "base/text.h"
 #include "crdl/route.h"
+#include "plan/card.h"
 #include "plan/pdf.h"
 #include "web/handlers.h"
 
@@ -28,16 +30,17 @@ std::vector<int64_t> SelectedIds(const std::string& s) {
 
 }  // namespace
 
+// Rows per page of the route list and of the vary page's search results.
+constexpr int kListPageRows = 50;
+constexpr int kPickerRows = 20;
+
 void PageIndex(Exchange& x) {
-  ListQuery q{x.req.Query("q").value_or(""), x.req.Query("grade").value_or(""),
-              x.req.Query("setter").value_or("")};
-  app::RouteQuery rq;
-  rq.text = q.q;
-  rq.grade = q.grade;
-  rq.setter = q.setter;
-  Result<std::vector<store::RouteRecord>> rs = x.services.routes.List(x.caller.viewer, rq);
-  if (!rs.ok()) return PageError(x, rs.status());
-  Html(x, RouteListPage(x.caller.page(), *rs, q));
+  Result<app::RouteQuery> rq = RouteQueryOf(x.req);
+  if (!rq.ok()) return PageError(x, rq.status());
+  if (!rq->limit) rq->limit = kListPageRows;
+  Result<app::RoutePage> page = x.services.routes.Search(x.caller.viewer, *rq);
+  if (!page.ok()) return PageError(x, page.status());
+  Html(x, RouteListPage(x.caller.page(), *page, *rq));
 }
 
 void PageLogin(Exchange& x) { Html(x, LoginPage(x.caller.page(), false)); }
@@ -77,21 +80,24 @@ void PageRoute(Exchange& x) {
 }
 
 void PageVary(Exchange& x) {
-  Result<std::vector<store::RouteRecord>> rs = x.services.routes.List(x.caller.viewer, {});
-  if (!rs.ok()) return PageError(x, rs.status());
-  std::vector<int64_t> sel = SelectedIds(x.req.Query("routes").value_or(""));
-  // Selected routes first, in the order asked, then the rest.
-  std::vector<store::RouteRecord> ordered;
-  for (int64_t id : sel) {
-    for (const store::RouteRecord& r : *rs) {
-      if (r.id == id) ordered.push_back(r);
+  // The chosen routes, in the order the URL names them, however old; the
+  // ones the viewer may not see (or that are gone) are reported, not shown.
+  std::vector<store::RouteRecord> chosen;
+  std::vector<int64_t> missing;
+  for (int64_t id : SelectedIds(x.req.Query("routes").value_or(""))) {
+    Result<store::RouteRecord> r = x.services.routes.Get(x.caller.viewer, id);
+    if (r.ok()) {
+      chosen.push_back(std::move(r).value());
+    } else {
+      missing.push_back(id);
     }
   }
-  std::set<int64_t> s(sel.begin(), sel.end());
-  for (const store::RouteRecord& r : *rs) {
-    if (!s.count(r.id)) ordered.push_back(r);
-  }
-  Html(x, VaryPage(x.caller.page(), ordered, sel));
+  app::RouteQuery q;
+  q.text = x.req.Query("find").value_or("");
+  q.limit = kPickerRows;
+  Result<app::RoutePage> found = x.services.routes.Search(x.caller.viewer, q);
+  if (!found.ok()) return PageError(x, found.status());
+  Html(x, VaryPage(x.caller.page(), chosen, missing, *found, q.text));
 }
 
 void PageImport(Exchange& x) { Html(x, ImportPage(x.caller.page())); }
@@ -103,28 +109,79 @@ Result<app::PlanView> PlanOf(Exchange& x) {
 }
 }  // namespace
 
+namespace {
+
+// What the card prints about a stored variation besides its plan.
+plan::CardInfo CardInfoOf(Exchange& x, const store::RouteRecord& rec) {
+  plan::CardInfo info;
+  info.name = rec.name;
+  info.grade = rec.grade;
+  info.colour = rec.colour;
+  info.wall = rec.wall;
+  info.setter = rec.setter.empty() ? rec.owner_name : rec.setter;
+  info.date = rec.set_on.empty() ? rec.created_at.substr(0, 10) : rec.set_on;
+  if (Result<Route> r = ParseCrdl(rec.crdl, "route"); r.ok()) {
+    for (const HeaderLine& l : r->header) {
+      if (l.key.empty() && !Trim(l.value).empty()) {
+        info.notes += (info.notes.empty() ? "" : "\n") + std::string(Trim(l.value));
+      }
+    }
+  }
+  info.url = ShortLink(x, rec.id);
+  return info;
+}
+
+plan::Paper PaperOf(Exchange& x) {
+  return ToLower(x.req.Query("paper").value_or("")) == "letter" ? plan::Paper::kLetter
+                                                                : plan::Paper::kA4;
+}
+
+}  // namespace
+
+std::string ShortLink(Exchange& x, int64_t id) {
+  std::string base = x.options.base_url;
+  if (base.empty()) {
+    std::string host = x.req.Header("Host");
+    base = "http://" + (host.empty() ? std::string("localhost") : host);
+  }
+  while (!base.empty() && base.back() == '/') base.pop_back();
+  return base + "/r/" + std::to_string(id);
+}
+
 void PagePlan(Exchange& x) {
   Result<app::PlanView> p = PlanOf(x);
   if (!p.ok()) return PageError(x, p.status());
-  Html(x, PlanPage(x.caller.page(), p->record, *p->plan, p->smoothing_note));
+  Html(x, PlanPage(x.caller.page(), p->record, *p->plan, p->smoothing_note, CardInfoOf(x, p->record)));
 }
 
 void PagePlanSvg(Exchange& x) {
   Result<app::PlanView> p = PlanOf(x);
   if (!p.ok()) return PageError(x, p.status());
-  x.res.SetBody(200, plan::RenderTrajectorySvg(*p->plan), "image/svg+xml");
+  Result<std::string> svg = plan::RenderCardSvg(*p->plan, CardInfoOf(x, p->record), PaperOf(x));
+  if (!svg.ok()) return PageError(x, svg.status());
+  x.res.SetHeader("Content-Disposition", AttachmentHeader(p->record.name, ".svg"));
+  x.res.SetBody(200, *svg, "image/svg+xml");
 }
 
 void PagePlanPdf(Exchange& x) {
   Result<app::PlanView> p = PlanOf(x);
   if (!p.ok()) return PageError(x, p.status());
-  plan::Paper paper = ToLower(x.req.Query("paper").value_or("")) == "letter" ? plan::Paper::kLetter
-                                                                           : plan::Paper::kA4;
-  Result<std::string> pdf = plan::RenderPdf(*p->plan, p->record.name, paper);
+  plan::Paper paper = PaperOf(x);
+  Result<std::string> pdf = plan::RenderCardPdf(*p->plan, CardInfoOf(x, p->record), paper);
   if (!pdf.ok()) return PageError(x, pdf.status());
   x.res.SetHeader("Content-Disposition",
-                  "inline; filename=\"variation-" + std::to_string(p->record.id) + ".pdf\"");
+                  AttachmentHeader(p->record.name,
+                                   paper == plan::Paper::kLetter ? "-letter.pdf" : "-a4.pdf"));
   x.res.SetBody(200, *pdf, "application/pdf");
+}
+
+void PageShortLink(Exchange& x) {
+  Result<int64_t> id = PathId(x.req, "No such route.");
+  if (!id.ok()) return PageError(x, id.status());
+  Result<store::RouteRecord> r = x.services.routes.Get(x.caller.viewer, *id);
+  if (!r.ok()) return PageError(x, r.status());
+  x.res.status = 302;
+  x.res.SetHeader("Location", (r->is_variation ? "/variations/" : "/routes/") + std::to_string(*id));
 }
 
 }  // namespace sb::web

@@ -6,6 +6,7 @@
 #include <set>
 
 #include "base/text.h"
+#include "plan/qr.h"
 #include "crdl/route.h"
 #include "base/number.h"
 
@@ -15,6 +16,23 @@ namespace {
 
 std::string E(std::string_view s) { return XmlEscape(s); }
 
+// Percent-encodes a query value (RFC 3986 unreserved characters stay).
+std::string UrlEncode(std::string_view s) {
+  static const char kHex[] = "0123456789ABCDEF";
+  std::string out;
+  for (unsigned char c : s) {
+    if ((c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '-' ||
+        c == '_' || c == '.' || c == '~') {
+      out += static_cast<char>(c);
+    } else {
+      out += '%';
+      out += kHex[c >> 4];
+      out += kHex[c & 15];
+    }
+  }
+  return out;
+}
+
 std::string Layout(const PageViewer& v, const std::string& title, const std::string& body,
                    const std::string& page_class = "") {
   std::string h;
@@ -22,6 +40,7 @@ std::string Layout(const PageViewer& v, const std::string& title, const std::str
   h += "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n";
   h += "<title>" + E(title) + " · Strange Beta</title>\n";
   if (v.logged_in) h += "<meta name=\"csrf-token\" content=\"" + E(v.csrf) + "\">\n";
+  h += "<link rel=\"icon\" href=\"/static/favicon.svg\" type=\"image/svg+xml\">\n";
   h += "<link rel=\"stylesheet\" href=\"/static/app.css\">\n";
   h += "<script src=\"/static/app.js\" defer></script>\n</head>\n";
   h += "<body class=\"" + E(page_class) + "\">\n<header class=\"top no-print\">\n";
@@ -52,7 +71,7 @@ std::string RouteRows(const std::vector<store::RouteRecord>& routes) {
     if (r.is_variation) h += " <span class=\"tag\">variation</span>";
     if (!r.is_public) h += " <span class=\"tag private\">private</span>";
     h += "</td><td>" + E(r.grade) + "</td><td>" + E(r.setter.empty() ? r.owner_name : r.setter) +
-         "</td><td class=\"num\">" + std::to_string(r.move_count) + "</td><td>" +
+         "</td><td>" + E(r.wall) + "</td><td class=\"num\">" + std::to_string(r.move_count) + "</td><td>" +
          E(r.created_at.substr(0, 10)) + "</td></tr>\n";
   }
   return h;
@@ -61,7 +80,7 @@ std::string RouteRows(const std::vector<store::RouteRecord>& routes) {
 std::string MovesTable(const Route& route, const std::vector<std::string>& readings) {
   bool show = !readings.empty();
   std::string h = "<table class=\"moves\"><thead><tr><th>#</th><th>Hand</th><th>Move</th>" +
-                  std::string(show ? "<th>How the grammar reads it</th>" : "") +
+                  std::string(show ? "<th>How it reads</th>" : "") +
                   "</tr></thead><tbody>\n";
   for (size_t i = 0; i < route.moves.size(); ++i) {
     h += "<tr" + std::string(route.moves[i].crux ? " class=\"crux\"" : "") +
@@ -71,7 +90,7 @@ std::string MovesTable(const Route& route, const std::vector<std::string>& readi
     if (show) {
       std::string r = i < readings.size() ? readings[i] : "";
       h += r.empty() ? "<td class=\"reading unparsed\">not understood</td>"
-                     : "<td class=\"reading\">" + E(r) + "</td>";
+                     : "<td class=\"reading\">" + E(r.substr(0, r.find(" \xE2\x80\x94 "))) + "</td>";
     }
     h += "</tr>\n";
   }
@@ -108,27 +127,82 @@ const char kNewRouteTemplate[] =
 
 }  // namespace
 
-std::string RouteListPage(const PageViewer& v, const std::vector<store::RouteRecord>& routes,
-                          const ListQuery& q) {
+namespace {
+
+// The query string of a list query with another offset (paging links).
+std::string ListUrl(const app::RouteQuery& q, int offset) {
+  std::string u;
+  auto add = [&](const char* k, const std::string& v) {
+    if (v.empty()) return;
+    u += (u.empty() ? "?" : "&") + std::string(k) + "=" + UrlEncode(v);
+  };
+  add("q", q.text);
+  add("grade", q.grade);
+  add("from", q.grade_from);
+  add("to", q.grade_to);
+  add("setter", q.setter);
+  add("wall", q.wall);
+  add("sort", q.sort);
+  if (q.variations) add("variations", *q.variations ? "1" : "0");
+  if (q.mine) add("mine", "1");
+  if (offset > 0) add("offset", std::to_string(offset));
+  return "/" + u;
+}
+
+std::string Option(const std::string& value, const std::string& label, const std::string& cur) {
+  return "<option value=\"" + E(value) + "\"" + (value == cur ? " selected" : "") + ">" +
+         E(label) + "</option>";
+}
+
+}  // namespace
+
+std::string RouteListPage(const PageViewer& v, const app::RoutePage& page,
+                          const app::RouteQuery& q) {
   std::string b = "<h1>Routes</h1>\n";
-  b += "<form class=\"search no-print\" method=\"get\" action=\"/\">"
-       "<input type=\"search\" name=\"q\" placeholder=\"Text\" value=\"" +
-       E(q.q) +
-       "\">"
-       "<input type=\"text\" name=\"grade\" placeholder=\"Grade (V4, 5.10…)\" value=\"" +
-       E(q.grade) +
-       "\">"
-       "<input type=\"text\" name=\"setter\" placeholder=\"Setter\" value=\"" +
-       E(q.setter) + "\"><button type=\"submit\">Search</button></form>\n";
-  if (routes.empty()) {
+  b += "<form class=\"search no-print\" method=\"get\" action=\"/\" role=\"search\">"
+       "<label>Search <input type=\"search\" id=\"q\" name=\"q\" placeholder=\"name, setter, "
+       "wall or move text\" value=\"" + E(q.text) + "\"></label>"
+       "<label>Grade <input type=\"text\" name=\"grade\" size=\"6\" placeholder=\"V4, 6B+\" "
+       "value=\"" + E(q.grade) + "\"></label>"
+       "<label>From <input type=\"text\" name=\"from\" size=\"6\" placeholder=\"V2\" value=\"" +
+       E(q.grade_from) + "\"></label>"
+       "<label>To <input type=\"text\" name=\"to\" size=\"6\" placeholder=\"V6\" value=\"" +
+       E(q.grade_to) + "\"></label>"
+       "<label>Setter <input type=\"text\" name=\"setter\" size=\"10\" value=\"" + E(q.setter) +
+       "\"></label>"
+       "<label>Wall <input type=\"text\" name=\"wall\" size=\"10\" value=\"" + E(q.wall) +
+       "\"></label>"
+       "<label>Show <select name=\"variations\">" +
+       Option("", "routes and variations", q.variations ? (*q.variations ? "1" : "0") : "") +
+       Option("0", "routes only", q.variations ? (*q.variations ? "1" : "0") : "") +
+       Option("1", "variations only", q.variations ? (*q.variations ? "1" : "0") : "") +
+       "</select></label>"
+       "<label>Sort <select name=\"sort\">" + Option("newest", "newest", q.sort) +
+       Option("oldest", "oldest", q.sort) + Option("name", "name", q.sort) +
+       Option("easiest", "easiest", q.sort) + Option("hardest", "hardest", q.sort) +
+       "</select></label><button type=\"submit\">Search</button></form>\n";
+  if (page.routes.empty()) {
     b += "<p class=\"empty\">No routes match.";
     if (v.logged_in) b += " <a href=\"/routes/new\">Add one</a>.";
     b += "</p>\n";
   } else {
-    b += "<table class=\"list\" id=\"route-list\"><thead><tr><th>Name</th><th>Grade</th>"
-         "<th>Setter</th><th>Moves</th><th>Added</th></tr></thead><tbody>\n" +
-         RouteRows(routes) + "</tbody></table>\n";
+    b += "<div class=\"table-wrap\"><table class=\"list\" id=\"route-list\"><thead><tr><th>Name"
+         "</th><th>Grade</th><th>Setter</th><th>Wall</th><th class=\"num\">Moves</th><th>Added"
+         "</th></tr></thead><tbody>\n" + RouteRows(page.routes) + "</tbody></table></div>\n";
   }
+  const int64_t first = page.routes.empty() ? 0 : page.offset + 1;
+  const int64_t last = page.offset + static_cast<int64_t>(page.routes.size());
+  b += "<nav class=\"pager\" id=\"pager\"><span id=\"shown\">" + std::to_string(first) + "–" +
+       std::to_string(last) + " of " + std::to_string(page.total) + "</span>";
+  if (page.offset > 0) {
+    b += " <a id=\"prev\" rel=\"prev\" href=\"" +
+         E(ListUrl(q, std::max(0, page.offset - page.limit))) + "\">← Newer page</a>";
+  }
+  if (last < page.total) {
+    b += " <a id=\"next\" rel=\"next\" href=\"" + E(ListUrl(q, page.offset + page.limit)) +
+         "\">Next page →</a>";
+  }
+  b += "</nav>\n";
   return Layout(v, "Routes", b);
 }
 
@@ -147,6 +221,10 @@ std::string LoginPage(const PageViewer& v, bool signup) {
        title +
        "</button>"
        "<p class=\"msg\" id=\"form-msg\" role=\"alert\"></p></form>\n";
+  if (signup) {
+    b += "<p class=\"hint\" id=\"signup-rules\">User name: 1 to 40 letters, digits, dots, dashes "
+         "or underscores. Password: at least 8 characters.</p>\n";
+  }
   b += signup ? "<p>Already have an account? <a href=\"/login\">Log in</a>.</p>"
               : "<p>No account yet? <a href=\"/signup\">Sign up</a>.</p>";
   return Layout(v, title, b);
@@ -165,10 +243,14 @@ std::string EditorPage(const PageViewer& v, const std::optional<store::RouteReco
        "with L or R. Each move shows how the grammar reads it.</p>\n";
   b += "<div class=\"editor\" id=\"editor\" data-route-id=\"" +
        (route ? std::to_string(route->id) : std::string()) + "\">\n";
-  b += "<div class=\"pane\"><textarea id=\"crdl\" spellcheck=\"false\" rows=\"22\">" +
-       E(route ? route->crdl : std::string(kNewRouteTemplate)) + "</textarea>\n";
-  b += "<label class=\"inline\"><input type=\"checkbox\" id=\"public\"" +
-       std::string(!route || route->is_public ? " checked" : "") + "> Public</label>\n";
+  b += "<div class=\"pane\"><textarea id=\"crdl\" spellcheck=\"false\" rows=\"22\" "
+       "placeholder=\"" + E(kNewRouteTemplate) + "\">" + E(route ? route->crdl : std::string()) +
+       "</textarea>\n";
+  // Variations of private routes are private by default (and cannot be public).
+  const bool pub = route ? route->is_public : true;
+  b += "<label class=\"inline\">Who can see it <select id=\"public\"><option value=\"1\"" +
+       std::string(pub ? " selected" : "") + ">public: everyone</option><option value=\"0\"" +
+       std::string(pub ? "" : " selected") + ">private: only me</option></select></label>\n";
   b += "<button type=\"button\" id=\"save\">Save route</button> <span class=\"msg\" "
        "id=\"save-msg\" role=\"alert\"></span></div>\n";
   b += "<div class=\"pane\"><h2>How it reads</h2><ol class=\"feedback\" id=\"feedback\"></ol>"
@@ -206,25 +288,77 @@ std::string RoutePage(const PageViewer& v, const store::RouteRecord& r, bool can
   return Layout(v, r.name, b);
 }
 
-std::string VaryPage(const PageViewer& v, const std::vector<store::RouteRecord>& routes,
-                     const std::vector<int64_t>& selected) {
-  std::set<int64_t> sel(selected.begin(), selected.end());
+namespace {
+
+// One route of the vary page's picker: in the chosen list (with its order
+// buttons) or in the search results (with an add button).
+std::string PickItem(const store::RouteRecord& r, bool chosen) {
+  std::string id = std::to_string(r.id);
+  std::string h = "<li data-id=\"" + id + "\" data-moves=\"" + std::to_string(r.move_count) +
+                  "\" data-name=\"" + E(r.name) + "\"><span class=\"pick-name\">" + E(r.name) +
+                  "</span> <small>(" + std::to_string(r.move_count) + " moves" +
+                  (r.grade.empty() ? "" : ", " + E(r.grade)) + (r.is_public ? "" : ", private") +
+                  ")</small> ";
+  if (chosen) {
+    h += "<span class=\"pick-buttons\"><button type=\"button\" class=\"up\" aria-label=\"Move " +
+         E(r.name) + " up\">↑</button><button type=\"button\" class=\"down\" aria-label=\"Move " +
+         E(r.name) + " down\">↓</button><button type=\"button\" class=\"remove\" aria-label=\""
+         "Remove " + E(r.name) + "\">✕</button></span>";
+  } else {
+    h += "<button type=\"button\" class=\"add\" aria-label=\"Add " + E(r.name) + "\">Add</button>";
+  }
+  return h + "</li>\n";
+}
+
+}  // namespace
+
+std::string VaryPage(const PageViewer& v, const std::vector<store::RouteRecord>& chosen,
+                     const std::vector<int64_t>& missing, const app::RoutePage& found,
+                     const std::string& find) {
   std::string b = "<h1>Vary routes</h1>\n";
   if (!v.logged_in) {
-    b += "<p class=\"hint\">You can explore here; <a href=\"/login\">log in</a> to generate "
-         "and save variations.</p>\n";
+    b += "<p class=\"notice\" id=\"login-first\"><strong>Log in first:</strong> you can look "
+         "at the map here, but only a logged-in setter can generate and keep variations. <a "
+         "href=\"/login\">Log in</a> or <a href=\"/signup\">sign up</a>.</p>\n";
   }
-  b += "<form id=\"vary-form\" class=\"vary\">\n<fieldset><legend>1. Routes (in this "
-       "order)</legend><div class=\"route-pick\" id=\"route-pick\">\n";
-  if (routes.empty()) b += "<p class=\"empty\">No routes yet.</p>";
-  for (const store::RouteRecord& r : routes) {
-    std::string id = std::to_string(r.id);
-    b += "<label><input type=\"checkbox\" name=\"route\" value=\"" + id + "\" data-moves=\"" +
-         std::to_string(r.move_count) + "\"" + (sel.count(r.id) ? " checked" : "") + "> " +
-         E(r.name) + " <small>(" + std::to_string(r.move_count) + " moves" +
-         (r.grade.empty() ? "" : ", " + E(r.grade)) + ")</small></label>\n";
+  b += "<form id=\"vary-form\" class=\"vary\">\n<fieldset><legend>1. Routes</legend>\n"
+       "<p class=\"hint\">The variation follows the chosen routes in this order; move them with "
+       "↑ and ↓.</p>\n<ol class=\"chosen\" id=\"chosen\">\n";
+  for (const store::RouteRecord& r : chosen) b += PickItem(r, true);
+  b += "</ol>\n";
+  if (chosen.empty()) b += "<p class=\"empty\" id=\"chosen-empty\">No route chosen yet: find "
+                           "one below.</p>\n";
+  if (!missing.empty()) {
+    b += "<p class=\"msg bad\" id=\"missing\">Not shown: ";
+    for (size_t i = 0; i < missing.size(); ++i) {
+      b += (i ? ", " : "") + std::string("route ") + std::to_string(missing[i]);
+    }
+    b += " (deleted, or private to someone else).</p>\n";
   }
-  b += "</div></fieldset>\n";
+  b += "<div class=\"finder\"><label>Find routes <input type=\"search\" id=\"route-find\" "
+       "placeholder=\"name, setter, grade, wall or move text\" autocomplete=\"off\" value=\"" +
+       E(find) + "\"></label> <span class=\"msg\" id=\"found-count\">" +
+       std::to_string(found.total) + " routes</span>\n<ul class=\"found\" id=\"found\" "
+       "data-total=\"" + std::to_string(found.total) + "\">\n";
+  for (const store::RouteRecord& r : found.routes) b += PickItem(r, false);
+  b += "</ul><button type=\"button\" id=\"found-more\"" +
+       std::string(static_cast<int64_t>(found.routes.size()) < found.total ? "" : " hidden") +
+       ">More routes</button></div>\n</fieldset>\n";
+  b += "<fieldset><legend>About the variation</legend><div class=\"grid2\">\n"
+       "<label>Name <input id=\"name\" maxlength=\"200\" placeholder=\"Variation of the chosen "
+       "routes\"></label>\n"
+       "<label>Grade <input id=\"grade\" maxlength=\"200\" placeholder=\"V4\"></label>\n"
+       "<label>Hold colour <input id=\"colour\" maxlength=\"200\" placeholder=\"yellow\">"
+       "</label>\n<label>Wall or area <input id=\"wall\" maxlength=\"200\" placeholder=\"the "
+       "cave\"></label>\n<label>Setter <input id=\"setter\" maxlength=\"200\" placeholder=\"" +
+       E(v.logged_in ? v.username : std::string("you")) + "\"></label>\n"
+       "<label>Date <input id=\"date\" maxlength=\"200\" placeholder=\"today\"></label>\n"
+       "</div><label>Notes <textarea id=\"notes\" rows=\"2\" maxlength=\"4000\"></textarea>"
+       "</label>\n<label>Visibility <select id=\"visibility\"><option value=\"\">private if "
+       "any chosen route is private, else public</option><option value=\"private\">private"
+       "</option><option value=\"public\">public</option></select></label>\n"
+       "<label class=\"inline\"><input type=\"checkbox\" id=\"duplicate\"> Make a new copy even "
+       "if I made this exact variation before</label></fieldset>\n";
   b += "<fieldset><legend>2. Parameters</legend>\n"
        "<label>Preset <select id=\"preset\"><option value=\"default\">default (variation IC "
        "-16,-12,52)</option><option value=\"more\">more (IC -16,-13.5,52, skip 100)</option>"
@@ -249,13 +383,16 @@ std::string VaryPage(const PageViewer& v, const std::vector<store::RouteRecord>&
   b += "<fieldset><legend>3. Initial condition map</legend>\n";
   {
     b += "<p class=\"hint\">Each pixel is a variation IC in the x–y plane through the reference "
-         "IC; colour shows the <em>effect</em> (moves changed) or the <em>change</em> (mean "
-         "distance moved). Click to use that IC.</p>\n"
+         "IC; colour shows the <em>effect</em> (how many moves change) or the <em>change</em> (how far "
+         "they move), warm for little variation and cold for much, as in the paper's figure 4. "
+         "Click to use that IC; ○ marks the reference IC, □ the presets, ◇ suggestions, ● yours.</p>\n"
          "<div class=\"mapbar\"><label>Show <select id=\"metric\"><option value=\"effect\">effect"
-         "</option><option value=\"change\">change</option></select></label>"
+         "</option><option value=\"change\">change</option><option value=\"both\">both, side by side</option></select></label>"
          "<button type=\"button\" id=\"map-refresh\">Update map</button> "
          "<span id=\"map-info\" class=\"msg\"></span></div>\n"
-         "<div class=\"mapwrap\"><canvas id=\"icmap\" width=\"410\" height=\"410\"></canvas>"
+         "<div class=\"mapwrap\"><div class=\"mapcol\"><canvas id=\"icmap\" width=\"410\" height=\"410\"></canvas>"
+         "<div class=\"legend\" id=\"map-legend\"></div><p id=\"map-readout\" class=\"readout\" "
+         "aria-live=\"polite\">Hover over the map to see an IC's effect and change.</p></div>"
          "<div class=\"picker\"><h3>Suggest ICs</h3><p class=\"hint\">Moves to change (effect) "
          "and how far they move (change):</p>"
          "<label>Effect <input id=\"pick-effect\" type=\"number\" min=\"0\" step=\"1\" "
@@ -264,20 +401,25 @@ std::string VaryPage(const PageViewer& v, const std::vector<store::RouteRecord>&
          "value=\"2\"></label><button type=\"button\" id=\"pick\">Suggest</button>"
          "<ol id=\"candidates\"></ol></div></div>\n";
   }
-  b += "</fieldset>\n<p><button type=\"submit\" id=\"generate\">Generate variation</button> "
+  b += "</fieldset>\n<p><button type=\"submit\" id=\"generate\"" +
+       std::string(v.logged_in ? "" : " disabled") + ">Generate variation</button> "
        "<span class=\"msg\" id=\"vary-msg\" role=\"alert\"></span></p>\n</form>\n";
   return Layout(v, "Vary", b, "page-vary");
 }
 
-std::string PlanPage(const PageViewer& v, const store::RouteRecord& rec, const plan::RoutePlan& plan,
-                     const std::string& smoothing_note) {
+std::string PlanPage(const PageViewer& v, const store::RouteRecord& rec,
+                     const plan::RoutePlan& plan, const std::string& smoothing_note,
+                     const plan::CardInfo& card) {
   const chaos::Variation& var = plan.variation;
-  const chaos::VaryParams& p = var.params;
   std::string id = std::to_string(rec.id);
-  std::string b = "<h1>Chaotic route plan: " + E(rec.name) + "</h1>\n";
-  b += "<p class=\"byline\">Variation #" + id + " by " +
-       E(rec.owner_name.empty() ? "nobody" : rec.owner_name) + ", " +
-       E(rec.created_at.substr(0, 16)) + ". Varied from ";
+  const std::vector<plan::CardRow> rows = plan::CardRows(plan);
+  std::string b = "<article class=\"card-sheet plan\" id=\"plan\" data-rows=\"" +
+                  std::to_string(rows.size()) + "\">\n<header class=\"card-head\"><div>";
+  b += "<h1 class=\"card-name\">" + E(card.name) + "</h1>\n";
+  std::string facts = plan::CardFactsLine(card), who = plan::CardSetterLine(card);
+  if (!facts.empty()) b += "<p class=\"card-facts\">" + E(facts) + "</p>\n";
+  if (!who.empty()) b += "<p class=\"card-setter\">" + E(who) + "</p>\n";
+  b += "<p class=\"byline\">Variation of ";
   for (size_t i = 0; i < var.inputs.size(); ++i) {
     if (i) b += ", ";
     std::string name = E(var.inputs[i].name);
@@ -289,100 +431,63 @@ std::string PlanPage(const PageViewer& v, const store::RouteRecord& rec, const p
     }
     b += " (" + std::to_string(var.inputs[i].route.moves.size()) + " moves)";
   }
-  b += ".</p>\n";
-  int changed = 0;
-  for (const auto& m : var.moves) changed += m.changed ? 1 : 0;
-  // The rows (moves and smoothing insertions), shared by the screen table and
-  // the print layout.
-  std::vector<std::string> rows;
-  std::map<int, const plan::Suggestion*> after;
-  for (const plan::Suggestion& s : plan.smoothing) after[s.after] = &s;
-  for (size_t i = 0; i < var.moves.size(); ++i) {
-    const chaos::VariedMove& m = var.moves[i];
-    std::string r = std::string("<tr") + (m.changed ? " class=\"changed\"" : "") +
-                    "><td class=\"num\">" + std::to_string(i + 1) + "</td><td class=\"hand\">" +
-                    HandLetter(m.hand) + "</td><td>" +
-                    (m.text.empty() ? "<em>(blank)</em>" : E(m.text));
-    if (m.crux) r += " <span class=\"tag crux\">crux</span>";
-    for (const std::string& n : m.notes) r += " <span class=\"note\">" + E(n) + "</span>";
-    r += "</td><td>";
-    if (m.source && m.source->route >= 0 &&
-        static_cast<size_t>(m.source->route) < var.inputs.size()) {
-      r += E(var.inputs[m.source->route].name) + " #" + std::to_string(m.source->move + 1);
-    } else {
-      r += "—";
-    }
-    rows.push_back(r + "</td></tr>\n");
-    auto it = after.find(static_cast<int>(i));
-    if (it != after.end()) {
-      for (const plan::InsertedMove& im : it->second->moves) {
-        rows.push_back("<tr class=\"suggested\"><td></td><td>" + E(im.hand) + "</td><td>+ " +
-                       E(im.description.empty() ? im.symbol : im.description) +
-                       "</td><td>smoothing</td></tr>\n");
-      }
+  b += std::string(rec.is_public ? "" : " · <span class=\"tag private\">private</span>") +
+       "</p></div>\n";
+  if (!card.url.empty()) {
+    if (Result<plan::QrCode> qr = plan::MakeQr(card.url); qr.ok()) {
+      b += "<figure class=\"qr\">" + plan::QrSvg(*qr, "26mm") + "<figcaption>" + E(card.url) +
+           "</figcaption></figure>";
     }
   }
-  const std::string head =
-      "<table class=\"moves plan-moves\"><thead><tr><th>#</th><th>Hand</th><th>Move</th>"
-      "<th>From</th></tr></thead><tbody>\n";
-  // Print: one sheet. Up to kSideRows rows sit beside the picture; longer
-  // plans print the rows in two columns above a smaller picture. Row height
-  // (mm) shrinks to fit the space left on an A4/Letter page.
-  constexpr size_t kSideRows = 45;
-  const bool long_plan = rows.size() > kSideRows;
-  const double space_mm = long_plan ? 130.0 : 200.0;
-  const size_t per_column = long_plan ? (rows.size() + 1) / 2 : rows.size();
-  double row_mm = std::clamp(space_mm / static_cast<double>(per_column + 1), 0.9, 4.6);
-  char style[64];
-  std::snprintf(style, sizeof style, "--row-h: %.2fmm", row_mm);
-  b = std::string("<article class=\"plan") + (long_plan ? " long" : "") +
-      "\" id=\"plan\" style=\"" + style + "\" data-rows=\"" + std::to_string(rows.size()) +
-      "\">\n" + b;
-  b += "<div class=\"plan-body\">\n" + head;
-  for (const std::string& r : rows) b += r;
+  b += "</header>\n";
+  b += "<table class=\"moves plan-moves card-moves\"><thead><tr><th class=\"num\">#</th>"
+       "<th class=\"mark\"><span class=\"sr\">mark</span></th><th>Hand</th><th>Move</th>"
+       "<th>From</th></tr></thead><tbody>\n";
+  for (const plan::CardRow& r : rows) {
+    const bool sug = r.kind == plan::CardRow::Kind::kSuggestion;
+    std::string cls = sug ? "suggested" : r.mark == plan::kMarkAdded ? "added"
+                                      : r.changed                 ? "changed"
+                                                                  : "";
+    b += "<tr" + (cls.empty() ? std::string() : " class=\"" + cls + "\"") + "><td class=\"num\">" +
+         (sug ? std::string() : std::to_string(r.number)) + "</td><td class=\"mark\">" +
+         E(r.mark) + "</td><td class=\"hand\">" + E(r.hand) + "</td><td>" + E(r.text) +
+         "</td><td class=\"from\">" + E(r.from) + "</td></tr>\n";
+  }
   b += "</tbody></table>\n";
-  if (long_plan) {
-    b += "<div class=\"print-split\">";
-    for (size_t c = 0; c < 2; ++c) {
-      b += head;
-      for (size_t i = c * per_column; i < std::min(rows.size(), (c + 1) * per_column); ++i) {
-        b += rows[i];
-      }
-      b += "</tbody></table>";
-    }
-    b += "</div>\n";
+  std::string legend = plan::CardLegend(rows);
+  b += "<p class=\"summary\">" + E(plan::CardSummary(plan)) + "." +
+       (legend.empty() ? "" : " <span class=\"legend\">" + E(legend) + "</span>") + "</p>\n";
+  if (!card.notes.empty()) {
+    b += "<section class=\"notes\"><h2>Notes</h2>";
+    for (std::string_view line : SplitLines(card.notes)) b += "<p>" + E(line) + "</p>";
+    b += "</section>\n";
   }
-  b += "<figure class=\"trajectory\">" + plan::RenderTrajectorySvg(plan) +
+  b += std::string("<figure class=\"trajectory") + (rows.size() > 18 ? " no-print" : "") +
+       "\">" + plan::RenderTrajectorySvg(plan) +
        "<figcaption>Reference trajectory (black), variation (blue), association lines "
-       "(grey); x–z projection.</figcaption></figure>\n</div>\n";
-  b += "<p class=\"summary\">" + std::to_string(changed) + " of " +
-       std::to_string(var.moves.size()) + " moves changed (highlighted).</p>\n";
-  b += "<section class=\"params\"><h2>Parameters</h2><p>Preset " + E(p.preset) + "; system " +
-       chaos::SystemKindName(p.system.kind) + " (" + FormatTriple(p.system.params) +
-       "); integrator " + chaos::IntegratorKindName(p.integrator) + ", step " +
-       FormatDouble(p.step) + ", skip " + std::to_string(p.skip) + "; reference IC (" +
-       FormatTriple(p.ref_ic) + "), variation IC (" + FormatTriple(p.var_ic) +
-       "); mapping " + chaos::MappingKindName(p.mapping.kind) + ", mask " +
-       chaos::MaskString(p.mapping.mask) +
-       (p.mapping.max_repeat ? ", max repeat " + std::to_string(p.mapping.max_repeat) : "") +
-       ".</p><p class=\"repro no-print\"><code>strangebeta vary " + E(plan::ReproduceOptions(p)) +
-       " ROUTES…</code></p>\n";
-  b += "<h2>Smoothing</h2><p>";
+       "(grey); x–z projection.</figcaption></figure>\n";
+  b += "<p class=\"params-line\">" + E(plan::CardParameters(plan)) + "</p>\n";
+  b += "<section class=\"params no-print\"><h2>Smoothing</h2><p>";
   if (!plan.smoothing.empty()) {
     b += std::to_string(plan.smoothing.size()) + " suggestion(s) from " + E(plan.smoothing_model) +
-         " (marked + in the table).";
+         " (rows marked + in the table).";
   } else if (!smoothing_note.empty()) {
     b += E(smoothing_note);
   } else {
     b += "Not requested.";
   }
   b += "</p></section>\n</article>\n";
-  b += "<p class=\"actions no-print\"><button type=\"button\" id=\"print\">Print</button> "
-       "<a class=\"button\" id=\"pdf-link\" href=\"/variations/" +
-       id + ".pdf\">PDF</a> <a class=\"button\" href=\"/variations/" + id +
-       ".svg\">SVG</a> <a href=\"/api/variations/" + id +
-       "\">JSON</a> <a class=\"button\" href=\"/vary?routes=" + id +
-       "\">Vary this variation</a></p>\n";
+  b += "<p class=\"actions no-print\"><button type=\"button\" id=\"print\">Print the card</button> "
+       "<a class=\"button\" id=\"pdf-link\" href=\"/variations/" + id +
+       ".pdf\">PDF (A4)</a> <a class=\"button\" id=\"pdf-letter\" href=\"/variations/" + id +
+       ".pdf?paper=letter\">PDF (Letter)</a> <a class=\"button\" id=\"svg-link\" "
+       "href=\"/variations/" + id + ".svg\">SVG</a> <a href=\"/api/variations/" + id +
+       "\">JSON</a> <a class=\"button\" href=\"/vary?routes=" + id + "\">Vary this variation</a>";
+  if (v.logged_in && rec.owner_id && *rec.owner_id == v.user_id) {
+    b += " <a class=\"button\" id=\"edit\" href=\"/routes/" + id + "/edit\">Edit moves and "
+         "details</a>";
+  }
+  b += "</p>\n";
   return Layout(v, rec.name, b, "page-plan");
 }
 

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "app/routes.h"
+#include "plan/card.h"
 #include "plan/plan.h"
 #include "store/store.h"
 
@@ -22,14 +24,10 @@ struct PageViewer {
   std::string csrf;
 };
 
-// The search form's values (echoed back into the form).
-struct ListQuery {
-  std::string q, grade, setter;
-};
-
-// "/": the route list with the search form.
-std::string RouteListPage(const PageViewer& v, const std::vector<store::RouteRecord>& routes,
-                          const ListQuery& query);
+// "/": one page of the route list (server-side search, filters, sort and
+// paging; `query` is echoed into the form and the paging links).
+std::string RouteListPage(const PageViewer& v, const app::RoutePage& page,
+                          const app::RouteQuery& query);
 // "/login" or (signup) "/signup": the account form.
 std::string LoginPage(const PageViewer& v, bool signup);
 // The CRDL editor with live feedback; `route` = nullopt for a new route.
@@ -40,13 +38,19 @@ std::string EditorPage(const PageViewer& v, const std::optional<store::RouteReco
 // available). Crux moves are marked.
 std::string RoutePage(const PageViewer& v, const store::RouteRecord& route, bool can_change,
                       const std::vector<std::string>& readings = {});
-// "/vary": `routes` = the routes the viewer may vary; `selected` = ids ticked.
-std::string VaryPage(const PageViewer& v, const std::vector<store::RouteRecord>& routes,
-                     const std::vector<int64_t>& selected);
+// "/vary": `chosen` = the routes named in the URL, in that order (always
+// shown and chosen); `missing` = ids named there the viewer cannot see;
+// `found` = the first page of the picker's search for `find`.
+std::string VaryPage(const PageViewer& v, const std::vector<store::RouteRecord>& chosen,
+                     const std::vector<int64_t>& missing, const app::RoutePage& found,
+                     const std::string& find);
 // "/variations/{id}": the route plan (crux moves marked). `smoothing_note`
 // explains missing smoothing ("" when none is needed).
-std::string PlanPage(const PageViewer& v, const store::RouteRecord& record, const plan::RoutePlan& plan,
-                     const std::string& smoothing_note);
+// The page is the route card when printed (plan/card.h: same rows, marks,
+// legend and parameters as the server PDF and SVG; `card.url` for the QR).
+std::string PlanPage(const PageViewer& v, const store::RouteRecord& record,
+                     const plan::RoutePlan& plan, const std::string& smoothing_note,
+                     const plan::CardInfo& card);
 // "/import": CRDL and CSV import, CSV export links.
 std::string ImportPage(const PageViewer& v);
 // An error page for `status` with a message (escaped).

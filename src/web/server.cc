@@ -56,6 +56,7 @@ const Endpoint kEndpoints[] = {
     {"GET", "/variations/{id}.pdf", PagePlanPdf},
     {"GET", "/variations/{id}.svg", PagePlanSvg},
     {"GET", "/variations/{id}", PagePlan},
+    {"GET", "/r/{id}", PageShortLink},
     {"GET", "/static/{file}", GetStatic},
 };
 

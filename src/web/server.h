@@ -41,6 +41,10 @@ struct ServerOptions {
   bool secure_cookie = false;
   // Print one access-log line per request to stderr.
   bool access_log = false;
+  // The server's public address ("https://gym.example.org", no trailing
+  // slash needed) for absolute links such as the route card's QR code; ""
+  // = taken from the request's Host header.
+  std::string base_url;
 };
 
 // The directory holding the bundled web assets (sb::FindBundled(Bundle::kWeb));

@@ -1,0 +1,89 @@
+// The route card: the one printable sheet a setter takes to the wall for a
+// variation (docs/web.md, "The route card"). Its content is defined here once
+// — the rows, the marks, the legend, the parameters line — and drawn by the
+// web page's print CSS (web/pages.cc) and by cairo/pango into a PDF or an SVG
+// page (RenderCardPdf, RenderCardSvg), so all three show the same thing.
+// No cairo or pango type in this header.
+#ifndef SB_PLAN_CARD_H_
+#define SB_PLAN_CARD_H_
+
+#include <string>
+#include <vector>
+
+#include "base/status.h"
+#include "plan/pdf.h"
+#include "plan/plan.h"
+
+namespace sb::plan {
+
+// What the card says about the route besides its plan.
+struct CardInfo {
+  std::string name;
+  std::string grade;
+  std::string colour;
+  std::string wall;
+  std::string setter;
+  std::string date;
+  std::string notes;  // free text; one paragraph per line
+  // The QR code's link (the route's page on the server, `/r/{id}`); "" for
+  // none.
+  std::string url;
+  // Print the trajectory picture when it fits (it never shrinks the moves).
+  bool picture = true;
+};
+
+// The marks of the move table, chosen to survive black-and-white printing.
+inline constexpr char kMarkChanged[] = "\xE2\x97\x86";  // ◆ the move changed position
+inline constexpr char kMarkAdded[] = "\xE2\x9C\x8E";    // ✎ the setter wrote it in
+inline constexpr char kMarkSuggested[] = "+";           // a smoothing suggestion
+
+// One row of the move table.
+struct CardRow {
+  enum class Kind { kMove, kSuggestion };
+  Kind kind = Kind::kMove;
+  int number = 0;    // 1-based move number (0 for suggestions)
+  std::string hand;  // "L", "R" ("" when a suggestion does not say)
+  std::string mark;  // kMarkChanged, kMarkAdded, kMarkSuggested or ""
+  std::string text;  // the move with " (crux)" and its notes; "________" for a blank
+  std::string from;  // "Crimp Ladder #3", "smoothing suggestion", "added by the setter", "—"
+  bool crux = false;
+  bool changed = false;
+};
+
+// The rows of `plan`: its moves in order, each smoothing suggestion's moves
+// after the move they follow. Provenance names the input route in full.
+std::vector<CardRow> CardRows(const RoutePlan& plan);
+
+// "12 of 30 moves changed", plus ", 2 added by the setter" when some were.
+std::string CardSummary(const RoutePlan& plan);
+// The legend of the marks actually used by `rows` ("◆ changed position ·
+// + smoothing suggestion"), "" when none is.
+std::string CardLegend(const std::vector<CardRow>& rows);
+// The generation parameters on one line (small type at the bottom).
+std::string CardParameters(const RoutePlan& plan);
+// "Grade V4 · Colour yellow · Wall the cave" from the fields that are set.
+std::string CardFactsLine(const CardInfo& info);
+// "Set by Carol · 2024-05-01" from the fields that are set.
+std::string CardSetterLine(const CardInfo& info);
+
+// The font size (points) of the move table for a page of `paper`: 11.5 pt
+// when the rows fit (always for 40 moves of ordinary length on A4 and
+// Letter), smaller down to kMinCardFontPt for longer plans; estimated from
+// the text lengths as the HTML card wraps them. Pure.
+inline constexpr double kCardFontPt = 11.5;
+inline constexpr double kMinCardFontPt = 6.0;
+double CardFontPt(const std::vector<CardRow>& rows, const CardInfo& info, Paper paper);
+
+// The card on one page of `paper` as PDF bytes; everything the HTML card
+// shows, the move table's font shrunk only when the rows do not fit at
+// kCardFontPt (long plans; text is wrapped, never cut), the trajectory
+// picture only when room is left. Any script prints (fontconfig fallback,
+// e.g. Noto CJK). Deterministic (fixed creation date). Errors: kInternal
+// when cairo fails. Thread-safe.
+Result<std::string> RenderCardPdf(const RoutePlan& plan, const CardInfo& info, Paper paper);
+// The same page as SVG (ids pinned, deterministic).
+Result<std::string> RenderCardSvg(const RoutePlan& plan, const CardInfo& info, Paper paper);
+
+}  // namespace sb::plan
+
+#endif  // SB_PLAN_CARD_H_
