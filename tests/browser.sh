@@ -42,4 +42,7 @@ done
 echo "browser.sh: server at $url"
 
 SB_CHROMIUM="$chromium" node "$root/tests/browser/run.js" "$url" "$out"
+# The climbers' pages and the worked example of docs/studies.md (its own browser; needs the CLI;
+# not a *.spec.js, which run.js would load).
+SB_CHROMIUM="$chromium" node "$root/tests/browser/climbers_flow.js" "$url" "$out" "$build"
 echo "browser.sh: screenshots in $out"

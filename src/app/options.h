@@ -10,6 +10,8 @@
 #include <optional>
 #include <string>
 
+#include "app/climber_policy.h"
+
 namespace sb::app {
 
 // Work one request may ask for (checked before the work starts).
@@ -67,6 +69,8 @@ struct Options {
   size_t map_cache_entries = 32;
   // The model that smooths variations made with "smooth": true.
   std::string smoothing_model = "default";
+  // Climbers' feedback and studies: rate limits, the gym's questionnaire.
+  ClimberPolicy climbers;
 };
 
 // Who is asking: a logged-in user or nobody, and from where.

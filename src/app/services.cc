@@ -10,7 +10,9 @@ Services::Services(store::Store* store, const Options& opts, Clock* clock)
       accounts(store, opts, clock),
       routes(store, opts, &plans),
       variations(store, opts, &plans),
-      maps(store, opts) {
+      maps(store, opts),
+      climber_feedback(store, opts, clock),
+      studies(store, opts, clock) {
   // Rows written by an older version get their metadata columns (grades,
   // colour, wall, ...) derived again; a failure leaves them as they were.
   Result<int> refreshed = routes.RefreshMetadata();

@@ -7,10 +7,12 @@
 #define SB_APP_SERVICES_H_
 
 #include "app/accounts.h"
+#include "app/climber_feedback.h"
 #include "app/clock.h"
 #include "app/maps.h"
 #include "app/options.h"
 #include "app/routes.h"
+#include "app/studies_service.h"
 #include "app/variations.h"
 #include "store/store.h"
 
@@ -27,6 +29,8 @@ struct Services {
   Routes routes;
   Variations variations;
   Maps maps;
+  ClimberFeedback climber_feedback;
+  StudyService studies;
 };
 
 }  // namespace sb::app

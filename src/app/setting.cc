@@ -1,30 +1,111 @@
 #include "app/setting.h"
 
+#include <algorithm>
+#include <cmath>
 #include <utility>
 
-#include "language/symbols.h"
+#include "chaos/tokens.h"
+#include "difficulty/difficulty.h"
+#include "grades/estimator.h"
+#include "grades/evaluate.h"
+#include "grades/scale.h"
 
 namespace sb::app {
 
+namespace {
+
+// The bundled grade estimator, read once per process (immutable; its const
+// methods are thread-safe). Null with the reason when it cannot be read.
+const grades::GradeEstimator* BundledGradeEstimator(std::string* why) {
+  static const Result<grades::GradeEstimator>* loaded =
+      new Result<grades::GradeEstimator>(grades::GradeEstimator::LoadDefault());
+  if (loaded->ok()) return &loaded->value();
+  *why = "no grade estimator: " + loaded->status().message();
+  return nullptr;
+}
+
+// The bundled difficulty model, read once per process; null when it is
+// missing (estimates are then left out), an error when it is damaged.
+Result<const difficulty::Estimator*> BundledDifficulty() {
+  static const Result<std::optional<difficulty::Estimator>>* loaded = [] {
+    std::string path = difficulty::DefaultModelPath();
+    if (path.empty()) {
+      return new Result<std::optional<difficulty::Estimator>>(std::nullopt);
+    }
+    Result<difficulty::Model> m = difficulty::ReadModelFile(path);
+    if (!m.ok()) return new Result<std::optional<difficulty::Estimator>>(m.status());
+    return new Result<std::optional<difficulty::Estimator>>(
+        std::optional<difficulty::Estimator>(difficulty::Estimator(std::move(m).value())));
+  }();
+  if (!loaded->ok()) return loaded->status();
+  return loaded->value() ? &*loaded->value() : nullptr;
+}
+
+uint64_t BoxOf(const chaos::SearchGrid& g) {
+  const uint64_t side = 2 * static_cast<uint64_t>(g.radius) + 1;
+  return g.plane == chaos::SearchPlane::kCube ? side * side * side : side * side;
+}
+
+}  // namespace
+
+Status CheckRequestSearchBudget(const SettingRequest& request, const chaos::VaryParams& params,
+                                int moves) {
+  if (!request.Search()) return Status::Ok();
+  if (request.grid.radius > kMaxRequestSearchRadius) {
+    return Status::InvalidInput("search_radius: at most " +
+                                std::to_string(kMaxRequestSearchRadius) + " on this server");
+  }
+  const uint64_t steps = BoxOf(request.grid) * (static_cast<uint64_t>(std::max(0, params.skip)) +
+                                                static_cast<uint64_t>(std::max(0, moves)));
+  if (steps > kMaxRequestSearchSteps) {
+    return Status::InvalidInput(
+        "search_radius: the IC search could integrate " + std::to_string(steps) +
+        " trajectory steps (grid ICs x (skip + moves)), more than " +
+        std::to_string(kMaxRequestSearchSteps) +
+        " on this server; lower search_radius or skip, or vary fewer moves");
+  }
+  return Status::Ok();
+}
+
+Status CheckRequestForInputs(const SettingRequest& request,
+                             const std::vector<chaos::InputRoute>& inputs) {
+  if (!chaos::AreTokens(inputs)) return Status::Ok();
+  if (request.constraints.alternate_hands) {
+    return Status::InvalidInput("alternate_hands: token sequences have no hands");
+  }
+  if (request.constraints.crux_window) {
+    return Status::InvalidInput("crux_window: token sequences have no cruxes");
+  }
+  if (request.match_grammar) {
+    return Status::InvalidInput(
+        "match: token sequences have no match moves (the grammar reads climbing moves)");
+  }
+  return Status::Ok();
+}
+
 Result<chaos::MoveFacts> InputFacts(const std::vector<chaos::InputRoute>& inputs,
-                                    difficulty::MatchRule match, std::vector<bool>* is_match) {
+                                    bool match_grammar, std::vector<bool>* is_match,
+                                    language::MoveLanguage* lang) {
   chaos::MoveFacts f;
   f.crux = chaos::CruxFlags(inputs);
   is_match->clear();
-  std::string model_path = difficulty::DefaultModelPath();
-  if (model_path.empty() && match == difficulty::MatchRule::kText) return f;
-  SB_ASSIGN_OR_RETURN(language::MoveLanguage lang, language::MoveLanguage::LoadDefault());
-  if (!model_path.empty()) {
-    SB_ASSIGN_OR_RETURN(auto model, difficulty::ReadModelFile(model_path));
-    difficulty::Estimator est(std::move(model));
+  if (chaos::AreTokens(inputs)) return f;  // tokens: no grammar, no estimates
+  SB_ASSIGN_OR_RETURN(const difficulty::Estimator* est, BundledDifficulty());
+  if (est == nullptr && !match_grammar) return f;
+  std::optional<language::MoveLanguage> own;
+  if (lang == nullptr) {
+    SB_ASSIGN_OR_RETURN(own, language::MoveLanguage::LoadDefault());
+    lang = &*own;
+  }
+  if (est != nullptr) {
     for (const chaos::InputRoute& in : inputs) {
-      std::vector<double> d = est.Estimate(in.route, lang);
+      std::vector<double> d = est->Estimate(in.route, *lang);
       f.difficulty.insert(f.difficulty.end(), d.begin(), d.end());
     }
   }
-  if (match == difficulty::MatchRule::kGrammar) {
+  if (match_grammar) {
     for (const chaos::InputRoute& in : inputs) {
-      std::vector<bool> m = difficulty::GrammarMatchFlags(in.route, lang);
+      std::vector<bool> m = difficulty::GrammarMatchFlags(in.route, *lang);
       is_match->insert(is_match->end(), m.begin(), m.end());
     }
   }
@@ -33,11 +114,14 @@ Result<chaos::MoveFacts> InputFacts(const std::vector<chaos::InputRoute>& inputs
 
 Result<SettingOutcome> VaryWithSetting(std::vector<chaos::InputRoute> inputs,
                                        const chaos::VaryParams& params,
-                                       const SettingRequest& request) {
+                                       const SettingRequest& request,
+                                       language::MoveLanguage* lang) {
+  SB_RETURN_IF_ERROR(chaos::CheckInputKinds(inputs));
+  SB_RETURN_IF_ERROR(CheckRequestForInputs(request, inputs));
   std::vector<bool> is_match;
   SettingOutcome out;
-  SB_ASSIGN_OR_RETURN(out.facts, InputFacts(inputs, request.match, &is_match));
-  if (request.constraints.Any()) {
+  SB_ASSIGN_OR_RETURN(out.facts, InputFacts(inputs, request.match_grammar, &is_match, lang));
+  if (request.Search()) {
     SB_ASSIGN_OR_RETURN(chaos::SearchResult r,
                         chaos::SearchVariation(inputs, params, out.facts, request.constraints,
                                                request.grid, is_match));
@@ -48,6 +132,97 @@ Result<SettingOutcome> VaryWithSetting(std::vector<chaos::InputRoute> inputs,
     SB_ASSIGN_OR_RETURN(out.variation, chaos::Vary(std::move(inputs), params, is_match));
   }
   out.warnings = plan::Warn(out.variation, out.facts);
+  return out;
+}
+
+// ---------------------------------------------------------------------------
+// Grades.
+
+namespace {
+
+// What one input's metadata says about its grade.
+struct InputGrade {
+  std::string typed;  // the grade line as typed ("" = none)
+  std::optional<grades::Discipline> discipline;
+  std::optional<grades::Scale> scale;  // of a readable grade
+};
+
+InputGrade ReadInputGrade(const chaos::InputRoute& in) {
+  InputGrade g;
+  g.typed = std::string(in.route.Meta("grade").value_or(""));
+  Result<grades::RouteGrade> rg = grades::GradeOfRoute(in.route, in.name);
+  if (rg.ok()) {
+    g.discipline = rg->discipline;
+    if (rg->grade.discipline() == rg->discipline) g.scale = rg->grade.scale;
+    return g;
+  }
+  // No grade, or one that cannot be read: the type line may still tell.
+  if (std::optional<std::string> type = in.route.Meta("type")) {
+    Result<std::optional<grades::Discipline>> d = grades::DisciplineFromType(*type);
+    if (d.ok()) g.discipline = *d;
+  }
+  return g;
+}
+
+bool NeedsDifficulty(const grades::DisciplineModel& m) {
+  return std::find(m.feature_names.begin(), m.feature_names.end(), "difficulty_max") !=
+         m.feature_names.end();
+}
+
+}  // namespace
+
+plan::PlanGrades GradesOf(const chaos::Variation& v, const plan::DifficultyProfile& profile,
+                          language::MoveLanguage& lang) {
+  plan::PlanGrades out;
+  out.level = grades::kIntervalLevel;
+  std::optional<grades::Discipline> discipline;
+  std::optional<grades::Scale> scale;
+  bool mixed = false;
+  std::vector<InputGrade> in;
+  for (const chaos::InputRoute& r : v.inputs) {
+    in.push_back(ReadInputGrade(r));
+    out.inputs.push_back(in.back().typed);
+    if (!in.back().discipline) continue;
+    if (!discipline) discipline = in.back().discipline;
+    mixed |= *in.back().discipline != *discipline;
+  }
+  if (!discipline) {
+    out.note = "no input says roped or bouldering (a type: or grade: line)";
+    return out;
+  }
+  for (const InputGrade& g : in) {
+    if (!scale && g.scale && g.discipline == discipline) scale = g.scale;
+  }
+  const grades::Scale s = scale.value_or(grades::DefaultScale(*discipline));
+  out.discipline = grades::DisciplineName(*discipline);
+  out.scale = grades::ScaleName(s);
+  std::string why;
+  const grades::GradeEstimator* est = BundledGradeEstimator(&why);
+  if (est == nullptr) {
+    out.note = why;
+    return out;
+  }
+  const grades::DisciplineModel* model = est->model(*discipline);
+  if (model == nullptr) {
+    out.note = std::string("the estimator has no ") + out.discipline + " model";
+    return out;
+  }
+  std::vector<std::string> texts;
+  for (const chaos::VariedMove& m : v.moves) texts.push_back(m.text);
+  grades::RouteReading reading = grades::ReadRoute(lang, texts, est->symbol_set());
+  if (NeedsDifficulty(*model)) reading.move_difficulty = profile.difficulty;
+  Result<grades::Estimate> e = est->EstimateRoute(reading, *discipline);
+  if (!e.ok()) {
+    out.note = e.status().message();
+    return out;
+  }
+  out.estimate = grades::FormatBand(*discipline, e->band, s);
+  out.low = grades::FormatBand(*discipline, e->low, s);
+  out.high = grades::FormatBand(*discipline, e->high, s);
+  if (mixed) {
+    out.note = std::string("the inputs mix roped and bouldering routes; estimated as ") +
+               out.discipline;
+  }
   return out;
 }
 

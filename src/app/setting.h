@@ -1,16 +1,20 @@
-// The setter's workflow (issue 13, docs/setting.md) as a service for the CLI
-// and the web app: a variation made under the setter's constraints (IC
-// search), with the facts of its input moves (crux flags, difficulty
-// estimates), its warnings and its change summary.
+// The setter's workflow (issues 13, 15, 16; docs/setting.md) as a service for
+// the CLI and the web app: a variation made under the setter's constraints
+// (IC search), with the facts of its input moves (crux flags, difficulty
+// estimates), its warnings, difficulty profile and grades.
 //
-//   app::SettingRequest req;                     // the CLI: cli::ResolveSettingOptions
-//   req.constraints.keep_start = true;
+//   app::SettingRequest req;                 // plan::SetterOptions; the CLI:
+//   req.constraints.keep_start = true;       // cli::ResolveSettingOptions
 //   auto out = app::VaryWithSetting(std::move(inputs), vary_params, req);
 //   // out->variation (the plan's), out->search (IC used, distance, constraints),
 //   // out->warnings, out->facts (crux flags and estimates per input move)
+//
+// Plans are made by app::BuildPlan (app/variations.h), which calls these and
+// fills every annotation of plan::RoutePlan.
 #ifndef SB_APP_SETTING_H_
 #define SB_APP_SETTING_H_
 
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -18,17 +22,45 @@
 #include "chaos/constraints.h"
 #include "chaos/search.h"
 #include "chaos/variation.h"
-#include "difficulty/difficulty.h"
+#include "language/symbols.h"
+#include "plan/plan.h"
 #include "plan/warnings.h"
 
 namespace sb::app {
 
-// What the setter asks for. Value type.
-struct SettingRequest {
-  chaos::Constraints constraints;  // none requested = a plain variation
-  chaos::SearchGrid grid;
-  difficulty::MatchRule match = difficulty::MatchRule::kText;
-};
+// What the setter asks for: constraints, search grid, match rule, smoothing
+// method (plan/plan.h). Its JSON form is plan::ParametersJson /
+// plan::SetterOptionsFromJson, the one codec of these fields.
+using SettingRequest = plan::SetterOptions;
+
+// Budgets of one server request's IC search (POST /api/variations), checked
+// before the search starts; the CLI has only the engine's limits
+// (chaos::SearchGrid::Validate).
+//
+// The reach: the CLI's default radius, 100 grid steps (10 units at the
+// default spacing: twice the half-width of the paper's figure-4 landscape).
+inline constexpr int kMaxRequestSearchRadius = 100;
+// The work: candidate ICs (the grid's bounding box, an upper bound of the
+// ICs visited) times the trajectory steps of each (skip + moves). The
+// default search of a 30-move variation (201^2 ICs x 30 steps = 1.2 M) takes
+// about 0.1 s on this project's 2-core machine; 12 M steps (about a second of
+// CPU in the worst case, when no IC qualifies) keeps one request from holding
+// a core for longer, e.g. a 100-step transient or 300 moves at the default
+// radius, or a 2,000-move variation at radius 30.
+inline constexpr uint64_t kMaxRequestSearchSteps = 12'000'000;
+
+// The budget check of a search for a variation of `moves` moves with
+// `params`: kInvalidInput naming the field ("search_radius: ...") when the
+// radius or the work is over the budgets above. OK when no search is asked.
+Status CheckRequestSearchBudget(const SettingRequest& request, const chaos::VaryParams& params,
+                                int moves);
+
+// kInvalidInput when `request` asks what `inputs` cannot give: for token
+// sequences (chaos/tokens.h) alternate-hands (no hands), a crux window (no
+// cruxes) and the grammar's match rule (no moves). Errors name the option as
+// a field ("alternate_hands: ..."); callers prefix or rename. Pure.
+Status CheckRequestForInputs(const SettingRequest& request,
+                             const std::vector<chaos::InputRoute>& inputs);
 
 // A variation made with the setter's request. Value type.
 struct SettingOutcome {
@@ -41,21 +73,36 @@ struct SettingOutcome {
 };
 
 // The input moves' facts: crux flags from Move::crux; estimates from the
-// bundled difficulty model (empty when it is missing); into `is_match` the
-// grammar's match flags when the rule is kGrammar (else it is emptied).
-// Errors: the grammar cannot be loaded (kNotFound), or the model file is
-// damaged. Thread-safe.
+// bundled difficulty model (empty when it is missing, and for token
+// sequences); into `is_match` the grammar's match flags when `match_grammar`
+// (else it is emptied). `lang` (may be null: loaded when needed) reads the
+// moves. Errors: the grammar cannot be loaded (kNotFound), or the model file
+// is damaged. Thread-safe when `lang` is null or owned by the caller's thread.
 Result<chaos::MoveFacts> InputFacts(const std::vector<chaos::InputRoute>& inputs,
-                                    difficulty::MatchRule match, std::vector<bool>* is_match);
+                                    bool match_grammar, std::vector<bool>* is_match,
+                                    language::MoveLanguage* lang = nullptr);
 
 // Varies `inputs` with the setter's request: with no constraint asked,
 // exactly chaos::Vary (with the match rule); otherwise
 // chaos::SearchVariation from params.var_ic. Warnings are computed either
-// way. Errors: those of InputFacts, Vary and SearchVariation (kNotFound
-// naming the constraint that could not be met). Deterministic; thread-safe.
+// way. Errors: those of CheckRequestForInputs (kInvalidInput), InputFacts,
+// Vary and SearchVariation (kNotFound naming the constraint that could not be
+// met). Deterministic; thread-safe as InputFacts.
 Result<SettingOutcome> VaryWithSetting(std::vector<chaos::InputRoute> inputs,
                                        const chaos::VaryParams& params,
-                                       const SettingRequest& request);
+                                       const SettingRequest& request,
+                                       language::MoveLanguage* lang = nullptr);
+
+// The grades of a plan of routes (issue 15): each input's grade as typed, and
+// the variation's estimated grade from its moves with the bundled estimator
+// (data/models/grades.sbg, loaded once per process) in the discipline of the
+// inputs (their type: or grade: lines; the first input's when they differ,
+// noted) and the scale of the first input graded in it. Where no estimate
+// can be made, `note` says why (no discipline, no estimator). `profile`
+// gives the per-move estimates an estimator trained with them needs. Never
+// fails; deterministic. Not thread-safe for one `lang`.
+plan::PlanGrades GradesOf(const chaos::Variation& variation,
+                          const plan::DifficultyProfile& profile, language::MoveLanguage& lang);
 
 }  // namespace sb::app
 

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "crdl/route.h"
+#include "difficulty/difficulty.h"
 
 namespace sb::app {
 namespace {
@@ -19,7 +20,7 @@ std::vector<chaos::InputRoute> Inputs() {
 
 TEST(Setting, InputFactsCarryTheCruxFlagsAndOneEstimatePerMove) {
   std::vector<bool> is_match = {true};
-  auto f = InputFacts(Inputs(), difficulty::MatchRule::kText, &is_match);
+  auto f = InputFacts(Inputs(), /*match_grammar=*/false, &is_match);
   ASSERT_TRUE(f.ok()) << f.status().message();
   EXPECT_EQ(f->crux,
             (std::vector<bool>{false, true, false, false, false, false, false, false, false}));
@@ -31,7 +32,7 @@ TEST(Setting, InputFactsCarryTheCruxFlagsAndOneEstimatePerMove) {
 
 TEST(Setting, GrammarMatchRuleGivesOneFlagPerMove) {
   std::vector<bool> is_match;
-  auto f = InputFacts(Inputs(), difficulty::MatchRule::kGrammar, &is_match);
+  auto f = InputFacts(Inputs(), /*match_grammar=*/true, &is_match);
   ASSERT_TRUE(f.ok()) << f.status().message();
   ASSERT_EQ(is_match.size(), 9u);
   EXPECT_TRUE(is_match[4]);  // "match"

@@ -6,24 +6,89 @@
 #include "base/log.h"
 #include "base/text.h"
 #include "crdl/route.h"
+#include "chaos/tokens.h"
+#include "language/symbols.h"
+#include "plan/astar_smooth.h"
 #include "plan/smooth.h"
 
 namespace sb::app {
 
+namespace {
+
+// The smoothing of a plan with the setter's method. VOMM reads move symbols,
+// so token sequences are smoothed only by A* (with a graph of their own).
+Status SmoothPlan(const SmoothingRequest& smoothing, plan::SmoothingMethod method,
+                  plan::RoutePlan* p) {
+  if (method == plan::SmoothingMethod::kVomm) {
+    if (p->tokens()) {
+      return Status::InvalidInput(
+          "smooth_method: token sequences are smoothed only with astar and a graph of their "
+          "tokens");
+    }
+    return plan::Smooth(smoothing.model, p, smoothing.min_bits);
+  }
+  plan::AStarSmoothOptions o;
+  if (smoothing.astar_max_expanded > 0) {
+    const uint64_t boundaries = std::max<uint64_t>(1, p->variation.moves.size());
+    o.search.max_expanded =
+        std::max(kMinAStarExpansionsPerBoundary, smoothing.astar_max_expanded / boundaries);
+  }
+  SB_RETURN_IF_ERROR(plan::SmoothAStar(smoothing.model, p, o));
+  if (smoothing.min_bits > 0) {
+    std::erase_if(p->smoothing, [&](const plan::Suggestion& s) {
+      return s.direct_seen && s.bits_saved() <= smoothing.min_bits;
+    });
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
 Result<plan::RoutePlan> BuildPlan(std::vector<chaos::InputRoute> inputs,
-                                  const chaos::VaryParams& params,
+                                  const chaos::VaryParams& params, const SettingRequest& setting,
                                   const SmoothingRequest& smoothing, SmoothingOutcome* outcome) {
-  SB_ASSIGN_OR_RETURN(chaos::Variation v, chaos::Vary(std::move(inputs), params));
+  const bool tokens = chaos::AreTokens(inputs);
+  // The grammar reads the moves (estimates, match flags, the grade
+  // estimate); token sequences have none.
+  std::optional<language::MoveLanguage> lang;
+  if (!tokens) {
+    Result<language::MoveLanguage> l = language::MoveLanguage::LoadDefault();
+    if (l.ok()) lang = std::move(l).value();
+  }
+  SB_ASSIGN_OR_RETURN(SettingOutcome out, VaryWithSetting(std::move(inputs), params, setting,
+                                                          lang ? &*lang : nullptr));
   plan::RoutePlan p;
-  p.variation = std::move(v);
+  p.variation = std::move(out.variation);
+  p.setter = setting;
+  if (out.search) p.search = plan::ReportOf(*out.search);
+  p.warnings = std::move(out.warnings);
+  p.profile = plan::Profile(p.variation, out.facts);
+  if (!tokens) {
+    if (lang) {
+      p.grades = GradesOf(p.variation, *p.profile, *lang);
+    } else {
+      plan::PlanGrades g;
+      for (const chaos::InputRoute& in : p.variation.inputs) {
+        g.inputs.push_back(std::string(in.route.Meta("grade").value_or("")));
+      }
+      g.note = "no estimate: the grammar could not be loaded";
+      p.grades = std::move(g);
+    }
+  }
   SmoothingOutcome o;
   o.requested = smoothing.enabled;
   if (smoothing.enabled) {
-    o.status = plan::Smooth(smoothing.model, &p, smoothing.min_bits);
+    o.status = SmoothPlan(smoothing, setting.smooth_method, &p);
     o.applied = o.status.ok();
   }
   if (outcome) *outcome = std::move(o);
   return p;
+}
+
+Result<plan::RoutePlan> BuildPlan(std::vector<chaos::InputRoute> inputs,
+                                  const chaos::VaryParams& params,
+                                  const SmoothingRequest& smoothing, SmoothingOutcome* outcome) {
+  return BuildPlan(std::move(inputs), params, SettingRequest{}, smoothing, outcome);
 }
 
 // ---------------------------------------------------------------------------
@@ -95,8 +160,16 @@ Result<PlanCache::Entry> WithEdits(const store::RouteRecord& rec, PlanCache::Ent
 // Rebuilds the plan of a stored variation from its input snapshots and
 // parameters. The suggestions made when it was created are taken as stored
 // with it; variations stored without them are smoothed again.
-Result<PlanCache::Entry> Rebuild(const store::RouteRecord& rec, const std::string& model) {
+// The server's model of the setter's smoothing method: the configured VOMM
+// model, or the bundled graph for A*.
+std::string SmoothingModel(const Options& options, const SettingRequest& setting) {
+  return setting.smooth_method == plan::SmoothingMethod::kAStar ? "default"
+                                                                : options.smoothing_model;
+}
+
+Result<PlanCache::Entry> Rebuild(const store::RouteRecord& rec, const Options& options) {
   SB_ASSIGN_OR_RETURN(chaos::VaryParams params, chaos::ParamsFromJson(rec.params_json));
+  SB_ASSIGN_OR_RETURN(SettingRequest setting, plan::SetterOptionsFromJson(rec.params_json));
   std::vector<chaos::InputRoute> inputs;
   for (const store::VariationInput& vi : rec.inputs) {
     SB_ASSIGN_OR_RETURN(Route r, ParseCrdl(vi.crdl, vi.name));
@@ -107,13 +180,15 @@ Result<PlanCache::Entry> Rebuild(const store::RouteRecord& rec, const std::strin
     inputs.push_back({rec.name, std::move(r)});
   }
   PlanCache::Entry e;
-  SB_ASSIGN_OR_RETURN(e.plan, BuildPlan(std::move(inputs), params, {}, nullptr));
+  SB_ASSIGN_OR_RETURN(e.plan, BuildPlan(std::move(inputs), params, setting, {}, nullptr));
   if (!rec.smooth) return WithEdits(rec, std::move(e));
   if (!rec.plan_json.empty() && plan::SmoothingFromJson(rec.plan_json, &e.plan)) {
     if (e.plan.smoothing.empty()) e.note = kNoSuggestions;
     return WithEdits(rec, std::move(e));
   }
-  Status st = plan::Smooth(model, &e.plan);
+  SmoothingRequest smoothing{true, SmoothingModel(options, setting), 0.0,
+                             kMaxRequestAStarExpansions};
+  Status st = SmoothPlan(smoothing, setting.smooth_method, &e.plan);
   if (!st.ok()) {
     LogError("smoothing: " + st.message());
     e.note = std::string("Smoothing was requested but ") + kNoSmoothing + ".";
@@ -143,6 +218,11 @@ Result<CreatedVariation> Variations::Create(const Viewer& v, const VariationRequ
     return Status::InvalidInput("skip: at most " + std::to_string(lim.max_vary_skip) +
                                 " on this server");
   }
+  SB_RETURN_IF_ERROR(req.setting.constraints.Validate());
+  SB_RETURN_IF_ERROR(req.setting.grid.Validate());
+  if (req.setting.smooth_method != plan::SmoothingMethod::kVomm && !req.smooth) {
+    return Status::InvalidInput("smooth_method: only with smooth: true");
+  }
   Routes routes(store_, options_, plans_);
   std::vector<store::RouteRecord> recs;
   std::vector<chaos::InputRoute> inputs;
@@ -160,7 +240,10 @@ Result<CreatedVariation> Variations::Create(const Viewer& v, const VariationRequ
     recs.push_back(std::move(r));
   }
   SB_ASSIGN_OR_RETURN(bool is_public, VariationVisibility(recs, req.is_public));
-  const std::string params_json = chaos::ParamsToJson(req.params);
+  SB_RETURN_IF_ERROR(CheckRequestSearchBudget(req.setting, req.params, total_moves));
+  // The parameters with the setter's request: one codec (plan::ParametersJson),
+  // also the key of "the same request made again".
+  const std::string params_json = plan::ParametersJson(req.params, req.setting);
   const std::string key = RequestKey(params_json, req.smooth, recs);
   if (!req.duplicate) {
     // The same request made before: that variation, not a second copy.
@@ -181,9 +264,11 @@ Result<CreatedVariation> Variations::Create(const Viewer& v, const VariationRequ
       return found.status();
     }
   }
-  SmoothingRequest smoothing{req.smooth, options_.smoothing_model, 0.0};
+  SmoothingRequest smoothing{req.smooth, SmoothingModel(options_, req.setting), 0.0,
+                             kMaxRequestAStarExpansions};
   CreatedVariation out;
-  SB_ASSIGN_OR_RETURN(out.plan, BuildPlan(inputs, req.params, smoothing, &out.smoothing));
+  SB_ASSIGN_OR_RETURN(out.plan,
+                      BuildPlan(inputs, req.params, req.setting, smoothing, &out.smoothing));
   if (!out.smoothing.status.ok()) {
     // The reason names server files: logged here, summarised for the client.
     LogError("smoothing: " + out.smoothing.status.message());
@@ -230,7 +315,7 @@ Result<PlanView> Variations::Plan(const Viewer& v, int64_t id) {
   std::string content = PlanContent(*r);
   std::shared_ptr<const PlanCache::Entry> entry = plans_->Find(id, content);
   if (!entry) {
-    Result<PlanCache::Entry> built = Rebuild(*r, options_.smoothing_model);
+    Result<PlanCache::Entry> built = Rebuild(*r, options_);
     if (!built.ok()) {
       LogError("variation " + std::to_string(id) + ": cannot rebuild the plan: " +
                built.status().message());

@@ -14,6 +14,7 @@
 
 #include "app/options.h"
 #include "app/variation_meta.h"
+#include "app/setting.h"
 #include "base/status.h"
 #include "chaos/variation.h"
 #include "plan/plan.h"
@@ -21,12 +22,31 @@
 
 namespace sb::app {
 
-// Smoothing asked of BuildPlan.
+// Smoothing asked of BuildPlan. The method is the setter's
+// (SettingRequest::smooth_method): the VOMM over move symbols or A* over the
+// feature graphs.
 struct SmoothingRequest {
   bool enabled = false;
-  std::string model = "default";  // a model file, or "default" (the bundled one)
-  double min_bits = 0.0;          // drop suggestions saving no more than this
+  // A model file (VOMM, .sbm) or graph file (A*, .sbg), or "default": the
+  // bundled one of the method (data/models/default.sbm / default.sbg).
+  std::string model = "default";
+  // Drop suggestions saving no more than this many bits (A*: whose path is
+  // not cheaper than the direct transition by more than this; a suggestion
+  // whose direct transition never occurs is always kept).
+  double min_bits = 0.0;
+  // A* search budget per boundary (expansions); 0 = plan::AStarSmoothOptions'
+  // default. The server sets it from kMaxRequestAStarExpansions.
+  uint64_t astar_max_expanded = 0;
 };
+
+// A* smoothing on the server: expansions of all boundaries of one plan
+// together (each boundary gets an equal share, at least
+// kMinAStarExpansionsPerBoundary). A boundary of the bundled climbing graph
+// takes a few hundred expansions at most in the corpus evaluation
+// (docs/dance.md); 2,000,000 in all is about a second of CPU, the same
+// budget as the IC search's.
+inline constexpr uint64_t kMaxRequestAStarExpansions = 2'000'000;
+inline constexpr uint64_t kMinAStarExpansionsPerBoundary = 1'000;
 
 // What became of it: `status` is not OK when smoothing was asked for but
 // could not run (the plan is made without it).
@@ -37,9 +57,19 @@ struct SmoothingOutcome {
 };
 
 // The one way to make a plan, for `vary` and the web app: varies `inputs`
-// with `params`, then smooths when asked. Errors: kInvalidInput from the
-// engine (parameters, no moves, a diverging trajectory). A smoothing failure
-// is reported in `outcome` only. Thread-safe.
+// with `params` and the setter's request (VaryWithSetting: the IC search
+// when a constraint is asked), fills every annotation of the plan (the
+// setter's options, the search report, warnings and change summary,
+// difficulty profile, and for routes the grades), then smooths when asked
+// (the request's method; token sequences only with A* and a graph of their
+// own). Errors: kInvalidInput from the engine (parameters, no moves, a
+// diverging trajectory, mixed inputs, options the inputs cannot take),
+// kNotFound naming a constraint no IC met. A smoothing failure is reported in
+// `outcome` only. Deterministic; thread-safe.
+Result<plan::RoutePlan> BuildPlan(std::vector<chaos::InputRoute> inputs,
+                                  const chaos::VaryParams& params, const SettingRequest& setting,
+                                  const SmoothingRequest& smoothing, SmoothingOutcome* outcome);
+// The same with no setter's request (the paper's variation).
 Result<plan::RoutePlan> BuildPlan(std::vector<chaos::InputRoute> inputs,
                                   const chaos::VaryParams& params,
                                   const SmoothingRequest& smoothing, SmoothingOutcome* outcome);
@@ -74,6 +104,7 @@ class PlanCache {
 struct VariationRequest {
   std::vector<int64_t> routes;  // input route ids, concatenated in this order
   chaos::VaryParams params;
+  SettingRequest setting;  // constraints, search grid, match rule, smoothing method
   bool smooth = false;
   // nullopt: private when any input is private (app::VariationVisibility),
   // else public.
@@ -108,13 +139,17 @@ class Variations {
 
   // Makes and stores a variation owned by the viewer from visible routes,
   // named and described by `request.meta`, private by the rule of
-  // VariationVisibility; the same request made again returns the first
-  // variation (`existing`) unless `duplicate` is set.
-  // When the smoothing model cannot be used, the variation is made without it
-  // and the outcome says so (the detailed reason, naming server files, is
-  // only logged). Errors: kUnauthenticated; kInvalidInput naming the field ("routes: ...",
-  // "skip: at most 100000 on this server", the engine's messages);
-  // kNotFound "no route N".
+  // VariationVisibility, with the setter's request (constraints, smoothing
+  // method; stored in its parameters, plan::ParametersJson, so Plan rebuilds
+  // the same search result); the same request made again returns the first
+  // variation (`existing`) unless `duplicate` is set. When the smoothing model
+  // cannot be used, the variation is made without it and the outcome says so
+  // (the detailed reason, naming server files, is only logged). Errors:
+  // kUnauthenticated; kInvalidInput naming the field ("routes: ...", "skip:
+  // at most 100000 on this server", "search_radius: ..." over the request's
+  // search budget, "smooth_method: ..." without smoothing, the engine's
+  // messages), all checked before the work; kNotFound "no route N", or naming
+  // the constraint no IC within the radius met.
   Result<CreatedVariation> Create(const Viewer& v, const VariationRequest& request);
 
   // The plan of a visible variation, rebuilt from its stored parameters and

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "app/app_test_util.h"
+#include "chaos/tokens.h"
 #include "crdl/route.h"
 
 namespace sb::app {
@@ -155,13 +156,128 @@ TEST(BuildPlanTest, TheCommandLineAndTheServerMakeTheSamePlan) {
   Result<plan::RoutePlan> a = BuildPlan({{"c", *r}}, p, {}, nullptr);
   ASSERT_TRUE(a.ok());
   Result<chaos::Variation> v = chaos::Vary({{"c", *r}}, p);
-  EXPECT_EQ(plan::RenderJson(*a), plan::RenderJson({*v, {}, ""}));
+  // Without a setter's request the variation is the paper's (chaos::Vary).
+  EXPECT_EQ(a->variation.mapping, v->mapping);
+  EXPECT_EQ(a->variation.variation, v->variation);
+  EXPECT_FALSE(a->search.has_value());
+  ASSERT_TRUE(a->warnings.has_value());
+  ASSERT_TRUE(a->profile.has_value());
+  EXPECT_EQ(a->profile->crux.size(), a->variation.moves.size());
+  ASSERT_TRUE(a->grades.has_value());
+  EXPECT_EQ(a->grades->inputs, std::vector<std::string>{"V4"});
   SmoothingOutcome o;
   Result<plan::RoutePlan> s = BuildPlan({{"c", *r}}, p, {true, "/no/such/model.sbm", 0}, &o);
   ASSERT_TRUE(s.ok());
   EXPECT_TRUE(o.requested);
   EXPECT_FALSE(o.applied);
   EXPECT_EQ(o.status.code(), Code::kNotFound);
+}
+
+TEST_F(AppTest, ConstrainedVariationsAreStoredAndRebuiltToTheSameSearch) {
+  Viewer alice = User("alice"), anon;
+  int64_t a = AddRoute(alice, kCrimpLadder), b = AddRoute(alice, kSlabDance);
+  VariationRequest req;
+  req.routes = {a, b};
+  req.setting.constraints.keep_start = true;
+  req.setting.constraints.keep_finish = true;
+  req.setting.grid.radius = 30;
+  Result<CreatedVariation> v = services_->variations.Create(alice, req);
+  ASSERT_TRUE(v.ok()) << v.status().message();
+  ASSERT_TRUE(v->plan.search.has_value());
+  for (const chaos::ConstraintOutcome& c : v->plan.search->constraints) EXPECT_TRUE(c.held);
+  EXPECT_EQ(v->plan.variation.moves.front().source->move, 0);
+  EXPECT_EQ(v->plan.variation.moves.back().source->move, 4);  // Slab Dance's last move
+  Result<store::RouteRecord> stored = services_->routes.Get(anon, v->id);
+  ASSERT_TRUE(stored.ok());
+  EXPECT_NE(stored->params_json.find("\"keep_start\":true"), std::string::npos)
+      << stored->params_json;
+  EXPECT_NE(stored->params_json.find("\"search_radius\":30"), std::string::npos);
+  // The requested IC is stored; the rebuild runs the same search.
+  Result<PlanView> p = services_->variations.Plan(anon, v->id);
+  ASSERT_TRUE(p.ok()) << p.status().message();
+  EXPECT_EQ(plan::RenderJson(*p->plan), plan::RenderJson(v->plan));
+  ASSERT_TRUE(p->plan->search.has_value());
+  EXPECT_EQ(p->plan->search->used_ic, v->plan.search->used_ic);
+  // Deterministic: the same request again gives the same plan.
+  Result<CreatedVariation> w = services_->variations.Create(alice, req);
+  ASSERT_TRUE(w.ok());
+  EXPECT_EQ(plan::RenderJson(w->plan), plan::RenderJson(v->plan));
+}
+
+TEST_F(AppTest, SetterRequestsAreCheckedBeforeTheWork) {
+  Viewer alice = User("alice");
+  int64_t a = AddRoute(alice, kCrimpLadder);
+  Variations& vs = services_->variations;
+  VariationRequest req;
+  req.routes = {a};
+  req.setting.constraints.keep_start = true;
+  req.setting.grid.radius = kMaxRequestSearchRadius + 1;
+  Result<CreatedVariation> r = vs.Create(alice, req);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().message().rfind("search_radius:", 0), 0u) << r.status().message();
+  req.setting.grid.radius = kMaxRequestSearchRadius;
+  req.params.skip = 100000;  // within the skip limit, over the search budget
+  r = vs.Create(alice, req);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.status().message().find("trajectory steps"), std::string::npos)
+      << r.status().message();
+  req.params.skip = 0;
+  req.setting = {};
+  req.setting.smooth_method = plan::SmoothingMethod::kAStar;
+  r = vs.Create(alice, req);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().message().rfind("smooth_method:", 0), 0u) << r.status().message();
+  req.setting = {};
+  req.setting.constraints.crux_window = chaos::CruxWindow{0.0, 0.01};
+  req.setting.grid.radius = 3;
+  r = vs.Create(alice, req);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().code(), Code::kNotFound);
+  EXPECT_NE(r.status().message().find("crux-window"), std::string::npos) << r.status().message();
+}
+
+TEST_F(AppTest, AStarSmoothedVariationsKeepTheirMethod) {
+  Viewer alice = User("alice"), anon;
+  int64_t a = AddRoute(alice, kCrimpLadder), b = AddRoute(alice, kSlabDance);
+  VariationRequest req;
+  req.routes = {a, b};
+  req.smooth = true;
+  req.setting.smooth_method = plan::SmoothingMethod::kAStar;
+  Result<CreatedVariation> v = services_->variations.Create(alice, req);
+  ASSERT_TRUE(v.ok()) << v.status().message();
+  EXPECT_TRUE(v->smoothing.applied) << v->smoothing.status.message();
+  for (const plan::Suggestion& s : v->plan.smoothing) {
+    EXPECT_EQ(s.method, plan::SmoothingMethod::kAStar);
+  }
+  Result<PlanView> p = services_->variations.Plan(anon, v->id);
+  ASSERT_TRUE(p.ok());
+  EXPECT_EQ(p->plan->setter.smooth_method, plan::SmoothingMethod::kAStar);
+  EXPECT_EQ(plan::RenderJson(*p->plan), plan::RenderJson(v->plan));
+}
+
+TEST(BuildPlanTest, TokenSequencesAreVariedAndCheckedForWhatTheyLack) {
+  auto a = chaos::ParseTokenSequence("E4|q\nD4|q\nC4|h\nD4|q\n", "a.txt", "a");
+  auto b = chaos::ParseTokenSequence("C4|q\nG4|q\nA4|q\n", "b.txt", "b");
+  ASSERT_TRUE(a.ok() && b.ok());
+  SettingRequest s;
+  s.constraints.keep_start = true;
+  s.grid.radius = 20;
+  Result<plan::RoutePlan> p = BuildPlan({*a, *b}, chaos::VaryParams{}, s, {}, nullptr);
+  ASSERT_TRUE(p.ok()) << p.status().message();
+  EXPECT_TRUE(p->tokens());
+  EXPECT_FALSE(p->grades.has_value());
+  ASSERT_TRUE(p->search.has_value());
+  EXPECT_EQ(p->variation.moves[0].source->move, 0);
+  s.constraints.alternate_hands = true;
+  Result<plan::RoutePlan> bad = BuildPlan({*a, *b}, chaos::VaryParams{}, s, {}, nullptr);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.status().message().rfind("alternate_hands:", 0), 0u) << bad.status().message();
+  SmoothingOutcome o;
+  Result<plan::RoutePlan> vomm =
+      BuildPlan({*a, *b}, chaos::VaryParams{}, SettingRequest{}, {true, "default", 0}, &o);
+  ASSERT_TRUE(vomm.ok());
+  EXPECT_FALSE(o.applied);
+  EXPECT_EQ(o.status.message().rfind("smooth_method:", 0), 0u) << o.status.message();
 }
 
 }  // namespace

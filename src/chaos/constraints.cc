@@ -6,6 +6,7 @@
 
 #include "base/number.h"
 #include "base/text.h"
+#include "chaos/tokens.h"
 
 namespace sb::chaos {
 
@@ -149,7 +150,8 @@ Result<ConstraintChecker> ConstraintChecker::Make(const std::vector<VariedMove>&
                          : 0;
     c.last_[i] = src.move == route_size - 1;
   }
-  c.repeat_class_ = RepeatClasses(prepared);
+  c.tokens_ = AreTokens(inputs);
+  c.repeat_class_ = RepeatClasses(prepared, c.tokens_);
 
   for (size_t i = 0; i < facts.crux.size(); ++i) {
     if (facts.crux[i]) c.cruxes_.push_back(static_cast<int>(i));
@@ -246,6 +248,7 @@ std::vector<ConstraintOutcome> ConstraintChecker::Report(const Variation& v) con
   std::vector<Hand> hands;
   for (const VariedMove& m : v.moves) hands.push_back(m.hand);
   const uint32_t fail = Check(v.mapping.data(), hands.data());
+  const std::string unit = tokens_ ? "token" : "move";
   auto where = [&](int j) {
     int k = v.mapping[j];
     if (k < 0) return std::string("a blank");
@@ -253,7 +256,8 @@ std::vector<ConstraintOutcome> ConstraintChecker::Report(const Variation& v) con
     std::string route = s.route < static_cast<int>(route_names_.size())
                             ? route_names_[s.route]
                             : "input " + std::to_string(s.route + 1);
-    return "\"" + text_[k] + "\" (move " + std::to_string(s.move + 1) + " of " + route + ")";
+    return "\"" + text_[k] + "\" (" + unit + " " + std::to_string(s.move + 1) + " of " + route +
+           ")";
   };
   for (int i = 0; i < kConstraintCount; ++i) {
     Constraint c = static_cast<Constraint>(i);
@@ -286,7 +290,7 @@ std::vector<ConstraintOutcome> ConstraintChecker::Report(const Variation& v) con
           cls = cl;
           if (cl >= 0 && run > longest) longest = run;
         }
-        o.detail = "longest run of one move " + std::to_string(longest) + " (limit " +
+        o.detail = "longest run of one " + unit + " " + std::to_string(longest) + " (limit " +
                    std::to_string(max_repeat_) + ")";
         break;
       }

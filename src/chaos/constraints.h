@@ -140,6 +140,7 @@ class ConstraintChecker {
   std::vector<std::string> route_names_;
   std::vector<SourceRef> source_;  // per source index
   std::vector<std::string> text_;  // per source index
+  bool tokens_ = false;            // token sequences: reports say "token"
 
   uint32_t Check(const int* k, const Hand* hands) const;
 };

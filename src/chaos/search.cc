@@ -9,6 +9,7 @@
 
 #include "base/number.h"
 #include "base/text.h"
+#include "chaos/tokens.h"
 
 // GCC vector types as by-value arguments of inline templates: no ABI crosses
 // a library boundary here.
@@ -358,6 +359,7 @@ Result<IcEvaluator> IcEvaluator::Make(const std::vector<InputRoute>& inputs,
                                       const Constraints& constraints,
                                       const std::vector<bool>& is_match) {
   SB_RETURN_IF_ERROR(params.Validate());
+  SB_RETURN_IF_ERROR(CheckInputKinds(inputs));
   std::vector<VariedMove> prepared = PrepareMoves(inputs, is_match);
   if (prepared.empty()) return Status::InvalidInput("no moves to vary");
   if (!is_match.empty() && is_match.size() != prepared.size()) {
@@ -391,7 +393,7 @@ Result<IcEvaluator> IcEvaluator::Make(const std::vector<InputRoute>& inputs,
       }
     }
   }
-  if (params.mapping.max_repeat > 0) m.move_class = RepeatClasses(prepared);
+  if (params.mapping.max_repeat > 0) m.move_class = RepeatClasses(prepared, AreTokens(inputs));
   m.checker = std::make_unique<ConstraintChecker>(std::move(*checker));
   return e;
 }

@@ -8,6 +8,7 @@
 
 #include "base/number.h"
 #include "base/text.h"
+#include "chaos/tokens.h"
 
 namespace sb::chaos {
 
@@ -234,7 +235,7 @@ std::vector<VariedMove> PrepareMoves(const std::vector<InputRoute>& inputs,
       v.source = SourceRef{static_cast<int>(r), static_cast<int>(m)};
       v.crux = moves[m].crux;
       int h = v.hand == Hand::kLeft ? 0 : 1;
-      bool match = by_flag ? is_match[out.size()] : IsMatchText(v.text);
+      bool match = !inputs[r].tokens && (by_flag ? is_match[out.size()] : IsMatchText(v.text));
       if (match && last[1 - h]) {
         v.text = *last[1 - h];
         v.notes.push_back("(match?)");
@@ -268,12 +269,13 @@ std::string NormalizeForRepeat(std::string_view text) {
 
 }  // namespace
 
-std::vector<int> RepeatClasses(const std::vector<VariedMove>& moves) {
+std::vector<int> RepeatClasses(const std::vector<VariedMove>& moves, bool exact) {
   std::map<std::string, int> ids;
   std::vector<int> out;
   out.reserve(moves.size());
   for (const VariedMove& m : moves) {
-    auto [it, inserted] = ids.emplace(NormalizeForRepeat(m.text), static_cast<int>(ids.size()));
+    auto [it, inserted] =
+        ids.emplace(exact ? m.text : NormalizeForRepeat(m.text), static_cast<int>(ids.size()));
     out.push_back(it->second);
   }
   return out;
@@ -286,6 +288,7 @@ Result<Variation> Vary(std::vector<InputRoute> inputs, const VaryParams& params)
 Result<Variation> Vary(std::vector<InputRoute> inputs, const VaryParams& params,
                        const std::vector<bool>& is_match) {
   SB_RETURN_IF_ERROR(params.Validate());
+  SB_RETURN_IF_ERROR(CheckInputKinds(inputs));
   std::vector<VariedMove> prepared = PrepareMoves(inputs, is_match);
   if (prepared.empty()) return Status::InvalidInput("no moves to vary");
   if (!is_match.empty() && is_match.size() != prepared.size()) {
@@ -320,7 +323,7 @@ Result<Variation> Vary(std::vector<InputRoute> inputs, const VaryParams& params,
   }
 
   std::vector<int> move_class;
-  if (params.mapping.max_repeat > 0) move_class = RepeatClasses(prepared);
+  if (params.mapping.max_repeat > 0) move_class = RepeatClasses(prepared, AreTokens(inputs));
   v.mapping = MapTrajectory(v.reference, v.variation, params.mapping, move_class);
 
   v.moves.reserve(n);

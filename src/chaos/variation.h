@@ -72,6 +72,11 @@ std::map<std::string, std::string> SiteColumnsFromParams(const VaryParams& p);
 struct InputRoute {
   std::string name;
   Route route;
+  // A token sequence (chaos/tokens.h, `vary --tokens`), not a climbing
+  // route: each move's text is one token and its hand means nothing. Token
+  // inputs have no match rule, and max_repeat compares their texts exactly.
+  // The inputs of one variation are all of one kind (CheckInputKinds).
+  bool tokens = false;
 };
 
 // Where a varied move came from: route = position among the inputs, move =
@@ -104,7 +109,7 @@ struct Variation {
 };
 
 // The input moves after match handling, concatenated in input order: a move
-// whose text is "match" takes the text of the previous move of the other hand
+// of a route (not of a token sequence) whose text is "match" takes the text of the previous move of the other hand
 // in the same route (keeping its own hand) and the note "(match?)"; a leading
 // match with no such move is kept as is. Each keeps its source's crux flag.
 std::vector<VariedMove> PrepareMoves(const std::vector<InputRoute>& inputs);
@@ -116,11 +121,12 @@ std::vector<VariedMove> PrepareMoves(const std::vector<InputRoute>& inputs,
                                      const std::vector<bool>& is_match);
 
 // The classes max_repeat counts runs of: equal ids for moves whose texts are
-// equal ignoring case and punctuation (first occurrence order). Pure.
-std::vector<int> RepeatClasses(const std::vector<VariedMove>& moves);
+// equal ignoring case and punctuation (first occurrence order); with `exact`
+// (token sequences) for texts that are equal byte for byte. Pure.
+std::vector<int> RepeatClasses(const std::vector<VariedMove>& moves, bool exact = false);
 
-// Generates the variation. Errors: kInvalidInput for bad parameters or no
-// moves. Pure; thread-safe. Cost O(n log n) in the number of moves.
+// Generates the variation. Errors: kInvalidInput for bad parameters, no
+// moves, or token sequences mixed with routes. Pure; thread-safe. Cost O(n log n) in the number of moves.
 Result<Variation> Vary(std::vector<InputRoute> inputs, const VaryParams& params);
 // The same with the match rule given per input move (see PrepareMoves);
 // kInvalidInput when `is_match` is neither empty nor one entry per input move.

@@ -1,31 +1,71 @@
-// strangebeta vary: a chaotic variation of one or more CRDL routes, printed as
-// a route plan (text, markdown, json) or the trajectory picture (svg).
+// strangebeta vary: a chaotic variation of one or more CRDL routes (or token
+// sequences, --tokens), printed as a route plan (text, markdown, json) or the
+// trajectory picture (svg). With a setter's constraint (--keep-start, ...,
+// --target-effect) the IC search runs first (docs/setting.md); without one
+// the variation is the paper's.
 #include <cstdio>
 
 #include "app/variations.h"
+#include "chaos/tokens.h"
 #include "cli/chaos_options.h"
 #include "cli/cli_util.h"
 #include "cli/commands.h"
+#include "cli/setting_options.h"
 #include "crdl/route.h"
 #include "plan/plan.h"
 
 namespace sb::cli {
 
+namespace {
+
+constexpr const char* kCmd = "vary";
+
+// The inputs: route files, then token files (mixing them is refused later,
+// naming both kinds).
+Result<std::vector<chaos::InputRoute>> ReadInputs(const std::vector<std::string>& files,
+                                                  const std::vector<std::string>& token_files) {
+  if (files.empty() && token_files.empty()) {
+    return Status::InvalidInput("routes: give ROUTE files or --tokens FILE");
+  }
+  std::vector<chaos::InputRoute> inputs;
+  for (const std::string& f : files) {
+    SB_ASSIGN_OR_RETURN(Route r, ReadCrdlFile(f));
+    std::string name = r.Name(RouteFileStem(f));
+    inputs.push_back({std::move(name), std::move(r)});
+  }
+  for (const std::string& f : token_files) {
+    SB_ASSIGN_OR_RETURN(chaos::InputRoute in, chaos::ReadTokenFile(f));
+    inputs.push_back(std::move(in));
+  }
+  return inputs;
+}
+
+}  // namespace
+
 int RunVary(const std::vector<std::string>& args) {
   CLI::App app{
       "Mix routes through a chaotic attractor into a variation and print the route plan.\n"
-      "Routes are concatenated in the order given. Explicit options override the preset.",
+      "Routes are concatenated in the order given. Explicit options override the preset.\n"
+      "A setter's constraint or target (--keep-start ... --target-change) searches the\n"
+      "variation ICs around --var-ic for the nearest that meets them (docs/setting.md).\n"
+      "--tokens varies sequences that are not routes, one token a line (docs/dance.md).",
       "strangebeta vary"};
-  std::vector<std::string> files;
+  std::vector<std::string> files, token_files;
   std::string format = "text", out;
   ChaosOptions chaos;
+  SettingOptions setting;
   app::SmoothingRequest smoothing;
   std::string smooth;
-  app.add_option("routes", files, "CRDL route files ('-' = stdin)")->required();
+  app.add_option("routes", files, "CRDL route files ('-' = stdin)");
+  app.add_option("--tokens", token_files,
+                 "a token sequence file (one token a line; docs/formats.md), repeatable; "
+                 "instead of routes");
   AddChaosOptions(app, ChaosOptionSet::kVary, &chaos);
+  AddSettingOptions(app, &setting);
   app.add_option("--smooth", smooth,
-                 "smooth subsequence boundaries with this Markov model file (see "
-                 "'strangebeta model'); 'default' = the bundled model [off]");
+                 "smooth subsequence boundaries with this Markov model file (see 'strangebeta "
+                 "model'; with --smooth-method astar a graph file, see 'strangebeta graph'); "
+                 "'default' = the bundled one [off; astar: default]");
   app.add_option("--smooth-min-bits", smoothing.min_bits,
                  "show only smoothing suggestions that save more than this many bits")
       ->capture_default_str();
@@ -34,22 +74,41 @@ int RunVary(const std::vector<std::string>& args) {
   if (int rc = ParseArgs(app, args); rc >= 0) return rc;
 
   Result<chaos::VaryParams> params = ResolveChaosOptions(chaos);
-  if (!params.ok()) return Fail("vary", params.status());
+  if (!params.ok()) return Fail(kCmd, params.status());
+  Result<app::SettingRequest> req = ResolveSettingOptions(setting);
+  if (!req.ok()) return Fail(kCmd, req.status());
   Result<plan::Format> fmt = plan::ParseFormat(format);
-  if (!fmt.ok()) return Fail("vary", fmt.status().WithPrefix("--format"));
-  std::vector<chaos::InputRoute> inputs;
-  for (const std::string& f : files) {
-    Result<Route> r = ReadCrdlFile(f);
-    if (!r.ok()) return Fail("vary", r.status());
-    inputs.push_back({r->Name(RouteFileStem(f)), std::move(r).value()});
-  }
-  smoothing.enabled = !smooth.empty();
-  smoothing.model = smooth;
+  if (!fmt.ok()) return Fail(kCmd, fmt.status().WithPrefix("--format"));
+  Result<std::vector<chaos::InputRoute>> inputs = ReadInputs(files, token_files);
+  if (!inputs.ok()) return Fail(kCmd, inputs.status());
+  const bool astar = req->smooth_method == plan::SmoothingMethod::kAStar;
+  smoothing.enabled = !smooth.empty() || astar;
+  smoothing.model = smooth.empty() ? "default" : smooth;
   app::SmoothingOutcome outcome;
-  Result<plan::RoutePlan> p = app::BuildPlan(std::move(inputs), *params, smoothing, &outcome);
-  if (!p.ok()) return Fail("vary", p.status());
-  if (!outcome.status.ok()) return Fail("vary", outcome.status);  // the model could not be used
-  return WriteOutput("vary", out, plan::Render(*p, *fmt));
+  Result<plan::RoutePlan> p =
+      app::BuildPlan(std::move(inputs).value(), *params, *req, smoothing, &outcome);
+  if (!p.ok()) {
+    // The setter's fields are named as options here.
+    Status s = p.status();
+    std::string m = s.message();
+    for (const char* field : {"alternate_hands", "crux_window", "match", "smooth_method"}) {
+      std::string f = std::string(field) + ":";
+      if (m.rfind(f, 0) == 0) {
+        std::string opt = field;
+        for (char& c : opt) c = c == '_' ? '-' : c;
+        s = Status::InvalidInput("--" + opt + m.substr(f.size() - 1));
+      }
+    }
+    return Fail(kCmd, s);
+  }
+  if (!outcome.status.ok()) {  // the model could not be used
+    const std::string& m = outcome.status.message();
+    if (m.rfind("smooth_method:", 0) == 0) {
+      return Fail(kCmd, Status::InvalidInput("--smooth-method" + m.substr(13)));
+    }
+    return Fail(kCmd, outcome.status);
+  }
+  return WriteOutput(kCmd, out, plan::Render(*p, *fmt));
 }
 
 }  // namespace sb::cli

@@ -12,8 +12,6 @@ const Command kCommands[] = {
     {"landscape", "scan the initial-condition landscape (effect/change maps); render maps",
      RunLandscape},
     {"pick", "pick variation ICs with a desired effect and change", RunPick},
-    {"search", "the nearest variation IC meeting setter constraints (start, finish, crux, hands)",
-     RunSearch},
     {"parse", "parse move descriptions with a Phoenix grammar", RunParse},
     {"symbols", "turn move descriptions into symbols (sets k1..k4)", RunSymbols},
     {"model", "train, score, generate with and interpolate variable-order Markov models",

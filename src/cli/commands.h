@@ -39,7 +39,6 @@ int RunCheck(const std::vector<std::string>& args);
 int RunStudy(const std::vector<std::string>& args);
 int RunGrade(const std::vector<std::string>& args);
 int RunDifficulty(const std::vector<std::string>& args);
-int RunSearch(const std::vector<std::string>& args);
 
 }  // namespace sb::cli
 

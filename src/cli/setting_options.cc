@@ -1,10 +1,12 @@
 #include "cli/setting_options.h"
 
-#include "base/number.h"
+#include "plan/plan.h"
 
 namespace sb::cli {
 
-void AddSettingOptions(CLI::App& app, SettingOptions* o) {
+namespace {
+
+void AddConstraintOptions(CLI::App& app, SettingOptions* o) {
   app.add_flag("--keep-start", o->keep_start,
                "the variation starts with an input route's first move [off]");
   app.add_flag("--keep-finish", o->keep_finish,
@@ -19,6 +21,17 @@ void AddSettingOptions(CLI::App& app, SettingOptions* o) {
                  "match moves: text (the original site's rule: the whole text is \"match\") or "
                  "grammar (the grammar reads a match: \"match on jug\", \"matched start\")")
       ->capture_default_str();
+}
+
+void AddSearchOptions(CLI::App& app, SettingOptions* o) {
+  app.add_option("--target-effect", o->target_effect,
+                 "IC search target: effect E (moves changed) [off]");
+  app.add_option("--target-change", o->target_change,
+                 "IC search target: change C (mean distance moved) [off]");
+  app.add_option("--effect-tolerance", o->effect_tolerance, "allowed |effect - target|")
+      ->capture_default_str();
+  app.add_option("--change-tolerance", o->change_tolerance, "allowed |change - target|")
+      ->capture_default_str();
   app.add_option("--search-spacing", o->search_spacing,
                  "IC search: grid step around the requested IC")
       ->capture_default_str();
@@ -26,6 +39,20 @@ void AddSettingOptions(CLI::App& app, SettingOptions* o) {
       ->capture_default_str();
   app.add_option("--search-plane", o->search_plane, "IC search: xy, xz, yz or cube")
       ->capture_default_str();
+}
+
+}  // namespace
+
+void AddSettingOptions(CLI::App& app, SettingOptions* o, unsigned set) {
+  if (set & kSettingConstraints) AddConstraintOptions(app, o);
+  if (set & kSettingSearch) AddSearchOptions(app, o);
+  if (set & kSettingSmoothing) {
+    app.add_option("--smooth-method", o->smooth_method,
+                   "smoothing: vomm (the Markov model of --smooth, the paper's) or astar (A* "
+                   "over the feature graph of --smooth, a .sbg file; 'default' = the bundled "
+                   "graph)")
+        ->capture_default_str();
+  }
 }
 
 Result<app::SettingRequest> ResolveSettingOptions(const SettingOptions& o) {
@@ -41,33 +68,28 @@ Result<app::SettingRequest> ResolveSettingOptions(const SettingOptions& o) {
     if (!w.ok()) return bad("--crux-window", w.status());
     r.constraints.crux_window = *w;
   }
-  auto m = difficulty::ParseMatchRule(o.match);
-  if (!m.ok()) return bad("--match", m.status());
-  r.match = *m;
+  if (o.match != "text" && o.match != "grammar") {
+    return Status::InvalidInput("--match: expected text or grammar, not \"" + o.match + "\"");
+  }
+  r.match_grammar = o.match == "grammar";
+  r.constraints.target_effect = o.target_effect;
+  r.constraints.target_change = o.target_change;
+  r.constraints.effect_tolerance = o.effect_tolerance;
+  r.constraints.change_tolerance = o.change_tolerance;
+  if (Status s = r.constraints.Validate(); !s.ok()) {
+    // Constraints name their fields as options without the dashes.
+    std::string m = s.message();
+    if (m.rfind("effect:", 0) == 0 || m.rfind("change:", 0) == 0) m = "target-" + m;
+    return Status::InvalidInput("--" + m);
+  }
   auto plane = chaos::ParseSearchPlane(o.search_plane);
   if (!plane.ok()) return Status::InvalidInput("--" + plane.status().message());
   r.grid = chaos::SearchGrid{o.search_spacing, o.search_radius, *plane};
   if (Status s = r.grid.Validate(); !s.ok()) return Status::InvalidInput("--" + s.message());
+  auto method = plan::ParseSmoothingMethod(o.smooth_method);
+  if (!method.ok()) return bad("--smooth-method", method.status());
+  r.smooth_method = *method;
   return r;
-}
-
-std::string FormatSettingReport(const app::SettingOutcome& o) {
-  std::string out;
-  if (o.search) {
-    const chaos::SearchResult& s = *o.search;
-    out += "# search: IC " + FormatTriple(s.used_ic) + " used, " + FormatDouble(s.distance, 4) +
-           " from " + FormatTriple(s.requested_ic) + " asked for (" + std::to_string(s.evaluated) +
-           " ICs evaluated)\n";
-    for (const chaos::ConstraintOutcome& c : s.outcomes) {
-      out += std::string("#   ") + chaos::ConstraintName(c.constraint) + ": " +
-             (c.held ? "held" : "NOT held") + " (" + c.detail + ")\n";
-    }
-  }
-  for (const plan::Warning& w : o.warnings.warnings) {
-    out += std::string("# warning (") + plan::WarningKindName(w.kind) + "): " + w.message + "\n";
-  }
-  out += "# summary: " + o.warnings.summary.message + "\n";
-  return out;
 }
 
 }  // namespace sb::cli

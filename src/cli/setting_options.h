@@ -1,13 +1,12 @@
-// The setter's options (issue 13) for any command that makes a variation:
-// `strangebeta search` today, `vary` and `pick` when they are wired. The work
-// itself is the application layer's (app/setting.h).
+// The setter's options (issues 13 and 16) for the commands that make a
+// variation (`strangebeta vary`, `strangebeta pick --routes`). The work itself
+// is the application layer's (app/setting.h, app/variations.h).
 //
 //   SettingOptions opts;
 //   AddSettingOptions(app, &opts);                 // before ParseArgs
 //   ...
 //   auto req = ResolveSettingOptions(opts);        // after: errors name the option
-//   auto out = app::VaryWithSetting(std::move(inputs), vary_params, *req);
-//   std::string report = FormatSettingReport(*out);
+//   auto plan = app::BuildPlan(std::move(inputs), vary_params, *req, smoothing, &outcome);
 #ifndef SB_CLI_SETTING_OPTIONS_H_
 #define SB_CLI_SETTING_OPTIONS_H_
 
@@ -18,6 +17,7 @@
 
 #include "app/setting.h"
 #include "base/status.h"
+#include "chaos/constraints.h"
 #include "chaos/search.h"
 
 namespace sb::cli {
@@ -29,24 +29,36 @@ struct SettingOptions {
   std::string crux_window;  // "A,B"; empty = off
   bool alternate_hands = false;
   std::string match = "text";
+  std::optional<double> target_effect;
+  std::optional<double> target_change;
+  double effect_tolerance = chaos::kDefaultEffectTolerance;
+  double change_tolerance = chaos::kDefaultChangeTolerance;
   double search_spacing = chaos::kDefaultSearchSpacing;
   int search_radius = chaos::kDefaultSearchRadius;
   std::string search_plane = "xy";
+  std::string smooth_method = "vomm";
 };
 
-// Adds --keep-start, --keep-finish, --crux-window A,B, --alternate-hands,
-// --match text|grammar, --search-spacing S, --search-radius R and
-// --search-plane xy|xz|yz|cube to `app` (max-repeat is vary's own option).
-void AddSettingOptions(CLI::App& app, SettingOptions* options);
+// Which groups of options a command takes (bits).
+enum SettingOptionSet : unsigned {
+  kSettingConstraints = 1,  // --keep-start, --keep-finish, --crux-window, --alternate-hands, --match
+  kSettingSearch = 2,       // --target-effect/--target-change (+ tolerances), --search-*
+  kSettingSmoothing = 4,    // --smooth-method
+  kSettingAll = 7,
+};
 
-// Checks and converts the options into the setter's request (targets left
-// unset: callers may add them). Errors (kInvalidInput) start with the option
-// ("--crux-window: ...").
+// Adds the options of `set` to `app`: --keep-start, --keep-finish,
+// --crux-window A,B, --alternate-hands, --match text|grammar;
+// --target-effect E, --target-change C, --effect-tolerance,
+// --change-tolerance, --search-spacing S, --search-radius R, --search-plane
+// xy|xz|yz|cube; --smooth-method vomm|astar (max-repeat is a chaos option).
+// `app` and `options` must outlive the parse; not thread-safe.
+void AddSettingOptions(CLI::App& app, SettingOptions* options, unsigned set = kSettingAll);
+
+// Checks and converts the options into the setter's request. Errors
+// (kInvalidInput) start with the option ("--crux-window: ...",
+// "--smooth-method: ..."). Pure.
 Result<app::SettingRequest> ResolveSettingOptions(const SettingOptions& options);
-
-// "# search: ..." lines for a text plan: the IC used, how far it moved, each
-// constraint and whether it held, then the warnings and the change summary.
-std::string FormatSettingReport(const app::SettingOutcome& outcome);
 
 }  // namespace sb::cli
 

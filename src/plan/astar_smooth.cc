@@ -1,9 +1,12 @@
 #include "plan/astar_smooth.h"
 
 #include <cmath>
+#include <optional>
 #include <utility>
 
 #include "base/files.h"
+#include "chaos/tokens.h"
+#include "graph/tokens.h"
 #include "plan/climb_tokens.h"
 
 namespace sb::plan {
@@ -19,9 +22,13 @@ bool Continues(const chaos::VariedMove& a, const chaos::VariedMove& b) {
 Result<std::vector<BoundaryInterpolation>> InterpolateBoundaries(
     const graph::GraphModel& g, const chaos::Variation& v, language::MoveLanguage& lang,
     const AStarSmoothOptions& options) {
-  SB_RETURN_IF_ERROR(CheckClimbGraph(g, "graph"));
+  // Token sequences are their own feature vectors; routes are read by the
+  // grammar into the climbing features.
+  const bool tokens = chaos::AreTokens(v.inputs);
+  if (!tokens) SB_RETURN_IF_ERROR(CheckClimbGraph(g, "graph"));
   SB_RETURN_IF_ERROR(graph::ValidateSearchOptions(options.search));
   const auto& moves = v.moves;
+  const std::string unit = tokens ? "position " : "move ";
   // The state of every move (empty when unusable) and why not.
   std::vector<std::vector<int32_t>> state(moves.size());
   std::vector<std::string> why(moves.size());
@@ -30,12 +37,23 @@ Result<std::vector<BoundaryInterpolation>> InterpolateBoundaries(
       why[j] = "a blank move";
       continue;
     }
-    auto tok = ClimbToken(moves[j].hand, lang.Read(moves[j].text).features);
+    const std::string where = unit + std::to_string(j + 1);
+    std::optional<graph::Token> tok;
+    if (tokens) {
+      auto parsed = graph::ParseToken(moves[j].text, g.num_features(), where);
+      if (!parsed.ok()) {
+        why[j] = parsed.status().message();
+        continue;
+      }
+      tok = std::move(parsed).value();
+    } else {
+      tok = ClimbToken(moves[j].hand, lang.Read(moves[j].text).features);
+    }
     if (!tok) {
       why[j] = "the grammar cannot read move " + std::to_string(j + 1);
       continue;
     }
-    auto ids = g.Encode(*tok, "move " + std::to_string(j + 1));
+    auto ids = g.Encode(*tok, where);
     if (!ids.ok()) {
       why[j] = ids.status().message();
       continue;
@@ -62,7 +80,8 @@ Result<std::vector<BoundaryInterpolation>> InterpolateBoundaries(
     b.stats = r->stats;
     for (const auto& s : r->inserted) {
       b.inserted.push_back(g.Decode(s));
-      b.moves.push_back(ReadableClimbMove(b.inserted.back(), lang));
+      b.moves.push_back(tokens ? graph::FormatToken(b.inserted.back())
+                               : ReadableClimbMove(b.inserted.back(), lang));
     }
     out.push_back(std::move(b));
   }
@@ -84,7 +103,8 @@ Status SmoothAStar(const std::string& graph_path, RoutePlan* plan,
   }
   auto g = graph::LoadGraph(path);
   if (!g.ok()) return g.status();
-  SB_RETURN_IF_ERROR(CheckClimbGraph(*g, path));
+  const bool tokens = plan->tokens();
+  if (!tokens) SB_RETURN_IF_ERROR(CheckClimbGraph(*g, path));
   auto lang = language::MoveLanguage::LoadDefault();
   if (!lang.ok()) return lang.status();
   auto bs = InterpolateBoundaries(*g, plan->variation, *lang, options);
@@ -96,10 +116,14 @@ Status SmoothAStar(const std::string& graph_path, RoutePlan* plan,
     if (b.outcome != graph::Outcome::kFound || b.inserted.empty()) continue;
     Suggestion s;
     s.after = b.after;
+    s.method = SmoothingMethod::kAStar;
     s.bits_after = b.cost * bits;
-    s.bits_before = std::isfinite(b.direct_cost) ? b.direct_cost * bits : s.bits_after;
+    s.direct_seen = std::isfinite(b.direct_cost);
+    s.bits_before = s.direct_seen ? b.direct_cost * bits : s.bits_after;
     for (size_t i = 0; i < b.inserted.size(); ++i) {
-      s.moves.push_back({b.inserted[i][0], graph::FormatToken(b.inserted[i]), b.moves[i]});
+      // A climbing vector's first feature is its hand; tokens have none.
+      s.moves.push_back({tokens ? std::string() : b.inserted[i][0],
+                         graph::FormatToken(b.inserted[i]), b.moves[i]});
     }
     plan->smoothing.push_back(std::move(s));
   }

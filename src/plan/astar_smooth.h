@@ -5,9 +5,10 @@
 // smoothing (plan/smooth.h) it builds moves feature by feature, so it can
 // suggest moves that never occur in the corpus, and any number of them.
 //
-// Wiring for `vary --smooth-method astar` (a few lines in cmd_vary.cc):
-//   if (Status s = plan::SmoothAStar(graph_path_or_default, &rp); !s.ok())
-//     return Fail("vary", s);
+// `vary --smooth-method astar [--smooth GRAPH]` runs it through
+// app::BuildPlan. Token sequences (`vary --tokens`) smooth the same way with
+// a graph trained on their own tokens (`graph train`): each token is its own
+// feature vector.
 #ifndef SB_PLAN_ASTAR_SMOOTH_H_
 #define SB_PLAN_ASTAR_SMOOTH_H_
 
@@ -56,10 +57,12 @@ struct BoundaryInterpolation {
 
 // Interpolates at every subsequence boundary of `variation` (where the next
 // move does not continue the same input route) from the move before to the
-// move after. Boundaries where either move is a blank, does not parse, or
-// has a feature value the graph never saw are reported with searched =
-// false. Errors: kInvalidInput when `graph` is not a climbing graph or the
-// options are out of range. Not thread-safe (`lang`).
+// move after. Boundaries where either move is a blank, does not parse (a
+// token of another arity), or has a feature value the graph never saw are
+// reported with searched = false. Token sequences are read as tokens (`lang`
+// unused), routes through the grammar. Errors: kInvalidInput when the
+// variation is of routes and `graph` is not a climbing graph, or the options
+// are out of range. Not thread-safe (`lang`).
 Result<std::vector<BoundaryInterpolation>> InterpolateBoundaries(
     const graph::GraphModel& graph, const chaos::Variation& variation, language::MoveLanguage& lang,
     const AStarSmoothOptions& options = {});
@@ -68,13 +71,16 @@ Result<std::vector<BoundaryInterpolation>> InterpolateBoundaries(
 std::string DefaultGraphPath();
 
 // Fills plan->smoothing with one suggestion per boundary where the search
-// inserts at least one move (InsertedMove: the feature vector's own hand,
-// the token as symbol, the readable move as description) and sets
-// plan->smoothing_model to `graph_path` ("default" = the bundled graph).
-// bits_after is the path's cost in bits (nats / ln 2); bits_before is the
-// direct transition's cost in bits, or bits_after when the corpus never
-// shows the direct transition (the graph gives it no finite cost).
-// Errors: the graph cannot be read or is not a climbing graph.
+// inserts at least one move (InsertedMove: the feature vector's own hand —
+// none for tokens —, the token as symbol, the readable move or the token as
+// description; method kAStar) and sets plan->smoothing_model to
+// `graph_path` ("default" = the bundled graph). bits_after is the path's
+// cost in bits (nats / ln 2); bits_before is the direct transition's cost in
+// bits; when the corpus never shows the direct transition (the graph gives
+// it no finite cost) direct_seen is false and bits_before = bits_after
+// (Suggestion::CostNote says so rather than "saves 0 bits").
+// Errors: the graph cannot be read, or the plan is of routes and the graph
+// is not a climbing graph.
 Status SmoothAStar(const std::string& graph_path, RoutePlan* plan,
                    const AStarSmoothOptions& options = {});
 

@@ -107,7 +107,7 @@ std::string CardParameters(const RoutePlan& plan) {
                   ", mask " + chaos::MaskString(p.mapping.mask);
   if (p.mapping.max_repeat) s += ", max repeat " + std::to_string(p.mapping.max_repeat);
   if (!plan.smoothing_model.empty()) s += "; smoothing " + plan.smoothing_model;
-  return s + ". Reproduce: strangebeta vary " + ReproduceOptions(p) + " ROUTES\xE2\x80\xA6";
+  return s + ". Reproduce: strangebeta vary " + ReproduceOptions(p, plan.setter) + " ROUTES\xE2\x80\xA6";
 }
 
 namespace {

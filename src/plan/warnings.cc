@@ -4,13 +4,17 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "chaos/tokens.h"
+
 namespace sb::plan {
 
 namespace {
 
-std::string MovesLabel(int first, int last) {
-  return first == last ? "move " + std::to_string(first + 1)
-                       : "moves " + std::to_string(first + 1) + "-" + std::to_string(last + 1);
+// "move 3", "moves 3-6"; token sequences: "position 3", "positions 3-6".
+std::string MovesLabel(int first, int last, bool tokens = false) {
+  const std::string unit = tokens ? "position" : "move";
+  return first == last ? unit + " " + std::to_string(first + 1)
+                       : unit + "s " + std::to_string(first + 1) + "-" + std::to_string(last + 1);
 }
 
 std::string Quote(const std::string& s) { return "\"" + s + "\""; }
@@ -60,9 +64,13 @@ PlanWarnings Warn(const chaos::Variation& v, const chaos::MoveFacts& facts) {
   InputIndex idx(v);
   const bool crux_ok = static_cast<int>(facts.crux.size()) == idx.total;
   const bool diff_ok = static_cast<int>(facts.difficulty.size()) == idx.total;
+  // Token sequences: no hands, tokens compared exactly, positions named.
+  const bool tokens = chaos::AreTokens(v.inputs);
+  const char* unit = tokens ? "position" : "move";
+  const char* element = tokens ? "token" : "move";
 
-  // Texts compared case- and punctuation-blind, through chaos's repeat
-  // classes: the varied moves, then the raw input moves in order.
+  // Texts compared case- and punctuation-blind (tokens: exactly), through
+  // chaos's repeat classes: the varied moves, then the raw input moves.
   std::vector<chaos::VariedMove> texts(v.moves.begin(), v.moves.end());
   for (const chaos::InputRoute& in : v.inputs) {
     for (const Move& m : in.route.moves) {
@@ -71,7 +79,7 @@ PlanWarnings Warn(const chaos::Variation& v, const chaos::MoveFacts& facts) {
       texts.push_back(x);
     }
   }
-  std::vector<int> cls = chaos::RepeatClasses(texts);
+  std::vector<int> cls = chaos::RepeatClasses(texts, tokens);
   auto blank = [&](int j) { return !v.moves[j].source.has_value(); };
 
   // The same move several times in a row.
@@ -80,14 +88,14 @@ PlanWarnings Warn(const chaos::Variation& v, const chaos::MoveFacts& facts) {
     while (e < n && !blank(j) && !blank(e) && cls[e] == cls[j]) ++e;
     if (e - j >= 2) {
       Warning w{WarningKind::kRepeatedMove, j, e - 1, e - j, ""};
-      w.message = MovesLabel(j, e - 1) + ": " + Quote(v.moves[j].text) + " " +
+      w.message = MovesLabel(j, e - 1, tokens) + ": " + Quote(v.moves[j].text) + " " +
                   std::to_string(e - j) + " times in a row";
       out.warnings.push_back(std::move(w));
     }
     j = e;
   }
-  // The same hand on consecutive moves.
-  for (int j = 0; j < n;) {
+  // The same hand on consecutive moves (tokens have no hands).
+  for (int j = 0; j < n && !tokens;) {
     int e = j + 1;
     while (e < n && v.moves[e].hand == v.moves[j].hand) ++e;
     if (e - j >= 2) {
@@ -107,12 +115,12 @@ PlanWarnings Warn(const chaos::Variation& v, const chaos::MoveFacts& facts) {
                   s->move == static_cast<int>(v.inputs[s->route].route.moves.size()) - 1;
     if (!finish) {
       Warning w{WarningKind::kNoFinish, n - 1, n - 1, 1, ""};
-      w.message = "the route ends on " +
+      w.message = std::string(tokens ? "the sequence ends on " : "the route ends on ") +
                   (s && idx.Valid(*s, v)
-                       ? Quote(v.moves[n - 1].text) + " (move " + std::to_string(s->move + 1) +
-                             " of " + RouteName(v, s->route) + ")"
+                       ? Quote(v.moves[n - 1].text) + " (" + element + " " +
+                             std::to_string(s->move + 1) + " of " + RouteName(v, s->route) + ")"
                        : std::string("a blank")) +
-                  ", not on the last move of an input";
+                  ", not on the last " + element + " of an input";
       out.warnings.push_back(std::move(w));
     }
   }
@@ -145,7 +153,7 @@ PlanWarnings Warn(const chaos::Variation& v, const chaos::MoveFacts& facts) {
     const auto& s = v.moves[j].source;
     if (!s || !idx.Valid(*s, v) || s->move != 0) continue;
     Warning w{WarningKind::kStartAwayFromStart, j, j, 1, ""};
-    w.message = MovesLabel(j, j) + ": " + Quote(v.moves[j].text) + " is the start of " +
+    w.message = MovesLabel(j, j, tokens) + ": " + Quote(v.moves[j].text) + " is the start of " +
                 RouteName(v, s->route) + ", away from the start";
     out.warnings.push_back(std::move(w));
   }
@@ -166,11 +174,11 @@ PlanWarnings Warn(const chaos::Variation& v, const chaos::MoveFacts& facts) {
   chaos::MappingChange mc =
       chaos::MeasureChange(v.mapping.data(), static_cast<int>(v.mapping.size()));
   c.change = mc.change();
-  char buf[256];
+  char buf[320];
   std::snprintf(buf, sizeof buf,
-                "changed %d of %d moves (paper's measure); %d differ in text from the input at "
-                "their position; moves travelled %.2f positions on average (change), at most %d",
-                c.changed, c.moves, c.text_changed, c.change, c.farthest);
+                "changed %d of %d %ss (paper's measure); %d differ in text from the input at "
+                "their position; %ss travelled %.2f positions on average (change), at most %d",
+                c.changed, c.moves, unit, c.text_changed, element, c.change, c.farthest);
   c.message = buf;
   return out;
 }

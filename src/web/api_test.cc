@@ -423,6 +423,46 @@ TEST_F(ApiTest, BadCrdlNamesLineAndReason) {
   EXPECT_EQ(c.Status("POST", "/api/routes", "{\"crdl\":\"name: \xff\n---\nR b\n\"}"), 400);
 }
 
+TEST_F(ApiTest, VariationsTakeTheSettersFieldsAndReturnTheAnnotations) {
+  Client c = NewClient(), anon = NewClient();
+  c.SignUp("alice");
+  ASSERT_TRUE(c.LogIn("alice"));
+  int64_t a = AddRoute(c, kRoute), b = AddRoute(c, kRoute2);
+  json v = c.Json("POST", "/api/variations",
+                  json{{"routes", {a, b}},
+                       {"keep_start", true},
+                       {"keep_finish", true},
+                       {"max_repeat", 2},
+                       {"match", "grammar"},
+                       {"search_radius", 30}}
+                      .dump(),
+                  201);
+  int64_t vid = v["id"];
+  json stored = anon.Json("GET", "/api/routes/" + std::to_string(vid), "", 200);
+  EXPECT_EQ(stored["parameters"]["keep_start"], true);
+  EXPECT_EQ(stored["parameters"]["match"], "grammar");
+  json plan = anon.Json("GET", "/api/variations/" + std::to_string(vid), "", 200)["plan"];
+  EXPECT_EQ(plan["moves"], v["moves"]);
+  ASSERT_TRUE(plan["search"].is_object()) << plan.dump().substr(0, 300);
+  for (const json& k : plan["search"]["constraints"]) EXPECT_TRUE(k["held"].get<bool>());
+  EXPECT_TRUE(plan["warnings"].is_array());
+  EXPECT_TRUE(plan["profile"].is_object());
+  EXPECT_TRUE(plan["grades"].is_object());
+  EXPECT_TRUE(plan["moves"][0].contains("crux"));
+  EXPECT_TRUE(plan["moves"][0].contains("difficulty"));
+  // Bad fields are refused by name, before any work.
+  for (const auto& [body, field] : std::vector<std::pair<json, std::string>>{
+           {json{{"routes", {a}}, {"crux_window", {0.9, 0.1}}}, "crux_window"},
+           {json{{"routes", {a}}, {"keep_start", "yes"}}, "keep_start"},
+           {json{{"routes", {a}}, {"match", "both"}}, "match"},
+           {json{{"routes", {a}}, {"smooth_method", "spline"}}, "smooth_method"},
+           {json{{"routes", {a}}, {"keep_start", true}, {"search_radius", 1000}},
+            "search_radius"}}) {
+    json e = c.Json("POST", "/api/variations", body.dump(), 400);
+    EXPECT_NE(e.dump().find(field), std::string::npos) << e.dump();
+  }
+}
+
 TEST_F(ApiTest, VariationsAreStoredLikeRoutesAndCanBeVaried) {
   Client c = NewClient(), anon = NewClient();
   c.SignUp("alice");
@@ -516,8 +556,8 @@ TEST_F(ApiTest, PlanPagesSvgAndPdf) {
   EXPECT_NE(page->body.find("/r/" + id), std::string::npos);  // the QR code's link
   auto short_link = anon.Send("GET", "/r/" + id);
   ASSERT_TRUE(short_link);
-  EXPECT_EQ(short_link->status, 302);
-  EXPECT_EQ(short_link->get_header_value("Location"), "/variations/" + id);
+  EXPECT_EQ(short_link->status, 200);  // the climbers' feedback page of this variation
+  EXPECT_NE(short_link->body.find("feedback-form"), std::string::npos);
   EXPECT_NE(page->body.find("<svg"), std::string::npos);
   auto svg = anon.Send("GET", "/variations/" + id + ".svg");
   ASSERT_TRUE(svg);
@@ -747,6 +787,125 @@ TEST_F(ApiTest, ImportsTheOriginalCorpusAndRebuildsEveryPlan) {
   json again = c2.Json("POST", "/api/import/csv",
                        json{{"routes_csv", ex->body}, {"moves_csv", exm->body}}.dump(), 201);
   EXPECT_EQ(again["imported"], im["imported"]);
+}
+
+// ---- the climbers' side (climber_handlers.cc) ------------------------------
+
+// The participant cookie ("sb_climber=...") a response sets, or "".
+std::string ParticipantCookie(const httplib::Result& r) {
+  std::string sc = r ? r->get_header_value("Set-Cookie") : "";
+  return sc.rfind("sb_climber=", 0) == 0 ? sc : "";
+}
+
+TEST_F(ApiTest, ClimbersGiveFeedbackWithoutAnAccountAndOnlyTheOwnerReadsIt) {
+  Client setter = NewClient();
+  setter.SignUp("setter");
+  ASSERT_TRUE(setter.LogIn("setter"));
+  int64_t id = AddRoute(setter, kRoute);
+  Client climber = NewClient();
+  json answers = json::array();
+  for (int i = 0; i < 14; ++i) answers.push_back(i == 0 ? json(2) : json());
+  auto r =
+      climber.Send("POST", "/api/r/" + std::to_string(id) + "/feedback",
+                   json{{"answers", answers}, {"felt_grade", "V6"}, {"comment", "hidden"}}.dump());
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body;
+  std::string sc = ParticipantCookie(r);
+  EXPECT_NE(sc.find("HttpOnly"), std::string::npos) << sc;
+  EXPECT_NE(sc.find("SameSite=Lax"), std::string::npos) << sc;
+  climber.cookie() = sc.substr(0, sc.find(';'));
+  // Editing keeps the participant (no new cookie) and the one response.
+  r = climber.Send("POST", "/api/r/" + std::to_string(id) + "/feedback",
+                   json{{"felt_grade", "V5"}, {"comment", "hidden, edited"}}.dump());
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 200) << r->body;
+  EXPECT_EQ(ParticipantCookie(r), "");
+  auto page = climber.Send("GET", "/r/" + std::to_string(id));
+  ASSERT_TRUE(page);
+  EXPECT_NE(page->body.find("hidden, edited"), std::string::npos);  // their own answers
+  Client stranger = NewClient();
+  page = stranger.Send("GET", "/r/" + std::to_string(id));
+  ASSERT_TRUE(page);
+  EXPECT_EQ(page->status, 200);
+  EXPECT_EQ(page->body.find("hidden"), std::string::npos);
+  EXPECT_EQ(stranger.Status("GET", "/r/" + std::to_string(id) + "/responses"), 401);
+  Client other = NewClient();
+  other.SignUp("other");
+  ASSERT_TRUE(other.LogIn("other"));
+  EXPECT_EQ(other.Status("GET", "/r/" + std::to_string(id) + "/responses"), 403);
+  page = setter.Send("GET", "/r/" + std::to_string(id) + "/responses");
+  ASSERT_TRUE(page);
+  EXPECT_EQ(page->status, 200);
+  EXPECT_NE(page->body.find("<dd id=\"responses\">1</dd>"), std::string::npos);
+  EXPECT_NE(page->body.find("hidden, edited"), std::string::npos);
+  // Bad input is a 400 naming the field, never a 500.
+  EXPECT_EQ(climber.Status("POST", "/api/r/" + std::to_string(id) + "/feedback",
+                           json{{"answers", json::array({9})}}.dump()),
+            400);
+  EXPECT_EQ(climber.Status("POST", "/api/r/" + std::to_string(id) + "/feedback",
+                           json{{"felt_grade", "5.10a"}}.dump()),
+            400);
+  EXPECT_EQ(climber.Status("POST", "/api/r/999/feedback", json{{"felt_grade", "V1"}}.dump()), 404);
+}
+
+TEST_F(ApiTest, StudiesAreAnsweredOnceAndReadOnlyByTheirOwner) {
+  Client setter = NewClient();
+  setter.SignUp("setter");
+  ASSERT_TRUE(setter.LogIn("setter"));
+  int64_t a = AddRoute(setter, kRoute), b = AddRoute(setter, kRoute2);
+  auto bad = setter.Send("POST", "/api/studies",
+                         json{{"name", "s"},
+                              {"routes", {a, b}},
+                              {"instrument", {{"file", "bad.json"}, {"json", "{\n ,}"}}}}
+                             .dump());
+  ASSERT_TRUE(bad);
+  EXPECT_EQ(bad->status, 400);
+  EXPECT_EQ(json::parse(bad->body)["error"].get<std::string>().rfind("bad.json:2:", 0), 0u)
+      << bad->body;
+  json made = setter.Json(
+      "POST", "/api/studies",
+      json{{"name", "Pilot"}, {"routes", {b, a}}, {"instrument", "pilot"}, {"demographics", false}}
+          .dump(),
+      201);
+  const std::string sid = std::to_string(made.value("id", int64_t{0}));
+  auto form = NewClient().Send("GET", "/s/" + sid);
+  ASSERT_TRUE(form);
+  EXPECT_EQ(form->status, 200);
+  EXPECT_EQ(form->body.find("Crimp Ladder"), std::string::npos);  // neutral labels only
+  EXPECT_NE(form->body.find("Route 2"), std::string::npos);
+  const std::string body = json{{"routes",
+                                 {{{"answers", {5, 4, 3, 2, 1}}, {"rank", 2}, {"order", 1}},
+                                  {{"answers", {1, 2, 3, 4, 5}}, {"rank", 1}, {"order", 2}}}}}
+                               .dump();
+  Client climber = NewClient();
+  auto r = climber.Send("POST", "/api/s/" + sid + "/responses", body);
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 201) << r->body;
+  std::string sc = ParticipantCookie(r);
+  climber.cookie() = sc.substr(0, sc.find(';'));
+  EXPECT_EQ(climber.Status("POST", "/api/s/" + sid + "/responses", body), 409);
+  // Owner only.
+  Client other = NewClient();
+  other.SignUp("other");
+  ASSERT_TRUE(other.LogIn("other"));
+  for (const char* p : {"", "/responses.csv", "/analysis.json", "/instrument.json", "/boxplot.svg",
+                        "/demographics.csv", "/edit"}) {
+    EXPECT_EQ(other.Status("GET", "/studies/" + sid + p), 403) << p;
+    EXPECT_EQ(NewClient().Status("GET", "/studies/" + sid + p), 401) << p;
+  }
+  EXPECT_EQ(other.Status("PUT", "/api/studies/" + sid, json{{"open", false}}.dump()), 403);
+  auto csv = setter.Send("GET", "/studies/" + sid + "/responses.csv");
+  ASSERT_TRUE(csv);
+  EXPECT_EQ(csv->body,
+            "participant,route,q1,q2,q3,q4,q5,rank,order\np1,1,5,4,3,2,1,2,1\n"
+            "p1,2,1,2,3,4,5,1,2\n");
+  auto results = setter.Send("GET", "/studies/" + sid);
+  ASSERT_TRUE(results);
+  EXPECT_NE(results->body.find("data-k=\"/alpha\""), std::string::npos);
+  // Frozen once answered; closed refuses responses.
+  EXPECT_EQ(setter.Status("PUT", "/api/studies/" + sid, json{{"routes", {a, b}}}.dump()), 409);
+  setter.Json("PUT", "/api/studies/" + sid, json{{"open", false}}.dump(), 200);
+  EXPECT_EQ(NewClient().Status("POST", "/api/s/" + sid + "/responses", body), 409);
 }
 
 }  // namespace

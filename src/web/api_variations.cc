@@ -113,6 +113,11 @@ void PostVariation(Exchange& x) {
   Result<chaos::VaryParams> params = chaos::ParamsFromJson(x.req.body);
   if (!params.ok()) return ApiError(x, params.status());
   vr.params = *params;
+  // The setter's fields (keep_start, ..., smooth_method): the codec of the
+  // stored parameters, so the stored variation rebuilds the same search.
+  Result<plan::SetterOptions> setting = plan::SetterOptionsFromJson(x.req.body);
+  if (!setting.ok()) return ApiError(x, setting.status());
+  vr.setting = *setting;
   Result<app::CreatedVariation> v = x.services.variations.Create(x.caller.viewer, vr);
   if (!v.ok()) return ApiError(x, v.status());
   json smoothing{{"requested", v->smoothing.requested}, {"applied", v->smoothing.applied}};

@@ -108,9 +108,6 @@ void PageVary(Exchange& x);
 void PageImport(Exchange& x);
 void PagePlan(Exchange& x);
 void PagePlanPdf(Exchange& x);
-// "/r/{id}": redirects to the route's or variation's page (the route
-// card's QR code links here).
-void PageShortLink(Exchange& x);
 // The absolute /r/{id} link of a route (ServerOptions::base_url or the Host).
 std::string ShortLink(Exchange& x, int64_t id);
 void PagePlanSvg(Exchange& x);

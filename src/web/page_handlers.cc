@@ -8,6 +8,7 @@
 #include "crdl/route.h"
 #include "plan/card.h"
 #include "plan/pdf.h"
+#include "web/climber_handlers.h"
 #include "web/handlers.h"
 
 namespace sb::web {
@@ -17,6 +18,14 @@ namespace {
 void Html(Exchange& x, const std::string& html) {
   x.res.SetHeader("Cache-Control", "no-store");
   x.res.SetBody(200, html, "text/html; charset=utf-8");
+}
+
+// `page` with `block` (the climbers' consensus, climber_handlers.h) at the
+// end of its <main>.
+std::string WithBlock(std::string page, const std::string& block) {
+  size_t at = page.rfind("</main>");
+  if (at != std::string::npos) page.insert(at, block);
+  return page;
 }
 
 // "1,2,x" -> the ids that parse (the vary page's preselection).
@@ -76,7 +85,8 @@ void PageRoute(Exchange& x) {
   if (Result<Route> parsed = ParseCrdl(r->crdl, "route"); parsed.ok()) {
     readings = app::MoveReadings(*parsed);
   }
-  Html(x, RoutePage(x.caller.page(), *r, app::IsOwner(*r, x.caller.viewer), readings));
+  Html(x, WithBlock(RoutePage(x.caller.page(), *r, app::IsOwner(*r, x.caller.viewer), readings),
+                    ConsensusBlock(x, *r)));
 }
 
 void PageVary(Exchange& x) {
@@ -151,7 +161,9 @@ std::string ShortLink(Exchange& x, int64_t id) {
 void PagePlan(Exchange& x) {
   Result<app::PlanView> p = PlanOf(x);
   if (!p.ok()) return PageError(x, p.status());
-  Html(x, PlanPage(x.caller.page(), p->record, *p->plan, p->smoothing_note, CardInfoOf(x, p->record)));
+  Html(x, WithBlock(PlanPage(x.caller.page(), p->record, *p->plan, p->smoothing_note,
+                             CardInfoOf(x, p->record)),
+                    ConsensusBlock(x, p->record)));
 }
 
 void PagePlanSvg(Exchange& x) {
@@ -173,15 +185,6 @@ void PagePlanPdf(Exchange& x) {
                   AttachmentHeader(p->record.name,
                                    paper == plan::Paper::kLetter ? "-letter.pdf" : "-a4.pdf"));
   x.res.SetBody(200, *pdf, "application/pdf");
-}
-
-void PageShortLink(Exchange& x) {
-  Result<int64_t> id = PathId(x.req, "No such route.");
-  if (!id.ok()) return PageError(x, id.status());
-  Result<store::RouteRecord> r = x.services.routes.Get(x.caller.viewer, *id);
-  if (!r.ok()) return PageError(x, r.status());
-  x.res.status = 302;
-  x.res.SetHeader("Location", (r->is_variation ? "/variations/" : "/routes/") + std::to_string(*id));
 }
 
 }  // namespace sb::web

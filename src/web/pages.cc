@@ -467,6 +467,14 @@ std::string PlanPage(const PageViewer& v, const store::RouteRecord& rec,
        "<figcaption>Reference trajectory (black), variation (blue), association lines "
        "(grey); x–z projection.</figcaption></figure>\n";
   b += "<p class=\"params-line\">" + E(plan::CardParameters(plan)) + "</p>\n";
+  // The setter's annotations (issues 13, 15): grade estimate, IC search,
+  // warnings, change summary, hardest stretch (plan::PlanNotes).
+  if (std::vector<std::string> notes = plan::PlanNotes(plan); !notes.empty()) {
+    // Screen only: the printed sheet is the card's layout (one page).
+    b += "<div class=\"plan-notes no-print\"><h2>Setter's notes</h2><ul>";
+    for (const std::string& n : notes) b += "<li>" + E(n) + "</li>";
+    b += "</ul></div>\n";
+  }
   b += "<section class=\"params no-print\"><h2>Smoothing</h2><p>";
   if (!plan.smoothing.empty()) {
     b += std::to_string(plan.smoothing.size()) + " suggestion(s) from " + E(plan.smoothing_model) +
@@ -510,6 +518,11 @@ std::string ImportPage(const PageViewer& v) {
        "href=\"/api/export/moves.csv\">moves.csv</a>. Each route page has its CRDL "
        "download.</p></section>\n";
   return Layout(v, "Import and export", b);
+}
+
+std::string PageLayout(const PageViewer& v, const std::string& title, const std::string& body,
+                       const std::string& page_class) {
+  return Layout(v, title, body, page_class);
 }
 
 std::string ErrorPage(const PageViewer& v, int status, const std::string& message) {

@@ -53,6 +53,11 @@ std::string PlanPage(const PageViewer& v, const store::RouteRecord& record,
                      const plan::CardInfo& card);
 // "/import": CRDL and CSV import, CSV export links.
 std::string ImportPage(const PageViewer& v);
+// The page frame every page shares (head, navigation, footer) around
+// `body` (HTML, not escaped); `title` is escaped. For the pages of other
+// files (climber_pages.cc).
+std::string PageLayout(const PageViewer& v, const std::string& title, const std::string& body,
+                       const std::string& page_class = "");
 // An error page for `status` with a message (escaped).
 std::string ErrorPage(const PageViewer& v, int status, const std::string& message);
 

@@ -8,6 +8,7 @@
 #include "base/log.h"
 #include "base/text.h"
 #include "store/auth.h"
+#include "web/climber_handlers.h"
 #include "web/handlers.h"
 #include "web/http_transport.h"
 #include "web/router.h"
@@ -44,6 +45,24 @@ const Endpoint kEndpoints[] = {
     {"POST", "/api/import/csv", PostImportCsv},
     {"GET", "/api/export/routes.csv", GetExportRoutes},
     {"GET", "/api/export/moves.csv", GetExportMoves},
+    // Climbers' feedback and studies (climber_handlers.cc).
+    {"POST", "/api/r/{id}/feedback", PostRouteFeedback},
+    {"POST", "/api/studies", PostStudy},
+    {"PUT", "/api/studies/{id}", PutStudy},
+    {"POST", "/api/s/{id}/responses", PostStudyResponse},
+    {"GET", "/r/{id}/responses", PageFeedbackAnswers},
+    {"GET", "/r/{id}", PageFeedback},
+    {"GET", "/drift", PageDrift},
+    {"GET", "/studies", PageStudies},
+    {"GET", "/studies/new", PageNewStudy},
+    {"GET", "/studies/{id}/edit", PageEditStudy},
+    {"GET", "/studies/{id}/responses.csv", GetStudyResponsesCsv},
+    {"GET", "/studies/{id}/instrument.json", GetStudyInstrument},
+    {"GET", "/studies/{id}/demographics.csv", GetStudyDemographicsCsv},
+    {"GET", "/studies/{id}/analysis.json", GetStudyAnalysis},
+    {"GET", "/studies/{id}/boxplot.svg", GetStudyBoxPlot},
+    {"GET", "/studies/{id}", PageStudyResults},
+    {"GET", "/s/{id}", PageStudyForm},
     // Pages.
     {"GET", "/", PageIndex},
     {"GET", "/login", PageLogin},
@@ -56,7 +75,6 @@ const Endpoint kEndpoints[] = {
     {"GET", "/variations/{id}.pdf", PagePlanPdf},
     {"GET", "/variations/{id}.svg", PagePlanSvg},
     {"GET", "/variations/{id}", PagePlan},
-    {"GET", "/r/{id}", PageShortLink},
     {"GET", "/static/{file}", GetStatic},
 };
 

@@ -49,5 +49,6 @@ module.exports = async (t) => {
   const svg = await page.request.get(base + '/variations/' + id + '.svg');
   check(svg.status() === 200 && (await svg.text()).includes('<svg'), 'server SVG card');
   await page.goto(base + '/r/' + id);
-  check(page.url().endsWith('/variations/' + id), '/r/{id} opens the variation');
+  check(page.url().endsWith('/r/' + id) && await page.isVisible('#feedback-form'),
+        '/r/{id} opens the climbers\' feedback page of the variation');
 };

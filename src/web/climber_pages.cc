@@ -1,0 +1,518 @@
+#include "web/climber_pages.h"
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+#include "base/number.h"
+#include "base/text.h"
+#include "grades/scale.h"
+#include "studies/boxplot.h"
+
+namespace sb::web {
+
+namespace {
+
+std::string E(std::string_view s) { return XmlEscape(s); }
+std::string Id(int64_t id) { return std::to_string(id); }
+
+// The assets of the climbers' pages (the shared frame loads app.js/app.css).
+const char kAssets[] =
+    "<link rel=\"stylesheet\" href=\"/static/climbers.css\">\n"
+    "<script src=\"/static/climbers.js\" defer></script>\n";
+
+// A number for reading (3 decimals; "–" when undefined) carrying its exact
+// value and the JSON pointer of `study analyze --format json` it equals.
+std::string Num(double v, const std::string& key) {
+  char buf[64];
+  if (std::isfinite(v) && v != 0 && std::abs(v) < 0.001) {
+    std::snprintf(buf, sizeof buf, "%.1e", v);  // small p-values stay readable
+  } else if (std::isfinite(v)) {
+    std::snprintf(buf, sizeof buf, "%.3f", v);
+  } else {
+    std::snprintf(buf, sizeof buf, "–");
+  }
+  return "<td class=\"n\" data-k=\"" + E(key) + "\" data-v=\"" + FormatDouble(v) + "\">" + buf +
+         "</td>";
+}
+
+std::string Commas(const std::vector<std::string>& xs) {
+  std::string out;
+  for (const std::string& x : xs) out += (out.empty() ? "" : ",") + x;
+  return out;
+}
+
+std::string Round(double v, int decimals) {
+  if (!std::isfinite(v)) return "–";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  return buf;
+}
+
+// The labels of a response scale: the paper's five for a 5-point scale,
+// the numbers otherwise.
+std::vector<std::string> ScaleLabels(const studies::Instrument& in) {
+  std::vector<std::string> out;
+  if (in.scale_max - in.scale_min == 4) {
+    return {"Strongly disagree", "Disagree", "Neutral", "Agree", "Strongly agree"};
+  }
+  for (int x = in.scale_min; x <= in.scale_max; ++x) out.push_back(std::to_string(x));
+  return out;
+}
+
+// One Likert item as a row of radio buttons named `name` (value = the
+// answer on the scale), `current` checked.
+std::string LikertItem(const studies::Instrument& in, size_t i, const std::string& name,
+                       std::optional<int> current) {
+  const std::vector<std::string> labels = ScaleLabels(in);
+  std::string h = "<fieldset class=\"likert\" data-item=\"" + E(in.items[i].id) + "\"><legend>" +
+                  std::to_string(i + 1) + ". " + E(in.items[i].text) + "</legend><div>";
+  for (int x = in.scale_min; x <= in.scale_max; ++x) {
+    const std::string& label = labels[static_cast<size_t>(x - in.scale_min)];
+    h += "<label><input type=\"radio\" name=\"" + E(name) + "\" value=\"" + std::to_string(x) +
+         "\"" + (current == x ? " checked" : "") + "><span>" + E(label) + "</span></label>";
+  }
+  return h + "</div></fieldset>\n";
+}
+
+std::string Scale(const app::GradeSummary& g) {
+  return g.discipline ? grades::DisciplineName(*g.discipline) : "";
+}
+
+// The setter's grade, the consensus and the drift flag.
+std::string GradeBlock(const app::GradeSummary& g, int min_votes_note) {
+  std::string h = "<dl class=\"consensus\" id=\"consensus\">";
+  h += "<dt>Setter's grade</dt><dd id=\"setter-grade\">" +
+       (g.setter_grade.empty() ? std::string("none") : E(g.setter_grade)) + "</dd>";
+  h += "<dt>Climbers' grade</dt><dd id=\"consensus-grade\">";
+  if (g.votes == 0) {
+    h += "no felt grades yet";
+  } else if (!g.shown) {
+    h += "shown from " + std::to_string(min_votes_note) + " felt grades on";
+  } else {
+    h += E(g.median_grade) + " <span class=\"spread\">(" + E(g.low_grade) + "–" + E(g.high_grade) +
+         ", " + std::to_string(g.consensus.count) + " vote" + (g.consensus.count == 1 ? "" : "s") +
+         ")</span>";
+  }
+  h += "</dd>";
+  if (g.shown && g.votes > 0 && g.setter_value) {
+    const grades::Drift& d = g.drift;
+    h +=
+        "<dt>Drift</dt><dd id=\"drift\" class=\"" + std::string(d.flagged ? "flagged" : "") + "\">";
+    if (d.flagged) {
+      h += "<strong>Flagged:</strong> climbers feel it " + std::to_string(std::abs(d.bands)) +
+           " bands " + (d.bands > 0 ? "harder" : "easier") + " than graded";
+    } else {
+      h += d.bands == 0
+               ? std::string("climbers agree")
+               : std::to_string(std::abs(d.bands)) + " band" + (std::abs(d.bands) == 1 ? "" : "s") +
+                     (d.bands > 0 ? " harder" : " easier") + ", not flagged";
+    }
+    h += " <span class=\"spread\">(" + std::to_string(d.above) + " harder, " +
+         std::to_string(d.below) + " easier; sign test p = " + Round(d.p_value, 3) + ")</span>";
+    h += "</dd>";
+  }
+  return h + "</dl>\n";
+}
+
+std::string Checkbox(const char* id, const char* label, bool on) {
+  return std::string("<label class=\"check\"><input type=\"checkbox\" id=\"") + id + "\"" +
+         (on ? " checked" : "") + "> " + label + "</label>\n";
+}
+
+}  // namespace
+
+std::string ConsensusHtml(const app::GradeSummary& grade, int64_t route_id, bool owner,
+                          int min_votes_shown) {
+  std::string h = "<section class=\"climbers-consensus no-print\"><h2>Climbers</h2>\n" +
+                  GradeBlock(grade, min_votes_shown);
+  h += "<p><a href=\"/r/" + Id(route_id) + "\" id=\"feedback-link\">Rate this route</a>";
+  if (owner) {
+    h += " · <a href=\"/r/" + Id(route_id) +
+         "/responses\" id=\"responses-link\">Climbers' "
+         "answers</a> · <a href=\"/drift\">Your grade drift</a>";
+  }
+  return h + "</p></section>\n";
+}
+
+std::string FeedbackPageHtml(const PageViewer& v, const app::FeedbackPage& page, bool owner,
+                             int min_votes_shown) {
+  const store::RouteRecord& r = page.route;
+  const studies::Instrument& in = page.instrument;
+  std::string b = kAssets;
+  b += "<h1 id=\"route-name\">" + E(r.name) + "</h1>\n";
+  b += GradeBlock(page.grade, min_votes_shown);
+  if (owner) {
+    b += "<p class=\"owner-links\"><a href=\"/r/" + Id(r.id) +
+         "/responses\" id=\"responses-link\">Climbers' answers</a> · <a href=\"/drift\">Your "
+         "grade drift</a></p>\n";
+  }
+  const bool mine = page.mine.has_value();
+  b += "<form id=\"feedback-form\" class=\"climber-form\" data-route=\"" + Id(r.id) +
+       "\" data-items=\"" + std::to_string(in.items.size()) + "\">\n";
+  b += "<p class=\"msg\" id=\"feedback-state\">" +
+       std::string(mine ? "Your earlier answers are filled in; change them and save again."
+                        : "No account needed. Only the route's setter sees your answers.") +
+       "</p>\n";
+  b += "<h2>How was it?</h2>\n<p class=\"msg\">" + E(in.name) + ". Skip any question.</p>\n";
+  for (size_t i = 0; i < in.items.size(); ++i) {
+    std::optional<int> cur;
+    if (mine && i < page.mine->answers.size()) cur = page.mine->answers[i];
+    b += LikertItem(in, i, "q" + std::to_string(i), cur);
+  }
+  std::string example = page.grade.discipline == grades::Discipline::kBouldering ? "V4" : "5.10b";
+  b += "<label class=\"field\">Grade it felt (" +
+       E(Scale(page.grade).empty() ? "any scale" : Scale(page.grade) + ", any scale") +
+       ")<input type=\"text\" id=\"felt-grade\" autocomplete=\"off\" placeholder=\"" + example +
+       "\" maxlength=\"20\" value=\"" + E(mine ? page.mine->felt_grade : "") + "\"></label>\n";
+  b += "<label class=\"field\">Anything else?<textarea id=\"comment\" rows=\"3\" maxlength=\"" +
+       std::to_string(app::kMaxCommentBytes) + "\">" + E(mine ? page.mine->comment : "") +
+       "</textarea></label>\n";
+  b += "<button type=\"submit\" id=\"feedback-submit\">" +
+       std::string(mine ? "Save changes" : "Send") + "</button>\n";
+  b += "<p class=\"msg\" id=\"feedback-msg\" role=\"status\"></p>\n</form>\n";
+  return PageLayout(v, r.name + " · feedback", b, "climber");
+}
+
+std::string SetterFeedbackHtml(const PageViewer& v, const app::SetterView& view,
+                               int min_votes_shown) {
+  const store::RouteRecord& r = view.route;
+  std::string b = kAssets;
+  b += "<h1>" + E(r.name) + " · climbers' answers</h1>\n";
+  b += "<p><a href=\"/r/" + Id(r.id) + "\">Feedback page</a> (the route card's QR code)</p>\n";
+  b += GradeBlock(view.grade, min_votes_shown);
+  b += "<dl class=\"consensus\"><dt>Responses</dt><dd id=\"responses\">" +
+       std::to_string(view.responses) + "</dd><dt>Answering " + E(view.instrument.name) +
+       "</dt><dd id=\"answered\">" + std::to_string(view.answered) + "</dd>";
+  if (view.other_instrument > 0) {
+    b += "<dt>Earlier questionnaire</dt><dd>" + std::to_string(view.other_instrument) +
+         " (left out)</dd>";
+  }
+  b += "<dt>Median summed scale</dt><dd id=\"median-sum\" data-v=\"" +
+       FormatDouble(view.median_sum) + "\">" + Round(view.median_sum, 1) + "</dd>";
+  b += "<dt>Mean % positive</dt><dd id=\"percent-positive\">" +
+       Round(view.mean_percent_positive, 1) + "</dd></dl>\n";
+  if (!view.distribution.empty()) {
+    int most = 1;
+    for (const app::FeltBand& f : view.distribution) most = std::max(most, f.votes);
+    b += "<h2>Felt grades</h2>\n<table class=\"dist\" id=\"felt-distribution\">\n";
+    for (const app::FeltBand& f : view.distribution) {
+      int width = 100 * f.votes / most;
+      b += "<tr" + std::string(f.setter ? " class=\"setter\"" : "") + "><th>" + E(f.name) +
+           (f.setter ? " <span class=\"tag\">setter</span>" : "") + "</th><td class=\"n\">" +
+           std::to_string(f.votes) +
+           "</td><td class=\"bar\"><span style=\"width:" + std::to_string(width) +
+           "%\"></span></td></tr>\n";
+    }
+    b += "</table>\n";
+  }
+  if (!view.item_means.empty()) {
+    b += "<h2>Questions</h2>\n<table class=\"items\"><tr><th>Item</th><th>Mean (keyed)</th></tr>\n";
+    for (size_t i = 0; i < view.item_means.size(); ++i) {
+      const std::string& text =
+          i < view.instrument.items.size() ? view.instrument.items[i].text : "";
+      b += "<tr><td>" + E(view.item_means[i].first) + ". " + E(text) + "</td><td class=\"n\">" +
+           Round(view.item_means[i].second, 2) + "</td></tr>\n";
+    }
+    b += "</table>\n";
+  }
+  b += "<h2>Comments</h2>\n<ul class=\"comments\" id=\"comments\">\n";
+  for (const app::FeedbackComment& c : view.comments) {
+    b += "<li><p>" + E(c.text) + "</p><small>" + E(c.date) +
+         (c.felt_grade.empty() ? "" : " · felt " + E(c.felt_grade)) + "</small></li>\n";
+  }
+  if (view.comments.empty()) b += "<li class=\"msg\">No comments yet.</li>\n";
+  b += "</ul>\n";
+  return PageLayout(v, r.name + " · climbers' answers", b, "climber");
+}
+
+std::string DriftPageHtml(const PageViewer& v, const app::DriftReport& report) {
+  std::string b = kAssets;
+  b += "<h1>Your grades and the climbers'</h1>\n";
+  b += "<p id=\"drift-summary\">" + std::to_string(report.compared) + " routes compared, " +
+       std::to_string(report.flagged) + " flagged";
+  if (std::isfinite(report.mean_bands)) {
+    b += "; on average climbers feel your routes " + Round(std::abs(report.mean_bands), 2) +
+         " bands " + (report.mean_bands >= 0 ? "harder" : "easier") + " than you grade them";
+  }
+  b += ".</p>\n<table class=\"drift\"><tr><th>Route</th><th>Yours</th><th>Climbers</th>"
+       "<th>Votes</th><th>Drift</th></tr>\n";
+  for (const app::RouteDrift& d : report.routes) {
+    const app::GradeSummary& g = d.grade;
+    b += "<tr" + std::string(g.drift.flagged ? " class=\"flagged\"" : "") + "><td><a href=\"/r/" +
+         Id(d.route_id) + "/responses\">" + E(d.name) + "</a></td><td>" + E(g.setter_grade) +
+         "</td><td>" + E(g.median_grade) + "</td><td class=\"n\">" + std::to_string(g.votes) +
+         "</td><td>" +
+         (g.setter_value ? (std::to_string(g.drift.bands) + (g.drift.flagged ? " ⚑" : ""))
+                         : std::string("–")) +
+         "</td></tr>\n";
+  }
+  b += "</table>\n";
+  return PageLayout(v, "Grade drift", b, "climber");
+}
+
+std::string StudiesPageHtml(const PageViewer& v, const std::vector<store::StudyRecord>& studies) {
+  std::string b = kAssets;
+  b += "<h1>Studies</h1>\n";
+  if (!v.logged_in) {
+    b += "<p><a href=\"/login\">Log in</a> to create and read your studies.</p>\n";
+    return PageLayout(v, "Studies", b, "climber");
+  }
+  b += "<p><a href=\"/studies/new\" id=\"new-study\">New study</a></p>\n";
+  b += "<table class=\"studies\" id=\"studies\"><tr><th>Study</th><th>Routes</th>"
+       "<th>Responses</th><th>State</th></tr>\n";
+  for (const store::StudyRecord& s : studies) {
+    b += "<tr><td><a href=\"/studies/" + Id(s.id) + "\">" + E(s.name) +
+         "</a></td><td class=\"n\">" + std::to_string(s.routes.size()) + "</td><td class=\"n\">" +
+         std::to_string(s.responses) + "</td><td>" + (s.is_open ? "open" : "closed") +
+         "</td></tr>\n";
+  }
+  b += "</table>\n";
+  return PageLayout(v, "Studies", b, "climber");
+}
+
+std::string StudyEditorHtml(const PageViewer& v, const std::vector<store::RouteRecord>& routes,
+                            const std::optional<store::StudyRecord>& study) {
+  std::string b = kAssets;
+  b += std::string("<h1>") + (study ? "Edit study" : "New study") + "</h1>\n";
+  if (!v.logged_in) {
+    b += "<p><a href=\"/login\">Log in</a> to create a study.</p>\n";
+    return PageLayout(v, "Study", b, "climber");
+  }
+  const bool frozen = study && study->responses > 0;
+  b += "<form id=\"study-form\" class=\"climber-form\" data-id=\"" +
+       (study ? Id(study->id) : std::string()) + "\">\n";
+  b += "<label class=\"field\">Name<input type=\"text\" id=\"study-name\" maxlength=\"" +
+       std::to_string(app::kMaxStudyNameBytes) + "\" value=\"" + E(study ? study->name : "") +
+       "\"></label>\n";
+  if (frozen) {
+    b += "<p class=\"msg\">The study has responses: only its name and whether it is open can "
+         "change.</p>\n";
+  } else {
+    b += "<fieldset><legend>Routes, in the order climbers see them (labels 1, 2, …): tick them "
+         "in that order</legend>\n<ol id=\"study-order\" class=\"msg\"></ol>\n"
+         "<div class=\"route-picks\">\n";
+    std::map<int64_t, int> chosen;
+    if (study) {
+      for (const store::StudyRoute& sr : study->routes) {
+        if (sr.route_id) chosen[*sr.route_id] = sr.position;
+      }
+    }
+    for (const store::RouteRecord& r : routes) {
+      auto it = chosen.find(r.id);
+      b += "<label class=\"check\"><input type=\"checkbox\" class=\"study-route\" value=\"" +
+           Id(r.id) + "\"" +
+           (it != chosen.end() ? " checked data-pos=\"" + std::to_string(it->second) + "\"" : "") +
+           "> " + E(r.name) + (r.is_variation ? " <span class=\"tag\">variation</span>" : "") +
+           " <small>" + E(r.grade) + "</small></label>\n";
+    }
+    b += "</div></fieldset>\n";
+    b += "<fieldset><legend>Questionnaire</legend>\n"
+         "<label class=\"check\"><input type=\"radio\" name=\"instrument\" value=\"brc\" "
+         "checked> The paper's 14 items (BRC study)</label>\n"
+         "<label class=\"check\"><input type=\"radio\" name=\"instrument\" value=\"pilot\"> The "
+         "paper's 5-item pilot</label>\n"
+         "<label class=\"check\"><input type=\"radio\" name=\"instrument\" value=\"file\"> A "
+         "file (docs/studies.md)</label>\n"
+         "<input type=\"file\" id=\"instrument-file\" accept=\".json,application/json\">\n";
+    if (study) {
+      b += "<p class=\"msg\">Leave “" + std::string("keep") +
+           "” to keep the current questionnaire.</p><label class=\"check\"><input "
+           "type=\"radio\" name=\"instrument\" value=\"keep\" checked> keep</label>\n";
+    }
+    b += "</fieldset>\n<fieldset><legend>Also ask</legend>\n";
+    b += Checkbox("ask-demographics", "Demographics (the paper's table 6)",
+                  !study || study->demographics);
+    b += Checkbox("ask-rank", "Rank the routes", !study || study->ask_rank);
+    b += Checkbox("ask-order", "The order they were climbed in", !study || study->ask_order);
+    b += "</fieldset>\n";
+  }
+  if (study) b += Checkbox("study-open", "Open for responses", study->is_open);
+  b += "<button type=\"submit\" id=\"study-save\">" + std::string(study ? "Save" : "Create study") +
+       "</button>\n"
+       "<pre class=\"msg\" id=\"study-msg\" role=\"status\"></pre>\n</form>\n";
+  return PageLayout(v, study ? "Edit study" : "New study", b, "climber");
+}
+
+std::string StudyFormHtml(const PageViewer& v, const app::StudyForm& f) {
+  std::string b = kAssets;
+  b += "<h1>" + E(f.name) + "</h1>\n";
+  if (!f.open) {
+    b += "<p class=\"error\" id=\"study-closed\">This study is closed.</p>\n";
+    return PageLayout(v, f.name, b, "climber");
+  }
+  if (f.answered) {
+    b += "<p class=\"msg ok\" id=\"study-answered\">You have answered this study. Thank "
+         "you!</p>\n";
+    return PageLayout(v, f.name, b, "climber");
+  }
+  const studies::Instrument& in = f.instrument;
+  b += "<form id=\"study-response\" class=\"climber-form\" data-id=\"" + Id(f.id) +
+       "\" data-routes=\"" + std::to_string(f.routes) + "\" data-items=\"" +
+       std::to_string(in.items.size()) + "\">\n";
+  b += "<p class=\"msg\">No account needed; you answer once. Skip a route you did not "
+       "climb.</p>\n";
+  for (int k = 1; k <= f.routes; ++k) {
+    b += "<section class=\"study-route\" data-label=\"" + std::to_string(k) + "\"><h2>Route " +
+         std::to_string(k) + "</h2>\n";
+    for (size_t i = 0; i < in.items.size(); ++i) {
+      b += LikertItem(in, i, "r" + std::to_string(k) + "q" + std::to_string(i), std::nullopt);
+    }
+    auto select = [&](const char* cls, const char* label) {
+      std::string h = std::string("<label class=\"field\">") + label + "<select class=\"" + cls +
+                      "\"><option value=\"\">–</option>";
+      for (int j = 1; j <= f.routes; ++j) {
+        h += "<option>" + std::to_string(j) + "</option>";
+      }
+      return h + "</select></label>\n";
+    };
+    if (f.ask_rank) b += select("rank", "Your rank of this route (1 = best)");
+    if (f.ask_order) b += select("order", "Climbed as number (1 = first)");
+    b += "</section>\n";
+  }
+  if (f.demographics) {
+    b += "<section class=\"demographics\"><h2>About you</h2>\n";
+    for (const studies::Question& q : studies::BrcDemographics()) {
+      auto input = [&](const std::string& key, const std::string& label, const char* type) {
+        return "<label class=\"field\">" + E(label) + "<input type=\"" + type +
+               "\" class=\"demo\" data-key=\"" + E(key) + "\"" +
+               (std::string(type) == "number" ? " min=\"0\" max=\"100\" step=\"any\"" : "") +
+               " maxlength=\"" + std::to_string(app::kMaxDemographicBytes) + "\"></label>\n";
+      };
+      switch (q.kind) {
+        case studies::AnswerKind::kNumber:
+          b += input(q.id, q.text, "number");
+          break;
+        case studies::AnswerKind::kGrade:
+        case studies::AnswerKind::kText:
+          b += input(q.id, q.text, "text");
+          break;
+        case studies::AnswerKind::kGradeRange:
+          b += input(q.id + ".low", q.text + " — from", "text");
+          b += input(q.id + ".high", q.text + " — to", "text");
+          break;
+        default:
+          break;  // rank and order are asked per route above
+      }
+    }
+    b += "</section>\n";
+  }
+  b += "<button type=\"submit\" id=\"study-submit\">Send my answers</button>\n"
+       "<p class=\"msg\" id=\"study-msg\" role=\"status\"></p>\n</form>\n";
+  return PageLayout(v, f.name, b, "climber");
+}
+
+std::string StudyResultsHtml(const PageViewer& v, const app::StudyResults& res,
+                             const std::string& drop, bool censor, const std::string& error) {
+  const store::StudyRecord& st = res.study;
+  const std::string sid = Id(st.id);
+  std::string b = kAssets;
+  b += "<h1 id=\"study-title\">" + E(st.name) + "</h1>\n";
+  b += "<p>" + std::string(st.is_open ? "Open" : "Closed") + " · " + std::to_string(st.responses) +
+       " responses · climbers answer at <a id=\"study-link\" "
+       "href=\"/s/" +
+       sid + "\">/s/" + sid + "</a> · <a href=\"/studies/" + sid +
+       "/edit\" id=\"edit-study\">Edit</a></p>\n";
+  b += "<table class=\"labels\"><tr><th>Label</th><th>Route</th></tr>\n";
+  for (const store::StudyRoute& sr : st.routes) {
+    b += "<tr><td class=\"n\">" + std::to_string(sr.position) + "</td><td>" +
+         (sr.route_id ? "<a href=\"/r/" + Id(*sr.route_id) + "\">" + E(sr.name) + "</a>"
+                      : E(sr.name) + " (deleted)") +
+         "</td></tr>\n";
+  }
+  b += "</table>\n";
+  b += "<p class=\"exports\">Export: <a id=\"export-csv\" href=\"/studies/" + sid +
+       "/responses.csv\">responses.csv</a> · <a id=\"export-instrument\" href=\"/studies/" + sid +
+       "/instrument.json\">instrument.json</a> · <a href=\"/studies/" + sid +
+       "/demographics.csv\">demographics.csv</a> · <a id=\"export-analysis\" href=\"/studies/" +
+       sid + "/analysis.json" +
+       (censor         ? "?censor=1"
+        : drop.empty() ? ""
+                       : "?drop=" + E(drop)) +
+       "\">analysis.json</a></p>\n";
+  b += "<pre class=\"cli\">strangebeta study analyze --instrument instrument.json --responses "
+       "responses.csv" +
+       std::string(censor         ? " --censor"
+                   : drop.empty() ? ""
+                                  : " --drop " + E(drop)) +
+       " --format json</pre>\n";
+  b += "<form method=\"get\" class=\"censor\" action=\"/studies/" + sid +
+       "\"><label class=\"field\">Drop items<input type=\"text\" name=\"drop\" id=\"drop\" "
+       "placeholder=\"q1,q9\" value=\"" +
+       E(drop) +
+       "\"></label><label class=\"check\"><input "
+       "type=\"checkbox\" name=\"censor\" value=\"1\" id=\"censor\"" +
+       (censor ? " checked" : "") +
+       "> the paper's rule (drop items that raise α)</label>"
+       "<button type=\"submit\" id=\"reanalyse\">Analyse</button></form>\n";
+  if (!error.empty()) b += "<p class=\"error\" id=\"analysis-error\">" + E(error) + "</p>\n";
+  if (!res.analysis) {
+    b += "<p class=\"msg\" id=\"no-responses\">No responses yet.</p>\n";
+    return PageLayout(v, st.name, b, "climber results");
+  }
+  const studies::Analysis& a = *res.analysis;
+  b += "<h2>Reliability</h2>\n<table class=\"stats\" id=\"alpha\"><tr><th>Rows</th>"
+       "<th>Participants</th><th>Complete</th><th>α</th><th>α censored</th><th>Censoring</th>"
+       "</tr><tr><td class=\"n\">" +
+       std::to_string(a.rows) + "</td><td class=\"n\">" + std::to_string(a.participants) +
+       "</td><td class=\"n\">" + std::to_string(a.complete) + "</td>" + Num(a.alpha, "/alpha") +
+       Num(a.alpha_censored, "/alpha_censored") + "<td>" + E(a.censoring) +
+       (a.dropped.empty() ? "" : ": " + E(Commas(a.dropped))) + "</td></tr></table>\n";
+  b += "<h2>Items</h2>\n<div class=\"scroll\"><table class=\"stats\" id=\"items\"><tr><th>Item"
+       "</th><th>Mean</th><th>α if deleted</th><th>τ item–total</th><th>p</th></tr>\n";
+  for (size_t i = 0; i < a.items.size(); ++i) {
+    const studies::ItemStats& it = a.items[i];
+    const std::string k = "/items/" + std::to_string(i) + "/";
+    b += "<tr" + std::string(it.dropped ? " class=\"dropped\"" : "") + "><th title=\"" +
+         E(it.text) + "\">" + E(it.id) + (it.negative ? "<sup>−</sup>" : "") + "</th>" +
+         Num(it.mean, k + "mean") + Num(it.alpha_if_deleted, k + "alpha_if_deleted") +
+         Num(it.tau_item_total, k + "tau_item_total") +
+         Num(it.tau_item_total_p, k + "tau_item_total_p") + "</tr>\n";
+  }
+  b += "</table></div>\n";
+  b += "<h2>Routes</h2>\n<div class=\"scroll\"><table class=\"stats\" id=\"routes\"><tr><th>"
+       "Route</th><th>n</th><th>Median sum</th><th>Mean % positive</th><th>Median rank</th>"
+       "</tr>\n";
+  for (size_t i = 0; i < a.routes.size(); ++i) {
+    const studies::RouteStats& r = a.routes[i];
+    const std::string k = "/routes/" + std::to_string(i) + "/";
+    b += "<tr><th>" + E(r.route) + "</th><td class=\"n\">" + std::to_string(r.n) + "</td>" +
+         Num(r.median_sum, k + "median_sum") +
+         Num(r.mean_percent_positive, k + "mean_percent_positive") +
+         Num(r.median_rank, k + "median_rank") + "</tr>\n";
+  }
+  b += "</table></div>\n";
+  b += "<figure class=\"boxplot\"><img id=\"boxplot\" src=\"/studies/" + sid + "/boxplot.svg" +
+       (censor         ? "?censor=1"
+        : drop.empty() ? ""
+                       : "?drop=" + E(drop)) +
+       "\" alt=\"Box plots of the summed scale per route\"><figcaption>Summed scale per route"
+       "</figcaption></figure>\n";
+  b += "<h2>Pairs of routes</h2>\n<div class=\"scroll\"><table class=\"stats\" id=\"pairs\"><tr>"
+       "<th>Pair</th><th>Wilcoxon p</th><th>Welch t</th><th>Welch p</th></tr>\n";
+  for (size_t i = 0; i < a.pairs.size(); ++i) {
+    const studies::PairStats& p = a.pairs[i];
+    const std::string k = "/pairs/" + std::to_string(i) + "/";
+    b += "<tr><th>" + E(p.a) + "–" + E(p.b) + "</th>" + Num(p.wilcoxon.p, k + "wilcoxon_p") +
+         Num(p.welch.t, k + "welch_t") + Num(p.welch.p, k + "welch_p") + "</tr>\n";
+  }
+  b += "</table></div>\n";
+  b += "<h2>Rankings</h2>\n<table class=\"stats\" id=\"kendall-w\"><tr><th>Kendall's W</th>"
+       "<th>p</th><th>Raters</th></tr><tr>" +
+       Num(a.kendall_w.w, "/kendall_w/w") + Num(a.kendall_w.p, "/kendall_w/p") +
+       "<td class=\"n\">" + std::to_string(a.kendall_w.raters) + "</td></tr></table>\n";
+  b += "<h2>Order and ability</h2>\n<div class=\"scroll\"><table class=\"stats\" "
+       "id=\"correlations\"><tr><th>x</th><th>y</th><th>n</th><th>τ</th><th>p</th><th>r</th>"
+       "<th>p</th></tr>\n";
+  for (size_t i = 0; i < a.correlations.size(); ++i) {
+    const studies::Correlation& c = a.correlations[i];
+    const std::string k = "/correlations/" + std::to_string(i) + "/";
+    b += "<tr><th>" + E(c.x) + "</th><td>" + E(c.y) + "</td><td class=\"n\">" +
+         std::to_string(c.n) + "</td>" + Num(c.tau, k + "tau") + Num(c.tau_p, k + "tau_p") +
+         Num(c.r, k + "r") + Num(c.r_p, k + "r_p") + "</tr>\n";
+  }
+  b += "</table></div>\n";
+  return PageLayout(v, st.name, b, "climber results");
+}
+
+}  // namespace sb::web

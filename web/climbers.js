@@ -1,0 +1,147 @@
+// The climbers' pages: route feedback (/r/{id}), study responses (/s/{id})
+// and the study editor (/studies/new, /studies/{id}/edit). Every form is
+// sent as JSON (the server refuses other bodies); docs/web.md lists the API.
+'use strict';
+(function () {
+  const csrf = () => {
+    const m = document.querySelector('meta[name="csrf-token"]');
+    return m ? m.content : '';
+  };
+
+  async function send(method, url, body) {
+    const headers = { 'Content-Type': 'application/json' };
+    if (csrf()) headers['X-CSRF-Token'] = csrf();
+    const res = await fetch(url, { method, headers, body: JSON.stringify(body),
+                                   credentials: 'same-origin' });
+    let data = {};
+    try { data = await res.json(); } catch (e) { /* empty body */ }
+    return { ok: res.ok, status: res.status, data };
+  }
+
+  function say(el, text, ok) {
+    el.textContent = text;
+    el.className = 'msg ' + (ok ? 'ok' : 'bad');
+  }
+
+  // The checked value of a radio group as an integer, or null.
+  function radio(form, name) {
+    const el = form.querySelector('input[name="' + name + '"]:checked');
+    return el ? parseInt(el.value, 10) : null;
+  }
+
+  function intOrNull(v) { return v === '' || v == null ? null : parseInt(v, 10); }
+
+  // ---- /r/{id} ---------------------------------------------------------------
+  const fb = document.getElementById('feedback-form');
+  if (fb) {
+    fb.addEventListener('submit', async (ev) => {
+      ev.preventDefault();
+      const n = parseInt(fb.dataset.items, 10);
+      const answers = [];
+      for (let i = 0; i < n; i++) answers.push(radio(fb, 'q' + i));
+      const msg = document.getElementById('feedback-msg');
+      const r = await send('POST', '/api/r/' + fb.dataset.route + '/feedback', {
+        answers,
+        felt_grade: document.getElementById('felt-grade').value,
+        comment: document.getElementById('comment').value,
+      });
+      if (r.ok) {
+        say(msg, 'Thank you! Saved. You can change your answers any time.', true);
+        document.getElementById('feedback-submit').textContent = 'Save changes';
+      } else {
+        say(msg, r.data.error || ('error ' + r.status), false);
+      }
+    });
+  }
+
+  // ---- /s/{id} ---------------------------------------------------------------
+  const sr = document.getElementById('study-response');
+  if (sr) {
+    sr.addEventListener('submit', async (ev) => {
+      ev.preventDefault();
+      const n = parseInt(sr.dataset.items, 10);
+      const routes = [];
+      for (const sec of sr.querySelectorAll('section.study-route')) {
+        const k = sec.dataset.label;
+        const answers = [];
+        for (let i = 0; i < n; i++) answers.push(radio(sec, 'r' + k + 'q' + i));
+        const rank = sec.querySelector('select.rank');
+        const order = sec.querySelector('select.order');
+        routes.push({ answers, rank: rank ? intOrNull(rank.value) : null,
+                      order: order ? intOrNull(order.value) : null });
+      }
+      const demographics = {};
+      for (const el of sr.querySelectorAll('input.demo')) {
+        if (el.value.trim() !== '') demographics[el.dataset.key] = el.value.trim();
+      }
+      const msg = document.getElementById('study-msg');
+      const r = await send('POST', '/api/s/' + sr.dataset.id + '/responses',
+                           { routes, demographics });
+      if (r.ok) {
+        say(msg, 'Thank you! Your answers are saved.', true);
+        document.getElementById('study-submit').disabled = true;
+      } else {
+        say(msg, r.data.error || ('error ' + r.status), false);
+      }
+    });
+  }
+
+  // ---- /studies/new and /studies/{id}/edit ------------------------------------
+  const sf = document.getElementById('study-form');
+  if (sf) {
+    // Routes are labelled in the order they are ticked.
+    let order = [...sf.querySelectorAll('input.study-route[data-pos]')]
+      .sort((a, b) => a.dataset.pos - b.dataset.pos).map((el) => el.value);
+    const list = document.getElementById('study-order');
+    const names = {};
+    for (const el of sf.querySelectorAll('input.study-route')) {
+      names[el.value] = el.parentElement.textContent.trim();
+    }
+    const show = () => {
+      if (!list) return;
+      list.textContent = '';
+      order.forEach((id) => {
+        const li = document.createElement('li');
+        li.textContent = names[id];
+        list.appendChild(li);
+      });
+    };
+    for (const el of sf.querySelectorAll('input.study-route')) {
+      el.addEventListener('change', () => {
+        order = order.filter((id) => id !== el.value);
+        if (el.checked) order.push(el.value);
+        show();
+      });
+    }
+    show();
+    sf.addEventListener('submit', async (ev) => {
+      ev.preventDefault();
+      const msg = document.getElementById('study-msg');
+      const body = { name: document.getElementById('study-name').value };
+      if (list) {
+        body.routes = order.map((id) => parseInt(id, 10));
+        const choice = sf.querySelector('input[name="instrument"]:checked').value;
+        if (choice === 'file') {
+          const f = document.getElementById('instrument-file').files[0];
+          if (!f) { say(msg, 'instrument: choose a file', false); return; }
+          body.instrument = { file: f.name, json: await f.text() };
+        } else if (choice !== 'keep') {
+          body.instrument = choice;
+        }
+        body.demographics = document.getElementById('ask-demographics').checked;
+        body.rank = document.getElementById('ask-rank').checked;
+        body.order = document.getElementById('ask-order').checked;
+      }
+      const open = document.getElementById('study-open');
+      if (open) body.open = open.checked;
+      const id = sf.dataset.id;
+      const r = id ? await send('PUT', '/api/studies/' + id, body)
+                   : await send('POST', '/api/studies', body);
+      if (r.ok) {
+        window.location.href = r.data.url;
+      } else {
+        say(msg, r.data.error || ('error ' + r.status), false);
+      }
+    });
+  }
+})();
