@@ -13,7 +13,8 @@ cd "$(dirname "$0")/.."
 root=$(pwd)
 build=${FUZZ_BUILD:-build-fuzz}
 jobs=${JOBS:-$(nproc)}
-formats=(${FUZZ_ONLY:-crdl site_csv grammar model map vary_json})
+formats=(${FUZZ_ONLY:-crdl site_csv grammar model map vary_json graph tokens grade_model
+  difficulty_model study})
 
 if ! command -v clang++ >/dev/null; then
   echo "fuzz: clang++ not found (scripts/setup.sh installs clang and libclang-rt-dev)" >&2
@@ -43,6 +44,14 @@ seeds() {  # format dir
   case $f in
     crdl) cp data/examples/*.crdl "$dir"/ ;;
     model) cp data/models/*.sbm "$dir"/ ;;
+    graph) cp data/models/default.sbg "$dir"/ ;;
+    grade_model) cp data/models/grades.sbg "$dir"/ ;;
+    difficulty_model) cp data/models/difficulty.sbd "$dir"/ ;;
+    study)  # first byte: 1 = instrument JSON, 0 = responses CSV (pilot)
+      for i in data/instruments/*.json; do
+        { printf '\x01'; cat "$i"; } >"$dir/$(basename "$i")"
+      done
+      ;;
     grammar)
       {
         cat data/grammar/climbing.gra

@@ -99,6 +99,12 @@ bool LanguageAvailable() { return ThreadLanguage() != nullptr; }
 
 EditorFeedback ReadForEditor(std::string_view crdl) {
   EditorFeedback out;
+  if (crdl.size() > kMaxEditorBytes ||
+      std::count(crdl.begin(), crdl.end(), '\n') >= kMaxEditorLines) {
+    out.error_reason = "too long for live feedback: at most " + std::to_string(kMaxEditorBytes) +
+                       " bytes and " + std::to_string(kMaxEditorLines) + " lines";
+    return out;
+  }
   Result<Route> parsed = ParseCrdl(crdl, "route.crdl");
   out.ok = parsed.ok();
   if (!parsed.ok()) {
@@ -124,7 +130,7 @@ EditorFeedback ReadForEditor(std::string_view crdl) {
       l.move = std::string(c.text);
       l.crux = c.crux;
       ++out.moves;
-      if (lang) {
+      if (lang && c.text.size() <= kMaxEditorMoveBytes) {
         l.parsed = lang->Read(c.text).parse.ok();
         l.reading = lang->Explain(c.text);
         const language::Grammar& g = lang->grammar();

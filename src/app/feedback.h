@@ -4,6 +4,7 @@
 #ifndef SB_APP_FEEDBACK_H_
 #define SB_APP_FEEDBACK_H_
 
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -39,7 +40,17 @@ struct EditorFeedback {
   int moves = 0;
 };
 
-// Never fails, whatever the bytes. Thread-safe.
+// Live feedback reads at most this much text: a route of 1,000 moves is
+// far longer than any wall, and the reply (one object per line with the
+// grammar's reading) stays under a few MiB however the text is built. Text
+// over either limit gets ok = false, no lines and a reason, before any work.
+inline constexpr size_t kMaxEditorBytes = 64 * 1024;
+inline constexpr int kMaxEditorLines = 1000;
+// Moves longer than this are not given to the grammar (no real move is;
+// the grammar's work grows with the words of a line).
+inline constexpr size_t kMaxEditorMoveBytes = 200;
+
+// Never fails, whatever the bytes; bounded by the limits above. Thread-safe.
 EditorFeedback ReadForEditor(std::string_view crdl);
 
 // For each move of `route`: how the grammar reads it ("" when it does not

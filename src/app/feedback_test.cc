@@ -64,6 +64,22 @@ TEST(FeedbackTest, MoveReadings) {
   EXPECT_TRUE(readings[1].empty());
 }
 
+TEST(EditorFeedbackLimits, TextOverTheLimitsIsRefusedBeforeAnyWork) {
+  std::string lines = "name: Long\n---\n";
+  while (lines.size() <= kMaxEditorBytes) lines += "R jug\n";
+  EditorFeedback f = ReadForEditor(lines);
+  EXPECT_FALSE(f.ok);
+  EXPECT_TRUE(f.lines.empty());
+  EXPECT_NE(f.error_reason.find("too long for live feedback"), std::string::npos);
+  std::string many(kMaxEditorLines, '\n');
+  EXPECT_TRUE(ReadForEditor(many).lines.empty());
+  std::string fits = "name: Fits\n---\n";
+  for (int i = 0; i < kMaxEditorLines - 3; ++i) fits += "R jug\n";
+  EditorFeedback g = ReadForEditor(fits);
+  EXPECT_TRUE(g.ok) << g.error_reason;
+  EXPECT_EQ(g.moves, kMaxEditorLines - 3);
+}
+
 }  // namespace
 }  // namespace sb::app
 

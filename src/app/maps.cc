@@ -7,7 +7,17 @@
 
 namespace sb::app {
 
-Maps::Maps(store::Store* store, const Options& options) : store_(store), options_(options) {}
+Maps::Maps(store::Store* store, const Options& options)
+    : store_(store), options_(options), budget_(options.budget) {}
+
+double Maps::SliceCost(const MapQuery& q, int length) {
+  // Per IC: the transient steps, ~20 steps per move of trajectory, and the
+  // mapping's comparison of the two trajectories, which grows with n^2
+  // (measured: grid 61 with n = 500, 1000, 2000 took 0.38, 1.1, 4.3 s).
+  double n = length;
+  return static_cast<double>(q.grid) * q.grid *
+         (static_cast<double>(q.params.skip) + 20.0 * n + n * n / 12.0);
+}
 
 Result<int> Maps::Length(const Viewer& v, const MapQuery& q) {
   const Limits& lim = options_.limits;
@@ -31,7 +41,8 @@ Result<int> Maps::Length(const Viewer& v, const MapQuery& q) {
   return n;
 }
 
-Result<std::shared_ptr<const MapSlice>> Maps::Slice(const Viewer& v, const MapQuery& q) {
+Result<std::shared_ptr<const MapSlice>> Maps::Slice(const Viewer& v, const MapQuery& q,
+                                                    int* retry_after_seconds) {
   const Limits& lim = options_.limits;
   if (q.grid < 3 || q.grid > lim.max_map_grid) {
     return Status::InvalidInput("grid: expected 3.." + std::to_string(lim.max_map_grid));
@@ -59,6 +70,9 @@ Result<std::shared_ptr<const MapSlice>> Maps::Slice(const Viewer& v, const MapQu
     auto it = cache_.find(key);
     if (it != cache_.end()) return it->second;
   }
+  // Checked before the work: a cached slice costs nothing.
+  SB_ASSIGN_OR_RETURN(WorkBudget::Slot slot,
+                      budget_.Admit(v, SliceCost(q, length), retry_after_seconds));
   landscape::ScanParams sp = landscape::ScanParams::FromVary(q.params, length);
   SB_ASSIGN_OR_RETURN(landscape::Plane plane, landscape::ParsePlane(q.plane));
   landscape::Region region = landscape::Region::Around(q.params.ref_ic, q.grid, q.spacing, plane);
@@ -97,12 +111,13 @@ Result<std::shared_ptr<const MapSlice>> Maps::Slice(const Viewer& v, const MapQu
 }
 
 Result<std::vector<landscape::Candidate>> Maps::Pick(const Viewer& v, const MapQuery& q,
-                                                     const PickQuery& pick) {
+                                                     const PickQuery& pick,
+                                                     int* retry_after_seconds) {
   if (pick.count < 1 || pick.count > options_.limits.max_pick_count) {
     return Status::InvalidInput("count: must be 1.." +
                                 std::to_string(options_.limits.max_pick_count));
   }
-  SB_ASSIGN_OR_RETURN(std::shared_ptr<const MapSlice> slice, Slice(v, q));
+  SB_ASSIGN_OR_RETURN(std::shared_ptr<const MapSlice> slice, Slice(v, q, retry_after_seconds));
   double n = slice->length;
   double effect = pick.effect.value_or(n / 2.0);
   if (!std::isfinite(effect) || effect < 0 || effect > n) {

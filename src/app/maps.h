@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "app/budget.h"
 #include "app/options.h"
 #include "base/status.h"
 #include "chaos/variation.h"
@@ -61,13 +62,21 @@ class Maps {
   Maps(store::Store* store, const Options& options);
 
   // Errors: kInvalidInput naming the field (grid, spacing, length, skip,
-  // plane, mapping, parameters; limits from Options), kNotFound "no route N".
-  Result<std::shared_ptr<const MapSlice>> Slice(const Viewer& v, const MapQuery& q);
+  // plane, mapping, parameters; limits from Options), kNotFound "no route N",
+  // kResourceExhausted when a slice not in the cache is over the work budget
+  // (cost grid^2 x (skip + 20 n + n^2/12); *retry_after_seconds says when to retry, 0 =
+  // never with these parameters).
+  Result<std::shared_ptr<const MapSlice>> Slice(const Viewer& v, const MapQuery& q,
+                                                int* retry_after_seconds = nullptr);
   // Up to `count` ICs of the slice whose effect and change are nearest the
   // targets, spread apart, best first. Errors as Slice, and for targets out
   // of 0..n or a count out of 1..max_pick_count.
   Result<std::vector<landscape::Candidate>> Pick(const Viewer& v, const MapQuery& q,
-                                                 const PickQuery& pick);
+                                                 const PickQuery& pick,
+                                                 int* retry_after_seconds = nullptr);
+
+  // The work units of computing slice `q` with `length` moves.
+  static double SliceCost(const MapQuery& q, int length);
 
  private:
   Result<int> Length(const Viewer& v, const MapQuery& q);
@@ -77,6 +86,7 @@ class Maps {
   std::mutex mu_;
   std::map<std::string, std::shared_ptr<const MapSlice>> cache_;
   std::deque<std::string> order_;
+  WorkBudget budget_;
 };
 
 }  // namespace sb::app

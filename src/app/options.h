@@ -58,9 +58,31 @@ struct LoginPolicy {
   int max_parallel_password_checks = 2;
 };
 
+// The work budget of costly requests (app/budget.h, docs/web.md "Work
+// budgets"). A cost unit is one RK4 step of the Lorenz system, ~3 ns of a
+// core (measured on the loaded 2-core reference machine: a transient of
+// 3721 x 10,000 steps took 0.13 s), so 1e9 units are about 3 s of a core.
+struct BudgetPolicy {
+  // Largest single request: ~1.5 s of a core anonymous, ~9 s signed in.
+  double anonymous_max_cost = 5e8;
+  double user_max_cost = 3e9;
+  // Cost per caller per minute (the budget refills continuously; a full
+  // budget also allows a burst of this much): ~4.5 s of a core per minute
+  // per address anonymous, ~30 s per user.
+  double anonymous_cost_per_minute = 1.5e9;
+  double user_cost_per_minute = 1e10;
+  // Costly jobs running at once in all (about the cores a server gives
+  // them), and at once per caller.
+  int max_parallel = 2;
+  int max_parallel_per_caller = 1;
+  // A job waits at most this long for a slot, then is refused.
+  int max_wait_seconds = 5;
+};
+
 struct Options {
   Limits limits;
   LoginPolicy login;
+  BudgetPolicy budget;
   int session_seconds = 30 * 24 * 3600;
   // Cheapest argon2id cost (tests only; never in production).
   bool fast_password_hashing = false;

@@ -43,8 +43,14 @@ int RunServe(const std::vector<std::string>& args) {
   app.add_flag("--no-seed", no_seed, "do not seed a fresh database");
   app.add_option("--static", static_dir, "directory of the web assets (default: bundled web/)");
   app.add_option("--threads", threads,
-                 "worker threads = concurrent connections (default max(32, 4 x cores))")
+                 "worker threads running requests (default 4 x cores, at least 8); open "
+                 "connections wait on the I/O threads, not on workers")
       ->check(CLI::Range(0, 256));
+  int per_address = web::TransportOptions{}.max_connections_per_address;
+  app.add_option("--max-connections-per-address", per_address,
+                 "open connections per client address; more get 503 (default 64; raise it "
+                 "when many users share one NAT address)")
+      ->check(CLI::Range(1, 100000));
   bool secure_cookie = false;
   app.add_flag("--secure-cookies", secure_cookie,
                "mark the session cookie Secure (when behind an HTTPS proxy)");
@@ -84,6 +90,7 @@ int RunServe(const std::vector<std::string>& args) {
   web::ServerOptions options;
   options.static_dir = static_dir;
   options.threads = threads;
+  options.transport.max_connections_per_address = per_address;
   options.access_log = log;
   options.secure_cookie = secure_cookie;
   options.base_url = base_url;

@@ -44,6 +44,12 @@ Result<std::vector<int64_t>> IdArray(const json& body, const char* field) {
   return out;
 }
 
+// An error of a budgeted service, with Retry-After when waiting helps.
+void BudgetError(Exchange& x, const Status& s, int retry_after) {
+  ApiError(x, s);
+  if (retry_after > 0) x.res.SetHeader("Retry-After", std::to_string(retry_after));
+}
+
 double Round3(double v) { return std::round(v * 1000.0) / 1000.0; }
 
 // The map query: routes (for n) or n, params (JSON) or preset, plane, grid,
@@ -146,8 +152,10 @@ void GetVariation(Exchange& x) {
 void GetLandscape(Exchange& x) {
   Result<app::MapQuery> q = MapQueryOf(x.req);
   if (!q.ok()) return ApiError(x, q.status());
-  Result<std::shared_ptr<const app::MapSlice>> slice = x.services.maps.Slice(x.caller.viewer, *q);
-  if (!slice.ok()) return ApiError(x, slice.status());
+  int retry_after = 0;
+  Result<std::shared_ptr<const app::MapSlice>> slice =
+      x.services.maps.Slice(x.caller.viewer, *q, &retry_after);
+  if (!slice.ok()) return BudgetError(x, slice.status(), retry_after);
   const app::MapSlice& s = **slice;
   json change = json::array();
   for (double c : s.change) change.push_back(Round3(c));
@@ -185,8 +193,10 @@ void GetPick(Exchange& x) {
   if (change) pick.change = *change;
   // Counts outside int range are refused by the service as out of range.
   if (count) pick.count = *count >= 1 && *count <= 1e6 ? static_cast<int>(*count) : 0;
-  Result<std::vector<landscape::Candidate>> c = x.services.maps.Pick(x.caller.viewer, *q, pick);
-  if (!c.ok()) return ApiError(x, c.status());
+  int retry_after = 0;
+  Result<std::vector<landscape::Candidate>> c =
+      x.services.maps.Pick(x.caller.viewer, *q, pick, &retry_after);
+  if (!c.ok()) return BudgetError(x, c.status(), retry_after);
   json out = json::array();
   for (const landscape::Candidate& k : *c) {
     out.push_back({{"ic", k.ic},

@@ -1,110 +1,445 @@
+// The HTTP transport on Boost.Beast/Asio (docs/web.md, "Transport limits").
+//
+// Each connection is a Session on its own strand: read the head (deadline,
+// size limit), check it, read the body (deadline, size limit), hand the
+// request to the worker pool, write the response (deadline), repeat while
+// kept alive. Only complete requests reach a worker.
 #include "web/http_transport.h"
 
-#include <httplib.h>
+#include <sys/resource.h>
 
+#include <algorithm>
+#include <atomic>
+#include <boost/asio.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
 #include <chrono>
+#include <condition_variable>
+#include <deque>
 #include <exception>
+#include <map>
+#include <mutex>
+#include <optional>
 #include <thread>
+#include <vector>
 
 #include "base/log.h"
 #include "base/text.h"
 
 namespace sb::web {
 
+namespace net = boost::asio;
+namespace beast = boost::beast;
+namespace http = boost::beast::http;
+using tcp = net::ip::tcp;
+
+namespace {
+
+// After refusing a request whose body was not read, the rest of it is read
+// and dropped (at most this much, for at most kLingerSeconds) before closing,
+// so the client sees the refusal rather than a connection reset.
+constexpr size_t kLingerBytes = 4 * 1024 * 1024;
+constexpr int kLingerSeconds = 2;
+
+// Beast's string_view (boost::string_view in Boost 1.74) as std::string_view.
+std::string_view Sv(beast::string_view s) { return std::string_view(s.data(), s.size()); }
+
+int HexValue(char c) {
+  if (c >= '0' && c <= '9') return c - '0';
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+  return -1;
+}
+
+// %XX decoding; '+' is a space in queries. Malformed escapes stay as they are.
+std::string DecodeUrl(std::string_view s, bool plus_is_space) {
+  std::string out;
+  out.reserve(s.size());
+  for (size_t i = 0; i < s.size(); ++i) {
+    char c = s[i];
+    if (c == '%' && i + 2 < s.size()) {
+      int hi = HexValue(s[i + 1]), lo = HexValue(s[i + 2]);
+      if (hi >= 0 && lo >= 0) {
+        out.push_back(static_cast<char>(hi * 16 + lo));
+        i += 2;
+        continue;
+      }
+    }
+    out.push_back(plus_is_space && c == '+' ? ' ' : c);
+  }
+  return out;
+}
+
+// Fills method, path and query of `r` from the request line.
+void ParseTarget(std::string_view target, Request* r) {
+  size_t q = target.find('?');
+  r->path = DecodeUrl(target.substr(0, q), false);
+  if (q == std::string_view::npos) return;
+  std::string_view query = target.substr(q + 1);
+  size_t fragment = query.find('#');
+  if (fragment != std::string_view::npos) query = query.substr(0, fragment);
+  for (std::string_view part : Split(query, '&')) {
+    if (part.empty()) continue;
+    size_t eq = part.find('=');
+    std::string key = DecodeUrl(part.substr(0, eq), true);
+    std::string value = eq == std::string_view::npos ? "" : DecodeUrl(part.substr(eq + 1), true);
+    r->query.emplace(std::move(key), std::move(value));
+  }
+}
+
+// A fixed pool of worker threads with a bounded queue.
+class WorkerPool {
+ public:
+  void Start(int threads, size_t max_queue) {
+    max_queue_ = max_queue;
+    for (int i = 0; i < threads; ++i) threads_.emplace_back([this] { Work(); });
+  }
+  // Queues `task`; false when the queue is full or the pool stopped.
+  bool Submit(std::function<void()> task) {
+    {
+      std::lock_guard<std::mutex> lock(mu_);
+      if (stopping_ || queue_.size() >= max_queue_) return false;
+      queue_.push_back(std::move(task));
+    }
+    cv_.notify_one();
+    return true;
+  }
+  // Finishes running tasks, drops queued ones, joins the threads.
+  void Stop() {
+    std::deque<std::function<void()>> dropped;
+    {
+      std::lock_guard<std::mutex> lock(mu_);
+      stopping_ = true;
+      dropped.swap(queue_);
+    }
+    cv_.notify_all();
+    for (std::thread& t : threads_) t.join();
+    threads_.clear();
+  }
+  ~WorkerPool() { Stop(); }
+
+ private:
+  void Work() {
+    for (;;) {
+      std::function<void()> task;
+      {
+        std::unique_lock<std::mutex> lock(mu_);
+        cv_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
+        if (stopping_) return;
+        task = std::move(queue_.front());
+        queue_.pop_front();
+      }
+      task();
+    }
+  }
+
+  std::mutex mu_;
+  std::condition_variable cv_;
+  std::deque<std::function<void()>> queue_;
+  std::vector<std::thread> threads_;
+  size_t max_queue_ = 0;
+  bool stopping_ = false;
+};
+
+}  // namespace
+
 struct HttpTransport::Impl {
   TransportOptions options;
   RequestHandler handler;
   ErrorHandler on_error;
-  httplib::Server http;
+
+  // Open connections per address (declared before the io_context: sessions
+  // destroyed with it still count themselves out).
+  std::mutex conn_mu;
+  std::map<std::string, int> conns_by_address;
+  int conns_total = 0;
+  int max_connections = 0;
+
+  net::io_context ioc;
+  tcp::acceptor acceptor{ioc};
+  net::steady_timer accept_retry{ioc};
+  WorkerPool pool;  // destroyed first: its tasks hold sessions
+  std::atomic<bool> running{false};
+  std::atomic<bool> stopping{false};
   bool bound = false;
 
-  static Request Convert(const httplib::Request& in) {
+  class Session;
+
+  // Counts a new connection in; false when a cap is reached.
+  bool Admit(const std::string& address) {
+    std::lock_guard<std::mutex> lock(conn_mu);
+    int& n = conns_by_address[address];
+    if (conns_total >= max_connections || n >= options.max_connections_per_address) {
+      if (n == 0) conns_by_address.erase(address);
+      return false;
+    }
+    ++n;
+    ++conns_total;
+    return true;
+  }
+  void Release(const std::string& address) {
+    std::lock_guard<std::mutex> lock(conn_mu);
+    auto it = conns_by_address.find(address);
+    if (it != conns_by_address.end() && --it->second <= 0) conns_by_address.erase(it);
+    --conns_total;
+  }
+
+  void Accept();
+  void OnAccept(beast::error_code ec, tcp::socket socket);
+  void RefuseConnection(tcp::socket& socket, const std::string& address);
+};
+
+// One connection. Every member runs on the connection's strand.
+class HttpTransport::Impl::Session : public std::enable_shared_from_this<Session> {
+ public:
+  Session(Impl* impl, tcp::socket&& socket, std::string address)
+      : impl_(impl), stream_(std::move(socket)), address_(std::move(address)) {}
+  ~Session() { impl_->Release(address_); }
+
+  void Start() {
+    net::dispatch(stream_.get_executor(),
+                  beast::bind_front_handler(&Session::ReadHead, shared_from_this()));
+  }
+
+ private:
+  const TransportOptions& opt() const { return impl_->options; }
+
+  void ReadHead() {
+    if (impl_->stopping) return Close();
+    parser_.emplace();
+    parser_->header_limit(static_cast<std::uint32_t>(opt().max_header_bytes));
+    parser_->body_limit(opt().max_body_bytes);
+    stream_.expires_after(std::chrono::seconds(opt().header_timeout_seconds));
+    http::async_read_header(stream_, buffer_, *parser_,
+                            beast::bind_front_handler(&Session::OnHead, shared_from_this()));
+  }
+
+  void OnHead(beast::error_code ec, size_t) {
+    if (ec) return ReadFailed(ec, /*body_unread=*/true);
+    const auto& head = parser_->get();
+    size_t fields = std::distance(head.begin(), head.end());
+    if (fields > opt().max_header_fields) return Refuse(431, true);
+    auto encoding = head.find(http::field::content_encoding);
+    if (encoding != head.end() && !EqualsIgnoreCase(Trim(Sv(encoding->value())), "identity")) {
+      return Refuse(415, true);
+    }
+    auto transfer = head.find(http::field::transfer_encoding);
+    if (transfer != head.end() &&
+        !EqualsIgnoreCase(Trim(Sv(transfer->value())), "chunked")) {
+      return Refuse(501, true);
+    }
+    auto expect = head.find(http::field::expect);
+    if (expect != head.end() && !parser_->is_done()) {
+      if (!EqualsIgnoreCase(Trim(Sv(expect->value())), "100-continue")) {
+        return Refuse(417, true);
+      }
+      static const char kContinue[] = "HTTP/1.1 100 Continue\r\n\r\n";
+      stream_.expires_after(std::chrono::seconds(opt().write_timeout_seconds));
+      return net::async_write(stream_, net::buffer(kContinue, sizeof kContinue - 1),
+                              [self = shared_from_this()](beast::error_code e, size_t) {
+                                if (e) return self->Close();
+                                self->ReadBody();
+                              });
+    }
+    if (parser_->is_done()) return Dispatch();
+    ReadBody();
+  }
+
+  void ReadBody() {
+    stream_.expires_after(std::chrono::seconds(opt().body_timeout_seconds));
+    http::async_read(stream_, buffer_, *parser_,
+                     beast::bind_front_handler(&Session::OnBody, shared_from_this()));
+  }
+
+  void OnBody(beast::error_code ec, size_t) {
+    if (ec) return ReadFailed(ec, /*body_unread=*/true);
+    Dispatch();
+  }
+
+  // A read ended in `ec`: closed or timed out connections just close; limits
+  // and malformed requests get their status.
+  void ReadFailed(beast::error_code ec, bool body_unread) {
+    if (ec == http::error::end_of_stream || ec == beast::error::timeout ||
+        ec == net::error::eof || ec == net::error::connection_reset ||
+        ec == net::error::operation_aborted || ec == http::error::partial_message) {
+      return Close();
+    }
+    if (ec == http::error::header_limit) return Refuse(431, body_unread);
+    if (ec == http::error::body_limit) return Refuse(413, body_unread);
+    Refuse(400, body_unread);
+  }
+
+  // The request as the handlers see it.
+  Request Convert() {
+    const auto& in = parser_->get();
     Request r;
-    r.method = in.method == "HEAD" ? "GET" : in.method;
-    r.path = in.path;
-    for (const auto& [k, v] : in.params) r.query.emplace(k, v);
-    for (const auto& [k, v] : in.headers) r.headers.emplace(ToLower(k), v);
-    r.body = in.body;
-    r.remote_address = in.remote_addr;
+    r.method = std::string(Sv(in.method_string()));
+    if (r.method == "HEAD") r.method = "GET";
+    ParseTarget(Sv(in.target()), &r);
+    for (const auto& f : in) r.headers.emplace(ToLower(Sv(f.name_string())), std::string(Sv(f.value())));
+    r.body = std::move(parser_->get().body());
+    r.remote_address = address_;
     return r;
   }
 
-  static void Send(const Response& in, httplib::Response& out) {
-    out.status = in.status;
-    for (const auto& [k, v] : in.headers) out.set_header(k, v);
-    if (!in.content_type.empty()) {
-      out.set_content(in.body, in.content_type);
-    } else {
-      out.body.clear();
+  void Dispatch() {
+    head_request_ = parser_->get().method() == http::verb::head;
+    keep_alive_ = parser_->get().keep_alive() && ++served_ < opt().keep_alive_max_requests &&
+                  !impl_->stopping;
+    auto request = std::make_shared<Request>(Convert());
+    parser_.reset();
+    auto self = shared_from_this();
+    bool queued = impl_->pool.Submit([self, request] {
+      auto out = std::make_shared<Response>();
+      try {
+        self->impl_->handler(*request, out.get());
+      } catch (const std::exception& e) {
+        LogError("internal error on " + request->method + " " + request->path + ": " + e.what());
+        *out = Response();
+        self->impl_->on_error(*request, 500, out.get());
+      } catch (...) {
+        LogError("internal error on " + request->method + " " + request->path);
+        *out = Response();
+        self->impl_->on_error(*request, 500, out.get());
+      }
+      net::post(self->stream_.get_executor(), [self, out] { self->Write(*out, false); });
+    });
+    if (!queued) {
+      Response busy;
+      impl_->on_error(*request, 503, &busy);
+      busy.SetHeader("Retry-After", "1");
+      keep_alive_ = false;
+      Write(busy, false);
     }
   }
 
-  void Serve(const httplib::Request& req, httplib::Response& res) {
+  // Answers `status` itself and closes the connection (draining an unread
+  // body first when `body_unread`).
+  void Refuse(int status, bool body_unread) {
+    Request r;
+    if (parser_ && parser_->is_header_done()) {
+      r.method = std::string(Sv(parser_->get().method_string()));
+      ParseTarget(Sv(parser_->get().target()), &r);
+    }
+    r.remote_address = address_;
+    parser_.reset();
     Response out;
-    handler(Convert(req), &out);
-    Send(out, res);
+    impl_->on_error(r, status, &out);
+    keep_alive_ = false;
+    head_request_ = false;
+    Write(out, body_unread);
   }
 
-  void Setup() {
-    auto serve = [this](const httplib::Request& q, httplib::Response& s) { Serve(q, s); };
-    const char* any = R"(/.*)";
-    http.Get(any, serve);
-    http.Post(any, serve);
-    http.Put(any, serve);
-    http.Delete(any, serve);
-    http.Patch(any, serve);
-    http.Options(any, serve);
-    http.set_payload_max_length(options.max_body_bytes);
-    http.set_pre_routing_handler([this](const httplib::Request& q, httplib::Response& s) {
-      // Bodies of unknown length are refused above the limit as well.
-      if (q.body.size() > options.max_body_bytes) {
-        Response out;
-        on_error(Convert(q), 413, &out);
-        Send(out, s);
-        return httplib::Server::HandlerResponse::Handled;
-      }
-      return httplib::Server::HandlerResponse::Unhandled;
-    });
-    http.set_error_handler([this](const httplib::Request& q, httplib::Response& s) {
-      // Statuses the library set itself (413, 400, ...) get our bodies.
-      if (!s.body.empty()) return;
-      Response out;
-      on_error(Convert(q), s.status, &out);
-      Send(out, s);
-    });
-    http.set_exception_handler(
-        [this](const httplib::Request& q, httplib::Response& s, std::exception_ptr ep) {
-          std::string what = "unknown exception";
-          try {
-            if (ep) std::rethrow_exception(ep);
-          } catch (const std::exception& e) {
-            what = e.what();
-          } catch (...) {
-          }
-          LogError("internal error on " + q.method + " " + q.path + ": " + what);
-          Response out;
-          on_error(Convert(q), 500, &out);
-          Send(out, s);
-        });
-    // SO_REUSEADDR only: the library's default adds SO_REUSEPORT, which lets a
-    // second server bind the same port and silently take half the connections.
-    http.set_socket_options([](socket_t sock) {
-      int yes = 1;
-      if (setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes) != 0) {
-        LogError("cannot set SO_REUSEADDR on the listening socket");
-      }
-    });
-    int n = options.threads > 0 ? options.threads : 32;
-    http.new_task_queue = [n] { return new httplib::ThreadPool(n); };
-    // Headers and body go out in separate writes: without TCP_NODELAY, Nagle
-    // and delayed ACKs add ~40 ms to small responses.
-    http.set_tcp_nodelay(true);
-    http.set_keep_alive_max_count(100);
-    http.set_keep_alive_timeout(2);
-    http.set_read_timeout(10);
-    http.set_write_timeout(10);
+  void Write(const Response& in, bool linger) {
+    auto res = std::make_shared<http::response<http::string_body>>();
+    res->version(11);
+    res->result(static_cast<unsigned>(in.status));
+    for (const auto& [k, v] : in.headers) res->set(k, v);
+    bool no_body = in.status == 204 || in.status == 304 || (in.status >= 100 && in.status < 200);
+    if (!no_body) {
+      if (!in.content_type.empty()) res->set(http::field::content_type, in.content_type);
+      res->content_length(in.body.size());
+      if (!head_request_) res->body() = in.body;
+    }
+    res->keep_alive(keep_alive_);
+    response_ = res;
+    stream_.expires_after(std::chrono::seconds(opt().write_timeout_seconds));
+    http::async_write(stream_, *res,
+                      [self = shared_from_this(), linger](beast::error_code ec, size_t) {
+                        self->response_.reset();
+                        if (ec) return self->Close();
+                        if (linger) return self->Linger();
+                        if (!self->keep_alive_) return self->Shutdown();
+                        self->ReadHead();
+                      });
   }
+
+  // Half-closes, then reads and drops what the client still sends (bounded)
+  // so that it reads the response before the socket closes.
+  void Linger() {
+    beast::error_code ec;
+    stream_.socket().shutdown(tcp::socket::shutdown_send, ec);
+    if (ec) return Close();
+    stream_.expires_after(std::chrono::seconds(kLingerSeconds));
+    Drain();
+  }
+  void Drain() {
+    drain_buffer_.resize(64 * 1024);
+    stream_.async_read_some(net::buffer(drain_buffer_),
+                            [self = shared_from_this()](beast::error_code ec, size_t n) {
+                              self->drained_ += n;
+                              if (ec || self->drained_ > kLingerBytes) return self->Close();
+                              self->Drain();
+                            });
+  }
+
+  void Shutdown() {
+    beast::error_code ec;
+    stream_.socket().shutdown(tcp::socket::shutdown_send, ec);
+    Close();
+  }
+  void Close() {
+    beast::error_code ec;
+    stream_.socket().close(ec);
+  }
+
+  Impl* impl_;
+  beast::tcp_stream stream_;
+  std::string address_;
+  beast::flat_buffer buffer_;
+  std::optional<http::request_parser<http::string_body>> parser_;
+  std::shared_ptr<void> response_;
+  std::vector<char> drain_buffer_;
+  size_t drained_ = 0;
+  int served_ = 0;
+  bool keep_alive_ = false;
+  bool head_request_ = false;
 };
+
+void HttpTransport::Impl::Accept() {
+  acceptor.async_accept(net::make_strand(ioc), [this](beast::error_code ec, tcp::socket socket) {
+    OnAccept(ec, std::move(socket));
+  });
+}
+
+void HttpTransport::Impl::OnAccept(beast::error_code ec, tcp::socket socket) {
+  if (stopping || ec == net::error::operation_aborted) return;
+  if (ec) {
+    // Out of file descriptors or a transient error: try again shortly
+    // instead of spinning.
+    accept_retry.expires_after(std::chrono::milliseconds(50));
+    accept_retry.async_wait([this](beast::error_code e) {
+      if (!e) Accept();
+    });
+    return;
+  }
+  beast::error_code e;
+  tcp::endpoint peer = socket.remote_endpoint(e);
+  std::string address = e ? std::string("unknown") : peer.address().to_string();
+  socket.set_option(tcp::no_delay(true), e);  // no Nagle delay on small responses
+  if (!Admit(address)) {
+    RefuseConnection(socket, address);
+  } else {
+    std::make_shared<Session>(this, std::move(socket), address)->Start();
+  }
+  Accept();
+}
+
+// Over a connection cap: a short 503 written without waiting, then closed.
+void HttpTransport::Impl::RefuseConnection(tcp::socket& socket, const std::string& address) {
+  Request r;
+  r.remote_address = address;
+  Response out;
+  on_error(r, 503, &out);
+  std::string text = "HTTP/1.1 503 Service Unavailable\r\nConnection: close\r\nRetry-After: 1\r\n";
+  if (!out.content_type.empty()) text += "Content-Type: " + out.content_type + "\r\n";
+  text += "Content-Length: " + std::to_string(out.body.size()) + "\r\n\r\n" + out.body;
+  beast::error_code ec;
+  socket.non_blocking(true, ec);
+  socket.write_some(net::buffer(text), ec);
+  socket.shutdown(tcp::socket::shutdown_both, ec);
+  socket.close(ec);
+}
 
 HttpTransport::HttpTransport(TransportOptions options, RequestHandler handler,
                              ErrorHandler on_error)
@@ -112,31 +447,75 @@ HttpTransport::HttpTransport(TransportOptions options, RequestHandler handler,
   impl_->options = options;
   impl_->handler = std::move(handler);
   impl_->on_error = std::move(on_error);
-  impl_->Setup();
+  // Keep descriptors for the database and the log: at most the limit - 64.
+  int cap = options.max_connections > 0 ? options.max_connections : 4096;
+  rlimit rl{};
+  if (getrlimit(RLIMIT_NOFILE, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY) {
+    cap = std::min<long long>(cap, std::max<long long>(16, static_cast<long long>(rl.rlim_cur) - 64));
+  }
+  impl_->max_connections = cap;
 }
 
 HttpTransport::~HttpTransport() { Stop(); }
 
 Result<int> HttpTransport::Bind(const std::string& host, int port) {
-  int bound = port == 0 ? impl_->http.bind_to_any_port(host)
-                        : (impl_->http.bind_to_port(host, port) ? port : -1);
-  if (bound <= 0) return Status::IoError("cannot listen on " + host + ":" + std::to_string(port));
+  std::string where = host + ":" + std::to_string(port);
+  beast::error_code ec;
+  tcp::resolver resolver(impl_->ioc);
+  auto endpoints = resolver.resolve(host, std::to_string(port), ec);
+  if (ec || endpoints.empty()) {
+    return Status::IoError("cannot listen on " + where + ": " + ec.message());
+  }
+  tcp::endpoint endpoint = endpoints.begin()->endpoint();
+  tcp::acceptor& a = impl_->acceptor;
+  a.open(endpoint.protocol(), ec);
+  // SO_REUSEADDR only (restart while old connections linger in TIME_WAIT);
+  // never SO_REUSEPORT, which would let a second server take half the
+  // connections of a running one.
+  if (!ec) a.set_option(net::socket_base::reuse_address(true), ec);
+  if (!ec) a.bind(endpoint, ec);
+  if (!ec) a.listen(net::socket_base::max_listen_connections, ec);
+  if (ec) {
+    beast::error_code ignored;
+    a.close(ignored);
+    return Status::IoError("cannot listen on " + where + ": " + ec.message());
+  }
   impl_->bound = true;
-  return bound;
+  return static_cast<int>(a.local_endpoint().port());
 }
 
 Status HttpTransport::Run() {
   if (!impl_->bound) return Status::Internal("HttpTransport::Run before Bind");
-  if (!impl_->http.listen_after_bind()) return Status::IoError("the server stopped with an error");
+  const TransportOptions& o = impl_->options;
+  int cores = std::max(1u, std::thread::hardware_concurrency());
+  int workers = o.threads > 0 ? o.threads : std::max(8, 4 * cores);
+  int io = o.io_threads > 0 ? o.io_threads : 2;
+  impl_->pool.Start(workers, o.max_queued_requests);
+  impl_->Accept();
+  std::vector<std::thread> extra;
+  for (int i = 1; i < io; ++i) extra.emplace_back([this] { impl_->ioc.run(); });
+  impl_->running = true;
+  impl_->ioc.run();
+  for (std::thread& t : extra) t.join();
+  impl_->running = false;
+  impl_->pool.Stop();
   return Status::Ok();
 }
 
 void HttpTransport::Stop() {
-  if (impl_->http.is_running()) impl_->http.stop();
+  if (impl_->stopping.exchange(true)) return;
+  net::post(impl_->ioc, [impl = impl_.get()] {
+    beast::error_code ec;
+    impl->acceptor.close(ec);
+    impl->accept_retry.cancel();
+  });
+  impl_->ioc.stop();
 }
 
 void HttpTransport::WaitUntilReady() {
-  while (!impl_->http.is_running()) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  while (!impl_->running && !impl_->stopping) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
 }
 
 }  // namespace sb::web

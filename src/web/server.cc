@@ -104,6 +104,29 @@ void SecurityHeaders(Response* res) {
 
 }  // namespace
 
+// The transport's limits: ServerOptions::transport with the body limit and
+// worker count of ServerOptions.
+TransportOptions TransportFor(const ServerOptions& o) {
+  TransportOptions t = o.transport;
+  t.max_body_bytes = o.max_body_bytes;
+  t.threads = o.threads;
+  return t;
+}
+
+// The message of a status the transport decided itself.
+const char* TransportMessage(int status) {
+  switch (status) {
+    case 400: return "bad request";
+    case 413: return "request body too large";
+    case 415: return "compressed request bodies are not accepted";
+    case 417: return "expectation not supported";
+    case 431: return "request header fields too large";
+    case 501: return "transfer coding not supported";
+    case 503: return "server busy, try again";
+    default: return status >= 500 ? "internal error" : "error";
+  }
+}
+
 struct Server::Impl {
   ServerOptions options;
   app::Services services;
@@ -113,14 +136,11 @@ struct Server::Impl {
   Impl(store::Store* store, ServerOptions o)
       : options(std::move(o)),
         services(store, options.app),
-        transport(
-            TransportOptions{options.max_body_bytes,
-                             options.threads > 0
-                                 ? options.threads
-                                 : std::max(32, 4 * static_cast<int>(
-                                                        std::thread::hardware_concurrency()))},
-            [this](const Request& q, Response* s) { Handle(q, s); },
-            [this](const Request& q, int status, Response* s) { TransportError(q, status, s); }) {
+        transport(TransportFor(options),
+                  [this](const Request& q, Response* s) { Handle(q, s); },
+                  [this](const Request& q, int status, Response* s) {
+                    TransportError(q, status, s);
+                  }) {
     for (const Endpoint& e : kEndpoints) router.Add(e.method, e.pattern, e.handler);
   }
 
@@ -202,11 +222,8 @@ struct Server::Impl {
   void TransportError(const Request& req, int status, Response* res) {
     Caller caller;  // no session lookup for a request the transport refused
     Exchange x{services, options, req, caller, *res};
-    Failure(x, status,
-            status == 413   ? "request body too large"
-            : status == 400 ? "bad request"
-            : status >= 500 ? "internal error"
-                            : "error");
+    Failure(x, status, TransportMessage(status));
+    if (status == 503) res->SetHeader("Retry-After", "1");
     Finish(req, res);
   }
 

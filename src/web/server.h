@@ -21,6 +21,7 @@
 #include "app/options.h"
 #include "base/status.h"
 #include "store/store.h"
+#include "web/http_transport.h"
 
 namespace sb::web {
 
@@ -34,9 +35,13 @@ struct ServerOptions {
   // KB; a CSV import of the original site's whole corpus needs a bigger
   // server setting).
   size_t max_body_bytes = 2 * 1024 * 1024;
-  // Worker threads (0 = max(32, 4 x cores)). Each open keep-alive connection
-  // holds one worker, so this bounds the concurrent connections served.
+  // Worker threads running handlers (0 = 4 x cores, at least 8). Open
+  // connections do not hold workers (slow clients wait on the I/O threads).
   int threads = 0;
+  // The transport's other limits (header size and count, deadlines,
+  // connections per address, queue); max_body_bytes and threads above
+  // override its fields of the same name.
+  TransportOptions transport;
   // Mark the session cookie Secure (when served behind HTTPS).
   bool secure_cookie = false;
   // Print one access-log line per request to stderr.

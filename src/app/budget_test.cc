@@ -1,0 +1,97 @@
+#include "app/budget.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <thread>
+#include <vector>
+
+namespace sb::app {
+namespace {
+
+Viewer Anonymous(const std::string& address) {
+  Viewer v;
+  v.address = address;
+  return v;
+}
+
+Viewer User(int64_t id) {
+  Viewer v;
+  v.user_id = id;
+  v.address = "10.0.0.1";
+  return v;
+}
+
+TEST(WorkBudgetTest, RefusesARequestOverItsCapWithoutRetry) {
+  BudgetPolicy p;
+  WorkBudget b(p);
+  int retry = -1;
+  Result<WorkBudget::Slot> big = b.Admit(Anonymous("a"), p.anonymous_max_cost * 2, &retry);
+  ASSERT_FALSE(big.ok());
+  EXPECT_EQ(big.status().code(), Status::Code::kResourceExhausted);
+  EXPECT_EQ(retry, 0);
+  EXPECT_NE(big.status().message().find("without signing in"), std::string::npos);
+  // The same work is within a signed-in user's cap.
+  EXPECT_TRUE(b.Admit(User(1), p.anonymous_max_cost * 2, &retry).ok());
+  EXPECT_FALSE(b.Admit(User(1), p.user_max_cost * 1.01, &retry).ok());
+}
+
+TEST(WorkBudgetTest, ChargesEachCallerSeparatelyAndSaysWhenToRetry) {
+  BudgetPolicy p;
+  p.anonymous_max_cost = 100;
+  p.anonymous_cost_per_minute = 300;
+  WorkBudget b(p);
+  for (int i = 0; i < 3; ++i) EXPECT_TRUE(b.Admit(Anonymous("a"), 100).ok()) << i;
+  int retry = 0;
+  Result<WorkBudget::Slot> spent = b.Admit(Anonymous("a"), 100, &retry);
+  ASSERT_FALSE(spent.ok());
+  EXPECT_NE(spent.status().message().find("budget spent"), std::string::npos);
+  EXPECT_GE(retry, 19);  // 100 units at 5 per second
+  EXPECT_LE(retry, 21);
+  EXPECT_TRUE(b.Admit(Anonymous("b"), 100).ok());  // another address is not charged
+}
+
+TEST(WorkBudgetTest, RunsAtMostMaxParallelAndOnePerCallerQueueingTheRest) {
+  BudgetPolicy p;
+  p.max_parallel = 2;
+  p.max_wait_seconds = 10;
+  WorkBudget b(p);
+  std::atomic<int> running{0}, peak{0}, done{0};
+  std::vector<std::thread> ts;
+  for (int i = 0; i < 6; ++i) {
+    ts.emplace_back([&, i] {
+      Result<WorkBudget::Slot> s = b.Admit(Anonymous("addr" + std::to_string(i % 3)), 1);
+      ASSERT_TRUE(s.ok()) << s.status().message();
+      int now = ++running;
+      int old = peak.load();
+      while (now > old && !peak.compare_exchange_weak(old, now)) {
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      --running;
+      ++done;
+    });
+  }
+  for (std::thread& t : ts) t.join();
+  EXPECT_EQ(done.load(), 6);
+  EXPECT_EQ(peak.load(), 2);
+}
+
+TEST(WorkBudgetTest, AJobWaitingTooLongIsRefusedWithRetryAfter) {
+  BudgetPolicy p;
+  p.max_parallel = 1;
+  p.max_wait_seconds = 1;
+  WorkBudget b(p);
+  Result<WorkBudget::Slot> holder = b.Admit(Anonymous("a"), 1);
+  ASSERT_TRUE(holder.ok());
+  int retry = 0;
+  Result<WorkBudget::Slot> waiting = b.Admit(Anonymous("b"), 1, &retry);
+  ASSERT_FALSE(waiting.ok());
+  EXPECT_NE(waiting.status().message().find("busy"), std::string::npos);
+  EXPECT_EQ(retry, 1);
+  holder = Result<WorkBudget::Slot>(WorkBudget::Slot());  // releases the slot
+  EXPECT_TRUE(b.Admit(Anonymous("b"), 1).ok());
+}
+
+}  // namespace
+}  // namespace sb::app

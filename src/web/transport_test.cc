@@ -1,0 +1,215 @@
+// The HTTP transport's limits over real loopback sockets, with a trivial
+// handler (the whole server is tested in api_test.cc, the attacks under
+// load in tests/abuse.py).
+#include "web/http_transport.h"
+
+#include <arpa/inet.h>
+#include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <sys/time.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace sb::web {
+namespace {
+
+class Running {
+ public:
+  explicit Running(TransportOptions o) {
+    transport_ = std::make_unique<HttpTransport>(
+        o,
+        [](const Request& q, Response* s) {
+          s->SetBody(200, q.method + " " + q.path + " " + std::to_string(q.body.size()),
+                     "text/plain");
+        },
+        [](const Request&, int status, Response* s) {
+          s->SetBody(status, "refused " + std::to_string(status), "text/plain");
+        });
+    Result<int> port = transport_->Bind("127.0.0.1", 0);
+    EXPECT_TRUE(port.ok());
+    port_ = *port;
+    thread_ = std::thread([this] { EXPECT_TRUE(transport_->Run().ok()); });
+    transport_->WaitUntilReady();
+  }
+  ~Running() {
+    transport_->Stop();
+    thread_.join();
+  }
+  int port() const { return port_; }
+
+ private:
+  std::unique_ptr<HttpTransport> transport_;
+  std::thread thread_;
+  int port_ = 0;
+};
+
+// A blocking loopback client socket with a 5 s receive timeout.
+int Connect(int port) {
+  int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  timeval tv{5, 0};
+  ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_port = htons(static_cast<uint16_t>(port));
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  if (::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) {
+    ::close(fd);
+    return -1;
+  }
+  return fd;
+}
+
+void SendAll(int fd, const std::string& s) {
+  size_t off = 0;
+  while (off < s.size()) {
+    ssize_t n = ::send(fd, s.data() + off, s.size() - off, MSG_NOSIGNAL);
+    if (n <= 0) return;
+    off += static_cast<size_t>(n);
+  }
+}
+
+// Everything until the peer closes or the timeout.
+std::string ReadAll(int fd) {
+  std::string out;
+  char buf[4096];
+  for (;;) {
+    ssize_t n = ::recv(fd, buf, sizeof buf, 0);
+    if (n <= 0) break;
+    out.append(buf, static_cast<size_t>(n));
+  }
+  return out;
+}
+
+std::string Exchange(int port, const std::string& request) {
+  int fd = Connect(port);
+  if (fd < 0) return "";
+  SendAll(fd, request);
+  std::string r = ReadAll(fd);
+  ::close(fd);
+  return r;
+}
+
+int StatusOf(const std::string& response) {
+  if (response.rfind("HTTP/1.1 ", 0) != 0) return -1;
+  return std::stoi(response.substr(9, 3));
+}
+
+TEST(TransportTest, ServesAndDecodesTheTarget) {
+  Running r(TransportOptions{});
+  std::string res =
+      Exchange(r.port(), "GET /a%20b?x=1 HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n");
+  EXPECT_EQ(StatusOf(res), 200) << res;
+  EXPECT_NE(res.find("GET /a b 0"), std::string::npos) << res;
+}
+
+TEST(TransportTest, BodyLimitsHoldForChunkedAndCompressedBodies) {
+  TransportOptions o;
+  o.max_body_bytes = 1000;
+  Running r(o);
+  std::string chunk = "400\r\n" + std::string(1024, 'a') + "\r\n";
+  std::string chunked = "POST /p HTTP/1.1\r\nHost: x\r\nTransfer-Encoding: chunked\r\n\r\n";
+  for (int i = 0; i < 64; ++i) chunked += chunk;
+  EXPECT_EQ(StatusOf(Exchange(r.port(), chunked)), 413);
+  EXPECT_EQ(StatusOf(Exchange(r.port(), "POST /p HTTP/1.1\r\nHost: x\r\nContent-Length: 5000\r\n"
+                                        "\r\n" + std::string(5000, 'a'))),
+            413);
+  EXPECT_EQ(StatusOf(Exchange(r.port(), "POST /p HTTP/1.1\r\nHost: x\r\nContent-Encoding: gzip\r\n"
+                                        "Content-Length: 3\r\n\r\nabc")),
+            415);
+  // Within the limit, chunked bodies arrive whole.
+  std::string ok = Exchange(r.port(),
+                            "POST /p HTTP/1.1\r\nHost: x\r\nConnection: close\r\n"
+                            "Transfer-Encoding: chunked\r\n\r\n3\r\nabc\r\n2\r\nde\r\n0\r\n\r\n");
+  EXPECT_EQ(StatusOf(ok), 200) << ok;
+  EXPECT_NE(ok.find("POST /p 5"), std::string::npos) << ok;
+}
+
+TEST(TransportTest, HeaderSizeAndCountAreLimited) {
+  TransportOptions o;
+  o.max_header_bytes = 2048;
+  o.max_header_fields = 10;
+  Running r(o);
+  EXPECT_EQ(StatusOf(Exchange(r.port(), "GET / HTTP/1.1\r\nHost: x\r\nX-A: " +
+                                            std::string(4000, 'a') + "\r\n\r\n")),
+            431);
+  std::string many = "GET / HTTP/1.1\r\nHost: x\r\n";
+  for (int i = 0; i < 20; ++i) many += "X-" + std::to_string(i) + ": v\r\n";
+  EXPECT_EQ(StatusOf(Exchange(r.port(), many + "\r\n")), 431);
+}
+
+TEST(TransportTest, SlowClientsCostASocketNotAWorkerAndAreCutAtTheDeadline) {
+  TransportOptions o;
+  o.threads = 1;
+  o.header_timeout_seconds = 1;
+  o.max_connections_per_address = 1000;
+  Running r(o);
+  std::vector<int> slow;
+  for (int i = 0; i < 50; ++i) {
+    int fd = Connect(r.port());
+    ASSERT_GE(fd, 0);
+    SendAll(fd, "GET / HTTP/1.1\r\nHost: x\r\n");  // never finishes its head
+    slow.push_back(fd);
+  }
+  auto t = std::chrono::steady_clock::now();
+  std::string res = Exchange(r.port(), "GET /n HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n");
+  EXPECT_EQ(StatusOf(res), 200) << res;
+  EXPECT_LT(std::chrono::steady_clock::now() - t, std::chrono::milliseconds(900));
+  // After the head deadline the server has closed every slow connection.
+  for (int fd : slow) {
+    EXPECT_EQ(ReadAll(fd), "");  // closed without an answer (recv gives 0 before 5 s)
+    ::close(fd);
+  }
+  EXPECT_LT(std::chrono::steady_clock::now() - t, std::chrono::seconds(4));
+}
+
+TEST(TransportTest, ConnectionsPerAddressAreCapped) {
+  TransportOptions o;
+  o.max_connections_per_address = 3;
+  Running r(o);
+  std::vector<int> held;
+  for (int i = 0; i < 3; ++i) held.push_back(Connect(r.port()));
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  std::string refused = Exchange(r.port(), "GET / HTTP/1.1\r\nHost: x\r\n\r\n");
+  EXPECT_EQ(StatusOf(refused), 503) << refused;
+  EXPECT_NE(refused.find("Retry-After: 1"), std::string::npos);
+  for (int fd : held) ::close(fd);
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  EXPECT_EQ(StatusOf(Exchange(r.port(), "GET / HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n")),
+            200);
+}
+
+TEST(TransportTest, KeepAliveServesSeveralRequestsOnOneConnection) {
+  Running r(TransportOptions{});
+  int fd = Connect(r.port());
+  SendAll(fd, "GET /1 HTTP/1.1\r\nHost: x\r\n\r\nGET /2 HTTP/1.1\r\nHost: x\r\n\r\n"
+              "HEAD /3 HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n");
+  std::string all = ReadAll(fd);
+  ::close(fd);
+  EXPECT_NE(all.find("GET /1 0"), std::string::npos) << all;
+  EXPECT_NE(all.find("GET /2 0"), std::string::npos) << all;
+  EXPECT_EQ(all.find("GET /3"), std::string::npos) << all;  // HEAD: no body
+  size_t count = 0;
+  for (size_t p = all.find("HTTP/1.1 200"); p != std::string::npos;
+       p = all.find("HTTP/1.1 200", p + 1)) {
+    ++count;
+  }
+  EXPECT_EQ(count, 3u);
+}
+
+TEST(TransportTest, ATakenPortIsRefused) {
+  Running r(TransportOptions{});
+  HttpTransport second(TransportOptions{}, [](const Request&, Response*) {},
+                       [](const Request&, int, Response*) {});
+  Result<int> port = second.Bind("127.0.0.1", r.port());
+  EXPECT_FALSE(port.ok());
+  EXPECT_EQ(port.status().code(), Status::Code::kIoError);
+}
+
+}  // namespace
+}  // namespace sb::web
