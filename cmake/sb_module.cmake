@@ -2,6 +2,12 @@
 # Creates the static library sb_NAME (part of libstrangebeta) from SOURCES and,
 # when tests are on, the test binary sb_NAME_test from every *_test.cc in the
 # module folder. Modules may only depend on modules below them.
+#
+# The tests of the modules in SB_DATABASE_TEST_MODULES are written once
+# against a database and registered twice: on SQLite and, with the suffix
+# "/postgresql" and SB_TEST_BACKEND=postgresql, on the throw-away PostgreSQL
+# server of the ctest fixture `pg` (tests/pg_server.sh; store/store_test_util.h).
+set(SB_DATABASE_TEST_MODULES app web)
 function(sb_module name)
   cmake_parse_arguments(M "" "" "SOURCES;DEPS;TEST_DEPS" ${ARGN})
   add_library(sb_${name} STATIC ${M_SOURCES})
@@ -16,8 +22,18 @@ function(sb_module name)
       target_compile_definitions(sb_${name}_test PRIVATE
         SB_SHARED_DIR="${SB_SHARED_DIR}" SB_SOURCE_DIR="${CMAKE_SOURCE_DIR}"
         SB_BINARY_DIR="${CMAKE_BINARY_DIR}")
-      gtest_discover_tests(sb_${name}_test DISCOVERY_TIMEOUT 60
-        PROPERTIES ENVIRONMENT "SB_SHARED=${SB_SHARED_DIR}")
+      if(name STREQUAL "store")  # parameterised over both backends itself
+        gtest_discover_tests(sb_${name}_test DISCOVERY_TIMEOUT 60
+          PROPERTIES ENVIRONMENT "SB_SHARED=${SB_SHARED_DIR}" FIXTURES_REQUIRED pg)
+      else()
+        gtest_discover_tests(sb_${name}_test DISCOVERY_TIMEOUT 60
+          PROPERTIES ENVIRONMENT "SB_SHARED=${SB_SHARED_DIR}")
+      endif()
+      if(name IN_LIST SB_DATABASE_TEST_MODULES)
+        gtest_discover_tests(sb_${name}_test DISCOVERY_TIMEOUT 60 TEST_SUFFIX /postgresql
+          PROPERTIES ENVIRONMENT "SB_SHARED=${SB_SHARED_DIR}\\;SB_TEST_BACKEND=postgresql"
+                     FIXTURES_REQUIRED pg)
+      endif()
     endif()
   endif()
 endfunction()

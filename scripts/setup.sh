@@ -6,8 +6,9 @@ set -euo pipefail
 PACKAGES=(
   build-essential cmake pkg-config ninja-build
   libcli11-dev nlohmann-json3-dev
-  libsqlite3-dev libcpp-httplib-dev libcairo2-dev libsodium-dev
+  libsqlite3-dev sqlite3 libcpp-httplib-dev libcairo2-dev libsodium-dev
   libpango1.0-dev libqrencode-dev
+  libpq-dev postgresql
   libopenmpi-dev openmpi-bin
   libgtest-dev libgmock-dev libbenchmark-dev
   wrk chromium chromium-driver nodejs npm

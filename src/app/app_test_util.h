@@ -1,5 +1,7 @@
-// Shared by the app module's tests: a fresh SQLite store in a temporary
-// directory, a clock that does not wait, and logged-in viewers.
+// Shared by the app module's tests: a fresh store (a SQLite file in a
+// temporary directory, or a PostgreSQL database when $SB_TEST_BACKEND is
+// "postgresql": ctest runs every app test on both), a clock that does not
+// wait, and logged-in viewers.
 #ifndef SB_APP_APP_TEST_UTIL_H_
 #define SB_APP_APP_TEST_UTIL_H_
 
@@ -15,7 +17,8 @@
 #include "app/clock.h"
 #include "app/options.h"
 #include "app/services.h"
-#include "store/sqlite_store.h"
+#include "store/open.h"
+#include "store/store_test_util.h"
 
 namespace sb::app::testing {
 
@@ -44,28 +47,28 @@ class FakeClock final : public Clock {
   double slept_ = 0, longest_ = 0;
 };
 
-// A store in a fresh temporary file (removed at the end) and the services
-// over it, with the cheapest password hashing.
+// A store in a fresh database (removed at the end; dir_ is a scratch
+// directory removed with it) and the services over it, with the cheapest
+// password hashing.
 class AppTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = std::filesystem::temp_directory_path() /
-           ("sb_app_test_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    std::filesystem::remove_all(dir_);
-    std::filesystem::create_directories(dir_);
+    db_ = std::make_unique<store::testing::TestDatabase>(
+        store::testing::BackendFromEnvironment(), "app");
+    SB_REQUIRE_DATABASE(*db_);
+    dir_ = db_->dir();
     Reopen();
   }
   void TearDown() override {
     services_.reset();
     store_.reset();
-    std::filesystem::remove_all(dir_);
+    db_.reset();
   }
   // (Re)creates the services over the same database with `options`.
   void Reopen(Options options = TestOptions()) {
     services_.reset();
     store_.reset();
-    Result<std::unique_ptr<store::Store>> s = store::OpenSqliteStore((dir_ / "t.db").string());
+    Result<std::unique_ptr<store::Store>> s = store::OpenStore(db_->locator());
     ASSERT_TRUE(s.ok()) << s.status().message();
     store_ = std::move(s).value();
     services_ = std::make_unique<Services>(store_.get(), options, &clock_);
@@ -91,6 +94,7 @@ class AppTest : public ::testing::Test {
     return id.ok() ? *id : 0;
   }
 
+  std::unique_ptr<store::testing::TestDatabase> db_;
   std::filesystem::path dir_;
   FakeClock clock_;
   std::unique_ptr<store::Store> store_;

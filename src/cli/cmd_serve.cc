@@ -1,4 +1,4 @@
-// strangebeta serve: run the web app on a SQLite database.
+// strangebeta serve: run the web app on a SQLite database or PostgreSQL.
 #include <pthread.h>
 #include <signal.h>
 
@@ -9,7 +9,7 @@
 #include "app/seed.h"
 #include "cli/cli_util.h"
 #include "cli/commands.h"
-#include "store/sqlite_store.h"
+#include "store/open.h"
 #include "web/server.h"
 
 namespace sb::cli {
@@ -27,7 +27,16 @@ int RunServe(const std::vector<std::string>& args) {
   bool log = false;
   app.add_option("--port", port, "TCP port (0 = any free port)")->check(CLI::Range(0, 65535));
   app.add_option("--host", host, "address to listen on (default 127.0.0.1)");
-  app.add_option("--db", db, "SQLite database file (created when absent)");
+  app.add_option("--db", db,
+                 "SQLite database file (created when absent) or PostgreSQL URL "
+                 "postgresql://user@host:port/dbname (missing parts from the PG* variables)");
+  store::StoreOptions db_options;
+  app.add_option("--db-pool", db_options.pool_size,
+                 "PostgreSQL connections this process keeps (default 8)")
+      ->check(CLI::Range(1, store::kMaxPoolSize));
+  app.add_option("--db-timeout", db_options.connect_timeout_seconds,
+                 "seconds to wait for the PostgreSQL server at start-up (default 10)")
+      ->check(CLI::Range(1, 300));
   app.add_option("--seed-examples", seed_dir,
                  "directory of *.crdl routes to seed a fresh database with "
                  "(default: the bundled data/examples)");
@@ -53,11 +62,12 @@ int RunServe(const std::vector<std::string>& args) {
   if (int rc = ParseArgs(app, args); rc >= 0) return rc;
 
   std::error_code ec;
-  std::filesystem::path parent = std::filesystem::path(db).parent_path();
+  std::filesystem::path parent =
+      store::IsDatabaseUrl(db) ? std::filesystem::path() : std::filesystem::path(db).parent_path();
   if (!parent.empty() && !std::filesystem::create_directories(parent, ec) && ec) {
     return Fail("serve", Status::IoError(parent.string() + ": " + ec.message()));
   }
-  Result<std::unique_ptr<store::Store>> st = store::OpenSqliteStore(db);
+  Result<std::unique_ptr<store::Store>> st = store::OpenStore(db, db_options);
   if (!st.ok()) return Fail("serve", st.status());
   store::Store* store = st->get();
 
@@ -101,7 +111,7 @@ int RunServe(const std::vector<std::string>& args) {
   if (!bound.ok()) return Fail("serve", bound.status());
   std::string shown = host == "0.0.0.0" ? "127.0.0.1" : host;
   std::printf("strangebeta web app on http://%s:%d/ (database %s)\n", shown.c_str(), *bound,
-              db.c_str());
+              store::DisplayName(db).c_str());
   if (store->FindUserByName(app::kDemoUser).ok()) {
     std::printf("demo account: user %s, password %s\n", app::kDemoUser, app::kDemoPassword);
   }

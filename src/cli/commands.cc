@@ -24,6 +24,7 @@ const Command kCommands[] = {
     {"graph", "feature-wise transition graphs and A* interpolation (the dance method)",
      RunGraph},
     {"serve", "run the web app", RunServe},
+    {"db", "database operations: info, migrate, copy between SQLite and PostgreSQL", RunDb},
 };
 
 void PrintUsage(std::FILE* out) {

@@ -34,6 +34,7 @@ int RunSymbols(const std::vector<std::string>& args);
 int RunModel(const std::vector<std::string>& args);
 int RunGraph(const std::vector<std::string>& args);
 int RunServe(const std::vector<std::string>& args);
+int RunDb(const std::vector<std::string>& args);
 int RunCheck(const std::vector<std::string>& args);
 int RunStudy(const std::vector<std::string>& args);
 int RunGrade(const std::vector<std::string>& args);

@@ -1,31 +1,30 @@
-// Migration 5: climbers' feedback and studies in the SQLite store.
+// Migration 5: climbers' feedback and studies in the store, on both backends
+// (SQLite and the test PostgreSQL server, store/store_test_util.h).
 #include <gtest/gtest.h>
-#include <sqlite3.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <string>
 #include <thread>
 #include <vector>
 
-#include "store/sqlite_store.h"
+#include "store/open.h"
+#include "store/schema.h"
+#include "store/sql.h"
 #include "store/store.h"
+#include "store/store_test_util.h"
 
 namespace sb::store {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::Backend;
+using testing::TestDatabase;
 
-class ClimbersStoreTest : public ::testing::Test {
+class ClimbersStoreTest : public ::testing::TestWithParam<Backend> {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("sb_climbers_store_test_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-    path_ = (dir_ / "t.db").string();
-    Result<std::unique_ptr<Store>> s = OpenSqliteStore(path_);
+    SB_REQUIRE_DATABASE(db_);
+    Result<std::unique_ptr<Store>> s = OpenStore(db_.locator());
     ASSERT_TRUE(s.ok()) << s.status().message();
     store_ = std::move(s).value();
     Result<int64_t> u = store_->CreateUser("setter", "h");
@@ -33,10 +32,7 @@ class ClimbersStoreTest : public ::testing::Test {
     user_ = *u;
     route_ = AddRoute("Crimp Ladder");
   }
-  void TearDown() override {
-    store_.reset();
-    fs::remove_all(dir_);
-  }
+  void TearDown() override { store_.reset(); }
   int64_t AddRoute(const std::string& name) {
     RouteRecord r;
     r.owner_id = user_;
@@ -75,8 +71,7 @@ class ClimbersStoreTest : public ::testing::Test {
     return r;
   }
 
-  fs::path dir_;
-  std::string path_;
+  TestDatabase db_{GetParam(), "climbers"};
   std::unique_ptr<Store> store_;
   int64_t user_ = 0, route_ = 0;
 };
@@ -94,7 +89,7 @@ TEST(Answers, EncodeDecodeRoundTrip) {
   }
 }
 
-TEST_F(ClimbersStoreTest, FeedbackIsOnePerParticipantAndRouteAndEditable) {
+TEST_P(ClimbersStoreTest, FeedbackIsOnePerParticipantAndRouteAndEditable) {
   FeedbackRecord f = Feedback(route_, "hashA", {1, 2, std::nullopt, 4, 5});
   f.felt_grade = "5.10a";
   f.felt_canonical = "5.10a";
@@ -137,7 +132,7 @@ TEST_F(ClimbersStoreTest, FeedbackIsOnePerParticipantAndRouteAndEditable) {
   EXPECT_TRUE(store_->ListFeedback(route_)->empty());
 }
 
-TEST_F(ClimbersStoreTest, ConcurrentSubmissionsOfOneParticipantMakeOneRow) {
+TEST_P(ClimbersStoreTest, ConcurrentSubmissionsOfOneParticipantMakeOneRow) {
   std::vector<std::thread> threads;
   for (int i = 0; i < 16; ++i) {
     threads.emplace_back([this, i] {
@@ -148,7 +143,7 @@ TEST_F(ClimbersStoreTest, ConcurrentSubmissionsOfOneParticipantMakeOneRow) {
   EXPECT_EQ(store_->ListFeedback(route_)->size(), 1u);
 }
 
-TEST_F(ClimbersStoreTest, StudiesKeepTheirRoutesInOrder) {
+TEST_P(ClimbersStoreTest, StudiesKeepTheirRoutesInOrder) {
   int64_t b = AddRoute("B"), c = AddRoute("C");
   Result<int64_t> id = store_->InsertStudy(Study({c, route_, b}));
   ASSERT_TRUE(id.ok()) << id.status().message();
@@ -173,7 +168,7 @@ TEST_F(ClimbersStoreTest, StudiesKeepTheirRoutesInOrder) {
   EXPECT_EQ(store_->GetStudy(*id + 1).status().code(), Status::Code::kNotFound);
 }
 
-TEST_F(ClimbersStoreTest, ResponsesAreOnePerParticipantAndRefusedWhenClosedOrFull) {
+TEST_P(ClimbersStoreTest, ResponsesAreOnePerParticipantAndRefusedWhenClosedOrFull) {
   int64_t b = AddRoute("B");
   Result<int64_t> id = store_->InsertStudy(Study({route_, b}));
   ASSERT_TRUE(id.ok());
@@ -214,7 +209,7 @@ TEST_F(ClimbersStoreTest, ResponsesAreOnePerParticipantAndRefusedWhenClosedOrFul
   EXPECT_EQ(store_->GetStudy(*id)->responses, 3);
 }
 
-TEST_F(ClimbersStoreTest, AFailedResponseWritesNothing) {
+TEST_P(ClimbersStoreTest, AFailedResponseWritesNothing) {
   int64_t b = AddRoute("B");
   int64_t id = *store_->InsertStudy(Study({route_, b}));
   StudyResponseRecord r = Response(id, "p");
@@ -225,7 +220,7 @@ TEST_F(ClimbersStoreTest, AFailedResponseWritesNothing) {
   EXPECT_TRUE(store_->InsertStudyResponse(Response(id, "p"), 10).ok());
 }
 
-TEST_F(ClimbersStoreTest, DefinitionFreezesOnceAnswered) {
+TEST_P(ClimbersStoreTest, DefinitionFreezesOnceAnswered) {
   int64_t b = AddRoute("B"), c = AddRoute("C");
   int64_t id = *store_->InsertStudy(Study({route_, b}));
   StudyRecord st = *store_->GetStudy(id);
@@ -245,32 +240,29 @@ TEST_F(ClimbersStoreTest, DefinitionFreezesOnceAnswered) {
   EXPECT_EQ(store_->UpdateStudy(st, false).code(), Status::Code::kNotFound);
 }
 
-TEST_F(ClimbersStoreTest, AVersionFourDatabaseMigratesKeepingItsRows) {
+TEST_P(ClimbersStoreTest, AVersionFourDatabaseMigratesKeepingItsRows) {
   store_.reset();
-  fs::path old = dir_ / "v4.db";
-  // A version-4 database: this program's migrations, then what 5 made
-  // rolled back.
+  // A version-4 database (only migrations 1..4 applied) with a row.
+  TestDatabase old(GetParam(), "climbers_v4");
   {
-    Result<std::unique_ptr<Store>> s = OpenSqliteStore(old.string());
-    ASSERT_TRUE(s.ok());
-    ASSERT_TRUE((*s)->CreateUser("kept", "h").ok());
+    Result<std::unique_ptr<sql::Connection>> c =
+        GetParam() == Backend::kSqlite ? sql::OpenSqlite(old.locator())
+                                       : sql::OpenPostgres(old.locator(), sql::PgSettings());
+    ASSERT_TRUE(c.ok()) << c.status().message();
+    ASSERT_TRUE(sql::Migrate(**c, 4).ok());
+    ASSERT_EQ(*(*c)->SchemaVersion(), 4);
+    ASSERT_TRUE((*c)->Exec("INSERT INTO users(username, password_hash, created_at) "
+                           "VALUES ('kept', 'h', '2026-01-01 00:00:00')")
+                    .ok());
   }
-  {
-    sqlite3* db = nullptr;
-    ASSERT_EQ(sqlite3_open(old.c_str(), &db), SQLITE_OK);
-    const char* sql =
-        "DROP TABLE study_demographics; DROP TABLE study_answers; DROP TABLE study_responses; "
-        "DROP TABLE study_routes; DROP TABLE studies; DROP TABLE feedback; "
-        "PRAGMA user_version = 4;";
-    ASSERT_EQ(sqlite3_exec(db, sql, nullptr, nullptr, nullptr), SQLITE_OK);
-    sqlite3_close(db);
-  }
-  Result<std::unique_ptr<Store>> s = OpenSqliteStore(old.string());
+  Result<std::unique_ptr<Store>> s = OpenStore(old.locator());
   ASSERT_TRUE(s.ok()) << s.status().message();
   EXPECT_EQ((*s)->SchemaVersion(), kSchemaVersion);
   EXPECT_TRUE((*s)->FindUserByName("kept").ok());
   EXPECT_TRUE((*s)->ListStudies(1)->empty());
 }
+
+INSTANTIATE_TEST_SUITE_P(Backends, ClimbersStoreTest, testing::Backends(), testing::BackendName);
 
 }  // namespace
 }  // namespace sb::store

@@ -1,38 +1,34 @@
 #include "store/store.h"
 
 #include <gtest/gtest.h>
-
-#include <filesystem>
-#include <string>
-#include <thread>
-
-#include "base/files.h"
 #include <sqlite3.h>
 
 #include <atomic>
+#include <filesystem>
+#include <mutex>
 #include <set>
+#include <string>
+#include <thread>
 
 #include "store/auth.h"
+#include "store/open.h"
 #include "store/sqlite_store.h"
+#include "store/store_test_util.h"
 
 namespace sb::store {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::Backend;
+using testing::TestDatabase;
 
-class StoreTest : public ::testing::Test {
+// Every test of the store runs on both backends (a SQLite file and a
+// database of the test PostgreSQL server), through the same interface.
+class StoreTest : public ::testing::TestWithParam<Backend> {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("sb_store_test_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-    path_ = (dir_ / "t.db").string();
-  }
-  void TearDown() override { fs::remove_all(dir_); }
+  void SetUp() override { SB_REQUIRE_DATABASE(db_); }
   std::unique_ptr<Store> Open() {
-    Result<std::unique_ptr<Store>> s = OpenSqliteStore(path_);
+    Result<std::unique_ptr<Store>> s = OpenStore(db_.locator());
     EXPECT_TRUE(s.ok()) << s.status().message();
     return s.ok() ? std::move(s).value() : nullptr;
   }
@@ -46,11 +42,12 @@ class StoreTest : public ::testing::Test {
     r.is_public = pub;
     return r;
   }
-  fs::path dir_;
-  std::string path_;
+  TestDatabase db_{GetParam()};
 };
 
-TEST_F(StoreTest, MigratesToCurrentVersionAndReopens) {
+INSTANTIATE_TEST_SUITE_P(Backends, StoreTest, testing::Backends(), testing::BackendName);
+
+TEST_P(StoreTest, MigratesToCurrentVersionAndReopens) {
   {
     auto s = Open();
     ASSERT_TRUE(s);
@@ -61,10 +58,12 @@ TEST_F(StoreTest, MigratesToCurrentVersionAndReopens) {
   ASSERT_TRUE(s);
   EXPECT_EQ(s->SchemaVersion(), kSchemaVersion);
   EXPECT_EQ(*s->CountUsers(), 1);
-  EXPECT_TRUE(fs::exists(path_ + "-wal") || fs::exists(path_));
+  if (GetParam() == Backend::kSqlite) {
+    EXPECT_TRUE(fs::exists(db_.locator()));
+  }
 }
 
-TEST_F(StoreTest, UsernamesAreUniqueIgnoringCase) {
+TEST_P(StoreTest, UsernamesAreUniqueIgnoringCase) {
   auto s = Open();
   ASSERT_TRUE(s->CreateUser("Alice", "h").ok());
   Result<int64_t> again = s->CreateUser("alice", "h");
@@ -74,7 +73,7 @@ TEST_F(StoreTest, UsernamesAreUniqueIgnoringCase) {
   EXPECT_EQ(s->FindUserByName("bob").status().code(), Status::Code::kNotFound);
 }
 
-TEST_F(StoreTest, SessionsExpireAndAreDeleted) {
+TEST_P(StoreTest, SessionsExpireAndAreDeleted) {
   auto s = Open();
   int64_t uid = *s->CreateUser("alice", "h");
   Session se{HashToken("tok"), uid, "", "csrf", 1000};
@@ -88,7 +87,7 @@ TEST_F(StoreTest, SessionsExpireAndAreDeleted) {
   EXPECT_FALSE(s->FindSession(HashToken("tok"), 0).ok());
 }
 
-TEST_F(StoreTest, AttemptsAreCountedInAWindow) {
+TEST_P(StoreTest, AttemptsAreCountedInAWindow) {
   auto s = Open();
   for (int i = 0; i < 3; ++i) ASSERT_TRUE(s->RecordAttempts({"acct:a"}, 100 + i, 0).ok());
   Result<std::vector<AttemptCount>> c = s->RecordAttempts({"acct:a", "acct:b"}, 110, 101);
@@ -105,7 +104,7 @@ TEST_F(StoreTest, AttemptsAreCountedInAWindow) {
   EXPECT_EQ((*s->RecordAttempts({"acct:b"}, 110 + 2 * 86400, 0))[0].count, 1);
 }
 
-TEST_F(StoreTest, ConcurrentAttemptsSeeDistinctCounts) {
+TEST_P(StoreTest, ConcurrentAttemptsSeeDistinctCounts) {
   auto s = Open();
   std::vector<std::thread> ts;
   std::mutex mu;
@@ -124,7 +123,7 @@ TEST_F(StoreTest, ConcurrentAttemptsSeeDistinctCounts) {
   EXPECT_EQ(seen, want);
 }
 
-TEST_F(StoreTest, RouteIdsAreNeverReused) {
+TEST_P(StoreTest, RouteIdsAreNeverReused) {
   auto s = Open();
   int64_t a = *s->InsertRoute(MakeRoute(std::nullopt, "A"));
   int64_t b = *s->InsertRoute(MakeRoute(std::nullopt, "B"));
@@ -138,10 +137,12 @@ TEST_F(StoreTest, RouteIdsAreNeverReused) {
   EXPECT_EQ(s->GetRoute(a)->name, "A");
 }
 
-TEST_F(StoreTest, MigratesAVersion2DatabaseKeepingRowsAndLinks) {
-  // A database as version 2 left it: route ids without AUTOINCREMENT.
+TEST_P(StoreTest, MigratesAVersion2DatabaseKeepingRowsAndLinks) {
+  // A SQLite database as version 2 left it: route ids without AUTOINCREMENT
+  // (no PostgreSQL database predates version 3).
+  if (GetParam() != Backend::kSqlite) GTEST_SKIP() << "SQLite-only history";
   sqlite3* db = nullptr;
-  ASSERT_EQ(sqlite3_open(path_.c_str(), &db), SQLITE_OK);
+  ASSERT_EQ(sqlite3_open(db_.locator().c_str(), &db), SQLITE_OK);
   const char* v2 = R"sql(
 CREATE TABLE users (id INTEGER PRIMARY KEY, username TEXT NOT NULL UNIQUE COLLATE NOCASE,
   password_hash TEXT NOT NULL, created_at TEXT NOT NULL);
@@ -197,7 +198,7 @@ PRAGMA user_version = 2;
   EXPECT_EQ((*s->RecordAttempts({"user:alice"}, 200, 0))[0].count, 2);
 }
 
-TEST_F(StoreTest, RoutesVisibilityAndFilters) {
+TEST_P(StoreTest, RoutesVisibilityAndFilters) {
   auto s = Open();
   int64_t a = *s->CreateUser("alice", "h");
   int64_t b = *s->CreateUser("bob", "h");
@@ -240,7 +241,7 @@ TEST_F(StoreTest, RoutesVisibilityAndFilters) {
   EXPECT_EQ(s->UpdateRoute(up).code(), Status::Code::kNotFound);
 }
 
-TEST_F(StoreTest, VariationKeepsInputSnapshotsWhenInputIsDeleted) {
+TEST_P(StoreTest, VariationKeepsInputSnapshotsWhenInputIsDeleted) {
   auto s = Open();
   int64_t a = *s->CreateUser("alice", "h");
   int64_t r1 = *s->InsertRoute(MakeRoute(a, "One"));
@@ -259,7 +260,7 @@ TEST_F(StoreTest, VariationKeepsInputSnapshotsWhenInputIsDeleted) {
   EXPECT_EQ(got.inputs[0].crdl, "name: One\n---\nR jug\n");
 }
 
-TEST_F(StoreTest, InsertWithUnknownInputRollsBack) {
+TEST_P(StoreTest, InsertWithUnknownInputRollsBack) {
   auto s = Open();
   RouteRecord v = MakeRoute(std::nullopt, "V");
   v.is_variation = true;
@@ -273,7 +274,7 @@ TEST_F(StoreTest, InsertWithUnknownInputRollsBack) {
   EXPECT_EQ(s->ListRoutes({})->size(), 0u);
 }
 
-TEST_F(StoreTest, ConcurrentWritersDoNotLoseRows) {
+TEST_P(StoreTest, ConcurrentWritersDoNotLoseRows) {
   auto s = Open();
   std::vector<std::thread> ts;
   for (int t = 0; t < 4; ++t) {
@@ -287,57 +288,26 @@ TEST_F(StoreTest, ConcurrentWritersDoNotLoseRows) {
   EXPECT_EQ(s->AllRoutes(std::nullopt)->size(), 100u);
 }
 
-TEST_F(StoreTest, RefusesNewerSchema) {
+TEST_P(StoreTest, RefusesNewerSchema) {
   { auto s = Open(); }
-  {
-    // Simulate a database written by a future version.
-    auto s = Open();
+  // Simulate a database written by a future version.
+  if (GetParam() == Backend::kSqlite) {
+    sqlite3* db = nullptr;
+    ASSERT_EQ(sqlite3_open(db_.locator().c_str(), &db), SQLITE_OK);
+    ASSERT_EQ(sqlite3_exec(db, "PRAGMA user_version = 99", nullptr, nullptr, nullptr), SQLITE_OK);
+    sqlite3_close(db);
+  } else {
+    ASSERT_TRUE(db_.Exec("INSERT INTO schema_migrations(version) VALUES (99)").ok());
   }
-  std::string cmd = "sqlite3 '" + path_ + "' 'PRAGMA user_version=99' 2>/dev/null";
-  if (std::system(cmd.c_str()) != 0) GTEST_SKIP() << "sqlite3 CLI not available";
-  Result<std::unique_ptr<Store>> s = OpenSqliteStore(path_);
+  Result<std::unique_ptr<Store>> s = OpenStore(db_.locator());
   ASSERT_FALSE(s.ok());
   EXPECT_EQ(s.status().code(), Status::Code::kInvalidInput);
+  EXPECT_NE(s.status().message().find("newer"), std::string::npos) << s.status().message();
 }
-
-TEST(AuthTest, PasswordsHashWithArgon2id) {
-  Result<std::string> h = HashPassword("correct horse", /*fast=*/true);
-  ASSERT_TRUE(h.ok());
-  EXPECT_EQ(h->rfind("$argon2id$", 0), 0u) << *h;
-  EXPECT_TRUE(VerifyPassword("correct horse", *h));
-  EXPECT_FALSE(VerifyPassword("correct horsf", *h));
-  EXPECT_FALSE(VerifyPassword("x", "garbage"));
-}
-
-TEST(AuthTest, TokensAreRandom256BitAndHashed) {
-  std::string a = RandomToken(), b = RandomToken();
-  EXPECT_EQ(a.size(), 64u);
-  EXPECT_NE(a, b);
-  EXPECT_EQ(HashToken(a), HashToken(a));
-  EXPECT_NE(HashToken(a), a);
-  EXPECT_TRUE(TokensEqual(a, a));
-  EXPECT_FALSE(TokensEqual(a, b));
-  EXPECT_FALSE(TokensEqual("", ""));
-}
-
-TEST(AuthTest, UsernameAndPasswordRules) {
-  EXPECT_TRUE(CheckUsername("a").ok());
-  EXPECT_TRUE(CheckUsername("Climber_1.x-y").ok());
-  EXPECT_FALSE(CheckUsername("").ok());
-  EXPECT_FALSE(CheckUsername(std::string(41, 'a')).ok());
-  EXPECT_TRUE(CheckUsername(std::string(40, 'a')).ok());
-  EXPECT_FALSE(CheckUsername("a b").ok());
-  EXPECT_FALSE(CheckUsername("caf\xc3\xa9").ok());
-  EXPECT_FALSE(CheckUsername(std::string("a\0b", 3)).ok());
-  EXPECT_FALSE(CheckPassword("1234567").ok());
-  EXPECT_TRUE(CheckPassword("12345678").ok());
-}
-
-}  // namespace
 
 // Schema 4: metadata columns, paging, difficulty order, request keys and the
 // transitive visibility of variations.
-TEST_F(StoreTest, RouteMetadataPagingAndVariationSources) {
+TEST_P(StoreTest, RouteMetadataPagingAndVariationSources) {
   auto s = Open();
   int64_t alice = *s->CreateUser("alice", "h"), bob = *s->CreateUser("bob", "h");
   RouteRecord hidden = MakeRoute(alice, "Hidden", /*pub=*/false);
@@ -396,4 +366,38 @@ TEST_F(StoreTest, RouteMetadataPagingAndVariationSources) {
   EXPECT_EQ(s->GetRoute(h)->wall, "north");
 }
 
+TEST(AuthTest, PasswordsHashWithArgon2id) {
+  Result<std::string> h = HashPassword("correct horse", /*fast=*/true);
+  ASSERT_TRUE(h.ok());
+  EXPECT_EQ(h->rfind("$argon2id$", 0), 0u) << *h;
+  EXPECT_TRUE(VerifyPassword("correct horse", *h));
+  EXPECT_FALSE(VerifyPassword("correct horsf", *h));
+  EXPECT_FALSE(VerifyPassword("x", "garbage"));
+}
+
+TEST(AuthTest, TokensAreRandom256BitAndHashed) {
+  std::string a = RandomToken(), b = RandomToken();
+  EXPECT_EQ(a.size(), 64u);
+  EXPECT_NE(a, b);
+  EXPECT_EQ(HashToken(a), HashToken(a));
+  EXPECT_NE(HashToken(a), a);
+  EXPECT_TRUE(TokensEqual(a, a));
+  EXPECT_FALSE(TokensEqual(a, b));
+  EXPECT_FALSE(TokensEqual("", ""));
+}
+
+TEST(AuthTest, UsernameAndPasswordRules) {
+  EXPECT_TRUE(CheckUsername("a").ok());
+  EXPECT_TRUE(CheckUsername("Climber_1.x-y").ok());
+  EXPECT_FALSE(CheckUsername("").ok());
+  EXPECT_FALSE(CheckUsername(std::string(41, 'a')).ok());
+  EXPECT_TRUE(CheckUsername(std::string(40, 'a')).ok());
+  EXPECT_FALSE(CheckUsername("a b").ok());
+  EXPECT_FALSE(CheckUsername("caf\xc3\xa9").ok());
+  EXPECT_FALSE(CheckUsername(std::string("a\0b", 3)).ok());
+  EXPECT_FALSE(CheckPassword("1234567").ok());
+  EXPECT_TRUE(CheckPassword("12345678").ok());
+}
+
+}  // namespace
 }  // namespace sb::store

@@ -1,5 +1,6 @@
-// API tests: a real server on an ephemeral loopback port over a real SQLite
-// file in a temporary directory.
+// API tests: a real server on an ephemeral loopback port over a real
+// database: a SQLite file in a temporary directory, or a PostgreSQL database
+// when $SB_TEST_BACKEND is "postgresql" (ctest runs every test on both).
 #include <gtest/gtest.h>
 #include <httplib.h>
 #include <unistd.h>
@@ -10,7 +11,8 @@
 #include <thread>
 
 #include "base/files.h"
-#include "store/sqlite_store.h"
+#include "store/open.h"
+#include "store/store_test_util.h"
 #include "web/server.h"
 
 namespace sb::web {
@@ -46,7 +48,7 @@ const char kRoute2[] =
 class Running {
  public:
   explicit Running(const std::string& db, size_t max_body = 256 * 1024) {
-    Result<std::unique_ptr<store::Store>> s = store::OpenSqliteStore(db);
+    Result<std::unique_ptr<store::Store>> s = store::OpenStore(db);
     EXPECT_TRUE(s.ok()) << s.status().message();
     store_ = std::move(s).value();
     ServerOptions o;
@@ -128,17 +130,16 @@ class Client {
 class ApiTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("sb_web_test_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-    db_ = (dir_ / "web.db").string();
+    database_ = std::make_unique<store::testing::TestDatabase>(
+        store::testing::BackendFromEnvironment(), "web");
+    SB_REQUIRE_DATABASE(*database_);
+    dir_ = database_->dir();
+    db_ = database_->locator();
     server_ = std::make_unique<Running>(db_);
   }
   void TearDown() override {
     server_.reset();
-    fs::remove_all(dir_);
+    database_.reset();
   }
   void Restart(size_t max_body = 256 * 1024) {
     server_.reset();
@@ -150,8 +151,9 @@ class ApiTest : public ::testing::Test {
     return j.value("id", int64_t{0});
   }
 
+  std::unique_ptr<store::testing::TestDatabase> database_;
   fs::path dir_;
-  std::string db_;
+  std::string db_;  // the database's locator
   std::unique_ptr<Running> server_;
 };
 
@@ -334,7 +336,7 @@ TEST_F(ApiTest, ADeletedPrivateVariationNeverShowsAgain) {
 }
 
 TEST_F(ApiTest, APortAlreadyServedIsRefused) {
-  auto s = store::OpenSqliteStore((dir_ / "other.db").string());
+  auto s = store::OpenStore((dir_ / "other.db").string());
   ASSERT_TRUE(s.ok());
   ServerOptions o;
   o.threads = 2;

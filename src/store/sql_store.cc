@@ -1,0 +1,959 @@
+// store::Store written once over the SQL layer (store/sql.h): the SQLite and
+// the PostgreSQL backends are this class over one driver or the other, so
+// they behave the same by construction; where the dialects differ the SQL is
+// chosen by `pg_`.
+#include <algorithm>
+#include <atomic>
+#include <cctype>
+#include <climits>
+#include <ctime>
+#include <map>
+#include <utility>
+
+#include "base/log.h"
+#include "store/open.h"
+#include "store/schema.h"
+#include "store/sql.h"
+#include "store/sqlite_store.h"
+
+namespace sb::store {
+
+namespace {
+
+using sql::Rows;
+using sql::Value;
+using sql::Violation;
+
+std::string NowText() {
+  std::time_t t = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M:%S", &tm);
+  return buf;
+}
+
+// How long throttling attempts are kept (longer than any window).
+constexpr int64_t kAttemptRetentionSeconds = 24 * 3600;
+// How often (in the callers' clock) a process sweeps every key's old attempts.
+constexpr int64_t kAttemptSweepSeconds = 60;
+
+// The route columns ReadRoute reads, in its order; `crdl` and `plan_json`
+// (large) are read as '' where a list does not need them.
+std::string SelectRoutes(bool full) {
+  return std::string("SELECT r.id, r.owner_id, coalesce(u.username, ''), r.name, r.grade, ") +
+         "r.setter, " + (full ? "r.crdl" : "''") +
+         ", r.is_public, r.is_variation, r.params_json, " + (full ? "r.plan_json" : "''") +
+         ", r.smooth, r.created_at, r.updated_at, r.move_count, r.colour, r.wall, r.set_on, "
+         "r.grade_discipline, r.grade_value, r.meta_version, r.request_key "
+         "FROM routes r LEFT JOIN users u ON u.id = r.owner_id";
+}
+
+RouteRecord ReadRoute(const Rows& s, size_t i) {
+  RouteRecord r;
+  r.id = s.Int(i, 0);
+  r.owner_id = s.OptInt(i, 1);
+  r.owner_name = s.Text(i, 2);
+  r.name = s.Text(i, 3);
+  r.grade = s.Text(i, 4);
+  r.setter = s.Text(i, 5);
+  r.crdl = s.Text(i, 6);
+  r.is_public = s.Int(i, 7) != 0;
+  r.is_variation = s.Int(i, 8) != 0;
+  r.params_json = s.Text(i, 9);
+  r.plan_json = s.Text(i, 10);
+  r.smooth = s.Int(i, 11) != 0;
+  r.created_at = s.Text(i, 12);
+  r.updated_at = s.Text(i, 13);
+  r.move_count = static_cast<int>(s.Int(i, 14));
+  r.colour = s.Text(i, 15);
+  r.wall = s.Text(i, 16);
+  r.set_on = s.Text(i, 17);
+  r.grade_discipline = s.Text(i, 18);
+  r.grade_value = s.OptDouble(i, 19);
+  r.meta_version = static_cast<int>(s.Int(i, 20));
+  r.request_key = s.Text(i, 21);
+  return r;
+}
+
+SourceRoute ReadSource(const Rows& s, size_t i, size_t first) {
+  SourceRoute sr;
+  sr.route_id = s.Int(i, first);
+  sr.is_public = s.Int(i, first + 1) != 0;
+  sr.owner_id = s.OptInt(i, first + 2);
+  return sr;
+}
+
+// The feedback columns ReadFeedback reads.
+constexpr const char* kFeedbackSelect =
+    "SELECT id, route_id, participant, instrument, answers, felt_grade, felt_canonical, "
+    "felt_discipline, felt_value, comment, created_at, updated_at FROM feedback";
+
+Result<std::vector<FeedbackRecord>> ReadFeedback(const Rows& s) {
+  std::vector<FeedbackRecord> out;
+  for (size_t i = 0; i < s.size(); ++i) {
+    FeedbackRecord f;
+    f.id = s.Int(i, 0);
+    f.route_id = s.Int(i, 1);
+    f.participant = s.Text(i, 2);
+    f.instrument = s.Text(i, 3);
+    Result<Answers> answers = DecodeAnswers(s.Text(i, 4));
+    if (!answers.ok()) {
+      return Status::IoError("feedback " + std::to_string(f.id) + ": " +
+                             answers.status().message());
+    }
+    f.answers = std::move(answers).value();
+    f.felt_grade = s.Text(i, 5);
+    f.felt_canonical = s.Text(i, 6);
+    f.felt_discipline = s.Text(i, 7);
+    f.felt_value = s.OptDouble(i, 8);
+    f.comment = s.Text(i, 9);
+    f.created_at = s.Text(i, 10);
+    f.updated_at = s.Text(i, 11);
+    out.push_back(std::move(f));
+  }
+  return out;
+}
+
+// The study columns ReadStudy reads (the response count last).
+constexpr const char* kStudySelect =
+    "SELECT s.id, s.owner_id, coalesce(u.username, ''), s.name, s.instrument_json, "
+    "s.demographics, s.ask_rank, s.ask_order, s.is_open, s.created_at, s.updated_at, "
+    "(SELECT count(*) FROM study_responses r WHERE r.study_id = s.id) "
+    "FROM studies s LEFT JOIN users u ON u.id = s.owner_id";
+
+StudyRecord ReadStudy(const Rows& s, size_t i) {
+  StudyRecord st;
+  st.id = s.Int(i, 0);
+  st.owner_id = s.Int(i, 1);
+  st.owner_name = s.Text(i, 2);
+  st.name = s.Text(i, 3);
+  st.instrument_json = s.Text(i, 4);
+  st.demographics = s.Int(i, 5) != 0;
+  st.ask_rank = s.Int(i, 6) != 0;
+  st.ask_order = s.Int(i, 7) != 0;
+  st.is_open = s.Int(i, 8) != 0;
+  st.created_at = s.Text(i, 9);
+  st.updated_at = s.Text(i, 10);
+  st.responses = static_cast<int>(s.Int(i, 11));
+  return st;
+}
+
+// The advisory lock key of a study: its responses and definition change
+// under it, so counts, seq numbers and the "has responses" check hold
+// across processes.
+std::string StudyKey(int64_t id) { return "study:" + std::to_string(id); }
+
+VariationInput ReadInput(const Rows& s, size_t i, size_t first) {
+  VariationInput vi;
+  vi.route_id = s.OptInt(i, first);
+  vi.name = s.Text(i, first + 1);
+  vi.crdl = s.Text(i, first + 2);
+  return vi;
+}
+
+class SqlStore final : public Store {
+ public:
+  explicit SqlStore(std::unique_ptr<sql::Pool> pool)
+      : pool_(std::move(pool)), pg_(pool_->dialect() == sql::Dialect::kPostgres) {}
+
+  Status Migrate() {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return sql::Migrate(*c);
+  }
+
+  int SchemaVersion() override {
+    Result<sql::Pool::Lease> c = pool_->Acquire();
+    if (!c.ok()) return 0;
+    Result<int> v = (*c)->SchemaVersion();
+    return v.ok() ? *v : 0;
+  }
+
+  // -- accounts -------------------------------------------------------------
+
+  Result<int64_t> CreateUser(const std::string& username,
+                             const std::string& password_hash) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    Violation v;
+    Result<Rows> r = c->Query(
+        "INSERT INTO users(username, password_hash, created_at) VALUES(?, ?, ?) RETURNING id",
+        {username, password_hash, NowText()}, &v);
+    if (!r.ok() && v == Violation::kUnique) {
+      return Status::Conflict("username '" + username + "' is taken");
+    }
+    if (!r.ok()) return r.status().WithPrefix("create user");
+    return r->Int(0, 0);
+  }
+
+  Result<User> FindUserByName(const std::string& username) override {
+    // SQLite's column collates NOCASE; PostgreSQL's unique index is on lower().
+    return FindUserWhere(pg_ ? "lower(username) = lower(?)" : "username = ?", username,
+                         "no user '" + username + "'");
+  }
+
+  Result<User> FindUser(int64_t id) override {
+    return FindUserWhere("id = ?", id, "no user " + std::to_string(id));
+  }
+
+  Result<int64_t> CountUsers() override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(Rows r, c->Query("SELECT count(*) FROM users", {}));
+    return r.Int(0, 0);
+  }
+
+  // -- sessions -------------------------------------------------------------
+
+  Status CreateSession(const Session& session) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    const int64_t now = std::time(nullptr);
+    // Expired sessions are dropped here so the table stays small.
+    SB_ASSIGN_OR_RETURN(Rows d, c->Query("DELETE FROM sessions WHERE expires_at <= ?", {now}));
+    SB_ASSIGN_OR_RETURN(
+        Rows r, c->Query("INSERT INTO sessions(id_hash, user_id, csrf, created_at, expires_at) "
+                         "VALUES(?, ?, ?, ?, ?)",
+                         {session.id_hash, session.user_id, session.csrf, now,
+                          session.expires_at}));
+    return Status::Ok();
+  }
+
+  Result<Session> FindSession(const std::string& id_hash, int64_t now) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(
+        Rows r, c->Query("SELECT s.id_hash, s.user_id, u.username, s.csrf, s.expires_at "
+                         "FROM sessions s JOIN users u ON u.id = s.user_id "
+                         "WHERE s.id_hash = ? AND s.expires_at > ?",
+                         {id_hash, now}));
+    if (r.empty()) return Status::NotFound("no such session");
+    Session out;
+    out.id_hash = r.Text(0, 0);
+    out.user_id = r.Int(0, 1);
+    out.username = r.Text(0, 2);
+    out.csrf = r.Text(0, 3);
+    out.expires_at = r.Int(0, 4);
+    return out;
+  }
+
+  Status DeleteSession(const std::string& id_hash) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(Rows r, c->Query("DELETE FROM sessions WHERE id_hash = ?", {id_hash}));
+    return Status::Ok();
+  }
+
+  // -- throttling -----------------------------------------------------------
+
+  Result<std::vector<AttemptCount>> RecordAttempts(const std::vector<std::string>& keys,
+                                                   int64_t now, int64_t since) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SweepAttempts(*c, now);
+    return sql::InTransaction<std::vector<AttemptCount>>(
+        *c, [&]() -> Result<std::vector<AttemptCount>> {
+          // Every process that counts one of these keys waits here, so N
+          // concurrent attempts see the counts 1..N.
+          SB_RETURN_IF_ERROR(c->LockKeys(keys));
+          std::vector<AttemptCount> out;
+          for (const std::string& key : keys) {
+            SB_ASSIGN_OR_RETURN(Rows d, c->Query("DELETE FROM attempts WHERE key = ? AND at < ?",
+                                                 {key, now - kAttemptRetentionSeconds}));
+            SB_ASSIGN_OR_RETURN(
+                Rows prev, c->Query("SELECT count(*), coalesce(max(at), 0) FROM attempts "
+                                    "WHERE key = ? AND at >= ?",
+                                    {key, since}));
+            AttemptCount n;
+            n.count = static_cast<int>(prev.Int(0, 0)) + 1;
+            n.previous_at = prev.Int(0, 1);
+            SB_ASSIGN_OR_RETURN(Rows ins,
+                                c->Query("INSERT INTO attempts(key, at) VALUES(?, ?)", {key, now}));
+            out.push_back(n);
+          }
+          return out;
+        });
+  }
+
+  Status UndoAttempts(const std::vector<std::string>& keys, int64_t at) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    // One row per key: SQLite names rows by rowid, PostgreSQL by ctid.
+    const char* sql =
+        pg_ ? "DELETE FROM attempts WHERE ctid = (SELECT ctid FROM attempts "
+              "WHERE key = ? AND at = ? LIMIT 1)"
+            : "DELETE FROM attempts WHERE rowid = (SELECT rowid FROM attempts "
+              "WHERE key = ? AND at = ? ORDER BY rowid DESC LIMIT 1)";
+    return sql::RunInTransaction(*c, [&]() -> Status {
+      // Under the keys' locks, two undoing processes never pick the same row.
+      SB_RETURN_IF_ERROR(c->LockKeys(keys));
+      for (const std::string& key : keys) {
+        SB_ASSIGN_OR_RETURN(Rows r, c->Query(sql, {key, at}));
+      }
+      return Status::Ok();
+    });
+  }
+
+  Status ClearAttempts(const std::string& key) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(Rows r, c->Query("DELETE FROM attempts WHERE key = ?", {key}));
+    return Status::Ok();
+  }
+
+  // -- routes ---------------------------------------------------------------
+
+  Result<int64_t> InsertRoute(const RouteRecord& route) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return sql::InTransaction<int64_t>(*c, [&] { return InsertOne(*c, route, {}); });
+  }
+
+  Result<std::vector<int64_t>> InsertRoutes(const std::vector<RouteRecord>& routes) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return sql::InTransaction<std::vector<int64_t>>(
+        *c, [&]() -> Result<std::vector<int64_t>> {
+          std::vector<int64_t> ids;
+          ids.reserve(routes.size());
+          for (const RouteRecord& r : routes) {
+            SB_ASSIGN_OR_RETURN(int64_t id, InsertOne(*c, r, ids));
+            ids.push_back(id);
+          }
+          return ids;
+        });
+  }
+
+  Status UpdateRoute(const RouteRecord& route) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(
+        Rows r,
+        c->Query("UPDATE routes SET crdl = ?, name = ?, grade = ?, setter = ?, is_public = ?, "
+                 "move_count = ?, updated_at = ?, colour = ?, wall = ?, set_on = ?, "
+                 "grade_discipline = ?, grade_value = ?, meta_version = ?, request_key = ? "
+                 "WHERE id = ? RETURNING id",
+                 {route.crdl, route.name, route.grade, route.setter, int64_t{route.is_public},
+                  int64_t{route.move_count}, NowText(), route.colour, route.wall, route.set_on,
+                  route.grade_discipline, sql::Nullable(route.grade_value),
+                  int64_t{route.meta_version}, route.request_key, route.id}));
+    if (r.empty()) return Status::NotFound("no route " + std::to_string(route.id));
+    return Status::Ok();
+  }
+
+  Status UpdateRouteMetadata(const RouteRecord& route) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(
+        Rows r, c->Query("UPDATE routes SET name = ?, grade = ?, setter = ?, colour = ?, "
+                         "wall = ?, set_on = ?, grade_discipline = ?, grade_value = ?, "
+                         "meta_version = ? WHERE id = ? RETURNING id",
+                         {route.name, route.grade, route.setter, route.colour, route.wall,
+                          route.set_on, route.grade_discipline, sql::Nullable(route.grade_value),
+                          int64_t{route.meta_version}, route.id}));
+    if (r.empty()) return Status::NotFound("no route " + std::to_string(route.id));
+    return Status::Ok();
+  }
+
+  Status DeleteRoute(int64_t id) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(Rows r, c->Query("DELETE FROM routes WHERE id = ? RETURNING id", {id}));
+    if (r.empty()) return Status::NotFound("no route " + std::to_string(id));
+    return Status::Ok();
+  }
+
+  Result<RouteRecord> GetRoute(int64_t id) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(Rows r, c->Query(SelectRoutes(true) + " WHERE r.id = ?", {id}));
+    if (r.empty()) return Status::NotFound("no route " + std::to_string(id));
+    RouteRecord out = ReadRoute(r, 0);
+    SB_ASSIGN_OR_RETURN(Rows in, c->Query("SELECT route_id, name, crdl FROM variation_inputs "
+                                          "WHERE variation_id = ? ORDER BY position",
+                                          {id}));
+    for (size_t i = 0; i < in.size(); ++i) out.inputs.push_back(ReadInput(in, i, 0));
+    if (out.is_variation) {
+      SB_ASSIGN_OR_RETURN(
+          Rows src, c->Query("SELECT src.id, src.is_public, src.owner_id FROM route_sources s "
+                             "JOIN routes src ON src.id = s.route_id WHERE s.variation_id = ? "
+                             "ORDER BY src.id",
+                             {id}));
+      for (size_t i = 0; i < src.size(); ++i) out.sources.push_back(ReadSource(src, i, 0));
+    }
+    return out;
+  }
+
+  Result<std::vector<RouteRecord>> ListRoutes(const RouteFilter& f) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    std::vector<Value> params;
+    std::string sql = SelectRoutes(false) + FilterWhere(f, &params) + OrderBy(f.sort) +
+                      " LIMIT ? OFFSET ?";
+    params.push_back(int64_t{std::max(0, f.limit)});
+    params.push_back(int64_t{std::max(0, f.offset)});
+    SB_ASSIGN_OR_RETURN(Rows r, c->Query(sql, params));
+    std::vector<RouteRecord> out;
+    out.reserve(r.size());
+    for (size_t i = 0; i < r.size(); ++i) out.push_back(ReadRoute(r, i));
+    return out;
+  }
+
+  Result<int64_t> CountRoutes(const RouteFilter& f) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    std::vector<Value> params;
+    std::string sql = "SELECT count(*) FROM routes r LEFT JOIN users u ON u.id = r.owner_id" +
+                      FilterWhere(f, &params);
+    SB_ASSIGN_OR_RETURN(Rows r, c->Query(sql, params));
+    return r.Int(0, 0);
+  }
+
+  Result<int64_t> FindVariationByKey(int64_t owner, const std::string& request_key) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(
+        Rows r, c->Query("SELECT id FROM routes WHERE owner_id = ? AND request_key = ? AND "
+                         "request_key <> '' AND is_variation = 1 ORDER BY id DESC LIMIT 1",
+                         {owner, request_key}));
+    if (r.empty()) return Status::NotFound("no such variation");
+    return r.Int(0, 0);
+  }
+
+  Result<std::vector<RouteRecord>> AllRoutes(std::optional<int64_t> owner) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    std::vector<Value> params;
+    std::string where;
+    if (owner) {
+      where = " WHERE r.owner_id = ?";
+      params.push_back(*owner);
+    }
+    SB_ASSIGN_OR_RETURN(Rows r, c->Query(SelectRoutes(true) + where + " ORDER BY r.id", params));
+    std::vector<RouteRecord> out;
+    std::map<int64_t, size_t> index;
+    for (size_t i = 0; i < r.size(); ++i) {
+      out.push_back(ReadRoute(r, i));
+      index[out.back().id] = i;
+    }
+    // All inputs in one query; rows of variations made since the first
+    // query (PostgreSQL reads each statement's own snapshot) are ignored.
+    SB_ASSIGN_OR_RETURN(
+        Rows in, c->Query("SELECT i.variation_id, i.route_id, i.name, i.crdl "
+                          "FROM variation_inputs i JOIN routes r ON r.id = i.variation_id" +
+                              where + " ORDER BY i.variation_id, i.position",
+                          params));
+    for (size_t i = 0; i < in.size(); ++i) {
+      auto it = index.find(in.Int(i, 0));
+      if (it != index.end()) out[it->second].inputs.push_back(ReadInput(in, i, 1));
+    }
+    SB_ASSIGN_OR_RETURN(
+        Rows src, c->Query("SELECT s.variation_id, src.id, src.is_public, src.owner_id "
+                           "FROM route_sources s JOIN routes src ON src.id = s.route_id "
+                           "JOIN routes r ON r.id = s.variation_id" +
+                               where + " ORDER BY s.variation_id, src.id",
+                           params));
+    for (size_t i = 0; i < src.size(); ++i) {
+      auto it = index.find(src.Int(i, 0));
+      if (it != index.end()) out[it->second].sources.push_back(ReadSource(src, i, 1));
+    }
+    return out;
+  }
+
+  // -- climbers' feedback ---------------------------------------------------
+
+  Result<int64_t> PutFeedback(const FeedbackRecord& f) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    const std::string now = NowText();
+    // One statement, so a concurrent submission of the same participant
+    // cannot make a second row (UNIQUE (route_id, participant)).
+    Violation v;
+    Result<Rows> r = c->Query(
+        "INSERT INTO feedback(route_id, participant, instrument, answers, felt_grade, "
+        "felt_canonical, felt_discipline, felt_value, comment, created_at, updated_at) "
+        "VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?) ON CONFLICT(route_id, participant) DO UPDATE "
+        "SET instrument = excluded.instrument, answers = excluded.answers, "
+        "felt_grade = excluded.felt_grade, felt_canonical = excluded.felt_canonical, "
+        "felt_discipline = excluded.felt_discipline, felt_value = excluded.felt_value, "
+        "comment = excluded.comment, updated_at = excluded.updated_at RETURNING id",
+        {f.route_id, f.participant, f.instrument, EncodeAnswers(f.answers), f.felt_grade,
+         f.felt_canonical, f.felt_discipline, sql::Nullable(f.felt_value), f.comment, now, now},
+        &v);
+    if (!r.ok() && v == Violation::kForeignKey) {
+      return Status::NotFound("no route " + std::to_string(f.route_id));
+    }
+    if (!r.ok()) return r.status().WithPrefix("put feedback");
+    return r->Int(0, 0);
+  }
+
+  Result<std::optional<FeedbackRecord>> FindFeedback(int64_t route_id,
+                                                     const std::string& participant) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(Rows r, c->Query(std::string(kFeedbackSelect) +
+                                             " WHERE route_id = ? AND participant = ?",
+                                         {route_id, participant}));
+    SB_ASSIGN_OR_RETURN(std::vector<FeedbackRecord> rows, ReadFeedback(r));
+    if (rows.empty()) return std::optional<FeedbackRecord>();
+    return std::optional<FeedbackRecord>(std::move(rows[0]));
+  }
+
+  Result<std::vector<FeedbackRecord>> ListFeedback(int64_t route_id) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(
+        Rows r, c->Query(std::string(kFeedbackSelect) + " WHERE route_id = ? ORDER BY id",
+                         {route_id}));
+    return ReadFeedback(r);
+  }
+
+  Result<std::vector<FeedbackRecord>> FeedbackOnRoutesOf(int64_t owner_id) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(Rows r, c->Query(std::string(kFeedbackSelect) +
+                                             " WHERE route_id IN (SELECT id FROM routes WHERE "
+                                             "owner_id = ?) ORDER BY route_id, id",
+                                         {owner_id}));
+    return ReadFeedback(r);
+  }
+
+  // -- studies --------------------------------------------------------------
+
+  Result<int64_t> InsertStudy(const StudyRecord& st) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return sql::InTransaction<int64_t>(*c, [&]() -> Result<int64_t> {
+      const std::string now = NowText();
+      Violation v;
+      Result<Rows> r = c->Query(
+          "INSERT INTO studies(owner_id, name, instrument_json, demographics, ask_rank, "
+          "ask_order, is_open, created_at, updated_at) VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?) "
+          "RETURNING id",
+          {st.owner_id, st.name, st.instrument_json, int64_t{st.demographics},
+           int64_t{st.ask_rank}, int64_t{st.ask_order}, int64_t{st.is_open}, now, now},
+          &v);
+      if (!r.ok() && v == Violation::kForeignKey) {
+        return Status::NotFound("no user " + std::to_string(st.owner_id));
+      }
+      if (!r.ok()) return r.status().WithPrefix("insert study");
+      int64_t id = r->Int(0, 0);
+      SB_RETURN_IF_ERROR(WriteStudyRoutes(*c, id, st.routes));
+      return id;
+    });
+  }
+
+  Status UpdateStudy(const StudyRecord& st, bool definition_changes) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return sql::RunInTransaction(*c, [&]() -> Status {
+      SB_RETURN_IF_ERROR(c->LockKeys({StudyKey(st.id)}));
+      SB_ASSIGN_OR_RETURN(
+          Rows n, c->Query("SELECT (SELECT count(*) FROM study_responses WHERE study_id = s.id) "
+                           "FROM studies s WHERE s.id = ?",
+                           {st.id}));
+      if (n.empty()) return Status::NotFound("no study " + std::to_string(st.id));
+      if (definition_changes && n.Int(0, 0) > 0) {
+        return Status::Conflict(
+            "the study has responses: its routes, instrument and questions can no longer "
+            "change");
+      }
+      SB_ASSIGN_OR_RETURN(
+          Rows u, c->Query("UPDATE studies SET name = ?, instrument_json = ?, demographics = ?, "
+                           "ask_rank = ?, ask_order = ?, is_open = ?, updated_at = ? "
+                           "WHERE id = ?",
+                           {st.name, st.instrument_json, int64_t{st.demographics},
+                            int64_t{st.ask_rank}, int64_t{st.ask_order}, int64_t{st.is_open},
+                            NowText(), st.id}));
+      if (definition_changes) SB_RETURN_IF_ERROR(WriteStudyRoutes(*c, st.id, st.routes));
+      return Status::Ok();
+    });
+  }
+
+  Result<StudyRecord> GetStudy(int64_t id) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(std::vector<StudyRecord> rows,
+                        ReadStudies(*c, " WHERE s.id = ?", {id}));
+    if (rows.empty()) return Status::NotFound("no study " + std::to_string(id));
+    return std::move(rows[0]);
+  }
+
+  Result<std::vector<StudyRecord>> ListStudies(int64_t owner_id) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return ReadStudies(*c, " WHERE s.owner_id = ? ORDER BY s.id DESC", {owner_id});
+  }
+
+  Result<int> InsertStudyResponse(const StudyResponseRecord& r, int max_responses) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return sql::InTransaction<int>(*c, [&]() -> Result<int> {
+      // Every process adding a response to this study waits here, so the
+      // count, the limit and seq are read and written by one at a time.
+      SB_RETURN_IF_ERROR(c->LockKeys({StudyKey(r.study_id)}));
+      SB_ASSIGN_OR_RETURN(
+          Rows s,
+          c->Query("SELECT s.is_open, "
+                   "(SELECT count(*) FROM study_responses WHERE study_id = s.id), "
+                   "(SELECT coalesce(max(seq), 0) FROM study_responses WHERE study_id = s.id), "
+                   "(SELECT count(*) FROM study_responses WHERE study_id = s.id AND "
+                   "participant = ?) FROM studies s WHERE s.id = ?",
+                   {r.participant, r.study_id}));
+      if (s.empty()) return Status::NotFound("no study " + std::to_string(r.study_id));
+      if (s.Int(0, 0) == 0) return Status::Conflict("this study is closed");
+      if (s.Int(0, 3) > 0) return Status::Conflict("you have already answered this study");
+      if (s.Int(0, 1) >= max_responses) {
+        return Status::Conflict("this study has reached its limit of " +
+                                std::to_string(max_responses) + " responses");
+      }
+      const int seq = static_cast<int>(s.Int(0, 2)) + 1;
+      Violation v;
+      Result<Rows> ins = c->Query(
+          "INSERT INTO study_responses(study_id, participant, seq, ability, created_at) "
+          "VALUES(?, ?, ?, ?, ?) RETURNING id",
+          {r.study_id, r.participant, int64_t{seq}, sql::Nullable(r.ability), NowText()}, &v);
+      if (!ins.ok() && v == Violation::kUnique) {
+        return Status::Conflict("you have already answered this study");
+      }
+      if (!ins.ok()) return ins.status().WithPrefix("insert study response");
+      const int64_t id = ins->Int(0, 0);
+      for (const StudyAnswer& a : r.answers) {
+        Result<Rows> w = c->Query(
+            "INSERT INTO study_answers(response_id, position, answers, route_rank, climb_order) "
+            "VALUES(?, ?, ?, ?, ?)",
+            {id, int64_t{a.position}, EncodeAnswers(a.answers), sql::Nullable(a.rank),
+             sql::Nullable(a.order)},
+            &v);
+        if (!w.ok() && v == Violation::kUnique) {
+          return Status::InvalidInput("route " + std::to_string(a.position) + " answered twice");
+        }
+        if (!w.ok()) return w.status().WithPrefix("insert study answers");
+      }
+      for (const auto& [question, answer] : r.demographics) {
+        Result<Rows> w = c->Query(
+            "INSERT INTO study_demographics(response_id, question, answer) VALUES(?, ?, ?)",
+            {id, question, answer}, &v);
+        if (!w.ok() && v == Violation::kUnique) {
+          return Status::InvalidInput(question + ": answered twice");
+        }
+        if (!w.ok()) return w.status().WithPrefix("insert study demographics");
+      }
+      return seq;
+    });
+  }
+
+  Result<bool> HasStudyResponse(int64_t study_id, const std::string& participant) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(
+        Rows r, c->Query("SELECT 1 FROM study_responses WHERE study_id = ? AND participant = ?",
+                         {study_id, participant}));
+    return !r.empty();
+  }
+
+  Result<std::vector<StudyResponseRecord>> ListStudyResponses(int64_t study_id) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    // One snapshot for the three reads (PostgreSQL reads each statement's
+    // own otherwise; SQLite's read transaction is one anyway).
+    return sql::InTransaction<std::vector<StudyResponseRecord>>(
+        *c, [&]() -> Result<std::vector<StudyResponseRecord>> {
+          if (pg_) SB_RETURN_IF_ERROR(c->Exec("SET TRANSACTION ISOLATION LEVEL REPEATABLE READ"));
+          std::vector<StudyResponseRecord> out;
+          std::map<int64_t, size_t> index;  // response id -> position in out
+          SB_ASSIGN_OR_RETURN(
+              Rows s, c->Query("SELECT id, study_id, participant, seq, ability, created_at "
+                               "FROM study_responses WHERE study_id = ? ORDER BY seq",
+                               {study_id}));
+          for (size_t i = 0; i < s.size(); ++i) {
+            StudyResponseRecord r;
+            r.id = s.Int(i, 0);
+            r.study_id = s.Int(i, 1);
+            r.participant = s.Text(i, 2);
+            r.seq = static_cast<int>(s.Int(i, 3));
+            r.ability = s.OptDouble(i, 4);
+            r.created_at = s.Text(i, 5);
+            index[r.id] = out.size();
+            out.push_back(std::move(r));
+          }
+          SB_ASSIGN_OR_RETURN(
+              Rows a, c->Query("SELECT a.response_id, a.position, a.answers, a.route_rank, "
+                               "a.climb_order FROM study_answers a JOIN study_responses r "
+                               "ON r.id = a.response_id WHERE r.study_id = ? "
+                               "ORDER BY a.response_id, a.position",
+                               {study_id}));
+          for (size_t i = 0; i < a.size(); ++i) {
+            auto it = index.find(a.Int(i, 0));
+            if (it == index.end()) continue;
+            StudyAnswer ans;
+            ans.position = static_cast<int>(a.Int(i, 1));
+            Result<Answers> decoded = DecodeAnswers(a.Text(i, 2));
+            if (!decoded.ok()) {
+              return Status::IoError("study " + std::to_string(study_id) + ": " +
+                                     decoded.status().message());
+            }
+            ans.answers = std::move(decoded).value();
+            std::optional<int64_t> rank = a.OptInt(i, 3), order = a.OptInt(i, 4);
+            if (rank) ans.rank = static_cast<int>(*rank);
+            if (order) ans.order = static_cast<int>(*order);
+            out[it->second].answers.push_back(std::move(ans));
+          }
+          // Demographics in question order, compared byte-wise on both backends.
+          SB_ASSIGN_OR_RETURN(
+              Rows d, c->Query(std::string("SELECT d.response_id, d.question, d.answer "
+                                           "FROM study_demographics d JOIN study_responses r "
+                                           "ON r.id = d.response_id WHERE r.study_id = ? "
+                                           "ORDER BY d.response_id, d.question") +
+                                   (pg_ ? " COLLATE \"C\"" : ""),
+                               {study_id}));
+          for (size_t i = 0; i < d.size(); ++i) {
+            auto it = index.find(d.Int(i, 0));
+            if (it != index.end()) {
+              out[it->second].demographics.emplace_back(d.Text(i, 1), d.Text(i, 2));
+            }
+          }
+          return out;
+        });
+  }
+
+ private:
+  // Case-insensitive substring test of `hay` against one parameter:
+  // instr() in SQLite, strpos() in PostgreSQL.
+  std::string Contains(const std::string& hay) const {
+    return std::string(pg_ ? "strpos(" : "instr(") + "lower(" + hay + "), lower(?)) > 0";
+  }
+
+  // The WHERE clause of a route filter, its values appended to `params`.
+  // The visibility rule: the row is public or the viewer's, and so is every
+  // route it was made from (app::IsVisible is the same rule over a
+  // RouteRecord).
+  std::string FilterWhere(const RouteFilter& f, std::vector<Value>* params) const {
+    const int64_t viewer = f.viewer.value_or(-1);
+    std::string w =
+        " WHERE (r.is_public = 1 OR r.owner_id = ?) AND NOT EXISTS (SELECT 1 FROM "
+        "route_sources s JOIN routes src ON src.id = s.route_id WHERE s.variation_id = r.id "
+        "AND src.is_public = 0 AND (src.owner_id IS NULL OR src.owner_id <> ?))";
+    params->push_back(viewer);
+    params->push_back(viewer);
+    if (!f.grade.empty()) {
+      w += " AND lower(r.grade) = lower(?)";
+      params->push_back(f.grade);
+    }
+    if (!f.setter.empty()) {
+      w += " AND (" + Contains("r.setter") + " OR " + Contains("coalesce(u.username, '')") + ")";
+      params->insert(params->end(), 2, f.setter);
+    }
+    if (!f.text.empty()) {
+      w += " AND (" + Contains("r.name") + " OR " + Contains("r.crdl") + " OR " +
+           Contains("coalesce(u.username, '')") + ")";
+      params->insert(params->end(), 3, f.text);
+    }
+    if (!f.wall.empty()) {
+      w += " AND " + Contains("r.wall");
+      params->push_back(f.wall);
+    }
+    if (f.is_variation) w += *f.is_variation ? " AND r.is_variation = 1" : " AND r.is_variation = 0";
+    if (f.owner) {
+      w += " AND r.owner_id = ?";
+      params->push_back(*f.owner);
+    }
+    if (!f.grade_discipline.empty()) {
+      w += " AND r.grade_discipline = ? AND r.grade_value IS NOT NULL";
+      params->push_back(f.grade_discipline);
+      if (f.grade_min) {
+        w += " AND r.grade_value >= ?";
+        params->push_back(*f.grade_min);
+      }
+      if (f.grade_max) {
+        w += " AND r.grade_value <= ?";
+        params->push_back(*f.grade_max);
+      }
+    }
+    return w;
+  }
+
+  // ORDER BY of a route list; text compared byte-wise on both backends
+  // (PostgreSQL's database collation may differ: COLLATE "C").
+  std::string OrderBy(RouteSort sort) const {
+    const std::string c = pg_ ? " COLLATE \"C\"" : "";
+    switch (sort) {
+      case RouteSort::kNewest:
+        return " ORDER BY r.id DESC";
+      case RouteSort::kOldest:
+        return " ORDER BY r.id ASC";
+      case RouteSort::kName:
+        return " ORDER BY lower(r.name)" + c + ", r.id";
+      case RouteSort::kEasiest:
+        return " ORDER BY (r.grade_value IS NULL), r.grade_discipline" + c +
+               ", r.grade_value, r.id";
+      case RouteSort::kHardest:
+        return " ORDER BY (r.grade_value IS NULL), r.grade_discipline" + c +
+               ", r.grade_value DESC, r.id";
+    }
+    return " ORDER BY r.id DESC";
+  }
+
+  // Inside a transaction: the study's routes replace any stored ones.
+  static Status WriteStudyRoutes(sql::Connection& c, int64_t study_id,
+                                 const std::vector<StudyRoute>& routes) {
+    SB_ASSIGN_OR_RETURN(Rows d, c.Query("DELETE FROM study_routes WHERE study_id = ?", {study_id}));
+    for (const StudyRoute& sr : routes) {
+      Violation v;
+      Result<Rows> in = c.Query(
+          "INSERT INTO study_routes(study_id, position, route_id, name) VALUES(?, ?, ?, ?)",
+          {study_id, int64_t{sr.position}, sql::Nullable(sr.route_id), sr.name}, &v);
+      if (!in.ok() && v != Violation::kNone) {
+        return Status::InvalidInput("study routes: position " + std::to_string(sr.position) +
+                                    " twice or route " + std::to_string(sr.route_id.value_or(0)) +
+                                    " unknown");
+      }
+      if (!in.ok()) return in.status().WithPrefix("insert study route");
+    }
+    return Status::Ok();
+  }
+
+  // The studies kStudySelect + `where` selects, with their routes.
+  static Result<std::vector<StudyRecord>> ReadStudies(sql::Connection& c, const std::string& where,
+                                                      std::vector<Value> params) {
+    SB_ASSIGN_OR_RETURN(Rows s, c.Query(std::string(kStudySelect) + where, params));
+    std::vector<StudyRecord> out;
+    for (size_t i = 0; i < s.size(); ++i) {
+      out.push_back(ReadStudy(s, i));
+      SB_ASSIGN_OR_RETURN(Rows r, c.Query("SELECT position, route_id, name FROM study_routes "
+                                          "WHERE study_id = ? ORDER BY position",
+                                          {out.back().id}));
+      for (size_t j = 0; j < r.size(); ++j) {
+        StudyRoute sr;
+        sr.position = static_cast<int>(r.Int(j, 0));
+        sr.route_id = r.OptInt(j, 1);
+        sr.name = r.Text(j, 2);
+        out.back().routes.push_back(std::move(sr));
+      }
+    }
+    return out;
+  }
+
+  Result<User> FindUserWhere(const std::string& where, Value key, const std::string& not_found) {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(
+        Rows r, c->Query("SELECT id, username, password_hash, created_at FROM users WHERE " + where,
+                         {std::move(key)}));
+    if (r.empty()) return Status::NotFound(not_found);
+    User u;
+    u.id = r.Int(0, 0);
+    u.username = r.Text(0, 1);
+    u.password_hash = r.Text(0, 2);
+    u.created_at = r.Text(0, 3);
+    return u;
+  }
+
+  // Inside a transaction. `batch` = ids already inserted by this call.
+  static Result<int64_t> InsertOne(sql::Connection& c, const RouteRecord& r,
+                                   const std::vector<int64_t>& batch) {
+    std::string now = r.created_at.empty() ? NowText() : r.created_at;
+    SB_ASSIGN_OR_RETURN(
+        Rows ins,
+        c.Query("INSERT INTO routes(owner_id, name, grade, setter, crdl, move_count, is_public, "
+                "is_variation, params_json, plan_json, smooth, created_at, updated_at, colour, "
+                "wall, set_on, grade_discipline, grade_value, meta_version, request_key) "
+                "VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?) RETURNING id",
+                {sql::Nullable(r.owner_id), r.name, r.grade, r.setter, r.crdl,
+                 int64_t{r.move_count}, int64_t{r.is_public}, int64_t{r.is_variation},
+                 r.params_json, r.plan_json, int64_t{r.smooth}, now, now, r.colour, r.wall,
+                 r.set_on, r.grade_discipline, sql::Nullable(r.grade_value),
+                 int64_t{r.meta_version}, r.request_key}));
+    int64_t id = ins.Int(0, 0);
+    for (size_t i = 0; i < r.inputs.size(); ++i) {
+      const VariationInput& vi = r.inputs[i];
+      std::optional<int64_t> rid = vi.route_id;
+      if (vi.batch_index) {
+        if (*vi.batch_index < 0 || static_cast<size_t>(*vi.batch_index) >= batch.size()) {
+          return Status::InvalidInput("variation input refers to a later route of the batch");
+        }
+        rid = batch[*vi.batch_index];
+      }
+      Violation v;
+      Result<Rows> in = c.Query(
+          "INSERT INTO variation_inputs(variation_id, position, route_id, name, crdl) "
+          "VALUES(?, ?, ?, ?, ?)",
+          {id, static_cast<int64_t>(i), sql::Nullable(rid), vi.name, vi.crdl}, &v);
+      if (!in.ok() && v == Violation::kForeignKey) {
+        return Status::NotFound("variation input route " + std::to_string(rid.value_or(0)) +
+                                " does not exist");
+      }
+      if (!in.ok()) return in.status().WithPrefix("insert variation input");
+    }
+    if (!r.inputs.empty()) {
+      // Its sources: the inputs and, transitively, what they were made from.
+      SB_ASSIGN_OR_RETURN(
+          Rows src,
+          c.Query("INSERT INTO route_sources(variation_id, route_id) "
+                  "SELECT CAST(? AS BIGINT), route_id FROM variation_inputs "
+                  "WHERE variation_id = ? AND route_id IS NOT NULL "
+                  "UNION SELECT CAST(? AS BIGINT), s.route_id FROM route_sources s "
+                  "JOIN variation_inputs vi ON s.variation_id = vi.route_id "
+                  "WHERE vi.variation_id = ? ON CONFLICT DO NOTHING",
+                  {id, id, id, id}));
+    }
+    return id;
+  }
+
+  // Drops every key's attempts older than the retention, at most once per
+  // kAttemptSweepSeconds per process, outside any transaction (on
+  // PostgreSQL concurrent sweeps then never hold row locks while they wait
+  // for a key lock). Hygiene only: counting drops a key's old rows itself.
+  void SweepAttempts(sql::Connection& c, int64_t now) {
+    int64_t last = last_sweep_.load();
+    if (now - last < kAttemptSweepSeconds && now >= last) return;
+    if (!last_sweep_.compare_exchange_strong(last, now)) return;
+    Result<Rows> r =
+        c.Query("DELETE FROM attempts WHERE at < ?", {now - kAttemptRetentionSeconds});
+    if (!r.ok()) LogError("dropping old throttling attempts: " + r.status().message());
+  }
+
+  std::unique_ptr<sql::Pool> pool_;
+  const bool pg_;
+  std::atomic<int64_t> last_sweep_{INT64_MIN / 2};
+};
+
+bool IsSchemeChar(char c) {
+  return std::isalnum(static_cast<unsigned char>(c)) || c == '+' || c == '-' || c == '.';
+}
+
+// Wraps a pool in the store and migrates it; errors name `shown`.
+Result<std::unique_ptr<Store>> StoreOver(Result<std::unique_ptr<sql::Pool>> pool,
+                                         const std::string& shown) {
+  if (!pool.ok()) return pool.status();
+  auto store = std::make_unique<SqlStore>(std::move(pool).value());
+  Status st = store->Migrate();
+  if (!st.ok()) {
+    if (st.code() == Status::Code::kInvalidInput) return Status::InvalidInput(shown + ": " + st.message());
+    return Status::IoError(shown + ": " + st.message());
+  }
+  return std::unique_ptr<Store>(std::move(store));
+}
+
+}  // namespace
+
+bool IsDatabaseUrl(std::string_view db) {
+  size_t colon = db.find(':');
+  if (colon == std::string_view::npos || colon < 2) return false;
+  if (!std::isalpha(static_cast<unsigned char>(db[0]))) return false;
+  for (size_t i = 1; i < colon; ++i) {
+    if (!IsSchemeChar(db[i])) return false;
+  }
+  return true;
+}
+
+bool IsPostgresUrl(std::string_view db) {
+  return db.rfind("postgresql://", 0) == 0 || db.rfind("postgres://", 0) == 0;
+}
+
+std::string DisplayName(const std::string& db) {
+  return IsDatabaseUrl(db) ? sql::RedactUrl(db) : db;
+}
+
+Result<std::unique_ptr<Store>> OpenSqliteStore(const std::string& path) {
+  // One connection: SQLite has one writer at a time anyway, and callers
+  // queue for it (up to a minute, as long as any import may take).
+  auto pool = sql::Pool::Create([path] { return sql::OpenSqlite(path); }, 1,
+                                std::chrono::milliseconds(60000));
+  return StoreOver(std::move(pool), path);
+}
+
+Result<std::unique_ptr<Store>> OpenPostgresStore(const std::string& url,
+                                                 const StoreOptions& options) {
+  if (options.pool_size < 1 || options.pool_size > kMaxPoolSize) {
+    return Status::InvalidInput("pool size: expected 1.." + std::to_string(kMaxPoolSize));
+  }
+  sql::PgSettings settings;
+  settings.connect_timeout_seconds = options.connect_timeout_seconds;
+  auto pool = sql::Pool::Create([url, settings] { return sql::OpenPostgres(url, settings); },
+                                options.pool_size, std::chrono::milliseconds(options.pool_wait_ms));
+  return StoreOver(std::move(pool), sql::RedactUrl(url));
+}
+
+Result<std::unique_ptr<Store>> OpenStore(const std::string& db, const StoreOptions& options) {
+  if (IsPostgresUrl(db)) return OpenPostgresStore(db, options);
+  if (IsDatabaseUrl(db)) {
+    return Status::InvalidInput(
+        "database '" + DisplayName(db) +
+        "': not a PostgreSQL URL (postgresql://... or postgres://...) and not taken as a file "
+        "name; write ./" + db.substr(0, db.find(':')) + ":... for a SQLite file with a colon");
+  }
+  return OpenSqliteStore(db);
+}
+
+}  // namespace sb::store
