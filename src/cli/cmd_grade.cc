@@ -3,8 +3,8 @@
 //
 //   strangebeta grade convert GRADE [--to yds|v|font|french|uiaa|all] [--discipline D] [--from S]
 //   strangebeta grade estimate ROUTE.crdl... [--scale S] [--model FILE] [--discipline D]
-//   strangebeta grade train --corpus DIR --out FILE [--symbols k1..k4]
-//   strangebeta grade evaluate --corpus DIR [--folds K] [--format text|json]
+//   strangebeta grade train --corpus DIR --out FILE [--symbols k1..k4] [--difficulty on|off]
+//   strangebeta grade evaluate --corpus DIR [--folds K] [--format text|json] [--difficulty on|off]
 #include <cstdio>
 #include <optional>
 #include <string>
@@ -17,6 +17,7 @@
 #include "cli/commands.h"
 #include "crdl/route.h"
 #include "crdl/site_csv.h"
+#include "difficulty/difficulty.h"
 #include "grades/estimator.h"
 #include "grades/evaluate.h"
 #include "grades/scale.h"
@@ -90,9 +91,10 @@ struct Row {
   grades::Estimate e;
 };
 
+// `difficulty` (may be null) gives the per-move difficulty to models that use it.
 Result<Row> EstimateFile(const std::string& file, const grades::GradeEstimator& est,
-                         language::MoveLanguage& lang, std::optional<Discipline> forced,
-                         std::optional<Scale> scale) {
+                         const difficulty::Estimator* difficulty, language::MoveLanguage& lang,
+                         std::optional<Discipline> forced, std::optional<Scale> scale) {
   auto route = ReadCrdlFile(file);
   if (!route.ok()) return route.status();
   Row row;
@@ -127,6 +129,10 @@ Result<Row> EstimateFile(const std::string& file, const grades::GradeEstimator& 
   std::vector<std::string> texts;
   for (const Move& m : route->moves) texts.push_back(m.text);
   grades::RouteReading reading = grades::ReadRoute(lang, texts, est.symbol_set());
+  const grades::DisciplineModel* m = est.model(*d);
+  if (m != nullptr && m->UsesMoveDifficulty() && difficulty != nullptr) {
+    reading.move_difficulty = difficulty->Estimate(*route, lang);
+  }
   auto e = est.EstimateRoute(reading, *d);
   if (!e.ok())
     return Status(e.status().code() == Status::Code::kNotFound
@@ -179,9 +185,18 @@ int EstimateRoutes(const std::vector<std::string>& files, const std::string& sca
   if (!est.ok()) return Fail(kCmd, est.status());
   auto lang = language::MoveLanguage::LoadDefault();
   if (!lang.ok()) return Fail(kCmd, lang.status());
+  // The bundled difficulty model, read only when a model of the estimator uses it.
+  std::optional<difficulty::Estimator> diff;
+  for (Discipline dd : {Discipline::kRoped, Discipline::kBouldering}) {
+    const grades::DisciplineModel* m = est->model(dd);
+    if (diff || m == nullptr || !m->UsesMoveDifficulty()) continue;
+    auto loaded = difficulty::Estimator::LoadDefault();
+    if (!loaded.ok()) return Fail(kCmd, loaded.status());
+    diff.emplace(std::move(loaded).value());
+  }
   std::string out = format == "json" ? "[" : "";
   for (size_t i = 0; i < files.size(); ++i) {
-    auto row = EstimateFile(files[i], *est, *lang, *d, *scale);
+    auto row = EstimateFile(files[i], *est, diff ? &*diff : nullptr, *lang, *d, *scale);
     if (!row.ok()) return Fail(kCmd, row.status());
     out += format == "json" ? (i ? "," : "") + RowJson(*row) : RowText(*row);
   }
@@ -195,9 +210,14 @@ struct Prepared {
   grades::TrainOptions options;
 };
 
+// `difficulty_text` "on": the routes carry the bundled per-move difficulty
+// (data/models/difficulty.sbd), so the model gets the "difficulty_*" features.
 Result<Prepared> Prepare(const std::string& corpus, const std::string& symbols,
-                         const std::string& rule_text) {
+                         const std::string& rule_text, const std::string& difficulty_text) {
   Prepared p;
+  if (difficulty_text != "on" && difficulty_text != "off") {
+    return Status::InvalidInput("--difficulty: expected on or off, got '" + difficulty_text + "'");
+  }
   if (symbols.size() != 2 || symbols[0] != 'k' || symbols[1] < '1' || symbols[1] > '4') {
     return Status::InvalidInput("--symbols: expected k1, k2, k3 or k4, got '" + symbols + "'");
   }
@@ -209,13 +229,19 @@ Result<Prepared> Prepare(const std::string& corpus, const std::string& symbols,
   if (!site.ok()) return site.status();
   auto lang = language::MoveLanguage::LoadDefault();
   if (!lang.ok()) return lang.status();
-  p.labelled = grades::LabelSiteExport(*site, *lang, p.options.symbol_set);
+  std::optional<difficulty::Estimator> diff;
+  if (difficulty_text == "on") {
+    auto loaded = difficulty::Estimator::LoadDefault();
+    if (!loaded.ok()) return loaded.status();
+    diff.emplace(std::move(loaded).value());
+  }
+  p.labelled = grades::LabelSiteExport(*site, *lang, p.options.symbol_set, diff ? &*diff : nullptr);
   return p;
 }
 
 int Train(const std::string& corpus, const std::string& out, const std::string& symbols,
-          const std::string& rule_text) {
-  auto p = Prepare(corpus, symbols, rule_text);
+          const std::string& rule_text, const std::string& difficulty_text) {
+  auto p = Prepare(corpus, symbols, rule_text, difficulty_text);
   if (!p.ok()) return Fail(kCmd, p.status());
   std::vector<std::string> notes;
   p->options.notes = &notes;
@@ -232,14 +258,15 @@ int Train(const std::string& corpus, const std::string& out, const std::string& 
 }
 
 int Evaluate(const std::string& corpus, int folds, const std::string& format,
-             const std::string& symbols, const std::string& rule_text) {
+             const std::string& symbols, const std::string& rule_text,
+             const std::string& difficulty_text) {
   if (Status f = CheckFormat(format); !f.ok()) return Fail(kCmd, f);
   if (folds < 2 || folds > grades::kMaxFolds) {
     return Fail(kCmd,
                 Status::InvalidInput("--folds: expected 2.." + std::to_string(grades::kMaxFolds) +
                                      ", got " + std::to_string(folds)));
   }
-  auto p = Prepare(corpus, symbols, rule_text);
+  auto p = Prepare(corpus, symbols, rule_text, difficulty_text);
   if (!p.ok()) return Fail(kCmd, p.status());
   auto ev = grades::CrossValidate(p->labelled.routes, folds, p->options.rule);
   if (!ev.ok()) return Fail(kCmd, ev.status());
@@ -295,6 +322,11 @@ int RunGrade(const std::vector<std::string>& args) {
                    "how inner cross-validation picks the penalty: one-se (the largest within "
                    "one standard error of the best) or min (the best)")
       ->capture_default_str();
+  std::string train_difficulty = "on", ev_difficulty = "on";
+  const char* kDifficultyHelp =
+      "on: the per-move difficulty of data/models/difficulty.sbd is among the features; off: "
+      "without it";
+  train->add_option("--difficulty", train_difficulty, kDifficultyHelp)->capture_default_str();
 
   CLI::App* ev = app.add_subcommand(
       "evaluate",
@@ -309,12 +341,14 @@ int RunGrade(const std::vector<std::string>& args) {
   ev->add_option("--symbols", ev_symbols, "symbol set of the Markov chains: k1..k4")
       ->capture_default_str();
   ev->add_option("--l2-rule", ev_rule, "one-se or min (see train)")->capture_default_str();
+  ev->add_option("--difficulty", ev_difficulty, kDifficultyHelp)->capture_default_str();
 
   if (int rc = ParseArgs(app, args); rc >= 0) return rc;
   if (conv->parsed()) return Convert(grade, to, conv_disc, from);
   if (est->parsed()) return EstimateRoutes(files, scale, model, est_disc, est_format);
-  if (train->parsed()) return Train(train_corpus, out, train_symbols, train_rule);
-  if (ev->parsed()) return Evaluate(ev_corpus, folds, ev_format, ev_symbols, ev_rule);
+  if (train->parsed()) return Train(train_corpus, out, train_symbols, train_rule, train_difficulty);
+  if (ev->parsed())
+    return Evaluate(ev_corpus, folds, ev_format, ev_symbols, ev_rule, ev_difficulty);
   return 2;
 }
 

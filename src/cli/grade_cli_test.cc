@@ -106,6 +106,8 @@ TEST_F(GradeCli, BadInputExitsTwoNamingTheField) {
   EXPECT_EQ(Grade({"evaluate", "--corpus", P("nowhere")}), 2);
   EXPECT_EQ(Grade({"evaluate", "--corpus", P("nowhere"), "--folds", "1"}), 2);
   EXPECT_NE(err_.find("--folds: expected 2..50"), std::string::npos) << err_;
+  EXPECT_EQ(Grade({"evaluate", "--corpus", P("nowhere"), "--difficulty", "maybe"}), 2);
+  EXPECT_NE(err_.find("--difficulty: expected on or off, got 'maybe'"), std::string::npos) << err_;
   EXPECT_EQ(Grade({"frobnicate"}), 2);
 }
 

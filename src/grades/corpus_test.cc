@@ -16,6 +16,7 @@
 
 #include "base/files.h"
 #include "crdl/site_csv.h"
+#include "difficulty/difficulty.h"
 #include "grades/estimator.h"
 #include "grades/evaluate.h"
 #include "grades/scale.h"
@@ -34,7 +35,11 @@ class GradesCorpus : public ::testing::Test {
     site_ = new SiteExport(std::move(*site));
     auto lang = language::MoveLanguage::LoadDefault();
     ASSERT_TRUE(lang.ok()) << lang.status().message();
-    labelled_ = new LabelledCorpus(LabelSiteExport(*site_, *lang, 3));
+    // As `grade train` and `grade evaluate` do by default: with the bundled
+    // per-move difficulty.
+    auto diff = difficulty::Estimator::LoadDefault();
+    ASSERT_TRUE(diff.ok()) << diff.status().message();
+    labelled_ = new LabelledCorpus(LabelSiteExport(*site_, *lang, 3, &*diff));
   }
   static void TearDownTestSuite() {
     delete site_;
@@ -172,6 +177,32 @@ TEST_F(GradesCorpus, BaselinesUseTheTrainingFoldsOnlyAndRunsAreDeterministic) {
     EXPECT_GE(d.model.within_one, d.model.exact);
     std::printf("[ corpus   ] %s: n %d, MAE model %.3f majority %.3f median %.3f\n",
                 DisciplineName(d.discipline), d.n, d.model.mae, d.majority.mae, d.median.mae);
+  }
+}
+
+// Every labelled route carries the bundled per-move difficulty, one value in
+// [0, 1] per move, and its five "difficulty_*" features are computed from it.
+TEST_F(GradesCorpus, RoutesCarryThePerMoveDifficulty) {
+  const std::vector<std::string>& names = FeatureNames(true);
+  const size_t first = FeatureNames(false).size();
+  ASSERT_EQ(names.size(), first + 5);
+  for (const TrainingRoute& r : labelled_->routes) {
+    const std::vector<double>& d = r.reading.move_difficulty;
+    ASSERT_EQ(d.size(), r.reading.moves.size()) << "route " << r.id;
+    for (double x : d) {
+      EXPECT_GE(x, 0.0);
+      EXPECT_LE(x, 1.0);
+    }
+    const std::vector<double> f = RouteFeatures(r.reading);
+    ASSERT_EQ(f.size(), names.size());
+    EXPECT_EQ(names[first], "difficulty_max");
+    EXPECT_EQ(f[first], *std::max_element(d.begin(), d.end())) << "route " << r.id;
+  }
+  auto est = GradeEstimator::Train(labelled_->routes);
+  ASSERT_TRUE(est.ok()) << est.status().message();
+  for (Discipline d : {Discipline::kRoped, Discipline::kBouldering}) {
+    ASSERT_NE(est->model(d), nullptr);
+    EXPECT_TRUE(est->model(d)->UsesMoveDifficulty());
   }
 }
 

@@ -611,6 +611,11 @@ Result<Estimate> GradeEstimator::EstimateRoute(const RouteReading& reading, Disc
   return EstimateWithModel(*m, reading);
 }
 
+bool DisciplineModel::UsesMoveDifficulty() const {
+  return std::any_of(feature_names.begin(), feature_names.end(),
+                     [](const std::string& f) { return f.rfind("difficulty_", 0) == 0; });
+}
+
 Result<Estimate> EstimateWithModel(const DisciplineModel& model, const RouteReading& reading) {
   const DisciplineModel* m = &model;
   const Discipline d = model.discipline;

@@ -77,6 +77,9 @@ struct DisciplineModel {
   std::vector<double> mean, scale;         // standardisation: (x - mean) / scale
   OrdinalModel ordinal;
   BandChains chains;
+  // True when feature_names has the "difficulty_*" features, so a reading
+  // must carry RouteReading::move_difficulty. Pure.
+  bool UsesMoveDifficulty() const;
 };
 
 // How the inner cross-validation picks the L2 penalty from its scores.

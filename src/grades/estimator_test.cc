@@ -187,6 +187,7 @@ TEST(Estimator, PerMoveDifficultyBecomesFeatures) {
   ASSERT_TRUE(est.ok()) << est.status().message();
   const DisciplineModel* m = est->model(Discipline::kBouldering);
   ASSERT_NE(m, nullptr);
+  EXPECT_TRUE(m->UsesMoveDifficulty());
   EXPECT_EQ(m->feature_names, [] {
     auto v = FeatureNames(true);
     v.push_back(kMarkovFeature);
@@ -211,6 +212,36 @@ TEST(Estimator, PerMoveDifficultyBecomesFeatures) {
   auto none = est->EstimateRoute(routes[0].reading, Discipline::kRoped);
   ASSERT_FALSE(none.ok());
   EXPECT_EQ(none.status().code(), Status::Code::kNotFound);
+}
+
+// The per-move difficulty's profile, computed by hand: max, mean, hardest
+// three-move window, mean of the three hardest moves, share above 0.5.
+TEST(Estimator, DifficultyProfileFeaturesAreComputed) {
+  RouteReading r;
+  r.moves.resize(6);
+  r.move_difficulty = {0.1, 0.9, 0.2, 0.6, 0.7, 0.05};
+  const std::vector<std::string>& names = FeatureNames(true);
+  const std::vector<double> f = RouteFeatures(r);
+  ASSERT_EQ(f.size(), names.size());
+  const size_t k = FeatureNames(false).size();
+  ASSERT_EQ(names.size(), k + 5);
+  EXPECT_EQ(std::vector<std::string>(names.begin() + static_cast<long>(k), names.end()),
+            (std::vector<std::string>{"difficulty_max", "difficulty_mean", "difficulty_sustained",
+                                      "difficulty_top3", "difficulty_high_share"}));
+  EXPECT_NEAR(f[k], 0.9, 1e-12);
+  EXPECT_NEAR(f[k + 1], 2.55 / 6, 1e-12);
+  EXPECT_NEAR(f[k + 2], (0.9 + 0.2 + 0.6) / 3, 1e-12);  // the window 0.9, 0.2, 0.6
+  EXPECT_NEAR(f[k + 3], (0.9 + 0.7 + 0.6) / 3, 1e-12);  // not consecutive
+  EXPECT_NEAR(f[k + 4], 3.0 / 6, 1e-12);                // 0.9, 0.6, 0.7
+  // Fewer moves than three: the top mean is over all of them; 0.5 is not above 0.5.
+  r.moves.resize(2);
+  r.move_difficulty = {0.5, 0.3};
+  const std::vector<double> g = RouteFeatures(r);
+  EXPECT_NEAR(g[k + 3], 0.4, 1e-12);
+  EXPECT_NEAR(g[k + 4], 0.0, 1e-12);
+  // Without the per-move difficulty the features stop before them.
+  r.move_difficulty.clear();
+  EXPECT_EQ(RouteFeatures(r).size(), k);
 }
 
 TEST(Estimator, FormatsBandsInAnyScale) {

@@ -113,8 +113,8 @@ Result<RouteGrade> GradeOfRoute(const Route& route, const std::string& where) {
   return out;
 }
 
-LabelledCorpus LabelSiteExport(const SiteExport& site, language::MoveLanguage& lang,
-                               int symbol_set) {
+LabelledCorpus LabelSiteExport(const SiteExport& site, language::MoveLanguage& lang, int symbol_set,
+                               const difficulty::Estimator* difficulty) {
   LabelledCorpus c;
   c.total = static_cast<int>(site.routes.size());
   Groups groups;
@@ -150,6 +150,7 @@ LabelledCorpus LabelSiteExport(const SiteExport& site, language::MoveLanguage& l
     std::vector<std::string> texts;
     for (const Move& m : r.route.moves) texts.push_back(m.text);
     t.reading = ReadRoute(lang, texts, symbol_set);
+    if (difficulty != nullptr) t.reading.move_difficulty = difficulty->Estimate(r.route, lang);
     c.routes.push_back(std::move(t));
   }
   return c;

@@ -9,6 +9,7 @@
 
 #include "base/status.h"
 #include "crdl/site_csv.h"
+#include "difficulty/difficulty.h"
 #include "grades/estimator.h"
 #include "language/symbols.h"
 
@@ -42,9 +43,12 @@ struct LabelledCorpus {
 // named "Variation on 72,73" joins the group of routes 72 and 73 (so a
 // variation of several routes joins all of them into one group, transitively),
 // and routes with the same moves (hand and text, case-folded) share a group.
-// Groups are numbered by their smallest route id. Deterministic.
-LabelledCorpus LabelSiteExport(const SiteExport& site, language::MoveLanguage& lang,
-                               int symbol_set);
+// Groups are numbered by their smallest route id. With `difficulty` (not
+// owned; may be null) each route's RouteReading::move_difficulty is that
+// estimate's per-move difficulty, so the routes train a model with the
+// "difficulty_*" features. Deterministic.
+LabelledCorpus LabelSiteExport(const SiteExport& site, language::MoveLanguage& lang, int symbol_set,
+                               const difficulty::Estimator* difficulty = nullptr);
 
 // Accuracy figures of one predictor, in bands.
 struct Metrics {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <string>
 
 namespace sb::grades {
@@ -12,6 +13,12 @@ namespace {
 // profile: the hardest three-move window (a crux is typically a sequence of
 // a few hand moves, not one).
 constexpr size_t kSustainedWindow = 3;
+// The per-move difficulty's "top" summary averages this many hardest moves
+// wherever they sit (the window above needs them consecutive); the same span.
+constexpr size_t kTopMoves = 3;
+// A move whose difficulty estimate (src/difficulty: the probability of being
+// a crux) is above this is more likely a crux than not.
+constexpr double kHighDifficulty = 0.5;
 
 struct FamilyOf {
   const char* net;
@@ -92,6 +99,21 @@ void AppendProfile(const std::vector<double>& v, std::vector<double>* out) {
   out->push_back(best / static_cast<double>(w));
 }
 
+// The per-move difficulty's profile: AppendProfile's three, then the mean of
+// the kTopMoves hardest moves (all moves when fewer) and the share of moves
+// above kHighDifficulty. `v` is not empty.
+void AppendDifficultyProfile(const std::vector<double>& v, std::vector<double>* out) {
+  AppendProfile(v, out);
+  std::vector<double> sorted = v;
+  std::sort(sorted.begin(), sorted.end(), std::greater<double>());
+  const size_t top = std::min(kTopMoves, sorted.size());
+  double top_sum = 0, high = 0;
+  for (size_t i = 0; i < top; ++i) top_sum += sorted[i];
+  for (double x : v) high += x > kHighDifficulty ? 1 : 0;
+  out->push_back(top_sum / static_cast<double>(top));
+  out->push_back(high / static_cast<double>(v.size()));
+}
+
 }  // namespace
 
 int MoveFacts::FlagScore() const {
@@ -134,7 +156,8 @@ const std::vector<std::string>& FeatureNames(bool with_difficulty) {
   };
   static const std::vector<std::string> kWithDifficulty = [] {
     std::vector<std::string> v = kBase;
-    for (const char* s : {"difficulty_max", "difficulty_mean", "difficulty_sustained"}) {
+    for (const char* s : {"difficulty_max", "difficulty_mean", "difficulty_sustained",
+                          "difficulty_top3", "difficulty_high_share"}) {
       v.push_back(s);
     }
     return v;
@@ -170,7 +193,7 @@ std::vector<double> RouteFeatures(const RouteReading& reading) {
   flags.reserve(ms.size());
   for (const MoveFacts& m : ms) flags.push_back(m.FlagScore());
   AppendProfile(flags, &f);
-  if (!reading.move_difficulty.empty()) AppendProfile(reading.move_difficulty, &f);
+  if (!reading.move_difficulty.empty()) AppendDifficultyProfile(reading.move_difficulty, &f);
   return f;
 }
 

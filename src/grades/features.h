@@ -2,11 +2,13 @@
 // the grammar (src/language: parser + symbols) and the route features built
 // from them (docs/grades.md, "Features").
 //
-// Adding a per-move difficulty (issue 13, src/difficulty) later: the caller
-// fills RouteReading::move_difficulty (one value per move); RouteFeatures
-// then appends the same profile summaries as for the quality flags under
-// the prefix "difficulty_" (FeatureNames(true)). A model trained with them
-// requires them; one trained without ignores them.
+// The per-move difficulty (issue 13, src/difficulty): the caller fills
+// RouteReading::move_difficulty (one value per move, e.g. with
+// AddMoveDifficulty in grades/evaluate.h); RouteFeatures then appends its
+// profile under the prefix "difficulty_" (FeatureNames(true)): max, mean,
+// hardest three-move window mean, mean of the three hardest moves, share of
+// moves above 0.5. A model trained with them requires them; one trained
+// without ignores them.
 #ifndef SB_GRADES_FEATURES_H_
 #define SB_GRADES_FEATURES_H_
 
