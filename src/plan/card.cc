@@ -533,9 +533,13 @@ void DrawCard(cairo_t* cr, const RoutePlan& plan, const CardInfo& info, PageSize
   // The IC search and the warnings: short lines in small type above the
   // moves, where the setter reads them before setting.
   if (!notes_of_plan.search.empty()) y += Paragraph(cr, notes_of_plan.search, x0, y, cw, 8.5);
+  // The warnings in one paragraph, each led by ⚠ (as the page prints them):
+  // every line taken here shrinks the moves.
+  std::string warnings;
   for (const std::string& w : notes_of_plan.warnings) {
-    y += Paragraph(cr, "\xE2\x9A\xA0 " + w, x0, y, cw, 8.5);  // ⚠
+    warnings += (warnings.empty() ? "" : "   ") + std::string("\xE2\x9A\xA0 ") + w;  // ⚠
   }
+  y += Paragraph(cr, warnings, x0, y, cw, 8.5);
   y += 2;
 
   // What goes below the table, measured first.
