@@ -26,9 +26,23 @@
   // Error messages name form fields by their labels, not internal names.
   const LABELS = { var_ic: 'Variation IC', ref_ic: 'Reference IC', max_repeat: 'Max repeat', skip: 'Skip',
     step: 'Step', params: 'System parameters', mask: 'Mask', system: 'System', integrator: 'Integrator',
-    mapping: 'Mapping', preset: 'Preset', routes: 'Routes', public: 'Visibility' };
+    mapping: 'Mapping', preset: 'Preset', routes: 'Routes', public: 'Visibility',
+    keep_start: 'Keep start', keep_finish: 'Keep finish', crux_window: 'Crux window',
+    alternate_hands: 'Alternate hands', match: 'Match moves', target_effect: 'Target effect',
+    target_change: 'Target change', smooth_method: 'Smoothing method',
+    effect: 'Target effect', change: 'Target change' };
+  // The IC search names constraints as options ("crux-window"): the same labels.
+  const label = (k) => LABELS[k.replace(/-/g, '_')] || k;
   function humane(msg) {
-    return String(msg).replace(/^([a-z_]+):/, (m, k) => (LABELS[k] || k) + ':');
+    msg = String(msg);
+    // "no variation IC within 100 grid steps (...) of (...) meets every constraint: crux-window
+    // could not be met (failed most often; ...)": say it as a setter would.
+    const m = msg.match(/^no variation IC within (\d+) grid steps .* meets every constraint: ([a-z-]+) could not be met/);
+    if (m) {
+      return 'No variation IC within ' + m[1] + ' grid steps of your variation IC meets every constraint: "' +
+        label(m[2]) + '" could not be met. Try a wider crux window, fewer constraints or another variation IC.';
+    }
+    return msg.replace(/^([a-z_]+):/, (x, k) => label(k) + ':');
   }
 
   function say(el, text, ok) {
@@ -158,7 +172,12 @@
     let suggested = [];  // grid indices of suggested ICs
     const FIELDS = ['preset', 'system', 'params', 'integrator', 'step', 'ref_ic', 'var_ic', 'skip',
       'mapping', 'mask', 'max_repeat', 'name', 'grade', 'colour', 'wall', 'setter', 'date', 'notes',
-      'visibility', 'metric'];
+      'visibility', 'metric', 'crux_window', 'match', 'target_effect', 'target_change', 'smooth_method'];
+    // Checkboxes of the form state (the setter's constraints), '1' in the URL when ticked.
+    const CHECKS = ['keep_start', 'keep_finish', 'alternate_hands'];
+    const DEFAULTS = { preset: 'default', metric: 'effect', match: 'text', smooth_method: 'vomm' };
+    const ADVANCED = ['system', 'params', 'integrator', 'step', 'ref_ic', 'var_ic', 'skip', 'mapping', 'mask',
+      'max_repeat', 'crux_window', 'match', 'target_effect', 'target_change', 'smooth_method'].concat(CHECKS);
     const chosen = $('#chosen');
     const selectedRoutes = () => Array.from(chosen.querySelectorAll('li')).map((li) => Number(li.dataset.id));
 
@@ -170,8 +189,9 @@
       if (ids.length) q.set('routes', ids.join(','));
       for (const k of FIELDS) {
         const el = $('#' + k);
-        if (el && el.value.trim() && !(k === 'preset' && el.value === 'default') && !(k === 'metric' && el.value === 'effect')) q.set(k, el.value);
+        if (el && el.value.trim() && el.value !== DEFAULTS[k]) q.set(k, el.value);
       }
+      for (const k of CHECKS) if ($('#' + k).checked) q.set(k, '1');
       if ($('#smooth').checked) q.set('smooth', '1');
       if ($('#duplicate') && $('#duplicate').checked) q.set('duplicate', '1');
       if ($('#route-find').value.trim()) q.set('find', $('#route-find').value.trim());
@@ -186,7 +206,8 @@
       }
       $('#smooth').checked = q.get('smooth') === '1';
       if ($('#duplicate')) $('#duplicate').checked = q.get('duplicate') === '1';
-      if (['system', 'params', 'integrator', 'step', 'ref_ic', 'var_ic', 'skip', 'mapping', 'mask', 'max_repeat'].some((k) => q.has(k))) $('#advanced').open = true;
+      for (const k of CHECKS) $('#' + k).checked = q.get(k) === '1';
+      if (ADVANCED.some((k) => q.has(k))) $('#advanced').open = true;
     }
     loadState();
 
@@ -262,6 +283,15 @@
       for (const k of ['step']) if ($('#' + k).value.trim()) p[k] = Number($('#' + k).value);
       for (const k of ['skip', 'max_repeat']) if ($('#' + k).value.trim()) p[k] = parseInt($('#' + k).value, 10);
       return p;
+    }
+    // The setter's constraints, named as the JSON API's fields; defaults are left out.
+    function setterFields() {
+      const f = {};
+      for (const k of CHECKS) if ($('#' + k).checked) f[k] = true;
+      if ($('#crux_window').value.trim()) f.crux_window = $('#crux_window').value.trim();
+      for (const k of ['target_effect', 'target_change']) if ($('#' + k).value.trim()) f[k] = Number($('#' + k).value);
+      for (const k of ['match', 'smooth_method']) if ($('#' + k).value !== DEFAULTS[k]) f[k] = $('#' + k).value;
+      return f;
     }
     // The paper's figure 4: warm colours for little variation, cold for much.
     function colour(t) {  // 0 (little) .. 1 (much): red .. yellow .. green .. blue
@@ -428,10 +458,14 @@
       for (const k of ['name', 'grade', 'colour', 'wall', 'setter', 'date', 'notes']) if ($('#' + k).value.trim()) body[k] = $('#' + k).value.trim();
       if ($('#visibility').value) body.public = $('#visibility').value === 'public';
       if ($('#duplicate').checked) body.duplicate = true;
+      Object.assign(body, setterFields());
       say($('#vary-msg'), 'Generating…', true);
       const r = await api('POST', '/api/variations', body);
       if (r.status === 201 || r.status === 200) { location.href = '/variations/' + r.data.id + (r.data.existing ? '?existing=1' : ''); return; }
-      say($('#vary-msg'), humane((r.data && r.data.error) || ('error ' + r.status)));
+      const err = (r.data && r.data.error) || ('error ' + r.status);
+      say($('#vary-msg'), humane(err));
+      // An error about a constraint: show the panel that has the field.
+      if (/^(keep_|crux_|alternate_|match|target_|smooth_method|max_repeat)|no variation IC within/.test(err)) $('#advanced').open = true;
     });
   }
 

@@ -31,6 +31,11 @@ std::vector<CardRow> CardRows(const RoutePlan& plan) {
     r.hand = HandLetter(m.hand);
     r.crux = m.crux;
     r.changed = m.changed;
+    if (CardHasDifficulty(plan)) r.difficulty = plan.profile->difficulty[i];
+    r.hardest = plan.profile && plan.profile->hardest_first >= 0 &&
+                static_cast<int>(i) >= plan.profile->hardest_first &&
+                static_cast<int>(i) <= plan.profile->hardest_last;
+    r.hand_swapped = std::find(m.notes.begin(), m.notes.end(), "(hand swapped)") != m.notes.end();
     r.mark = m.added ? kMarkAdded : m.changed ? kMarkChanged : "";
     r.text = m.text.empty() && !m.added ? "________ (blank: fill in)" : m.text;
     if (m.crux) r.text += " (crux)";
@@ -79,11 +84,13 @@ std::string CardSummary(const RoutePlan& plan) {
 }
 
 std::string CardLegend(const std::vector<CardRow>& rows) {
-  bool changed = false, added = false, suggested = false;
+  bool changed = false, added = false, suggested = false, crux = false, diff = false;
   for (const CardRow& r : rows) {
     changed |= r.mark == kMarkChanged;
     added |= r.mark == kMarkAdded;
     suggested |= r.mark == kMarkSuggested;
+    crux |= r.crux;
+    diff |= r.difficulty >= 0;
   }
   std::string s;
   auto add = [&](bool on, const std::string& text) {
@@ -94,7 +101,16 @@ std::string CardLegend(const std::vector<CardRow>& rows) {
   add(changed, std::string(kMarkChanged) + " changed: not the input's move at this position");
   add(added, std::string(kMarkAdded) + " added by the setter");
   add(suggested, std::string(kMarkSuggested) + " smoothing suggestion (a linking move)");
+  add(crux, std::string(kMarkCrux) + " crux");
+  add(diff, "bar: difficulty estimate (0 to 1)");
   return s;
+}
+
+std::string CardLegendLine(const RoutePlan& plan, const std::vector<CardRow>& rows) {
+  std::string s = CardLegend(rows);
+  const CardAnnotations a = CardAnnotationsOf(plan);
+  if (a.hardest.empty()) return s;
+  return s + (s.empty() ? "" : " \xC2\xB7 ") + "\xE2\x94\x83 " + a.hardest;  // ┃
 }
 
 std::string CardParameters(const RoutePlan& plan) {
@@ -108,6 +124,132 @@ std::string CardParameters(const RoutePlan& plan) {
   if (p.mapping.max_repeat) s += ", max repeat " + std::to_string(p.mapping.max_repeat);
   if (!plan.smoothing_model.empty()) s += "; smoothing " + plan.smoothing_model;
   return s + ". Reproduce: strangebeta vary " + ReproduceOptions(p, plan.setter) + " ROUTES\xE2\x80\xA6";
+}
+
+bool CardHasDifficulty(const RoutePlan& plan) {
+  return plan.profile && !plan.profile->difficulty.empty() &&
+         plan.profile->difficulty.size() == plan.variation.moves.size();
+}
+
+namespace {
+
+constexpr char kDot[] = " \xC2\xB7 ";  // " · "
+
+// "moves 3-4" / "move 7" (1-based, inclusive).
+std::string Span(int first, int last) {
+  return first == last ? "move " + std::to_string(first + 1)
+                       : "moves " + std::to_string(first + 1) + "-" + std::to_string(last + 1);
+}
+
+std::string Fixed2(double d) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2f", d);
+  return buf;
+}
+
+std::string GradesLine(const RoutePlan& plan) {
+  if (!plan.grades) return "";
+  const PlanGrades& g = *plan.grades;
+  std::string s = g.estimate.empty()
+                      ? "Estimated grade: none" + (g.note.empty() ? "" : " (" + g.note + ")")
+                      : "Estimated grade " + g.estimate + " (" +
+                            std::to_string(static_cast<int>(std::lround(g.level * 100))) +
+                            "%: " + g.low + " to " + g.high + ")";
+  std::string inputs;
+  const auto& in = plan.variation.inputs;
+  for (size_t i = 0; i < in.size(); ++i) {
+    if (i) inputs += ", ";
+    inputs += in[i].name + " " +
+              (i < g.inputs.size() && !g.inputs[i].empty() ? g.inputs[i] : "(no grade)");
+  }
+  return inputs.empty() ? s : s + kDot + "inputs: " + inputs;
+}
+
+std::string SearchLine(const RoutePlan& plan) {
+  if (!plan.search) return "";
+  const SearchReport& r = *plan.search;
+  std::string s = "IC search: IC (" + FormatTriple(r.used_ic) + ") used, " +
+                  FormatDouble(r.distance, 4) + " from the IC asked for";
+  std::string held, missed;
+  for (const chaos::ConstraintOutcome& c : r.constraints) {
+    std::string& to = c.held ? held : missed;
+    if (!to.empty()) to += ", ";
+    to += chaos::ConstraintName(c.constraint);
+  }
+  if (!held.empty()) s += kDot + std::string("held: ") + held;
+  if (r.hands_swapped > 0) {
+    s += " (" + std::to_string(r.hands_swapped) + (r.hands_swapped > 1 ? " hands" : " hand") +
+         " swapped)";
+  }
+  if (!missed.empty()) s += kDot + std::string("NOT held: ") + missed;
+  return s;
+}
+
+// One short line per kind of warning: the moves concerned as ranges (the
+// plan's text and JSON have each warning's full message); the missing
+// finish, which happens once, by its message.
+std::vector<std::string> WarningLines(const PlanWarnings& w) {
+  std::vector<std::string> out;
+  for (size_t i = 0; i < w.warnings.size();) {
+    const WarningKind kind = w.warnings[i].kind;
+    std::string line;
+    for (; i < w.warnings.size() && w.warnings[i].kind == kind; ++i) {
+      const Warning& x = w.warnings[i];
+      if (kind == WarningKind::kNoFinish) {
+        line += (line.empty() ? "" : "; ") + x.message;
+        continue;
+      }
+      line += line.empty() ? "" : ", ";
+      line += Span(x.first, x.last);
+      if (kind == WarningKind::kRepeatedMove) {
+        line += " (" + std::to_string(x.count) + "\xC3\x97)";  // ×
+      }
+    }
+    switch (kind) {
+      case WarningKind::kRepeatedMove:
+        line = "same move repeated: " + line;
+        break;
+      case WarningKind::kSameHand:
+        line = "same hand in a row: " + line;
+        break;
+      case WarningKind::kEarlyCrux:
+        line = "crux in the first fifth: " + line;
+        break;
+      case WarningKind::kStartAwayFromStart:
+        line = "an input's start move mid-route: " + line;
+        break;
+      case WarningKind::kNoFinish:
+        break;
+    }
+    out.push_back(std::move(line));
+  }
+  return out;
+}
+
+}  // namespace
+
+CardAnnotations CardAnnotationsOf(const RoutePlan& plan) {
+  CardAnnotations a;
+  a.grades = GradesLine(plan);
+  a.search = SearchLine(plan);
+  if (plan.warnings) a.warnings = WarningLines(*plan.warnings);
+  if (plan.profile && plan.profile->hardest_first >= 0) {
+    a.hardest =
+        "Hardest stretch: " + Span(plan.profile->hardest_first, plan.profile->hardest_last) +
+        " (mean estimate " + Fixed2(plan.profile->hardest_mean) + ")";
+  }
+  return a;
+}
+
+std::vector<std::string> CardAnnotationLines(const RoutePlan& plan) {
+  const CardAnnotations a = CardAnnotationsOf(plan);
+  std::vector<std::string> out;
+  if (!a.grades.empty()) out.push_back(a.grades);
+  if (!a.search.empty()) out.push_back(a.search);
+  if (plan.warnings && a.warnings.empty()) out.push_back("Warnings: none");
+  for (const std::string& w : a.warnings) out.push_back("Warning: " + w);
+  if (!a.hardest.empty()) out.push_back(a.hardest);
+  return out;
 }
 
 namespace {
@@ -143,6 +285,8 @@ PageSize SizeOf(Paper p) { return p == Paper::kA4 ? PageSize{595.28, 841.89} : P
 constexpr double kMargin = 28.35;  // 10 mm
 constexpr double kQrSize = 80.0;   // 28 mm
 constexpr double kNumW = 24, kHandW = 16, kMarkW = 16;
+constexpr double kDiffW = 36;  // the difficulty column: crux star, a bar of 18 pt, the rule, a gap
+constexpr double kBarW = 18;
 constexpr double kMoveShare = 0.58;  // of the width left for move and from
 constexpr double kRowPad = 1.6;      // above and below each row's text
 constexpr double kPictureMinH = 150, kPictureMaxH = 230;
@@ -166,8 +310,11 @@ int EstimatedLines(const std::string& text, double width, double font) {
 double CardFontPt(const std::vector<CardRow>& rows, const CardInfo& info, Paper paper) {
   const PageSize page = SizeOf(paper);
   const double cw = page.w - 2 * kMargin;
-  const double move_w = (cw - kNumW - kHandW - kMarkW) * kMoveShare;
-  const double from_w = cw - kNumW - kHandW - kMarkW - move_w;
+  const bool diff =
+      std::any_of(rows.begin(), rows.end(), [](const CardRow& r) { return r.difficulty >= 0; });
+  const double left = cw - kNumW - kHandW - kMarkW - (diff ? kDiffW : 0);
+  const double move_w = left * kMoveShare;
+  const double from_w = left - move_w;
   // Header (name, facts, QR) ~ 36 mm; notes, legend and parameters below.
   double fixed = kQrSize + 34 + 22;
   fixed += 12.0 * EstimatedLines(info.notes, cw, 10) + (info.notes.empty() ? 0 : 14);
@@ -241,19 +388,50 @@ double MeasureParagraph(cairo_t* cr, const std::string& s, double width, double 
 }
 
 struct Columns {
-  double x_num, x_hand, x_mark, x_move, x_from, w_move, w_from;
+  double x_num, x_hand, x_mark, x_move, x_diff, x_from, w_move, w_diff, w_from;
 };
 
-Columns ColumnsOf(double x0, double cw) {
+Columns ColumnsOf(double x0, double cw, bool diff) {
   Columns c;
   c.x_num = x0;
   c.x_hand = x0 + kNumW;
   c.x_mark = c.x_hand + kHandW;
   c.x_move = c.x_mark + kMarkW;
-  c.w_move = (cw - kNumW - kHandW - kMarkW) * kMoveShare;
-  c.x_from = c.x_move + c.w_move;
+  c.w_diff = diff ? kDiffW : 0;
+  c.w_move = (cw - kNumW - kHandW - kMarkW - c.w_diff) * kMoveShare;
+  c.x_diff = c.x_move + c.w_move;
+  c.x_from = c.x_diff + c.w_diff;
   c.w_from = x0 + cw - c.x_from;
   return c;
+}
+
+// The difficulty cell: the crux star, a bar as long as the estimate (grey,
+// outlined: it survives black-and-white printing) and, for the hardest
+// stretch, a thick rule at the cell's right edge.
+void DrawDifficulty(cairo_t* cr, const CardRow& r, const Columns& c, double y, double h,
+                    double font) {
+  if (c.w_diff <= 0) return;
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  if (r.crux) Paragraph(cr, kMarkCrux, c.x_diff + 1, y + kRowPad, 10, font * 0.8, true);
+  if (r.difficulty >= 0) {
+    const double bx = c.x_diff + 10, bh = std::min(6.0, font * 0.5);
+    const double by = y + kRowPad + (font * 1.2 - bh) / 2;
+    const double bw = kBarW * std::clamp(r.difficulty, 0.0, 1.0);
+    cairo_set_line_width(cr, 0.4);
+    cairo_rectangle(cr, bx, by, kBarW, bh);
+    cairo_stroke(cr);
+    cairo_set_source_rgb(cr, 0.35, 0.35, 0.35);
+    cairo_rectangle(cr, bx, by, bw, bh);
+    cairo_fill(cr);
+  }
+  if (r.hardest) {
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    cairo_set_line_width(cr, 2.0);
+    cairo_move_to(cr, c.x_diff + 10 + kBarW + 3, y);
+    cairo_line_to(cr, c.x_diff + 10 + kBarW + 3, y + h);
+    cairo_stroke(cr);
+  }
+  cairo_set_source_rgb(cr, 0, 0, 0);
 }
 
 // Height of the table at `font` (rows measured as drawn).
@@ -274,6 +452,7 @@ void DrawTable(cairo_t* cr, const std::vector<CardRow>& rows, const Columns& c, 
   Paragraph(cr, "#", c.x_num, y, kNumW, head, true);
   Paragraph(cr, "Hand", c.x_hand - 2, y, kHandW + kMarkW, head, true);
   Paragraph(cr, "Move", c.x_move, y, c.w_move, head, true);
+  if (c.w_diff > 0) Paragraph(cr, "Diff.", c.x_diff + 1, y, c.w_diff, head, true);
   Paragraph(cr, "From", c.x_from, y, c.w_from, head, true);
   y += font * 1.6;
   cairo_set_line_width(cr, 0.8);
@@ -297,6 +476,7 @@ void DrawTable(cairo_t* cr, const std::vector<CardRow>& rows, const Columns& c, 
     Paragraph(cr, r.hand, c.x_hand, y + kRowPad, kHandW, font, true);
     Paragraph(cr, r.mark, c.x_mark, y + kRowPad, kMarkW, font, true);
     move.Draw(cr, c.x_move, y + kRowPad);
+    DrawDifficulty(cr, r, c, y, h, font);
     cairo_set_source_rgb(cr, 0.2, 0.2, 0.2);
     from.Draw(cr, c.x_from, y + kRowPad + (font - font * 0.9) * 0.6);
     y += h;
@@ -336,6 +516,10 @@ void DrawCard(cairo_t* cr, const RoutePlan& plan, const CardInfo& info, PageSize
   y += Paragraph(cr, info.name, x0, y, head_w, 22, true) + 2;
   y += Paragraph(cr, CardFactsLine(info), x0, y, head_w, 15, true) + 1;
   y += Paragraph(cr, CardSetterLine(info), x0, y, head_w, 12);
+  const CardAnnotations notes_of_plan = CardAnnotationsOf(plan);
+  if (!notes_of_plan.grades.empty()) {
+    y += 2 + Paragraph(cr, notes_of_plan.grades, x0, y + 2, head_w, 9.5);
+  }
   if (qr) {
     DrawQr(cr, info.url, page.w - kMargin - kQrSize, kMargin - 6, kQrSize);
     cairo_set_source_rgb(cr, 0.25, 0.25, 0.25);
@@ -345,19 +529,30 @@ void DrawCard(cairo_t* cr, const RoutePlan& plan, const CardInfo& info, PageSize
     y = std::max(y, kMargin + kQrSize + 4);
   }
   y += 4;
-  y += Paragraph(cr, CardSummary(plan) + ".", x0, y, cw, 9) + 4;
+  y += Paragraph(cr, CardSummary(plan) + ".", x0, y, cw, 9) + 2;
+  // The IC search and the warnings: short lines in small type above the
+  // moves, where the setter reads them before setting.
+  if (!notes_of_plan.search.empty()) y += Paragraph(cr, notes_of_plan.search, x0, y, cw, 8.5);
+  // The warnings in one paragraph, each led by ⚠ (as the page prints them):
+  // every line taken here shrinks the moves.
+  std::string warnings;
+  for (const std::string& w : notes_of_plan.warnings) {
+    warnings += (warnings.empty() ? "" : "   ") + std::string("\xE2\x9A\xA0 ") + w;  // ⚠
+  }
+  y += Paragraph(cr, warnings, x0, y, cw, 8.5);
+  y += 2;
 
   // What goes below the table, measured first.
   const std::vector<CardRow> rows = CardRows(plan);
   const std::string notes = info.notes.empty() ? "" : "Notes: " + info.notes;
-  const std::string legend = CardLegend(rows);
+  const std::string legend = CardLegendLine(plan, rows);
   const std::string params = CardParameters(plan);
   double below = MeasureParagraph(cr, notes, cw, 10) + (notes.empty() ? 0 : 6) +
                  MeasureParagraph(cr, legend, cw, 8) + 4 + MeasureParagraph(cr, params, cw, 6.5);
   const double avail = page.h - kMargin - y - below - 6;
 
   // The largest font at which the rows fit.
-  const Columns c = ColumnsOf(x0, cw);
+  const Columns c = ColumnsOf(x0, cw, CardHasDifficulty(plan));
   double font = kCardFontPt, table_h = TableHeight(cr, rows, c, font);
   while (table_h > avail && font > kMinCardFontPt) {
     font = std::max(kMinCardFontPt, font - 0.25);

@@ -36,6 +36,7 @@ struct CardInfo {
 inline constexpr char kMarkChanged[] = "\xE2\x97\x86";  // ◆ the move changed position
 inline constexpr char kMarkAdded[] = "\xE2\x9C\x8E";    // ✎ the setter wrote it in
 inline constexpr char kMarkSuggested[] = "+";           // a smoothing suggestion
+inline constexpr char kMarkCrux[] = "\xE2\x98\x85";     // ★ a crux (in the difficulty column)
 
 // One row of the move table.
 struct CardRow {
@@ -48,6 +49,13 @@ struct CardRow {
   std::string from;  // "Crimp Ladder #3", "smoothing suggestion", "added by the setter", "—"
   bool crux = false;
   bool changed = false;
+  // The difficulty profile (issue 13): the move's estimate in [0, 1], or -1
+  // when the plan has none (suggestions, plans without a profile); whether
+  // the move lies in the hardest stretch; whether its hand was swapped by
+  // the IC search's fallback (its text then ends in "(hand swapped)").
+  double difficulty = -1.0;
+  bool hardest = false;
+  bool hand_swapped = false;
 };
 
 // The rows of `plan`: its moves in order, each smoothing suggestion's moves
@@ -57,8 +65,37 @@ std::vector<CardRow> CardRows(const RoutePlan& plan);
 // "12 of 30 moves changed", plus ", 2 added by the setter" when some were.
 std::string CardSummary(const RoutePlan& plan);
 // The legend of the marks actually used by `rows` ("◆ changed position ·
-// + smoothing suggestion"), "" when none is.
+// + smoothing suggestion", "★ crux", the difficulty bar), "" when none is.
 std::string CardLegend(const std::vector<CardRow>& rows);
+// The legend line the card prints: CardLegend(rows) and, when the plan has a
+// hardest stretch, "┃ Hardest stretch: moves 14-19 (mean estimate 0.31)"
+// (the rule beside those rows). Pure.
+std::string CardLegendLine(const RoutePlan& plan, const std::vector<CardRow>& rows);
+// Whether the card has a difficulty column (the plan has one estimate per
+// move). Pure.
+bool CardHasDifficulty(const RoutePlan& plan);
+
+// The setter's annotations as the card shows them (issues 13 and 15): short
+// lines, each "" when the plan does not have that annotation. Value type.
+struct CardAnnotations {
+  // "Estimated grade 5.10 (80%: 5.9 to 5.11) · inputs: Alpha 5.9, Bravo V2".
+  std::string grades;
+  // "IC search: IC (-14.3, -11.4, 52) used, 1.8 from the IC asked for ·
+  // held: keep-start, alternate-hands (2 hands swapped)" (+ "· NOT held: ...").
+  std::string search;
+  // One line per kind of warning, e.g. "same hand in a row: moves 3-4, 9-11";
+  // empty when there is none (or no warnings were computed).
+  std::vector<std::string> warnings;
+  // "Hardest stretch: moves 14-19 (mean estimate 0.31)".
+  std::string hardest;
+};
+// The annotations of `plan` (empty strings/vectors where it has none). Pure;
+// deterministic.
+CardAnnotations CardAnnotationsOf(const RoutePlan& plan);
+// The annotation lines in card order (grades, search, "Warnings: " + each
+// warning line or "Warnings: none", hardest stretch), skipping empty ones.
+std::vector<std::string> CardAnnotationLines(const RoutePlan& plan);
+
 // The generation parameters on one line (small type at the bottom).
 std::string CardParameters(const RoutePlan& plan);
 // "Grade V4 · Colour yellow · Wall the cave" from the fields that are set.

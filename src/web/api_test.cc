@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <random>
+#include <set>
 #include <thread>
 
 #include "base/files.h"
@@ -460,6 +461,56 @@ TEST_F(ApiTest, VariationsTakeTheSettersFieldsAndReturnTheAnnotations) {
             "search_radius"}}) {
     json e = c.Json("POST", "/api/variations", body.dump(), 400);
     EXPECT_NE(e.dump().find(field), std::string::npos) << e.dump();
+  }
+}
+
+// The route card of a constrained variation shows the IC search report, the
+// warnings, the difficulty column and the estimated grade (plan/card.h), and
+// the vary page offers the constraints under their JSON names.
+TEST_F(ApiTest, AConstrainedVariationsCardShowsTheSearchReportAndWarnings) {
+  Client c = NewClient(), anon = NewClient();
+  c.SignUp("alice");
+  ASSERT_TRUE(c.LogIn("alice"));
+  int64_t a = AddRoute(c, kRoute), b = AddRoute(c, kRoute2);
+  json v =
+      c.Json("POST", "/api/variations",
+             json{{"routes", {a, b}}, {"keep_start", true}, {"alternate_hands", true}}.dump(), 201);
+  const std::string id = std::to_string(v["id"].get<int64_t>());
+  json plan = anon.Json("GET", "/api/variations/" + id, "", 200)["plan"];
+  ASSERT_TRUE(plan["search"].is_object());
+  auto page = anon.Send("GET", "/variations/" + id);
+  ASSERT_TRUE(page);
+  ASSERT_EQ(page->status, 200);
+  const std::string& h = page->body;
+  const size_t search = h.find("id=\"card-search\"");
+  ASSERT_NE(search, std::string::npos) << h.substr(0, 2000);
+  const std::string line = h.substr(search, h.find("</li>", search) - search);
+  EXPECT_NE(line.find("IC search: IC ("), std::string::npos) << line;
+  EXPECT_NE(line.find("held: keep-start, alternate-hands"), std::string::npos) << line;
+  EXPECT_EQ(line.find("NOT held"), std::string::npos) << line;
+  // Every warning of the plan is on the card (one line per kind).
+  std::set<std::string> kinds;
+  for (const json& w : plan["warnings"]) kinds.insert(w["kind"].get<std::string>());
+  size_t shown = 0;
+  for (size_t p = h.find("<li class=\"warning\">"); p != std::string::npos;
+       p = h.find("<li class=\"warning\">", p + 1)) {
+    ++shown;
+  }
+  EXPECT_EQ(shown, kinds.size());
+  EXPECT_NE(h.find("id=\"card-grades\""), std::string::npos);
+  EXPECT_NE(h.find("<th class=\"diff\""), std::string::npos);
+  EXPECT_NE(h.find("Hardest stretch: move"), std::string::npos);
+  // Without constraints: no search line.
+  json plain = c.Json("POST", "/api/variations", json{{"routes", {a}}}.dump(), 201);
+  auto plain_page = anon.Send("GET", "/variations/" + std::to_string(plain["id"].get<int64_t>()));
+  ASSERT_TRUE(plain_page);
+  EXPECT_EQ(plain_page->body.find("id=\"card-search\""), std::string::npos);
+  // The vary page's advanced panel has the fields, named as in the API.
+  auto vary = anon.Send("GET", "/vary");
+  ASSERT_TRUE(vary);
+  for (const char* f : {"keep_start", "keep_finish", "crux_window", "alternate_hands", "max_repeat",
+                        "match", "target_effect", "target_change", "smooth_method"}) {
+    EXPECT_NE(vary->body.find("id=\"" + std::string(f) + "\""), std::string::npos) << f;
   }
 }
 

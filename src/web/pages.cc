@@ -379,7 +379,30 @@ std::string VaryPage(const PageViewer& v, const std::vector<store::RouteRecord>&
        "<option>euclidean</option><option>dabby</option></select></label>\n"
        "<label>Mask (xyz) <input id=\"mask\" placeholder=\"101\"></label>\n"
        "<label>Max repeat <input id=\"max_repeat\" placeholder=\"0\"></label>\n"
-       "</div></details></fieldset>\n";
+       "</div>\n"
+       // The setter's constraints (issue 13), named as the JSON API's fields
+       // (docs/setting.md): any of them makes the server search the ICs near
+       // the variation IC for the nearest one that meets them all.
+       "<fieldset class=\"constraints\" id=\"constraints\"><legend>Constraints (the IC search "
+       "looks near the variation IC for one that meets them all)</legend>\n"
+       "<label class=\"inline\"><input type=\"checkbox\" id=\"keep_start\"> Keep start (begin "
+       "with an input's first move)</label>\n"
+       "<label class=\"inline\"><input type=\"checkbox\" id=\"keep_finish\"> Keep finish (end "
+       "with an input's last move)</label>\n"
+       "<label class=\"inline\"><input type=\"checkbox\" id=\"alternate_hands\"> Alternate "
+       "hands (no hand twice in a row)</label>\n<div class=\"grid2\">\n"
+       "<label>Crux window (fractions of the length) <input id=\"crux_window\" "
+       "placeholder=\"0.5,0.9\"></label>\n"
+       "<label>Match moves <select id=\"match\"><option value=\"text\">by text (the original "
+       "site)</option><option value=\"grammar\">by the grammar</option></select></label>\n"
+       "<label>Target effect (moves that change) <input id=\"target_effect\" type=\"number\" "
+       "min=\"0\" step=\"1\"></label>\n"
+       "<label>Target change (how far they move) <input id=\"target_change\" "
+       "type=\"number\" min=\"0\" step=\"0.5\"></label>\n"
+       "<label>Smoothing method <select id=\"smooth_method\"><option value=\"vomm\">Markov "
+       "model (vomm)</option><option value=\"astar\">A* over the move graph (astar)</option>"
+       "</select></label>\n</div></fieldset>\n"
+       "</details></fieldset>\n";
   b += "<fieldset><legend>3. Initial condition map</legend>\n";
   {
     b += "<p class=\"hint\">Each pixel is a variation IC in the x–y plane through the reference "
@@ -431,8 +454,14 @@ std::string PlanPage(const PageViewer& v, const store::RouteRecord& rec,
     }
     b += " (" + std::to_string(var.inputs[i].route.moves.size()) + " moves)";
   }
-  b += std::string(rec.is_public ? "" : " · <span class=\"tag private\">private</span>") +
-       "</p></div>\n";
+  b += std::string(rec.is_public ? "" : " · <span class=\"tag private\">private</span>") + "</p>";
+  // The card's annotations (plan/card.h): the estimated grade next to the
+  // inputs' grades in the header; the IC search and the warnings above the
+  // moves; the hardest stretch with the legend.
+  const plan::CardAnnotations notes = plan::CardAnnotationsOf(plan);
+  if (!notes.grades.empty())
+    b += "<p class=\"card-grades\" id=\"card-grades\">" + E(notes.grades) + "</p>";
+  b += "</div>\n";
   if (!card.url.empty()) {
     if (Result<plan::QrCode> qr = plan::MakeQr(card.url); qr.ok()) {
       b += "<figure class=\"qr\">" + plan::QrSvg(*qr, "26mm") + "<figcaption>" + E(card.url) +
@@ -440,21 +469,48 @@ std::string PlanPage(const PageViewer& v, const store::RouteRecord& rec,
     }
   }
   b += "</header>\n";
+  if (!notes.search.empty() || !notes.warnings.empty()) {
+    b += "<ul class=\"card-notes\" id=\"card-notes\">";
+    if (!notes.search.empty())
+      b += "<li class=\"search\" id=\"card-search\">" + E(notes.search) + "</li>";
+    for (const std::string& w : notes.warnings) {
+      b += "<li class=\"warning\"><span aria-label=\"warning\">⚠</span> " + E(w) + "</li>";
+    }
+    b += "</ul>\n";
+  }
+  const bool diff = plan::CardHasDifficulty(plan);
   b += "<table class=\"moves plan-moves card-moves\"><thead><tr><th class=\"num\">#</th>"
-       "<th class=\"mark\"><span class=\"sr\">mark</span></th><th>Hand</th><th>Move</th>"
+       "<th class=\"mark\"><span class=\"sr\">mark</span></th><th>Hand</th><th>Move</th>" +
+       std::string(diff ? "<th class=\"diff\" title=\"difficulty estimate\">Diff.</th>" : "") +
        "<th>From</th></tr></thead><tbody>\n";
   for (const plan::CardRow& r : rows) {
     const bool sug = r.kind == plan::CardRow::Kind::kSuggestion;
     std::string cls = sug ? "suggested" : r.mark == plan::kMarkAdded ? "added"
                                       : r.changed                 ? "changed"
                                                                   : "";
+    if (r.crux) cls += cls.empty() ? "crux" : " crux";
+    if (r.hand_swapped) cls += cls.empty() ? "swapped" : " swapped";
     b += "<tr" + (cls.empty() ? std::string() : " class=\"" + cls + "\"") + "><td class=\"num\">" +
-         (sug ? std::string() : std::to_string(r.number)) + "</td><td class=\"mark\">" +
-         E(r.mark) + "</td><td class=\"hand\">" + E(r.hand) + "</td><td>" + E(r.text) +
-         "</td><td class=\"from\">" + E(r.from) + "</td></tr>\n";
+         (sug ? std::string() : std::to_string(r.number)) + "</td><td class=\"mark\">" + E(r.mark) +
+         "</td><td class=\"hand\">" + E(r.hand) + "</td><td class=\"move\">" + E(r.text) + "</td>";
+    if (diff) {
+      b += std::string("<td class=\"diff") + (r.hardest ? " hardest" : "") + "\">";
+      if (r.crux)
+        b += "<span class=\"crux-mark\" title=\"crux\">" + std::string(plan::kMarkCrux) + "</span>";
+      if (r.difficulty >= 0) {
+        char pct[32];
+        std::snprintf(pct, sizeof pct, "%.0f", 100.0 * std::clamp(r.difficulty, 0.0, 1.0));
+        char val[32];
+        std::snprintf(val, sizeof val, "%.2f", r.difficulty);
+        b += "<span class=\"bar\" title=\"" + std::string(val) + "\"><span style=\"width:" + pct +
+             "%\"></span></span>";
+      }
+      b += "</td>";
+    }
+    b += "<td class=\"from\">" + E(r.from) + "</td></tr>\n";
   }
   b += "</tbody></table>\n";
-  std::string legend = plan::CardLegend(rows);
+  const std::string legend = plan::CardLegendLine(plan, rows);
   b += "<p class=\"summary\">" + E(plan::CardSummary(plan)) + "." +
        (legend.empty() ? "" : " <span class=\"legend\">" + E(legend) + "</span>") + "</p>\n";
   if (!card.notes.empty()) {

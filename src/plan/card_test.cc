@@ -1,0 +1,184 @@
+// The route card's content (plan/card.h): the difficulty profile, crux
+// marks, the estimated grade, the IC search report and the warnings, the same
+// for the HTML page, the PDF and the SVG card.
+#include "plan/card.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <set>
+#include <string>
+
+namespace sb::plan {
+namespace {
+
+bool Has(const std::string& s, const std::string& part) {
+  return s.find(part) != std::string::npos;
+}
+
+// A variation of two routes with every annotation a plan can carry.
+RoutePlan Annotated() {
+  auto a = ParseCrdl("name: Alpha\n---\nR jug\nL crimp (crux)\nR crimp\nL sloper\nR pinch\n", "a");
+  auto b = ParseCrdl("---\nL pocket\nR edge\nL gaston\nR undercling\n", "b");
+  EXPECT_TRUE(a.ok() && b.ok());
+  auto v = chaos::Vary({{"Alpha", *a}, {"b", *b}}, *chaos::VaryParams::Preset("more"));
+  EXPECT_TRUE(v.ok()) << v.status().message();
+  RoutePlan p{*v, {}, ""};
+  chaos::MoveFacts facts;
+  facts.crux = chaos::CruxFlags(v->inputs);
+  for (int i = 0; i < 9; ++i) facts.difficulty.push_back(0.1 * (i % 5) + 0.05);
+  p.warnings = Warn(p.variation, facts);
+  p.profile = Profile(p.variation, facts);
+  SearchReport r;
+  r.requested_ic = {-16, -12, 52};
+  r.used_ic = {-15.9, -12, 52};
+  r.distance = 0.1;
+  r.evaluated = 2;
+  r.hands_swapped = 1;
+  r.constraints.push_back({chaos::Constraint::kKeepStart, true, "starts with \"jug\""});
+  r.constraints.push_back({chaos::Constraint::kAlternateHands, true, "1 hand swapped"});
+  r.constraints.push_back({chaos::Constraint::kKeepFinish, false, "ends mid-route"});
+  p.search = r;
+  p.variation.moves[3].notes.push_back("(hand swapped)");
+  PlanGrades g;
+  g.inputs = {"5.10a", ""};
+  g.discipline = "roped";
+  g.estimate = "5.10";
+  g.low = "5.9";
+  g.high = "5.11";
+  g.level = 0.8;
+  p.grades = g;
+  return p;
+}
+
+TEST(CardTest, RowsCarryTheDifficultyProfileCruxesAndSwappedHands) {
+  RoutePlan p = Annotated();
+  ASSERT_TRUE(CardHasDifficulty(p));
+  std::vector<CardRow> rows = CardRows(p);
+  ASSERT_EQ(rows.size(), p.variation.moves.size());
+  int hardest = 0, cruxes = 0;
+  for (size_t i = 0; i < rows.size(); ++i) {
+    EXPECT_DOUBLE_EQ(rows[i].difficulty, p.profile->difficulty[i]);
+    EXPECT_EQ(rows[i].crux, p.variation.moves[i].crux);
+    EXPECT_EQ(rows[i].hardest, static_cast<int>(i) >= p.profile->hardest_first &&
+                                   static_cast<int>(i) <= p.profile->hardest_last);
+    hardest += rows[i].hardest;
+    cruxes += rows[i].crux;
+    EXPECT_EQ(rows[i].hand_swapped, i == 3);
+  }
+  EXPECT_GT(hardest, 0);
+  EXPECT_TRUE(Has(rows[3].text, "(hand swapped)"));
+  std::string legend = CardLegend(rows);
+  EXPECT_TRUE(Has(legend, "bar: difficulty estimate")) << legend;
+  EXPECT_FALSE(Has(legend, "Hardest stretch")) << legend;
+  std::string line = CardLegendLine(p, rows);
+  EXPECT_TRUE(Has(line, legend + " \xC2\xB7 \xE2\x94\x83 Hardest stretch: move")) << line;
+  EXPECT_EQ(Has(legend, std::string(kMarkCrux) + " crux"), cruxes > 0) << legend;
+}
+
+TEST(CardTest, AnnotationsAreShortLinesOfGradeSearchWarningsAndHardestStretch) {
+  RoutePlan p = Annotated();
+  CardAnnotations a = CardAnnotationsOf(p);
+  EXPECT_EQ(a.grades,
+            "Estimated grade 5.10 (80%: 5.9 to 5.11) \xC2\xB7 inputs: Alpha 5.10a, "
+            "b (no grade)");
+  EXPECT_TRUE(Has(a.search, "IC search: IC (-15.9,-12,52) used, 0.1 from the IC asked for"))
+      << a.search;
+  EXPECT_TRUE(Has(a.search, "held: keep-start, alternate-hands (1 hand swapped)")) << a.search;
+  EXPECT_TRUE(Has(a.search, "NOT held: keep-finish")) << a.search;
+  // One line per kind of warning, never more.
+  EXPECT_FALSE(a.warnings.empty());
+  std::set<WarningKind> kinds;
+  for (const Warning& w : p.warnings->warnings) kinds.insert(w.kind);
+  EXPECT_EQ(a.warnings.size(), kinds.size());
+  for (const std::string& l : a.warnings) EXPECT_LT(l.size(), 200u) << l;
+  EXPECT_EQ(a.hardest.rfind("Hardest stretch: move", 0), 0u) << a.hardest;
+  std::vector<std::string> lines = CardAnnotationLines(p);
+  ASSERT_GE(lines.size(), 4u);
+  EXPECT_EQ(lines.front(), a.grades);
+  EXPECT_EQ(lines[1], a.search);
+  EXPECT_EQ(lines.back(), a.hardest);
+}
+
+TEST(CardTest, SameHandRunsShareOneLine) {
+  PlanWarnings w;
+  w.warnings.push_back({WarningKind::kSameHand, 2, 3, 2, "moves 3-4: left hand twice in a row"});
+  w.warnings.push_back({WarningKind::kSameHand, 8, 10, 3, "moves 9-11: right hand 3 times"});
+  w.warnings.push_back({WarningKind::kRepeatedMove, 4, 5, 2, "moves 5-6: \"crimp\" 2 times"});
+  RoutePlan p = Annotated();
+  p.warnings = w;
+  CardAnnotations a = CardAnnotationsOf(p);
+  ASSERT_EQ(a.warnings.size(), 2u);
+  EXPECT_EQ(a.warnings[0], "same hand in a row: moves 3-4, moves 9-11");
+  EXPECT_EQ(a.warnings[1], "same move repeated: moves 5-6 (2\xC3\x97)");
+  w.warnings.push_back({WarningKind::kStartAwayFromStart, 6, 6, 1, "long message"});
+  w.warnings.push_back({WarningKind::kStartAwayFromStart, 9, 9, 1, "long message"});
+  p.warnings = w;
+  a = CardAnnotationsOf(p);
+  ASSERT_EQ(a.warnings.size(), 3u);
+  EXPECT_EQ(a.warnings[2], "an input's start move mid-route: move 7, move 10");
+}
+
+TEST(CardTest, APlanWithoutAnnotationsHasNone) {
+  RoutePlan p = Annotated();
+  p.search.reset();
+  p.warnings.reset();
+  p.profile.reset();
+  p.grades.reset();
+  EXPECT_FALSE(CardHasDifficulty(p));
+  EXPECT_TRUE(CardAnnotationLines(p).empty());
+  for (const CardRow& r : CardRows(p)) {
+    EXPECT_LT(r.difficulty, 0);
+    EXPECT_FALSE(r.hardest);
+  }
+  EXPECT_FALSE(Has(CardLegend(CardRows(p)), "difficulty"));
+}
+
+// The server's PDF card says what the page says (read back with pdftotext,
+// poppler-utils, as the browser test does).
+TEST(CardTest, PdfCardShowsTheAnnotationsOnOnePage) {
+  if (std::system("pdftotext -v >/dev/null 2>&1") != 0) GTEST_SKIP() << "pdftotext missing";
+  RoutePlan p = Annotated();
+  CardInfo info;
+  info.name = "Annotated card";
+  info.url = "http://example.org/r/1";
+  for (Paper paper : {Paper::kA4, Paper::kLetter}) {
+    Result<std::string> pdf = RenderCardPdf(p, info, paper);
+    ASSERT_TRUE(pdf.ok()) << pdf.status().message();
+    EXPECT_EQ(*pdf, *RenderCardPdf(p, info, paper));  // deterministic
+    EXPECT_TRUE(Has(*pdf, "/Count 1"));
+    const std::string file = testing::TempDir() + "/card_test.pdf";
+    std::ofstream(file, std::ios::binary) << *pdf;
+    std::string text;
+    FILE* f = popen(("pdftotext -layout " + file + " -").c_str(), "r");
+    ASSERT_NE(f, nullptr);
+    char buf[4096];
+    for (size_t n; (n = fread(buf, 1, sizeof buf, f)) > 0;) text.append(buf, n);
+    pclose(f);
+    // Lines wrap where the page is full: compare with single spaces.
+    std::string flat;
+    for (char ch : text) {
+      if (ch == '\n' || ch == ' ') {
+        if (!flat.empty() && flat.back() != ' ') flat += ' ';
+      } else {
+        flat += ch;
+      }
+    }
+    text = flat;
+    EXPECT_TRUE(Has(text, "Estimated grade 5.10")) << text;
+    EXPECT_TRUE(Has(text, "IC search: IC (-15.9,-12,52) used")) << text;
+    EXPECT_TRUE(Has(text, "NOT held: keep-")) << text;
+    EXPECT_TRUE(Has(text, "(hand swapped)")) << text;
+    EXPECT_TRUE(Has(text, "\xE2\x94\x83 Hardest stretch:")) << text;
+    EXPECT_TRUE(Has(text, "\xE2\x9A\xA0 same hand in a row")) << text;
+    EXPECT_TRUE(Has(text, "Diff.")) << text;
+  }
+  Result<std::string> svg = RenderCardSvg(p, info, Paper::kA4);
+  ASSERT_TRUE(svg.ok());
+  EXPECT_EQ(*svg, *RenderCardSvg(p, info, Paper::kA4));
+}
+
+}  // namespace
+}  // namespace sb::plan
