@@ -6,7 +6,7 @@
 # The tests of the modules in SB_DATABASE_TEST_MODULES are written once
 # against a database and registered twice: on SQLite and, with the suffix
 # "/postgresql" and SB_TEST_BACKEND=postgresql, on the throw-away PostgreSQL
-# server of the ctest fixture `pg` (tests/pg_server.sh; store/store_test_util.h).
+# server of the ctest fixture `pg` (scripts/pg_server.sh; store/store_test_util.h).
 set(SB_DATABASE_TEST_MODULES app web)
 function(sb_module name)
   cmake_parse_arguments(M "" "" "SOURCES;DEPS;TEST_DEPS" ${ARGN})

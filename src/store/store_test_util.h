@@ -2,7 +2,7 @@
 // app and API suites run against SQLite and PostgreSQL alike.
 //
 // PostgreSQL is a real server: the one `ctest` starts as the fixture `pg`
-// (tests/pg_server.sh, its URL in <build>/pgtest/url), $SB_TEST_PG (a URL of
+// (scripts/pg_server.sh, its URL in <build>/pgtest/url), $SB_TEST_PG (a URL of
 // a database the tests may create databases from), or, when a test binary
 // runs by itself, a private server this process starts with the same script
 // and stops at exit. Tests on PostgreSQL skip with a message only when the
@@ -96,7 +96,7 @@ inline const std::string& PostgresServer(std::string* why, bool* absent) {
     static std::string dir = (std::filesystem::temp_directory_path() /
                               ("sb_pgtest_" + std::to_string(::getpid())))
                                  .string();
-    std::string script = std::string(SB_SOURCE_DIR) + "/tests/pg_server.sh";
+    std::string script = std::string(SB_SOURCE_DIR) + "/scripts/pg_server.sh";
     std::string cmd = "bash '" + script + "' start '" + dir + "' >&2";
     if (std::system(cmd.c_str()) != 0) {
       url.clear();
@@ -104,7 +104,7 @@ inline const std::string& PostgresServer(std::string* why, bool* absent) {
       return;
     }
     std::atexit([] {
-      std::string stop = "bash '" + std::string(SB_SOURCE_DIR) + "/tests/pg_server.sh' stop '" +
+      std::string stop = "bash '" + std::string(SB_SOURCE_DIR) + "/scripts/pg_server.sh' stop '" +
                          dir + "' >/dev/null 2>&1";
       if (std::system(stop.c_str()) != 0) std::fprintf(stderr, "could not stop %s\n", dir.c_str());
     });

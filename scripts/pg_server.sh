@@ -3,9 +3,9 @@
 # package (initdb + pg_ctl from /usr/lib/postgresql/*/bin, never a PATH
 # symlink), in a temporary directory on a free loopback port.
 #
-#   tests/pg_server.sh start STATE_DIR   start one; writes STATE_DIR/url (an
+#   scripts/pg_server.sh start STATE_DIR   start one; writes STATE_DIR/url (an
 #                                         admin URL: user sb, database postgres)
-#   tests/pg_server.sh stop STATE_DIR    stop it and remove its data
+#   scripts/pg_server.sh stop STATE_DIR    stop it and remove its data
 #
 # As root the server runs as the system user sbpgtest (created here when
 # absent): PostgreSQL refuses to run as root. Listens on 127.0.0.1 only, with
