@@ -282,54 +282,28 @@ struct PageSize {
 };
 PageSize SizeOf(Paper p) { return p == Paper::kA4 ? PageSize{595.28, 841.89} : PageSize{612, 792}; }
 
-constexpr double kMargin = 28.35;  // 10 mm
-constexpr double kQrSize = 80.0;   // 28 mm
 constexpr double kNumW = 24, kHandW = 16, kMarkW = 16;
 constexpr double kDiffW = 36;  // the difficulty column: crux star, a bar of 18 pt, the rule, a gap
 constexpr double kBarW = 18;
-constexpr double kMoveShare = 0.58;  // of the width left for move and from
-constexpr double kRowPad = 1.6;      // above and below each row's text
+constexpr double kMoveShare = 0.58;  // of the width left for move and from, when both wrap
 constexpr double kPictureMinH = 150, kPictureMaxH = 230;
+// The move table's line pitch in em, as the HTML card's print CSS sets it
+// (line-height 1.1): a row of n lines is n × kLinePitch × font high, plus
+// its style's pad above and below.
+constexpr double kLinePitch = 1.1;
 
-// Characters of UTF-8 text.
-size_t Chars(const std::string& s) {
-  size_t n = 0;
-  for (unsigned char c : s) n += (c & 0xC0) != 0x80;
-  return n;
-}
-
-// Lines `text` takes in a column `width` pt wide at `font` pt, for an average
-// character advance of 0.55 em (sans-serif text of move descriptions).
-int EstimatedLines(const std::string& text, double width, double font) {
-  double per_line = std::max(1.0, std::floor(width / (font * 0.55)));
-  return std::max(1, static_cast<int>(std::ceil(static_cast<double>(Chars(text)) / per_line)));
-}
+// How roomy the page is. A card is laid out in the first style whose move
+// table fits at kCardFontPt; only when the compact one does not is the font
+// shrunk (long plans).
+struct Style {
+  double margin;  // each side of the page
+  double qr;      // side of the QR code
+  double pad;     // above and below each row's text
+};
+constexpr Style kRoomy{28.35, 80.0, 1.6};    // 10 mm margins, a 28 mm code
+constexpr Style kCompact{21.26, 62.0, 0.4};  // 7.5 mm margins, a 22 mm code
 
 }  // namespace
-
-double CardFontPt(const std::vector<CardRow>& rows, const CardInfo& info, Paper paper) {
-  const PageSize page = SizeOf(paper);
-  const double cw = page.w - 2 * kMargin;
-  const bool diff =
-      std::any_of(rows.begin(), rows.end(), [](const CardRow& r) { return r.difficulty >= 0; });
-  const double left = cw - kNumW - kHandW - kMarkW - (diff ? kDiffW : 0);
-  const double move_w = left * kMoveShare;
-  const double from_w = left - move_w;
-  // Header (name, facts, QR) ~ 36 mm; notes, legend and parameters below.
-  double fixed = kQrSize + 34 + 22;
-  fixed += 12.0 * EstimatedLines(info.notes, cw, 10) + (info.notes.empty() ? 0 : 14);
-  fixed += 40;  // legend, summary and the parameters in small type
-  const double avail = page.h - 2 * kMargin - fixed;
-  for (double f = kCardFontPt; f > kMinCardFontPt; f -= 0.25) {
-    double total = f * 1.6;  // the column headings
-    for (const CardRow& r : rows) {
-      int lines = std::max(EstimatedLines(r.text, move_w, f), EstimatedLines(r.from, from_w, f));
-      total += lines * f * 1.2 + 2 * kRowPad;
-    }
-    if (total <= avail) return f;
-  }
-  return kMinCardFontPt;
-}
 
 // ---------------------------------------------------------------------------
 // Drawing with cairo and pango.
@@ -341,7 +315,8 @@ cairo_status_t Append(void* closure, const unsigned char* data, unsigned int len
   return CAIRO_STATUS_SUCCESS;
 }
 
-// Text set in one font, wrapped to a width. Owns its pango objects.
+// Text set in one font, wrapped to a width (none when `width` < 0). Owns its
+// pango objects.
 class Text {
  public:
   Text(cairo_t* cr, const std::string& text, double size, bool bold, double width) {
@@ -351,7 +326,16 @@ class Text {
     if (bold) pango_font_description_set_weight(d, PANGO_WEIGHT_BOLD);
     pango_layout_set_font_description(layout_, d);
     pango_font_description_free(d);
-    pango_layout_set_width(layout_, static_cast<int>(width * PANGO_SCALE));
+    // Unhinted metrics on every surface, so a card measured on a recording
+    // surface is laid out exactly as it is set in the PDF and the SVG.
+    cairo_font_options_t* o = cairo_font_options_create();
+    cairo_font_options_set_hint_metrics(o, CAIRO_HINT_METRICS_OFF);
+    cairo_font_options_set_hint_style(o, CAIRO_HINT_STYLE_NONE);
+    PangoContext* context = pango_layout_get_context(layout_);
+    pango_cairo_context_set_font_options(context, o);
+    cairo_font_options_destroy(o);
+    pango_layout_context_changed(layout_);
+    pango_layout_set_width(layout_, width < 0 ? -1 : static_cast<int>(width * PANGO_SCALE));
     pango_layout_set_wrap(layout_, PANGO_WRAP_WORD_CHAR);
     // Plain text, never markup: whatever the setter typed is shown as typed.
     pango_layout_set_text(layout_, text.data(), static_cast<int>(text.size()));
@@ -360,6 +344,16 @@ class Text {
   Text(const Text&) = delete;
   Text& operator=(const Text&) = delete;
 
+  double width() const {
+    int w = 0, h = 0;
+    pango_layout_get_size(layout_, &w, &h);
+    return static_cast<double>(w) / PANGO_SCALE;
+  }
+  int lines() const { return pango_layout_get_line_count(layout_); }
+  // Sets wrapped lines kLinePitch em apart (DejaVu Sans is 1.164 em high).
+  void Tighten() {
+    pango_layout_set_line_spacing(layout_, static_cast<float>(kLinePitch / 1.164));
+  }
   double height() const {
     int w = 0, h = 0;
     pango_layout_get_size(layout_, &w, &h);
@@ -391,14 +385,33 @@ struct Columns {
   double x_num, x_hand, x_mark, x_move, x_diff, x_from, w_move, w_diff, w_from;
 };
 
-Columns ColumnsOf(double x0, double cw, bool diff) {
+// The columns of the move table at `font`: move and from get the width their
+// longest text needs when both fit on one line (the slack shared), else the
+// one that fits keeps its width and the other wraps, else both wrap in the
+// kMoveShare split.
+Columns ColumnsOf(cairo_t* cr, const std::vector<CardRow>& rows, double x0, double cw,
+                  bool diff, double font) {
   Columns c;
   c.x_num = x0;
   c.x_hand = x0 + kNumW;
   c.x_mark = c.x_hand + kHandW;
   c.x_move = c.x_mark + kMarkW;
   c.w_diff = diff ? kDiffW : 0;
-  c.w_move = (cw - kNumW - kHandW - kMarkW - c.w_diff) * kMoveShare;
+  const double left = cw - kNumW - kHandW - kMarkW - c.w_diff;
+  double move_nat = 0, from_nat = 0;
+  for (const CardRow& r : rows) {
+    move_nat = std::max(move_nat, Text(cr, r.text, font, r.crux, -1).width() + 6);
+    from_nat = std::max(from_nat, Text(cr, r.from, font * 0.9, false, -1).width() + 2);
+  }
+  if (move_nat + from_nat <= left) {
+    c.w_move = move_nat + (left - move_nat - from_nat) * 0.5;
+  } else if (from_nat <= left * (1 - kMoveShare)) {
+    c.w_move = left - from_nat;
+  } else if (move_nat <= left * kMoveShare) {
+    c.w_move = move_nat;
+  } else {
+    c.w_move = left * kMoveShare;
+  }
   c.x_diff = c.x_move + c.w_move;
   c.x_from = c.x_diff + c.w_diff;
   c.w_from = x0 + cw - c.x_from;
@@ -409,13 +422,13 @@ Columns ColumnsOf(double x0, double cw, bool diff) {
 // outlined: it survives black-and-white printing) and, for the hardest
 // stretch, a thick rule at the cell's right edge.
 void DrawDifficulty(cairo_t* cr, const CardRow& r, const Columns& c, double y, double h,
-                    double font) {
+                    double font, double pad) {
   if (c.w_diff <= 0) return;
   cairo_set_source_rgb(cr, 0, 0, 0);
-  if (r.crux) Paragraph(cr, kMarkCrux, c.x_diff + 1, y + kRowPad, 10, font * 0.8, true);
+  if (r.crux) Paragraph(cr, kMarkCrux, c.x_diff + 1, y + pad, 10, font * 0.8, true);
   if (r.difficulty >= 0) {
     const double bx = c.x_diff + 10, bh = std::min(6.0, font * 0.5);
-    const double by = y + kRowPad + (font * 1.2 - bh) / 2;
+    const double by = y + pad + (font * 1.2 - bh) / 2;
     const double bw = kBarW * std::clamp(r.difficulty, 0.0, 1.0);
     cairo_set_line_width(cr, 0.4);
     cairo_rectangle(cr, bx, by, kBarW, bh);
@@ -434,19 +447,33 @@ void DrawDifficulty(cairo_t* cr, const CardRow& r, const Columns& c, double y, d
   cairo_set_source_rgb(cr, 0, 0, 0);
 }
 
-// Height of the table at `font` (rows measured as drawn).
-double TableHeight(cairo_t* cr, const std::vector<CardRow>& rows, const Columns& c, double font) {
-  double h = font * 1.6;
-  for (const CardRow& r : rows) {
-    double t = Text(cr, r.text, font, false, c.w_move - 4).height();
-    double f = Text(cr, r.from, font * 0.9, false, c.w_from).height();
-    h += std::max(t, f) + 2 * kRowPad;
+// A row's cells: the move and where it came from, wrapped to their columns.
+struct Cells {
+  Cells(cairo_t* cr, const CardRow& r, const Columns& c, double font)
+      : move(cr, r.text, font, r.crux, c.w_move - 4), from(cr, r.from, font * 0.9, false, c.w_from) {
+    move.Tighten();
+    from.Tighten();
   }
+  double Height(double font, double pad) const {
+    return std::max(move.lines() * font, from.lines() * font * 0.9) * kLinePitch + 2 * pad;
+  }
+  Text move, from;
+};
+
+double RowHeight(cairo_t* cr, const CardRow& r, const Columns& c, double font, double pad) {
+  return Cells(cr, r, c, font).Height(font, pad);
+}
+
+// Height of the table at `font` (rows measured as drawn).
+double TableHeight(cairo_t* cr, const std::vector<CardRow>& rows, const Columns& c, double font,
+                   double pad) {
+  double h = font * 1.6;
+  for (const CardRow& r : rows) h += RowHeight(cr, r, c, font, pad);
   return h;
 }
 
 void DrawTable(cairo_t* cr, const std::vector<CardRow>& rows, const Columns& c, double y,
-               double font, double width) {
+               double font, double pad, double width) {
   cairo_set_source_rgb(cr, 0, 0, 0);
   const double head = font * 0.8;
   Paragraph(cr, "#", c.x_num, y, kNumW, head, true);
@@ -461,9 +488,10 @@ void DrawTable(cairo_t* cr, const std::vector<CardRow>& rows, const Columns& c, 
   cairo_stroke(cr);
   for (const CardRow& r : rows) {
     const bool suggestion = r.kind == CardRow::Kind::kSuggestion;
-    Text move(cr, r.text, font, r.crux, c.w_move - 4);
-    Text from(cr, r.from, font * 0.9, false, c.w_from);
-    const double h = std::max(move.height(), from.height()) + 2 * kRowPad;
+    const Cells cells(cr, r, c, font);
+    const Text& move = cells.move;
+    const Text& from = cells.from;
+    const double h = cells.Height(font, pad);
     if (r.changed || suggestion) {
       // Light grey: visible in black and white, the mark says what it is.
       cairo_set_source_rgb(cr, suggestion ? 0.96 : 0.90, suggestion ? 0.96 : 0.90,
@@ -472,13 +500,13 @@ void DrawTable(cairo_t* cr, const std::vector<CardRow>& rows, const Columns& c, 
       cairo_fill(cr);
     }
     cairo_set_source_rgb(cr, 0, 0, 0);
-    if (!suggestion) Paragraph(cr, std::to_string(r.number), c.x_num, y + kRowPad, kNumW, font);
-    Paragraph(cr, r.hand, c.x_hand, y + kRowPad, kHandW, font, true);
-    Paragraph(cr, r.mark, c.x_mark, y + kRowPad, kMarkW, font, true);
-    move.Draw(cr, c.x_move, y + kRowPad);
-    DrawDifficulty(cr, r, c, y, h, font);
+    if (!suggestion) Paragraph(cr, std::to_string(r.number), c.x_num, y + pad, kNumW, font);
+    Paragraph(cr, r.hand, c.x_hand, y + pad, kHandW, font, true);
+    Paragraph(cr, r.mark, c.x_mark, y + pad, kMarkW, font, true);
+    move.Draw(cr, c.x_move, y + pad);
+    DrawDifficulty(cr, r, c, y, h, font, pad);
     cairo_set_source_rgb(cr, 0.2, 0.2, 0.2);
-    from.Draw(cr, c.x_from, y + kRowPad + (font - font * 0.9) * 0.6);
+    from.Draw(cr, c.x_from, y + pad + (font - font * 0.9) * 0.6);
     y += h;
     cairo_set_source_rgb(cr, 0.75, 0.75, 0.75);
     cairo_set_line_width(cr, 0.3);
@@ -502,17 +530,16 @@ void DrawQr(cairo_t* cr, const std::string& url, double x, double y, double size
   cairo_fill(cr);
 }
 
-// Draws the whole card on the page `page` of `cr`.
-void DrawCard(cairo_t* cr, const RoutePlan& plan, const CardInfo& info, PageSize page) {
-  const double x0 = kMargin, cw = page.w - 2 * kMargin;
-  cairo_set_source_rgb(cr, 1, 1, 1);
-  cairo_paint(cr);
+// Draws the header — the name, grade, colour, wall, setter and date in large
+// type, the QR code at the right, then the summary, the IC search and the
+// warnings in small type — and returns where the move table starts.
+double DrawHeader(cairo_t* cr, const RoutePlan& plan, const CardInfo& info, PageSize page,
+                  const Style& s) {
+  const double x0 = s.margin, cw = page.w - 2 * s.margin;
   cairo_set_source_rgb(cr, 0, 0, 0);
-  // Header: the name, grade, colour, wall, setter and date in large type; the
-  // QR code at the right.
   const bool qr = !info.url.empty();
-  const double head_w = qr ? cw - kQrSize - 12 : cw;
-  double y = kMargin - 4;
+  const double head_w = qr ? cw - s.qr - 12 : cw;
+  double y = s.margin - 4;
   y += Paragraph(cr, info.name, x0, y, head_w, 22, true) + 2;
   y += Paragraph(cr, CardFactsLine(info), x0, y, head_w, 15, true) + 1;
   y += Paragraph(cr, CardSetterLine(info), x0, y, head_w, 12);
@@ -521,12 +548,12 @@ void DrawCard(cairo_t* cr, const RoutePlan& plan, const CardInfo& info, PageSize
     y += 2 + Paragraph(cr, notes_of_plan.grades, x0, y + 2, head_w, 9.5);
   }
   if (qr) {
-    DrawQr(cr, info.url, page.w - kMargin - kQrSize, kMargin - 6, kQrSize);
+    DrawQr(cr, info.url, page.w - s.margin - s.qr, s.margin - 6, s.qr);
     cairo_set_source_rgb(cr, 0.25, 0.25, 0.25);
-    Paragraph(cr, "Scan to give feedback", page.w - kMargin - kQrSize, kMargin - 6 + kQrSize - 4,
-              kQrSize, 6.5);
+    Paragraph(cr, "Scan to give feedback", page.w - s.margin - s.qr, s.margin - 6 + s.qr - 4, s.qr,
+              6.5);
     cairo_set_source_rgb(cr, 0, 0, 0);
-    y = std::max(y, kMargin + kQrSize + 4);
+    y = std::max(y, s.margin + s.qr + 4);
   }
   y += 4;
   y += Paragraph(cr, CardSummary(plan) + ".", x0, y, cw, 9) + 2;
@@ -540,32 +567,84 @@ void DrawCard(cairo_t* cr, const RoutePlan& plan, const CardInfo& info, PageSize
     warnings += (warnings.empty() ? "" : "   ") + std::string("\xE2\x9A\xA0 ") + w;  // ⚠
   }
   y += Paragraph(cr, warnings, x0, y, cw, 8.5);
-  y += 2;
+  return y + 2;
+}
 
-  // What goes below the table, measured first.
-  const std::vector<CardRow> rows = CardRows(plan);
-  const std::string notes = info.notes.empty() ? "" : "Notes: " + info.notes;
-  const std::string legend = CardLegendLine(plan, rows);
-  const std::string params = CardParameters(plan);
-  double below = MeasureParagraph(cr, notes, cw, 10) + (notes.empty() ? 0 : 6) +
-                 MeasureParagraph(cr, legend, cw, 8) + 4 + MeasureParagraph(cr, params, cw, 6.5);
-  const double avail = page.h - kMargin - y - below - 6;
+// What goes below the table: the notes, the legend and the parameters.
+struct Footer {
+  std::string notes, legend, params;
+};
 
-  // The largest font at which the rows fit.
-  const Columns c = ColumnsOf(x0, cw, CardHasDifficulty(plan));
-  double font = kCardFontPt, table_h = TableHeight(cr, rows, c, font);
-  while (table_h > avail && font > kMinCardFontPt) {
-    font = std::max(kMinCardFontPt, font - 0.25);
-    table_h = TableHeight(cr, rows, c, font);
+Footer FooterOf(const RoutePlan& plan, const CardInfo& info, const std::vector<CardRow>& rows) {
+  return {info.notes.empty() ? "" : "Notes: " + info.notes, CardLegendLine(plan, rows),
+          CardParameters(plan)};
+}
+
+double FooterHeight(cairo_t* cr, const Footer& f, double cw) {
+  return MeasureParagraph(cr, f.notes, cw, 10) + (f.notes.empty() ? 0 : 6) +
+         MeasureParagraph(cr, f.legend, cw, 8) + 4 + MeasureParagraph(cr, f.params, cw, 6.5);
+}
+
+// A card laid out on a page: the style, the move table's font and columns,
+// where the table starts.
+struct Layout {
+  Style style;
+  double font;
+  Columns columns;
+  double table_y, table_h;
+};
+
+// Measures on a recording surface (nothing is drawn on the page): the first
+// style whose table fits at kCardFontPt, else the compact style at the
+// largest font (steps of 0.25 pt, down to kMinCardFontPt) at which it fits.
+Layout Fit(const RoutePlan& plan, const CardInfo& info, const std::vector<CardRow>& rows,
+           PageSize page) {
+  cairo_surface_t* rec = cairo_recording_surface_create(CAIRO_CONTENT_COLOR_ALPHA, nullptr);
+  cairo_t* cr = cairo_create(rec);
+  const Footer footer = FooterOf(plan, info, rows);
+  const bool diff = CardHasDifficulty(plan);
+  Layout l{};
+  for (const Style* style : {&kRoomy, &kCompact}) {
+    const Style& s = *style;
+    const double cw = page.w - 2 * s.margin;
+    l.style = s;
+    l.table_y = DrawHeader(cr, plan, info, page, s);
+    const double avail = page.h - s.margin - l.table_y - FooterHeight(cr, footer, cw) - 6;
+    l.font = kCardFontPt;
+    for (;;) {
+      l.columns = ColumnsOf(cr, rows, s.margin, cw, diff, l.font);
+      l.table_h = TableHeight(cr, rows, l.columns, l.font, s.pad);
+      if (l.table_h <= avail) break;
+      if (style == &kRoomy && l.font == kCardFontPt) break;  // try the compact style first
+      if (l.font <= kMinCardFontPt) break;                 // text wraps, never cut
+      l.font = std::max(kMinCardFontPt, l.font - 0.25);
+    }
+    if (l.table_h <= avail || style == &kCompact) break;
   }
-  DrawTable(cr, rows, c, y, font, cw);
-  y += table_h + 6;
-  if (!notes.empty()) y += Paragraph(cr, notes, x0, y, cw, 10) + 6;
+  cairo_destroy(cr);
+  cairo_surface_destroy(rec);
+  return l;
+}
+
+// Draws the whole card on the page `page` of `cr`.
+void DrawCard(cairo_t* cr, const RoutePlan& plan, const CardInfo& info, PageSize page) {
+  const std::vector<CardRow> rows = CardRows(plan);
+  const Layout l = Fit(plan, info, rows, page);
+  const Style& s = l.style;
+  const double x0 = s.margin, cw = page.w - 2 * s.margin;
+  cairo_set_source_rgb(cr, 1, 1, 1);
+  cairo_paint(cr);
+  double y = DrawHeader(cr, plan, info, page, s);
+  DrawTable(cr, rows, l.columns, y, l.font, s.pad, cw);
+  y += l.table_h + 6;
+  const Footer f = FooterOf(plan, info, rows);
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  if (!f.notes.empty()) y += Paragraph(cr, f.notes, x0, y, cw, 10) + 6;
   cairo_set_source_rgb(cr, 0.15, 0.15, 0.15);
-  y += Paragraph(cr, legend, x0, y, cw, 8) + 4;
+  y += Paragraph(cr, f.legend, x0, y, cw, 8) + 4;
   // The picture when room is left: small, never at the moves' expense.
-  const double params_h = MeasureParagraph(cr, params, cw, 6.5);
-  const double room = page.h - kMargin - params_h - 6 - y;
+  const double params_h = MeasureParagraph(cr, f.params, cw, 6.5);
+  const double room = page.h - s.margin - params_h - 6 - y;
   if (info.picture && room >= kPictureMinH) {
     const double ph = std::min(kPictureMaxH, room);
     const double pw = std::min(cw, ph * 4.0 / 3.0);
@@ -576,7 +655,7 @@ void DrawCard(cairo_t* cr, const RoutePlan& plan, const CardInfo& info, PageSize
     cairo_restore(cr);
   }
   cairo_set_source_rgb(cr, 0.3, 0.3, 0.3);
-  Paragraph(cr, params, x0, page.h - kMargin - params_h, cw, 6.5);
+  Paragraph(cr, f.params, x0, page.h - s.margin - params_h, cw, 6.5);
 }
 
 // Renders onto a surface made by `make` and returns the bytes written.
@@ -629,6 +708,10 @@ std::string PinSvgIds(const std::string& svg) {
 }
 
 }  // namespace
+
+double CardMoveFontPt(const RoutePlan& plan, const CardInfo& info, Paper paper) {
+  return Fit(plan, info, CardRows(plan), SizeOf(paper)).font;
+}
 
 Result<std::string> RenderCardPdf(const RoutePlan& plan, const CardInfo& info, Paper paper) {
   return RenderWith(

@@ -103,13 +103,15 @@ std::string CardFactsLine(const CardInfo& info);
 // "Set by Carol · 2024-05-01" from the fields that are set.
 std::string CardSetterLine(const CardInfo& info);
 
-// The font size (points) of the move table for a page of `paper`: 11.5 pt
-// when the rows fit (always for 40 moves of ordinary length on A4 and
-// Letter), smaller down to kMinCardFontPt for longer plans; estimated from
-// the text lengths as the HTML card wraps them. Pure.
+// The font size (points) of the move table on the PDF/SVG card of `paper`:
+// kCardFontPt whenever the rows fit at it — the page first tightens its
+// margins, QR code and row spacing (always enough for 40 moves of ordinary
+// length with two smoothing rows on A4 and Letter) —, smaller down to
+// kMinCardFontPt only for longer plans. Measured with the fonts the card is
+// set in. Thread-safe.
 inline constexpr double kCardFontPt = 11.5;
 inline constexpr double kMinCardFontPt = 6.0;
-double CardFontPt(const std::vector<CardRow>& rows, const CardInfo& info, Paper paper);
+double CardMoveFontPt(const RoutePlan& plan, const CardInfo& info, Paper paper);
 
 // The card on one page of `paper` as PDF bytes; everything the HTML card
 // shows, the move table's font shrunk only when the rows do not fit at

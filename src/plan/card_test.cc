@@ -25,7 +25,8 @@ RoutePlan Annotated() {
   EXPECT_TRUE(a.ok() && b.ok());
   auto v = chaos::Vary({{"Alpha", *a}, {"b", *b}}, *chaos::VaryParams::Preset("more"));
   EXPECT_TRUE(v.ok()) << v.status().message();
-  RoutePlan p{*v, {}, ""};
+  RoutePlan p;
+  p.variation = *v;
   chaos::MoveFacts facts;
   facts.crux = chaos::CruxFlags(v->inputs);
   for (int i = 0; i < 9; ++i) facts.difficulty.push_back(0.1 * (i % 5) + 0.05);
@@ -138,6 +139,101 @@ TEST(CardTest, APlanWithoutAnnotationsHasNone) {
 
 // The server's PDF card says what the page says (read back with pdftotext,
 // poppler-utils, as the browser test does).
+// The 40-move card of the browser test (tests/browser/40-card.spec.js): every
+// annotation, two smoothing rows, two lines of notes, a long route name in
+// "From". Issue 12 asks for at least 11 pt on one A4 and one Letter page.
+RoutePlan Forty() {
+  std::string crdl = "name: Forty Move Endurance Traverse\ngrade: 6B+\n---\n";
+  const char* holds[] = {"crimp", "sloper", "pinch", "jug", "gaston"};
+  for (int i = 1; i <= 40; ++i) {
+    crdl += std::string(i % 2 ? "R " : "L ") + holds[i % 5] + " number " + std::to_string(i) +
+            " on the long wall\n";
+  }
+  auto r = ParseCrdl(crdl, "forty");
+  EXPECT_TRUE(r.ok());
+  auto v = chaos::Vary({{"Forty Move Endurance Traverse", *r}}, *chaos::VaryParams::Preset("default"));
+  EXPECT_TRUE(v.ok()) << v.status().message();
+  RoutePlan p;
+  p.variation = *v;
+  p.smoothing_model = "default";
+  for (int after : {14, 26}) {
+    Suggestion s;
+    s.after = after;
+    s.moves.push_back({"R", "g", "gaston"});
+    p.smoothing.push_back(s);
+  }
+  chaos::MoveFacts facts;
+  facts.crux = chaos::CruxFlags(v->inputs);
+  for (int i = 0; i < 40; ++i) facts.difficulty.push_back(0.05 * (i % 7) + 0.1);
+  p.warnings = Warn(p.variation, facts);
+  p.profile = Profile(p.variation, facts);
+  PlanGrades g;
+  g.inputs = {"6B+"};
+  g.discipline = "bouldering";
+  g.estimate = "6B/6B+";
+  g.low = "5";
+  g.high = "7A+";
+  g.level = 0.8;
+  p.grades = g;
+  return p;
+}
+
+// Runs `command` and returns what it printed.
+std::string Output(const std::string& command) {
+  std::string text;
+  FILE* f = popen(command.c_str(), "r");
+  if (f == nullptr) return text;
+  char buf[4096];
+  for (size_t n; (n = fread(buf, 1, sizeof buf, f)) > 0;) text.append(buf, n);
+  pclose(f);
+  return text;
+}
+
+TEST(CardTest, FortyMovesPrintAtElevenPointOnOneA4AndOneLetterPage) {
+  RoutePlan p = Forty();
+  ASSERT_EQ(p.variation.moves.size(), 40u);
+  CardInfo info;
+  info.name = "Card Test Forty";
+  info.grade = "V4";
+  info.colour = "yellow";
+  info.wall = "the cave";
+  info.setter = "setter40585";
+  info.date = "2026-11-23";
+  info.notes = "Start sitting.\nNo dyno at move 12.";
+  info.url = "http://127.0.0.1:4217/r/22";
+  info.picture = true;
+  const bool poppler = std::system("pdftotext -v >/dev/null 2>&1") == 0;
+  for (Paper paper : {Paper::kA4, Paper::kLetter}) {
+    EXPECT_GE(CardMoveFontPt(p, info, paper), 11.0);
+    Result<std::string> pdf = RenderCardPdf(p, info, paper);
+    ASSERT_TRUE(pdf.ok()) << pdf.status().message();
+    EXPECT_TRUE(Has(*pdf, "/Count 1"));
+    if (!poppler) continue;
+    // The glyph boxes poppler reads back: DejaVu Sans at s pt is 1.164 s
+    // high, so 11 pt is 12.8 pt.
+    const std::string file = testing::TempDir() + "/card_forty.pdf";
+    std::ofstream(file, std::ios::binary) << *pdf;
+    const std::string boxes = Output("pdftotext -bbox " + file + " -");
+    int seen = 0;
+    for (size_t at = boxes.find("<word "); at != std::string::npos;
+         at = boxes.find("<word ", at + 1)) {
+      const size_t end = boxes.find("</word>", at);
+      const std::string word = boxes.substr(at, end - at);
+      if (word.size() < 7 || word.compare(word.size() - 7, 7, ">number") != 0) continue;  // "crimp number 12 on the long wall"
+      auto attr = [&](const char* name) {
+        size_t i = word.find(std::string(name) + "=\"") + std::char_traits<char>::length(name) + 2;
+        return std::stod(word.substr(i));
+      };
+      EXPECT_GE(attr("yMax") - attr("yMin"), 12.7) << word;
+      ++seen;
+    }
+    EXPECT_EQ(seen, 40) << "every move is on the page";
+    // Full provenance, never cut.
+    const std::string text = Output("pdftotext -layout " + file + " -");
+    EXPECT_TRUE(Has(text, "Forty Move Endurance Traverse #40")) << text;
+  }
+}
+
 TEST(CardTest, PdfCardShowsTheAnnotationsOnOnePage) {
   if (std::system("pdftotext -v >/dev/null 2>&1") != 0) GTEST_SKIP() << "pdftotext missing";
   RoutePlan p = Annotated();

@@ -40,6 +40,14 @@ module.exports = async (t) => {
     const text = execFileSync('pdftotext', ['-layout', file, '-']).toString();
     check(text.includes('Card Test Forty') && text.includes('Forty Move Endurance Traverse #') &&
           text.includes('yellow') && text.includes('Start sitting.'), 'server PDF (' + suffix + ') has the card text');
+    // Glyph boxes of the move words: DejaVu Sans at s pt is 1.164 s high, so
+    // 11 pt is 12.8 pt (issue 12: at least 11 pt for up to 40 moves).
+    const boxes = execFileSync('pdftotext', ['-bbox', file, '-']).toString();
+    const heights = [...boxes.matchAll(/yMin="([\d.]+)" xMax="[\d.]+" yMax="([\d.]+)">number</g)]
+      .map((m) => Number(m[2]) - Number(m[1]));
+    check(heights.length === 40 && Math.min(...heights) >= 12.7,
+          'server PDF (' + suffix + ') sets all 40 moves at 11 pt or more (' + heights.length + ' moves, ' +
+          (Math.min(...heights) / 1.164).toFixed(2) + ' pt)');
     execFileSync('pdftoppm', ['-png', '-r', '150', file, path.join(out, 'card-server-' + suffix)]);
     const png = fs.readdirSync(out).filter((f) => f.startsWith('card-server-' + suffix) && f.endsWith('.png'))[0];
     let qr = '';
