@@ -23,11 +23,11 @@ build: configure
 test: build
 	@bash scripts/test.sh $(BUILD)
 
-# Unit and API tests under AddressSanitizer + UBSan (build-sanitize/).
+# Unit and API tests under AddressSanitizer + UBSan (the checked build, build-sanitize/).
 test-sanitize: setup
 	@JOBS=$(JOBS) bash scripts/sanitize.sh
 
-# libFuzzer harnesses, FUZZ_SECONDS per format (build-fuzz/, clang).
+# libFuzzer harnesses, FUZZ_SECONDS per format (the same checked build, build-sanitize/).
 fuzz: setup
 	@JOBS=$(JOBS) bash scripts/fuzz.sh $(FUZZ_SECONDS)
 

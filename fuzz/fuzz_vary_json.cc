@@ -8,15 +8,17 @@
 #include <nlohmann/json.hpp>
 
 #include "fuzz/fuzz_util.h"
-#include "plan/plan.h"
+#include "chaos/variation.h"
 
 namespace {
 
-// The codec under test; when it moves (to chaos), change these two lines.
+// The codec under test (chaos/variation.h), on JSON text.
 sb::Result<sb::chaos::VaryParams> Decode(const nlohmann::json& j) {
-  return sb::plan::ParamsFromJson(j);
+  return sb::chaos::ParamsFromJson(j.dump());
 }
-nlohmann::json Encode(const sb::chaos::VaryParams& p) { return sb::plan::ParamsToJson(p); }
+nlohmann::json Encode(const sb::chaos::VaryParams& p) {
+  return nlohmann::json::parse(sb::chaos::ParamsToJson(p));
+}
 
 }  // namespace
 

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer harnesses (fuzz/) with clang, AddressSanitizer and
-# UndefinedBehaviorSanitizer in their own build directory, replays the
+# Builds the libFuzzer harnesses (fuzz/) in the checked build
+# (scripts/checked_build.sh: clang, AddressSanitizer + UndefinedBehaviorSanitizer,
+# the directory scripts/sanitize.sh also uses), replays the
 # regression inputs, then fuzzes every input format for SECONDS seconds each.
 # Usage: scripts/fuzz.sh [SECONDS]   (default 60; `make fuzz FUZZ_SECONDS=N`)
-# Environment: FUZZ_BUILD (build-fuzz), JOBS (nproc), FUZZ_ONLY="crdl map"
+# Environment: FUZZ_BUILD (build-sanitize), JOBS (nproc), FUZZ_ONLY="crdl map"
 # (a subset). Exit status 1 when a regression input fails or fuzzing finds
 # anything not listed in fuzz/regressions/OPEN. docs/testing.md explains the
 # output and what to do with a finding.
@@ -11,22 +12,13 @@ set -euo pipefail
 seconds=${1:-60}
 cd "$(dirname "$0")/.."
 root=$(pwd)
-build=${FUZZ_BUILD:-build-fuzz}
+build=${FUZZ_BUILD:-build-sanitize}
 jobs=${JOBS:-$(nproc)}
 formats=(${FUZZ_ONLY:-crdl site_csv grammar model map vary_json graph tokens grade_model
-  difficulty_model study})
+  difficulty_model study api})
 
-if ! command -v clang++ >/dev/null; then
-  echo "fuzz: clang++ not found (scripts/setup.sh installs clang and libclang-rt-dev)" >&2
-  exit 1
-fi
-launcher=()
-command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
-flags="-O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined,fuzzer-no-link"
-flags+=" -fno-sanitize-recover=all"
-cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Fuzz -DCMAKE_CXX_COMPILER=clang++ \
-  "${launcher[@]}" -DSB_BUILD_TESTS=OFF -DSB_BUILD_BENCH=OFF -DSB_BUILD_FUZZ=ON \
-  "-DCMAKE_CXX_FLAGS=$flags" >/dev/null
+source scripts/checked_build.sh
+configure_checked_build "$build"
 targets=()
 for f in "${formats[@]}"; do targets+=("fuzz_$f"); done
 cmake --build "$build" -j "$jobs" --target "${targets[@]}"

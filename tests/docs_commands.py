@@ -7,8 +7,10 @@ the root (its top-level entries linked, `build` linking the build directory,
 ../shared linking the reference material when present), so files a block
 writes land in the scratch directory or under build/. A block whose first
 line is `# not run: <reason>` is skipped; one whose first line is
-`# needs ../shared` is skipped when ../shared is absent. Placeholders belong
-in ```text blocks.
+`# needs ../shared` is skipped when ../shared is absent. A block that runs a
+benchmark or the MPI driver is skipped in a build without them (the checked
+build of scripts/checked_build.sh builds neither). Placeholders belong in
+```text blocks.
 
 Usage: docs_commands.py --source ROOT --build BUILD [--shared DIR] [--timeout S] DOC...
 Exit status 1 when a block fails (its output is shown), else 0.
@@ -20,6 +22,12 @@ import shutil
 import subprocess
 import sys
 import tempfile
+
+# Optional parts of a build: a block naming one runs only where it was built.
+OPTIONAL = [
+    (re.compile(r'\bsb_\w+_bench\b|build/bench/'), 'bench', 'the benchmarks are not built here'),
+    (re.compile(r'strangebeta-mpi'), 'strangebeta-mpi', 'the MPI driver is not built here'),
+]
 
 FENCE = re.compile(r'^(\s*)(```+|~~~+)\s*([\w+-]*)\s*$')
 
@@ -84,6 +92,12 @@ def main():
                 continue
             if first.startswith('# needs ../shared') and not have_shared:
                 print('%s: skipped (../shared is absent)' % where)
+                skipped += 1
+                continue
+            missing = [why for pattern, path, why in OPTIONAL
+                       if pattern.search(text) and not os.path.exists(os.path.join(build, path))]
+            if missing:
+                print('%s: skipped (%s)' % (where, missing[0]))
                 skipped += 1
                 continue
             tmp, root = scratch_root(source, build, shared)

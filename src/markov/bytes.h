@@ -80,7 +80,9 @@ class ByteReader {
     if (n > (b_.size() - pos_) / sizeof(T)) return false;
     v->resize(n);
     if constexpr (std::endian::native == std::endian::little) {
-      std::memcpy(v->data(), b_.data() + pos_, n * sizeof(T));
+      // memcpy's pointers must not be null, even for 0 bytes (an empty
+      // vector's data() may be).
+      if (n > 0) std::memcpy(v->data(), b_.data() + pos_, n * sizeof(T));
       pos_ += n * sizeof(T);
     } else {
       for (uint64_t i = 0; i < n; ++i) {

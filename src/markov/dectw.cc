@@ -103,7 +103,7 @@ const T* ArrayAt(std::string_view s, size_t* pos, uint64_t n, std::vector<T>* ow
   if constexpr (std::endian::native == std::endian::little) {
     if (reinterpret_cast<uintptr_t>(p) % alignof(T) == 0) return reinterpret_cast<const T*>(p);
     own->resize(n);
-    std::memcpy(own->data(), p, n * sizeof(T));
+    if (n > 0) std::memcpy(own->data(), p, n * sizeof(T));  // data() may be null when empty
     return own->data();
   } else {
     own->resize(n);

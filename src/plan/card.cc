@@ -74,8 +74,8 @@ std::string CardSummary(const RoutePlan& plan) {
     changed += m.changed && !m.added;
     added += m.added;
   }
-  std::string s = std::to_string(changed) + " of " +
-                  std::to_string(plan.variation.moves.size()) + " moves changed";
+  std::string s = std::to_string(changed) + " of " + std::to_string(plan.variation.moves.size()) +
+                  " moves changed";
   if (added) s += ", " + std::to_string(added) + " added by the setter";
   const int generated = static_cast<int>(plan.variation.mapping.size());
   const int kept = static_cast<int>(plan.variation.moves.size()) - added;
@@ -123,7 +123,8 @@ std::string CardParameters(const RoutePlan& plan) {
                   ", mask " + chaos::MaskString(p.mapping.mask);
   if (p.mapping.max_repeat) s += ", max repeat " + std::to_string(p.mapping.max_repeat);
   if (!plan.smoothing_model.empty()) s += "; smoothing " + plan.smoothing_model;
-  return s + ". Reproduce: strangebeta vary " + ReproduceOptions(p, plan.setter) + " ROUTES\xE2\x80\xA6";
+  return s + ". Reproduce: strangebeta vary " + ReproduceOptions(p, plan.setter) +
+         " ROUTES\xE2\x80\xA6";
 }
 
 bool CardHasDifficulty(const RoutePlan& plan) {
@@ -351,9 +352,7 @@ class Text {
   }
   int lines() const { return pango_layout_get_line_count(layout_); }
   // Sets wrapped lines kLinePitch em apart (DejaVu Sans is 1.164 em high).
-  void Tighten() {
-    pango_layout_set_line_spacing(layout_, static_cast<float>(kLinePitch / 1.164));
-  }
+  void Tighten() { pango_layout_set_line_spacing(layout_, static_cast<float>(kLinePitch / 1.164)); }
   double height() const {
     int w = 0, h = 0;
     pango_layout_get_size(layout_, &w, &h);
@@ -368,8 +367,8 @@ class Text {
   PangoLayout* layout_ = nullptr;
 };
 
-double Paragraph(cairo_t* cr, const std::string& s, double x, double y, double width,
-                 double size, bool bold = false) {
+double Paragraph(cairo_t* cr, const std::string& s, double x, double y, double width, double size,
+                 bool bold = false) {
   if (s.empty()) return 0;
   Text t(cr, s, size, bold, width);
   t.Draw(cr, x, y);
@@ -389,8 +388,8 @@ struct Columns {
 // longest text needs when both fit on one line (the slack shared), else the
 // one that fits keeps its width and the other wraps, else both wrap in the
 // kMoveShare split.
-Columns ColumnsOf(cairo_t* cr, const std::vector<CardRow>& rows, double x0, double cw,
-                  bool diff, double font) {
+Columns ColumnsOf(cairo_t* cr, const std::vector<CardRow>& rows, double x0, double cw, bool diff,
+                  double font) {
   Columns c;
   c.x_num = x0;
   c.x_hand = x0 + kNumW;
@@ -450,7 +449,8 @@ void DrawDifficulty(cairo_t* cr, const CardRow& r, const Columns& c, double y, d
 // A row's cells: the move and where it came from, wrapped to their columns.
 struct Cells {
   Cells(cairo_t* cr, const CardRow& r, const Columns& c, double font)
-      : move(cr, r.text, font, r.crux, c.w_move - 4), from(cr, r.from, font * 0.9, false, c.w_from) {
+      : move(cr, r.text, font, r.crux, c.w_move - 4),
+        from(cr, r.from, font * 0.9, false, c.w_from) {
     move.Tighten();
     from.Tighten();
   }
@@ -616,7 +616,7 @@ Layout Fit(const RoutePlan& plan, const CardInfo& info, const std::vector<CardRo
       l.table_h = TableHeight(cr, rows, l.columns, l.font, s.pad);
       if (l.table_h <= avail) break;
       if (style == &kRoomy && l.font == kCardFontPt) break;  // try the compact style first
-      if (l.font <= kMinCardFontPt) break;                 // text wraps, never cut
+      if (l.font <= kMinCardFontPt) break;                   // text wraps, never cut
       l.font = std::max(kMinCardFontPt, l.font - 0.25);
     }
     if (l.table_h <= avail || style == &kCompact) break;
@@ -726,16 +726,16 @@ Result<std::string> RenderCardPdf(const RoutePlan& plan, const CardInfo& info, P
 }
 
 Result<std::string> RenderCardSvg(const RoutePlan& plan, const CardInfo& info, Paper paper) {
-  SB_ASSIGN_OR_RETURN(
-      std::string svg,
-      RenderWith(
-          [](std::string* out, double w, double h) {
-            cairo_surface_t* s = cairo_svg_surface_create_for_stream(Append, out, w, h);
-            cairo_svg_surface_restrict_to_version(s, CAIRO_SVG_VERSION_1_1);
-            cairo_svg_surface_set_document_unit(s, CAIRO_SVG_UNIT_PT);
-            return s;
-          },
-          plan, info, paper));
+  SB_ASSIGN_OR_RETURN(std::string svg,
+                      RenderWith(
+                          [](std::string* out, double w, double h) {
+                            cairo_surface_t* s =
+                                cairo_svg_surface_create_for_stream(Append, out, w, h);
+                            cairo_svg_surface_restrict_to_version(s, CAIRO_SVG_VERSION_1_1);
+                            cairo_svg_surface_set_document_unit(s, CAIRO_SVG_UNIT_PT);
+                            return s;
+                          },
+                          plan, info, paper));
   return PinSvgIds(svg);
 }
 

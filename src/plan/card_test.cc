@@ -151,7 +151,8 @@ RoutePlan Forty() {
   }
   auto r = ParseCrdl(crdl, "forty");
   EXPECT_TRUE(r.ok());
-  auto v = chaos::Vary({{"Forty Move Endurance Traverse", *r}}, *chaos::VaryParams::Preset("default"));
+  auto v =
+      chaos::Vary({{"Forty Move Endurance Traverse", *r}}, *chaos::VaryParams::Preset("default"));
   EXPECT_TRUE(v.ok()) << v.status().message();
   RoutePlan p;
   p.variation = *v;
@@ -219,7 +220,8 @@ TEST(CardTest, FortyMovesPrintAtElevenPointOnOneA4AndOneLetterPage) {
          at = boxes.find("<word ", at + 1)) {
       const size_t end = boxes.find("</word>", at);
       const std::string word = boxes.substr(at, end - at);
-      if (word.size() < 7 || word.compare(word.size() - 7, 7, ">number") != 0) continue;  // "crimp number 12 on the long wall"
+      if (word.size() < 7 || word.compare(word.size() - 7, 7, ">number") != 0)
+        continue;  // "crimp number 12 on the long wall"
       auto attr = [&](const char* name) {
         size_t i = word.find(std::string(name) + "=\"") + std::char_traits<char>::length(name) + 2;
         return std::stod(word.substr(i));

@@ -250,4 +250,8 @@ void Server::Stop() { impl_->transport.Stop(); }
 
 void Server::WaitUntilReady() { impl_->transport.WaitUntilReady(); }
 
+void Server::Serve(const Request& request, Response* response) {
+  impl_->Handle(request, response);
+}
+
 }  // namespace sb::web

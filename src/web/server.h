@@ -21,6 +21,7 @@
 #include "app/options.h"
 #include "base/status.h"
 #include "store/store.h"
+#include "web/http.h"
 #include "web/http_transport.h"
 
 namespace sb::web {
@@ -74,6 +75,11 @@ class Server {
   void Stop();
   // Blocks until Run() is accepting connections (for tests).
   void WaitUntilReady();
+  // Answers one request in process, exactly as for a request that passed the
+  // transport's limits (size, headers, deadlines), without Bind() or Run():
+  // for the fuzzing harness of the API (fuzz/fuzz_api.cc) and tests. The
+  // request's remote_address stands for the client. Thread-safe.
+  void Serve(const Request& request, Response* response);
 
  private:
   struct Impl;
