@@ -302,7 +302,7 @@ struct Style {
   double pad;     // above and below each row's text
 };
 constexpr Style kRoomy{28.35, 80.0, 1.6};    // 10 mm margins, a 28 mm code
-constexpr Style kCompact{21.26, 62.0, 0.4};  // 7.5 mm margins, a 22 mm code
+constexpr Style kCompact{21.26, 62.0, 0.25};  // 7.5 mm margins, a 22 mm code
 
 }  // namespace
 

@@ -10,12 +10,27 @@
 #include <fstream>
 #include <set>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace sb::plan {
 namespace {
 
 bool Has(const std::string& s, const std::string& part) {
   return s.find(part) != std::string::npos;
+}
+
+// An estimated grade with its 80% interval.
+PlanGrades Grades(std::vector<std::string> inputs, std::string discipline, std::string estimate,
+                  std::string low, std::string high) {
+  PlanGrades g;
+  g.inputs = std::move(inputs);
+  g.discipline = std::move(discipline);
+  g.estimate = std::move(estimate);
+  g.low = std::move(low);
+  g.high = std::move(high);
+  g.level = 0.8;
+  return g;
 }
 
 // A variation of two routes with every annotation a plan can carry.
@@ -43,14 +58,7 @@ RoutePlan Annotated() {
   r.constraints.push_back({chaos::Constraint::kKeepFinish, false, "ends mid-route"});
   p.search = r;
   p.variation.moves[3].notes.push_back("(hand swapped)");
-  PlanGrades g;
-  g.inputs = {"5.10a", ""};
-  g.discipline = "roped";
-  g.estimate = "5.10";
-  g.low = "5.9";
-  g.high = "5.11";
-  g.level = 0.8;
-  p.grades = g;
+  p.grades = Grades({"5.10a", ""}, "roped", "5.10", "5.9", "5.11");
   return p;
 }
 
@@ -168,14 +176,7 @@ RoutePlan Forty() {
   for (int i = 0; i < 40; ++i) facts.difficulty.push_back(0.05 * (i % 7) + 0.1);
   p.warnings = Warn(p.variation, facts);
   p.profile = Profile(p.variation, facts);
-  PlanGrades g;
-  g.inputs = {"6B+"};
-  g.discipline = "bouldering";
-  g.estimate = "6B/6B+";
-  g.low = "5";
-  g.high = "7A+";
-  g.level = 0.8;
-  p.grades = g;
+  p.grades = Grades({"6B+"}, "bouldering", "6B/6B+", "5", "7A+");
   return p;
 }
 
@@ -249,12 +250,7 @@ TEST(CardTest, PdfCardShowsTheAnnotationsOnOnePage) {
     EXPECT_TRUE(Has(*pdf, "/Count 1"));
     const std::string file = testing::TempDir() + "/card_test.pdf";
     std::ofstream(file, std::ios::binary) << *pdf;
-    std::string text;
-    FILE* f = popen(("pdftotext -layout " + file + " -").c_str(), "r");
-    ASSERT_NE(f, nullptr);
-    char buf[4096];
-    for (size_t n; (n = fread(buf, 1, sizeof buf, f)) > 0;) text.append(buf, n);
-    pclose(f);
+    std::string text = Output("pdftotext -layout " + file + " -");
     // Lines wrap where the page is full: compare with single spaces.
     std::string flat;
     for (char ch : text) {
