@@ -83,10 +83,10 @@ Status CheckKeys(const json& obj, std::initializer_list<const char*> allowed, st
   return Status::Ok();
 }
 
-// "name:line:col: message" for a JSON syntax error at byte offset `byte`.
-Status SyntaxError(std::string_view text, std::string_view name, const json::parse_error& e) {
-  size_t end = std::min<size_t>(e.byte == 0 ? 0 : e.byte - 1, text.size());
-  size_t line = 1, col = 1;
+// The 1-based line and column of byte offset `end` of `text`.
+std::pair<int, int> LineCol(std::string_view text, size_t end) {
+  end = std::min(end, text.size());
+  int line = 1, col = 1;
   for (size_t i = 0; i < end; ++i) {
     if (text[i] == '\n') {
       ++line;
@@ -95,12 +95,32 @@ Status SyntaxError(std::string_view text, std::string_view name, const json::par
       ++col;
     }
   }
+  return {line, col};
+}
+
+// "name:line:col: message" for a JSON syntax error at byte offset `byte`.
+Status SyntaxError(std::string_view text, std::string_view name, const json::parse_error& e) {
+  auto [line, col] = LineCol(text, e.byte == 0 ? 0 : e.byte - 1);
   std::string what = e.what(), detail = what;
   if (size_t p = what.find("column "); p != std::string::npos) {
     if (size_t q = what.find(": ", p); q != std::string::npos) detail = what.substr(q + 2);
   }
-  return Status::InvalidInputAt({std::string(name), static_cast<int>(line), static_cast<int>(col)},
-                                "JSON syntax error: " + detail);
+  return Status::InvalidInputAt({std::string(name), line, col}, "JSON syntax error: " + detail);
+}
+
+// "name:line:col: number out of range: 4e10058" for the other error the JSON
+// reader raises while parsing (a number beyond double's range). The reader
+// names the token, not its place: the token's first occurrence is it.
+Status NumberError(std::string_view text, std::string_view name, const json::exception& e) {
+  std::string what = e.what(), token;
+  if (size_t a = what.find('\''); a != std::string::npos) {
+    if (size_t b = what.find('\'', a + 1); b != std::string::npos)
+      token = what.substr(a + 1, b - a - 1);
+  }
+  size_t at = token.empty() ? std::string_view::npos : text.find(token);
+  auto [line, col] = LineCol(text, at == std::string_view::npos ? 0 : at);
+  return Status::InvalidInputAt({std::string(name), line, col},
+                                "number out of range: " + (token.empty() ? what : token));
 }
 
 Status ReadScale(const json& j, std::string_view name, Instrument* out) {
@@ -242,6 +262,8 @@ Result<Instrument> ParseInstrument(std::string_view text, std::string_view name)
     j = json::parse(text);
   } catch (const json::parse_error& e) {
     return SyntaxError(text, name, e);
+  } catch (const json::exception& e) {
+    return NumberError(text, name, e);
   }
   if (!j.is_object()) {
     return Status::InvalidInput(std::string(name) +

@@ -80,6 +80,11 @@ TEST(Instrument, ErrorsNameFileLineAndField) {
   EXPECT_EQ(Error("{\"name\": \"x\",\n  \"scale\": [1, 5],\n  \"items\": [}\n").substr(0, 19),
             "I.json:3:13: JSON s");
   EXPECT_EQ(Error("[1, 2]"), "I.json: expected a JSON object {\"name\", \"scale\", \"items\"}");
+  // A number beyond double's range is an error at its place, never an
+  // exception (found by fuzz_study).
+  EXPECT_EQ(Error("{\"name\": \"x\",\n  \"scale\": [1, 4e10058]}"),
+            "I.json:2:16: number out of range: 4e10058");
+  EXPECT_EQ(Error("4e10058"), "I.json:1:1: number out of range: 4e10058");
   const std::string ok_items = R"("items": [{"id": "a", "text": "A"}, {"id": "b", "text": "B"}])";
   EXPECT_EQ(Error(R"({"name": "x", )" + ok_items + "}"),
             "I.json: scale: missing (expected [min, max])");
