@@ -3,7 +3,7 @@
 # loopback servers on a temporary database, bounded duration.
 #   bench/web_load.sh [BUILD_DIR] [SECONDS] [CONNECTIONS] [BACKEND] [PROCESSES]
 # BACKEND: sqlite (default; a temporary file) or postgresql (a throw-away
-# server started with tests/pg_server.sh, stopped at the end). PROCESSES: 1
+# server started with scripts/pg_server.sh, stopped at the end). PROCESSES: 1
 # (default) or more `strangebeta serve` processes over the one database; the
 # connections are split between them (one wrk per process, run at once) and
 # the requests/s summed.
@@ -27,13 +27,13 @@ tmp=$(mktemp -d)
 pids=()
 cleanup() {
   for p in "${pids[@]}"; do kill "$p" 2>/dev/null || true; wait "$p" 2>/dev/null || true; done
-  if [[ "$backend" == postgresql ]]; then bash "$root/tests/pg_server.sh" stop "$tmp/pg" || true; fi
+  if [[ "$backend" == postgresql ]]; then bash "$root/scripts/pg_server.sh" stop "$tmp/pg" || true; fi
   rm -rf "$tmp"
 }
 trap cleanup EXIT
 
 if [[ "$backend" == postgresql ]]; then
-  bash "$root/tests/pg_server.sh" start "$tmp/pg" >&2
+  bash "$root/scripts/pg_server.sh" start "$tmp/pg" >&2
   [[ -f "$tmp/pg/url" ]] || { echo "web_load.sh: no PostgreSQL (see above)"; exit 1; }
   admin=$(cat "$tmp/pg/url")
   psql=$(ls -d /usr/lib/postgresql/*/bin/psql | sort -V | tail -1)

@@ -5,7 +5,7 @@
 
 Creates a fresh database on the test PostgreSQL server (the ctest fixture
 `pg`, BUILD_DIR/pgtest/url; or a private server started with
-tests/pg_server.sh), starts two server processes on it (loopback, free
+scripts/pg_server.sh), starts two server processes on it (loopback, free
 ports), and checks under a bounded concurrent load:
 
 - no lost or duplicated writes: every route created through either process
@@ -131,7 +131,7 @@ def main():
     if not admin or subprocess.run([psql, admin, "-Atc", "SELECT 1"],
                                    capture_output=True).returncode != 0:
         private = os.path.join(tmp, "pg")
-        subprocess.run(["bash", os.path.join(source, "tests", "pg_server.sh"), "start", private],
+        subprocess.run(["bash", os.path.join(source, "scripts", "pg_server.sh"), "start", private],
                        check=True)
         with open(os.path.join(private, "url")) as f:
             admin = f.readline().strip()
@@ -157,7 +157,7 @@ def main():
             p.wait(timeout=30)
         subprocess.run([psql, admin, "-qc", f"DROP DATABASE IF EXISTS {name} WITH (FORCE)"])
         if private:
-            subprocess.run(["bash", os.path.join(source, "tests", "pg_server.sh"), "stop",
+            subprocess.run(["bash", os.path.join(source, "scripts", "pg_server.sh"), "stop",
                             private])
         subprocess.run(["rm", "-rf", tmp])
     if failures:
