@@ -237,6 +237,33 @@ TEST(CardTest, FortyMovesPrintAtElevenPointOnOneA4AndOneLetterPage) {
   }
 }
 
+// Setters type any script: a card with Japanese and Chinese text embeds a
+// CJK font (Debian fonts-noto-cjk, installed by scripts/setup.sh) and the
+// text reads back from the PDF.
+TEST(CardTest, CjkTextPrintsWithACjkFont) {
+  if (std::system("pdftotext -v >/dev/null 2>&1") != 0) GTEST_SKIP() << "poppler-utils missing";
+  if (Output("fc-list :lang=ja family").empty()) GTEST_SKIP() << "no CJK font (fonts-noto-cjk)";
+  auto r = ParseCrdl("name: 岩の課題\n---\nR 小さいカチ\nL 大きなガバ\nR 侧拉\n", "cjk");
+  ASSERT_TRUE(r.ok()) << r.status().message();
+  auto v = chaos::Vary({{"岩の課題", *r}}, *chaos::VaryParams::Preset("default"));
+  ASSERT_TRUE(v.ok()) << v.status().message();
+  RoutePlan p;
+  p.variation = *v;
+  CardInfo info;
+  info.name = "岩の課題 変化";
+  info.wall = "洞窟";
+  Result<std::string> pdf = RenderCardPdf(p, info, Paper::kA4);
+  ASSERT_TRUE(pdf.ok()) << pdf.status().message();
+  const std::string file = testing::TempDir() + "/card_cjk.pdf";
+  std::ofstream(file, std::ios::binary) << *pdf;
+  const std::string fonts = Output("pdffonts " + file);
+  EXPECT_TRUE(Has(fonts, "CJK")) << fonts;
+  const std::string text = Output("pdftotext " + file + " -");
+  EXPECT_TRUE(Has(text, "岩の課題 変化")) << text;
+  EXPECT_TRUE(Has(text, "洞窟")) << text;
+  EXPECT_TRUE(Has(text, "小さいカチ") || Has(text, "大きなガバ")) << text;
+}
+
 TEST(CardTest, PdfCardShowsTheAnnotationsOnOnePage) {
   if (std::system("pdftotext -v >/dev/null 2>&1") != 0) GTEST_SKIP() << "pdftotext missing";
   RoutePlan p = Annotated();
