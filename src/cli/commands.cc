@@ -19,6 +19,7 @@ const Command kCommands[] = {
     {"study", "analyse climber surveys (the paper's instruments and statistics)", RunStudy},
     {"grade", "convert grades between scales; estimate, train and evaluate grades from moves",
      RunGrade},
+    {"ratings", "grades from ascents: fit climbers' ticks, synthetic gyms, evaluation", RunRatings},
     {"difficulty", "per-move difficulty estimate: train, evaluate (cross-validated), show",
      RunDifficulty},
     {"graph", "feature-wise transition graphs and A* interpolation (the dance method)",

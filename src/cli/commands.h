@@ -39,6 +39,7 @@ int RunCheck(const std::vector<std::string>& args);
 int RunStudy(const std::vector<std::string>& args);
 int RunGrade(const std::vector<std::string>& args);
 int RunDifficulty(const std::vector<std::string>& args);
+int RunRatings(const std::vector<std::string>& args);
 
 }  // namespace sb::cli
 

@@ -1,0 +1,620 @@
+#include "grades/ratings.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <utility>
+
+namespace sb::grades {
+
+namespace {
+
+// log(1 + exp(x)) without overflow or loss of precision.
+double Softplus(double x) { return x > 0 ? x + std::log1p(std::exp(-x)) : std::log1p(std::exp(x)); }
+
+// 1 / (1 + exp(-x)).
+double Sigmoid(double x) {
+  if (x >= 0) return 1 / (1 + std::exp(-x));
+  const double e = std::exp(x);
+  return e / (1 + e);
+}
+
+std::string Num(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%g", v);
+  return b;
+}
+
+// The prior mean m of climbers and of routes without a setter's grade.
+double PriorMean(const RatingProblem& p) {
+  double sum = 0;
+  int n = 0;
+  for (const auto& s : p.setter) {
+    if (s) {
+      sum += *s;
+      ++n;
+    }
+  }
+  if (n > 0) return sum / n;
+  double felt = 0;
+  int fn = 0;
+  for (int r = 0; r < p.num_routes(); ++r) {
+    felt += p.felt_sum[size_t(r)];
+    fn += p.felt_count[size_t(r)];
+  }
+  return fn > 0 ? felt / fn : 0;
+}
+
+// The fit's working state: x = [abilities (C), difficulties (R)].
+class Solver {
+ public:
+  Solver(const RatingProblem& p, const RatingParams& k, double m)
+      : p_(p), k_(k), m_(m), c_(size_t(p.num_climbers)), r_(size_t(p.num_routes())) {
+    prior_mean_.resize(r_);
+    prior_prec_.resize(r_);
+    for (size_t r = 0; r < r_; ++r) {
+      const auto& s = p.setter[r];
+      const double sd = s ? k.setter_sd : k.open_route_sd;
+      prior_mean_[r] = s ? *s : m;
+      prior_prec_[r] = 1 / (sd * sd) + p.felt_count[r] / (k.felt_sd * k.felt_sd);
+    }
+    h_.resize(p.pairs.size());
+    diag_.resize(c_ + r_);
+  }
+
+  // Negative log posterior (up to a constant) at x.
+  double Objective(const std::vector<double>& x) const {
+    const double kk = k_.logit_per_unit;
+    const double pa = 1 / (k_.climber_sd * k_.climber_sd);
+    const double pf = 1 / (k_.felt_sd * k_.felt_sd);
+    double f = 0;
+    for (const RatingPair& q : p_.pairs) {
+      const double z = kk * (x[size_t(q.climber)] - x[c_ + size_t(q.route)]);
+      if (q.wins) f += q.wins * Softplus(-z);
+      if (q.losses) f += q.losses * Softplus(z);
+    }
+    for (size_t c = 0; c < c_; ++c) f += 0.5 * pa * (x[c] - m_) * (x[c] - m_);
+    for (size_t r = 0; r < r_; ++r) {
+      const double d = x[c_ + r];
+      const auto& s = p_.setter[r];
+      const double sd = s ? k_.setter_sd : k_.open_route_sd;
+      f += 0.5 * (d - prior_mean_[r]) * (d - prior_mean_[r]) / (sd * sd);
+      f += 0.5 * pf * (p_.felt_count[r] * d * d - 2 * d * p_.felt_sum[r]);
+    }
+    return f;
+  }
+
+  // Gradient into g; the pairs' Hessian weights into h_ and the Hessian's
+  // diagonal into diag_.
+  void GradientAndHessian(const std::vector<double>& x, std::vector<double>* g) {
+    const double kk = k_.logit_per_unit;
+    const double pa = 1 / (k_.climber_sd * k_.climber_sd);
+    const double pf = 1 / (k_.felt_sd * k_.felt_sd);
+    g->assign(c_ + r_, 0);
+    for (size_t c = 0; c < c_; ++c) {
+      (*g)[c] = pa * (x[c] - m_);
+      diag_[c] = pa;
+    }
+    for (size_t r = 0; r < r_; ++r) {
+      const double d = x[c_ + r];
+      const auto& s = p_.setter[r];
+      const double sd = s ? k_.setter_sd : k_.open_route_sd;
+      (*g)[c_ + r] = (d - prior_mean_[r]) / (sd * sd) + pf * (p_.felt_count[r] * d - p_.felt_sum[r]);
+      diag_[c_ + r] = prior_prec_[r];
+    }
+    for (size_t i = 0; i < p_.pairs.size(); ++i) {
+      const RatingPair& q = p_.pairs[i];
+      const size_t a = size_t(q.climber), d = c_ + size_t(q.route);
+      const double pr = Sigmoid(kk * (x[a] - x[d]));
+      const double n = double(q.wins) + double(q.losses);
+      const double dz = kk * (n * pr - q.wins);
+      (*g)[a] += dz;
+      (*g)[d] -= dz;
+      const double h = kk * kk * n * pr * (1 - pr);
+      h_[i] = h;
+      diag_[a] += h;
+      diag_[d] += h;
+    }
+  }
+
+  // y = H v.
+  void Multiply(const std::vector<double>& v, std::vector<double>* y) const {
+    for (size_t i = 0; i < c_ + r_; ++i) (*y)[i] = diag_[i] * v[i];
+    for (size_t i = 0; i < p_.pairs.size(); ++i) {
+      const RatingPair& q = p_.pairs[i];
+      const size_t a = size_t(q.climber), d = c_ + size_t(q.route);
+      (*y)[a] -= h_[i] * v[d];
+      (*y)[d] -= h_[i] * v[a];
+    }
+  }
+
+  // Solves H s = -g approximately (relative residual eta) by Jacobi-
+  // preconditioned conjugate gradients from s = 0. Returns the iterations.
+  int SolveNewtonStep(const std::vector<double>& g, double eta, std::vector<double>* s) {
+    const size_t n = c_ + r_;
+    s->assign(n, 0);
+    std::vector<double> r(n), z(n), dir(n), hd(n);
+    double g2 = 0;
+    for (size_t i = 0; i < n; ++i) {
+      r[i] = -g[i];
+      g2 += g[i] * g[i];
+    }
+    double rz = 0;
+    for (size_t i = 0; i < n; ++i) {
+      z[i] = r[i] / diag_[i];
+      dir[i] = z[i];
+      rz += r[i] * z[i];
+    }
+    const double target = eta * eta * g2;
+    // CG converges in at most n steps in exact arithmetic; the bound keeps a
+    // pathological problem from spinning (the iterate is a descent direction
+    // at every step, so stopping early is safe).
+    const int max_iter = int(std::min<size_t>(n, 5000));
+    int it = 0;
+    double r2 = g2;
+    while (it < max_iter && r2 > target) {
+      Multiply(dir, &hd);
+      double dhd = 0;
+      for (size_t i = 0; i < n; ++i) dhd += dir[i] * hd[i];
+      if (!(dhd > 0)) break;
+      const double alpha = rz / dhd;
+      r2 = 0;
+      double rz_new = 0;
+      for (size_t i = 0; i < n; ++i) {
+        (*s)[i] += alpha * dir[i];
+        r[i] -= alpha * hd[i];
+        r2 += r[i] * r[i];
+        z[i] = r[i] / diag_[i];
+        rz_new += r[i] * z[i];
+      }
+      const double beta = rz_new / rz;
+      rz = rz_new;
+      for (size_t i = 0; i < n; ++i) dir[i] = z[i] + beta * dir[i];
+      ++it;
+    }
+    return it;
+  }
+
+  const std::vector<double>& h() const { return h_; }
+  const std::vector<double>& diag() const { return diag_; }
+
+ private:
+  const RatingProblem& p_;
+  const RatingParams& k_;
+  const double m_;
+  const size_t c_, r_;
+  std::vector<double> prior_mean_, prior_prec_;
+  std::vector<double> h_, diag_;
+};
+
+// Climber -> pair indices (CSR), pairs of a climber in route order.
+void ClimberIndex(const RatingProblem& p, std::vector<size_t>* start, std::vector<size_t>* idx) {
+  start->assign(size_t(p.num_climbers) + 1, 0);
+  for (const RatingPair& q : p.pairs) ++(*start)[size_t(q.climber) + 1];
+  for (size_t c = 0; c < size_t(p.num_climbers); ++c) (*start)[c + 1] += (*start)[c];
+  idx->resize(p.pairs.size());
+  std::vector<size_t> fill(start->begin(), start->end() - 1);
+  for (size_t i = 0; i < p.pairs.size(); ++i) (*idx)[fill[size_t(p.pairs[i].climber)]++] = i;
+}
+
+// Exact marginal variances: S = D_r - B^T D_c^-1 B (dense), S = L L^T,
+// W = L^-1; var(d_r) = sum_k W_kr^2; var(a_c) = 1/H_cc + |W b_c|^2 / H_cc^2.
+Status ExactVariances(const RatingProblem& p, const std::vector<double>& h,
+                      const std::vector<double>& diag, RatingFit* fit) {
+  const size_t c_n = size_t(p.num_climbers), r_n = size_t(p.num_routes());
+  std::vector<size_t> start, idx;
+  ClimberIndex(p, &start, &idx);
+  std::vector<double> s(r_n * r_n, 0);
+  for (size_t r = 0; r < r_n; ++r) s[r * r_n + r] = diag[c_n + r];
+  for (size_t c = 0; c < c_n; ++c) {
+    const double inv = 1 / diag[c];
+    for (size_t u = start[c]; u < start[c + 1]; ++u) {
+      const size_t i = idx[u];
+      const size_t ri = size_t(p.pairs[i].route);
+      for (size_t v = start[c]; v < start[c + 1]; ++v) {
+        const size_t j = idx[v];
+        s[ri * r_n + size_t(p.pairs[j].route)] -= h[i] * h[j] * inv;
+      }
+    }
+  }
+  // Cholesky, lower triangle in place (row-major).
+  for (size_t j = 0; j < r_n; ++j) {
+    double* rj = &s[j * r_n];
+    double dsum = rj[j];
+    for (size_t k = 0; k < j; ++k) dsum -= rj[k] * rj[k];
+    if (!(dsum > 0)) return Status::Internal("ratings: the Hessian is not positive definite");
+    const double ljj = std::sqrt(dsum);
+    rj[j] = ljj;
+    for (size_t i = j + 1; i < r_n; ++i) {
+      double* ri = &s[i * r_n];
+      double t = ri[j];
+      for (size_t k = 0; k < j; ++k) t -= ri[k] * rj[k];
+      ri[j] = t / ljj;
+    }
+  }
+  // W = L^-1, lower triangular, row-major: row i of W from rows < i.
+  std::vector<double> w(r_n * r_n, 0);
+  for (size_t i = 0; i < r_n; ++i) {
+    const double* li = &s[i * r_n];
+    double* wi = &w[i * r_n];
+    for (size_t k = 0; k < i; ++k) {
+      const double lik = li[k];
+      if (lik == 0) continue;
+      const double* wk = &w[k * r_n];
+      for (size_t j = 0; j <= k; ++j) wi[j] -= lik * wk[j];
+    }
+    for (size_t j = 0; j < i; ++j) wi[j] /= li[i];
+    wi[i] = 1 / li[i];
+  }
+  std::vector<double> var(r_n, 0);
+  for (size_t i = 0; i < r_n; ++i) {
+    const double* wi = &w[i * r_n];
+    for (size_t j = 0; j <= i; ++j) var[j] += wi[j] * wi[j];
+  }
+  for (size_t r = 0; r < r_n; ++r) fit->difficulty_sd[r] = std::sqrt(var[r]);
+  std::vector<double> wb(r_n);
+  for (size_t c = 0; c < c_n; ++c) {
+    std::fill(wb.begin(), wb.end(), 0.0);
+    size_t lowest = r_n;
+    for (size_t u = start[c]; u < start[c + 1]; ++u) {
+      const size_t i = idx[u];
+      const size_t r = size_t(p.pairs[i].route);
+      lowest = std::min(lowest, r);
+      for (size_t row = r; row < r_n; ++row) wb[row] += w[row * r_n + r] * h[i];
+    }
+    double q = 0;
+    for (size_t row = lowest; row < r_n; ++row) q += wb[row] * wb[row];
+    fit->ability_sd[c] = std::sqrt(1 / diag[c] + q / (diag[c] * diag[c]));
+  }
+  return Status::Ok();
+}
+
+void ApproximateVariances(const RatingProblem& p, const std::vector<double>& h,
+                          const std::vector<double>& diag, RatingFit* fit) {
+  const size_t c_n = size_t(p.num_climbers), r_n = size_t(p.num_routes());
+  std::vector<double> rp(diag.begin() + long(c_n), diag.end());
+  std::vector<double> cp(diag.begin(), diag.begin() + long(c_n));
+  for (size_t i = 0; i < p.pairs.size(); ++i) {
+    const size_t c = size_t(p.pairs[i].climber), r = size_t(p.pairs[i].route);
+    rp[r] -= h[i] * h[i] / diag[c];
+    cp[c] -= h[i] * h[i] / diag[c_n + r];
+  }
+  for (size_t r = 0; r < r_n; ++r) fit->difficulty_sd[r] = std::sqrt(1 / rp[r]);
+  for (size_t c = 0; c < c_n; ++c) fit->ability_sd[c] = std::sqrt(1 / cp[c]);
+}
+
+}  // namespace
+
+const char* TickOutcomeName(TickOutcome o) {
+  switch (o) {
+    case TickOutcome::kFlash:
+      return "flash";
+    case TickOutcome::kSend:
+      return "send";
+    case TickOutcome::kAttempt:
+      return "attempt";
+  }
+  return "flash";
+}
+
+Result<TickOutcome> ParseTickOutcome(std::string_view text, std::string_view field) {
+  for (TickOutcome o : {TickOutcome::kFlash, TickOutcome::kSend, TickOutcome::kAttempt}) {
+    if (text == TickOutcomeName(o)) return o;
+  }
+  return Status::InvalidInput(std::string(field) + ": expected flash, send or attempt, got '" +
+                              std::string(text) + "'");
+}
+
+Result<Games> TickGames(TickOutcome outcome, std::optional<int> attempts) {
+  if (attempts && (*attempts < 1 || *attempts > kMaxTickAttempts)) {
+    return Status::InvalidInput("attempts: expected 1 to " + std::to_string(kMaxTickAttempts) +
+                                ", got " + std::to_string(*attempts));
+  }
+  switch (outcome) {
+    case TickOutcome::kFlash:
+      if (attempts && *attempts != 1) {
+        return Status::InvalidInput("attempts: a flash is one try, got " +
+                                    std::to_string(*attempts) + " (use send)");
+      }
+      return Games{1, 0};
+    case TickOutcome::kSend: {
+      const int n = attempts.value_or(kSendDefaultAttempts);
+      return Games{1, n - 1};
+    }
+    case TickOutcome::kAttempt:
+      return Games{0, attempts.value_or(1)};
+  }
+  return Status::Internal("ratings: unknown outcome");
+}
+
+RatingParams RatingParams::For(Discipline d) {
+  RatingParams k;
+  if (d == Discipline::kBouldering) {
+    k.logit_per_unit = std::log(3.0);
+    k.climber_sd = 3;
+    k.setter_sd = 1;
+    k.open_route_sd = 3;
+    k.felt_sd = 1.5;
+  } else {
+    // One YDS unit is four letters; 2.1x harder per letter.
+    k.logit_per_unit = 4 * std::log(2.1);
+    // The bouldering values in logit terms (one V grade = ln 3 logit =
+    // ln 3 / (4 ln 2.1) = 0.37 YDS units).
+    const double v = std::log(3.0) / k.logit_per_unit;
+    k.climber_sd = 3 * v;
+    k.setter_sd = 1 * v;
+    k.open_route_sd = 3 * v;
+    k.felt_sd = 1.5 * v;
+  }
+  return k;
+}
+
+Status RatingParams::Validate() const {
+  const std::pair<const char*, double> fields[] = {{"logit_per_unit", logit_per_unit},
+                                                   {"climber_sd", climber_sd},
+                                                   {"setter_sd", setter_sd},
+                                                   {"open_route_sd", open_route_sd},
+                                                   {"felt_sd", felt_sd}};
+  for (const auto& [name, v] : fields) {
+    if (!std::isfinite(v) || !(v > 0)) {
+      return Status::InvalidInput(std::string("ratings: ") + name + ": expected a number > 0, got " +
+                                  Num(v));
+    }
+  }
+  return Status::Ok();
+}
+
+Status RatingProblem::Validate() const {
+  const size_t r_n = setter.size();
+  if (num_climbers < 0 || felt_sum.size() != r_n || felt_count.size() != r_n ||
+      route_ticks.size() != r_n || climber_ticks.size() != size_t(num_climbers)) {
+    return Status::InvalidInput("ratings: problem arrays of different sizes");
+  }
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    const RatingPair& q = pairs[i];
+    if (q.climber < 0 || q.climber >= num_climbers || q.route < 0 || size_t(q.route) >= r_n) {
+      return Status::InvalidInput("ratings: pair " + std::to_string(i) + ": index out of range");
+    }
+    if (q.wins < 0 || q.losses < 0 || q.wins + q.losses == 0) {
+      return Status::InvalidInput("ratings: pair " + std::to_string(i) + ": no games");
+    }
+    if (i > 0 && std::pair(pairs[i - 1].route, pairs[i - 1].climber) >=
+                     std::pair(q.route, q.climber)) {
+      return Status::InvalidInput("ratings: pairs not sorted by (route, climber) or repeated");
+    }
+  }
+  for (size_t r = 0; r < r_n; ++r) {
+    if ((setter[r] && !std::isfinite(*setter[r])) || !std::isfinite(felt_sum[r]) ||
+        felt_count[r] < 0) {
+      return Status::InvalidInput("ratings: route " + std::to_string(r) + ": bad grade data");
+    }
+  }
+  return Status::Ok();
+}
+
+void RatingProblemBuilder::EnsureClimbers(int n) {
+  if (n > p_.num_climbers) {
+    p_.num_climbers = n;
+    p_.climber_ticks.resize(size_t(n), 0);
+  }
+}
+
+void RatingProblemBuilder::EnsureRoutes(int n) {
+  if (n > p_.num_routes()) {
+    p_.setter.resize(size_t(n));
+    p_.felt_sum.resize(size_t(n), 0);
+    p_.felt_count.resize(size_t(n), 0);
+    p_.route_ticks.resize(size_t(n), 0);
+  }
+}
+
+void RatingProblemBuilder::AddTick(int climber, int route, Games games,
+                                   std::optional<double> felt) {
+  EnsureClimbers(climber + 1);
+  EnsureRoutes(route + 1);
+  entries_.push_back(
+      {(uint64_t(uint32_t(route)) << 32) | uint32_t(climber), games.wins, games.losses});
+  ++p_.climber_ticks[size_t(climber)];
+  ++p_.route_ticks[size_t(route)];
+  if (felt) {
+    p_.felt_sum[size_t(route)] += *felt;
+    ++p_.felt_count[size_t(route)];
+  }
+}
+
+void RatingProblemBuilder::SetSetterGrade(int route, double value) {
+  EnsureRoutes(route + 1);
+  p_.setter[size_t(route)] = value;
+}
+
+RatingProblem RatingProblemBuilder::Build() {
+  std::sort(entries_.begin(), entries_.end(),
+            [](const Entry& a, const Entry& b) { return a.key < b.key; });
+  p_.pairs.clear();
+  for (const Entry& e : entries_) {
+    if (!p_.pairs.empty()) {
+      RatingPair& last = p_.pairs.back();
+      if (((uint64_t(uint32_t(last.route)) << 32) | uint32_t(last.climber)) == e.key) {
+        last.wins += e.wins;
+        last.losses += e.losses;
+        continue;
+      }
+    }
+    p_.pairs.push_back({int32_t(e.key & 0xffffffffu), int32_t(e.key >> 32), e.wins, e.losses});
+  }
+  entries_.clear();
+  entries_.shrink_to_fit();
+  RatingProblem out = std::move(p_);
+  p_ = RatingProblem();
+  return out;
+}
+
+Result<RatingFit> FitRatings(const RatingProblem& problem, const RatingParams& params,
+                             const RatingFitOptions& options) {
+  SB_RETURN_IF_ERROR(params.Validate());
+  SB_RETURN_IF_ERROR(problem.Validate());
+  const size_t c_n = size_t(problem.num_climbers), r_n = size_t(problem.num_routes());
+  const bool exact = options.intervals == IntervalMethod::kExact ||
+                     (options.intervals == IntervalMethod::kAuto && r_n <= kMaxExactRoutes);
+  if (exact && r_n > kMaxExactRoutes) {
+    return Status::InvalidInput("ratings: exact intervals are limited to " +
+                                std::to_string(kMaxExactRoutes) + " routes, got " +
+                                std::to_string(r_n));
+  }
+  RatingFit fit;
+  fit.prior_mean = PriorMean(problem);
+  const double m = fit.prior_mean;
+  Solver solver(problem, params, m);
+  std::vector<double> x(c_n + r_n);
+  const RatingFit* warm = options.warm_start;
+  if (warm != nullptr && warm->ability.size() == c_n && warm->difficulty.size() == r_n) {
+    std::copy(warm->ability.begin(), warm->ability.end(), x.begin());
+    std::copy(warm->difficulty.begin(), warm->difficulty.end(), x.begin() + long(c_n));
+  } else {
+    for (size_t c = 0; c < c_n; ++c) x[c] = m;
+    for (size_t r = 0; r < r_n; ++r) x[c_n + r] = problem.setter[r].value_or(m);
+  }
+  std::vector<double> g, step, trial(x.size());
+  double f = solver.Objective(x);
+  bool converged = false;
+  for (int it = 0; it <= options.max_newton_iterations; ++it) {
+    solver.GradientAndHessian(x, &g);
+    double gmax = 0;
+    for (double v : g) gmax = std::max(gmax, std::abs(v));
+    fit.gradient_max = gmax;
+    if (gmax <= options.gradient_tolerance) {
+      converged = true;
+      break;
+    }
+    if (it == options.max_newton_iterations) break;
+    ++fit.newton_iterations;
+    // Forcing term: loose steps far from the optimum, exact ones near it
+    // (superlinear convergence of inexact Newton, Eisenstat & Walker).
+    const double eta = std::min(0.5, std::sqrt(gmax));
+    fit.cg_iterations += solver.SolveNewtonStep(g, eta, &step);
+    double slope = 0;
+    for (size_t i = 0; i < x.size(); ++i) slope += g[i] * step[i];
+    // Backtracking (Armijo); the relative slack absorbs rounding once the
+    // decrease is below the objective's last digits.
+    double t = 1;
+    double f_new = f;
+    for (int half = 0; half < 60; ++half, t *= 0.5) {
+      for (size_t i = 0; i < x.size(); ++i) trial[i] = x[i] + t * step[i];
+      f_new = solver.Objective(trial);
+      if (f_new <= f + 1e-4 * t * slope + 1e-14 * std::abs(f)) break;
+    }
+    x.swap(trial);
+    f = f_new;
+  }
+  if (!converged) {
+    return Status::Internal("ratings: Newton did not converge (largest gradient " +
+                            Num(fit.gradient_max) + ")");
+  }
+  fit.ability.assign(x.begin(), x.begin() + long(c_n));
+  fit.difficulty.assign(x.begin() + long(c_n), x.end());
+  fit.ability_sd.resize(c_n);
+  fit.difficulty_sd.resize(r_n);
+  fit.exact_intervals = exact;
+  if (exact) {
+    SB_RETURN_IF_ERROR(ExactVariances(problem, solver.h(), solver.diag(), &fit));
+  } else {
+    ApproximateVariances(problem, solver.h(), solver.diag(), &fit);
+  }
+  return fit;
+}
+
+Result<RouteEvidence> EvidenceOf(const RatingProblem& problem, const RatingParams& params,
+                                 const RatingFit& fit, int route) {
+  if (route < 0 || route >= problem.num_routes()) {
+    return Status::InvalidInput("ratings: route index " + std::to_string(route) +
+                                " out of range");
+  }
+  RouteEvidence e;
+  const auto& s = problem.setter[size_t(route)];
+  e.prior_mean = s ? *s : fit.prior_mean;
+  e.prior_sd = s ? params.setter_sd : params.open_route_sd;
+  e.felt_sum = problem.felt_sum[size_t(route)];
+  e.felt_count = problem.felt_count[size_t(route)];
+  e.ticks = problem.route_ticks[size_t(route)];
+  auto lo = std::lower_bound(problem.pairs.begin(), problem.pairs.end(), route,
+                             [](const RatingPair& q, int r) { return q.route < r; });
+  for (auto it = lo; it != problem.pairs.end() && it->route == route; ++it) e.pairs.push_back(*it);
+  return e;
+}
+
+void AddTickTo(RouteEvidence* e, int climber, Games games, std::optional<double> felt) {
+  ++e->ticks;
+  if (felt) {
+    e->felt_sum += *felt;
+    ++e->felt_count;
+  }
+  for (RatingPair& q : e->pairs) {
+    if (q.climber == climber) {
+      q.wins += games.wins;
+      q.losses += games.losses;
+      return;
+    }
+  }
+  e->pairs.push_back({climber, 0, games.wins, games.losses});
+}
+
+Result<RouteRating> RateRoute(const RouteEvidence& e, const RatingFit& fit,
+                              const RatingParams& params) {
+  SB_RETURN_IF_ERROR(params.Validate());
+  const double kk = params.logit_per_unit;
+  const double pp = 1 / (e.prior_sd * e.prior_sd);
+  const double pf = 1 / (params.felt_sd * params.felt_sd);
+  auto ability = [&](int c) {
+    return size_t(c) < fit.ability.size() ? fit.ability[size_t(c)] : fit.prior_mean;
+  };
+  auto ability_sd = [&](int c) {
+    return size_t(c) < fit.ability_sd.size() ? fit.ability_sd[size_t(c)] : params.climber_sd;
+  };
+  auto objective = [&](double d) {
+    double f = 0.5 * pp * (d - e.prior_mean) * (d - e.prior_mean) +
+               0.5 * pf * (e.felt_count * d * d - 2 * d * e.felt_sum);
+    for (const RatingPair& q : e.pairs) {
+      const double z = kk * (ability(q.climber) - d);
+      f += q.wins * Softplus(-z) + q.losses * Softplus(z);
+    }
+    return f;
+  };
+  RouteRating out;
+  double d = e.prior_mean;
+  double f = objective(d);
+  for (int it = 0; it < 100; ++it) {
+    double g = pp * (d - e.prior_mean) + pf * (e.felt_count * d - e.felt_sum);
+    double h = pp + pf * e.felt_count;
+    for (const RatingPair& q : e.pairs) {
+      const double pr = Sigmoid(kk * (ability(q.climber) - d));
+      const double n = double(q.wins) + double(q.losses);
+      g -= kk * (n * pr - q.wins);
+      h += kk * kk * n * pr * (1 - pr);
+    }
+    if (std::abs(g) <= 1e-12 * (1 + std::abs(d) * h)) break;
+    ++out.newton_iterations;
+    const double step = -g / h;
+    double t = 1, f_new = f, d_new = d;
+    for (int half = 0; half < 60; ++half, t *= 0.5) {
+      d_new = d + t * step;
+      f_new = objective(d_new);
+      if (f_new <= f + 1e-4 * t * g * step + 1e-14 * std::abs(f)) break;
+    }
+    d = d_new;
+    f = f_new;
+  }
+  double prec = pp + pf * e.felt_count;
+  for (const RatingPair& q : e.pairs) {
+    const double pr = Sigmoid(kk * (ability(q.climber) - d));
+    const double n = double(q.wins) + double(q.losses);
+    const double h = kk * kk * n * pr * (1 - pr);
+    const double sd = ability_sd(q.climber);
+    if (h > 0) prec += 1 / (1 / h + sd * sd);
+  }
+  out.value = d;
+  out.sd = std::sqrt(1 / prec);
+  return out;
+}
+
+}  // namespace sb::grades

@@ -1,0 +1,272 @@
+#include "grades/ratings_synth.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <random>
+
+#include "base/csv.h"
+#include "base/number.h"
+#include "grades/scale.h"
+
+namespace sb::grades {
+
+namespace {
+
+// Portable draws: the generator's output bits with explicit transforms
+// (std::normal_distribution differs between standard libraries).
+class Draw {
+ public:
+  explicit Draw(uint64_t seed) : g_(seed) {}
+  double Uniform() { return double(g_() >> 11) * 0x1.0p-53; }  // [0, 1)
+  int Below(int n) { return int(Uniform() * n); }
+  double Normal() {  // Box-Muller, one value per call
+    double u1 = Uniform();
+    while (u1 <= 0) u1 = Uniform();
+    const double u2 = Uniform();
+    return std::sqrt(-2 * std::log(u1)) * std::cos(2 * M_PI * u2);
+  }
+
+ private:
+  std::mt19937_64 g_;
+};
+
+int Whole(double v, int lo, int hi) { return std::clamp(int(std::lround(v)), lo, hi); }
+
+std::string VName(int v) { return v < 0 ? "VB" : "V" + std::to_string(v); }
+
+std::string DateOf(int day) {
+  static const int kDays[12] = {31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
+  int m = 0;
+  while (m < 11 && day >= kDays[m]) day -= kDays[m++];
+  char b[32];
+  std::snprintf(b, sizeof b, "2026-%02d-%02d", m + 1, day + 1);
+  return b;
+}
+
+double Median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+std::vector<double> Ranks(std::span<const double> v) {
+  std::vector<size_t> order(v.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return v[a] < v[b]; });
+  std::vector<double> rank(v.size());
+  for (size_t i = 0; i < order.size();) {
+    size_t j = i;
+    while (j + 1 < order.size() && v[order[j + 1]] == v[order[i]]) ++j;
+    const double avg = 0.5 * double(i + j) + 1;
+    for (size_t k = i; k <= j; ++k) rank[order[k]] = avg;
+    i = j + 1;
+  }
+  return rank;
+}
+
+}  // namespace
+
+Status SynthGymParams::Validate() const {
+  auto bad = [](const char* field, const std::string& want) {
+    return Status::InvalidInput(std::string(field) + ": expected " + want);
+  };
+  if (climbers < 1 || climbers > kMaxSynthClimbers) {
+    return bad("--climbers", "1 to " + std::to_string(kMaxSynthClimbers));
+  }
+  if (routes < 1 || routes > kMaxSynthRoutes) {
+    return bad("--routes", "1 to " + std::to_string(kMaxSynthRoutes));
+  }
+  if (ticks_per_route < 0 || int64_t(ticks_per_route) * routes > kMaxSynthTicks) {
+    return bad("--ticks-per-route", "0 or more, at most " + std::to_string(kMaxSynthTicks) +
+                                        " ticks in all");
+  }
+  if (max_tries < 1 || max_tries > kMaxTickAttempts) return bad("max_tries", "1 to 500");
+  const std::pair<const char*, double> positive[] = {
+      {"difficulty_sd", difficulty_sd}, {"ability_sd", ability_sd}, {"choice_sd", choice_sd},
+      {"logit_per_unit", logit_per_unit}, {"setter_sd", setter_sd}, {"felt_sd", felt_sd}};
+  for (const auto& [f, v] : positive) {
+    if (!std::isfinite(v) || v <= 0) return bad(f, "a number > 0");
+  }
+  if (!(felt_share >= 0 && felt_share <= 1)) return bad("felt_share", "0 to 1");
+  if (!std::isfinite(felt_bias) || !std::isfinite(difficulty_mean) ||
+      !std::isfinite(ability_mean)) {
+    return bad("felt_bias / means", "finite numbers");
+  }
+  return Status::Ok();
+}
+
+Result<SynthGym> MakeSynthGym(const SynthGymParams& sp) {
+  SB_RETURN_IF_ERROR(sp.Validate());
+  Draw draw(sp.seed);
+  SynthGym gym;
+  gym.true_ability.resize(size_t(sp.climbers));
+  for (double& a : gym.true_ability) {
+    a = std::clamp(sp.ability_mean + sp.ability_sd * draw.Normal(), -1.0, 15.0);
+  }
+  gym.true_difficulty.resize(size_t(sp.routes));
+  gym.setter_grade.resize(size_t(sp.routes));
+  for (size_t r = 0; r < size_t(sp.routes); ++r) {
+    const double d = std::clamp(sp.difficulty_mean + sp.difficulty_sd * draw.Normal(), -1.0, 14.0);
+    gym.true_difficulty[r] = d;
+    gym.setter_grade[r] = Whole(d + sp.setter_sd * draw.Normal(), -1, kVTopNumber);
+  }
+  // Climbers by ability, to find the one nearest a target.
+  std::vector<int> by_ability(size_t(sp.climbers));
+  std::iota(by_ability.begin(), by_ability.end(), 0);
+  std::stable_sort(by_ability.begin(), by_ability.end(), [&](int a, int b) {
+    return gym.true_ability[size_t(a)] < gym.true_ability[size_t(b)];
+  });
+  std::vector<double> sorted(by_ability.size());
+  for (size_t i = 0; i < sorted.size(); ++i) sorted[i] = gym.true_ability[size_t(by_ability[i])];
+  auto nearest = [&](double t) {
+    auto it = std::lower_bound(sorted.begin(), sorted.end(), t);
+    size_t i = size_t(it - sorted.begin());
+    if (i == sorted.size() || (i > 0 && t - sorted[i - 1] < sorted[i] - t)) --i;
+    return by_ability[i];
+  };
+  gym.ticks.reserve(size_t(sp.routes) * size_t(sp.ticks_per_route));
+  std::vector<int> seen;
+  for (int r = 0; r < sp.routes; ++r) {
+    const double d = gym.true_difficulty[size_t(r)];
+    seen.clear();
+    for (int k = 0; k < sp.ticks_per_route; ++k) {
+      int c = 0;
+      // A few draws to find a climber who has not ticked this route yet
+      // (small gyms may run out; then a climber comes back another day).
+      for (int tries = 0; tries < 8; ++tries) {
+        c = nearest(d + 0.5 + sp.choice_sd * draw.Normal());
+        if (std::find(seen.begin(), seen.end(), c) == seen.end()) break;
+      }
+      seen.push_back(c);
+      const double a = gym.true_ability[size_t(c)];
+      const double p = 1 / (1 + std::exp(-sp.logit_per_unit * (a - d)));
+      const int session = 1 + draw.Below(sp.max_tries);
+      int sent_at = 0;
+      for (int t = 1; t <= session && !sent_at; ++t) {
+        if (draw.Uniform() < p) sent_at = t;
+      }
+      SynthTick tick;
+      tick.climber = c;
+      tick.route = r;
+      tick.day = draw.Below(365);
+      if (sent_at == 1) {
+        tick.outcome = TickOutcome::kFlash;
+      } else if (sent_at > 1) {
+        tick.outcome = TickOutcome::kSend;
+        tick.attempts = sent_at;
+      } else {
+        tick.outcome = TickOutcome::kAttempt;
+        // A single try is often logged without a count (the model reads it as 1).
+        if (session > 1 || draw.Uniform() < 0.5) tick.attempts = session;
+      }
+      if (sent_at && draw.Uniform() < sp.felt_share) {
+        tick.felt = Whole(d - sp.felt_bias * (a - d) + sp.felt_sd * draw.Normal(), -1, kVTopNumber);
+      }
+      gym.ticks.push_back(tick);
+    }
+  }
+  return gym;
+}
+
+std::string SynthTicksCsv(const SynthGym& gym) {
+  std::string out = "climber,route,date,outcome,attempts,felt_grade\n";
+  for (const SynthTick& t : gym.ticks) {
+    out += "c" + std::to_string(t.climber + 1) + ",r" + std::to_string(t.route + 1) + "," +
+           DateOf(t.day) + "," + TickOutcomeName(t.outcome) + "," +
+           (t.attempts ? std::to_string(*t.attempts) : "") + "," + (t.felt ? VName(*t.felt) : "") +
+           "\n";
+  }
+  return out;
+}
+
+std::string SynthRoutesCsv(const SynthGym& gym) {
+  std::string out = "route,grade\n";
+  for (size_t r = 0; r < gym.setter_grade.size(); ++r) {
+    out += "r" + std::to_string(r + 1) + "," + VName(gym.setter_grade[r]) + "\n";
+  }
+  return out;
+}
+
+std::string SynthTruthCsv(const SynthGym& gym) {
+  std::string out = "kind,name,value\n";
+  for (size_t r = 0; r < gym.true_difficulty.size(); ++r) {
+    out += "route,r" + std::to_string(r + 1) + "," + FormatDouble(gym.true_difficulty[r]) + "\n";
+  }
+  for (size_t c = 0; c < gym.true_ability.size(); ++c) {
+    out += "climber,c" + std::to_string(c + 1) + "," + FormatDouble(gym.true_ability[c]) + "\n";
+  }
+  return out;
+}
+
+RatingProblem SynthProblem(const SynthGym& gym) {
+  RatingProblemBuilder b;
+  b.EnsureClimbers(int(gym.true_ability.size()));
+  b.EnsureRoutes(int(gym.true_difficulty.size()));
+  for (size_t r = 0; r < gym.setter_grade.size(); ++r) {
+    b.SetSetterGrade(int(r), gym.setter_grade[r]);
+  }
+  for (const SynthTick& t : gym.ticks) {
+    auto games = TickGames(t.outcome, t.attempts);  // generated within range: always ok
+    b.AddTick(t.climber, t.route, games.ok() ? *games : Games{},
+              t.felt ? std::optional<double>(*t.felt) : std::nullopt);
+  }
+  return b.Build();
+}
+
+Result<RatingEvaluation> EvaluateSynthGym(const SynthGym& gym, const RatingParams& params,
+                                          const RatingFitOptions& options) {
+  const RatingProblem problem = SynthProblem(gym);
+  SB_ASSIGN_OR_RETURN(RatingFit fit, FitRatings(problem, params, options));
+  RatingEvaluation ev;
+  const size_t n = gym.true_difficulty.size();
+  ev.routes = int(n);
+  ev.ticks = int(gym.ticks.size());
+  ev.exact_intervals = fit.exact_intervals;
+  ev.spearman = Spearman(fit.difficulty, gym.true_difficulty);
+  std::vector<std::vector<double>> felt(n);
+  for (const SynthTick& t : gym.ticks) {
+    if (t.felt) felt[size_t(t.route)].push_back(*t.felt);
+  }
+  int covered = 0;
+  double felt_err = 0, fit_err_felt = 0;
+  for (size_t r = 0; r < n; ++r) {
+    const double truth = gym.true_difficulty[r];
+    const double v = fit.difficulty[r], sd = fit.difficulty_sd[r];
+    if (truth >= v - kZ80 * sd && truth <= v + kZ80 * sd) ++covered;
+    ev.mae += std::abs(v - truth);
+    ev.setter_mae += std::abs(gym.setter_grade[r] - truth);
+    ev.mean_interval_width += 2 * kZ80 * sd;
+    if (!felt[r].empty()) {
+      ++ev.felt_routes;
+      felt_err += std::abs(Median(felt[r]) - truth);
+      fit_err_felt += std::abs(v - truth);
+    }
+  }
+  ev.coverage = double(covered) / double(n);
+  ev.mae /= double(n);
+  ev.setter_mae /= double(n);
+  ev.mean_interval_width /= double(n);
+  if (ev.felt_routes > 0) {
+    ev.felt_mae = felt_err / ev.felt_routes;
+    ev.mae_felt_routes = fit_err_felt / ev.felt_routes;
+  }
+  return ev;
+}
+
+double Spearman(std::span<const double> a, std::span<const double> b) {
+  if (a.size() != b.size() || a.size() < 2) return std::nan("");
+  const std::vector<double> ra = Ranks(a), rb = Ranks(b);
+  const double n = double(a.size());
+  const double mean = (n + 1) / 2;
+  double sab = 0, saa = 0, sbb = 0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    sab += (ra[i] - mean) * (rb[i] - mean);
+    saa += (ra[i] - mean) * (ra[i] - mean);
+    sbb += (rb[i] - mean) * (rb[i] - mean);
+  }
+  if (saa == 0 || sbb == 0) return std::nan("");
+  return sab / std::sqrt(saa * sbb);
+}
+
+}  // namespace sb::grades
