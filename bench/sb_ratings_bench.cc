@@ -52,6 +52,21 @@ BENCHMARK(BM_Fit)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1);
 
+// The aggregation alone (ticks -> pairs sorted by route and climber), the
+// first part of BM_Fit.
+void BM_BuildProblem(benchmark::State& state) {
+  const auto& gym = Gym(int(state.range(0)), int(state.range(1)), int(state.range(2)));
+  for (auto _ : state) {
+    sb::grades::RatingProblem p = sb::grades::SynthProblem(gym);
+    benchmark::DoNotOptimize(p);
+  }
+  state.counters["ticks"] = double(gym.ticks.size());
+}
+BENCHMARK(BM_BuildProblem)
+    ->Args({50'000, 250'000, 20})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+
 // A new tick on one route of a gym: the single-route update (climbers held).
 void BM_RateRouteAfterTick(benchmark::State& state) {
   const auto& gym = Gym(300, 600, 20);

@@ -484,10 +484,27 @@ void RatingProblemBuilder::SetSetterGrade(int route, double value) {
 }
 
 RatingProblem RatingProblemBuilder::Build() {
-  std::sort(entries_.begin(), entries_.end(),
-            [](const Entry& a, const Entry& b) { return a.key < b.key; });
+  // Counting sort by route (routes are dense indices), then each route's
+  // few entries by climber: linear in the ticks, where one sort of all
+  // 5 million took a third of the fit.
+  const size_t r_n = size_t(p_.num_routes());
+  std::vector<size_t> start(r_n + 1, 0);
+  for (const Entry& e : entries_) ++start[size_t(e.key >> 32) + 1];
+  for (size_t r = 0; r < r_n; ++r) start[r + 1] += start[r];
+  std::vector<Entry> sorted(entries_.size());
+  {
+    std::vector<size_t> fill(start.begin(), start.end() - 1);
+    for (const Entry& e : entries_) sorted[fill[size_t(e.key >> 32)]++] = e;
+  }
+  entries_.clear();
+  entries_.shrink_to_fit();
+  for (size_t r = 0; r < r_n; ++r) {
+    std::sort(sorted.begin() + long(start[r]), sorted.begin() + long(start[r + 1]),
+              [](const Entry& a, const Entry& b) { return a.key < b.key; });
+  }
   p_.pairs.clear();
-  for (const Entry& e : entries_) {
+  p_.pairs.reserve(sorted.size());
+  for (const Entry& e : sorted) {
     if (!p_.pairs.empty()) {
       RatingPair& last = p_.pairs.back();
       if (((uint64_t(uint32_t(last.route)) << 32) | uint32_t(last.climber)) == e.key) {
@@ -498,8 +515,7 @@ RatingProblem RatingProblemBuilder::Build() {
     }
     p_.pairs.push_back({int32_t(e.key & 0xffffffffu), int32_t(e.key >> 32), e.wins, e.losses});
   }
-  entries_.clear();
-  entries_.shrink_to_fit();
+  p_.pairs.shrink_to_fit();
   RatingProblem out = std::move(p_);
   p_ = RatingProblem();
   return out;
