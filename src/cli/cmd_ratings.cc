@@ -69,8 +69,7 @@ int Fit(const FitArgs& a) {
     routes = std::move(r).value();
   }
   auto in = grades::ReadRatingsInput(
-      *ticks, a.ticks, routes ? std::optional<std::string_view>(*routes) : std::nullopt,
-      a.routes);
+      *ticks, a.ticks, routes ? std::optional<std::string_view>(*routes) : std::nullopt, a.routes);
   if (!in.ok()) return Fail(kCmd, in.status());
   for (size_t i = 0; i < in->bad_rows.size() && i < kMaxReportedRows; ++i) {
     std::fprintf(stderr, "%s%s\n", in->bad_rows[i].message().c_str(),
@@ -119,10 +118,10 @@ int Fit(const FitArgs& a) {
     size_t ticks_n = 0;
     for (int n : in->problem.route_ticks) ticks_n += size_t(n);
     o = std::to_string(in->routes.size()) + " routes, " + std::to_string(in->climbers.size()) +
-        " climbers, " + std::to_string(ticks_n) + " ticks; " +
-        grades::DisciplineName(d) + " (values on the " +
-        (d == grades::Discipline::kBouldering ? "V" : "YDS") + " axis); 80% intervals (" +
-        (fit->exact_intervals ? "exact" : "approximate") + " Laplace)\n";
+        " climbers, " + std::to_string(ticks_n) + " ticks; " + grades::DisciplineName(d) +
+        " (values on the " + (d == grades::Discipline::kBouldering ? "V" : "YDS") +
+        " axis); 80% intervals (" + (fit->exact_intervals ? "exact" : "approximate") +
+        " Laplace)\n";
     char line[512];
     std::snprintf(line, sizeof line, "%-20s %-9s %7s %16s %-17s %6s  %s\n", "route", "grade",
                   "value", "80% interval", "", "ticks", "setter");
@@ -159,10 +158,9 @@ int Synth(const grades::SynthGymParams& sp, const std::string& out) {
   std::error_code ec;
   std::filesystem::create_directories(out, ec);
   if (ec) return Fail(kCmd, Status::IoError(out + ": " + ec.message()));
-  const std::pair<const char*, std::string> files[] = {
-      {"TICKS.csv", grades::SynthTicksCsv(*gym)},
-      {"ROUTES.csv", grades::SynthRoutesCsv(*gym)},
-      {"TRUTH.csv", grades::SynthTruthCsv(*gym)}};
+  const std::pair<const char*, std::string> files[] = {{"TICKS.csv", grades::SynthTicksCsv(*gym)},
+                                                       {"ROUTES.csv", grades::SynthRoutesCsv(*gym)},
+                                                       {"TRUTH.csv", grades::SynthTruthCsv(*gym)}};
   for (const auto& [name, data] : files) {
     Status s = WriteFileAtomic((std::filesystem::path(out) / name).string(), data);
     if (!s.ok()) return Fail(kCmd, s);
@@ -192,17 +190,17 @@ int Eval(grades::SynthGymParams sp, const std::string& ticks_list, const std::st
   const grades::RatingParams params = grades::RatingParams::For(grades::Discipline::kBouldering);
   std::string o;
   if (format == "text") {
-    o = "synthetic gyms: " + std::to_string(sp.routes) + " routes, " +
-        std::to_string(sp.climbers) + " climbers, seed " + std::to_string(sp.seed) +
-        " (V axis; docs/grades.md)\n";
+    o = "synthetic gyms: " + std::to_string(sp.routes) + " routes, " + std::to_string(sp.climbers) +
+        " climbers, seed " + std::to_string(sp.seed) + " (V axis; docs/grades.md)\n";
     char line[256];
-    std::snprintf(line, sizeof line, "%-11s %8s %9s %7s %8s %10s %10s %8s %9s %8s\n",
-                  "ticks/route", "spearman", "coverage", "mae", "setter", "felt-rts", "mae(felt)",
-                  "felt-med", "gain", "width");
+    std::snprintf(line, sizeof line, "%-11s %8s %9s %7s %8s %10s %10s %8s %9s %8s\n", "ticks/route",
+                  "spearman", "coverage", "mae", "setter", "felt-rts", "mae(felt)", "felt-med",
+                  "gain", "width");
     o += line;
   } else {
-    o = "{\"climbers\":" + std::to_string(sp.climbers) + ",\"routes\":" +
-        std::to_string(sp.routes) + ",\"seed\":" + std::to_string(sp.seed) + ",\"results\":[";
+    o = "{\"climbers\":" + std::to_string(sp.climbers) +
+        ",\"routes\":" + std::to_string(sp.routes) + ",\"seed\":" + std::to_string(sp.seed) +
+        ",\"results\":[";
   }
   for (size_t i = 0; i < ks.size(); ++i) {
     sp.ticks_per_route = ks[i];
@@ -215,8 +213,9 @@ int Eval(grades::SynthGymParams sp, const std::string& ticks_list, const std::st
     const double gain = ev->felt_mae > 0 ? 1 - ev->mae_felt_routes / ev->felt_mae : 0;
     if (format == "text") {
       char line[256];
-      std::snprintf(line, sizeof line, "%-11d %8.4f %9.3f %7.3f %8.3f %10d %10.3f %8.3f %8.1f%% %8.2f\n",
-                    ks[i], ev->spearman, ev->coverage, ev->mae, ev->setter_mae, ev->felt_routes,
+      std::snprintf(line, sizeof line,
+                    "%-11d %8.4f %9.3f %7.3f %8.3f %10d %10.3f %8.3f %8.1f%% %8.2f\n", ks[i],
+                    ev->spearman, ev->coverage, ev->mae, ev->setter_mae, ev->felt_routes,
                     ev->mae_felt_routes, ev->felt_mae, 100 * gain, ev->mean_interval_width);
       o += line;
     } else {
@@ -235,7 +234,8 @@ int Eval(grades::SynthGymParams sp, const std::string& ticks_list, const std::st
     o += "\nspearman: rank correlation of fitted and true difficulty; coverage: share of routes\n"
          "whose 80% interval holds the truth; mae: mean |fitted - true| (V grades); setter: the\n"
          "setters' grades' mae; on the felt-rts routes with felt grades: mae(felt) the fit's,\n"
-         "felt-med the median felt grade's, gain = 1 - mae(felt) / felt-med; width: mean interval.\n";
+         "felt-med the median felt grade's, gain = 1 - mae(felt) / felt-med; width: mean "
+         "interval.\n";
   } else {
     o += "]}\n";
   }
@@ -260,8 +260,7 @@ int RunRatings(const std::vector<std::string>& args) {
   fit->add_option("--routes", fa.routes, "ROUTES.csv: route,grade (the setters' grades)");
   fit->add_option("--format", fa.format, "text or json")->capture_default_str();
   fit->add_flag("--skip-bad", fa.skip_bad, "report bad rows and fit without them");
-  fit->add_option("--intervals", fa.intervals,
-                  "auto, exact (up to 1200 routes) or approximate")
+  fit->add_option("--intervals", fa.intervals, "auto, exact (up to 1200 routes) or approximate")
       ->capture_default_str();
   fit->add_option("-o,--out", fa.out, "write the result here instead of stdout");
 

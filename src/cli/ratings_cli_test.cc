@@ -56,9 +56,9 @@ class RatingsCli : public ::testing::Test {
 
 TEST_F(RatingsCli, JsonShape) {
   WriteGym();
-  ASSERT_EQ(Ratings({"fit", "--ticks", P("TICKS.csv"), "--routes", P("ROUTES.csv"), "--format",
-                     "json"}),
-            0)
+  ASSERT_EQ(
+      Ratings({"fit", "--ticks", P("TICKS.csv"), "--routes", P("ROUTES.csv"), "--format", "json"}),
+      0)
       << err_;
   const auto j = nlohmann::json::parse(out_);
   ASSERT_EQ(j.size(), 2u);
@@ -84,9 +84,9 @@ TEST_F(RatingsCli, JsonShape) {
   EXPECT_TRUE(c0.contains("ability") && c0.contains("lo") && c0.contains("hi"));
   // Deterministic: byte-identical output.
   const std::string first = out_;
-  ASSERT_EQ(Ratings({"fit", "--ticks", P("TICKS.csv"), "--routes", P("ROUTES.csv"), "--format",
-                     "json"}),
-            0);
+  ASSERT_EQ(
+      Ratings({"fit", "--ticks", P("TICKS.csv"), "--routes", P("ROUTES.csv"), "--format", "json"}),
+      0);
   EXPECT_EQ(out_, first);
 }
 
@@ -100,9 +100,9 @@ TEST_F(RatingsCli, TextNamesRoutesAndIntervals) {
 
 TEST_F(RatingsCli, BadRowsStopTheFitUnlessSkipped) {
   WriteGym("dan,Blue Roof,2026-03-04,onsight,,\ndan,Blue Roof,yesterday,flash,,\n");
-  EXPECT_EQ(Ratings({"fit", "--ticks", P("TICKS.csv"), "--routes", P("ROUTES.csv"), "--format",
-                     "json"}),
-            2);
+  EXPECT_EQ(
+      Ratings({"fit", "--ticks", P("TICKS.csv"), "--routes", P("ROUTES.csv"), "--format", "json"}),
+      2);
   EXPECT_EQ(out_, "");  // nothing fitted
   EXPECT_NE(err_.find(P("TICKS.csv") + ":7: outcome: expected flash, send or attempt, got "
                                        "'onsight'"),

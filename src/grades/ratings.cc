@@ -112,7 +112,8 @@ class Solver {
       const double d = x[c_ + r];
       const auto& s = p_.setter[r];
       const double sd = s ? k_.setter_sd : k_.open_route_sd;
-      (*g)[c_ + r] = (d - prior_mean_[r]) / (sd * sd) + pf * (p_.felt_count[r] * d - p_.felt_sum[r]);
+      (*g)[c_ + r] =
+          (d - prior_mean_[r]) / (sd * sd) + pf * (p_.felt_count[r] * d - p_.felt_sum[r]);
       diag_[c_ + r] = prior_prec_[r];
     }
     for (size_t i = 0; i < p_.pairs.size(); ++i) {
@@ -211,7 +212,8 @@ class Solver {
           const double d = (*x)[c_ + r];
           const auto& s = p_.setter[r];
           const double sd = s ? k_.setter_sd : k_.open_route_sd;
-          g[c_ + r] = (d - prior_mean_[r]) / (sd * sd) + pf * (p_.felt_count[r] * d - p_.felt_sum[r]);
+          g[c_ + r] =
+              (d - prior_mean_[r]) / (sd * sd) + pf * (p_.felt_count[r] * d - p_.felt_sum[r]);
           h[c_ + r] = prior_prec_[r];
         }
         for (const RatingPair& q : p_.pairs) {
@@ -413,8 +415,8 @@ Status RatingParams::Validate() const {
                                                    {"felt_sd", felt_sd}};
   for (const auto& [name, v] : fields) {
     if (!std::isfinite(v) || !(v > 0)) {
-      return Status::InvalidInput(std::string("ratings: ") + name + ": expected a number > 0, got " +
-                                  Num(v));
+      return Status::InvalidInput(std::string("ratings: ") + name +
+                                  ": expected a number > 0, got " + Num(v));
     }
   }
   return Status::Ok();
@@ -434,8 +436,8 @@ Status RatingProblem::Validate() const {
     if (q.wins < 0 || q.losses < 0 || q.wins + q.losses == 0) {
       return Status::InvalidInput("ratings: pair " + std::to_string(i) + ": no games");
     }
-    if (i > 0 && std::pair(pairs[i - 1].route, pairs[i - 1].climber) >=
-                     std::pair(q.route, q.climber)) {
+    if (i > 0 &&
+        std::pair(pairs[i - 1].route, pairs[i - 1].climber) >= std::pair(q.route, q.climber)) {
       return Status::InvalidInput("ratings: pairs not sorted by (route, climber) or repeated");
     }
   }
@@ -603,8 +605,7 @@ Result<RatingFit> FitRatings(const RatingProblem& problem, const RatingParams& p
 Result<RouteEvidence> EvidenceOf(const RatingProblem& problem, const RatingParams& params,
                                  const RatingFit& fit, int route) {
   if (route < 0 || route >= problem.num_routes()) {
-    return Status::InvalidInput("ratings: route index " + std::to_string(route) +
-                                " out of range");
+    return Status::InvalidInput("ratings: route index " + std::to_string(route) + " out of range");
   }
   RouteEvidence e;
   const auto& s = problem.setter[size_t(route)];

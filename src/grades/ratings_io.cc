@@ -100,8 +100,8 @@ Result<RatingsInput> ReadRatingsInput(std::string_view ticks_csv, std::string_vi
       if (row.size() == 1 && Trim(row[0]).empty()) continue;  // blank line
       if (row.size() != t.rows[0].size()) {
         bad(routes_name, line,
-            Status::InvalidInput("expected " + std::to_string(t.rows[0].size()) +
-                                 " fields, got " + std::to_string(row.size())));
+            Status::InvalidInput("expected " + std::to_string(t.rows[0].size()) + " fields, got " +
+                                 std::to_string(row.size())));
         continue;
       }
       const std::string name(Trim(row[cols[0]]));
@@ -139,9 +139,9 @@ Result<RatingsInput> ReadRatingsInput(std::string_view ticks_csv, std::string_vi
   }
 
   SB_ASSIGN_OR_RETURN(CsvTable t, ParseCsv(ticks_csv, ticks_name));
-  SB_ASSIGN_OR_RETURN(auto cols, Columns(t, ticks_name,
-                                         {"climber", "route", "date", "outcome", "attempts",
-                                          "felt_grade"}));
+  SB_ASSIGN_OR_RETURN(
+      auto cols,
+      Columns(t, ticks_name, {"climber", "route", "date", "outcome", "attempts", "felt_grade"}));
   const size_t width = t.rows[0].size();
   // Without a setter's grade the first felt grade read decides the discipline.
   if (!discipline) {

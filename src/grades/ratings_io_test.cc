@@ -64,23 +64,23 @@ TEST(RatingsIo, ReadsTicksAndGrades) {
 
 TEST(RatingsIo, BadRowsAreLocatedAndLeftOut) {
   const std::string ticks = std::string(kHeader) +
-                            "ann,r1,2026-03-01,flash,,\n"     // 2 ok
-                            "ann,r1,2026-13-01,flash,,\n"     // 3 date
-                            "ann,r1,2026-03-01,topped,,\n"    // 4 outcome
-                            "ann,r1,2026-03-01,send,two,\n"   // 5 attempts
-                            "ann,r1,2026-03-01,flash,3,\n"    // 6 flash with 3
-                            "ann,r1,2026-03-01,send,,5.10a\n"  // 7 roped felt grade
-                            ",r1,2026-03-01,send,,\n"          // 8 no climber
-                            "ann,r1,2026-03-01\n"              // 9 short row
-                            "bob,r2,2026-03-01,attempt,501,\n"  // 10 too many tries
+                            "ann,r1,2026-03-01,flash,,\n"        // 2 ok
+                            "ann,r1,2026-13-01,flash,,\n"        // 3 date
+                            "ann,r1,2026-03-01,topped,,\n"       // 4 outcome
+                            "ann,r1,2026-03-01,send,two,\n"      // 5 attempts
+                            "ann,r1,2026-03-01,flash,3,\n"       // 6 flash with 3
+                            "ann,r1,2026-03-01,send,,5.10a\n"    // 7 roped felt grade
+                            ",r1,2026-03-01,send,,\n"            // 8 no climber
+                            "ann,r1,2026-03-01\n"                // 9 short row
+                            "bob,r2,2026-03-01,attempt,501,\n"   // 10 too many tries
                             "bob,r2,2026-03-01,send,2,Vmack\n";  // 11 felt grade
   const std::string routes = "route,grade\nr1,V2\nr2,5.11a\nr1,V3\nr3,V?\n";
   RatingsInput in = Read(ticks, routes);
   const std::vector<std::string> m = Messages(in);
   ASSERT_EQ(m.size(), 12u);
-  EXPECT_EQ(m[0].rfind("ROUTES.csv:3: grade: '5.11a' is a roped grade, but this fit is bouldering",
-                       0),
-            0u)
+  EXPECT_EQ(
+      m[0].rfind("ROUTES.csv:3: grade: '5.11a' is a roped grade, but this fit is bouldering", 0),
+      0u)
       << m[0];
   EXPECT_EQ(m[1], "ROUTES.csv:4: route: 'r1' listed twice (first at line 2)");
   EXPECT_EQ(m[2].rfind("ROUTES.csv:5: grade: 'V?'", 0), 0u) << m[2];
@@ -105,8 +105,8 @@ TEST(RatingsIo, WholeFileErrors) {
   auto empty = ReadRatingsInput("", "T.csv", std::nullopt);
   ASSERT_FALSE(empty.ok());
   EXPECT_EQ(empty.status().message(), "T.csv:1: empty file (expected a header)");
-  auto quote = ReadRatingsInput(std::string(kHeader) + "a,\"r1,2026-01-01,flash,,\n", "T.csv",
-                                std::nullopt);
+  auto quote =
+      ReadRatingsInput(std::string(kHeader) + "a,\"r1,2026-01-01,flash,,\n", "T.csv", std::nullopt);
   ASSERT_FALSE(quote.ok());
   EXPECT_EQ(quote.status().message().rfind("T.csv:2", 0), 0u) << quote.status().message();
 }

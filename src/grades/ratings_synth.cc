@@ -78,13 +78,13 @@ Status SynthGymParams::Validate() const {
     return bad("--routes", "1 to " + std::to_string(kMaxSynthRoutes));
   }
   if (ticks_per_route < 0 || int64_t(ticks_per_route) * routes > kMaxSynthTicks) {
-    return bad("--ticks-per-route", "0 or more, at most " + std::to_string(kMaxSynthTicks) +
-                                        " ticks in all");
+    return bad("--ticks-per-route",
+               "0 or more, at most " + std::to_string(kMaxSynthTicks) + " ticks in all");
   }
   if (max_tries < 1 || max_tries > kMaxTickAttempts) return bad("max_tries", "1 to 500");
   const std::pair<const char*, double> positive[] = {
-      {"difficulty_sd", difficulty_sd}, {"ability_sd", ability_sd}, {"choice_sd", choice_sd},
-      {"logit_per_unit", logit_per_unit}, {"setter_sd", setter_sd}, {"felt_sd", felt_sd}};
+      {"difficulty_sd", difficulty_sd},   {"ability_sd", ability_sd}, {"choice_sd", choice_sd},
+      {"logit_per_unit", logit_per_unit}, {"setter_sd", setter_sd},   {"felt_sd", felt_sd}};
   for (const auto& [f, v] : positive) {
     if (!std::isfinite(v) || v <= 0) return bad(f, "a number > 0");
   }

@@ -38,12 +38,12 @@ struct SynthGymParams {
   // A climber tries routes near their level: the tick's climber is the one
   // whose ability is nearest a target drawn from N(route + 0.5, choice_sd).
   double choice_sd = 1.5;
-  int max_tries = 6;  // a session's tries, uniform in 1..max_tries
+  int max_tries = 6;                           // a session's tries, uniform in 1..max_tries
   double logit_per_unit = 1.0986122886681098;  // ln 3: the model's own
   double setter_sd = 1.0;                      // setter's grade: round(d + N(0, setter_sd))
   double felt_share = 0.25;                    // share of sends that leave a felt grade
-  double felt_bias = 0.3;    // felt = round(d - felt_bias (a - d) + N(0, felt_sd)):
-  double felt_sd = 1.0;      // strong climbers feel routes easier
+  double felt_bias = 0.3;  // felt = round(d - felt_bias (a - d) + N(0, felt_sd)):
+  double felt_sd = 1.0;    // strong climbers feel routes easier
   // Ranges, names the field. Pure.
   Status Validate() const;
 };
@@ -83,13 +83,13 @@ RatingProblem SynthProblem(const SynthGym& gym);
 struct RatingEvaluation {
   int routes = 0;
   int ticks = 0;
-  double spearman = 0;  // fitted vs true difficulty, all routes
-  double coverage = 0;  // share of routes whose 80% interval holds the truth
-  double mae = 0;       // mean |fitted - true|, all routes
-  double setter_mae = 0;  // mean |setter's grade - true|, all routes
-  int felt_routes = 0;    // routes with at least one felt grade
-  double mae_felt_routes = 0;  // mean |fitted - true| on those routes
-  double felt_mae = 0;         // mean |median felt grade - true| on those routes
+  double spearman = 0;             // fitted vs true difficulty, all routes
+  double coverage = 0;             // share of routes whose 80% interval holds the truth
+  double mae = 0;                  // mean |fitted - true|, all routes
+  double setter_mae = 0;           // mean |setter's grade - true|, all routes
+  int felt_routes = 0;             // routes with at least one felt grade
+  double mae_felt_routes = 0;      // mean |fitted - true| on those routes
+  double felt_mae = 0;             // mean |median felt grade - true| on those routes
   double mean_interval_width = 0;  // hi - lo, mean over routes
   bool exact_intervals = false;
 };

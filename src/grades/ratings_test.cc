@@ -95,7 +95,8 @@ std::vector<double> DenseInverseDiagonal(const RatingProblem& p, const RatingPar
   }
   for (const RatingPair& q : p.pairs) {
     const size_t a = size_t(q.climber), d = c_n + size_t(q.route);
-    const double pr = 1 / (1 + std::exp(-k.logit_per_unit * (f.ability[a] - f.difficulty[d - c_n])));
+    const double pr =
+        1 / (1 + std::exp(-k.logit_per_unit * (f.ability[a] - f.difficulty[d - c_n])));
     const double w = k.logit_per_unit * k.logit_per_unit * (q.wins + q.losses) * pr * (1 - pr);
     h[a][a] += w;
     h[d][d] += w;
@@ -220,7 +221,8 @@ TEST(Ratings, DeterministicAndWarmStartAgree) {
   auto w = FitRatings(p, kV, warm);
   ASSERT_TRUE(w.ok());
   EXPECT_LT(w->newton_iterations, a->newton_iterations);
-  for (size_t r = 0; r < p.setter.size(); ++r) EXPECT_NEAR(w->difficulty[r], a->difficulty[r], 1e-9);
+  for (size_t r = 0; r < p.setter.size(); ++r)
+    EXPECT_NEAR(w->difficulty[r], a->difficulty[r], 1e-9);
 }
 
 TEST(Ratings, SingleRouteUpdate) {
