@@ -541,12 +541,17 @@ Result<RatingFit> FitRatings(const RatingProblem& problem, const RatingParams& p
   Solver solver(problem, params, m);
   std::vector<double> x(c_n + r_n);
   const RatingFit* warm = options.warm_start;
-  if (warm != nullptr && warm->ability.size() == c_n && warm->difficulty.size() == r_n) {
+  for (size_t c = 0; c < c_n; ++c) x[c] = m;
+  for (size_t r = 0; r < r_n; ++r) x[c_n + r] = problem.setter[r].value_or(m);
+  if (warm != nullptr && warm->ability.size() <= c_n && warm->difficulty.size() <= r_n) {
+    // The last fit's values; climbers and routes added since start from
+    // their priors and settle in one coordinate round.
     std::copy(warm->ability.begin(), warm->ability.end(), x.begin());
     std::copy(warm->difficulty.begin(), warm->difficulty.end(), x.begin() + long(c_n));
+    if (warm->ability.size() < c_n || warm->difficulty.size() < r_n) {
+      solver.CoordinatePasses(&x, 1);
+    }
   } else {
-    for (size_t c = 0; c < c_n; ++c) x[c] = m;
-    for (size_t r = 0; r < r_n; ++r) x[c_n + r] = problem.setter[r].value_or(m);
     solver.CoordinatePasses(&x, kCoordinateRounds);
   }
   std::vector<double> g, step, trial(x.size());

@@ -161,8 +161,10 @@ struct RatingFitOptions {
   // take 5 to 15).
   int max_newton_iterations = 100;
   IntervalMethod intervals = IntervalMethod::kAuto;
-  // Start from this fit's values (a refit after new ticks: sizes must match
-  // the problem's, else it is ignored). Not owned; may be null.
+  // Start from this fit's values (a refit after new ticks). Indices are
+  // kept: climbers and routes added since (indices past the fit's) start
+  // from their priors; a fit with more climbers or routes than the problem
+  // is ignored. Not owned; may be null.
   const RatingFit* warm_start = nullptr;
 };
 

@@ -223,6 +223,23 @@ TEST(Ratings, DeterministicAndWarmStartAgree) {
   EXPECT_LT(w->newton_iterations, a->newton_iterations);
   for (size_t r = 0; r < p.setter.size(); ++r)
     EXPECT_NEAR(w->difficulty[r], a->difficulty[r], 1e-9);
+  // A new climber and a new route since the last fit: the warm start keeps
+  // the known values and reaches the cold fit's optimum.
+  SynthGym more = gym;
+  more.true_ability.push_back(4);
+  more.true_difficulty.push_back(4);
+  more.setter_grade.push_back(6);
+  more.ticks.push_back({200, 300, 0, TickOutcome::kSend, 3, 5});
+  more.ticks.push_back({200, 4, 0, TickOutcome::kFlash, std::nullopt, std::nullopt});
+  const RatingProblem q = SynthProblem(more);
+  auto cold = FitRatings(q, kV);
+  auto grown = FitRatings(q, kV, warm);
+  ASSERT_TRUE(cold.ok() && grown.ok());
+  ASSERT_EQ(grown->difficulty.size(), 301u);
+  for (size_t r = 0; r < q.setter.size(); ++r) {
+    EXPECT_NEAR(grown->difficulty[r], cold->difficulty[r], 1e-9);
+  }
+  EXPECT_NEAR(grown->ability[200], cold->ability[200], 1e-9);
 }
 
 TEST(Ratings, SingleRouteUpdate) {
