@@ -531,9 +531,9 @@ Result<RatingFit> FitRatings(const RatingProblem& problem, const RatingParams& p
   const bool exact = options.intervals == IntervalMethod::kExact ||
                      (options.intervals == IntervalMethod::kAuto && r_n <= kMaxExactRoutes);
   if (exact && r_n > kMaxExactRoutes) {
-    return Status::InvalidInput("ratings: exact intervals are limited to " +
+    return Status::InvalidInput("intervals: exact intervals are limited to " +
                                 std::to_string(kMaxExactRoutes) + " routes, got " +
-                                std::to_string(r_n));
+                                std::to_string(r_n) + " (use approximate)");
   }
   RatingFit fit;
   fit.prior_mean = PriorMean(problem);
