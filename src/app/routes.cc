@@ -551,7 +551,9 @@ Result<ImportSummary> Routes::ImportCsv(const Viewer& v, std::string_view routes
     if (!CanSet(role)) return Status::Permission("only the gym's setters may import routes to it");
   } else {
     SB_ASSIGN_OR_RETURN(gym, gyms_.DefaultGym(v));
-    if (gym) SB_ASSIGN_OR_RETURN(role, gyms_.RoleIn(v, *gym));
+    if (gym) {
+      SB_ASSIGN_OR_RETURN(role, gyms_.RoleIn(v, *gym));
+    }
   }
   store::GymStore* gs = store::GymStoreOf(store_);
   SB_ASSIGN_OR_RETURN(SiteExport ex,

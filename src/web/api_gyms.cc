@@ -46,7 +46,9 @@ Result<std::optional<int>> OptInt(const json& body, const char* field) {
 
 // The wall fields of a body over `w` (absent fields keep w's values).
 Status ReadWall(const json& body, app::Wall* w) {
-  if (body.contains("name")) SB_ASSIGN_OR_RETURN(w->name, StringField(body, "name"));
+  if (body.contains("name")) {
+    SB_ASSIGN_OR_RETURN(w->name, StringField(body, "name"));
+  }
   if (body.contains("discipline")) {
     SB_ASSIGN_OR_RETURN(w->discipline, StringField(body, "discipline"));
   }
@@ -58,7 +60,9 @@ Status ReadWall(const json& body, app::Wall* w) {
     SB_ASSIGN_OR_RETURN(std::optional<int> p, OptInt(body, "position"));
     w->position = p.value_or(0);
   }
-  if (body.contains("reset_weeks")) SB_ASSIGN_OR_RETURN(w->reset_weeks, OptInt(body, "reset_weeks"));
+  if (body.contains("reset_weeks")) {
+    SB_ASSIGN_OR_RETURN(w->reset_weeks, OptInt(body, "reset_weeks"));
+  }
   if (body.contains("plan")) {
     const json& p = body["plan"];
     if (p.is_null()) {
