@@ -82,7 +82,7 @@ TEST_F(AppTest, RolesWallsAndAnotherGymsIds) {
   f.state = "planned";
   f.set_on = "2026-12-01";
   f.setters = std::vector<std::string>{"setter", "A Guest"};
-  Result<int64_t> r = services_->routes.Create(setter, kCrimpLadder, false, f);
+  Result<int64_t> r = services_->routes.Create(setter, testing::kCrimpLadder, false, f);
   ASSERT_TRUE(r.ok()) << r.status().message();
   Result<store::RouteRecord> got = services_->routes.Get(head, *r);
   ASSERT_TRUE(got.ok());
