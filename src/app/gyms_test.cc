@@ -151,6 +151,51 @@ TEST_F(AppTest, ImportingTheOriginalExportTwiceDuplicatesNothing) {
   EXPECT_EQ(there->ids.size(), 3u);
 }
 
+TEST_F(AppTest, GymFieldsTravelThroughTheCrdlHeaderAndTheCsvExport) {
+  Viewer head = User("head"), other = User("other");
+  Result<int64_t> g = services_->gyms.Create(head, "Barn");
+  Result<int64_t> g2 = services_->gyms.Create(other, "Rocks");
+  ASSERT_TRUE(g.ok() && g2.ok());
+  for (auto [who, gym] : {std::pair{head, *g}, std::pair{other, *g2}}) {
+    Wall cave;
+    cave.gym_id = gym;
+    cave.name = "Cave";
+    ASSERT_TRUE(services_->gyms.AddWall(who, cave).ok());
+  }
+  // The header's state:, strip:, set: and repeated setter: lines (docs/formats.md).
+  const std::string crdl =
+      "name: Archived\ngrade: V2\nwall: Cave\nsetter: Ann\nsetter: Bob\nset: 2026-10-01\n"
+      "state: stripped\nstrip: 2026-11-20\n---\nR jug\nL crimp\n";
+  GymFields f;
+  f.gym = *g;
+  Result<int64_t> r = services_->routes.Create(head, crdl, true, f);
+  ASSERT_TRUE(r.ok()) << r.status().message();
+  store::RouteRecord got = *services_->routes.Get(head, *r);
+  EXPECT_EQ(got.state, "stripped");
+  EXPECT_EQ(got.strip_on, "2026-11-20");
+  EXPECT_EQ(got.set_on, "2026-10-01");
+  EXPECT_EQ(got.wall_name, "Cave");
+  ASSERT_EQ(got.setters.size(), 2u);
+  EXPECT_EQ(got.setters[1].name, "Bob");
+  // A climber's header cannot put a route on the wall.
+  Viewer climber = User("climber");
+  ASSERT_TRUE(services_->gyms.AddMember(head, *g, "climber", "climber").ok());
+  EXPECT_EQ(services_->routes.Create(climber, crdl, true, f).status().code(), Code::kPermission);
+  // Export, then import into the other gym: the fields come back.
+  Result<CsvFiles> ex = services_->routes.ExportCsv(head, true);
+  ASSERT_TRUE(ex.ok());
+  Result<ImportSummary> im = services_->routes.ImportCsv(other, ex->routes_csv, ex->moves_csv, *g2);
+  ASSERT_TRUE(im.ok()) << im.status().message();
+  ASSERT_EQ(im->ids.size(), 1u);
+  store::RouteRecord back = *services_->routes.Get(other, im->ids[0].second);
+  EXPECT_EQ(back.gym_id, *g2);
+  EXPECT_EQ(back.state, "stripped");
+  EXPECT_EQ(back.strip_on, "2026-11-20");
+  EXPECT_EQ(back.set_on, "2026-10-01");
+  EXPECT_EQ(back.wall_name, "Cave");  // the other gym's wall of that name
+  EXPECT_EQ(back.setters.size(), 2u);
+}
+
 TEST_F(AppTest, TheFirstGymIsMadeAtStartAndItsFirstAccountIsHead) {
   Result<std::optional<int64_t>> first = services_->gyms.DefaultGym(Viewer{});
   ASSERT_TRUE(first.ok());
