@@ -59,6 +59,10 @@ int RunServe(const std::vector<std::string>& args) {
   app.add_option("--base-url", base_url,
                  "the server's public address for links printed on route cards' QR codes "
                  "(e.g. https://gym.example.org; default: the address it listens on)");
+  std::string gym_name = "My gym";
+  app.add_option("--gym-name", gym_name,
+                 "the name of the install's first gym, made at the first start (issue 21; "
+                 "later starts leave an existing gym's name alone)");
   if (int rc = ParseArgs(app, args); rc >= 0) return rc;
 
   std::error_code ec;
@@ -94,6 +98,7 @@ int RunServe(const std::vector<std::string>& args) {
   options.access_log = log;
   options.secure_cookie = secure_cookie;
   options.base_url = base_url;
+  options.app.first_gym_name = gym_name;
   if (options.static_dir.empty() && web::DefaultStaticDir().empty()) {
     std::fprintf(stderr, "serve: warning: web assets (web/app.js) not found; pages lack style\n");
   }

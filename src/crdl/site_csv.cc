@@ -15,7 +15,11 @@ namespace {
 const char* const kRouteColumns[] = {"route_id", "user_id", "name", "description", "created_at",
                                      "grade", "type", "is_variation", "nna", "dim_mask",
                                      "max_repeat", "prec_trunc", "transient", "rx", "ry", "rz",
-                                     "vx", "vy", "vz", "is_public"};
+                                     "vx", "vy", "vz", "is_public",
+                                     // Ours (issue 21), optional on reading: every other
+                                     // metadata line ("wall: Cave", "setter: Ann", "state:
+                                     // set", ...), one per line, in header order.
+                                     "metadata"};
 const char* const kMoveColumns[] = {"route_id", "seq_no", "hand", "move",
                                     "nnn", "delta", "error", "crux"};
 const char* const kParamColumns[] = {"nna", "dim_mask", "max_repeat", "prec_trunc", "transient",
@@ -89,6 +93,16 @@ Result<SiteRoute> ReadRouteRow(const Table& t, size_t i) {
   r.route.SetMeta("name", name.empty() ? "route " + std::to_string(r.id) : name);
   if (std::string g = OneLine(t.Get(i, "grade")); !g.empty()) r.route.SetMeta("grade", g);
   if (std::string ty = OneLine(t.Get(i, "type")); !ty.empty()) r.route.SetMeta("type", ty);
+  const std::string metadata = t.Get(i, "metadata");
+  for (std::string_view line : SplitLines(metadata)) {
+    // Only lines that read as metadata; anything else in the column is dropped.
+    std::string text = OneLine(line);
+    CrdlLine l = ScanCrdlLine(text, CrdlSection::kHeader);
+    if (l.kind != CrdlLineKind::kMeta) continue;
+    const std::string key = ToLower(l.key);
+    if (key == "name" || key == "grade" || key == "type") continue;
+    r.route.header.push_back({std::string(l.key), std::string(l.value)});
+  }
   std::string description = t.Get(i, "description");
   for (std::string_view line : SplitLines(description)) {
     std::string text(line);
@@ -219,6 +233,14 @@ void FormatSiteExport(const SiteExport& e, std::string* routes_csv, std::string*
                   r.route.Meta("type").value_or(""), r.is_variation ? "t" : "f"};
     for (const char* k : kParamColumns) row.push_back(p(k));
     row.push_back(r.is_public ? "t" : "f");
+    std::string meta;
+    for (const HeaderLine& h : r.route.header) {
+      const std::string key = ToLower(h.key);
+      if (h.key.empty() || key == "name" || key == "grade" || key == "type") continue;
+      if (!meta.empty()) meta += '\n';
+      meta += h.key + ": " + OneLine(h.value);
+    }
+    row.push_back(meta);
     *routes_csv += FormatCsvRow(row);
     for (size_t i = 0; i < r.route.moves.size(); ++i) {
       const Move& m = r.route.moves[i];

@@ -115,6 +115,43 @@ TEST(SiteCsv, RoutesPrintAsValidCrdlAndCruxesRoundTrip) {
   EXPECT_EQ(again->routes[0].route, r);
 }
 
+TEST(SiteCsv, OtherMetadataTravelsInItsOwnColumn) {
+  // Issue 21: the gym fields (and any other metadata) survive export and import.
+  Result<Route> r = ParseCrdl(
+      "name: Archived\ngrade: V2\nwall: Cave\nsetter: Ann\nsetter: Bob\nstate: stripped\n"
+      "strip: 2026-11-20\nA description line.\n---\nR jug\n",
+      "r.crdl");
+  ASSERT_TRUE(r.ok());
+  SiteExport e;
+  SiteRoute sr;
+  sr.id = 7;
+  sr.route = *r;
+  e.routes.push_back(sr);
+  std::string rc, mc;
+  FormatSiteExport(e, &rc, &mc);
+  EXPECT_NE(rc.find(",metadata\n"), std::string::npos) << rc;
+  EXPECT_NE(rc.find("\"wall: Cave\nsetter: Ann\nsetter: Bob\nstate: stripped\nstrip: 2026-11-20\""),
+            std::string::npos)
+      << rc;
+  auto again = ParseSiteExport(rc, "r2", mc, "m2");
+  ASSERT_TRUE(again.ok()) << again.status().message();
+  const Route& back = again->routes[0].route;
+  EXPECT_EQ(back.Meta("wall").value_or(""), "Cave");
+  EXPECT_EQ(back.Meta("state").value_or(""), "stripped");
+  EXPECT_EQ(back.Meta("strip").value_or(""), "2026-11-20");
+  int setters = 0;
+  for (const HeaderLine& h : back.header) setters += h.key == "setter";
+  EXPECT_EQ(setters, 2);
+  // A file without the column (the original site's) reads as before; text
+  // that is not metadata in the column is dropped, never taken as a move.
+  auto plain = ParseSiteExport(
+      "route_id,name,metadata\n1,A,\"not metadata\n---\nR jug\"\n", "r3",
+      "route_id,seq_no,hand,move\n1,1,R,jug\n", "m3");
+  ASSERT_TRUE(plain.ok()) << plain.status().message();
+  EXPECT_EQ(plain->routes[0].route.header.size(), 1u);  // the name only
+  EXPECT_EQ(plain->routes[0].route.moves.size(), 1u);
+}
+
 TEST(SiteCsv, SafeHeaderText) {
   EXPECT_EQ(SafeHeaderText("---"), "- - -");
   EXPECT_EQ(SafeHeaderText(" --- "), "- - -");
