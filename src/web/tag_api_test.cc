@@ -178,6 +178,9 @@ TEST_F(TagApiTest, EveryVisibleRouteHasATagAndPrivateOnesOfOthersAre404) {
   EXPECT_EQ(bob.Status("/tags.pdf?ids=" + p), 200);
   EXPECT_EQ(bob.Status("/tags.pdf?ids=" + p + "," + p + "," + p + "," + p), 400);  // over 3
   EXPECT_EQ(bob.Status("/tags.pdf?ids="), 400);
+  // A list longer than a short string's inline buffer.
+  EXPECT_EQ(bob.Status("/tags.pdf?ids=" + p + ",%20" + p + ",%20" + p + ",%20" + p + "%20"), 400);
+  EXPECT_EQ(bob.Status("/tags.pdf?ids=000000000" + p + ",%20000000000" + p), 200);
   EXPECT_EQ(bob.Status("/tags.pdf?ids=1,banana"), 400);
 }
 

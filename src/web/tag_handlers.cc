@@ -51,7 +51,8 @@ void PageTagPdf(Exchange& x) {
 
 void GetTagSheetPdf(Exchange& x) {
   std::vector<int64_t> ids;
-  for (std::string_view part : Split(x.req.Query("ids").value_or(""), ',')) {
+  const std::string list = x.req.Query("ids").value_or("");  // outlives the views of Split
+  for (std::string_view part : Split(list, ',')) {
     if (Trim(part).empty()) continue;
     std::optional<int64_t> id = ParseId(std::string(Trim(part)));
     if (!id) {
