@@ -37,6 +37,11 @@ struct Limits {
   // Rows in one route list (more are cut to this), and the default.
   int max_list_rows = 5000;
   int default_list_rows = 500;
+  // Routes on one sheet of tags (GET /tags.pdf): 15 pages of 8, more than a
+  // gym resets in a day; a tag costs about 2 ms of a core (docs/web.md, "The
+  // tag on the wall"), so a full sheet stays near a quarter of a second, the
+  // cost of a route card, and needs no work budget.
+  size_t max_tag_sheet_routes = 120;
 };
 
 // Log-in and sign-up throttling (docs/web.md, "Log-in throttling"). Every

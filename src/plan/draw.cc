@@ -5,6 +5,7 @@
 #include <string>
 
 #include "base/number.h"
+#include "plan/card.h"
 
 namespace sb::plan {
 
@@ -74,17 +75,19 @@ void DrawTrajectory(cairo_t* cr, const RoutePlan& plan, double width, double hei
   cairo_stroke(cr);
   cairo_set_font_size(cr, 10);
   double sx = TickStep(xmax - xmin, 6), sz = TickStep(zmax - zmin, 5);
-  for (double t = std::ceil(xmin / sx) * sx; t <= xmax; t += sx) {
+  // Ticks are multiples of the step (k × step, not a running sum) and print
+  // rounded (plan::CardNumber: no -7.699999999999999 on a card).
+  for (double k = std::ceil(xmin / sx), t = k * sx; t <= xmax; t = ++k * sx) {
     cairo_move_to(cr, px(t), bottom);
     cairo_line_to(cr, px(t), bottom + 4);
     cairo_stroke(cr);
-    Text(cr, px(t), bottom + 7, FormatDouble(std::abs(t) < sx * 1e-9 ? 0.0 : t), 0.5, 0);
+    Text(cr, px(t), bottom + 7, CardNumber(std::abs(t) < sx * 1e-9 ? 0.0 : t), 0.5, 0);
   }
-  for (double t = std::ceil(zmin / sz) * sz; t <= zmax; t += sz) {
+  for (double k = std::ceil(zmin / sz), t = k * sz; t <= zmax; t = ++k * sz) {
     cairo_move_to(cr, left - 4, pz(t));
     cairo_line_to(cr, left, pz(t));
     cairo_stroke(cr);
-    Text(cr, left - 7, pz(t), FormatDouble(std::abs(t) < sz * 1e-9 ? 0.0 : t), 1, 0.5);
+    Text(cr, left - 7, pz(t), CardNumber(std::abs(t) < sz * 1e-9 ? 0.0 : t), 1, 0.5);
   }
   cairo_set_font_size(cr, 12);
   Text(cr, (left + right) / 2, height - 6, "x", 0.5, 1);

@@ -6,6 +6,7 @@
 #include <algorithm>
 
 #include "base/number.h"
+#include "plan/card.h"
 #include "plan/draw.h"
 
 namespace sb::plan {
@@ -80,11 +81,11 @@ Result<std::string> RenderPdf(const RoutePlan& plan, const std::string& title,
       " step " + FormatDouble(p.step) + ", skip " + std::to_string(p.skip) + "; mapping " +
       chaos::MappingKindName(p.mapping.kind) + ", mask " + chaos::MaskString(p.mapping.mask);
   if (p.mapping.max_repeat) params1 += ", max repeat " + std::to_string(p.mapping.max_repeat);
-  Text(cr, M, y, params1, W - 2 * M);
+  Text(cr, M, y, CardRoundNumbers(params1), W - 2 * M);
   y += 11;
   Text(cr, M, y,
-       "Reference IC (" + FormatTriple(p.ref_ic) + "), variation IC (" +
-           FormatTriple(p.var_ic) + ")",
+       CardRoundNumbers("Reference IC (" + FormatTriple(p.ref_ic) + "), variation IC (" +
+                        FormatTriple(p.var_ic) + ")"),
        W - 2 * M);
   y += 8;
 

@@ -18,8 +18,13 @@ module.exports = async (t) => {
   const id = r.data.id;
   await page.goto(base + '/variations/' + id);
   await shot('08-card');
+  // Issue 21: the URL under the QR code is one line (screen and print).
+  const oneLine = async () => page.locator('figure.qr figcaption').evaluate((e) =>
+    e.getBoundingClientRect().height < parseFloat(getComputedStyle(e).fontSize) * 1.6);
+  check(await oneLine(), 'the card\'s URL under the QR code is one line on screen');
   await page.emulateMedia({ media: 'print' });
   await shot('09-card-print');
+  check(await oneLine(), 'the card\'s URL under the QR code is one line in print');
   for (const format of ['A4', 'Letter']) {
     const file = path.join(out, 'card-print-' + format + '.pdf');
     const buf = await page.pdf({ path: file, format, printBackground: true });
