@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <map>
 
+#include "app/limits.h"
 #include "app/variations.h"
 #include "base/text.h"
 #include "grades/evaluate.h"
@@ -62,9 +63,10 @@ namespace {
 
 Status NoRoute(int64_t id) { return Status::NotFound("no route " + std::to_string(id)); }
 
-// The metadata and CRDL of a record from its text.
-Status FillFromCrdl(std::string_view crdl, store::RouteRecord* rec) {
+// The metadata and CRDL of a record from its text, within the route limits.
+Status FillFromCrdl(std::string_view crdl, const RouteLimits& limits, store::RouteRecord* rec) {
   SB_ASSIGN_OR_RETURN(Route r, ParseCrdl(crdl, "route.crdl"));
+  SB_RETURN_IF_ERROR(CheckRouteLimits(r, limits, "route.crdl"));
   FillMetadata(r, rec);
   rec->crdl = std::string(crdl);
   return Status::Ok();
@@ -210,7 +212,7 @@ Result<store::RouteRecord> Routes::GetOwned(const Viewer& v, int64_t id) {
 Result<int64_t> Routes::Create(const Viewer& v, std::string_view crdl, bool is_public) {
   if (!v.logged_in()) return Status::Unauthenticated("log in first");
   store::RouteRecord rec;
-  SB_RETURN_IF_ERROR(FillFromCrdl(crdl, &rec));
+  SB_RETURN_IF_ERROR(FillFromCrdl(crdl, options_.limits.route, &rec));
   rec.is_public = is_public;
   rec.owner_id = v.user_id;
   return store_->InsertRoute(rec);
@@ -223,7 +225,7 @@ Status Routes::Update(const Viewer& v, int64_t id, const RouteEdit& edit) {
     // A variation whose moves the setter edits is no longer what its request
     // made: the same request makes a new one.
     if (r.is_variation && MoveLines(*edit.crdl) != MoveLines(r.crdl)) r.request_key.clear();
-    SB_RETURN_IF_ERROR(FillFromCrdl(*edit.crdl, &r));
+    SB_RETURN_IF_ERROR(FillFromCrdl(*edit.crdl, options_.limits.route, &r));
   }
   if (edit.is_public) {
     if (*edit.is_public && HasPrivateSource(r, false)) {
@@ -306,6 +308,9 @@ Result<ImportSummary> Routes::ImportCsv(const Viewer& v, std::string_view routes
     if (!check.ok()) {
       return Status::InvalidInputAt(at, "route " + std::to_string(sr.id) + ": " +
                                             check.status().reason());
+    }
+    if (Status s = CheckRouteLimits(*check, lim.route); !s.ok()) {
+      return Status::InvalidInputAt(at, "route " + std::to_string(sr.id) + ": " + s.message());
     }
     Imported im{&sr, {}, {}};
     store::RouteRecord& rec = im.record;

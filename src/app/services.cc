@@ -12,7 +12,8 @@ Services::Services(store::Store* store, const Options& opts, Clock* clock)
       variations(store, opts, &plans),
       maps(store, opts),
       climber_feedback(store, opts, clock),
-      studies(store, opts, clock) {
+      studies(store, opts, clock),
+      renders(opts.renders) {
   // Rows written by an older version get their metadata columns (grades,
   // colour, wall, ...) derived again; a failure leaves them as they were.
   Result<int> refreshed = routes.RefreshMetadata();
