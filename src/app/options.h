@@ -146,7 +146,7 @@ inline BudgetPolicy RenderBudgetPolicy() {
   BudgetPolicy p;
   p.free_below = 20e3;             // under ~20 ms: every route of the original site
   p.anonymous_max_cost = 400e3;    // ~0.4 s per request anonymous
-  p.user_max_cost = 2e6;           // ~2 s signed in (exports of a big gym)
+  p.user_max_cost = 1e6;           // ~1 s signed in
   p.anonymous_cost_per_minute = 3e6;  // ~3 s of a core per address per minute
   p.user_cost_per_minute = 20e6;      // ~20 s per user per minute
   p.max_parallel = 2;
@@ -157,12 +157,17 @@ inline BudgetPolicy RenderBudgetPolicy() {
 
 // What a rendered thing costs in render units (~1 us of a core), measured
 // with the largest inputs the limits allow (docs/web.md, "Work budgets").
+// Measured on the loaded 2-core machine (tests/abuse.py's routes): a
+// 1,000-move route page 25 ms, its plan page 0.1-0.3 s, a card of 10
+// moves 0.1-0.15 s and of 400 moves 1.6-2 s, 64 KiB of editor text 0.2-0.35 s.
 struct RenderCosts {
-  double page_per_move = 30;     // a route or plan page, route JSON, CRDL
-  double card_per_move = 100;    // a card as PDF or SVG (cairo)
+  double page_per_move = 30;     // a route page, route JSON, CRDL, editor page
+  double plan_per_move = 300;    // a plan page, variation JSON (the plan's tables)
+  double card_base = 100e3;      // a card as PDF or SVG (cairo layout and fonts)...
+  double card_per_move = 5e3;    // ...and per move: ~60 moves anonymous, ~180 signed in
   double list_per_row = 10;      // a route list row (page or JSON)
   double export_per_route = 60;  // a CSV export, per visible route
-  double editor_per_line = 40;   // the editor's live feedback, per line
+  double editor_per_byte = 5;    // the editor's live feedback (the grammar's work)
 };
 
 struct Options {

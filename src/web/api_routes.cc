@@ -112,7 +112,7 @@ void PostFeedback(Exchange& x) {
   const bool over = crdl->size() > app::kMaxEditorBytes ||
                     line_count > static_cast<size_t>(app::kMaxEditorLines);
   auto slot =
-      AdmitWork(x, over ? 0 : line_count * x.services.options.render_costs.editor_per_line);
+      AdmitWork(x, over ? 0 : crdl->size() * x.services.options.render_costs.editor_per_byte);
   if (!slot) return;
   app::EditorFeedback f = app::ReadForEditor(*crdl, x.services.options.limits.route);
   json out;

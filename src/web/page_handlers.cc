@@ -115,13 +115,13 @@ void PageVary(Exchange& x) {
 void PageImport(Exchange& x) { Html(x, ImportPage(x.caller.page())); }
 
 namespace {
-// The variation's plan, admitted by the work budget at `per_move` render
-// units per move; nullopt when refused (the reply is written).
+// The variation's plan, admitted by the work budget at `base` + `per_move`
+// render units per move; nullopt when refused (the reply is written).
 struct AdmittedPlan {
   app::PlanView view;
   app::WorkBudget::Slot slot;
 };
-std::optional<AdmittedPlan> AdmittedPlanOf(Exchange& x, double per_move) {
+std::optional<AdmittedPlan> AdmittedPlanOf(Exchange& x, double base, double per_move) {
   Result<int64_t> id = PathId(x.req, "No such variation.");
   if (!id.ok()) {
     PageError(x, id.status());
@@ -129,11 +129,11 @@ std::optional<AdmittedPlan> AdmittedPlanOf(Exchange& x, double per_move) {
   }
   // The stored move count prices the work before the plan is (re)built.
   Result<store::RouteRecord> r = x.services.routes.Get(x.caller.viewer, *id);
-  if (!r.ok()) {
-    PageError(x, r.status());
+  if (!r.ok() || !r->is_variation) {
+    PageError(x, r.ok() ? Status::NotFound("No such variation.") : r.status());
     return std::nullopt;
   }
-  std::optional<app::WorkBudget::Slot> slot = AdmitWork(x, r->move_count * per_move);
+  std::optional<app::WorkBudget::Slot> slot = AdmitWork(x, base + r->move_count * per_move);
   if (!slot) return std::nullopt;
   Result<app::PlanView> p = x.services.variations.Plan(x.caller.viewer, *id);
   if (!p.ok()) {
@@ -184,7 +184,8 @@ std::string ShortLink(Exchange& x, int64_t id) {
 }
 
 void PagePlan(Exchange& x) {
-  std::optional<AdmittedPlan> a = AdmittedPlanOf(x, x.services.options.render_costs.page_per_move);
+  const app::RenderCosts& c = x.services.options.render_costs;
+  std::optional<AdmittedPlan> a = AdmittedPlanOf(x, 0, c.plan_per_move);
   if (!a) return;
   const app::PlanView* p = &a->view;
   Html(x, WithBlock(PlanPage(x.caller.page(), p->record, *p->plan, p->smoothing_note,
@@ -193,7 +194,8 @@ void PagePlan(Exchange& x) {
 }
 
 void PagePlanSvg(Exchange& x) {
-  std::optional<AdmittedPlan> a = AdmittedPlanOf(x, x.services.options.render_costs.card_per_move);
+  const app::RenderCosts& c = x.services.options.render_costs;
+  std::optional<AdmittedPlan> a = AdmittedPlanOf(x, c.card_base, c.card_per_move);
   if (!a) return;
   const app::PlanView* p = &a->view;
   Result<std::string> svg = plan::RenderCardSvg(*p->plan, CardInfoOf(x, p->record), PaperOf(x));
@@ -203,7 +205,8 @@ void PagePlanSvg(Exchange& x) {
 }
 
 void PagePlanPdf(Exchange& x) {
-  std::optional<AdmittedPlan> a = AdmittedPlanOf(x, x.services.options.render_costs.card_per_move);
+  const app::RenderCosts& c = x.services.options.render_costs;
+  std::optional<AdmittedPlan> a = AdmittedPlanOf(x, c.card_base, c.card_per_move);
   if (!a) return;
   const app::PlanView* p = &a->view;
   plan::Paper paper = PaperOf(x);
