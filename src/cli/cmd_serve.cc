@@ -63,6 +63,12 @@ int RunServe(const std::vector<std::string>& args) {
   app.add_option("--gym-name", gym_name,
                  "the name of the install's first gym, made at the first start (issue 21; "
                  "later starts leave an existing gym's name alone)");
+  std::vector<std::string> allowed_hosts;
+  app.add_option("--allowed-host", allowed_hosts,
+                 "a host name the server answers for (repeatable); besides it only the "
+                 "--base-url host, the --host address and loopback names (localhost, "
+                 "127.x.x.x, ::1); requests naming another Host get 421")
+      ->allow_extra_args(false);
   if (int rc = ParseArgs(app, args); rc >= 0) return rc;
 
   std::error_code ec;
@@ -99,6 +105,7 @@ int RunServe(const std::vector<std::string>& args) {
   options.secure_cookie = secure_cookie;
   options.base_url = base_url;
   options.app.first_gym_name = gym_name;
+  options.allowed_hosts = allowed_hosts;
   if (options.static_dir.empty() && web::DefaultStaticDir().empty()) {
     std::fprintf(stderr, "serve: warning: web assets (web/app.js) not found; pages lack style\n");
   }
