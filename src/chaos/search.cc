@@ -570,7 +570,8 @@ Result<SearchResult> SearchVariation(const std::vector<InputRoute>& inputs,
   if (!v.ok()) return v.status();
   r.variation = std::move(*v);
   if (swap_hands) {
-    r.hands_swapped = AlternateHands(&r.variation.moves, constraints.keep_start);
+    r.hands_swapped =
+        AlternateHands(&r.variation.moves, constraints.keep_start, constraints.keep_finish);
   }
   r.outcomes = ev->checker().Report(r.variation);
   auto swapped = [&](int j) {
