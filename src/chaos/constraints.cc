@@ -322,7 +322,7 @@ std::vector<ConstraintOutcome> ConstraintChecker::Report(const Variation& v) con
   return out;
 }
 
-int AlternateHands(std::vector<VariedMove>* moves) {
+int AlternateHands(std::vector<VariedMove>* moves, bool keep_first_hand, bool keep_last_hand) {
   const size_t n = moves->size();
   if (n < 2) return 0;
   // Pattern p: position j gets the first move's hand when (j % 2 == 0) != p.
@@ -335,7 +335,14 @@ int AlternateHands(std::vector<VariedMove>* moves) {
     swaps[0] += (*moves)[j].hand != even;
     swaps[1] += (*moves)[j].hand != odd;
   }
-  const int pattern = swaps[1] < swaps[0] ? 1 : 0;
+  int pattern = swaps[1] < swaps[0] ? 1 : 0;
+  if (keep_first_hand) {
+    pattern = 0;
+  } else if (keep_last_hand) {
+    // The pattern giving the last position its own hand.
+    const Hand last = (*moves)[n - 1].hand;
+    pattern = (((n - 1) % 2 == 0) ? h0 : other) == last ? 0 : 1;
+  }
   int count = 0;
   for (size_t j = 0; j < n; ++j) {
     Hand want = (j % 2 == 0) == (pattern == 0) ? h0 : other;
