@@ -1,5 +1,7 @@
 #include "app/tags.h"
 
+#include <algorithm>
+
 #include "base/text.h"
 
 namespace sb::app {
@@ -9,9 +11,16 @@ plan::TagInfo TagInfoOf(const store::RouteRecord& r, const std::string& url) {
   t.name = r.name;
   t.grade = r.grade;
   t.colour = r.colour;
-  t.wall = r.wall;
-  for (std::string_view s : Split(r.setter, ',')) {
-    if (!Trim(s).empty()) t.setters.emplace_back(Trim(s));
+  // The gym's wall row and assigned setters (issue 21) before the CRDL's
+  // free text.
+  t.wall = r.wall_name.empty() ? r.wall : r.wall_name;
+  for (const store::RouteSetter& s : r.setters) {
+    if (!Trim(s.name).empty()) t.setters.emplace_back(Trim(s.name));
+  }
+  if (t.setters.empty()) {
+    for (std::string_view s : Split(r.setter, ',')) {
+      if (!Trim(s).empty()) t.setters.emplace_back(Trim(s));
+    }
   }
   if (t.setters.empty() && !r.owner_name.empty()) t.setters.push_back(r.owner_name);
   t.set_on = r.set_on.empty() ? r.created_at.substr(0, 10) : r.set_on;
@@ -34,6 +43,50 @@ Result<std::vector<store::RouteRecord>> TagSheetRoutes(Routes& routes, const Vie
     SB_ASSIGN_OR_RETURN(store::RouteRecord r, routes.Get(v, id));
     out.push_back(std::move(r));
   }
+  return out;
+}
+
+Result<std::vector<store::RouteRecord>> GymTagSheetRoutes(Routes& routes, const Viewer& v,
+                                                          int64_t gym, const std::string& wall,
+                                                          const std::string& state,
+                                                          const Limits& limits) {
+  std::vector<std::string> states;
+  if (Trim(state).empty()) {
+    states = {"planned", "set"};
+  } else {
+    states = {std::string(Trim(state))};
+  }
+  std::vector<store::RouteRecord> listed;
+  for (const std::string& s : states) {
+    RouteQuery q;
+    q.gym = gym;
+    q.wall = wall;
+    q.state = s;
+    q.sort = "name";
+    q.limit = static_cast<int>(limits.max_tag_sheet_routes) + 1;
+    SB_ASSIGN_OR_RETURN(RoutePage page, routes.Search(v, q));
+    if (listed.size() + static_cast<size_t>(page.total) > limits.max_tag_sheet_routes) {
+      return Status::InvalidInput(
+          "wall: " + std::to_string(listed.size() + static_cast<size_t>(page.total)) +
+          " routes match, at most " + std::to_string(limits.max_tag_sheet_routes) +
+          " print on one sheet of tags; choose a wall or a state");
+    }
+    for (store::RouteRecord& r : page.routes) listed.push_back(std::move(r));
+  }
+  std::vector<store::RouteRecord> out;
+  out.reserve(listed.size());
+  for (const store::RouteRecord& r : listed) {
+    // GetRoute fills the setters, which lists leave out.
+    SB_ASSIGN_OR_RETURN(store::RouteRecord full, routes.Get(v, r.id));
+    out.push_back(std::move(full));
+  }
+  std::stable_sort(out.begin(), out.end(), [](const store::RouteRecord& a,
+                                              const store::RouteRecord& b) {
+    const std::string& wa = a.wall_name.empty() ? a.wall : a.wall_name;
+    const std::string& wb = b.wall_name.empty() ? b.wall : b.wall_name;
+    if (wa != wb) return wa < wb;
+    return ToLower(a.name) < ToLower(b.name);
+  });
   return out;
 }
 

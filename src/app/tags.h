@@ -16,7 +16,8 @@
 
 namespace sb::app {
 
-// The tag of `r`: name, grade, colour, wall, setters (the route's `setter:`
+// The tag of `r`: name, grade, colour, wall (its wall row's name, else the
+// CRDL's `wall:`), setters (the assigned setters, else the route's `setter:`
 // split at commas, else its owner's name), set date (`set_on`, else the day
 // it was added) and `url` (its `/r/{id}` link, made by the caller, which
 // knows the server's address). Pure.
@@ -30,6 +31,18 @@ plan::TagInfo TagInfoOf(const store::RouteRecord& r, const std::string& url);
 Result<std::vector<store::RouteRecord>> TagSheetRoutes(Routes& routes, const Viewer& v,
                                                        const std::vector<int64_t>& ids,
                                                        const Limits& limits);
+
+// The routes of a gym's sheet of tags (GET /api/gyms/{gym}/tags.pdf): those
+// of gym `gym` on wall `wall` (a wall id or name; "" = every wall) in state
+// `state` ("" = planned and set, the routes a setting day tags), ordered by
+// wall and name, each with its setters. Errors: kNotFound when the viewer is
+// not a member of the gym or the wall is another gym's; kInvalidInput naming
+// "state" for an unknown state and naming "wall" when more routes match than
+// limits.max_tag_sheet_routes (the message says how many). Thread-safe.
+Result<std::vector<store::RouteRecord>> GymTagSheetRoutes(Routes& routes, const Viewer& v,
+                                                          int64_t gym, const std::string& wall,
+                                                          const std::string& state,
+                                                          const Limits& limits);
 
 }  // namespace sb::app
 

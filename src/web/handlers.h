@@ -153,6 +153,7 @@ void GetStatic(Exchange& x);
 // tags (GET /tags.pdf?ids=1,2,3).
 void PageTag(Exchange& x);
 void PageTagPdf(Exchange& x);
+void GetGymTagSheetPdf(Exchange& x);  // GET /api/gyms/{id}/tags.pdf?wall=&state=
 void GetTagSheetPdf(Exchange& x);
 
 }  // namespace sb::web

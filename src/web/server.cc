@@ -57,6 +57,7 @@ const Endpoint kEndpoints[] = {
     {"PUT", "/api/gyms/{id}/walls/{wall}", PutWall},
     {"POST", "/api/gyms/{id}/circuits", PostCircuit},
     {"GET", "/api/gyms/{id}/circuits", ListCircuits},
+    {"GET", "/api/gyms/{id}/tags.pdf", GetGymTagSheetPdf},
     {"GET", "/api/routes/{id}/history", GetRouteHistory},
     {"GET", "/gyms", PageGyms},
     {"GET", "/gyms/{id}", PageGym},

@@ -43,6 +43,9 @@ void PageTag(Exchange& x) {
 void PageTagPdf(Exchange& x) {
   auto t = TagOfPath(x);
   if (!t.ok()) return PageError(x, t.status());
+  const app::RenderCosts& c = x.services.options.render_costs;
+  std::optional<app::WorkBudget::Slot> slot = AdmitWork(x, c.tag_base + c.tag_each);
+  if (!slot) return;
   const plan::Paper paper = TagPaperOf(x.req);
   Result<std::string> pdf = plan::RenderTagPdf(t->second, paper);
   if (!pdf.ok()) return PageError(x, pdf.status());
@@ -64,6 +67,10 @@ void GetTagSheetPdf(Exchange& x) {
   Result<std::vector<store::RouteRecord>> routes = app::TagSheetRoutes(
       x.services.routes, x.caller.viewer, ids, x.services.options.limits);
   if (!routes.ok()) return PageError(x, routes.status());
+  const app::RenderCosts& c = x.services.options.render_costs;
+  std::optional<app::WorkBudget::Slot> slot =
+      AdmitWork(x, c.tag_base + c.tag_each * static_cast<double>(routes->size()));
+  if (!slot) return;
   std::vector<plan::TagInfo> tags;
   tags.reserve(routes->size());
   for (const store::RouteRecord& r : *routes) tags.push_back(app::TagInfoOf(r, ShortLink(x, r.id)));
@@ -71,6 +78,29 @@ void GetTagSheetPdf(Exchange& x) {
   Result<std::string> pdf = plan::RenderTagSheetPdf(tags, paper);
   if (!pdf.ok()) return PageError(x, pdf.status());
   SendPdf(x, *pdf, "tags", paper);
+}
+
+void GetGymTagSheetPdf(Exchange& x) {
+  std::optional<int64_t> gym = ParseId(x.req.PathParam("id"));
+  if (!gym) return ApiError(x, Status::NotFound("no such gym"));
+  Result<std::vector<store::RouteRecord>> routes = app::GymTagSheetRoutes(
+      x.services.routes, x.caller.viewer, *gym, x.req.Query("wall").value_or(""),
+      x.req.Query("state").value_or(""), x.services.options.limits);
+  if (!routes.ok()) return ApiError(x, routes.status());
+  if (routes->empty()) {
+    return ApiError(x, Status::NotFound("no routes to tag (wall and state filters)"));
+  }
+  const app::RenderCosts& c = x.services.options.render_costs;
+  std::optional<app::WorkBudget::Slot> slot =
+      AdmitWork(x, c.tag_base + c.tag_each * static_cast<double>(routes->size()));
+  if (!slot) return;
+  std::vector<plan::TagInfo> tags;
+  tags.reserve(routes->size());
+  for (const store::RouteRecord& r : *routes) tags.push_back(app::TagInfoOf(r, ShortLink(x, r.id)));
+  const plan::Paper paper = TagPaperOf(x.req);
+  Result<std::string> pdf = plan::RenderTagSheetPdf(tags, paper);
+  if (!pdf.ok()) return ApiError(x, pdf.status());
+  SendPdf(x, *pdf, "tags-gym-" + std::to_string(*gym), paper);
 }
 
 }  // namespace sb::web

@@ -1,10 +1,24 @@
 // The gym (issue 21): a head setter creates a gym with three walls and two circuits and adds a
 // setter, who plans a route on a wall, sets it, strips it and finds it in the archive
-// (state=stripped); a second gym on the same server sees none of it. (The tag printing step is
-// added with the tag issue.)
+// (state=stripped); on the wall it prints its tag (pdftotext shows the fields, zbarimg decodes
+// the QR code to /r/{id}) and the wall's sheet of tags; a second gym on the same server sees
+// none of it.
 'use strict';
+const fs = require('fs');
+const path = require('path');
+const { execFileSync } = require('child_process');
+
+// The first QR code on the first page of a PDF file, or why not.
+function decode(out, pdf, stem) {
+  execFileSync('pdftoppm', ['-png', '-r', '200', '-f', '1', '-l', '1', '-singlefile', pdf, path.join(out, stem)]);
+  try {
+    return execFileSync('zbarimg', ['-q', '--raw', path.join(out, stem + '.png')]).toString().trim().split('\n')[0];
+  } catch (e) {
+    return 'zbarimg failed: ' + e.message;
+  }
+}
 module.exports = async (t) => {
-  const { page, base, check, shot, api } = t;
+  const { page, base, check, shot, api, out } = t;
   const n = Date.now() % 100000;
   const head = 'head' + n, setter = 'crew' + n, rival = 'rival' + n;
   const password = 'correct horse battery';
@@ -77,6 +91,20 @@ module.exports = async (t) => {
   await page.selectOption('#route-state-select', 'set');
   await submit('route-gym-form');
   check((await page.textContent('#route-state')).includes('on the wall'), 'the setter sets it');
+  // Its tag: the fields and a QR code to its climbers' page.
+  const tagRes = await page.request.get(base + '/routes/' + rid + '/tag.pdf');
+  const tagFile = path.join(out, '90-gym-tag.pdf');
+  fs.writeFileSync(tagFile, await tagRes.body());
+  const tagText = execFileSync('pdftotext', [tagFile, '-']).toString();
+  check(tagRes.status() === 200 && ['Gym Ladder ' + n, 'V3', 'red', 'Cave', setter, '/r/' + rid]
+    .every((f) => tagText.includes(f)), 'the tag shows name, grade, circuit, wall, setter and link');
+  const qr = decode(out, tagFile, '90-gym-tag');
+  check(qr.endsWith('/r/' + rid), 'the tag\'s QR code links to /r/' + rid + ' (' + qr + ')');
+  const sheet = await page.request.get(base + '/api/gyms/' + gym + '/tags.pdf?wall=' + cave.id + '&state=set');
+  const sheetFile = path.join(out, '90-gym-sheet.pdf');
+  fs.writeFileSync(sheetFile, await sheet.body());
+  check(sheet.status() === 200 && execFileSync('pdftotext', [sheetFile, '-']).toString().includes('Gym Ladder ' + n),
+        'the wall\'s sheet of tags has it (' + sheet.status() + ')');
   await page.selectOption('#route-state-select', 'stripped');
   await submit('route-gym-form');
   check((await page.textContent('#route-state')).includes('stripped'), 'and strips it');
@@ -94,7 +122,8 @@ module.exports = async (t) => {
   check(other.status === 201, 'a second gym');
   const seen = [];
   for (const p of ['/api/routes/' + rid, '/api/gyms/' + gym, '/api/gyms/' + gym + '/walls',
-                   '/api/routes?gym=' + gym, '/api/routes/' + rid + '/history']) {
+                   '/api/routes?gym=' + gym, '/api/routes/' + rid + '/history',
+                   '/api/gyms/' + gym + '/tags.pdf', '/routes/' + rid + '/tag.pdf']) {
     const r = await api('GET', p);
     if (r.status !== 404) seen.push(p + ' ' + r.status);
   }
