@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "app/climber_policy.h"
 
@@ -93,6 +94,14 @@ struct Options {
   std::string smoothing_model = "default";
   // Climbers' feedback and studies: rate limits, the gym's questionnaire.
   ClimberPolicy climbers;
+  // The name of the install's first gym, made at the first start (issue 21).
+  std::string first_gym_name = "My gym";
+};
+
+// A viewer's role in one gym (issue 21): "head", "setter" or "climber".
+struct GymRole {
+  int64_t gym_id = 0;
+  std::string role;
 };
 
 // Who is asking: a logged-in user or nobody, and from where.
@@ -100,6 +109,9 @@ struct Viewer {
   std::optional<int64_t> user_id;  // nullopt: not logged in
   std::string username;
   std::string address;  // the client's network address (throttling)
+  // The gyms the user is a member of (the web layer fills it per request,
+  // app::Gyms::RolesOf): IsVisible lets members see their gym's routes.
+  std::vector<GymRole> gyms;
 
   bool logged_in() const { return user_id.has_value(); }
 };

@@ -1,10 +1,14 @@
 #include "app/routes.h"
 
 #include <algorithm>
+#include <cctype>
+#include <ctime>
 #include <map>
 
 #include "app/variations.h"
+#include "base/number.h"
 #include "base/text.h"
+#include "store/gym_store.h"
 #include "grades/evaluate.h"
 #include "chaos/variation.h"
 #include "crdl/route.h"
@@ -12,11 +16,25 @@
 
 namespace sb::app {
 
+namespace {
+
+// The gym rule of the visibility rule (store's MemberSees is the same in SQL).
+bool MemberSees(std::optional<int64_t> gym, const std::string& state, const Viewer& v) {
+  if (!gym || state == "draft" || state.empty()) return false;
+  for (const GymRole& g : v.gyms) {
+    if (g.gym_id != *gym) continue;
+    return g.role != "climber" || state == "set" || state == "stripped";
+  }
+  return false;
+}
+
+}  // namespace
+
 bool IsVisible(const store::RouteRecord& r, const Viewer& v) {
-  if (!r.is_public && !IsOwner(r, v)) return false;
+  if (!r.is_public && !IsOwner(r, v) && !MemberSees(r.gym_id, r.state, v)) return false;
   for (const store::SourceRoute& s : r.sources) {
     bool owns = v.user_id && s.owner_id && *s.owner_id == *v.user_id;
-    if (!s.is_public && !owns) return false;
+    if (!s.is_public && !owns && !MemberSees(s.gym_id, s.state, v)) return false;
   }
   return true;
 }
@@ -41,7 +59,7 @@ void FillMetadata(const Route& route, store::RouteRecord* rec, const std::string
   rec->setter = meta({"setter"});
   rec->colour = meta({"colour", "color"});
   rec->wall = meta({"wall", "area"});
-  rec->set_on = meta({"date"});
+  rec->set_on = meta({"date", "set"});  // "set:" is an alias of "date:" (issue 21)
   rec->move_count = static_cast<int>(route.moves.size());
   rec->grade_discipline.clear();
   rec->grade_value.reset();
@@ -120,13 +138,22 @@ Result<store::RouteSort> SortOf(const std::string& s) {
   if (s == "name") return store::RouteSort::kName;
   if (s == "easiest") return store::RouteSort::kEasiest;
   if (s == "hardest") return store::RouteSort::kHardest;
-  return Status::InvalidInput("sort: expected newest, oldest, name, easiest or hardest");
+  if (s == "set") return store::RouteSort::kSetNewest;
+  if (s == "age") return store::RouteSort::kSetOldest;
+  return Status::InvalidInput("sort: expected newest, oldest, name, easiest, hardest, set or age");
 }
 
 }  // namespace
 
 Routes::Routes(store::Store* store, const Options& options, PlanCache* plans)
-    : store_(store), options_(options), plans_(plans) {}
+    : store_(store), gyms_(store, options), options_(options), plans_(plans) {}
+
+Result<Viewer> Routes::WithGyms(const Viewer& v) {
+  if (!v.logged_in() || !v.gyms.empty()) return v;
+  Viewer out = v;
+  SB_ASSIGN_OR_RETURN(out.gyms, gyms_.RolesOf(v));
+  return out;
+}
 
 Result<std::vector<store::RouteRecord>> Routes::List(const Viewer& v, const RouteQuery& q) {
   SB_ASSIGN_OR_RETURN(RoutePage page, Search(v, q));
@@ -139,6 +166,22 @@ Result<RoutePage> Routes::Search(const Viewer& v, const RouteQuery& q) {
   f.text = std::string(Trim(q.text));
   f.setter = std::string(Trim(q.setter));
   f.wall = std::string(Trim(q.wall));
+  if (q.gym) {
+    SB_ASSIGN_OR_RETURN(std::string role, gyms_.RoleIn(v, *q.gym));
+    if (role.empty()) return Status::NotFound("no gym " + std::to_string(*q.gym));
+    f.gym_id = q.gym;
+  }
+  if (int64_t wall_id = 0; ParseInt(f.wall, &wall_id) && wall_id > 0) {
+    // A wall id: that wall's routes, when the viewer may see the wall.
+    SB_ASSIGN_OR_RETURN(Wall w, gyms_.GetWall(v, wall_id));
+    f.wall_id = w.id;
+    f.wall.clear();
+  }
+  f.state = std::string(Trim(q.state));
+  if (!f.state.empty() && !IsRouteState(f.state)) {
+    return Status::InvalidInput("state: expected draft, planned, set or stripped");
+  }
+  f.colour = std::string(Trim(q.circuit));
   f.is_variation = q.variations;
   if (q.mine) f.owner = v.user_id.value_or(-1);
   f.limit = options_.limits.default_list_rows;
@@ -193,9 +236,11 @@ Result<int> Routes::RefreshMetadata() {
   return changed;
 }
 
-Result<store::RouteRecord> Routes::Get(const Viewer& v, int64_t id) {
+Result<store::RouteRecord> Routes::Get(const Viewer& viewer, int64_t id) {
   Result<store::RouteRecord> r = store_->GetRoute(id);
   if (!r.ok()) return r.status().code() == Status::Code::kNotFound ? NoRoute(id) : r.status();
+  if (IsVisible(*r, viewer)) return r;
+  SB_ASSIGN_OR_RETURN(Viewer v, WithGyms(viewer));
   if (!IsVisible(*r, v)) return NoRoute(id);
   return r;
 }
@@ -203,36 +248,243 @@ Result<store::RouteRecord> Routes::Get(const Viewer& v, int64_t id) {
 Result<store::RouteRecord> Routes::GetOwned(const Viewer& v, int64_t id) {
   if (!v.logged_in()) return Status::Unauthenticated("log in first");
   SB_ASSIGN_OR_RETURN(store::RouteRecord r, Get(v, id));
-  if (!IsOwner(r, v)) return Status::Permission("only the route's owner may change it");
-  return r;
+  if (IsOwner(r, v)) return r;
+  if (r.gym_id && r.state != "draft") {  // a draft stays its owner's
+    SB_ASSIGN_OR_RETURN(std::string role, gyms_.RoleIn(v, *r.gym_id));
+    if (CanSet(role)) return r;
+    if (!role.empty()) return Status::Permission("only the gym's setters may change its routes");
+  }
+  return Status::Permission("only the route's owner may change it");
 }
 
 Result<int64_t> Routes::Create(const Viewer& v, std::string_view crdl, bool is_public) {
+  return Create(v, crdl, is_public, GymFields{});
+}
+
+namespace {
+
+// An ISO date "YYYY-MM-DD" (or "" to clear); kInvalidInput naming `field`.
+Status CheckDate(const char* field, const std::string& d) {
+  if (d.empty()) return Status::Ok();
+  bool ok = d.size() == 10 && d[4] == '-' && d[7] == '-';
+  for (size_t i = 0; ok && i < d.size(); ++i) {
+    if (i != 4 && i != 7 && !std::isdigit(static_cast<unsigned char>(d[i]))) ok = false;
+  }
+  if (ok) {
+    int m = std::stoi(d.substr(5, 2)), day = std::stoi(d.substr(8, 2));
+    ok = m >= 1 && m <= 12 && day >= 1 && day <= 31;
+  }
+  if (!ok) return Status::InvalidInput(std::string(field) + ": expected a date YYYY-MM-DD");
+  return Status::Ok();
+}
+
+std::string Today() {
+  std::time_t t = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[16];
+  std::strftime(buf, sizeof buf, "%Y-%m-%d", &tm);
+  return buf;
+}
+
+// The gym fields a request gives, completed by the CRDL header's "state:"
+// and "strip:" lines where the request does not give them (docs/formats.md).
+GymFields WithHeaderFields(std::string_view crdl, GymFields g) {
+  Result<Route> r = ParseCrdl(crdl, "route.crdl");
+  if (!r.ok()) return g;
+  if (!g.state) {
+    if (std::optional<std::string> s = r->Meta("state")) g.state = ToLower(Trim(*s));
+  }
+  if (!g.strip_on) {
+    if (std::optional<std::string> s = r->Meta("strip")) g.strip_on = std::string(Trim(*s));
+  }
+  return g;
+}
+
+// Every "setter:" line of the header, in order (the key may repeat).
+std::vector<std::string> HeaderSetters(std::string_view crdl) {
+  std::vector<std::string> out;
+  Result<Route> r = ParseCrdl(crdl, "route.crdl");
+  if (!r.ok()) return out;
+  for (const HeaderLine& h : r->header) {
+    if (ToLower(h.key) == "setter" && !Trim(h.value).empty() &&
+        out.size() < GymLimits::kMaxSetters) {
+      out.emplace_back(Trim(h.value));
+    }
+  }
+  return out;
+}
+
+std::string Joined(const std::vector<store::RouteSetter>& setters) {
+  std::string out;
+  for (const store::RouteSetter& s : setters) out += (out.empty() ? "" : ", ") + s.name;
+  return out.empty() ? "nobody" : out;
+}
+
+}  // namespace
+
+Status Routes::ApplyGymFields(const Viewer& v, const GymFields& g, store::RouteRecord* rec,
+                              std::vector<std::string>* changes,
+                              std::optional<std::vector<store::RouteSetter>>* setters) {
+  if (!g.wall && !g.state && !g.setters && !g.set_on && !g.strip_on) return Status::Ok();
+  if (!rec->gym_id) return Status::InvalidInput("gym: this route belongs to no gym");
+  SB_ASSIGN_OR_RETURN(std::string role, gyms_.RoleIn(v, *rec->gym_id));
+  if (!CanSet(role)) {
+    if (role.empty() && !IsOwner(*rec, v)) return NoRoute(rec->id);
+    return Status::Permission("only the gym's setters may set a route's wall, state or setters");
+  }
+  if (g.wall) {
+    std::optional<int64_t> wall_id;
+    std::string name;
+    if (!Trim(*g.wall).empty()) {
+      SB_ASSIGN_OR_RETURN(Wall w, gyms_.ResolveWall(*rec->gym_id, *g.wall));
+      wall_id = w.id;
+      name = w.name;
+    }
+    if (wall_id != rec->wall_id) {
+      changes->push_back("wall: " + (name.empty() ? std::string("none") : name));
+      rec->wall_id = wall_id;
+      rec->wall_name = name;
+    }
+  }
+  if (g.set_on) {
+    SB_RETURN_IF_ERROR(CheckDate("set_on", *g.set_on));
+    if (*g.set_on != rec->set_on) changes->push_back("set date: " + *g.set_on);
+    rec->set_on = *g.set_on;
+  }
+  if (g.strip_on) {
+    SB_RETURN_IF_ERROR(CheckDate("strip_on", *g.strip_on));
+    if (*g.strip_on != rec->strip_on) changes->push_back("strip date: " + *g.strip_on);
+    rec->strip_on = *g.strip_on;
+  }
+  if (g.state) {
+    if (!IsRouteState(*g.state)) {
+      return Status::InvalidInput("state: expected draft, planned, set or stripped");
+    }
+    if (*g.state != rec->state) {
+      changes->push_back("state: " + rec->state + " -> " + *g.state);
+      rec->state = *g.state;
+      // The day it happened, unless the request gives it.
+      if (rec->state == "set" && !g.set_on) rec->set_on = Today();
+      if (rec->state == "stripped" && !g.strip_on) rec->strip_on = Today();
+    }
+    if (rec->state == "planned") rec->planned_on = rec->set_on;
+  }
+  if (g.setters) {
+    if (g.setters->size() > GymLimits::kMaxSetters) {
+      return Status::InvalidInput("setters: at most " + std::to_string(GymLimits::kMaxSetters));
+    }
+    SB_ASSIGN_OR_RETURN(std::vector<Member> members, gyms_.Members(v, *rec->gym_id));
+    std::vector<store::RouteSetter> out;
+    for (const std::string& raw : *g.setters) {
+      std::string name(Trim(raw));
+      if (name.empty() || name.size() > GymLimits::kMaxNameBytes) {
+        return Status::InvalidInput("setters: names of 1 to " +
+                                    std::to_string(GymLimits::kMaxNameBytes) + " bytes");
+      }
+      store::RouteSetter s{std::nullopt, name};
+      for (const Member& m : members) {
+        if (ToLower(m.username) == ToLower(name)) s = {m.user_id, m.username};
+      }
+      out.push_back(std::move(s));
+    }
+    std::vector<std::string> before, after;
+    for (const store::RouteSetter& s : rec->setters) before.push_back(s.name);
+    for (const store::RouteSetter& s : out) after.push_back(s.name);
+    if (before != after) {
+      changes->push_back("setters: " + Joined(out));
+      *setters = std::move(out);
+    }
+  }
+  return Status::Ok();
+}
+
+Result<int64_t> Routes::Create(const Viewer& v, std::string_view crdl, bool is_public,
+                               const GymFields& request) {
   if (!v.logged_in()) return Status::Unauthenticated("log in first");
   store::RouteRecord rec;
   SB_RETURN_IF_ERROR(FillFromCrdl(crdl, &rec));
+  GymFields g = WithHeaderFields(crdl, request);
   rec.is_public = is_public;
   rec.owner_id = v.user_id;
-  return store_->InsertRoute(rec);
+  if (g.gym) {
+    SB_ASSIGN_OR_RETURN(std::string role, gyms_.RoleIn(v, *g.gym));
+    if (role.empty()) return Status::NotFound("no gym " + std::to_string(*g.gym));
+    if (!CanSet(role)) return Status::Permission("only the gym's setters may add routes to it");
+    rec.gym_id = g.gym;
+  } else {
+    SB_ASSIGN_OR_RETURN(rec.gym_id, gyms_.DefaultGym(v));
+  }
+  rec.state = "draft";
+  std::vector<std::string> changes;
+  std::optional<std::vector<store::RouteSetter>> setters;
+  SB_RETURN_IF_ERROR(ApplyGymFields(v, g, &rec, &changes, &setters));
+  if (!g.wall && rec.gym_id && !rec.wall.empty()) {
+    // The CRDL's free-text wall names a wall of the gym: the route is on it.
+    if (Result<Wall> w = gyms_.ResolveWall(*rec.gym_id, rec.wall); w.ok()) rec.wall_id = w->id;
+  }
+  if (setters) {
+    rec.setters = *setters;
+  } else {
+    // The CRDL's "setter:" lines name the setters (free text, as before).
+    for (const std::string& name : HeaderSetters(crdl)) rec.setters.push_back({std::nullopt, name});
+  }
+  SB_ASSIGN_OR_RETURN(int64_t id, store_->InsertRoute(rec));
+  if (store::GymStore* gs = store::GymStoreOf(store_); gs && rec.gym_id) {
+    std::string what = "created (" + rec.state + ")";
+    for (const std::string& c : changes) what += "; " + c;
+    SB_RETURN_IF_ERROR(gs->AddHistory(id, v.user_id, what));
+  }
+  return id;
+}
+
+Result<std::vector<HistoryEntry>> Routes::History(const Viewer& v, int64_t id) {
+  SB_ASSIGN_OR_RETURN(store::RouteRecord r, Get(v, id));
+  return gyms_.History(r.id);
 }
 
 Status Routes::Update(const Viewer& v, int64_t id, const RouteEdit& edit) {
   SB_ASSIGN_OR_RETURN(store::RouteRecord r, GetOwned(v, id));
   const bool was_public = r.is_public;
+  std::vector<std::string> changes;
   if (edit.crdl) {
     // A variation whose moves the setter edits is no longer what its request
     // made: the same request makes a new one.
     if (r.is_variation && MoveLines(*edit.crdl) != MoveLines(r.crdl)) r.request_key.clear();
+    const std::string set_on = r.set_on;
+    if (MoveLines(*edit.crdl) != MoveLines(r.crdl)) changes.push_back("moves edited");
+    else if (*edit.crdl != r.crdl) changes.push_back("text edited");
     SB_RETURN_IF_ERROR(FillFromCrdl(*edit.crdl, &r));
+    if (r.set_on.empty()) r.set_on = set_on;  // a set date given by the API stays
   }
   if (edit.is_public) {
     if (*edit.is_public && HasPrivateSource(r, false)) {
       return Status::InvalidInput(kPrivateSourceMessage);
     }
+    if (*edit.is_public != r.is_public) {
+      changes.push_back(*edit.is_public ? "made public" : "made private");
+    }
     r.is_public = *edit.is_public;
   }
+  if (edit.gym.gym && edit.gym.gym != r.gym_id) {
+    return Status::InvalidInput("gym: a route cannot move to another gym");
+  }
+  std::optional<std::vector<store::RouteSetter>> setters;
+  GymFields g = edit.crdl ? WithHeaderFields(*edit.crdl, edit.gym) : edit.gym;
+  if (g.state && *g.state == r.state && !edit.gym.state) g.state.reset();  // unchanged header
+  if (g.strip_on && *g.strip_on == r.strip_on && !edit.gym.strip_on) g.strip_on.reset();
+  SB_RETURN_IF_ERROR(ApplyGymFields(v, g, &r, &changes, &setters));
   SB_RETURN_IF_ERROR(store_->UpdateRoute(r));
   plans_->Forget(id);
+  if (store::GymStore* gs = store::GymStoreOf(store_); gs && !changes.empty()) {
+    std::string what;
+    for (const std::string& c : changes) what += (what.empty() ? "" : "; ") + c;
+    if (setters) {
+      SB_RETURN_IF_ERROR(gs->SetRouteSetters(id, *setters, v.user_id, what));
+    } else {
+      SB_RETURN_IF_ERROR(gs->AddHistory(id, v.user_id, what));
+    }
+  }
   if (was_public && !r.is_public) SB_RETURN_IF_ERROR(HideOwnVariationsOf(v, id));
   return Status::Ok();
 }
@@ -256,6 +508,14 @@ Status Routes::HideOwnVariationsOf(const Viewer& v, int64_t id) {
 
 Status Routes::Delete(const Viewer& v, int64_t id) {
   SB_ASSIGN_OR_RETURN(store::RouteRecord r, GetOwned(v, id));
+  if (!IsOwner(r, v)) {
+    // Setters edit the gym's routes together; only a head setter deletes
+    // someone else's (strip it to keep it in the archive instead).
+    SB_ASSIGN_OR_RETURN(std::string role, gyms_.RoleIn(v, r.gym_id.value_or(0)));
+    if (role != "head") {
+      return Status::Permission("only the route's owner or a head setter may delete it");
+    }
+  }
   SB_RETURN_IF_ERROR(store_->DeleteRoute(r.id));
   plans_->Forget(id);
   return Status::Ok();
@@ -279,8 +539,23 @@ struct Imported {
 }  // namespace
 
 Result<ImportSummary> Routes::ImportCsv(const Viewer& v, std::string_view routes_csv,
-                                        std::string_view moves_csv) {
+                                        std::string_view moves_csv,
+                                        std::optional<int64_t> gym) {
   if (!v.logged_in()) return Status::Unauthenticated("log in first");
+  // The gym the routes go to (issue 21), and whether the importer may put
+  // them on its walls (else they come in as drafts).
+  std::string role;
+  if (gym) {
+    SB_ASSIGN_OR_RETURN(role, gyms_.RoleIn(v, *gym));
+    if (role.empty()) return Status::NotFound("no gym " + std::to_string(*gym));
+    if (!CanSet(role)) return Status::Permission("only the gym's setters may import routes to it");
+  } else {
+    SB_ASSIGN_OR_RETURN(gym, gyms_.DefaultGym(v));
+    if (gym) {
+      SB_ASSIGN_OR_RETURN(role, gyms_.RoleIn(v, *gym));
+    }
+  }
+  store::GymStore* gs = store::GymStoreOf(store_);
   SB_ASSIGN_OR_RETURN(SiteExport ex,
                       ParseSiteExport(routes_csv, kRoutesFile, moves_csv, kMovesFile));
   const Limits& lim = options_.limits;
@@ -293,12 +568,26 @@ Result<ImportSummary> Routes::ImportCsv(const Viewer& v, std::string_view routes
   ImportSummary out;
   std::vector<Imported> batch;
   std::map<int, int> position;  // file route_id -> position in the batch
+  std::map<int, int64_t> earlier;  // file route_id -> the route a former import made
   for (const SiteRoute& sr : ex.routes) {
     SourceLocation at{kRoutesFile, sr.line, 0};
     std::string where = std::string(kRoutesFile) + ": route " + std::to_string(sr.id) + ": ";
     if (sr.route.moves.empty()) {
       out.skipped.push_back(where + "no moves");
       continue;
+    }
+    if (gym && gs) {
+      // Recognised by the original site's id: importing twice duplicates nothing.
+      // A setter's import is the gym's (anyone's earlier import of the id
+      // counts); anyone else's only recognises their own earlier imports.
+      SB_ASSIGN_OR_RETURN(std::optional<int64_t> known,
+                          gs->FindByOriginalId(*gym, sr.id,
+                                               CanSet(role) ? std::nullopt : v.user_id));
+      if (known) {
+        earlier[sr.id] = *known;
+        out.skipped.push_back(where + "already imported as route " + std::to_string(*known));
+        continue;
+      }
     }
     // Exactly what the API would accept as a route.
     std::string crdl = PrintCrdl(sr.route);
@@ -315,6 +604,24 @@ Result<ImportSummary> Routes::ImportCsv(const Viewer& v, std::string_view routes
     rec.is_public = sr.is_public;
     rec.is_variation = sr.is_variation;
     rec.created_at = sr.created_at;
+    rec.gym_id = gym;
+    rec.original_id = sr.id;
+    rec.state = "draft";
+    if (std::optional<std::string> st = sr.route.Meta("state"); st && CanSet(role)) {
+      if (IsRouteState(ToLower(Trim(*st)))) rec.state = ToLower(Trim(*st));
+    }
+    if (std::optional<std::string> strip = sr.route.Meta("strip")) {
+      if (CheckDate("strip", std::string(Trim(*strip))).ok()) rec.strip_on = std::string(Trim(*strip));
+    }
+    if (rec.gym_id && !rec.wall.empty()) {
+      if (Result<Wall> w = gyms_.ResolveWall(*rec.gym_id, rec.wall); w.ok()) rec.wall_id = w->id;
+    }
+    for (const HeaderLine& h : sr.route.header) {
+      if (ToLower(h.key) == "setter" && !Trim(h.value).empty() &&
+          rec.setters.size() < GymLimits::kMaxSetters) {
+        rec.setters.push_back({std::nullopt, std::string(Trim(h.value))});
+      }
+    }
     if (sr.is_variation) {
       std::vector<std::string> notes;
       SB_ASSIGN_OR_RETURN(chaos::VaryParams p, chaos::ParamsFromSiteColumns(sr.params, at, &notes));
@@ -328,7 +635,24 @@ Result<ImportSummary> Routes::ImportCsv(const Viewer& v, std::string_view routes
       int total = 0;
       for (int legacy : VariationInputIds(sr.route.Name())) {
         auto it = position.find(legacy);
-        if (it == position.end()) continue;  // input not in this import: no link
+        if (it == position.end()) {
+          // An input a former import made: linked to that route.
+          if (auto e = earlier.find(legacy); e != earlier.end()) {
+            Result<store::RouteRecord> in = store_->GetRoute(e->second);
+            if (in.ok()) {
+              store::VariationInput vi;
+              vi.route_id = in->id;
+              vi.name = in->name;
+              vi.crdl = in->crdl;
+              rec.inputs.push_back(std::move(vi));
+              if (rec.is_public && !in->is_public) rec.is_public = false;
+              Result<Route> parsed = ParseCrdl(in->crdl, "route");
+              if (parsed.ok()) inputs.push_back({in->name, *parsed});
+              total += in->move_count;
+            }
+          }
+          continue;  // input not in this import: no link
+        }
         const Imported& in = batch[it->second];
         im.inputs.push_back(it->second);
         if (rec.is_public && !in.record.is_public) {
@@ -388,6 +712,12 @@ Result<CsvFiles> Routes::ExportCsv(const Viewer& v, bool mine) {
     Result<Route> parsed = ParseCrdl(rec.crdl, "route " + std::to_string(rec.id));
     if (parsed.ok()) sr.route = std::move(parsed).value();  // else exported without moves
     sr.route.SetMeta("name", rec.name);
+    // The gym fields travel in the header (docs/formats.md), so an import
+    // of this export restores them.
+    if (rec.state != "draft" || sr.route.Meta("state")) sr.route.SetMeta("state", rec.state);
+    if (!rec.strip_on.empty()) sr.route.SetMeta("strip", rec.strip_on);
+    if (!rec.set_on.empty() && !sr.route.Meta("date")) sr.route.SetMeta("set", rec.set_on);
+    if (!rec.wall_name.empty() && !sr.route.Meta("wall")) sr.route.SetMeta("wall", rec.wall_name);
     if (rec.is_variation && !rec.params_json.empty()) {
       Result<chaos::VaryParams> p = chaos::ParamsFromJson(rec.params_json);
       if (p.ok()) sr.params = chaos::SiteColumnsFromParams(*p);

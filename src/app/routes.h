@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "app/gyms.h"
 #include "app/options.h"
 #include "base/status.h"
 #include "crdl/route.h"
@@ -37,10 +38,18 @@ struct RouteQuery {
   // `grade_to` is converted to `grade_from`'s discipline when they differ).
   std::string grade_from, grade_to;
   std::string setter;              // in setter metadata or owner name, ignoring case
-  std::string wall;                // in the wall, ignoring case
+  // A wall id ("12": that wall row's routes) or text (in the wall's free
+  // text, ignoring case).
+  std::string wall;
+  // Issue 21: only this gym's routes (kNotFound unless the viewer is a
+  // member), state ("draft", "planned", "set", "stripped"), circuit colour.
+  std::optional<int64_t> gym;
+  std::string state;
+  std::string circuit;
   std::optional<bool> variations;  // only variations (true) or only routes (false)
   bool mine = false;               // only the viewer's own routes
-  // "newest" (default), "oldest", "name", "easiest", "hardest".
+  // "newest" (default), "oldest", "name", "easiest", "hardest", "set" (set
+  // date, newest first), "age" (set date, oldest first: the oldest on the wall).
   std::string sort;
   int offset = 0;                  // rows skipped (paging), >= 0
   std::optional<int> limit;        // rows; default and cap from Limits
@@ -54,10 +63,22 @@ struct RoutePage {
   int limit = 0;
 };
 
+// A route's gym fields as a request gives them (unset fields stay; issue 21).
+struct GymFields {
+  std::optional<int64_t> gym;         // only at creation: the route's gym
+  std::optional<std::string> wall;    // a wall id or name of the gym; "" = none
+  std::optional<std::string> state;   // draft, planned, set, stripped
+  std::optional<std::vector<std::string>> setters;  // user names (or names)
+  std::optional<std::string> set_on;    // ISO date; the planned date while planned
+  std::optional<std::string> strip_on;  // ISO date
+  bool any() const { return gym || wall || state || setters || set_on || strip_on; }
+};
+
 // What an edit changes (unset fields stay).
 struct RouteEdit {
   std::optional<std::string> crdl;
   std::optional<bool> is_public;
+  GymFields gym;
 };
 
 struct ImportSummary {
@@ -75,6 +96,8 @@ struct CsvFiles {
 // `sources`, transitively): a private route's moves never reach anyone else
 // through a variation. store::RouteFilter applies the same rule in the
 // database for lists.
+// Issue 21: a gym's members also see its routes that are not drafts
+// (climbers: only those set or stripped), by Viewer::gyms.
 bool IsVisible(const store::RouteRecord& r, const Viewer& v);
 // Whether any source of a variation (or the route itself when `self`) is
 // private: such a variation must stay private.
@@ -109,12 +132,25 @@ class Routes {
   // kNotFound "no route N".
   Result<store::RouteRecord> Get(const Viewer& v, int64_t id);
   // A route the viewer may change: kUnauthenticated when not logged in,
-  // kNotFound as Get, kPermission when someone else's.
+  // kNotFound as Get, kPermission when someone else's — unless the viewer
+  // is a head setter or setter of the route's gym and the route is not a
+  // draft (issue 21: setters edit the gym's routes together; a draft stays
+  // its owner's).
   Result<store::RouteRecord> GetOwned(const Viewer& v, int64_t id);
 
   // Stores a new route owned by the viewer; returns its id. Errors:
   // kUnauthenticated, kInvalidInput located at route.crdl:line:col.
   Result<int64_t> Create(const Viewer& v, std::string_view crdl, bool is_public);
+  // The same with gym fields (issue 21): the route goes to `g.gym` (default:
+  // the viewer's only gym, else the install's first), in state draft unless
+  // `g.state` says. Setting any gym field needs the setter or head role in
+  // the gym. Errors as Create, and kNotFound for another gym's (or wall's)
+  // id, kPermission for a member without the role, kInvalidInput naming the
+  // field. A history row records the creation.
+  Result<int64_t> Create(const Viewer& v, std::string_view crdl, bool is_public,
+                         const GymFields& g);
+  // A route's history (who, when, what), oldest first; errors as Get.
+  Result<std::vector<HistoryEntry>> History(const Viewer& v, int64_t id);
   // Errors as GetOwned, and as Create for new CRDL.
   Status Update(const Viewer& v, int64_t id, const RouteEdit& edit);
   // Deletes a route (variations made from it keep their input snapshots).
@@ -127,8 +163,16 @@ class Routes {
   // built), so nothing stored can make a page fail. Routes without moves are
   // skipped and reported. Errors: kUnauthenticated; kInvalidInput located at
   // the file and line ("routes.csv:12: rx: not a finite number").
+  // Issue 21: the routes go to `gym` (kNotFound unless a member;
+  // kPermission unless a setter), default the viewer's only gym or the
+  // install's first; each keeps the original site's id, and a route of the
+  // file already imported to the gym is skipped (reported) — importing twice
+  // duplicates nothing; a variation's input from a former import is linked.
+  // The header's "state:" applies when the importer is the gym's setter,
+  // else routes come in as drafts.
   Result<ImportSummary> ImportCsv(const Viewer& v, std::string_view routes_csv,
-                                  std::string_view moves_csv);
+                                  std::string_view moves_csv,
+                                  std::optional<int64_t> gym = std::nullopt);
   // The visible routes (only the viewer's own with `mine`) in the same
   // format; ids are the database's.
   Result<CsvFiles> ExportCsv(const Viewer& v, bool mine);
@@ -140,8 +184,16 @@ class Routes {
 
  private:
   Status HideOwnVariationsOf(const Viewer& v, int64_t id);
+  // `v` with its gym roles loaded (when logged in and not loaded yet).
+  Result<Viewer> WithGyms(const Viewer& v);
+  // Applies the gym fields of a request to `rec` (its gym already set),
+  // checking the role; appends what changed to `changes`.
+  Status ApplyGymFields(const Viewer& v, const GymFields& g, store::RouteRecord* rec,
+                        std::vector<std::string>* changes,
+                        std::optional<std::vector<store::RouteSetter>>* setters);
 
   store::Store* store_;
+  Gyms gyms_;
   const Options options_;
   PlanCache* plans_;
 };

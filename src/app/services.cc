@@ -12,7 +12,12 @@ Services::Services(store::Store* store, const Options& opts, Clock* clock)
       variations(store, opts, &plans),
       maps(store, opts),
       climber_feedback(store, opts, clock),
-      studies(store, opts, clock) {
+      studies(store, opts, clock),
+      gyms(store, opts) {
+  // An install starts with one gym (issue 21), named at its first start.
+  if (Status g = gyms.EnsureFirstGym(opts.first_gym_name); !g.ok()) {
+    LogError("first gym: " + g.message());
+  }
   // Rows written by an older version get their metadata columns (grades,
   // colour, wall, ...) derived again; a failure leaves them as they were.
   Result<int> refreshed = routes.RefreshMetadata();

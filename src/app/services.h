@@ -9,6 +9,7 @@
 #include "app/accounts.h"
 #include "app/climber_feedback.h"
 #include "app/clock.h"
+#include "app/gyms.h"
 #include "app/maps.h"
 #include "app/options.h"
 #include "app/routes.h"
@@ -31,6 +32,7 @@ struct Services {
   Maps maps;
   ClimberFeedback climber_feedback;
   StudyService studies;
+  Gyms gyms;
 };
 
 }  // namespace sb::app

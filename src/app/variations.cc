@@ -240,6 +240,18 @@ Result<CreatedVariation> Variations::Create(const Viewer& v, const VariationRequ
     recs.push_back(std::move(r));
   }
   SB_ASSIGN_OR_RETURN(bool is_public, VariationVisibility(recs, req.is_public));
+  std::optional<int64_t> gym_id;  // issue 21: checked before any costly work
+  {
+    Gyms gyms(store_, options_);
+    if (req.gym) {
+      SB_ASSIGN_OR_RETURN(std::string role, gyms.RoleIn(v, *req.gym));
+      if (role.empty()) return Status::NotFound("no gym " + std::to_string(*req.gym));
+      if (!CanSet(role)) return Status::Permission("only the gym's setters may add routes to it");
+      gym_id = req.gym;
+    } else {
+      SB_ASSIGN_OR_RETURN(gym_id, gyms.DefaultGym(v));
+    }
+  }
   SB_RETURN_IF_ERROR(CheckRequestSearchBudget(req.setting, req.params, total_moves));
   // The parameters with the setter's request: one codec (plan::ParametersJson),
   // also the key of "the same request made again".
@@ -290,6 +302,7 @@ Result<CreatedVariation> Variations::Create(const Viewer& v, const VariationRequ
   store::RouteRecord rec;
   FillMetadata(varied, &rec);
   rec.owner_id = v.user_id;
+  rec.gym_id = gym_id;
   rec.crdl = PrintCrdl(varied);
   rec.is_public = is_public;
   rec.is_variation = true;

@@ -115,6 +115,10 @@ struct VariationRequest {
   // Make a new variation even when this owner already made one from the same
   // request (else that one is returned, `existing` set).
   bool duplicate = false;
+  // Issue 21: the gym it belongs to (the viewer must be its setter: else
+  // kNotFound / kPermission); default the viewer's only gym, else the
+  // install's first. A new variation is a draft.
+  std::optional<int64_t> gym;
 };
 
 struct CreatedVariation {

@@ -1,4 +1,5 @@
 #include "store/copy.h"
+#include "store/gym_store.h"
 
 #include <gtest/gtest.h>
 
@@ -35,7 +36,20 @@ void Fill(Store& s) {
   int64_t b = *s.CreateUser("Bob", "hash-b");
   ASSERT_TRUE(s.CreateSession({HashToken("t"), a, "", "csrf", 4'000'000'000}).ok());
   ASSERT_TRUE(s.RecordAttempts({"acct:bob", "addr:10.0.0.1"}, 4'000'000'000 - 10, 0).ok());
-  int64_t r1 = *s.InsertRoute(Route(a, "One"));
+  // A gym with a member, a wall and a circuit (schema 6).
+  GymStore* gs = GymStoreOf(&s);
+  ASSERT_NE(gs, nullptr);
+  int64_t gym = *gs->CreateGym("Gym", a);
+  ASSERT_TRUE(gs->PutMember(gym, b, "setter").ok());
+  int64_t wall = *gs->InsertWall({0, gym, "Cave", "bouldering", 30.5, 1, 6});
+  ASSERT_TRUE(gs->InsertCircuit({0, gym, "blue", "V0", "V2"}).ok());
+  RouteRecord one = Route(a, "One");
+  one.gym_id = gym;
+  one.wall_id = wall;
+  one.state = "set";
+  one.setters = {{b, "Bob"}, {std::nullopt, "Guest"}};
+  int64_t r1 = *s.InsertRoute(one);
+  ASSERT_TRUE(gs->AddHistory(r1, b, "state: planned -> set").ok());
   int64_t r2 = *s.InsertRoute(Route(b, "Two", false));
   RouteRecord v = Route(a, "Variation");
   v.is_variation = true;

@@ -10,7 +10,9 @@
 #include <map>
 #include <utility>
 
+#include "base/fold.h"
 #include "base/log.h"
+#include "store/gym_store.h"
 #include "store/open.h"
 #include "store/schema.h"
 #include "store/sql.h"
@@ -45,8 +47,21 @@ std::string SelectRoutes(bool full) {
          "r.setter, " + (full ? "r.crdl" : "''") +
          ", r.is_public, r.is_variation, r.params_json, " + (full ? "r.plan_json" : "''") +
          ", r.smooth, r.created_at, r.updated_at, r.move_count, r.colour, r.wall, r.set_on, "
-         "r.grade_discipline, r.grade_value, r.meta_version, r.request_key "
-         "FROM routes r LEFT JOIN users u ON u.id = r.owner_id";
+         "r.grade_discipline, r.grade_value, r.meta_version, r.request_key, "
+         "r.gym_id, r.wall_id, coalesce(w.name, ''), r.state, r.planned_on, r.strip_on, "
+         "r.original_id "
+         "FROM routes r LEFT JOIN users u ON u.id = r.owner_id "
+         "LEFT JOIN walls w ON w.id = r.wall_id";
+}
+
+// The version of the search text the store writes (routes.search_version):
+// rows of an older one are folded again when the store opens.
+constexpr int kSearchVersion = 1;
+
+// What a route's text search looks in, case-folded (sb::FoldCase): its name
+// and its CRDL (description, header, moves).
+std::string SearchText(const std::string& name, const std::string& crdl) {
+  return FoldCase(name + "\n" + crdl);
 }
 
 RouteRecord ReadRoute(const Rows& s, size_t i) {
@@ -73,6 +88,13 @@ RouteRecord ReadRoute(const Rows& s, size_t i) {
   r.grade_value = s.OptDouble(i, 19);
   r.meta_version = static_cast<int>(s.Int(i, 20));
   r.request_key = s.Text(i, 21);
+  r.gym_id = s.OptInt(i, 22);
+  r.wall_id = s.OptInt(i, 23);
+  r.wall_name = s.Text(i, 24);
+  r.state = s.Text(i, 25);
+  r.planned_on = s.Text(i, 26);
+  r.strip_on = s.Text(i, 27);
+  r.original_id = s.OptInt(i, 28);
   return r;
 }
 
@@ -81,6 +103,8 @@ SourceRoute ReadSource(const Rows& s, size_t i, size_t first) {
   sr.route_id = s.Int(i, first);
   sr.is_public = s.Int(i, first + 1) != 0;
   sr.owner_id = s.OptInt(i, first + 2);
+  sr.gym_id = s.OptInt(i, first + 3);
+  sr.state = s.Text(i, first + 4);
   return sr;
 }
 
@@ -152,14 +176,15 @@ VariationInput ReadInput(const Rows& s, size_t i, size_t first) {
   return vi;
 }
 
-class SqlStore final : public Store {
+class SqlStore final : public Store, public GymStore {
  public:
   explicit SqlStore(std::unique_ptr<sql::Pool> pool)
       : pool_(std::move(pool)), pg_(pool_->dialect() == sql::Dialect::kPostgres) {}
 
   Status Migrate() {
     SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
-    return sql::Migrate(*c);
+    SB_RETURN_IF_ERROR(sql::Migrate(*c));
+    return RefreshSearchText(*c);
   }
 
   int SchemaVersion() override {
@@ -320,12 +345,17 @@ class SqlStore final : public Store {
         Rows r,
         c->Query("UPDATE routes SET crdl = ?, name = ?, grade = ?, setter = ?, is_public = ?, "
                  "move_count = ?, updated_at = ?, colour = ?, wall = ?, set_on = ?, "
-                 "grade_discipline = ?, grade_value = ?, meta_version = ?, request_key = ? "
+                 "grade_discipline = ?, grade_value = ?, meta_version = ?, request_key = ?, "
+                 "gym_id = ?, wall_id = ?, state = ?, planned_on = ?, strip_on = ?, "
+                 "original_id = ?, search_text = ?, search_version = ? "
                  "WHERE id = ? RETURNING id",
                  {route.crdl, route.name, route.grade, route.setter, int64_t{route.is_public},
                   int64_t{route.move_count}, NowText(), route.colour, route.wall, route.set_on,
                   route.grade_discipline, sql::Nullable(route.grade_value),
-                  int64_t{route.meta_version}, route.request_key, route.id}));
+                  int64_t{route.meta_version}, route.request_key, sql::Nullable(route.gym_id),
+                  sql::Nullable(route.wall_id), route.state, route.planned_on, route.strip_on,
+                  sql::Nullable(route.original_id), SearchText(route.name, route.crdl),
+                  int64_t{kSearchVersion}, route.id}));
     if (r.empty()) return Status::NotFound("no route " + std::to_string(route.id));
     return Status::Ok();
   }
@@ -359,9 +389,14 @@ class SqlStore final : public Store {
                                           "WHERE variation_id = ? ORDER BY position",
                                           {id}));
     for (size_t i = 0; i < in.size(); ++i) out.inputs.push_back(ReadInput(in, i, 0));
+    SB_ASSIGN_OR_RETURN(Rows st, c->Query("SELECT user_id, name FROM route_setters "
+                                          "WHERE route_id = ? ORDER BY position",
+                                          {id}));
+    for (size_t i = 0; i < st.size(); ++i) out.setters.push_back({st.OptInt(i, 0), st.Text(i, 1)});
     if (out.is_variation) {
       SB_ASSIGN_OR_RETURN(
-          Rows src, c->Query("SELECT src.id, src.is_public, src.owner_id FROM route_sources s "
+          Rows src, c->Query("SELECT src.id, src.is_public, src.owner_id, src.gym_id, src.state "
+                             "FROM route_sources s "
                              "JOIN routes src ON src.id = s.route_id WHERE s.variation_id = ? "
                              "ORDER BY src.id",
                              {id}));
@@ -430,7 +465,7 @@ class SqlStore final : public Store {
       if (it != index.end()) out[it->second].inputs.push_back(ReadInput(in, i, 1));
     }
     SB_ASSIGN_OR_RETURN(
-        Rows src, c->Query("SELECT s.variation_id, src.id, src.is_public, src.owner_id "
+        Rows src, c->Query("SELECT s.variation_id, src.id, src.is_public, src.owner_id, src.gym_id, src.state "
                            "FROM route_sources s JOIN routes src ON src.id = s.route_id "
                            "JOIN routes r ON r.id = s.variation_id" +
                                where + " ORDER BY s.variation_id, src.id",
@@ -688,7 +723,319 @@ class SqlStore final : public Store {
         });
   }
 
+  // -- gyms (GymStore) ------------------------------------------------------
+
+  Result<int64_t> CreateGym(const std::string& name, std::optional<int64_t> head) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return sql::InTransaction<int64_t>(*c, [&]() -> Result<int64_t> {
+      SB_ASSIGN_OR_RETURN(Rows g, c->Query("INSERT INTO gyms(name, created_at) VALUES(?, ?) "
+                                           "RETURNING id",
+                                           {name, NowText()}));
+      const int64_t id = g.Int(0, 0);
+      if (head) {
+        Violation v;
+        Result<Rows> m = c->Query(
+            "INSERT INTO gym_members(gym_id, user_id, role) VALUES(?, ?, 'head')", {id, *head},
+            &v);
+        if (!m.ok() && v == Violation::kForeignKey) {
+          return Status::NotFound("no user " + std::to_string(*head));
+        }
+        if (!m.ok()) return m.status().WithPrefix("add head setter");
+      }
+      return id;
+    });
+  }
+
+  Status RenameGym(int64_t id, const std::string& name) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(Rows r, c->Query("UPDATE gyms SET name = ? WHERE id = ? RETURNING id",
+                                         {name, id}));
+    if (r.empty()) return Status::NotFound("no gym " + std::to_string(id));
+    return Status::Ok();
+  }
+
+  Result<GymRecord> GetGym(int64_t id) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(Rows r, c->Query("SELECT id, name, created_at, '' FROM gyms WHERE id = ?",
+                                         {id}));
+    if (r.empty()) return Status::NotFound("no gym " + std::to_string(id));
+    return ReadGyms(r)[0];
+  }
+
+  Result<std::vector<GymRecord>> ListGyms() override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(Rows r, c->Query("SELECT id, name, created_at, '' FROM gyms ORDER BY id",
+                                         {}));
+    return ReadGyms(r);
+  }
+
+  Result<std::vector<GymRecord>> GymsOf(int64_t user_id) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(
+        Rows r, c->Query("SELECT g.id, g.name, g.created_at, m.role FROM gyms g "
+                         "JOIN gym_members m ON m.gym_id = g.id WHERE m.user_id = ? ORDER BY g.id",
+                         {user_id}));
+    return ReadGyms(r);
+  }
+
+  Status PutMember(int64_t gym_id, int64_t user_id, const std::string& role) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    Violation v;
+    Result<Rows> r = c->Query(
+        "INSERT INTO gym_members(gym_id, user_id, role) VALUES(?, ?, ?) "
+        "ON CONFLICT(gym_id, user_id) DO UPDATE SET role = excluded.role",
+        {gym_id, user_id, role}, &v);
+    if (!r.ok() && v == Violation::kForeignKey) {
+      return Status::NotFound("no gym " + std::to_string(gym_id) + " or user " +
+                              std::to_string(user_id));
+    }
+    if (!r.ok()) return r.status().WithPrefix("put member");
+    return Status::Ok();
+  }
+
+  Result<std::vector<MemberRecord>> ListMembers(int64_t gym_id) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(
+        Rows r, c->Query("SELECT m.gym_id, m.user_id, u.username, m.role FROM gym_members m "
+                         "JOIN users u ON u.id = m.user_id WHERE m.gym_id = ? ORDER BY m.user_id",
+                         {gym_id}));
+    std::vector<MemberRecord> out;
+    for (size_t i = 0; i < r.size(); ++i) {
+      out.push_back({r.Int(i, 0), r.Int(i, 1), r.Text(i, 2), r.Text(i, 3)});
+    }
+    return out;
+  }
+
+  Result<int64_t> InsertWall(const WallRecord& w) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    Violation v;
+    Result<Rows> r = c->Query(
+        "INSERT INTO walls(gym_id, name, discipline, angle, position, reset_weeks, plan_x, "
+        "plan_y, plan_w, plan_h) VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?, ?) RETURNING id",
+        {w.gym_id, w.name, w.discipline, w.angle, int64_t{w.position},
+         sql::Nullable(w.reset_weeks), sql::Nullable(w.plan_x), sql::Nullable(w.plan_y),
+         sql::Nullable(w.plan_w), sql::Nullable(w.plan_h)},
+        &v);
+    if (!r.ok() && v == Violation::kUnique) {
+      return Status::Conflict("the gym has a wall named '" + w.name + "'");
+    }
+    if (!r.ok() && v == Violation::kForeignKey) {
+      return Status::NotFound("no gym " + std::to_string(w.gym_id));
+    }
+    if (!r.ok()) return r.status().WithPrefix("insert wall");
+    return r->Int(0, 0);
+  }
+
+  Status UpdateWall(const WallRecord& w) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    Violation v;
+    Result<Rows> r = c->Query(
+        "UPDATE walls SET name = ?, discipline = ?, angle = ?, position = ?, reset_weeks = ?, "
+        "plan_x = ?, plan_y = ?, plan_w = ?, plan_h = ? WHERE id = ? RETURNING id",
+        {w.name, w.discipline, w.angle, int64_t{w.position}, sql::Nullable(w.reset_weeks),
+         sql::Nullable(w.plan_x), sql::Nullable(w.plan_y), sql::Nullable(w.plan_w),
+         sql::Nullable(w.plan_h), w.id},
+        &v);
+    if (!r.ok() && v == Violation::kUnique) {
+      return Status::Conflict("the gym has a wall named '" + w.name + "'");
+    }
+    if (!r.ok()) return r.status().WithPrefix("update wall");
+    if (r->empty()) return Status::NotFound("no wall " + std::to_string(w.id));
+    return Status::Ok();
+  }
+
+  Result<WallRecord> GetWall(int64_t id) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(Rows r, c->Query(std::string(kWallSelect) + " WHERE id = ?", {id}));
+    if (r.empty()) return Status::NotFound("no wall " + std::to_string(id));
+    return ReadWalls(r)[0];
+  }
+
+  Result<std::vector<WallRecord>> ListWalls(int64_t gym_id) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(Rows r, c->Query(std::string(kWallSelect) +
+                                             " WHERE gym_id = ? ORDER BY position, id",
+                                         {gym_id}));
+    return ReadWalls(r);
+  }
+
+  Result<int64_t> InsertCircuit(const CircuitRecord& ci) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    Violation v;
+    Result<Rows> r = c->Query(
+        "INSERT INTO circuits(gym_id, colour, grade_from, grade_to) VALUES(?, ?, ?, ?) "
+        "RETURNING id",
+        {ci.gym_id, ci.colour, ci.grade_from, ci.grade_to}, &v);
+    if (!r.ok() && v == Violation::kUnique) {
+      return Status::Conflict("the gym has a circuit '" + ci.colour + "'");
+    }
+    if (!r.ok() && v == Violation::kForeignKey) {
+      return Status::NotFound("no gym " + std::to_string(ci.gym_id));
+    }
+    if (!r.ok()) return r.status().WithPrefix("insert circuit");
+    return r->Int(0, 0);
+  }
+
+  Result<std::vector<CircuitRecord>> ListCircuits(int64_t gym_id) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(Rows r, c->Query("SELECT id, gym_id, colour, grade_from, grade_to "
+                                         "FROM circuits WHERE gym_id = ? ORDER BY id",
+                                         {gym_id}));
+    std::vector<CircuitRecord> out;
+    for (size_t i = 0; i < r.size(); ++i) {
+      out.push_back({r.Int(i, 0), r.Int(i, 1), r.Text(i, 2), r.Text(i, 3), r.Text(i, 4)});
+    }
+    return out;
+  }
+
+  Status SetRouteSetters(int64_t route_id, const std::vector<RouteSetter>& setters,
+                         std::optional<int64_t> user_id, const std::string& what) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return sql::RunInTransaction(*c, [&]() -> Status {
+      SB_ASSIGN_OR_RETURN(Rows r, c->Query("SELECT id FROM routes WHERE id = ?", {route_id}));
+      if (r.empty()) return Status::NotFound("no route " + std::to_string(route_id));
+      SB_RETURN_IF_ERROR(WriteSetters(*c, route_id, setters));
+      if (!what.empty()) SB_RETURN_IF_ERROR(InsertHistory(*c, route_id, user_id, what));
+      return Status::Ok();
+    });
+  }
+
+  Status AddHistory(int64_t route_id, std::optional<int64_t> user_id,
+                    const std::string& what) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return InsertHistory(*c, route_id, user_id, what);
+  }
+
+  Result<std::vector<HistoryRecord>> ListHistory(int64_t route_id) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(
+        Rows r, c->Query("SELECT h.id, h.route_id, h.user_id, coalesce(u.username, ''), h.at, "
+                         "h.what FROM route_history h LEFT JOIN users u ON u.id = h.user_id "
+                         "WHERE h.route_id = ? ORDER BY h.id",
+                         {route_id}));
+    std::vector<HistoryRecord> out;
+    for (size_t i = 0; i < r.size(); ++i) {
+      out.push_back({r.Int(i, 0), r.Int(i, 1), r.OptInt(i, 2), r.Text(i, 3), r.Text(i, 4),
+                     r.Text(i, 5)});
+    }
+    return out;
+  }
+
+  Result<std::optional<int64_t>> FindByOriginalId(int64_t gym_id, int64_t original_id,
+                                                  std::optional<int64_t> owner) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(
+        Rows r, c->Query(std::string("SELECT min(id) FROM routes WHERE gym_id = ? AND "
+                                     "original_id = ?") +
+                             (owner ? " AND owner_id = ?" : ""),
+                         owner ? std::vector<Value>{gym_id, original_id, *owner}
+                               : std::vector<Value>{gym_id, original_id}));
+    return r.OptInt(0, 0);
+  }
+
  private:
+  static std::vector<GymRecord> ReadGyms(const Rows& r) {
+    std::vector<GymRecord> out;
+    for (size_t i = 0; i < r.size(); ++i) {
+      out.push_back({r.Int(i, 0), r.Text(i, 1), r.Text(i, 2), r.Text(i, 3)});
+    }
+    return out;
+  }
+
+  static constexpr const char* kWallSelect =
+      "SELECT id, gym_id, name, discipline, angle, position, reset_weeks, plan_x, plan_y, "
+      "plan_w, plan_h FROM walls";
+
+  static std::vector<WallRecord> ReadWalls(const Rows& r) {
+    std::vector<WallRecord> out;
+    auto opt = [&](size_t i, size_t col) -> std::optional<int> {
+      std::optional<int64_t> v = r.OptInt(i, col);
+      return v ? std::optional<int>(static_cast<int>(*v)) : std::nullopt;
+    };
+    for (size_t i = 0; i < r.size(); ++i) {
+      WallRecord w;
+      w.id = r.Int(i, 0);
+      w.gym_id = r.Int(i, 1);
+      w.name = r.Text(i, 2);
+      w.discipline = r.Text(i, 3);
+      w.angle = r.OptDouble(i, 4).value_or(0);
+      w.position = static_cast<int>(r.Int(i, 5));
+      w.reset_weeks = opt(i, 6);
+      w.plan_x = opt(i, 7);
+      w.plan_y = opt(i, 8);
+      w.plan_w = opt(i, 9);
+      w.plan_h = opt(i, 10);
+      out.push_back(std::move(w));
+    }
+    return out;
+  }
+
+  // Inside a transaction: the route's setters replace any stored ones.
+  static Status WriteSetters(sql::Connection& c, int64_t route_id,
+                             const std::vector<RouteSetter>& setters) {
+    SB_ASSIGN_OR_RETURN(Rows d, c.Query("DELETE FROM route_setters WHERE route_id = ?",
+                                        {route_id}));
+    for (size_t i = 0; i < setters.size(); ++i) {
+      Violation v;
+      Result<Rows> in = c.Query(
+          "INSERT INTO route_setters(route_id, position, user_id, name) VALUES(?, ?, ?, ?)",
+          {route_id, static_cast<int64_t>(i), sql::Nullable(setters[i].user_id), setters[i].name},
+          &v);
+      if (!in.ok() && v == Violation::kForeignKey) {
+        return Status::NotFound("setter: no user " +
+                                std::to_string(setters[i].user_id.value_or(0)));
+      }
+      if (!in.ok()) return in.status().WithPrefix("insert route setter");
+    }
+    return Status::Ok();
+  }
+
+  static Status InsertHistory(sql::Connection& c, int64_t route_id,
+                              std::optional<int64_t> user_id, const std::string& what) {
+    Violation v;
+    Result<Rows> r = c.Query(
+        "INSERT INTO route_history(route_id, user_id, at, what) VALUES(?, ?, ?, ?)",
+        {route_id, sql::Nullable(user_id), NowText(), what}, &v);
+    if (!r.ok() && v == Violation::kForeignKey) {
+      return Status::NotFound("no route " + std::to_string(route_id));
+    }
+    if (!r.ok()) return r.status().WithPrefix("insert route history");
+    return Status::Ok();
+  }
+
+  // Folds the search text of every route written by an older store
+  // (routes.search_version < kSearchVersion), in batches: the migration to
+  // schema 6 cannot fold in SQL alike on both backends.
+  static Status RefreshSearchText(sql::Connection& c) {
+    constexpr int64_t kBatch = 500;
+    for (;;) {
+      SB_ASSIGN_OR_RETURN(Rows r, c.Query("SELECT id, name, crdl FROM routes WHERE "
+                                          "search_version < ? ORDER BY id LIMIT ?",
+                                          {int64_t{kSearchVersion}, kBatch}));
+      if (r.empty()) return Status::Ok();
+      SB_RETURN_IF_ERROR(sql::RunInTransaction(c, [&]() -> Status {
+        for (size_t i = 0; i < r.size(); ++i) {
+          SB_ASSIGN_OR_RETURN(
+              Rows u, c.Query("UPDATE routes SET search_text = ?, search_version = ? WHERE id = ?",
+                              {SearchText(r.Text(i, 1), r.Text(i, 2)), int64_t{kSearchVersion},
+                               r.Int(i, 0)}));
+        }
+        return Status::Ok();
+      }));
+      if (static_cast<int64_t>(r.size()) < kBatch) return Status::Ok();
+    }
+  }
+
+  // The gym rule of the visibility rule, for the routes aliased `t` and the
+  // viewer as one parameter: the viewer is a member of the route's gym and
+  // the route is not a draft (climbers see only routes set or stripped).
+  // app::IsVisible applies the same rule over a RouteRecord.
+  static std::string MemberSees(const std::string& t) {
+    return "(" + t + ".state <> 'draft' AND EXISTS (SELECT 1 FROM gym_members m WHERE "
+           "m.gym_id = " + t + ".gym_id AND m.user_id = ? AND (m.role <> 'climber' OR " + t +
+           ".state IN ('set', 'stripped'))))";
+  }
+
   // Case-insensitive substring test of `hay` against one parameter:
   // instr() in SQLite, strpos() in PostgreSQL.
   std::string Contains(const std::string& hay) const {
@@ -702,23 +1049,45 @@ class SqlStore final : public Store {
   std::string FilterWhere(const RouteFilter& f, std::vector<Value>* params) const {
     const int64_t viewer = f.viewer.value_or(-1);
     std::string w =
-        " WHERE (r.is_public = 1 OR r.owner_id = ?) AND NOT EXISTS (SELECT 1 FROM "
+        " WHERE (r.is_public = 1 OR r.owner_id = ? OR " + MemberSees("r") +
+        ") AND NOT EXISTS (SELECT 1 FROM "
         "route_sources s JOIN routes src ON src.id = s.route_id WHERE s.variation_id = r.id "
-        "AND src.is_public = 0 AND (src.owner_id IS NULL OR src.owner_id <> ?))";
-    params->push_back(viewer);
-    params->push_back(viewer);
+        "AND src.is_public = 0 AND (src.owner_id IS NULL OR src.owner_id <> ?) AND NOT " +
+        MemberSees("src") + ")";
+    params->insert(params->end(), {viewer, viewer, viewer, viewer});
+    if (f.gym_id) {
+      w += " AND r.gym_id = ?";
+      params->push_back(*f.gym_id);
+    }
+    if (f.wall_id) {
+      w += " AND r.wall_id = ?";
+      params->push_back(*f.wall_id);
+    }
+    if (!f.state.empty()) {
+      w += " AND r.state = ?";
+      params->push_back(f.state);
+    }
+    if (!f.colour.empty()) {
+      w += " AND lower(r.colour) = lower(?)";
+      params->push_back(f.colour);
+    }
     if (!f.grade.empty()) {
       w += " AND lower(r.grade) = lower(?)";
       params->push_back(f.grade);
     }
     if (!f.setter.empty()) {
-      w += " AND (" + Contains("r.setter") + " OR " + Contains("coalesce(u.username, '')") + ")";
-      params->insert(params->end(), 2, f.setter);
+      w += " AND (" + Contains("r.setter") + " OR " + Contains("coalesce(u.username, '')") +
+           " OR EXISTS (SELECT 1 FROM route_setters rs WHERE rs.route_id = r.id AND " +
+           Contains("rs.name") + "))";
+      params->insert(params->end(), 3, f.setter);
     }
     if (!f.text.empty()) {
-      w += " AND (" + Contains("r.name") + " OR " + Contains("r.crdl") + " OR " +
-           Contains("coalesce(u.username, '')") + ")";
-      params->insert(params->end(), 3, f.text);
+      // The search text is case-folded in C++ (sb::FoldCase) at write time
+      // and the needle here, so every script compares alike on both backends.
+      w += std::string(" AND (") + (pg_ ? "strpos(r.search_text, ?) > 0" : "instr(r.search_text, ?) > 0") +
+           " OR " + Contains("coalesce(u.username, '')") + ")";
+      params->push_back(FoldCase(f.text));
+      params->push_back(f.text);
     }
     if (!f.wall.empty()) {
       w += " AND " + Contains("r.wall");
@@ -761,6 +1130,10 @@ class SqlStore final : public Store {
       case RouteSort::kHardest:
         return " ORDER BY (r.grade_value IS NULL), r.grade_discipline" + c +
                ", r.grade_value DESC, r.id";
+      case RouteSort::kSetNewest:
+        return " ORDER BY (r.set_on = ''), r.set_on" + c + " DESC, r.id DESC";
+      case RouteSort::kSetOldest:
+        return " ORDER BY (r.set_on = ''), r.set_on" + c + ", r.id";
     }
     return " ORDER BY r.id DESC";
   }
@@ -827,14 +1200,21 @@ class SqlStore final : public Store {
         Rows ins,
         c.Query("INSERT INTO routes(owner_id, name, grade, setter, crdl, move_count, is_public, "
                 "is_variation, params_json, plan_json, smooth, created_at, updated_at, colour, "
-                "wall, set_on, grade_discipline, grade_value, meta_version, request_key) "
-                "VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?) RETURNING id",
+                "wall, set_on, grade_discipline, grade_value, meta_version, request_key, "
+                "gym_id, wall_id, state, planned_on, strip_on, original_id, search_text, "
+                "search_version) "
+                "VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, "
+                "?, ?, ?, ?, ?, ?, ?, ?) RETURNING id",
                 {sql::Nullable(r.owner_id), r.name, r.grade, r.setter, r.crdl,
                  int64_t{r.move_count}, int64_t{r.is_public}, int64_t{r.is_variation},
                  r.params_json, r.plan_json, int64_t{r.smooth}, now, now, r.colour, r.wall,
                  r.set_on, r.grade_discipline, sql::Nullable(r.grade_value),
-                 int64_t{r.meta_version}, r.request_key}));
+                 int64_t{r.meta_version}, r.request_key, sql::Nullable(r.gym_id),
+                 sql::Nullable(r.wall_id), r.state.empty() ? std::string("draft") : r.state,
+                 r.planned_on, r.strip_on, sql::Nullable(r.original_id),
+                 SearchText(r.name, r.crdl), int64_t{kSearchVersion}}));
     int64_t id = ins.Int(0, 0);
+    SB_RETURN_IF_ERROR(WriteSetters(c, id, r.setters));
     for (size_t i = 0; i < r.inputs.size(); ++i) {
       const VariationInput& vi = r.inputs[i];
       std::optional<int64_t> rid = vi.route_id;
@@ -906,6 +1286,8 @@ Result<std::unique_ptr<Store>> StoreOver(Result<std::unique_ptr<sql::Pool>> pool
 }
 
 }  // namespace
+
+GymStore* GymStoreOf(Store* store) { return dynamic_cast<GymStore*>(store); }
 
 bool IsDatabaseUrl(std::string_view db) {
   size_t colon = db.find(':');

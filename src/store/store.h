@@ -60,6 +60,15 @@ struct SourceRoute {
   int64_t route_id = 0;
   bool is_public = true;
   std::optional<int64_t> owner_id;
+  // Schema 6: its gym and state (gym members see its non-draft routes).
+  std::optional<int64_t> gym_id;
+  std::string state;
+};
+
+// One setter of a route (schema 6): an account of the gym, or a name only.
+struct RouteSetter {
+  std::optional<int64_t> user_id;
+  std::string name;
 };
 
 // A route or a variation ("variations are stored like routes"). For a
@@ -102,6 +111,21 @@ struct RouteRecord {
   // Variations: every route they were made from, transitively (GetRoute and
   // AllRoutes fill it; ListRoutes does not).
   std::vector<SourceRoute> sources;
+  // Schema 6 (gyms, docs/web.md "Gyms"): the gym it belongs to, its wall
+  // (a wall row of that gym; `wall` above stays the CRDL's free text),
+  // its state ("draft", "planned", "set", "stripped") and dates (ISO
+  // "YYYY-MM-DD" or ""; set_on above is the set date), the original site's
+  // id of an imported route. Written by InsertRoute and UpdateRoute.
+  std::optional<int64_t> gym_id;
+  std::optional<int64_t> wall_id;
+  std::string wall_name;  // the wall row's name (read only; "" without wall_id)
+  std::string state = "draft";
+  std::string planned_on;
+  std::string strip_on;
+  std::optional<int64_t> original_id;
+  // The setters in order (GetRoute fills them; written by GymStore::
+  // SetRouteSetters).
+  std::vector<RouteSetter> setters;
 };
 
 // The orders a route list can have.
@@ -111,6 +135,8 @@ enum class RouteSort {
   kName,     // name (ignoring case), then id
   kEasiest,  // ungraded last; then discipline ("bouldering" < "roped"), value, id
   kHardest,  // ungraded last; then discipline, value descending, id
+  kSetNewest,  // set date descending (undated last), then id descending
+  kSetOldest,  // set date ascending (undated last), then id: the oldest on the wall first
 };
 
 // Filters for ListRoutes and CountRoutes. Empty strings do not filter.
@@ -125,6 +151,12 @@ struct RouteFilter {
   // setter, wall, and the moves) or the owner's name, case-insensitive.
   std::string text;
   std::string wall;  // substring of the wall, case-insensitive
+  // Schema 6: only the routes of this gym / wall row / state / circuit
+  // colour (exact, case-insensitive); unset or "" do not filter.
+  std::optional<int64_t> gym_id;
+  std::optional<int64_t> wall_id;
+  std::string state;
+  std::string colour;
   std::optional<bool> is_variation;
   std::optional<int64_t> owner;  // only this owner's routes
   // Difficulty range: routes of `grade_discipline` whose grade_value lies in

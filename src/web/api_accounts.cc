@@ -1,4 +1,5 @@
 // JSON API: accounts and sessions.
+#include "base/log.h"
 #include "web/handlers.h"
 
 namespace sb::web {
@@ -27,6 +28,8 @@ void PostUsers(Exchange& x) {
   if (Status s = Credentials(x.req, &user, &pass); !s.ok()) return ApiError(x, s);
   Result<store::User> u = x.services.accounts.SignUp(user, pass, x.caller.viewer.address);
   if (!u.ok()) return ApiError(x, u.status());
+  // The install's first gym's first account is its head setter (issue 21).
+  if (Status g = x.services.gyms.Welcome(u->id); !g.ok()) LogError("welcome: " + g.message());
   ReplyJson(x.res, 201, json{{"id", u->id}, {"username", u->username}});
 }
 

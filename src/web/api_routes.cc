@@ -49,7 +49,9 @@ void PostRoute(Exchange& x) {
   if (!crdl.ok()) return ApiError(x, crdl.status());
   Result<bool> pub = BoolField(*body, "public", true);
   if (!pub.ok()) return ApiError(x, pub.status());
-  Result<int64_t> id = x.services.routes.Create(x.caller.viewer, *crdl, *pub);
+  Result<app::GymFields> gym = GymFieldsOf(*body);
+  if (!gym.ok()) return ApiError(x, gym.status());
+  Result<int64_t> id = x.services.routes.Create(x.caller.viewer, *crdl, *pub, *gym);
   if (!id.ok()) return ApiError(x, id.status());
   x.res.SetHeader("Location", "/routes/" + std::to_string(*id));
   ReplyJson(x.res, 201, json{{"id", *id}});
@@ -75,6 +77,9 @@ void PutRoute(Exchange& x) {
     if (!pub.ok()) return ApiError(x, pub.status());
     edit.is_public = *pub;
   }
+  Result<app::GymFields> gym = GymFieldsOf(*body);
+  if (!gym.ok()) return ApiError(x, gym.status());
+  edit.gym = *gym;
   if (Status s = x.services.routes.Update(x.caller.viewer, *id, edit); !s.ok()) {
     return ApiError(x, s);
   }
@@ -130,7 +135,10 @@ void PostImportCsv(Exchange& x) {
   if (!routes.ok()) return ApiError(x, routes.status());
   Result<std::string> moves = StringField(*body, "moves_csv");
   if (!moves.ok()) return ApiError(x, moves.status());
-  Result<app::ImportSummary> im = x.services.routes.ImportCsv(x.caller.viewer, *routes, *moves);
+  Result<app::GymFields> gym = GymFieldsOf(*body);
+  if (!gym.ok()) return ApiError(x, gym.status());
+  Result<app::ImportSummary> im =
+      x.services.routes.ImportCsv(x.caller.viewer, *routes, *moves, gym->gym);
   if (!im.ok()) return ApiError(x, im.status());
   json ids = json::object();
   for (const auto& [legacy, id] : im->ids) ids[std::to_string(legacy)] = id;

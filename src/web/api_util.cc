@@ -66,6 +66,13 @@ Result<app::RouteQuery> RouteQueryOf(const Request& req) {
   q.grade_to = req.Query("to").value_or("");
   q.setter = req.Query("setter").value_or("");
   q.wall = req.Query("wall").value_or("");
+  q.state = req.Query("state").value_or("");
+  q.circuit = req.Query("circuit").value_or("");
+  if (std::optional<std::string> gym = req.Query("gym"); gym && !gym->empty()) {
+    std::optional<int64_t> id = ParseId(*gym);
+    if (!id) return Status::NotFound("no gym " + *gym);
+    q.gym = *id;
+  }
   q.text = req.Query("q").value_or(req.Query("text").value_or(""));
   q.sort = req.Query("sort").value_or("");
   std::string var = req.Query("variations").value_or("");
@@ -116,7 +123,14 @@ json RouteSummaryJson(const store::RouteRecord& r) {
               {"wall", r.wall},
               {"date", r.set_on},
               {"created_at", r.created_at},
-              {"updated_at", r.updated_at}};
+              {"updated_at", r.updated_at},
+              // Issue 21: the gym fields ("wall" above stays the CRDL's text).
+              {"gym", r.gym_id ? json(*r.gym_id) : json()},
+              {"wall_id", r.wall_id ? json(*r.wall_id) : json()},
+              {"wall_name", r.wall_name},
+              {"state", r.state},
+              {"set_on", r.set_on},
+              {"strip_on", r.strip_on}};
 }
 
 json RouteJson(const store::RouteRecord& r) {
@@ -130,6 +144,9 @@ json RouteJson(const store::RouteRecord& r) {
     }
   }
   j["move_list"] = moves;
+  json setters = json::array();
+  for (const store::RouteSetter& s : r.setters) setters.push_back(s.name);
+  j["setters"] = setters;
   if (r.is_variation) {
     json p = json::parse(r.params_json, nullptr, false);
     j["parameters"] = p.is_discarded() ? json() : p;

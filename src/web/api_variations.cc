@@ -94,6 +94,9 @@ void PostVariation(Exchange& x) {
   Result<std::vector<int64_t>> ids = IdArray(*body, "routes");
   if (!ids.ok()) return ApiError(x, ids.status());
   vr.routes = std::move(ids).value();
+  Result<app::GymFields> gym = GymFieldsOf(*body);  // issue 21: "gym"
+  if (!gym.ok()) return ApiError(x, gym.status());
+  vr.gym = gym->gym;
   Result<bool> smooth = BoolField(*body, "smooth", false);
   if (!smooth.ok()) return ApiError(x, smooth.status());
   vr.smooth = *smooth;

@@ -92,6 +92,29 @@ void PostFeedback(Exchange& x);
 void PostImportCsv(Exchange& x);
 void GetExportRoutes(Exchange& x);
 void GetExportMoves(Exchange& x);
+// api_gyms.cc (issue 21)
+void PostGym(Exchange& x);
+void ListGyms(Exchange& x);
+void GetGym(Exchange& x);
+void PutGym(Exchange& x);
+void PostMember(Exchange& x);
+void ListMembers(Exchange& x);
+void PostWall(Exchange& x);
+void PutWall(Exchange& x);
+void ListWalls(Exchange& x);
+void PostCircuit(Exchange& x);
+void ListCircuits(Exchange& x);
+void GetRouteHistory(Exchange& x);
+// The gym fields of a route request body (gym, wall, state, setters,
+// set_on, strip_on); kInvalidInput naming a field of the wrong type.
+Result<app::GymFields> GymFieldsOf(const nlohmann::json& body);
+// gym_handlers.cc (issue 21)
+void PageGyms(Exchange& x);
+void PageGym(Exchange& x);
+void PageWall(Exchange& x);
+// The gym block of a route page ("" for a route of no gym, or a draft to a
+// non-member).
+std::string GymBlock(Exchange& x, const store::RouteRecord& r);
 // api_variations.cc
 void PostVariation(Exchange& x);
 void GetVariation(Exchange& x);

@@ -86,7 +86,7 @@ void PageRoute(Exchange& x) {
     readings = app::MoveReadings(*parsed);
   }
   Html(x, WithBlock(RoutePage(x.caller.page(), *r, app::IsOwner(*r, x.caller.viewer), readings),
-                    ConsensusBlock(x, *r)));
+                    GymBlock(x, *r) + ConsensusBlock(x, *r)));
 }
 
 void PageVary(Exchange& x) {

@@ -48,6 +48,7 @@ std::string Layout(const PageViewer& v, const std::string& title, const std::str
   h += "<a href=\"/\">Routes</a>\n";
   if (v.logged_in) h += "<a href=\"/routes/new\" id=\"nav-new\">New route</a>\n";
   h += "<a href=\"/vary\" id=\"nav-vary\">Vary</a>\n";
+  if (v.logged_in) h += "<a href=\"/gyms\" id=\"nav-gyms\">Gyms</a>\n";
   h += "<a href=\"/import\">Import/export</a>\n</nav>\n<div class=\"who\">";
   if (v.logged_in) {
     h += "<span id=\"whoami\">" + E(v.username) +
@@ -70,8 +71,11 @@ std::string RouteRows(const std::vector<store::RouteRecord>& routes) {
     h += "<tr><td><a href=\"" + url + "\">" + E(r.name) + "</a>";
     if (r.is_variation) h += " <span class=\"tag\">variation</span>";
     if (!r.is_public) h += " <span class=\"tag private\">private</span>";
+    if (r.state == "planned" || r.state == "stripped") {
+      h += " <span class=\"tag state\">" + E(r.state) + "</span>";
+    }
     h += "</td><td>" + E(r.grade) + "</td><td>" + E(r.setter.empty() ? r.owner_name : r.setter) +
-         "</td><td>" + E(r.wall) + "</td><td class=\"num\">" + std::to_string(r.move_count) + "</td><td>" +
+         "</td><td>" + E(r.wall_name.empty() ? r.wall : r.wall_name) + "</td><td class=\"num\">" + std::to_string(r.move_count) + "</td><td>" +
          E(r.created_at.substr(0, 10)) + "</td></tr>\n";
   }
   return h;
@@ -142,6 +146,9 @@ std::string ListUrl(const app::RouteQuery& q, int offset) {
   add("to", q.grade_to);
   add("setter", q.setter);
   add("wall", q.wall);
+  add("state", q.state);  // issue 21: gym, state and circuit filters
+  add("circuit", q.circuit);
+  if (q.gym) add("gym", std::to_string(*q.gym));
   add("sort", q.sort);
   if (q.variations) add("variations", *q.variations ? "1" : "0");
   if (q.mine) add("mine", "1");
@@ -172,6 +179,12 @@ std::string RouteListPage(const PageViewer& v, const app::RoutePage& page,
        "\"></label>"
        "<label>Wall <input type=\"text\" name=\"wall\" size=\"10\" value=\"" + E(q.wall) +
        "\"></label>"
+       "<label>State <select name=\"state\" id=\"state-filter\">" + Option("", "any", q.state) +
+       Option("draft", "draft", q.state) + Option("planned", "planned", q.state) +
+       Option("set", "on the wall", q.state) + Option("stripped", "stripped (archive)", q.state) +
+       "</select></label>" +
+       (q.gym ? "<input type=\"hidden\" name=\"gym\" value=\"" + std::to_string(*q.gym) + "\">"
+              : std::string()) +
        "<label>Show <select name=\"variations\">" +
        Option("", "routes and variations", q.variations ? (*q.variations ? "1" : "0") : "") +
        Option("0", "routes only", q.variations ? (*q.variations ? "1" : "0") : "") +
@@ -180,6 +193,7 @@ std::string RouteListPage(const PageViewer& v, const app::RoutePage& page,
        "<label>Sort <select name=\"sort\">" + Option("newest", "newest", q.sort) +
        Option("oldest", "oldest", q.sort) + Option("name", "name", q.sort) +
        Option("easiest", "easiest", q.sort) + Option("hardest", "hardest", q.sort) +
+       Option("set", "set date", q.sort) + Option("age", "oldest on the wall", q.sort) +
        "</select></label><button type=\"submit\">Search</button></form>\n";
   if (page.routes.empty()) {
     b += "<p class=\"empty\">No routes match.";

@@ -45,6 +45,22 @@ const Endpoint kEndpoints[] = {
     {"POST", "/api/import/csv", PostImportCsv},
     {"GET", "/api/export/routes.csv", GetExportRoutes},
     {"GET", "/api/export/moves.csv", GetExportMoves},
+    // Gyms (api_gyms.cc, issue 21).
+    {"POST", "/api/gyms", PostGym},
+    {"GET", "/api/gyms", ListGyms},
+    {"GET", "/api/gyms/{id}", GetGym},
+    {"PUT", "/api/gyms/{id}", PutGym},
+    {"POST", "/api/gyms/{id}/members", PostMember},
+    {"GET", "/api/gyms/{id}/members", ListMembers},
+    {"POST", "/api/gyms/{id}/walls", PostWall},
+    {"GET", "/api/gyms/{id}/walls", ListWalls},
+    {"PUT", "/api/gyms/{id}/walls/{wall}", PutWall},
+    {"POST", "/api/gyms/{id}/circuits", PostCircuit},
+    {"GET", "/api/gyms/{id}/circuits", ListCircuits},
+    {"GET", "/api/routes/{id}/history", GetRouteHistory},
+    {"GET", "/gyms", PageGyms},
+    {"GET", "/gyms/{id}", PageGym},
+    {"GET", "/walls/{id}", PageWall},
     // Climbers' feedback and studies (climber_handlers.cc).
     {"POST", "/api/r/{id}/feedback", PostRouteFeedback},
     {"POST", "/api/studies", PostStudy},
@@ -157,6 +173,12 @@ struct Server::Impl {
     }
     c.viewer.user_id = s->user_id;
     c.viewer.username = s->username;
+    // The caller's gyms and roles (issue 21), for the visibility rule.
+    if (Result<std::vector<app::GymRole>> g = services.gyms.RolesOf(c.viewer); g.ok()) {
+      c.viewer.gyms = std::move(g).value();
+    } else {
+      LogError(g.status().message());
+    }
     c.csrf = s->csrf;
     c.session_token = token;
     return c;

@@ -1,0 +1,309 @@
+#include "app/gyms.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "base/number.h"
+#include "base/text.h"
+#include "grades/scale.h"
+
+namespace sb::app {
+
+namespace {
+
+Status NoGym(int64_t id) { return Status::NotFound("no gym " + std::to_string(id)); }
+Status NoWall(const std::string& w) { return Status::NotFound("no wall " + w); }
+
+Status CheckName(const std::string& field, const std::string& name, size_t max) {
+  if (Trim(name).empty()) return Status::InvalidInput(field + ": must not be empty");
+  if (name.size() > max) {
+    return Status::InvalidInput(field + ": at most " + std::to_string(max) + " bytes");
+  }
+  for (unsigned char c : name) {
+    if (c < 0x20 || c == 0x7F) return Status::InvalidInput(field + ": no control characters");
+  }
+  return Status::Ok();
+}
+
+Wall ToWall(const store::WallRecord& r) {
+  Wall w;
+  w.id = r.id;
+  w.gym_id = r.gym_id;
+  w.name = r.name;
+  w.discipline = r.discipline;
+  w.angle = r.angle;
+  w.position = r.position;
+  w.reset_weeks = r.reset_weeks;
+  w.plan_x = r.plan_x;
+  w.plan_y = r.plan_y;
+  w.plan_w = r.plan_w;
+  w.plan_h = r.plan_h;
+  return w;
+}
+
+store::WallRecord ToRecord(const Wall& w) {
+  store::WallRecord r;
+  r.id = w.id;
+  r.gym_id = w.gym_id;
+  r.name = std::string(Trim(w.name));
+  r.discipline = w.discipline;
+  r.angle = w.angle;
+  r.position = w.position;
+  r.reset_weeks = w.reset_weeks;
+  r.plan_x = w.plan_x;
+  r.plan_y = w.plan_y;
+  r.plan_w = w.plan_w;
+  r.plan_h = w.plan_h;
+  return r;
+}
+
+}  // namespace
+
+bool IsRole(const std::string& role) {
+  return role == "head" || role == "setter" || role == "climber";
+}
+
+bool IsRouteState(const std::string& s) {
+  return s == "draft" || s == "planned" || s == "set" || s == "stripped";
+}
+
+Status ValidateWall(const Wall& w) {
+  SB_RETURN_IF_ERROR(CheckName("name", w.name, GymLimits::kMaxNameBytes));
+  if (w.discipline != "bouldering" && w.discipline != "roped") {
+    return Status::InvalidInput("discipline: expected bouldering or roped");
+  }
+  if (!std::isfinite(w.angle) || w.angle < GymLimits::kMinAngle ||
+      w.angle > GymLimits::kMaxAngle) {
+    return Status::InvalidInput("angle: expected degrees from -90 to 90");
+  }
+  if (w.reset_weeks && (*w.reset_weeks < 1 || *w.reset_weeks > GymLimits::kMaxResetWeeks)) {
+    return Status::InvalidInput("reset_weeks: expected 1 to " +
+                                std::to_string(GymLimits::kMaxResetWeeks));
+  }
+  const int set = w.plan_x.has_value() + w.plan_y.has_value() + w.plan_w.has_value() +
+                  w.plan_h.has_value();
+  if (set != 0 && set != 4) return Status::InvalidInput("plan: give x, y, w and h, or none");
+  if (set == 4) {
+    auto in = [](int v, int lo) { return v >= lo && v <= GymLimits::kMaxPlanCells; };
+    if (!in(*w.plan_x, 0) || !in(*w.plan_y, 0) || !in(*w.plan_w, 1) || !in(*w.plan_h, 1)) {
+      return Status::InvalidInput("plan: cells from 0 to " +
+                                  std::to_string(GymLimits::kMaxPlanCells) +
+                                  ", width and height at least 1");
+    }
+  }
+  return Status::Ok();
+}
+
+Gyms::Gyms(store::Store* store, const Options& options)
+    : store_(store), gyms_(store::GymStoreOf(store)), options_(options) {}
+
+Status Gyms::EnsureFirstGym(const std::string& name) {
+  if (!gyms_) return Status::Ok();
+  SB_ASSIGN_OR_RETURN(std::vector<store::GymRecord> all, gyms_->ListGyms());
+  if (!all.empty()) return Status::Ok();
+  SB_ASSIGN_OR_RETURN(int64_t id, gyms_->CreateGym(name.empty() ? "My gym" : name, std::nullopt));
+  (void)id;
+  return Status::Ok();
+}
+
+Status Gyms::Welcome(int64_t user_id) {
+  if (!gyms_) return Status::Ok();
+  SB_ASSIGN_OR_RETURN(std::vector<store::GymRecord> all, gyms_->ListGyms());
+  if (all.empty()) return Status::Ok();
+  SB_ASSIGN_OR_RETURN(std::vector<store::MemberRecord> members, gyms_->ListMembers(all[0].id));
+  if (!members.empty()) return Status::Ok();
+  return gyms_->PutMember(all[0].id, user_id, "head");
+}
+
+Result<int64_t> Gyms::Create(const Viewer& v, const std::string& name) {
+  if (!v.logged_in()) return Status::Unauthenticated("log in first");
+  if (!gyms_) return Status::Internal("this store has no gyms");
+  SB_RETURN_IF_ERROR(CheckName("name", name, GymLimits::kMaxNameBytes));
+  SB_ASSIGN_OR_RETURN(std::vector<store::GymRecord> mine, gyms_->GymsOf(*v.user_id));
+  size_t heads = std::count_if(mine.begin(), mine.end(),
+                               [](const store::GymRecord& g) { return g.role == "head"; });
+  if (heads >= GymLimits::kMaxGymsPerAccount) {
+    return Status::ResourceExhausted("at most " + std::to_string(GymLimits::kMaxGymsPerAccount) +
+                                     " gyms per account");
+  }
+  return gyms_->CreateGym(std::string(Trim(name)), *v.user_id);
+}
+
+Status Gyms::Rename(const Viewer& v, int64_t gym, const std::string& name) {
+  SB_RETURN_IF_ERROR(RequireHead(v, gym));
+  SB_RETURN_IF_ERROR(CheckName("name", name, GymLimits::kMaxNameBytes));
+  return gyms_->RenameGym(gym, std::string(Trim(name)));
+}
+
+Result<std::vector<Gym>> Gyms::Mine(const Viewer& v) {
+  std::vector<Gym> out;
+  if (!v.logged_in() || !gyms_) return out;
+  SB_ASSIGN_OR_RETURN(std::vector<store::GymRecord> mine, gyms_->GymsOf(*v.user_id));
+  for (const store::GymRecord& g : mine) out.push_back({g.id, g.name, g.role});
+  return out;
+}
+
+Result<std::vector<GymRole>> Gyms::RolesOf(const Viewer& v) {
+  std::vector<GymRole> out;
+  if (!v.logged_in() || !gyms_) return out;
+  SB_ASSIGN_OR_RETURN(std::vector<store::GymRecord> mine, gyms_->GymsOf(*v.user_id));
+  for (const store::GymRecord& g : mine) out.push_back({g.id, g.role});
+  return out;
+}
+
+Result<std::string> Gyms::RoleIn(const Viewer& v, int64_t gym) {
+  if (!v.logged_in() || !gyms_) return std::string();
+  SB_ASSIGN_OR_RETURN(std::vector<store::GymRecord> mine, gyms_->GymsOf(*v.user_id));
+  for (const store::GymRecord& g : mine) {
+    if (g.id == gym) return g.role;
+  }
+  return std::string();
+}
+
+Result<std::string> Gyms::MemberRole(const Viewer& v, int64_t gym) {
+  SB_ASSIGN_OR_RETURN(std::string role, RoleIn(v, gym));
+  if (role.empty()) return NoGym(gym);
+  return role;
+}
+
+Status Gyms::RequireHead(const Viewer& v, int64_t gym) {
+  if (!v.logged_in()) return Status::Unauthenticated("log in first");
+  SB_ASSIGN_OR_RETURN(std::string role, MemberRole(v, gym));
+  if (role != "head") return Status::Permission("only the gym's head setters may do this");
+  return Status::Ok();
+}
+
+Result<std::optional<int64_t>> Gyms::DefaultGym(const Viewer& v) {
+  if (!gyms_) return std::optional<int64_t>();
+  if (v.logged_in()) {
+    SB_ASSIGN_OR_RETURN(std::vector<store::GymRecord> mine, gyms_->GymsOf(*v.user_id));
+    if (mine.size() == 1) return std::optional<int64_t>(mine[0].id);
+  }
+  SB_ASSIGN_OR_RETURN(std::vector<store::GymRecord> all, gyms_->ListGyms());
+  if (all.empty()) return std::optional<int64_t>();
+  return std::optional<int64_t>(all[0].id);
+}
+
+Result<Gym> Gyms::Get(const Viewer& v, int64_t gym) {
+  SB_ASSIGN_OR_RETURN(std::string role, MemberRole(v, gym));
+  SB_ASSIGN_OR_RETURN(store::GymRecord g, gyms_->GetGym(gym));
+  return Gym{g.id, g.name, role};
+}
+
+Status Gyms::AddMember(const Viewer& v, int64_t gym, const std::string& username,
+                       const std::string& role) {
+  SB_RETURN_IF_ERROR(RequireHead(v, gym));
+  if (!IsRole(role)) return Status::InvalidInput("role: expected head, setter or climber");
+  Result<store::User> u = store_->FindUserByName(std::string(Trim(username)));
+  if (!u.ok()) {
+    if (u.status().code() == Status::Code::kNotFound) {
+      return Status::NotFound("username: no account '" + username +
+                              "' (they sign up first, then the head setter adds them)");
+    }
+    return u.status();
+  }
+  if (u->id == *v.user_id && role != "head") {
+    return Status::InvalidInput("role: a head setter cannot demote themselves");
+  }
+  return gyms_->PutMember(gym, u->id, role);
+}
+
+Result<std::vector<Member>> Gyms::Members(const Viewer& v, int64_t gym) {
+  SB_ASSIGN_OR_RETURN(std::string role, MemberRole(v, gym));
+  (void)role;
+  SB_ASSIGN_OR_RETURN(std::vector<store::MemberRecord> all, gyms_->ListMembers(gym));
+  std::vector<Member> out;
+  for (const store::MemberRecord& m : all) out.push_back({m.user_id, m.username, m.role});
+  return out;
+}
+
+Result<int64_t> Gyms::AddWall(const Viewer& v, const Wall& w) {
+  SB_RETURN_IF_ERROR(RequireHead(v, w.gym_id));
+  SB_RETURN_IF_ERROR(ValidateWall(w));
+  return gyms_->InsertWall(ToRecord(w));
+}
+
+Status Gyms::EditWall(const Viewer& v, const Wall& w) {
+  if (!v.logged_in()) return Status::Unauthenticated("log in first");
+  SB_ASSIGN_OR_RETURN(Wall stored, GetWall(v, w.id));
+  SB_RETURN_IF_ERROR(RequireHead(v, stored.gym_id));
+  Wall edited = w;
+  edited.gym_id = stored.gym_id;
+  SB_RETURN_IF_ERROR(ValidateWall(edited));
+  return gyms_->UpdateWall(ToRecord(edited));
+}
+
+Result<std::vector<Wall>> Gyms::Walls(const Viewer& v, int64_t gym) {
+  SB_ASSIGN_OR_RETURN(std::string role, MemberRole(v, gym));
+  (void)role;
+  SB_ASSIGN_OR_RETURN(std::vector<store::WallRecord> all, gyms_->ListWalls(gym));
+  std::vector<Wall> out;
+  for (const store::WallRecord& r : all) out.push_back(ToWall(r));
+  return out;
+}
+
+Result<Wall> Gyms::GetWall(const Viewer& v, int64_t wall) {
+  if (!gyms_) return NoWall(std::to_string(wall));
+  Result<store::WallRecord> r = gyms_->GetWall(wall);
+  if (!r.ok()) {
+    return r.status().code() == Status::Code::kNotFound ? NoWall(std::to_string(wall))
+                                                         : r.status();
+  }
+  SB_ASSIGN_OR_RETURN(std::string role, RoleIn(v, r->gym_id));
+  if (role.empty()) return NoWall(std::to_string(wall));  // another gym's id: never its data
+  return ToWall(*r);
+}
+
+Result<Wall> Gyms::ResolveWall(int64_t gym, const std::string& id_or_name) {
+  if (!gyms_) return NoWall("'" + id_or_name + "'");
+  std::string key(Trim(id_or_name));
+  int64_t id = 0;
+  if (ParseInt(key, &id) && id > 0) {
+    Result<store::WallRecord> r = gyms_->GetWall(id);
+    if (!r.ok() || r->gym_id != gym) return NoWall(key);
+    return ToWall(*r);
+  }
+  SB_ASSIGN_OR_RETURN(std::vector<store::WallRecord> all, gyms_->ListWalls(gym));
+  for (const store::WallRecord& r : all) {
+    if (ToLower(r.name) == ToLower(key)) return ToWall(r);
+  }
+  return NoWall("'" + key + "' in this gym");
+}
+
+Result<int64_t> Gyms::AddCircuit(const Viewer& v, const Circuit& c) {
+  SB_RETURN_IF_ERROR(RequireHead(v, c.gym_id));
+  SB_RETURN_IF_ERROR(CheckName("colour", c.colour, GymLimits::kMaxColourBytes));
+  for (const auto& [field, g] : {std::pair<const char*, const std::string*>{"grade_from", &c.grade_from},
+                                 {"grade_to", &c.grade_to}}) {
+    if (g->empty()) continue;
+    Result<grades::Grade> parsed = grades::ParseGrade(*g, {}, field);
+    if (!parsed.ok()) return Status::InvalidInput(std::string(field) + ": not a grade");
+  }
+  store::CircuitRecord r;
+  r.gym_id = c.gym_id;
+  r.colour = std::string(Trim(c.colour));
+  r.grade_from = std::string(Trim(c.grade_from));
+  r.grade_to = std::string(Trim(c.grade_to));
+  return gyms_->InsertCircuit(r);
+}
+
+Result<std::vector<Circuit>> Gyms::Circuits(const Viewer& v, int64_t gym) {
+  SB_ASSIGN_OR_RETURN(std::string role, MemberRole(v, gym));
+  (void)role;
+  SB_ASSIGN_OR_RETURN(std::vector<store::CircuitRecord> all, gyms_->ListCircuits(gym));
+  std::vector<Circuit> out;
+  for (const store::CircuitRecord& r : all) {
+    out.push_back({r.id, r.gym_id, r.colour, r.grade_from, r.grade_to});
+  }
+  return out;
+}
+
+Result<std::vector<HistoryEntry>> Gyms::History(int64_t route_id) {
+  std::vector<HistoryEntry> out;
+  if (!gyms_) return out;
+  SB_ASSIGN_OR_RETURN(std::vector<store::HistoryRecord> all, gyms_->ListHistory(route_id));
+  for (const store::HistoryRecord& h : all) out.push_back({h.username, h.at, h.what});
+  return out;
+}
+
+}  // namespace sb::app

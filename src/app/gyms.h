@@ -1,0 +1,172 @@
+// Gyms (issue 21): a gym, its team (head setters, setters, climbers), its
+// walls and circuits, and the role rules every gym request passes. Routes
+// (app/routes.h) use the same rules for a route's gym fields.
+//
+// The rules (docs/web.md "Gyms"):
+// - whoever creates a gym is its head setter; the install's first gym's
+//   first account (Welcome) is its head setter;
+// - a head setter manages members, walls and circuits;
+// - head setters and setters create and edit the gym's routes; climbers
+//   cannot edit;
+// - a gym's ids answer kNotFound to anyone who is not a member (never its
+//   data); a member without the role gets kPermission.
+#ifndef SB_APP_GYMS_H_
+#define SB_APP_GYMS_H_
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/options.h"
+#include "base/status.h"
+#include "store/gym_store.h"
+#include "store/store.h"
+
+namespace sb::app {
+
+// ---- the app's view types (web and cli render from these) -----------------
+
+// A gym as a member sees it: `role` is the viewer's ("head", "setter",
+// "climber").
+struct Gym {
+  int64_t id = 0;
+  std::string name;
+  std::string role;
+};
+
+struct Member {
+  int64_t user_id = 0;
+  std::string username;
+  std::string role;
+};
+
+// A wall (or sector). The floor-plan rectangle is all set or all unset.
+struct Wall {
+  int64_t id = 0;
+  int64_t gym_id = 0;
+  std::string name;
+  std::string discipline = "bouldering";  // or "roped"
+  double angle = 0;                       // degrees past vertical; negative = slab
+  int position = 0;                       // the gym's order of walls
+  std::optional<int> reset_weeks;
+  std::optional<int> plan_x, plan_y, plan_w, plan_h;
+};
+
+// A circuit: a tape colour with an optional grade range.
+struct Circuit {
+  int64_t id = 0;
+  int64_t gym_id = 0;
+  std::string colour;
+  std::string grade_from, grade_to;
+};
+
+// One change of a route: who, when ("YYYY-MM-DD HH:MM:SS" UTC), what.
+struct HistoryEntry {
+  std::string who;
+  std::string at;
+  std::string what;
+};
+
+// Limits of the gym records, with their reasons.
+struct GymLimits {
+  // Gym, wall and member names print on tags and page titles.
+  static constexpr size_t kMaxNameBytes = 100;
+  // A circuit colour is a word or two ("blue", "neon green").
+  static constexpr size_t kMaxColourBytes = 40;
+  // Angles: from a slab lying back 90 degrees to a roof (90 past vertical).
+  static constexpr double kMinAngle = -90, kMaxAngle = 90;
+  // A reset cycle longer than two years is no cycle.
+  static constexpr int kMaxResetWeeks = 104;
+  // Floor-plan grid cells per side (a gym's floor in half-metre cells).
+  static constexpr int kMaxPlanCells = 1000;
+  // Setters named on one route.
+  static constexpr size_t kMaxSetters = 10;
+  // Gyms one account may create (a chain's head setter: tens of gyms).
+  static constexpr size_t kMaxGymsPerAccount = 50;
+};
+
+// The roles and route states by name.
+bool IsRole(const std::string& role);
+bool IsRouteState(const std::string& state);  // draft, planned, set, stripped
+// Whether `role` may create and edit a gym's routes (head or setter).
+inline bool CanSet(const std::string& role) { return role == "head" || role == "setter"; }
+
+// Checks a wall's fields; kInvalidInput naming the field.
+Status ValidateWall(const Wall& w);
+
+// Thread-safe. Does not own `store`.
+class Gyms {
+ public:
+  Gyms(store::Store* store, const Options& options);
+
+  // Creates the install's first gym named `name` when there is none (run
+  // when the services start). Errors: the store's.
+  Status EnsureFirstGym(const std::string& name);
+  // After a sign-up: when the install's first gym has no members, the new
+  // account becomes its head setter. Errors: the store's.
+  Status Welcome(int64_t user_id);
+
+  // Creates a gym with the viewer as its head setter. Errors:
+  // kUnauthenticated; kInvalidInput "name: ..."; kResourceExhausted beyond
+  // kMaxGymsPerAccount.
+  Result<int64_t> Create(const Viewer& v, const std::string& name);
+  // Head setters only: renames the gym. Errors as AddMember, kInvalidInput "name: ...".
+  Status Rename(const Viewer& v, int64_t gym, const std::string& name);
+  // The viewer's gyms with their role (none when not logged in).
+  Result<std::vector<Gym>> Mine(const Viewer& v);
+  // A gym the viewer is a member of; kNotFound "no gym N" otherwise.
+  Result<Gym> Get(const Viewer& v, int64_t gym);
+  // The viewer's role in `gym` ("" when not a member or not logged in).
+  Result<std::string> RoleIn(const Viewer& v, int64_t gym);
+  // The gym a request without one means: the viewer's only gym, else the
+  // install's first; nullopt when there is no gym.
+  Result<std::optional<int64_t>> DefaultGym(const Viewer& v);
+
+  // Head setters only: adds `username` to the gym as `role` (or changes
+  // their role). Errors: kNotFound (not a member, or no such user),
+  // kPermission (not the head setter), kInvalidInput (role).
+  Status AddMember(const Viewer& v, int64_t gym, const std::string& username,
+                   const std::string& role);
+  // Members only (kNotFound otherwise).
+  Result<std::vector<Member>> Members(const Viewer& v, int64_t gym);
+
+  // Head setters only: a new wall (gym_id = `w.gym_id`) or an edit of one
+  // (every field of `w` replaces the stored one). Errors: kNotFound for
+  // another gym's ids, kPermission, kInvalidInput (ValidateWall), kConflict
+  // for a name the gym has.
+  Result<int64_t> AddWall(const Viewer& v, const Wall& w);
+  Status EditWall(const Viewer& v, const Wall& w);
+  // Members only.
+  Result<std::vector<Wall>> Walls(const Viewer& v, int64_t gym);
+  Result<Wall> GetWall(const Viewer& v, int64_t wall);
+  // A wall of `gym` by id ("12") or by name (ignoring case), with no role
+  // check (the caller has checked the role). kNotFound "no wall ..." when
+  // the gym has none such.
+  Result<Wall> ResolveWall(int64_t gym, const std::string& id_or_name);
+
+  // Head setters only: a new circuit. Errors as AddWall; grade_from /
+  // grade_to must be grades (any scale) when given.
+  Result<int64_t> AddCircuit(const Viewer& v, const Circuit& c);
+  // Members only.
+  Result<std::vector<Circuit>> Circuits(const Viewer& v, int64_t gym);
+
+  // The history of a route, oldest first (the caller checks visibility).
+  Result<std::vector<HistoryEntry>> History(int64_t route_id);
+
+  // The viewer's memberships (Viewer::gyms); empty when not logged in.
+  Result<std::vector<GymRole>> RolesOf(const Viewer& v);
+
+ private:
+  // The viewer's role, kNotFound "no gym N" when not a member.
+  Result<std::string> MemberRole(const Viewer& v, int64_t gym);
+  Status RequireHead(const Viewer& v, int64_t gym);
+
+  store::Store* store_;
+  store::GymStore* gyms_;
+  const Options options_;
+};
+
+}  // namespace sb::app
+
+#endif  // SB_APP_GYMS_H_

@@ -1,0 +1,131 @@
+// The gyms' records (schema 6, issue 21): gyms, their members, walls and
+// circuits, and what a route's life on the wall adds beside its row (its
+// setters and history). A separate interface from store::Store, over the same
+// SQL layer (store/sql_store.cc implements both in one object), so the store
+// is split per kind of record as it grows. The schema is documented in
+// docs/web.md ("Gyms").
+//
+// No SQLite or libpq types appear in this header.
+#ifndef SB_STORE_GYM_STORE_H_
+#define SB_STORE_GYM_STORE_H_
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "base/status.h"
+#include "store/store.h"
+
+namespace sb::store {
+
+// A gym. `role` is the caller's role in it where a call says so ("" else).
+struct GymRecord {
+  int64_t id = 0;
+  std::string name;
+  std::string created_at;  // "YYYY-MM-DD HH:MM:SS" UTC
+  std::string role;
+};
+
+// A member of a gym: "head" (head setter), "setter" or "climber".
+struct MemberRecord {
+  int64_t gym_id = 0;
+  int64_t user_id = 0;
+  std::string username;
+  std::string role;
+};
+
+// A wall (or sector) of a gym. `position` orders a gym's walls; the floor
+// plan rectangle (grid units) is all set or all unset.
+struct WallRecord {
+  int64_t id = 0;
+  int64_t gym_id = 0;
+  std::string name;
+  std::string discipline = "bouldering";  // or "roped"
+  double angle = 0;                       // degrees from vertical (overhang > 0)
+  int position = 0;
+  std::optional<int> reset_weeks;
+  std::optional<int> plan_x, plan_y, plan_w, plan_h;
+};
+
+// A circuit: one of the gym's tape colours, with an optional grade range.
+struct CircuitRecord {
+  int64_t id = 0;
+  int64_t gym_id = 0;
+  std::string colour;
+  std::string grade_from;  // "" = open
+  std::string grade_to;
+};
+
+// One change of a route: who (nullopt once the account is deleted), when and what.
+struct HistoryRecord {
+  int64_t id = 0;
+  int64_t route_id = 0;
+  std::optional<int64_t> user_id;
+  std::string username;  // read only: the account's name, "" when none
+  std::string at;        // "YYYY-MM-DD HH:MM:SS" UTC (set by AddHistory)
+  std::string what;
+};
+
+// Thread-safe like Store; every multi-row change is atomic. Errors: kNotFound
+// for unknown ids, kConflict for taken names, kIoError for storage failures.
+class GymStore {
+ public:
+  virtual ~GymStore() = default;
+
+  // Creates a gym with `head` as its head setter (one transaction); returns
+  // its id. kNotFound when the user does not exist. `head` = nullopt creates
+  // a gym without members (the install's first gym).
+  virtual Result<int64_t> CreateGym(const std::string& name, std::optional<int64_t> head) = 0;
+  // Renames a gym; kNotFound when absent.
+  virtual Status RenameGym(int64_t id, const std::string& name) = 0;
+  virtual Result<GymRecord> GetGym(int64_t id) = 0;
+  // Every gym in id order (role "").
+  virtual Result<std::vector<GymRecord>> ListGyms() = 0;
+  // The gyms `user_id` is a member of, in id order, with the user's role.
+  virtual Result<std::vector<GymRecord>> GymsOf(int64_t user_id) = 0;
+
+  // Adds a member or changes the role of one; kNotFound for an unknown gym
+  // or user.
+  virtual Status PutMember(int64_t gym_id, int64_t user_id, const std::string& role) = 0;
+  // A gym's members, by user id.
+  virtual Result<std::vector<MemberRecord>> ListMembers(int64_t gym_id) = 0;
+
+  // Walls. InsertWall ignores `id` and returns the new one; kConflict when
+  // the gym has a wall of that name. UpdateWall replaces every field but
+  // gym_id (kNotFound, kConflict as InsertWall).
+  virtual Result<int64_t> InsertWall(const WallRecord& wall) = 0;
+  virtual Status UpdateWall(const WallRecord& wall) = 0;
+  virtual Result<WallRecord> GetWall(int64_t id) = 0;
+  // A gym's walls by position, then id.
+  virtual Result<std::vector<WallRecord>> ListWalls(int64_t gym_id) = 0;
+
+  // Circuits. kConflict when the gym has a circuit of that colour.
+  virtual Result<int64_t> InsertCircuit(const CircuitRecord& circuit) = 0;
+  // A gym's circuits by id.
+  virtual Result<std::vector<CircuitRecord>> ListCircuits(int64_t gym_id) = 0;
+
+  // Replaces a route's setters and appends one history row `what` by
+  // `user_id` (when `what` is not empty), in one transaction; kNotFound for
+  // an unknown route.
+  virtual Status SetRouteSetters(int64_t route_id, const std::vector<RouteSetter>& setters,
+                                 std::optional<int64_t> user_id, const std::string& what) = 0;
+  // Appends one history row to a route (at = now).
+  virtual Status AddHistory(int64_t route_id, std::optional<int64_t> user_id,
+                            const std::string& what) = 0;
+  // A route's history, oldest first.
+  virtual Result<std::vector<HistoryRecord>> ListHistory(int64_t route_id) = 0;
+  // The id of the route of `gym_id` imported with the original site's id
+  // `original_id` (by `owner` only, when given); nullopt when none.
+  virtual Result<std::optional<int64_t>> FindByOriginalId(int64_t gym_id, int64_t original_id,
+                                                          std::optional<int64_t> owner) = 0;
+};
+
+// The GymStore of a store opened by store::OpenStore (both backends
+// implement it); nullptr for a Store that does not. Does not transfer
+// ownership.
+GymStore* GymStoreOf(Store* store);
+
+}  // namespace sb::store
+
+#endif  // SB_STORE_GYM_STORE_H_

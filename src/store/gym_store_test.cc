@@ -1,0 +1,323 @@
+// Migration 6 (issue 21): gyms, members, walls, circuits, route states,
+// setters and history in the store, on both backends (SQLite and the test
+// PostgreSQL server, store/store_test_util.h); the 5 -> 6 migration of a
+// database with free-text walls loses nothing.
+#include "store/gym_store.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "store/open.h"
+#include "store/schema.h"
+#include "store/sql.h"
+#include "store/store.h"
+#include "store/store_test_util.h"
+
+namespace sb::store {
+namespace {
+
+using testing::Backend;
+using testing::TestDatabase;
+
+class GymStoreTest : public ::testing::TestWithParam<Backend> {
+ protected:
+  void SetUp() override { SB_REQUIRE_DATABASE(db_); }
+  void Open() {
+    Result<std::unique_ptr<Store>> s = OpenStore(db_.locator());
+    ASSERT_TRUE(s.ok()) << s.status().message();
+    store_ = std::move(s).value();
+    gyms_ = GymStoreOf(store_.get());
+    ASSERT_NE(gyms_, nullptr);
+  }
+  int64_t User(const std::string& name) {
+    Result<int64_t> u = store_->CreateUser(name, "h");
+    EXPECT_TRUE(u.ok()) << u.status().message();
+    return u.ok() ? *u : 0;
+  }
+  int64_t Route(int64_t owner, const std::string& name, std::optional<int64_t> gym,
+                const std::string& state, bool pub = false) {
+    RouteRecord r;
+    r.owner_id = owner;
+    r.name = name;
+    r.crdl = "name: " + name + "\n---\nR jug\nL crimp\n";
+    r.move_count = 2;
+    r.is_public = pub;
+    r.gym_id = gym;
+    r.state = state;
+    Result<int64_t> id = store_->InsertRoute(r);
+    EXPECT_TRUE(id.ok()) << id.status().message();
+    return id.ok() ? *id : 0;
+  }
+  std::vector<std::string> Names(const RouteFilter& f) {
+    std::vector<std::string> out;
+    Result<std::vector<RouteRecord>> rows = store_->ListRoutes(f);
+    EXPECT_TRUE(rows.ok()) << rows.status().message();
+    if (rows.ok()) {
+      for (const RouteRecord& r : *rows) out.push_back(r.name);
+    }
+    return out;
+  }
+
+  TestDatabase db_{GetParam(), "gym"};
+  std::unique_ptr<Store> store_;
+  GymStore* gyms_ = nullptr;
+};
+
+INSTANTIATE_TEST_SUITE_P(Backends, GymStoreTest, testing::Backends(), testing::BackendName);
+
+TEST_P(GymStoreTest, GymsMembersWallsAndCircuits) {
+  Open();
+  // A new, empty database has no gym (the application makes the first).
+  EXPECT_TRUE(gyms_->ListGyms()->empty());
+  const int64_t ann = User("ann"), bob = User("bob");
+  Result<int64_t> g = gyms_->CreateGym("Boulder Barn", ann);
+  ASSERT_TRUE(g.ok()) << g.status().message();
+  EXPECT_EQ(gyms_->CreateGym("Ghost", 999).status().code(), Status::Code::kNotFound);
+  EXPECT_EQ(gyms_->ListGyms()->size(), 1u);  // the failed gym left nothing
+  ASSERT_TRUE(gyms_->PutMember(*g, bob, "setter").ok());
+  ASSERT_TRUE(gyms_->PutMember(*g, bob, "climber").ok());  // a role change, not a second row
+  EXPECT_NE(gyms_->PutMember(*g, bob, "owner").code(), Status::Code::kOk);  // CHECK constraint
+  std::vector<MemberRecord> m = *gyms_->ListMembers(*g);
+  ASSERT_EQ(m.size(), 2u);
+  EXPECT_EQ(m[0].username, "ann");
+  EXPECT_EQ(m[0].role, "head");
+  EXPECT_EQ(m[1].role, "climber");
+  ASSERT_EQ(gyms_->GymsOf(bob)->size(), 1u);
+  EXPECT_EQ((*gyms_->GymsOf(bob))[0].role, "climber");
+
+  WallRecord cave;
+  cave.gym_id = *g;
+  cave.name = "Cave";
+  cave.angle = 35;
+  cave.position = 2;
+  cave.reset_weeks = 6;
+  WallRecord slab = cave;
+  slab.name = "Slab";
+  slab.discipline = "roped";
+  slab.angle = -10;
+  slab.position = 1;
+  slab.reset_weeks.reset();
+  slab.plan_x = 0;
+  slab.plan_y = 1;
+  slab.plan_w = 4;
+  slab.plan_h = 2;
+  Result<int64_t> c = gyms_->InsertWall(cave), s = gyms_->InsertWall(slab);
+  ASSERT_TRUE(c.ok() && s.ok());
+  EXPECT_EQ(gyms_->InsertWall(cave).status().code(), Status::Code::kConflict);
+  std::vector<WallRecord> walls = *gyms_->ListWalls(*g);
+  ASSERT_EQ(walls.size(), 2u);
+  EXPECT_EQ(walls[0].name, "Slab");  // by position
+  EXPECT_EQ(walls[0].plan_w, 4);
+  EXPECT_EQ(walls[0].discipline, "roped");
+  EXPECT_DOUBLE_EQ(walls[1].angle, 35);
+  EXPECT_EQ(walls[1].reset_weeks, 6);
+  WallRecord renamed = *gyms_->GetWall(*c);
+  renamed.name = "Slab";
+  EXPECT_EQ(gyms_->UpdateWall(renamed).code(), Status::Code::kConflict);
+  renamed.name = "Big Cave";
+  ASSERT_TRUE(gyms_->UpdateWall(renamed).ok());
+  EXPECT_EQ(gyms_->GetWall(*c)->name, "Big Cave");
+
+  CircuitRecord blue{0, *g, "blue", "V0", "V2"};
+  ASSERT_TRUE(gyms_->InsertCircuit(blue).ok());
+  EXPECT_EQ(gyms_->InsertCircuit(blue).status().code(), Status::Code::kConflict);
+  ASSERT_TRUE(gyms_->InsertCircuit({0, *g, "red", "", ""}).ok());
+  std::vector<CircuitRecord> circuits = *gyms_->ListCircuits(*g);
+  ASSERT_EQ(circuits.size(), 2u);
+  EXPECT_EQ(circuits[0].grade_to, "V2");
+}
+
+TEST_P(GymStoreTest, RouteFieldsSettersHistoryAndTheGymVisibilityRule) {
+  Open();
+  const int64_t head = User("head"), setter = User("setter"), climber = User("climber"),
+                other = User("other");
+  const int64_t g = *gyms_->CreateGym("One", head), g2 = *gyms_->CreateGym("Two", other);
+  ASSERT_TRUE(gyms_->PutMember(g, setter, "setter").ok());
+  ASSERT_TRUE(gyms_->PutMember(g, climber, "climber").ok());
+  const int64_t wall = *gyms_->InsertWall({0, g, "Cave"});
+  RouteRecord r;
+  r.owner_id = head;
+  r.name = "Planned one";
+  r.crdl = "name: Planned one\n---\nR jug\n";
+  r.is_public = false;
+  r.gym_id = g;
+  r.wall_id = wall;
+  r.state = "planned";
+  r.set_on = "2026-12-01";
+  r.setters = {{setter, "setter"}, {std::nullopt, "Guest Setter"}};
+  const int64_t planned = *store_->InsertRoute(r);
+  Route(head, "Set one", g, "set");
+  Route(head, "Head's draft", g, "draft");
+  Route(other, "Other gym's", g2, "set");
+
+  RouteRecord got = *store_->GetRoute(planned);
+  EXPECT_EQ(got.gym_id, g);
+  EXPECT_EQ(got.wall_id, wall);
+  EXPECT_EQ(got.wall_name, "Cave");
+  EXPECT_EQ(got.state, "planned");
+  EXPECT_EQ(got.set_on, "2026-12-01");
+  ASSERT_EQ(got.setters.size(), 2u);
+  EXPECT_EQ(got.setters[0].user_id, setter);
+  EXPECT_EQ(got.setters[1].name, "Guest Setter");
+
+  RouteFilter f;
+  f.viewer = setter;  // a setter sees the gym's routes but the head's draft
+  EXPECT_EQ(Names(f), (std::vector<std::string>{"Set one", "Planned one"}));
+  f.viewer = climber;  // a climber only what is on the wall (or stripped)
+  EXPECT_EQ(Names(f), (std::vector<std::string>{"Set one"}));
+  f.viewer = other;  // another gym sees none of it
+  EXPECT_EQ(Names(f), (std::vector<std::string>{"Other gym's"}));
+  f.viewer = head;
+  f.gym_id = g;
+  f.state = "planned";
+  EXPECT_EQ(Names(f), (std::vector<std::string>{"Planned one"}));
+  f.state.clear();
+  f.wall_id = wall;
+  EXPECT_EQ(Names(f), (std::vector<std::string>{"Planned one"}));
+  f.wall_id.reset();
+  f.setter = "guest";
+  EXPECT_EQ(Names(f), (std::vector<std::string>{"Planned one"}));
+  EXPECT_EQ(*store_->CountRoutes(f), 1);
+
+  // A state change through UpdateRoute; setters and a history row at once.
+  got.state = "set";
+  ASSERT_TRUE(store_->UpdateRoute(got).ok());
+  ASSERT_TRUE(gyms_->SetRouteSetters(planned, {{head, "head"}}, head, "setters: head").ok());
+  ASSERT_TRUE(gyms_->AddHistory(planned, setter, "state: planned -> set").ok());
+  EXPECT_EQ(gyms_->SetRouteSetters(999999, {}, head, "x").code(), Status::Code::kNotFound);
+  got = *store_->GetRoute(planned);
+  EXPECT_EQ(got.state, "set");
+  ASSERT_EQ(got.setters.size(), 1u);
+  std::vector<HistoryRecord> h = *gyms_->ListHistory(planned);
+  ASSERT_EQ(h.size(), 2u);
+  EXPECT_EQ(h[0].username, "head");
+  EXPECT_EQ(h[1].what, "state: planned -> set");
+  EXPECT_EQ(h[1].at.size(), 19u);
+
+  // The original site's id finds an imported route within its gym only.
+  RouteRecord imported = got;
+  imported.original_id = 42;
+  imported.setters.clear();
+  const int64_t im = *store_->InsertRoute(imported);
+  EXPECT_EQ(*gyms_->FindByOriginalId(g, 42, std::nullopt), im);
+  EXPECT_EQ(*gyms_->FindByOriginalId(g, 42, head), im);
+  EXPECT_FALSE(gyms_->FindByOriginalId(g, 42, setter)->has_value());
+  EXPECT_FALSE(gyms_->FindByOriginalId(g2, 42, std::nullopt)->has_value());
+}
+
+TEST_P(GymStoreTest, SearchIgnoresCaseInEveryScript) {
+  Open();
+  const int64_t u = User("u");
+  Route(u, "Überhang", std::nullopt, "set", true);
+  Route(u, "СКАЛА", std::nullopt, "set", true);
+  Route(u, "Crimp LADDER", std::nullopt, "set", true);
+  RouteFilter f;
+  f.text = "überhang";
+  EXPECT_EQ(Names(f), (std::vector<std::string>{"Überhang"}));
+  f.text = "ÜBER";
+  EXPECT_EQ(Names(f), (std::vector<std::string>{"Überhang"}));
+  f.text = "скала";
+  EXPECT_EQ(Names(f), (std::vector<std::string>{"СКАЛА"}));
+  f.text = "ladder";
+  EXPECT_EQ(Names(f), (std::vector<std::string>{"Crimp LADDER"}));
+}
+
+// The rows of `sql` as text, for before/after comparisons.
+std::vector<std::vector<std::optional<std::string>>> RowsOf(sql::Connection& c,
+                                                            const std::string& sql) {
+  Result<sql::Rows> r = c.Query(sql, {});
+  EXPECT_TRUE(r.ok()) << r.status().message();
+  return r.ok() ? r->rows : std::vector<std::vector<std::optional<std::string>>>{};
+}
+
+TEST_P(GymStoreTest, AVersionFiveDatabaseWithFreeTextWallsMigratesLosingNothing) {
+  auto connect = [&]() {
+    return GetParam() == Backend::kSqlite ? sql::OpenSqlite(db_.locator())
+                                          : sql::OpenPostgres(db_.locator(), sql::PgSettings());
+  };
+  // Every column a version-5 database has, before and after.
+  const std::string kOldRoutes =
+      "SELECT id, owner_id, name, grade, setter, crdl, move_count, is_public, is_variation, "
+      "params_json, plan_json, created_at, updated_at, smooth, colour, wall, set_on, "
+      "grade_discipline, grade_value, meta_version, request_key FROM routes ORDER BY id";
+  const std::string kOldUsers = "SELECT * FROM users ORDER BY id";
+  const std::string kOldStudies =
+      "SELECT id, owner_id, name, instrument_json, created_at FROM studies ORDER BY id";
+  std::vector<std::vector<std::optional<std::string>>> routes, users, studies;
+  {
+    Result<std::unique_ptr<sql::Connection>> c = connect();
+    ASSERT_TRUE(c.ok()) << c.status().message();
+    ASSERT_TRUE(sql::Migrate(**c, 5).ok());
+    ASSERT_EQ(*(*c)->SchemaVersion(), 5);
+    ASSERT_TRUE((*c)->Exec(R"sql(
+INSERT INTO users(username, password_hash, created_at) VALUES
+  ('first', 'h', '2026-01-01 00:00:00'), ('second', 'h', '2026-01-02 00:00:00');
+INSERT INTO routes(owner_id, name, setter, crdl, is_public, is_variation, wall,
+                   grade_discipline, created_at, updated_at) VALUES
+  (1, 'A', 'second', 'name: A', 0, 0, 'Cave / sector B', 'bouldering', 'x', 'x'),
+  (1, 'B', '', 'name: B', 0, 0, 'left cave', 'roped', 'x', 'x'),
+  (2, 'C', 'Carol', 'name: C', 1, 0, 'Cave / sector B', 'bouldering', 'x', 'x'),
+  (2, 'D', '', 'name: D', 0, 1, '', '', 'x', 'x'),
+  (1, 'E', '', 'name: E', 0, 1, 'left cave', 'roped', 'x', 'x');
+INSERT INTO studies(owner_id, name, instrument_json, created_at, updated_at)
+  VALUES (1, 'S', '{}', 'x', 'x');
+)sql")
+                    .ok());
+    routes = RowsOf(**c, kOldRoutes);
+    users = RowsOf(**c, kOldUsers);
+    studies = RowsOf(**c, kOldStudies);
+    ASSERT_EQ(routes.size(), 5u);
+  }
+  Open();
+  EXPECT_EQ(store_->SchemaVersion(), 6);
+  {
+    Result<std::unique_ptr<sql::Connection>> c = connect();
+    ASSERT_TRUE(c.ok());
+    // Nothing lost: every old column of every row reads as before.
+    EXPECT_EQ(RowsOf(**c, kOldRoutes), routes);
+    EXPECT_EQ(RowsOf(**c, kOldUsers), users);
+    EXPECT_EQ(RowsOf(**c, kOldStudies), studies);
+    EXPECT_EQ(RowsOf(**c, "SELECT count(*) FROM studies WHERE gym_id IS NULL")[0][0], "0");
+  }
+  std::vector<GymRecord> gyms = *gyms_->ListGyms();
+  ASSERT_EQ(gyms.size(), 1u);
+  EXPECT_EQ(gyms[0].name, "My gym");
+  std::vector<MemberRecord> members = *gyms_->ListMembers(gyms[0].id);
+  ASSERT_EQ(members.size(), 2u);
+  EXPECT_EQ(members[0].role, "head");  // the first user
+  EXPECT_EQ(members[1].role, "setter");
+  // The distinct free-text walls became walls, in the order first used.
+  std::vector<WallRecord> walls = *gyms_->ListWalls(gyms[0].id);
+  ASSERT_EQ(walls.size(), 2u);
+  EXPECT_EQ(walls[0].name, "Cave / sector B");
+  EXPECT_EQ(walls[0].discipline, "bouldering");
+  EXPECT_EQ(walls[1].name, "left cave");
+  EXPECT_EQ(walls[1].discipline, "roped");
+  for (int64_t id = 1; id <= 5; ++id) {
+    RouteRecord r = *store_->GetRoute(id);
+    EXPECT_EQ(r.gym_id, gyms[0].id);
+    EXPECT_EQ(r.wall_name, r.wall) << id;  // the text stays; the row names the same wall
+    EXPECT_EQ(r.state, r.is_variation ? "draft" : "set") << id;
+  }
+  RouteRecord a = *store_->GetRoute(1), c = *store_->GetRoute(3);
+  ASSERT_EQ(a.setters.size(), 1u);
+  EXPECT_EQ(a.setters[0].user_id, 2);  // the setter text names an account
+  ASSERT_EQ(c.setters.size(), 1u);
+  EXPECT_FALSE(c.setters[0].user_id.has_value());
+  EXPECT_EQ(c.setters[0].name, "Carol");
+  // The search text was folded when the store opened.
+  RouteFilter f;
+  f.viewer = 1;
+  f.text = "NAME: E";
+  ASSERT_EQ(store_->ListRoutes(f)->size(), 1u);
+  // Members see the gym's non-draft routes: the second user sees the first's
+  // private routes A and B (set), not the first's private variation E (draft).
+  f.text.clear();
+  f.viewer = 2;
+  EXPECT_EQ(*store_->CountRoutes(f), 4);
+}
+
+}  // namespace
+}  // namespace sb::store

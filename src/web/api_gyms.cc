@@ -1,0 +1,299 @@
+// JSON API: gyms, their members, walls and circuits; a route's gym fields
+// and history (issue 21, docs/web.md "Gyms").
+#include <cmath>
+
+#include "web/handlers.h"
+
+namespace sb::web {
+
+using nlohmann::json;
+
+namespace {
+
+const char kNoGym[] = "no such gym";
+
+json WallJson(const app::Wall& w) {
+  json j{{"id", w.id},
+         {"gym", w.gym_id},
+         {"name", w.name},
+         {"discipline", w.discipline},
+         {"angle", w.angle},
+         {"position", w.position},
+         {"reset_weeks", w.reset_weeks ? json(*w.reset_weeks) : json()}};
+  j["plan"] = w.plan_x ? json{{"x", *w.plan_x}, {"y", *w.plan_y}, {"w", *w.plan_w},
+                              {"h", *w.plan_h}}
+                       : json();
+  return j;
+}
+
+json CircuitJson(const app::Circuit& c) {
+  return json{{"id", c.id},
+              {"colour", c.colour},
+              {"grade_from", c.grade_from},
+              {"grade_to", c.grade_to}};
+}
+
+// An optional whole number field; kInvalidInput naming it otherwise.
+Result<std::optional<int>> OptInt(const json& body, const char* field) {
+  if (!body.contains(field) || body[field].is_null()) return std::optional<int>();
+  if (!body[field].is_number_integer()) {
+    return Status::InvalidInput(std::string(field) + ": expected a whole number");
+  }
+  int64_t v = body[field].get<int64_t>();
+  if (v < -1000000 || v > 1000000) return Status::InvalidInput(std::string(field) + ": out of range");
+  return std::optional<int>(static_cast<int>(v));
+}
+
+// The wall fields of a body over `w` (absent fields keep w's values).
+Status ReadWall(const json& body, app::Wall* w) {
+  if (body.contains("name")) {
+    SB_ASSIGN_OR_RETURN(w->name, StringField(body, "name"));
+  }
+  if (body.contains("discipline")) {
+    SB_ASSIGN_OR_RETURN(w->discipline, StringField(body, "discipline"));
+  }
+  if (body.contains("angle")) {
+    if (!body["angle"].is_number()) return Status::InvalidInput("angle: expected a number");
+    w->angle = body["angle"].get<double>();
+  }
+  if (body.contains("position")) {
+    SB_ASSIGN_OR_RETURN(std::optional<int> p, OptInt(body, "position"));
+    w->position = p.value_or(0);
+  }
+  if (body.contains("reset_weeks")) {
+    SB_ASSIGN_OR_RETURN(w->reset_weeks, OptInt(body, "reset_weeks"));
+  }
+  if (body.contains("plan")) {
+    const json& p = body["plan"];
+    if (p.is_null()) {
+      w->plan_x = w->plan_y = w->plan_w = w->plan_h = std::nullopt;
+    } else if (!p.is_object()) {
+      return Status::InvalidInput("plan: expected {\"x\", \"y\", \"w\", \"h\"} or null");
+    } else {
+      SB_ASSIGN_OR_RETURN(w->plan_x, OptInt(p, "x"));
+      SB_ASSIGN_OR_RETURN(w->plan_y, OptInt(p, "y"));
+      SB_ASSIGN_OR_RETURN(w->plan_w, OptInt(p, "w"));
+      SB_ASSIGN_OR_RETURN(w->plan_h, OptInt(p, "h"));
+    }
+  }
+  return Status::Ok();
+}
+
+Result<int64_t> GymId(const Request& req) { return PathId(req, kNoGym); }
+
+}  // namespace
+
+Result<app::GymFields> GymFieldsOf(const json& body) {
+  app::GymFields g;
+  if (body.contains("gym") && !body["gym"].is_null()) {
+    if (!body["gym"].is_number_integer() || body["gym"].get<int64_t>() <= 0) {
+      return Status::InvalidInput("gym: expected a gym id");
+    }
+    g.gym = body["gym"].get<int64_t>();
+  }
+  if (body.contains("wall")) {
+    const json& w = body["wall"];
+    if (w.is_null()) {
+      g.wall = "";
+    } else if (w.is_number_integer()) {
+      g.wall = std::to_string(w.get<int64_t>());
+    } else if (w.is_string()) {
+      g.wall = w.get<std::string>();
+    } else {
+      return Status::InvalidInput("wall: expected a wall id or name");
+    }
+  }
+  for (auto [field, out] : {std::pair<const char*, std::optional<std::string>*>{"state", &g.state},
+                            {"set_on", &g.set_on},
+                            {"strip_on", &g.strip_on}}) {
+    if (!body.contains(field)) continue;
+    if (body[field].is_null()) {
+      *out = "";
+      continue;
+    }
+    SB_ASSIGN_OR_RETURN(std::string v, StringField(body, field));
+    *out = v;
+  }
+  if (body.contains("setters")) {
+    const json& s = body["setters"];
+    if (!s.is_array()) return Status::InvalidInput("setters: expected an array of user names");
+    std::vector<std::string> names;
+    for (const json& n : s) {
+      if (!n.is_string()) return Status::InvalidInput("setters: expected an array of user names");
+      names.push_back(n.get<std::string>());
+    }
+    g.setters = std::move(names);
+  }
+  return g;
+}
+
+void PostGym(Exchange& x) {
+  Result<json> body = BodyObject(x.req);
+  if (!body.ok()) return ApiError(x, body.status());
+  Result<std::string> name = StringField(*body, "name");
+  if (!name.ok()) return ApiError(x, name.status());
+  Result<int64_t> id = x.services.gyms.Create(x.caller.viewer, *name);
+  if (!id.ok()) return ApiError(x, id.status());
+  x.res.SetHeader("Location", "/gyms/" + std::to_string(*id));
+  ReplyJson(x.res, 201, json{{"id", *id}});
+}
+
+void ListGyms(Exchange& x) {
+  if (!x.caller.viewer.logged_in()) {
+    return ApiError(x, Status::Unauthenticated("log in first"));
+  }
+  Result<std::vector<app::Gym>> gyms = x.services.gyms.Mine(x.caller.viewer);
+  if (!gyms.ok()) return ApiError(x, gyms.status());
+  json arr = json::array();
+  for (const app::Gym& g : *gyms) arr.push_back({{"id", g.id}, {"name", g.name}, {"role", g.role}});
+  ReplyJson(x.res, 200, json{{"gyms", arr}});
+}
+
+void GetGym(Exchange& x) {
+  Result<int64_t> id = GymId(x.req);
+  if (!id.ok()) return ApiError(x, id.status());
+  Result<app::Gym> g = x.services.gyms.Get(x.caller.viewer, *id);
+  if (!g.ok()) return ApiError(x, g.status());
+  Result<std::vector<app::Wall>> walls = x.services.gyms.Walls(x.caller.viewer, *id);
+  if (!walls.ok()) return ApiError(x, walls.status());
+  Result<std::vector<app::Circuit>> circuits = x.services.gyms.Circuits(x.caller.viewer, *id);
+  if (!circuits.ok()) return ApiError(x, circuits.status());
+  json w = json::array(), c = json::array();
+  for (const app::Wall& wall : *walls) w.push_back(WallJson(wall));
+  for (const app::Circuit& ci : *circuits) c.push_back(CircuitJson(ci));
+  ReplyJson(x.res, 200,
+            json{{"id", g->id}, {"name", g->name}, {"role", g->role}, {"walls", w},
+                 {"circuits", c}});
+}
+
+void PutGym(Exchange& x) {
+  Result<int64_t> id = GymId(x.req);
+  if (!id.ok()) return ApiError(x, id.status());
+  Result<json> body = BodyObject(x.req);
+  if (!body.ok()) return ApiError(x, body.status());
+  Result<std::string> name = StringField(*body, "name");
+  if (!name.ok()) return ApiError(x, name.status());
+  if (Status s = x.services.gyms.Rename(x.caller.viewer, *id, *name); !s.ok()) {
+    return ApiError(x, s);
+  }
+  ReplyJson(x.res, 200, json{{"id", *id}, {"name", *name}});
+}
+
+void PostMember(Exchange& x) {
+  Result<int64_t> id = GymId(x.req);
+  if (!id.ok()) return ApiError(x, id.status());
+  Result<json> body = BodyObject(x.req);
+  if (!body.ok()) return ApiError(x, body.status());
+  Result<std::string> user = StringField(*body, "username");
+  if (!user.ok()) return ApiError(x, user.status());
+  std::string role = "setter";
+  if (body->contains("role")) {
+    Result<std::string> r = StringField(*body, "role");
+    if (!r.ok()) return ApiError(x, r.status());
+    role = *r;
+  }
+  if (Status s = x.services.gyms.AddMember(x.caller.viewer, *id, *user, role); !s.ok()) {
+    return ApiError(x, s);
+  }
+  ReplyJson(x.res, 201, json{{"username", *user}, {"role", role}});
+}
+
+void ListMembers(Exchange& x) {
+  Result<int64_t> id = GymId(x.req);
+  if (!id.ok()) return ApiError(x, id.status());
+  Result<std::vector<app::Member>> m = x.services.gyms.Members(x.caller.viewer, *id);
+  if (!m.ok()) return ApiError(x, m.status());
+  json arr = json::array();
+  for (const app::Member& mem : *m) {
+    arr.push_back({{"id", mem.user_id}, {"username", mem.username}, {"role", mem.role}});
+  }
+  ReplyJson(x.res, 200, json{{"members", arr}});
+}
+
+void PostWall(Exchange& x) {
+  Result<int64_t> id = GymId(x.req);
+  if (!id.ok()) return ApiError(x, id.status());
+  Result<json> body = BodyObject(x.req);
+  if (!body.ok()) return ApiError(x, body.status());
+  app::Wall w;
+  w.gym_id = *id;
+  if (!body->contains("name")) return ApiError(x, Status::InvalidInput("name: expected a string"));
+  if (Status s = ReadWall(*body, &w); !s.ok()) return ApiError(x, s);
+  Result<int64_t> wall = x.services.gyms.AddWall(x.caller.viewer, w);
+  if (!wall.ok()) return ApiError(x, wall.status());
+  ReplyJson(x.res, 201, json{{"id", *wall}});
+}
+
+void PutWall(Exchange& x) {
+  Result<int64_t> gym = GymId(x.req);
+  if (!gym.ok()) return ApiError(x, gym.status());
+  std::optional<int64_t> wall_id = ParseId(x.req.PathParam("wall"));
+  if (!wall_id) return ApiError(x, Status::NotFound("no such wall"));
+  Result<app::Wall> w = x.services.gyms.GetWall(x.caller.viewer, *wall_id);
+  if (!w.ok()) return ApiError(x, w.status());
+  if (w->gym_id != *gym) return ApiError(x, Status::NotFound("no wall " + std::to_string(*wall_id)));
+  Result<json> body = BodyObject(x.req);
+  if (!body.ok()) return ApiError(x, body.status());
+  app::Wall edited = *w;
+  if (Status s = ReadWall(*body, &edited); !s.ok()) return ApiError(x, s);
+  if (Status s = x.services.gyms.EditWall(x.caller.viewer, edited); !s.ok()) {
+    return ApiError(x, s);
+  }
+  ReplyJson(x.res, 200, WallJson(edited));
+}
+
+void ListWalls(Exchange& x) {
+  Result<int64_t> id = GymId(x.req);
+  if (!id.ok()) return ApiError(x, id.status());
+  Result<std::vector<app::Wall>> walls = x.services.gyms.Walls(x.caller.viewer, *id);
+  if (!walls.ok()) return ApiError(x, walls.status());
+  json arr = json::array();
+  for (const app::Wall& w : *walls) arr.push_back(WallJson(w));
+  ReplyJson(x.res, 200, json{{"walls", arr}});
+}
+
+void PostCircuit(Exchange& x) {
+  Result<int64_t> id = GymId(x.req);
+  if (!id.ok()) return ApiError(x, id.status());
+  Result<json> body = BodyObject(x.req);
+  if (!body.ok()) return ApiError(x, body.status());
+  app::Circuit c;
+  c.gym_id = *id;
+  Result<std::string> colour = StringField(*body, "colour");
+  if (!colour.ok()) return ApiError(x, colour.status());
+  c.colour = *colour;
+  for (auto [field, out] : {std::pair<const char*, std::string*>{"grade_from", &c.grade_from},
+                            {"grade_to", &c.grade_to}}) {
+    if (!body->contains(field) || (*body)[field].is_null()) continue;
+    Result<std::string> v = StringField(*body, field);
+    if (!v.ok()) return ApiError(x, v.status());
+    *out = *v;
+  }
+  Result<int64_t> circuit = x.services.gyms.AddCircuit(x.caller.viewer, c);
+  if (!circuit.ok()) return ApiError(x, circuit.status());
+  ReplyJson(x.res, 201, json{{"id", *circuit}});
+}
+
+void ListCircuits(Exchange& x) {
+  Result<int64_t> id = GymId(x.req);
+  if (!id.ok()) return ApiError(x, id.status());
+  Result<std::vector<app::Circuit>> all = x.services.gyms.Circuits(x.caller.viewer, *id);
+  if (!all.ok()) return ApiError(x, all.status());
+  json arr = json::array();
+  for (const app::Circuit& c : *all) arr.push_back(CircuitJson(c));
+  ReplyJson(x.res, 200, json{{"circuits", arr}});
+}
+
+void GetRouteHistory(Exchange& x) {
+  Result<int64_t> id = PathId(x.req, "no such route");
+  if (!id.ok()) return ApiError(x, id.status());
+  Result<std::vector<app::HistoryEntry>> h = x.services.routes.History(x.caller.viewer, *id);
+  if (!h.ok()) return ApiError(x, h.status());
+  json arr = json::array();
+  for (const app::HistoryEntry& e : *h) {
+    arr.push_back({{"who", e.who}, {"at", e.at}, {"what", e.what}});
+  }
+  ReplyJson(x.res, 200, json{{"history", arr}});
+}
+
+}  // namespace sb::web

@@ -1,0 +1,73 @@
+// Gym pages (issue 21): /gyms, /gyms/{id}, /walls/{id}, and the gym block of
+// a route page. Each asks app::Gyms / app::Routes and renders (gym_pages.h).
+#include "web/gym_pages.h"
+#include "web/handlers.h"
+
+namespace sb::web {
+
+namespace {
+
+// The rows a wall page lists (its routes in every state).
+constexpr int kWallPageRows = 200;
+
+void Html(Exchange& x, const std::string& html) {
+  x.res.SetHeader("Cache-Control", "no-store");
+  x.res.SetBody(200, html, "text/html; charset=utf-8");
+}
+
+}  // namespace
+
+void PageGyms(Exchange& x) {
+  if (!x.caller.viewer.logged_in()) return PageError(x, Status::Unauthenticated("Log in first."));
+  Result<std::vector<app::Gym>> gyms = x.services.gyms.Mine(x.caller.viewer);
+  if (!gyms.ok()) return PageError(x, gyms.status());
+  Html(x, GymsPage(x.caller.page(), *gyms));
+}
+
+void PageGym(Exchange& x) {
+  Result<int64_t> id = PathId(x.req, "No such gym.");
+  if (!id.ok()) return PageError(x, id.status());
+  Result<app::Gym> gym = x.services.gyms.Get(x.caller.viewer, *id);
+  if (!gym.ok()) return PageError(x, gym.status());
+  Result<std::vector<app::Wall>> walls = x.services.gyms.Walls(x.caller.viewer, *id);
+  if (!walls.ok()) return PageError(x, walls.status());
+  Result<std::vector<app::Circuit>> circuits = x.services.gyms.Circuits(x.caller.viewer, *id);
+  if (!circuits.ok()) return PageError(x, circuits.status());
+  Result<std::vector<app::Member>> members = x.services.gyms.Members(x.caller.viewer, *id);
+  if (!members.ok()) return PageError(x, members.status());
+  Html(x, GymPage(x.caller.page(), *gym, *walls, *circuits, *members));
+}
+
+void PageWall(Exchange& x) {
+  Result<int64_t> id = PathId(x.req, "No such wall.");
+  if (!id.ok()) return PageError(x, id.status());
+  Result<app::Wall> wall = x.services.gyms.GetWall(x.caller.viewer, *id);
+  if (!wall.ok()) return PageError(x, wall.status());
+  Result<app::Gym> gym = x.services.gyms.Get(x.caller.viewer, wall->gym_id);
+  if (!gym.ok()) return PageError(x, gym.status());
+  app::RouteQuery q;
+  q.gym = wall->gym_id;
+  q.wall = std::to_string(wall->id);
+  q.limit = kWallPageRows;
+  q.sort = "set";
+  Result<app::RoutePage> routes = x.services.routes.Search(x.caller.viewer, q);
+  if (!routes.ok()) return PageError(x, routes.status());
+  Html(x, WallPage(x.caller.page(), *gym, *wall, routes->routes));
+}
+
+std::string GymBlock(Exchange& x, const store::RouteRecord& r) {
+  if (!r.gym_id) return "";
+  Result<std::string> role = x.services.gyms.RoleIn(x.caller.viewer, *r.gym_id);
+  const bool member = role.ok() && !role->empty();
+  if (!member && r.state == "draft") return "";  // nothing to say to outsiders about a draft
+  std::vector<app::HistoryEntry> history;
+  if (member) {
+    Result<std::vector<app::HistoryEntry>> h = x.services.routes.History(x.caller.viewer, r.id);
+    if (h.ok()) history = std::move(h).value();
+  }
+  const bool can_set =
+      role.ok() && (app::CanSet(*role) && (r.state != "draft" || app::IsOwner(r, x.caller.viewer)));
+  return RouteGymBlock(r, history, can_set);
+}
+
+}  // namespace sb::web

@@ -1,0 +1,206 @@
+#include "web/gym_pages.h"
+
+#include "base/number.h"
+#include "base/text.h"
+
+namespace sb::web {
+
+namespace {
+
+std::string E(std::string_view s) { return XmlEscape(s); }
+
+std::string Script() { return "<script src=\"/static/gyms.js\" defer></script>\n"; }
+
+// A form the gyms.js script sends as JSON to `method url`.
+std::string ApiForm(const std::string& id, const std::string& method, const std::string& url,
+                    const std::string& fields, const std::string& submit,
+                    const std::string& next = "") {
+  return "<form class=\"gym-form no-print\" id=\"" + E(id) + "\" data-api=\"" + E(method) + " " +
+         E(url) + "\"" + (next.empty() ? "" : " data-next=\"" + E(next) + "\"") + ">" + fields +
+         "<button type=\"submit\">" + E(submit) + "</button><p class=\"msg\" role=\"status\"></p>"
+         "</form>\n";
+}
+
+std::string StateName(const std::string& s) {
+  if (s == "set") return "on the wall";
+  if (s == "stripped") return "stripped (archive)";
+  return s;
+}
+
+}  // namespace
+
+std::string GymsPage(const PageViewer& v, const std::vector<app::Gym>& gyms) {
+  std::string b = "<h1>Gyms</h1>\n";
+  if (gyms.empty()) {
+    b += "<p class=\"empty\">You are a member of no gym yet.</p>\n";
+  } else {
+    b += "<ul class=\"gyms\" id=\"gym-list\">";
+    for (const app::Gym& g : gyms) {
+      b += "<li><a href=\"/gyms/" + std::to_string(g.id) + "\">" + E(g.name) + "</a> <span "
+           "class=\"tag\">" + E(g.role) + "</span></li>";
+    }
+    b += "</ul>\n";
+  }
+  if (v.logged_in) {
+    b += "<h2>New gym</h2>\n" +
+         ApiForm("new-gym", "POST", "/api/gyms",
+                 "<label>Name <input name=\"name\" id=\"gym-name\" required "
+                 "maxlength=\"100\"></label>",
+                 "Create gym", "/gyms/:id");
+  }
+  return PageLayout(v, "Gyms", b + Script());
+}
+
+std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<app::Wall>& walls,
+                    const std::vector<app::Circuit>& circuits,
+                    const std::vector<app::Member>& members) {
+  const std::string gid = std::to_string(gym.id);
+  const bool head = gym.role == "head";
+  std::string b = "<h1 id=\"gym-title\">" + E(gym.name) + "</h1>\n<p>You are <strong>" +
+                  E(gym.role) + "</strong> here. <a href=\"/?gym=" + gid +
+                  "\" id=\"gym-routes\">Routes</a> · <a href=\"/?gym=" + gid +
+                  "&amp;state=stripped\" id=\"gym-archive\">Archive</a></p>\n";
+  b += "<h2>Walls</h2>\n";
+  if (walls.empty()) {
+    b += "<p class=\"empty\">No walls yet.</p>\n";
+  } else {
+    b += "<div class=\"table-wrap\"><table class=\"list\" id=\"wall-list\"><thead><tr><th>Wall"
+         "</th><th>Discipline</th><th class=\"num\">Angle</th><th class=\"num\">Reset</th></tr>"
+         "</thead><tbody>\n";
+    for (const app::Wall& w : walls) {
+      b += "<tr><td><a href=\"/walls/" + std::to_string(w.id) + "\">" + E(w.name) + "</a></td><td>" +
+           E(w.discipline) + "</td><td class=\"num\">" + FormatDouble(w.angle) +
+           "°</td><td class=\"num\">" +
+           (w.reset_weeks ? std::to_string(*w.reset_weeks) + " weeks" : std::string("—")) +
+           "</td></tr>\n";
+    }
+    b += "</tbody></table></div>\n";
+  }
+  if (head) {
+    b += ApiForm("new-wall", "POST", "/api/gyms/" + gid + "/walls",
+                 "<label>Name <input name=\"name\" id=\"wall-name\" required maxlength=\"100\">"
+                 "</label><label>Discipline <select name=\"discipline\" id=\"wall-discipline\">"
+                 "<option value=\"bouldering\">bouldering</option><option value=\"roped\">roped"
+                 "</option></select></label><label>Angle <input type=\"number\" name=\"angle\" "
+                 "id=\"wall-angle\" value=\"0\" min=\"-90\" max=\"90\" step=\"any\"></label>"
+                 "<label>Reset every <input type=\"number\" name=\"reset_weeks\" data-optional "
+                 "min=\"1\" max=\"104\" size=\"3\"> weeks</label>",
+                 "Add wall");
+  }
+  b += "<h2>Circuits</h2>\n";
+  if (circuits.empty()) {
+    b += "<p class=\"empty\">No circuits yet.</p>\n";
+  } else {
+    b += "<ul id=\"circuit-list\">";
+    for (const app::Circuit& c : circuits) {
+      b += "<li><a href=\"/?gym=" + gid + "&amp;circuit=" + E(c.colour) + "\">" + E(c.colour) +
+           "</a>";
+      if (!c.grade_from.empty() || !c.grade_to.empty()) {
+        b += " = " + E(c.grade_from) + "–" + E(c.grade_to);
+      }
+      b += "</li>";
+    }
+    b += "</ul>\n";
+  }
+  if (head) {
+    b += ApiForm("new-circuit", "POST", "/api/gyms/" + gid + "/circuits",
+                 "<label>Colour <input name=\"colour\" id=\"circuit-colour\" required "
+                 "maxlength=\"40\"></label><label>From <input name=\"grade_from\" "
+                 "id=\"circuit-from\" size=\"5\" data-optional></label><label>To <input "
+                 "name=\"grade_to\" id=\"circuit-to\" size=\"5\" data-optional></label>",
+                 "Add circuit");
+  }
+  b += "<h2>Team</h2>\n<ul id=\"member-list\">";
+  for (const app::Member& m : members) {
+    b += "<li>" + E(m.username) + " <span class=\"tag\">" + E(m.role) + "</span></li>";
+  }
+  b += "</ul>\n";
+  if (head) {
+    b += ApiForm("new-member", "POST", "/api/gyms/" + gid + "/members",
+                 "<label>User name <input name=\"username\" id=\"member-name\" required></label>"
+                 "<label>Role <select name=\"role\" id=\"member-role\"><option value=\"setter\">"
+                 "setter</option><option value=\"head\">head setter</option><option "
+                 "value=\"climber\">climber</option></select></label>",
+                 "Add to the team");
+    b += "<p class=\"hint\">A new setter signs up first; then add them here by their user "
+         "name.</p>\n";
+  }
+  return PageLayout(v, gym.name, b + Script());
+}
+
+std::string WallPage(const PageViewer& v, const app::Gym& gym, const app::Wall& wall,
+                     const std::vector<store::RouteRecord>& routes) {
+  std::string b = "<p><a href=\"/gyms/" + std::to_string(gym.id) + "\">" + E(gym.name) +
+                  "</a></p>\n<h1 id=\"wall-title\">" + E(wall.name) + "</h1>\n<p>" +
+                  E(wall.discipline) + ", " + FormatDouble(wall.angle) + "°" +
+                  (wall.reset_weeks ? ", reset every " + std::to_string(*wall.reset_weeks) +
+                                          " weeks"
+                                    : std::string()) +
+                  "</p>\n";
+  for (const char* state : {"set", "planned", "draft", "stripped"}) {
+    std::string rows;
+    for (const store::RouteRecord& r : routes) {
+      if (r.state != state) continue;
+      rows += "<tr><td><a href=\"/routes/" + std::to_string(r.id) + "\">" + E(r.name) +
+              "</a></td><td>" + E(r.grade) + "</td><td>" + E(r.colour) + "</td><td>" +
+              E(r.state == "stripped" ? r.strip_on : r.set_on) + "</td></tr>\n";
+    }
+    if (rows.empty()) continue;
+    b += "<h2>" + E(StateName(state)) + "</h2>\n<div class=\"table-wrap\"><table class=\"list\" "
+         "id=\"wall-" + std::string(state) + "\"><thead><tr><th>Route</th><th>Grade</th><th>"
+         "Colour</th><th>Date</th></tr></thead><tbody>\n" + rows + "</tbody></table></div>\n";
+  }
+  if (routes.empty()) b += "<p class=\"empty\">Nothing on this wall yet.</p>\n";
+  if (app::CanSet(gym.role)) {
+    b += "<p><a href=\"/routes/new\" id=\"plan-here\">New route</a> — then set its wall to "
+         "<strong>" + E(wall.name) + "</strong> on its page.</p>\n";
+  }
+  return PageLayout(v, wall.name, b + Script());
+}
+
+std::string RouteGymBlock(const store::RouteRecord& r,
+                          const std::vector<app::HistoryEntry>& history, bool can_set) {
+  std::string b = "<section class=\"gym-block\" id=\"route-gym\"><h2>On the wall</h2>\n<dl>";
+  b += "<dt>State</dt><dd id=\"route-state\">" + E(StateName(r.state)) + "</dd>";
+  b += "<dt>Wall</dt><dd id=\"route-wall\">" +
+       (r.wall_id ? "<a href=\"/walls/" + std::to_string(*r.wall_id) + "\">" + E(r.wall_name) +
+                        "</a>"
+                  : E(r.wall.empty() ? "—" : r.wall)) +
+       "</dd>";
+  std::string setters;
+  for (const store::RouteSetter& s : r.setters) setters += (setters.empty() ? "" : ", ") + s.name;
+  b += "<dt>Setters</dt><dd id=\"route-setters\">" + E(setters.empty() ? "—" : setters) + "</dd>";
+  if (!r.set_on.empty()) {
+    b += std::string("<dt>") + (r.state == "planned" ? "Planned for" : "Set") +
+         "</dt><dd id=\"route-set-on\">" + E(r.set_on) + "</dd>";
+  }
+  if (!r.strip_on.empty()) b += "<dt>Stripped</dt><dd id=\"route-strip-on\">" + E(r.strip_on) + "</dd>";
+  b += "</dl>\n";
+  if (can_set) {
+    const std::string url = "/api/routes/" + std::to_string(r.id);
+    auto opt = [&](const char* s) {
+      return "<option value=\"" + std::string(s) + "\"" + (r.state == s ? " selected" : "") + ">" +
+             E(StateName(s)) + "</option>";
+    };
+    b += ApiForm("route-gym-form", "PUT", url,
+                 "<label>State <select name=\"state\" id=\"route-state-select\">" + opt("draft") +
+                     opt("planned") + opt("set") + opt("stripped") +
+                     "</select></label><label>Wall <input name=\"wall\" id=\"route-wall-input\" "
+                     "value=\"" + E(r.wall_name) + "\" placeholder=\"wall name or id\"></label>"
+                     "<label>Setters <input name=\"setters\" id=\"route-setters-input\" data-list "
+                     "value=\"" + E(setters) + "\" placeholder=\"ann, bob\"></label>",
+                 "Save");
+  }
+  if (!history.empty()) {
+    b += "<h3>History</h3>\n<ol class=\"history\" id=\"route-history\">";
+    for (const app::HistoryEntry& h : history) {
+      b += "<li><time>" + E(h.at) + "</time> " + E(h.who.empty() ? "someone" : h.who) + ": " +
+           E(h.what) + "</li>";
+    }
+    b += "</ol>\n";
+  }
+  b += "</section>\n" + Script();
+  return b;
+}
+
+}  // namespace sb::web

@@ -1,0 +1,35 @@
+// Server-rendered pages of gyms (issue 21): the viewer's gyms, a gym (walls,
+// circuits, members, and the head setter's forms), a wall (its routes by
+// state), and the gym block of a route page (state, wall, setters,
+// history). Every piece of user text is escaped. Pure; thread-safe.
+#ifndef SB_WEB_GYM_PAGES_H_
+#define SB_WEB_GYM_PAGES_H_
+
+#include <string>
+#include <vector>
+
+#include "app/gyms.h"
+#include "app/routes.h"
+#include "web/pages.h"
+
+namespace sb::web {
+
+// "/gyms": the viewer's gyms and a form to create one.
+std::string GymsPage(const PageViewer& v, const std::vector<app::Gym>& gyms);
+// "/gyms/{id}": walls (linking their pages), circuits, members; the head
+// setter's forms to add each.
+std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<app::Wall>& walls,
+                    const std::vector<app::Circuit>& circuits,
+                    const std::vector<app::Member>& members);
+// "/walls/{id}": the wall's routes grouped by state (on the wall, planned,
+// drafts, stripped), a form to plan a route on it for setters.
+std::string WallPage(const PageViewer& v, const app::Gym& gym, const app::Wall& wall,
+                     const std::vector<store::RouteRecord>& routes);
+// The block a route page shows for a route of a gym: state, wall, setters,
+// set / strip dates and history; with `can_set`, a form to change them.
+std::string RouteGymBlock(const store::RouteRecord& r,
+                          const std::vector<app::HistoryEntry>& history, bool can_set);
+
+}  // namespace sb::web
+
+#endif  // SB_WEB_GYM_PAGES_H_
