@@ -13,6 +13,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   wrk chromium chromium-driver nodejs npm
   poppler-utils fonts-dejavu-core fonts-noto-cjk zbar-tools
+  fonts-noto-color-emoji
   libboost-dev python3-scipy
   python3 curl
   clang libclang-rt-dev

@@ -37,6 +37,10 @@ struct Limits {
   // Rows in one route list (more are cut to this), and the default.
   int max_list_rows = 5000;
   int default_list_rows = 500;
+  // Routes on one sheet of tags (GET /tags.pdf): 25 A4 pages of 8, a gym's
+  // whole reset day; rendering it takes about 0.2 s of a core (docs/web.md,
+  // "The tag on the wall"), like a route card.
+  size_t max_tag_sheet_routes = 200;
 };
 
 // Log-in and sign-up throttling (docs/web.md, "Log-in throttling"). Every

@@ -113,6 +113,43 @@ std::string CardLegendLine(const RoutePlan& plan, const std::vector<CardRow>& ro
   return s + (s.empty() ? "" : " \xC2\xB7 ") + "\xE2\x94\x83 " + a.hardest;  // ┃
 }
 
+std::string CardNumber(double v) { return FormatDouble(v, kCardDigits); }
+
+std::string CardRoundNumbers(const std::string& s) {
+  auto digit = [&](size_t i) { return i < s.size() && s[i] >= '0' && s[i] <= '9'; };
+  auto word = [&](size_t i) {
+    const char c = s[i];
+    return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') ||
+           c == '.' || c == '_';
+  };
+  std::string out;
+  size_t i = 0;
+  while (i < s.size()) {
+    const bool starts = (digit(i) || ((s[i] == '-' || s[i] == '.') && digit(i + 1))) &&
+                        (i == 0 || !word(i - 1));
+    if (!starts) {
+      out += s[i++];
+      continue;
+    }
+    size_t j = i + (s[i] == '-' ? 1 : 0);
+    int digits = 0;
+    while (digit(j) || (s[j] == '.' && digit(j + 1))) digits += s[j++] != '.';
+    if (j < s.size() && (s[j] == 'e' || s[j] == 'E')) {
+      size_t k = j + 1;
+      if (k < s.size() && (s[k] == '+' || s[k] == '-')) ++k;
+      if (digit(k)) {
+        while (digit(k)) ++k;
+        j = k;
+      }
+    }
+    const std::string token = s.substr(i, j - i);
+    double v = 0;
+    out += digits > kCardDigits && ParseDouble(token, &v) ? CardNumber(v) : token;
+    i = j;
+  }
+  return out;
+}
+
 std::string CardParameters(const RoutePlan& plan) {
   const chaos::VaryParams& p = plan.variation.params;
   std::string s = "Preset " + p.preset + "; " + chaos::SystemKindName(p.system.kind) + " (" +
@@ -123,8 +160,8 @@ std::string CardParameters(const RoutePlan& plan) {
                   ", mask " + chaos::MaskString(p.mapping.mask);
   if (p.mapping.max_repeat) s += ", max repeat " + std::to_string(p.mapping.max_repeat);
   if (!plan.smoothing_model.empty()) s += "; smoothing " + plan.smoothing_model;
-  return s + ". Reproduce: strangebeta vary " + ReproduceOptions(p, plan.setter) +
-         " ROUTES\xE2\x80\xA6";
+  return CardRoundNumbers(s + ". Reproduce: strangebeta vary " + ReproduceOptions(p, plan.setter) +
+                          " ROUTES\xE2\x80\xA6");
 }
 
 bool CardHasDifficulty(const RoutePlan& plan) {
@@ -183,7 +220,7 @@ std::string SearchLine(const RoutePlan& plan) {
          " swapped)";
   }
   if (!missed.empty()) s += kDot + std::string("NOT held: ") + missed;
-  return s;
+  return CardRoundNumbers(s);
 }
 
 // One short line per kind of warning: the moves concerned as ranges (the

@@ -96,7 +96,18 @@ CardAnnotations CardAnnotationsOf(const RoutePlan& plan);
 // warning line or "Warnings: none", hardest stretch), skipping empty ones.
 std::vector<std::string> CardAnnotationLines(const RoutePlan& plan);
 
-// The generation parameters on one line (small type at the bottom).
+// Numbers on cards and tags: at most kCardDigits significant digits, so
+// float noise from a picked IC (-7.699999999999999) prints as typed (-7.7)
+// and every value a setter types keeps all its digits. The exact values are
+// in the plan JSON. Pure.
+inline constexpr int kCardDigits = 10;
+std::string CardNumber(double v);
+// `text` with every number of more than kCardDigits significant digits
+// printed by CardNumber; other text unchanged. Pure.
+std::string CardRoundNumbers(const std::string& text);
+
+// The generation parameters on one line (small type at the bottom), numbers
+// rounded (CardRoundNumbers), the reproducing `strangebeta vary` options too.
 std::string CardParameters(const RoutePlan& plan);
 // "Grade V4 · Colour yellow · Wall the cave" from the fields that are set.
 std::string CardFactsLine(const CardInfo& info);

@@ -276,6 +276,27 @@ TEST(CardTest, CjkTextPrintsWithACjkFont) {
   EXPECT_TRUE(Has(text, "小さいカチ") || Has(text, "大きなガバ")) << text;
 }
 
+// Issue 21: numbers on cards print rounded (a picked IC carries float noise).
+TEST(CardTest, NumbersPrintRounded) {
+  EXPECT_EQ(CardNumber(-7.699999999999999), "-7.7");
+  EXPECT_EQ(CardNumber(0.015), "0.015");
+  EXPECT_EQ(CardNumber(52), "52");
+  EXPECT_EQ(CardRoundNumbers("IC (-7.699999999999999,-12,52), step 0.01, b 2.6666666666666665"),
+            "IC (-7.7,-12,52), step 0.01, b 2.666666667");
+  // Words, dates and short numbers are left alone.
+  EXPECT_EQ(CardRoundNumbers("V4 on 2026-11-26, mask 111, 1e+300, x1.00000000000001"),
+            "V4 on 2026-11-26, mask 111, 1e+300, x1.00000000000001");
+  RoutePlan p = Annotated();
+  p.variation.params.var_ic = {-16, -7.699999999999999, 52.000000000000007};
+  p.search->used_ic = {-15.9, -7.699999999999999, 52};
+  const std::string params = CardParameters(p);
+  EXPECT_TRUE(Has(params, "variation IC (-16,-7.7,52)")) << params;
+  EXPECT_TRUE(Has(params, "--var-ic=-16,-7.7,52 ")) << params;
+  EXPECT_FALSE(Has(params, "99999")) << params;
+  const std::string search = CardAnnotationsOf(p).search;
+  EXPECT_TRUE(Has(search, "IC (-15.9,-7.7,52) used")) << search;
+}
+
 TEST(CardTest, PdfCardShowsTheAnnotationsOnOnePage) {
   if (std::system("pdftotext -v >/dev/null 2>&1") != 0) GTEST_SKIP() << "pdftotext missing";
   RoutePlan p = Annotated();

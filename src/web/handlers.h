@@ -136,6 +136,11 @@ std::string ShortLink(Exchange& x, int64_t id);
 void PagePlanSvg(Exchange& x);
 // static_files.cc
 void GetStatic(Exchange& x);
+// tag_handlers.cc: the climber's tag of a route (page, PDF) and a sheet of
+// tags (GET /tags.pdf?ids=1,2,3).
+void PageTag(Exchange& x);
+void PageTagPdf(Exchange& x);
+void GetTagSheetPdf(Exchange& x);
 
 }  // namespace sb::web
 

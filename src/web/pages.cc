@@ -291,7 +291,8 @@ std::string RoutePage(const PageViewer& v, const store::RouteRecord& r, bool can
   std::string id = std::to_string(r.id);
   b += "<p class=\"actions no-print\"><a class=\"button\" id=\"vary-this\" href=\"/vary?routes=" +
        id + "\">Vary this route</a> <a href=\"/api/routes/" + id +
-       ".crdl\" download>Download CRDL</a>";
+       ".crdl\" download>Download CRDL</a> <a class=\"button\" id=\"tag-link\" href=\"/routes/" +
+       id + "/tag\">Tag</a>";
   if (can_change) {
     b += " <a class=\"button\" href=\"/routes/" + id +
          "/edit\" id=\"edit\">Edit</a>"
@@ -478,7 +479,9 @@ std::string PlanPage(const PageViewer& v, const store::RouteRecord& rec,
   b += "</div>\n";
   if (!card.url.empty()) {
     if (Result<plan::QrCode> qr = plan::MakeQr(card.url); qr.ok()) {
-      b += "<figure class=\"qr\">" + plan::QrSvg(*qr, "26mm") + "<figcaption>" + E(card.url) +
+      // The URL on one line (issue 21): app.css sizes it from its length.
+      b += "<figure class=\"qr\">" + plan::QrSvg(*qr, "26mm") + "<figcaption style=\"--chars:" +
+           std::to_string(card.url.size()) + "\">" + E(card.url) +
            "</figcaption></figure>";
     }
   }
@@ -560,7 +563,8 @@ std::string PlanPage(const PageViewer& v, const store::RouteRecord& rec,
        ".pdf\">PDF (A4)</a> <a class=\"button\" id=\"pdf-letter\" href=\"/variations/" + id +
        ".pdf?paper=letter\">PDF (Letter)</a> <a class=\"button\" id=\"svg-link\" "
        "href=\"/variations/" + id + ".svg\">SVG</a> <a href=\"/api/variations/" + id +
-       "\">JSON</a> <a class=\"button\" href=\"/vary?routes=" + id + "\">Vary this variation</a>";
+       "\">JSON</a> <a class=\"button\" href=\"/vary?routes=" + id + "\">Vary this variation</a>"
+       " <a class=\"button\" id=\"tag-link\" href=\"/routes/" + id + "/tag\">Tag</a>";
   if (v.logged_in && rec.owner_id && *rec.owner_id == v.user_id) {
     b += " <a class=\"button\" id=\"edit\" href=\"/routes/" + id + "/edit\">Edit moves and "
          "details</a>";

@@ -1,0 +1,76 @@
+// The climber's tag (issue 21, docs/web.md "The tag on the wall"): one tag
+// as a page and a PDF for every route the viewer can see, and a sheet of tags
+// for a list of routes. The content is plan/tag.h; app/tags.h maps a route to
+// it and bounds a sheet.
+#include "app/tags.h"
+#include "base/text.h"
+#include "plan/tag.h"
+#include "web/handlers.h"
+#include "web/tag_pages.h"
+
+namespace sb::web {
+
+namespace {
+
+plan::Paper TagPaperOf(const Request& req) {
+  return ToLower(req.Query("paper").value_or("")) == "letter" ? plan::Paper::kLetter
+                                                              : plan::Paper::kA4;
+}
+
+// The route of the path's id, visible to the caller, and its tag.
+Result<std::pair<store::RouteRecord, plan::TagInfo>> TagOfPath(Exchange& x) {
+  SB_ASSIGN_OR_RETURN(int64_t id, PathId(x.req, "No such route."));
+  SB_ASSIGN_OR_RETURN(store::RouteRecord r, x.services.routes.Get(x.caller.viewer, id));
+  plan::TagInfo tag = app::TagInfoOf(r, ShortLink(x, r.id));
+  return std::make_pair(std::move(r), std::move(tag));
+}
+
+void SendPdf(Exchange& x, const std::string& pdf, const std::string& name, plan::Paper paper) {
+  x.res.SetHeader("Content-Disposition",
+                  AttachmentHeader(name, paper == plan::Paper::kLetter ? "-letter.pdf" : "-a4.pdf"));
+  x.res.SetBody(200, pdf, "application/pdf");
+}
+
+}  // namespace
+
+void PageTag(Exchange& x) {
+  auto t = TagOfPath(x);
+  if (!t.ok()) return PageError(x, t.status());
+  x.res.SetHeader("Cache-Control", "no-store");
+  x.res.SetBody(200, TagPage(x.caller.page(), t->first.id, t->second), "text/html; charset=utf-8");
+}
+
+void PageTagPdf(Exchange& x) {
+  auto t = TagOfPath(x);
+  if (!t.ok()) return PageError(x, t.status());
+  const plan::Paper paper = TagPaperOf(x.req);
+  Result<std::string> pdf = plan::RenderTagPdf(t->second, paper);
+  if (!pdf.ok()) return PageError(x, pdf.status());
+  SendPdf(x, *pdf, "tag-" + t->first.name, paper);
+}
+
+void GetTagSheetPdf(Exchange& x) {
+  std::vector<int64_t> ids;
+  const std::string list = x.req.Query("ids").value_or("");  // outlives the views of Split
+  for (std::string_view part : Split(list, ',')) {
+    if (Trim(part).empty()) continue;
+    std::optional<int64_t> id = ParseId(std::string(Trim(part)));
+    if (!id) {
+      return PageError(x, Status::InvalidInput("ids: \"" + std::string(part) +
+                                               "\" is not a route id (ids=1,2,3)"));
+    }
+    ids.push_back(*id);
+  }
+  Result<std::vector<store::RouteRecord>> routes = app::TagSheetRoutes(
+      x.services.routes, x.caller.viewer, ids, x.services.options.limits);
+  if (!routes.ok()) return PageError(x, routes.status());
+  std::vector<plan::TagInfo> tags;
+  tags.reserve(routes->size());
+  for (const store::RouteRecord& r : *routes) tags.push_back(app::TagInfoOf(r, ShortLink(x, r.id)));
+  const plan::Paper paper = TagPaperOf(x.req);
+  Result<std::string> pdf = plan::RenderTagSheetPdf(tags, paper);
+  if (!pdf.ok()) return PageError(x, pdf.status());
+  SendPdf(x, *pdf, "tags", paper);
+}
+
+}  // namespace sb::web
