@@ -43,6 +43,7 @@ class Fixture {
     store_ = std::move(s).value();
     sb::web::ServerOptions o;
     o.app.fast_password_hashing = true;
+    o.allowed_hosts = {"fuzz.test"};  // the Host header every request carries
     server_ = std::make_unique<sb::web::Server>(store_.get(), o);
     // The owner's public route, its variation and a study over the route.
     owner_ = SignUp("owner");

@@ -34,6 +34,7 @@ MAX_LATENCY = 1.0  # seconds, for every normal request
 MAX_PEAK_RSS_KB = 512 * 1024
 
 failures = []
+FIGURES = []  # (attack, normal requests during it, worst latency)
 
 
 def check(cond, what):
@@ -135,6 +136,7 @@ class Prober(threading.Thread):
         self.port = port
         self.stop_flag = threading.Event()
         self.latencies = []
+        self.samples = []
         self.bad = []
 
     def run(self):
@@ -147,9 +149,29 @@ class Prober(threading.Thread):
                 ok, status = False, str(e)
             dt = time.monotonic() - t
             self.latencies.append(dt)
+            self.samples.append((t, dt, status))
             if not ok or dt > MAX_LATENCY:
                 self.bad.append((round(dt, 3), status))
             self.stop_flag.wait(0.1)
+
+    def window(self, start, end):
+        """(worst latency, count, statuses other than 200) of the probes sent in [start, end]."""
+        inside = [(dt, st) for t, dt, st in list(self.samples) if start <= t <= end]
+        worst = max((dt for dt, _ in inside), default=0.0)
+        return worst, len(inside), [st for _, st in inside if st != 200]
+
+
+def measured(prober, name, attack, *args):
+    """Runs one attack and reports the normal requests' latency (from 127.0.0.1) meanwhile."""
+    start = time.monotonic()
+    attack(*args)
+    end = time.monotonic()
+    time.sleep(0.15)  # the probe in flight at the end
+    worst, n, other = prober.window(start, end + 0.15)
+    check(n > 0 and worst < MAX_LATENCY and not other,
+          '%s: normal requests meanwhile: %d, worst %.3f s, non-200: %s (%.1f s)' %
+          (name, n, worst, other[:5], end - start))
+    FIGURES.append((name, n, worst))
 
 
 def chunked_flood(port):
@@ -314,7 +336,7 @@ def id_reuse(port):
 
 
 def hostile_import(port):
-    """Imports rows that are valid but extreme (a 10,000-move route, a variation of it
+    """Imports rows that are valid but extreme (a 1,000-move route, a variation of it
     with max_repeat 1, markup in names) and views every page of each: never a 500, each
     view answered within 10 s. Rows the API refuses (nan, inf, 1e300) are refused with
     their file:line."""
@@ -328,16 +350,17 @@ def hostile_import(port):
             'X-CSRF-Token': json.loads(body)['csrf']}
     head = ('route_id,name,description,grade,is_variation,nna,dim_mask,max_repeat,transient,'
             'rx,ry,rz,vx,vy,vz,is_public\n')
-    # Route 1: 10,000 moves and markup everywhere; route 4: 5,000 moves (the
-    # most a variation may vary) and two variations of it, one with
-    # max_repeat 1 and the longest transient, one with far-off ICs.
+    # Route 1: 1,000 moves (the most a route may have) and markup everywhere;
+    # route 4: 1,000 moves (the most a variation may vary) and two variations
+    # of it, one with max_repeat 1 and the longest transient, one with
+    # far-off ICs.
     routes = head + ('1,"<script>alert(1)</script> ""x""",desc </p>,V4,f,,,,,,,,,,,t\n'
                      '4,Long,,,f,,,,,,,,,,,t\n'
                      '2,Variation on 4,,,t,B,111,1,100000,-13,-12,52,-16,-12,52,t\n'
                      '3,"Variation on 4",,,t,D,011,1,0,50,-50,80,-16,-12,52,t\n')
     moves = 'route_id,seq_no,hand,move,crux\n' + ''.join(
         '%d,%d,%s,"move %d <b>&amp;</b>, ""q""",%s\n' % (r, i, 'RL'[i % 2], i, 'tf'[i % 7 != 0])
-        for r, n in ((1, 10000), (4, 5000)) for i in range(1, n + 1))
+        for r, n in ((1, 1000), (4, 1000)) for i in range(1, n + 1))
     moves += '2,1,R,jug,f\n3,1,L,crimp,f\n'
     for bad, what in (('nan', 'not a finite number'), ('inf', 'not a finite number'),
                       ('1e300', 'diverged')):
@@ -372,6 +395,254 @@ def hostile_import(port):
     print('     hostile import: worst page view %.2f s' % worst)
 
 
+def parallel(jobs, fn):
+    """Runs fn(i) for i in range(jobs) on threads; returns the results in order."""
+    out = [None] * jobs
+
+    def run(i):
+        try:
+            out[i] = fn(i)
+        except OSError as e:
+            out[i] = ('error', str(e))
+
+    ts = [threading.Thread(target=run, args=(i,)) for i in range(jobs)]
+    for t in ts:
+        t.start()
+    for t in ts:
+        t.join()
+    return out
+
+
+def until(seconds, fn):
+    """Calls fn() again and again for `seconds`; returns the results."""
+    end = time.monotonic() + seconds
+    out = []
+    while time.monotonic() < end:
+        out.append(fn())
+    return out
+
+
+def source(i, base=20):
+    """A loopback source address of attacker i (127.0.0.20 on)."""
+    return '127.0.%d.%d' % (base + i // 250, 1 + i % 250)
+
+
+def login(port, src):
+    body = json.dumps({'username': 'demo', 'password': 'strangebeta-demo'}).encode()
+    st, h, b = request(port, 'POST', '/api/sessions', body, {'Content-Type': 'application/json'},
+                       source=src)
+    if st != 200:
+        return None
+    return {'Content-Type': 'application/json', 'Cookie': h['set-cookie'].split(';')[0],
+            'X-CSRF-Token': json.loads(b)['csrf']}
+
+
+def login_stall(port):
+    """The issue's log-in stalls: one wrong guess each from 24 addresses at one account,
+    60 addresses guessing an unknown name, and from one address 5 guesses on each of 2
+    accounts past their 20th failure. Throttled or queued-over attempts are answered at
+    once (429/503 with Retry-After); nothing sleeps in a worker."""
+    def guess(user, src, pw):
+        t = time.monotonic()
+        st, h, _ = request(port, 'POST', '/api/sessions',
+                           json.dumps({'username': user, 'password': pw}).encode(),
+                           {'Content-Type': 'application/json'}, source=src, timeout=30)
+        return st, h.get('retry-after'), time.monotonic() - t
+
+    r = parallel(24, lambda i: guess('demo', source(i, 30), 'wrong-%d' % i))
+    r += parallel(60, lambda i: guess('nobody-%d' % (i % 3), source(i, 31), 'wrong'))
+    for acct in ('demo', 'ghost'):
+        for i in range(25):
+            r.append(guess(acct, '127.0.32.1', 'wrong-%d' % i))
+    statuses = [x[0] for x in r]
+    slowest = max(x[2] for x in r)
+    answered_at_once = all(x[1] for x in r if x[0] in (429, 503))
+    check(set(statuses) <= {401, 429, 503} and answered_at_once and slowest < MAX_LATENCY,
+          'log-in stall: %d guesses: %d checked (401), %d throttled (429), %d busy (503), '
+          'Retry-After on every refusal: %s, slowest answer %.2f s' %
+          (len(r), statuses.count(401), statuses.count(429), statuses.count(503),
+           answered_at_once, slowest))
+    # The owner, from a clean address, still logs in at once.
+    t = time.monotonic()
+    auth = login(port, '127.0.33.1')
+    check(auth is not None and time.monotonic() - t < MAX_LATENCY,
+          'the attacked account\'s owner logs in from another address in %.2f s' %
+          (time.monotonic() - t))
+
+
+def input_limits(port, auth):
+    """Inputs over the limits are refused where they are read, naming the field."""
+    def post(crdl):
+        return request(port, 'POST', '/api/routes', json.dumps({'crdl': crdl}).encode(), auth,
+                       timeout=30)
+    st, _, body = post('name: long\n---\n' + 'R jug\n' * 40000)
+    check(st == 400 and b'moves: at most' in body, '40,000 moves via the API: %s %s' %
+          (st, body[:80]))
+    st, _, body = post('name: ' + 'n' * 1900000 + '\n---\nR jug\n')
+    check(st == 400 and b'name: at most' in body,
+          '1.9 MB name via the API: %s %s' % (st, body[:80]))
+    st, _, body = post('name: x\ndescription line\n' + 'd' * 5000 + '\n---\nR jug\n')
+    check(st == 400 and b'description: at most' in body, '5,000-character description: %s %s' %
+          (st, body[:80]))
+    st, _, body = post('name: x\n---\nR ' + 'm' * 300 + '\n')
+    check(st == 400 and b'move 1: at most' in body, '300-character move: %s %s' % (st, body[:80]))
+    head = 'route_id,name\n1,big\n'
+    moves = 'route_id,seq_no,hand,move\n' + ''.join('1,%d,R,jug\n' % i for i in range(1, 1002))
+    st, _, body = request(port, 'POST', '/api/import/csv',
+                          json.dumps({'routes_csv': head, 'moves_csv': moves}).encode(), auth,
+                          timeout=30)
+    check(st == 400 and b'routes.csv:2' in body and b'moves: at most' in body,
+          'CSV import of a 1,001-move route: %s %s' % (st, body[:90]))
+    st, _, body = request(port, 'POST', '/api/feedback',
+                          json.dumps({'crdl': 'name: x\n---\n' + 'R jug\n' * 1001}).encode(),
+                          {'Content-Type': 'application/json'})
+    check(st == 200 and b'moves: at most' in body, 'editor feedback on 1,001 moves names the '
+          'limit: %s' % st)
+
+
+def big_route(port, auth, moves=1000):
+    """The largest route the limits allow, and a variation of it; returns their ids."""
+    crdl = 'name: Longest\n---\n' + ''.join('%s move %d crimp to jug\n' % ('RL'[i % 2], i)
+                                             for i in range(moves))
+    st, _, body = request(port, 'POST', '/api/routes', json.dumps({'crdl': crdl}).encode(), auth,
+                          timeout=30)
+    check(st == 201, 'a %d-move route (the limit) is accepted: %s' % (moves, st))
+    rid = json.loads(body)['id']
+    st, _, body = request(port, 'POST', '/api/variations',
+                          json.dumps({'routes': [rid], 'name': 'Long variation'}).encode(), auth,
+                          timeout=60)
+    check(st in (200, 201), 'a variation of it: %s %s' % (st, body[:80]))
+    return rid, json.loads(body)['id']
+
+
+def page_flood(port, paths, clients=16, seconds=4):
+    """`clients` addresses fetch big pages again and again: refused (429/503 with Retry-After)
+    beyond the work budget, never slow."""
+    def client(i):
+        got = []
+
+        def one():
+            path = paths[len(got) % len(paths)]
+            t = time.monotonic()
+            st, h, _ = request(port, 'GET', path, source=source(i, 40), timeout=30)
+            got.append((st, 'retry-after' in h, time.monotonic() - t))
+        until(seconds, one)
+        return got
+    r = [x for c in parallel(clients, client) for x in c]
+    st = [x[0] for x in r]
+    refused_with_retry = all(x[1] for x in r if x[0] in (429, 503))
+    check(set(st) <= {200, 429, 503} and refused_with_retry,
+          '%d clients x %s: %d answers: %d ok, %d 429, %d 503, Retry-After on refusals: %s, '
+          'slowest %.2f s' % (clients, ' '.join(p.split('?')[0] for p in paths), len(r),
+                              st.count(200), st.count(429), st.count(503), refused_with_retry,
+                              max(x[2] for x in r)))
+
+
+def feedback_flood(port, clients=16, seconds=4):
+    """16 addresses post 64 KiB editor-feedback bodies again and again."""
+    crdl = 'name: x\n---\n' + ('R small crimp to a big jug with a heel hook ' * 3 + '\n') * 480
+    crdl = crdl[:64 * 1024 - 100]
+    body = json.dumps({'crdl': crdl}).encode()
+
+    def client(i):
+        return until(seconds, lambda: request(port, 'POST', '/api/feedback', body,
+                                              {'Content-Type': 'application/json'},
+                                              source=source(i, 50), timeout=30)[0])
+    st = [x for c in parallel(clients, client) for x in c]
+    check(set(st) <= {200, 429, 503}, '%d clients posting %d KiB editor feedback: %d answers: '
+          '%d ok, %d 429, %d 503' % (clients, len(body) // 1024, len(st), st.count(200),
+                                     st.count(429), st.count(503)))
+
+
+def consensus_leak(port, route_id):
+    """The issue's leak: a real felt grade V7, then fake V0 and V16 votes (a new cookie each):
+    the page must not show the real one."""
+    def vote(grade, i):
+        st, _, _ = request(port, 'POST', '/api/r/%d/feedback' % route_id,
+                           json.dumps({'felt_grade': grade}).encode(),
+                           {'Content-Type': 'application/json'}, source=source(i, 60))
+        return st
+    sts = [vote('V7', 0)]
+    for k in range(3):
+        sts += [vote('V0', 1 + 2 * k), vote('V16', 2 + 2 * k)]
+        st, _, page = request(port, 'GET', '/r/%d' % route_id, source='127.0.60.200')
+        m = re.search(rb'id="consensus-grade">([^<]*)', page)
+        shown = m.group(1).decode() if m else '?'
+        check(st == 200 and 'V7' not in shown and 'votes' not in shown,
+              'consensus after the real V7 and %d fake extreme votes: "%s"' % (2 * k + 2, shown))
+    check(set(sts) == {200}, 'felt grades accepted: %s' % sts)
+
+
+def csv_formulas(port, auth):
+    """Formula-leading cells are exported as text (a leading apostrophe)."""
+    crdl = 'name: =cmd|\' /C calc\'!A0\n---\nR +SUM(A1)\nL @jug\nR -crimp\n'
+    st, _, body = request(port, 'POST', '/api/routes', json.dumps({'crdl': crdl}).encode(), auth)
+    check(st == 201, 'route named =cmd|... stored: %s' % st)
+    _, _, routes = request(port, 'GET', '/api/export/routes.csv?mine=1',
+                           headers={'Cookie': auth['Cookie']})
+    _, _, moves = request(port, 'GET', '/api/export/moves.csv?mine=1',
+                          headers={'Cookie': auth['Cookie']})
+    cells = [c for line in (routes + moves).decode().splitlines() for c in line.split(',')]
+    bad = [c for c in cells if c[:1] in ('=', '+', '-', '@', '\t', '\r')
+           and not re.fullmatch(r'-?[0-9.e+-]+', c)]
+    check(bad == [] and "'=cmd" in routes.decode() and "'+SUM" in moves.decode(),
+          'exports neutralise formula cells (left: %s)' % bad[:3])
+    # A study: an anonymous answer's demographics are exported the same way.
+    st, _, body = request(port, 'GET', '/api/routes?mine=1&limit=2',
+                          headers={'Cookie': auth['Cookie']})
+    ids = [r['id'] for r in json.loads(body)['routes']]
+    st, _, body = request(port, 'POST', '/api/studies', json.dumps(
+        {'name': 'Formula study', 'routes': ids, 'instrument': 'pilot',
+         'demographics': True}).encode(), auth)
+    if st not in (200, 201):
+        check(False, 'study for the demographics export: %s %s' % (st, body[:100]))
+        return
+    sid = json.loads(body)['id']
+    answer = {'routes': [{'answers': [1, 1, 1, 1, 1], 'rank': k + 1, 'order': k + 1}
+                         for k in range(len(ids))],
+              'demographics': {'ice_cream': "=cmd|' /C calc'!A0"}}
+    st, _, body = request(port, 'POST', '/api/s/%d/responses' % sid, json.dumps(answer).encode(),
+                          {'Content-Type': 'application/json'}, source='127.0.61.1')
+    st2, _, csv = request(port, 'GET', '/studies/%d/demographics.csv' % sid,
+                          headers={'Cookie': auth['Cookie']})
+    check(st == 201 and st2 == 200 and b"'=cmd" in csv and b',=cmd' not in csv,
+          'demographics.csv neutralises an anonymous =cmd answer: %s %s %s' %
+          (st, st2, (csv or body)[:120]))
+
+
+def host_header(port):
+    """DNS rebinding: another host name is refused (421); loopback names are served."""
+    res = {}
+    for host in ('evil.example:%d' % port, 'rebind.attacker.test', '127.0.0.1:%d' % port,
+                 'localhost:%d' % port, '[::1]:%d' % port):
+        st, _, _ = request(port, 'GET', '/api/routes?limit=1', headers={'Host': host})
+        res[host.split(':')[0] if not host.startswith('[') else '[::1]'] = st
+    st, _, _ = request(port, 'POST', '/api/feedback', json.dumps({'crdl': 'x'}).encode(),
+                       {'Host': 'evil.example', 'Content-Type': 'application/json'})
+    check(res['evil.example'] == 421 and res['rebind.attacker.test'] == 421 and st == 421 and
+          res['127.0.0.1'] == 200 and res['localhost'] == 200 and res['[::1]'] == 200,
+          'Host header: %s, POST from evil.example %s' % (res, st))
+
+
+def repeated_variation(port, auth):
+    """A public variation named PubVar after a private one named PubInputPrivVar of the same
+    route is a new variation, not the private one."""
+    st, _, body = request(port, 'GET', '/api/routes?limit=1&variations=0',
+                          headers={'Cookie': auth['Cookie']})
+    rid = json.loads(body)['routes'][0]['id']
+    def make(name, pub):
+        st, _, body = request(port, 'POST', '/api/variations', json.dumps(
+            {'routes': [rid], 'name': name, 'public': pub}).encode(), auth, timeout=30)
+        j = json.loads(body)
+        return st, j.get('id'), j.get('existing')
+    a = make('PubInputPrivVar', False)
+    b = make('PubVar', True)
+    c = make('PubVar', True)
+    check(a[1] and b[1] and a[1] != b[1] and not b[2] and c[1] == b[1] and c[2],
+          'variation requests: private %s, public %s (existing %s), same again %s (existing %s)' %
+          (a[1], b[1], b[2], c[1], c[2]))
+
+
 def main():
     build = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else 'build')
     source = os.path.abspath(sys.argv[2] if len(sys.argv) > 2 else
@@ -394,6 +665,25 @@ def main():
             hostile_import(server.port)
             for a in attacks:
                 a.join()
+            # Issue 24: each attack from many loopback addresses, the normal request's
+            # latency (from 127.0.0.1) measured during each.
+            measured(prober, 'log-in stall', login_stall, server.port)
+            auth = login(server.port, '127.0.70.1')
+            check(auth is not None, 'demo log-in for the page attacks')
+            if auth:
+                measured(prober, 'input limits', input_limits, server.port, auth)
+                rid, vid = big_route(server.port, auth)
+                measured(prober, 'route page flood', page_flood, server.port,
+                         ['/routes/%d' % rid, '/api/routes/%d' % rid, '/routes/%d/edit' % rid])
+                measured(prober, 'card flood', page_flood, server.port,
+                         ['/variations/%d.pdf' % vid, '/variations/%d.svg' % vid])
+                measured(prober, 'export and list flood', page_flood, server.port,
+                         ['/api/export/moves.csv', '/api/routes?limit=5000', '/?limit=5000'])
+                measured(prober, 'editor feedback flood', feedback_flood, server.port)
+                measured(prober, 'consensus leak', consensus_leak, server.port, rid)
+                measured(prober, 'CSV formulas', csv_formulas, server.port, auth)
+                measured(prober, 'Host header', host_header, server.port)
+                measured(prober, 'repeated variation', repeated_variation, server.port, auth)
         finally:
             time.sleep(0.3)
             prober.stop_flag.set()
@@ -410,6 +700,9 @@ def main():
               (peak // 1024, MAX_PEAK_RSS_KB // 1024))
         check(rc == 0, 'server stopped cleanly on SIGTERM (exit %s)' % rc)
         print('abuse: worst normal-request latency %.3f s' % worst)
+        print('abuse: per attack (normal requests from 127.0.0.1 during it, worst latency):')
+        for name, n, w in FIGURES:
+            print('       %-24s %4d  %.3f s' % (name, n, w))
     if failures:
         print('abuse.py: %d check(s) failed' % len(failures))
         return 1

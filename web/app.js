@@ -486,11 +486,17 @@
   const importCrdl = $('#import-crdl');
   if (importCrdl) {
     importCrdl.addEventListener('click', async () => {
+      if (importCrdl.disabled) return;  // one import at a time
       const files = $('#crdl-files').files;
       let ok = 0; const errors = [];
-      for (const f of files) {
-        const r = await api('POST', '/api/routes', { crdl: await f.text() });
-        if (r.status === 201) ok++; else errors.push(f.name + ': ' + ((r.data && r.data.error) || r.status));
+      importCrdl.disabled = true;
+      try {
+        for (const f of files) {
+          const r = await api('POST', '/api/routes', { crdl: await f.text() });
+          if (r.status === 201) ok++; else errors.push(f.name + ': ' + ((r.data && r.data.error) || r.status));
+        }
+      } finally {
+        importCrdl.disabled = false;
       }
       say($('#crdl-msg'), ok + ' imported' + (errors.length ? '; ' + errors.join('; ') : ''), !errors.length);
     });
@@ -498,11 +504,31 @@
   const importCsv = $('#import-csv');
   if (importCsv) {
     importCsv.addEventListener('click', async () => {
+      if (importCsv.disabled) return;  // one import at a time
       const rf = $('#routes-csv').files[0], mf = $('#moves-csv').files[0];
       if (!rf || !mf) return say($('#csv-msg'), 'Choose both files.');
-      const r = await api('POST', '/api/import/csv', { routes_csv: await rf.text(), moves_csv: await mf.text() });
-      if (r.status === 201) say($('#csv-msg'), r.data.imported + ' routes imported, ' + r.data.skipped.length + ' notes', true);
-      else say($('#csv-msg'), (r.data && r.data.error) || ('error ' + r.status));
+      const notes = $('#csv-notes');
+      notes.textContent = '';
+      notes.hidden = true;
+      importCsv.disabled = true;
+      say($('#csv-msg'), 'Importing…', true);
+      try {
+        const r = await api('POST', '/api/import/csv', { routes_csv: await rf.text(), moves_csv: await mf.text() });
+        if (r.status === 201) {
+          const skipped = r.data.skipped || [];
+          say($('#csv-msg'), r.data.imported + ' routes imported, ' + skipped.length + ' notes', true);
+          for (const n of skipped) {
+            const li = document.createElement('li');
+            li.textContent = n;
+            notes.appendChild(li);
+          }
+          notes.hidden = skipped.length === 0;
+        } else {
+          say($('#csv-msg'), (r.data && r.data.error) || ('error ' + r.status));
+        }
+      } finally {
+        importCsv.disabled = false;
+      }
     });
   }
 })();

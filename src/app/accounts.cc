@@ -11,6 +11,10 @@ namespace sb::app {
 
 namespace {
 
+// What a caller refused by a full password-check queue should wait: a
+// queue of a few ~50 ms checks drains well within it.
+constexpr int kBusyRetrySeconds = 1;
+
 // Account names are matched ignoring case; keys use at most 64 bytes of them.
 std::string AccountKey(std::string_view username) { return ToLower(username.substr(0, 64)); }
 
@@ -31,6 +35,22 @@ Accounts::Accounts(store::Store* store, const Options& options, Clock* clock)
       clock_(clock),
       checks_(std::clamp(options.login.max_parallel_password_checks, 1, 1024)) {}
 
+bool Accounts::EnterCheckQueue() {
+  const LoginPolicy& p = options_.login;
+  std::lock_guard<std::mutex> lock(queue_mu_);
+  if (in_queue_ >= std::max(1, p.max_parallel_password_checks) +
+                       std::max(0, p.max_queued_password_checks)) {
+    return false;
+  }
+  ++in_queue_;
+  return true;
+}
+
+void Accounts::LeaveCheckQueue() {
+  std::lock_guard<std::mutex> lock(queue_mu_);
+  --in_queue_;
+}
+
 bool Accounts::VerifyBounded(std::string_view password, const std::string& hash) {
   checks_.acquire();
   bool ok = store::VerifyPassword(password, hash);
@@ -50,7 +70,8 @@ const std::string& Accounts::DummyHash() {
 }
 
 Result<store::User> Accounts::SignUp(std::string_view username, std::string_view password,
-                                     std::string_view address) {
+                                     std::string_view address, bool* busy) {
+  if (busy) *busy = false;
   SB_RETURN_IF_ERROR(store::CheckUsername(username));
   SB_RETURN_IF_ERROR(store::CheckPassword(password));
   int64_t now = clock_->Now();
@@ -63,16 +84,25 @@ Result<store::User> Accounts::SignUp(std::string_view username, std::string_view
   Result<store::User> existing = store_->FindUserByName(name);
   if (existing.ok()) return Status::Conflict("username is taken");
   if (existing.status().code() != Status::Code::kNotFound) return existing.status();
-  checks_.acquire();  // hashing costs what a check does
+  if (!EnterCheckQueue()) {  // hashing costs what a check does
+    if (busy) *busy = true;
+    return Status::ResourceExhausted("server busy checking passwords; try again in " +
+                                     std::to_string(kBusyRetrySeconds) + " s");
+  }
+  checks_.acquire();
   Result<std::string> hash = store::HashPassword(password, options_.fast_password_hashing);
   checks_.release();
+  LeaveCheckQueue();
   if (!hash.ok()) return hash.status();
   SB_ASSIGN_OR_RETURN(int64_t id, store_->CreateUser(name, *hash));
   return store_->FindUser(id);
 }
 
 Result<NewSession> Accounts::LogIn(std::string_view username, std::string_view password,
-                                   std::string_view address, int* retry_after_seconds) {
+                                   std::string_view address, int* retry_after_seconds,
+                                   bool* busy) {
+  if (busy) *busy = false;
+  if (retry_after_seconds) *retry_after_seconds = 0;
   const LoginPolicy& policy = options_.login;
   const std::string account = AccountKey(username);
   const std::string pair_key = "pair:" + account + "|" + std::string(address);
@@ -94,21 +124,41 @@ Result<NewSession> Accounts::LogIn(std::string_view username, std::string_view p
     // least `delay` real seconds passed.
     if (delay > 0) wait = std::max(wait, c[k].previous_at + delay + 1 - now);
   }
-  if (wait > 0) {
+  // Failures on this account from everywhere pace its checks: one per
+  // account_pace_seconds (1 s, then 2 s, ... up to it) beyond the free
+  // attempts, but only for addresses that already tried this account in the
+  // window; an address's first attempt is never held back, so the owner
+  // from a clean address is never locked out by strangers.
+  if (c[0].count > 1) {
+    int64_t pace = DelayAfter(c[2].count - 1, policy.account_free_attempts,
+                              std::max(1, policy.account_pace_seconds));
+    if (pace > 0) wait = std::max(wait, c[2].previous_at + pace + 1 - now);
+  }
+  auto undo = [&] {
     // A refused attempt does not count: the delay grows with the attempts
     // that reached the password check, so waiting Retry-After is enough.
-    Status undo = store_->UndoAttempts({pair_key, address_key, account_key}, now);
-    if (!undo.ok()) LogError("log-in throttling: " + undo.message());
+    Status u = store_->UndoAttempts({pair_key, address_key, account_key}, now);
+    if (!u.ok()) LogError("log-in throttling: " + u.message());
+  };
+  if (wait > 0) {
+    undo();
     if (retry_after_seconds) *retry_after_seconds = static_cast<int>(wait);
     return Status::ResourceExhausted("too many failed log-ins; try again in " +
                                      std::to_string(wait) + " s");
   }
-  // Failures on this account from everywhere only slow attempts down.
-  int over = c[2].count - 1 - policy.account_free_attempts;
-  if (over >= 0) {
-    double d = std::min(policy.account_delay_cap_seconds, 0.1 * std::ldexp(1.0, std::min(over, 30)));
-    if (d > 0) clock_->Sleep(d);
+  // The password check runs in a bounded queue: when it is full the attempt
+  // is refused at once (and does not count), never waited for here.
+  if (!EnterCheckQueue()) {
+    undo();
+    if (retry_after_seconds) *retry_after_seconds = kBusyRetrySeconds;
+    if (busy) *busy = true;
+    return Status::ResourceExhausted("server busy checking passwords; try again in " +
+                                     std::to_string(kBusyRetrySeconds) + " s");
   }
+  struct Leave {
+    Accounts* a;
+    ~Leave() { a->LeaveCheckQueue(); }
+  } leave{this};
   Result<store::User> user = store_->FindUserByName(std::string(username));
   if (!user.ok() && user.status().code() != Status::Code::kNotFound) return user.status();
   bool ok = false;

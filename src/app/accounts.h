@@ -32,16 +32,21 @@ class Accounts {
   // 1-40 of A-Z a-z 0-9 _ - .; password 8-1024 bytes), kConflict when the name
   // is taken (ignoring case), kResourceExhausted when `address` made too many
   // sign-ups this hour, kIoError when the store fails.
+  // A full password-check queue is kResourceExhausted with *busy = true.
   Result<store::User> SignUp(std::string_view username, std::string_view password,
-                             std::string_view address);
+                             std::string_view address, bool* busy = nullptr);
 
   // Checks the credentials and opens a session. Unknown names cost the same
-  // argon2id work as known ones. Errors: kUnauthenticated "wrong user name or
-  // password" (the same for both), kResourceExhausted when throttled (then
-  // *retry_after_seconds, when given, says how long to wait), kIoError when
-  // the store cannot record the attempt (fails closed: no password check).
+  // argon2id work as known ones. Never sleeps: a throttled attempt is
+  // refused at once. Errors: kUnauthenticated "wrong user name or password"
+  // (the same for both), kResourceExhausted when throttled or when the
+  // password-check queue is full (then *retry_after_seconds, when given,
+  // says how long to wait, and *busy, when given, is true for the full
+  // queue: a 503, not the caller's fault), kIoError when the store cannot
+  // record the attempt (fails closed: no password check).
   Result<NewSession> LogIn(std::string_view username, std::string_view password,
-                           std::string_view address, int* retry_after_seconds = nullptr);
+                           std::string_view address, int* retry_after_seconds = nullptr,
+                           bool* busy = nullptr);
 
   // The session of a cookie token. kNotFound when none, expired or malformed.
   Result<store::Session> SessionOf(std::string_view token);
@@ -50,7 +55,12 @@ class Accounts {
   Status LogOut(std::string_view token);
 
  private:
-  // argon2id verification, at most max_parallel_password_checks at once.
+  // A place in the password-check queue (running or waiting): false when
+  // max_parallel + max_queued checks are already in it. Never blocks.
+  bool EnterCheckQueue();
+  void LeaveCheckQueue();
+  // argon2id verification, at most max_parallel_password_checks at once;
+  // call between EnterCheckQueue() and LeaveCheckQueue().
   bool VerifyBounded(std::string_view password, const std::string& hash);
   const std::string& DummyHash();
 
@@ -58,6 +68,8 @@ class Accounts {
   const Options options_;
   Clock* clock_;
   std::counting_semaphore<1024> checks_;
+  std::mutex queue_mu_;
+  int in_queue_ = 0;  // checks running or waiting for checks_
   std::once_flag dummy_once_;
   std::string dummy_hash_;
 };

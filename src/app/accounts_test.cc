@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <thread>
 #include <vector>
 
@@ -106,6 +107,9 @@ TEST_F(AppTest, FailuresFromOneAddressGetAGrowingDelay) {
 }
 
 TEST_F(AppTest, ParallelGuessesGetNoMorePasswordChecksThanTheLimit) {
+  Options o = TestOptions();
+  o.login.max_queued_password_checks = 64;  // here only the throttle may refuse
+  Reopen(o);
   User("alice");
   std::atomic<int> checked{0}, throttled{0}, other{0};
   std::vector<std::thread> threads;
@@ -130,21 +134,101 @@ TEST_F(AppTest, ParallelGuessesGetNoMorePasswordChecksThanTheLimit) {
 TEST_F(AppTest, StrangersCannotLockTheOwnerOut) {
   User("alice", "10.0.0.1");
   Accounts& a = services_->accounts;
-  // 40 addresses x 5 wrong guesses: 200 failures on the account.
+  // 40 addresses x 5 wrong guesses: 200 attempts on the account.
+  int checked = 0;
   for (int addr = 0; addr < 40; ++addr) {
     for (int i = 0; i < 5; ++i) {
-      (void)a.LogIn("alice", "wrong-password", "203.0.113." + std::to_string(addr));
+      checked += a.LogIn("alice", "wrong-password", "203.0.113." + std::to_string(addr))
+                     .status()
+                     .code() == Code::kUnauthenticated;
     }
   }
-  // A stranger's address is throttled...
-  EXPECT_EQ(a.LogIn("alice", "password123", "203.0.113.7").status().code(),
+  // Within one second the account pace let through the free attempts and
+  // each address's first attempt, nothing more.
+  EXPECT_LE(checked, services_->options.login.account_free_attempts + 40);
+  // A stranger's address that already failed is refused at once...
+  int retry = 0;
+  EXPECT_EQ(a.LogIn("alice", "password123", "203.0.113.7", &retry).status().code(),
             Code::kResourceExhausted);
-  // ...the owner is only slowed down, by at most the account cap.
-  double before = clock_.slept();
+  EXPECT_GT(retry, 0);
+  EXPECT_LE(retry, services_->options.login.account_pace_seconds + 1);
+  // ...the owner from a clean address is not held back at all, and nobody
+  // was ever made to sleep.
   Result<NewSession> s = a.LogIn("alice", "password123", "10.0.0.1");
   ASSERT_TRUE(s.ok()) << s.status().message();
-  EXPECT_GT(clock_.slept(), before);
-  EXPECT_LE(clock_.longest(), services_->options.login.account_delay_cap_seconds);
+  EXPECT_EQ(clock_.slept(), 0.0);
+}
+
+TEST_F(AppTest, AccountPaceAllowsOneCheckPerPaceFromFailedAddresses) {
+  User("alice");
+  Accounts& a = services_->accounts;
+  const LoginPolicy& p = services_->options.login;
+  // Use up the account's free attempts from many addresses, two each (the
+  // pair and address limits stay far away).
+  for (int i = 0; i < p.account_free_attempts; ++i) {
+    (void)a.LogIn("alice", "wrong-password", "198.51.100." + std::to_string(i % 10));
+  }
+  clock_.Advance(100);
+  // Now, at one instant, addresses that already failed get one check in all.
+  int checked = 0, refused = 0;
+  for (int i = 0; i < 10; ++i) {
+    int retry = 0;
+    Status st = a.LogIn("alice", "wrong-password", "198.51.100." + std::to_string(i), &retry)
+                    .status();
+    if (st.code() == Code::kUnauthenticated) ++checked;
+    if (st.code() == Code::kResourceExhausted) {
+      ++refused;
+      EXPECT_GT(retry, 0);
+      EXPECT_LE(retry, p.account_pace_seconds + 1);
+    }
+  }
+  EXPECT_EQ(checked, 1);
+  EXPECT_EQ(refused, 9);
+  // After the pace another one gets through; refused attempts did not
+  // extend it.
+  clock_.Advance(p.account_pace_seconds + 1);
+  EXPECT_EQ(a.LogIn("alice", "wrong-password", "198.51.100.3").status().code(),
+            Code::kUnauthenticated);
+  EXPECT_EQ(clock_.slept(), 0.0);
+}
+
+TEST_F(AppTest, AFullPasswordCheckQueueRefusesAtOnceInsteadOfWaiting) {
+  Options o = TestOptions();
+  o.fast_password_hashing = false;  // real argon2id: each check takes a while
+  o.login.max_parallel_password_checks = 1;
+  o.login.max_queued_password_checks = 0;
+  Reopen(o);
+  constexpr int kThreads = 6;
+  std::atomic<int> ok{0}, busy{0}, other{0}, ready{0};
+  std::vector<std::thread> threads;
+  for (int i = 0; i < kThreads; ++i) {
+    threads.emplace_back([&, i] {
+      ++ready;
+      while (ready.load() < kThreads) std::this_thread::yield();
+      bool is_busy = false;
+      Result<store::User> u = services_->accounts.SignUp(
+          "user" + std::to_string(i), "password123", "10.1.0." + std::to_string(i), &is_busy);
+      if (u.ok()) {
+        ++ok;
+      } else if (u.status().code() == Code::kResourceExhausted && is_busy) {
+        ++busy;
+      } else {
+        ++other;
+      }
+    });
+  }
+  for (std::thread& t : threads) t.join();
+  EXPECT_GE(ok.load(), 1);
+  EXPECT_GE(busy.load(), 1);  // six ~50 ms hashes at once, room for one
+  EXPECT_EQ(other.load(), 0);
+  EXPECT_EQ(ok.load() + busy.load(), kThreads);
+  // With the queue empty again a log-in is checked normally.
+  bool is_busy = false;
+  int retry = 0;
+  Status st = services_->accounts.LogIn("user0", "wrong-password", "10.1.1.1", &retry, &is_busy)
+                  .status();
+  EXPECT_FALSE(is_busy);
+  EXPECT_EQ(st.code(), Code::kUnauthenticated);
 }
 
 // A store whose throttling counter is broken; everything else works.

@@ -41,8 +41,10 @@ void WorkBudget::Refill(Account* a, double capacity, double per_minute,
 }
 
 Result<WorkBudget::Slot> WorkBudget::Admit(const Viewer& viewer, double cost,
-                                           int* retry_after_seconds) {
+                                           int* retry_after_seconds, bool* busy) {
   if (retry_after_seconds) *retry_after_seconds = 0;
+  if (busy) *busy = false;
+  if (cost < policy_.free_below) return Slot();
   bool user = viewer.logged_in();
   double max_cost = user ? policy_.user_max_cost : policy_.anonymous_max_cost;
   double per_minute = user ? policy_.user_cost_per_minute : policy_.anonymous_cost_per_minute;
@@ -92,9 +94,11 @@ Result<WorkBudget::Slot> WorkBudget::Admit(const Viewer& viewer, double cost,
                             [&](const auto& e) { return e.first == ticket; }));
   if (!admitted) {
     cv_.notify_all();  // a job behind this one may run now
-    if (retry_after_seconds) *retry_after_seconds = policy_.max_wait_seconds;
+    const int retry = std::max(1, policy_.max_wait_seconds);
+    if (retry_after_seconds) *retry_after_seconds = retry;
+    if (busy) *busy = true;
     return Status::ResourceExhausted("server busy with costly requests; retry in " +
-                                     std::to_string(policy_.max_wait_seconds) + " s");
+                                     std::to_string(retry) + " s");
   }
   // The wait may have taken a while: refill and charge now.
   Refill(&account, per_minute, per_minute, std::chrono::steady_clock::now());

@@ -10,7 +10,8 @@
 //      retry time when it is spent,
 //   3. runs at most `max_parallel` such jobs at once, one per caller, and
 //      queues the others (first come, first served) for at most
-//      `max_wait_seconds` before refusing them with a retry time.
+//      `max_wait_seconds` (by default 0: refused at once, so no worker
+//      waits) before refusing them with a retry time.
 // Cheap requests never pass through it, so they are never starved.
 #ifndef SB_APP_BUDGET_H_
 #define SB_APP_BUDGET_H_
@@ -56,7 +57,11 @@ class WorkBudget {
   // ("costs N units; at most M per request" when too big for any wait,
   // else "budget spent"/"busy") with *retry_after_seconds set (> 0) when
   // waiting helps, 0 when it never will.
-  Result<Slot> Admit(const Viewer& viewer, double cost, int* retry_after_seconds = nullptr);
+  // A job under policy.free_below is admitted at once, uncounted (an empty
+  // slot). *busy, when given, is true when the refusal is for want of a
+  // free slot (the server's state: 503) rather than the caller's budget.
+  Result<Slot> Admit(const Viewer& viewer, double cost, int* retry_after_seconds = nullptr,
+                     bool* busy = nullptr);
 
   // The caller key a viewer is charged under ("user:ID" or "addr:ADDRESS").
   static std::string KeyOf(const Viewer& viewer);

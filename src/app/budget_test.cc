@@ -93,5 +93,50 @@ TEST(WorkBudgetTest, AJobWaitingTooLongIsRefusedWithRetryAfter) {
   EXPECT_TRUE(b.Admit(Anonymous("b"), 1).ok());
 }
 
+TEST(WorkBudgetTest, ByDefaultAJobFindingNoSlotIsRefusedAtOnceAsBusy) {
+  BudgetPolicy p;  // max_wait_seconds = 0: no worker ever waits for a slot
+  p.max_parallel = 1;
+  WorkBudget b(p);
+  Result<WorkBudget::Slot> holder = b.Admit(Anonymous("a"), 1);
+  ASSERT_TRUE(holder.ok());
+  int retry = 0;
+  bool busy = false;
+  auto t0 = std::chrono::steady_clock::now();
+  Result<WorkBudget::Slot> refused = b.Admit(Anonymous("b"), 1, &retry, &busy);
+  double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  ASSERT_FALSE(refused.ok());
+  EXPECT_TRUE(busy);
+  EXPECT_EQ(retry, 1);
+  EXPECT_LT(waited, 0.1);
+  // A spent budget is not "busy": the caller's own doing (429, not 503).
+  BudgetPolicy small;
+  small.anonymous_cost_per_minute = 10;
+  small.anonymous_max_cost = 10;
+  WorkBudget s(small);
+  ASSERT_TRUE(s.Admit(Anonymous("c"), 10).ok());
+  Result<WorkBudget::Slot> spent = s.Admit(Anonymous("c"), 10, &retry, &busy);
+  ASSERT_FALSE(spent.ok());
+  EXPECT_FALSE(busy);
+  EXPECT_GT(retry, 0);
+}
+
+TEST(WorkBudgetTest, JobsUnderTheFreeCostAreNeitherCountedNorRefused) {
+  BudgetPolicy p = RenderBudgetPolicy();
+  p.max_parallel = 1;
+  WorkBudget b(p);
+  Result<WorkBudget::Slot> big = b.Admit(Anonymous("a"), p.free_below * 2);
+  ASSERT_TRUE(big.ok());
+  // The only slot is taken, yet cheap pages from anyone still run...
+  for (int i = 0; i < 1000; ++i) {
+    ASSERT_TRUE(b.Admit(Anonymous("b"), p.free_below / 2).ok());
+  }
+  // ...while another big one is refused at once.
+  bool busy = false;
+  EXPECT_FALSE(b.Admit(Anonymous("b"), p.free_below * 2, nullptr, &busy).ok());
+  EXPECT_TRUE(busy);
+  // And a page over the per-request cap is refused whatever the load.
+  EXPECT_FALSE(b.Admit(Anonymous("c"), p.anonymous_max_cost * 2).ok());
+}
+
 }  // namespace
 }  // namespace sb::app

@@ -1,7 +1,9 @@
 #include "app/climber_feedback.h"
 
 #include <algorithm>
+#include <array>
 #include <map>
+#include <span>
 
 #include "app/routes.h"
 #include "base/text.h"
@@ -45,7 +47,33 @@ GradeSummary AxisOf(const store::RouteRecord& r) {
   return g;
 }
 
+// The consensus as climbers read it: median, low and high in `scale`.
+Result<std::array<std::string, 3>> Shown(std::span<const double> values, Discipline d,
+                                         grades::Scale scale) {
+  SB_ASSIGN_OR_RETURN(grades::Consensus c, grades::ConsensusOf(values));
+  return std::array<std::string, 3>{grades::FormatValue(c.median, d, scale),
+                                    grades::FormatValue(c.low, d, scale),
+                                    grades::FormatValue(c.high, d, scale)};
+}
+
 }  // namespace
+
+bool ConsensusRevealsNoVote(const std::vector<double>& values, Discipline d, grades::Scale scale) {
+  Result<std::array<std::string, 3>> all = Shown(values, d, scale);
+  if (!all.ok()) return false;
+  // Removing one vote of value v gives the same multiset whichever of the
+  // equal votes goes, so each distinct value is tried once.
+  std::vector<double> sorted = values;
+  std::sort(sorted.begin(), sorted.end());
+  for (size_t i = 0; i < sorted.size(); ++i) {
+    if (i > 0 && sorted[i] == sorted[i - 1]) continue;
+    std::vector<double> rest = sorted;
+    rest.erase(rest.begin() + static_cast<std::ptrdiff_t>(i));
+    Result<std::array<std::string, 3>> without = Shown(rest, d, scale);
+    if (!without.ok() || *without != *all) return false;
+  }
+  return true;
+}
 
 ClimberFeedback::ClimberFeedback(store::Store* store, const Options& options, Clock* clock)
     : store_(store),
@@ -86,7 +114,10 @@ Result<GradeSummary> ClimberFeedback::Summarise(const store::RouteRecord& route,
   }
   std::vector<double> values;
   for (const auto& [d, v] : votes) values.push_back(grades::ConvertAxis(v, d, *g.discipline));
-  g.shown = owner || g.votes >= options_.climbers.min_votes_shown;
+  // Climbers see it only from min_votes_shown identities on, and only when
+  // no single vote moves what they would read (docs/studies.md).
+  g.shown = owner || (g.votes >= options_.climbers.min_votes_shown &&
+                      ConsensusRevealsNoVote(values, *g.discipline, g.scale));
   if (!g.shown) return g;
   SB_ASSIGN_OR_RETURN(g.consensus, grades::ConsensusOf(values));
   g.median_grade = grades::FormatValue(g.consensus.median, *g.discipline, g.scale);

@@ -42,12 +42,22 @@ struct GradeSummary {
   std::optional<double> setter_value;         // on the axis; nullopt = no readable grade
   int votes = 0;                              // felt grades given
   // Whether the consensus below may be shown to this viewer (the owner
-  // always; climbers from ClimberPolicy::min_votes_shown votes on).
+  // always; climbers from ClimberPolicy::min_votes_shown votes on, and only
+  // when ConsensusRevealsNoVote).
   bool shown = false;
   grades::Consensus consensus;                      // valid when votes > 0 and shown
   std::string median_grade, low_grade, high_grade;  // consensus in `scale`
   grades::Drift drift;                              // valid when setter_value, votes > 0 and shown
 };
+
+// Whether showing the consensus of `values` (felt grades on the axis `d`,
+// printed in `scale`) to climbers reveals no single vote: the median, low
+// and high grades they would read are the same with any one vote removed.
+// So a vote that decides what is shown is never shown: two fake extreme
+// votes around one real one (V0, V16 and the real V7) leave a median that
+// removing the real vote changes, and it stays hidden. Pure.
+bool ConsensusRevealsNoVote(const std::vector<double>& values, grades::Discipline d,
+                            grades::Scale scale);
 
 // The climber's page of a route (/r/{id}).
 struct FeedbackPage {

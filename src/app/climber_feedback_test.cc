@@ -122,13 +122,18 @@ TEST_F(ClimberFeedbackTest, ConsensusIsWithheldFromClimbersUntilEnoughVotes) {
   EXPECT_TRUE(fb().Page(setter_, slab_, "")->grade.shown);  // the owner always
   Vote(slab_, "6a+");  // French 6a+ is 5.10c/5.10b on the roped axis
   p = fb().Page(Climber(), slab_, "");
+  EXPECT_FALSE(p->grade.shown);  // three: still too few identities
+  Vote(slab_, "5.10b");
+  Vote(slab_, "5.10b");
+  Vote(slab_, "5.10b");
+  p = fb().Page(Climber(), slab_, "");
   ASSERT_TRUE(p->grade.shown);
   EXPECT_EQ(p->grade.setter_grade, "5.9");
   EXPECT_EQ(p->grade.setter_value, 9);
   EXPECT_EQ(p->grade.discipline, grades::Discipline::kRoped);
   // The consensus is grades::ConsensusOf over the votes on the roped axis.
   std::vector<double> values;
-  for (const char* g : {"5.10a", "5.10b", "6a+"}) {
+  for (const char* g : {"5.10a", "5.10b", "6a+", "5.10b", "5.10b", "5.10b"}) {
     values.push_back(grades::Difficulty(*grades::ParseGrade(g, {grades::Discipline::kRoped, {}}),
                                         grades::Discipline::kRoped));
   }
@@ -136,10 +141,37 @@ TEST_F(ClimberFeedbackTest, ConsensusIsWithheldFromClimbersUntilEnoughVotes) {
   EXPECT_EQ(p->grade.consensus.median, want.median);
   EXPECT_EQ(p->grade.consensus.low, want.low);
   EXPECT_EQ(p->grade.consensus.high, want.high);
-  EXPECT_EQ(p->grade.consensus.count, 3);
+  EXPECT_EQ(p->grade.consensus.count, 6);
   EXPECT_EQ(p->grade.median_grade,
             grades::FormatValue(want.median, grades::Discipline::kRoped, grades::Scale::kYds));
   EXPECT_FALSE(p->grade.drift.flagged);  // one band apart at most
+}
+
+TEST_F(ClimberFeedbackTest, FakeExtremeVotesDoNotRevealTheRealOne) {
+  Vote(ladder_, "V7");  // the real climber
+  // The attack: V0 and V16 around it (a new identity each)...
+  Vote(ladder_, "V0");
+  Vote(ladder_, "V16");
+  EXPECT_FALSE(fb().Page(Climber(), ladder_, "")->grade.shown);
+  // ...and with enough identities to pass the count, still nothing shown:
+  // the median would be the real vote.
+  Vote(ladder_, "V0");
+  Vote(ladder_, "V16");
+  Vote(ladder_, "V0");
+  Vote(ladder_, "V16");
+  Result<FeedbackPage> p = fb().Page(Climber(), ladder_, "");
+  EXPECT_EQ(p->grade.votes, 7);
+  EXPECT_FALSE(p->grade.shown);
+  EXPECT_TRUE(p->grade.median_grade.empty());
+  EXPECT_TRUE(fb().Page(setter_, ladder_, "")->grade.shown);  // the owner sees it
+  // The rule itself: agreement is shown, a deciding vote is not.
+  using grades::Discipline;
+  EXPECT_TRUE(ConsensusRevealsNoVote({4, 4, 4, 4, 4}, Discipline::kBouldering,
+                                     grades::Scale::kV));
+  EXPECT_TRUE(ConsensusRevealsNoVote({3, 4, 4, 4, 4, 5}, Discipline::kBouldering,
+                                     grades::Scale::kV));
+  EXPECT_FALSE(ConsensusRevealsNoVote({0, 0, 7, 16, 16}, Discipline::kBouldering,
+                                      grades::Scale::kV));
 }
 
 TEST_F(ClimberFeedbackTest, DriftIsFlaggedWithEnoughVotesMoreThanOneBandApart) {

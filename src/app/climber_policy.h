@@ -53,9 +53,11 @@ struct ClimberPolicy {
   // 14-item instrument), "pilot" (its 5-item one) or an instrument file.
   std::string feedback_instrument = "brc";
   // Climbers see a route's consensus grade only from this many felt grades
-  // on: with fewer the median would reveal single climbers' answers. The
-  // route's owner always sees it.
-  int min_votes_shown = 3;
+  // (one per participant identity) on, and only when no single vote changes
+  // what they read (app::ConsensusRevealsNoVote): with three, two fake
+  // extreme votes made the median the real climber's answer. The route's
+  // owner always sees it.
+  int min_votes_shown = 5;
   // Participant cookies live this long (two years): a climber keeps one
   // identity, and so one response per route, across visits.
   int participant_cookie_seconds = 2 * 365 * 24 * 3600;

@@ -4,6 +4,7 @@
 #include <memory>
 #include <mutex>
 
+#include "app/limits.h"
 #include "crdl/scan.h"
 #include "language/symbols.h"
 
@@ -97,7 +98,7 @@ std::string DidYouMean(std::string_view word, const std::vector<std::string>& vo
 
 bool LanguageAvailable() { return ThreadLanguage() != nullptr; }
 
-EditorFeedback ReadForEditor(std::string_view crdl) {
+EditorFeedback ReadForEditor(std::string_view crdl, const RouteLimits& limits) {
   EditorFeedback out;
   if (crdl.size() > kMaxEditorBytes ||
       std::count(crdl.begin(), crdl.end(), '\n') >= kMaxEditorLines) {
@@ -110,6 +111,10 @@ EditorFeedback ReadForEditor(std::string_view crdl) {
   if (!parsed.ok()) {
     out.error = parsed.status().location();
     out.error_reason = parsed.status().reason();
+  } else if (Status lim = CheckRouteLimits(*parsed, limits, "route.crdl"); !lim.ok()) {
+    out.ok = false;
+    out.error = lim.location();
+    out.error_reason = lim.location() ? lim.reason() : lim.message();
   }
   language::MoveLanguage* lang = ThreadLanguage();
   out.language = lang != nullptr;

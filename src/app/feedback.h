@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "app/options.h"
 #include "base/status.h"
 #include "crdl/route.h"
 
@@ -45,13 +46,16 @@ struct EditorFeedback {
 // grammar's reading) stays under a few MiB however the text is built. Text
 // over either limit gets ok = false, no lines and a reason, before any work.
 inline constexpr size_t kMaxEditorBytes = 64 * 1024;
-inline constexpr int kMaxEditorLines = 1000;
+inline constexpr int kMaxEditorLines = RouteLimits{}.max_moves + 200;
 // Moves longer than this are not given to the grammar (no real move is;
 // the grammar's work grows with the words of a line).
 inline constexpr size_t kMaxEditorMoveBytes = 200;
 
-// Never fails, whatever the bytes; bounded by the limits above. Thread-safe.
-EditorFeedback ReadForEditor(std::string_view crdl);
+// Never fails, whatever the bytes; bounded by the limits above. A text that
+// parses but is over `limits` gets ok = false and the limit's message
+// naming the field (app::CheckRouteLimits), as the API would refuse it.
+// Thread-safe.
+EditorFeedback ReadForEditor(std::string_view crdl, const RouteLimits& limits);
 
 // For each move of `route`: how the grammar reads it ("" when it does not
 // parse). Empty when the grammar is not available. Thread-safe.

@@ -2,12 +2,15 @@
 
 #include <gtest/gtest.h>
 
+#include "app/limits.h"
+
 namespace sb::app {
 namespace {
 
 TEST(FeedbackTest, ClassifiesEveryLineAndLocatesTheError) {
   EditorFeedback f =
-      ReadForEditor("name: Test\nA free line\n---\nR big jug (crux)\n# note\n\nX oops\n");
+      ReadForEditor("name: Test\nA free line\n---\nR big jug (crux)\n# note\n\nX oops\n",
+                    RouteLimits{});
   EXPECT_FALSE(f.ok);
   ASSERT_TRUE(f.error.has_value());
   EXPECT_EQ(f.error->line, 7);
@@ -34,7 +37,7 @@ TEST(FeedbackTest, ClassifiesEveryLineAndLocatesTheError) {
 
 TEST(FeedbackTest, AgreesWithTheParserOnMetadata) {
   // "a:b" is description for the parser, so for the editor too.
-  EditorFeedback f = ReadForEditor("a:b\nkey: v\n---\nR x\n");
+  EditorFeedback f = ReadForEditor("a:b\nkey: v\n---\nR x\n", RouteLimits{});
   EXPECT_TRUE(f.ok);
   EXPECT_EQ(f.lines[0].kind, "description");
   EXPECT_EQ(f.lines[1].kind, "meta");
@@ -45,10 +48,10 @@ TEST(FeedbackTest, NeverFailsOnOddBytes) {
        {std::string(), std::string("\xEF\xBB\xBF---\nL x\r\n"),
         std::string("\xff\xfe\n---\nR \xc3\n"), std::string(1, '\0'), std::string("---"),
         std::string("---\nR a\xED\xA0\x80\n")}) {
-    EditorFeedback f = ReadForEditor(s);
+    EditorFeedback f = ReadForEditor(s, RouteLimits{});
     EXPECT_TRUE(f.ok || f.error.has_value()) << s;
   }
-  EditorFeedback bad = ReadForEditor("---\nR a\xED\xA0\x80\n");
+  EditorFeedback bad = ReadForEditor("---\nR a\xED\xA0\x80\n", RouteLimits{});
   ASSERT_TRUE(bad.error.has_value());
   EXPECT_EQ(bad.error->line, 2);
   EXPECT_EQ(bad.lines[1].kind, "error");
@@ -67,17 +70,52 @@ TEST(FeedbackTest, MoveReadings) {
 TEST(EditorFeedbackLimits, TextOverTheLimitsIsRefusedBeforeAnyWork) {
   std::string lines = "name: Long\n---\n";
   while (lines.size() <= kMaxEditorBytes) lines += "R jug\n";
-  EditorFeedback f = ReadForEditor(lines);
+  EditorFeedback f = ReadForEditor(lines, RouteLimits{});
   EXPECT_FALSE(f.ok);
   EXPECT_TRUE(f.lines.empty());
   EXPECT_NE(f.error_reason.find("too long for live feedback"), std::string::npos);
   std::string many(kMaxEditorLines, '\n');
-  EXPECT_TRUE(ReadForEditor(many).lines.empty());
+  EXPECT_TRUE(ReadForEditor(many, RouteLimits{}).lines.empty());
+  const int max_moves = RouteLimits{}.max_moves;
   std::string fits = "name: Fits\n---\n";
-  for (int i = 0; i < kMaxEditorLines - 3; ++i) fits += "R jug\n";
-  EditorFeedback g = ReadForEditor(fits);
+  for (int i = 0; i < max_moves; ++i) fits += "R jug\n";
+  EditorFeedback g = ReadForEditor(fits, RouteLimits{});
   EXPECT_TRUE(g.ok) << g.error_reason;
-  EXPECT_EQ(g.moves, kMaxEditorLines - 3);
+  EXPECT_EQ(g.moves, max_moves);
+  // One move more is read (the lines are shown) but refused as the API
+  // refuses it, naming the field.
+  EditorFeedback over = ReadForEditor(fits + "L crimp\n", RouteLimits{});
+  EXPECT_FALSE(over.ok);
+  EXPECT_FALSE(over.lines.empty());
+  EXPECT_NE(over.error_reason.find("moves: at most"), std::string::npos) << over.error_reason;
+}
+
+TEST(RouteLimitsTest, EveryFieldIsCheckedAndNamed) {
+  RouteLimits lim;
+  auto reason = [&](const std::string& crdl) {
+    Result<Route> r = ParseCrdl(crdl, "t.crdl");
+    EXPECT_TRUE(r.ok()) << r.status().message();
+    return r.ok() ? CheckRouteLimits(*r, lim, "t.crdl").message() : std::string();
+  };
+  EXPECT_EQ(reason("name: ok\n---\nR jug\n"), "");
+  EXPECT_NE(reason("name: " + std::string(201, 'n') + "\n---\nR jug\n").find("name: at most 200"),
+            std::string::npos);
+  // Characters, not bytes: 200 two-byte letters fit.
+  std::string umlauts;
+  for (int i = 0; i < 200; ++i) umlauts += "\xc3\xa4";
+  EXPECT_EQ(reason("name: " + umlauts + "\n---\nR jug\n"), "");
+  EXPECT_NE(reason("name: x\nwall: " + std::string(201, 'w') + "\n---\nR jug\n")
+                .find("wall: at most 200"),
+            std::string::npos);
+  EXPECT_NE(reason("name: x\n" + std::string(4001, 'd') + "\n---\nR jug\n")
+                .find("description: at most 4000"),
+            std::string::npos);
+  std::string move_err = reason("name: x\n---\nR jug\nL " + std::string(201, 'm') + "\n");
+  EXPECT_NE(move_err.find("t.crdl:4"), std::string::npos) << move_err;
+  EXPECT_NE(move_err.find("move 2: at most 200"), std::string::npos) << move_err;
+  std::string meta = "name: x\n";
+  for (int i = 0; i < 50; ++i) meta += "k" + std::to_string(i) + ": v\n";
+  EXPECT_NE(reason(meta + "---\nR jug\n").find("metadata: at most 50"), std::string::npos);
 }
 
 }  // namespace
@@ -97,7 +135,7 @@ TEST(DidYouMeanTest, SuggestsTheClosestVocabularyWord) {
 
 TEST(DidYouMeanTest, TheEditorFlagsAMisspeltHold) {
   if (!LanguageAvailable()) GTEST_SKIP() << "no grammar";
-  EditorFeedback f = ReadForEditor("name: t\n---\nR crmip\n");
+  EditorFeedback f = ReadForEditor("name: t\n---\nR crmip\n", RouteLimits{});
   ASSERT_EQ(f.lines.size(), 3u);
   ASSERT_EQ(f.lines[2].did_you_mean.size(), 1u);
   EXPECT_EQ(f.lines[2].did_you_mean[0].first, "crmip");

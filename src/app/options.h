@@ -15,13 +15,54 @@
 
 namespace sb::app {
 
+// What one route may hold, checked where a route is read: the API (create,
+// edit), the editor's feedback, the CSV import, the variations made on the
+// server, and `strangebeta check` (which allows more moves for research
+// files, cli::kCheckMaxRouteMoves). The original site's corpus has at most
+// 187 moves per route, moves of 121 characters, names of 56, descriptions
+// of 239 (characters are UTF-8 code points). See app/limits.h.
+struct RouteLimits {
+  // Moves per route: 5x the corpus's longest. A 1,000-move route page takes
+  // ~30 ms; the 40,000 moves the API once took made an 11.7 MB page of
+  // 1.2 s that every list and card then served.
+  int max_moves = 1000;
+  // The name: every list shows it, the card prints it in large type.
+  size_t max_name_chars = 200;
+  // Any other metadata value (grade, setter, colour, wall, date, ...): a
+  // card shows each whole.
+  size_t max_meta_chars = 200;
+  // Metadata lines per route (a route has ~8 keys).
+  int max_meta_lines = 50;
+  // The free-text description (a variation's notes): a card prints it.
+  size_t max_description_chars = 4000;
+  // One move's text: the grammar's work grows with the words of a line, and
+  // no real move needs more (the editor reads no longer move either).
+  size_t max_move_chars = 200;
+};
+
 // Work one request may ask for (checked before the work starts).
 struct Limits {
+  // What one route may hold (above).
+  RouteLimits route;
+  // Bytes of one request body (413 above), checked by the transport while
+  // reading: a route is a few KB, a variation request less; a CSV import of
+  // the original site's whole corpus (1 MB) fits. web::ServerOptions and the
+  // transport take it from here.
+  size_t max_body_bytes = 2 * 1024 * 1024;
+  // Items of one JSON array in a request (answers, study routes,
+  // demographics): any instrument's items and any study's routes are far
+  // fewer; checked before the work.
+  size_t max_json_array = 1000;
+  // Rows of the route list page and of the vary page's route picker.
+  int list_page_rows = 50;
+  int picker_rows = 20;
   // Input routes per variation or IC map: more is not a route anyone sets.
   size_t max_vary_routes = 50;
-  // Moves in all inputs of one variation: a plan of 5,000 moves already
-  // prints 50 to a page, and the mapping stays under ~10 ms.
-  int max_vary_moves = 5000;
+  // Moves in all inputs of one variation: the variation is a route of as
+  // many moves, so at most RouteLimits::max_moves (its pages, card, PDF and
+  // SVG stay within the work budget; 5,000 moves made a 2.2 s PDF/SVG under
+  // 16 clients).
+  int max_vary_moves = RouteLimits{}.max_moves;
   // Transient steps of a variation made on the server: 10^5 RK4 steps cost
   // ~10 ms; the engine allows 10^7 (a second of CPU) for the command line.
   int max_vary_skip = 100000;
@@ -48,19 +89,27 @@ struct Limits {
 // attempts within the window, attempts must wait a delay that doubles per
 // further attempt (up to max_delay_seconds) since the previous one, per
 // (account, address) pair and per address. Failures against an account from
-// all addresses together only slow every attempt on it down (at most
-// account_delay_cap_seconds), so strangers cannot lock its owner out.
+// all addresses together pace the checks on it (beyond
+// account_free_attempts, one check per account_pace_seconds, refused
+// at once with Retry-After, never slept in a worker) for addresses that
+// already failed on it; an address's first attempt on an account is never
+// held back by that pace, so strangers cannot lock its owner out.
 struct LoginPolicy {
   int window_seconds = 15 * 60;
   int pair_free_attempts = 5;      // per account and address
   int address_free_attempts = 20;  // per address, over all accounts
   int account_free_attempts = 20;  // per account, over all addresses
   int max_delay_seconds = 15 * 60;
-  double account_delay_cap_seconds = 2.0;
+  int account_pace_seconds = 2;
   // Sign-ups per address per hour (accounts cost an argon2id hash each).
   int signups_per_address_per_hour = 10;
   // argon2id checks running at once: each needs 64 MiB and ~50 ms of a core.
   int max_parallel_password_checks = 2;
+  // Checks (log-ins and sign-ups) that may wait for one of those slots; one
+  // more is refused at once (503 + Retry-After) instead of holding a worker:
+  // with 2 running and 2 waiting, at most 4 of the server's workers (8 on 2
+  // cores) ever wait on argon2id, each for at most ~2 hashes (~0.1 s).
+  int max_queued_password_checks = 2;
 };
 
 // The work budget of costly requests (app/budget.h, docs/web.md "Work
@@ -80,14 +129,54 @@ struct BudgetPolicy {
   // them), and at once per caller.
   int max_parallel = 2;
   int max_parallel_per_caller = 1;
-  // A job waits at most this long for a slot, then is refused.
-  int max_wait_seconds = 5;
+  // A job finding no free slot is refused at once (503 + Retry-After this
+  // many seconds, at least 1): a worker never waits for a slot, so cheap
+  // requests always find one.
+  int max_wait_seconds = 0;
+  // Jobs costing less are not counted at all: they never wait and are
+  // never refused (0: every job is counted).
+  double free_below = 0;
+};
+
+// The work budget of the pages and files a request can ask for (route and
+// plan pages, route JSON and CRDL, cards as PDF and SVG, CSV exports, the
+// editor's feedback, long lists): a WorkBudget with this policy
+// (app::Services::renders). A unit is ~1 us of a core on the 2-core
+// reference machine; costs are estimated before the work from what will be
+// rendered (RenderCosts). Pages of ordinary size are free; big ones are
+// charged to the caller and run at most two at once, so however many
+// callers ask, at most two cores render big pages and every worker is free
+// again within ~0.2 s.
+inline BudgetPolicy RenderBudgetPolicy() {
+  BudgetPolicy p;
+  p.free_below = 20e3;             // under ~20 ms: every route of the original site
+  p.anonymous_max_cost = 400e3;    // ~0.4 s per request anonymous
+  p.user_max_cost = 2e6;           // ~2 s signed in (exports of a big gym)
+  p.anonymous_cost_per_minute = 3e6;  // ~3 s of a core per address per minute
+  p.user_cost_per_minute = 20e6;      // ~20 s per user per minute
+  p.max_parallel = 2;
+  p.max_parallel_per_caller = 1;
+  p.max_wait_seconds = 0;
+  return p;
+}
+
+// What a rendered thing costs in render units (~1 us of a core), measured
+// with the largest inputs the limits allow (docs/web.md, "Work budgets").
+struct RenderCosts {
+  double page_per_move = 30;     // a route or plan page, route JSON, CRDL
+  double card_per_move = 100;    // a card as PDF or SVG (cairo)
+  double list_per_row = 10;      // a route list row (page or JSON)
+  double export_per_route = 60;  // a CSV export, per visible route
+  double editor_per_line = 40;   // the editor's live feedback, per line
 };
 
 struct Options {
   Limits limits;
   LoginPolicy login;
   BudgetPolicy budget;
+  // Pages and files (above): their budget and cost model.
+  BudgetPolicy renders = RenderBudgetPolicy();
+  RenderCosts render_costs;
   int session_seconds = 30 * 24 * 3600;
   // Cheapest argon2id cost (tests only; never in production).
   bool fast_password_hashing = false;

@@ -5,6 +5,7 @@
 #include <ctime>
 #include <map>
 
+#include "app/limits.h"
 #include "app/variations.h"
 #include "base/number.h"
 #include "base/text.h"
@@ -80,9 +81,10 @@ namespace {
 
 Status NoRoute(int64_t id) { return Status::NotFound("no route " + std::to_string(id)); }
 
-// The metadata and CRDL of a record from its text.
-Status FillFromCrdl(std::string_view crdl, store::RouteRecord* rec) {
+// The metadata and CRDL of a record from its text, within the route limits.
+Status FillFromCrdl(std::string_view crdl, const RouteLimits& limits, store::RouteRecord* rec) {
   SB_ASSIGN_OR_RETURN(Route r, ParseCrdl(crdl, "route.crdl"));
+  SB_RETURN_IF_ERROR(CheckRouteLimits(r, limits, "route.crdl"));
   FillMetadata(r, rec);
   rec->crdl = std::string(crdl);
   return Status::Ok();
@@ -403,7 +405,7 @@ Result<int64_t> Routes::Create(const Viewer& v, std::string_view crdl, bool is_p
                                const GymFields& request) {
   if (!v.logged_in()) return Status::Unauthenticated("log in first");
   store::RouteRecord rec;
-  SB_RETURN_IF_ERROR(FillFromCrdl(crdl, &rec));
+  SB_RETURN_IF_ERROR(FillFromCrdl(crdl, options_.limits.route, &rec));
   GymFields g = WithHeaderFields(crdl, request);
   rec.is_public = is_public;
   rec.owner_id = v.user_id;
@@ -454,7 +456,7 @@ Status Routes::Update(const Viewer& v, int64_t id, const RouteEdit& edit) {
     const std::string set_on = r.set_on;
     if (MoveLines(*edit.crdl) != MoveLines(r.crdl)) changes.push_back("moves edited");
     else if (*edit.crdl != r.crdl) changes.push_back("text edited");
-    SB_RETURN_IF_ERROR(FillFromCrdl(*edit.crdl, &r));
+    SB_RETURN_IF_ERROR(FillFromCrdl(*edit.crdl, options_.limits.route, &r));
     if (r.set_on.empty()) r.set_on = set_on;  // a set date given by the API stays
   }
   if (edit.is_public) {
@@ -595,6 +597,9 @@ Result<ImportSummary> Routes::ImportCsv(const Viewer& v, std::string_view routes
     if (!check.ok()) {
       return Status::InvalidInputAt(at, "route " + std::to_string(sr.id) + ": " +
                                             check.status().reason());
+    }
+    if (Status s = CheckRouteLimits(*check, lim.route); !s.ok()) {
+      return Status::InvalidInputAt(at, "route " + std::to_string(sr.id) + ": " + s.message());
     }
     Imported im{&sr, {}, {}};
     store::RouteRecord& rec = im.record;

@@ -13,6 +13,7 @@ Services::Services(store::Store* store, const Options& opts, Clock* clock)
       maps(store, opts),
       climber_feedback(store, opts, clock),
       studies(store, opts, clock),
+      renders(opts.renders),
       gyms(store, opts) {
   // An install starts with one gym (issue 21), named at its first start.
   if (Status g = gyms.EnsureFirstGym(opts.first_gym_name); !g.ok()) {

@@ -7,6 +7,7 @@
 #define SB_APP_SERVICES_H_
 
 #include "app/accounts.h"
+#include "app/budget.h"
 #include "app/climber_feedback.h"
 #include "app/clock.h"
 #include "app/gyms.h"
@@ -32,6 +33,9 @@ struct Services {
   Maps maps;
   ClimberFeedback climber_feedback;
   StudyService studies;
+  // The budget of pages and files (options.renders; costs in
+  // options.render_costs), taken by the web layer before rendering.
+  WorkBudget renders;
   Gyms gyms;
 };
 

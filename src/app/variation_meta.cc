@@ -186,7 +186,8 @@ Result<bool> VariationVisibility(const std::vector<store::RouteRecord>& inputs,
 }
 
 std::string RequestKey(const std::string& params_json, bool smooth,
-                       const std::vector<store::RouteRecord>& inputs) {
+                       const std::vector<store::RouteRecord>& inputs,
+                       std::optional<bool> is_public, const VariationMetadata& meta) {
   std::string c = params_json;
   auto add = [&](const std::string& s) {
     c += '\x1f';
@@ -199,17 +200,26 @@ std::string RequestKey(const std::string& params_json, bool smooth,
     add(std::to_string(r.id));
     add(r.crdl);
   }
-  char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(Fnv1a64(c)));
+  add(!is_public ? "default" : *is_public ? "public" : "private");
+  for (const std::string* f : {&meta.name, &meta.grade, &meta.colour, &meta.wall, &meta.setter,
+                               &meta.date, &meta.notes}) {
+    add(*f);
+  }
+  char hex[33];
+  std::snprintf(hex, sizeof hex, "%016llx%016llx", static_cast<unsigned long long>(Fnv1a64(c)),
+                static_cast<unsigned long long>(Fnv1a64("request key\x1f" + c)));
   return hex;
 }
 
 bool SameRequest(const store::RouteRecord& existing, const std::string& params_json, bool smooth,
-                 const std::vector<store::RouteRecord>& inputs) {
+                 const std::vector<store::RouteRecord>& inputs, std::optional<bool> is_public,
+                 const VariationMetadata& meta) {
   if (existing.params_json != params_json || existing.smooth != smooth ||
       existing.inputs.size() != inputs.size()) {
     return false;
   }
+  if (is_public && existing.is_public != *is_public) return false;
+  if (!meta.name.empty() && existing.name != meta.name) return false;
   for (size_t i = 0; i < inputs.size(); ++i) {
     const store::VariationInput& vi = existing.inputs[i];
     if (vi.route_id != inputs[i].id || vi.crdl != inputs[i].crdl) return false;

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "app/options.h"
 #include "base/status.h"
 #include "chaos/variation.h"
 #include "crdl/route.h"
@@ -23,9 +24,10 @@ namespace sb::app {
 // summarised): it is printed in large type on the route card.
 inline constexpr size_t kMaxDefaultNameChars = 80;
 // Longest value of one metadata field (name, grade, colour, wall, setter,
-// date) and of the notes: a card shows them whole.
-inline constexpr size_t kMaxMetaFieldChars = 200;
-inline constexpr size_t kMaxNotesChars = 4000;
+// date) and of the notes: the route limits (app::RouteLimits), as a card
+// shows them whole.
+inline constexpr size_t kMaxMetaFieldChars = RouteLimits{}.max_meta_chars;
+inline constexpr size_t kMaxNotesChars = RouteLimits{}.max_description_chars;
 
 // What the setter says about a variation besides its inputs and parameters
 // (every field may be empty: the name then comes from the inputs' names, the
@@ -64,15 +66,21 @@ Route VariationRoute(const VariationMetadata& meta, const std::vector<int64_t>& 
 Result<bool> VariationVisibility(const std::vector<store::RouteRecord>& inputs,
                                  std::optional<bool> asked);
 
-// The digest of what a variation is generated from: its stored parameters,
-// smoothing flag and, per input, the route id and CRDL. Equal requests give
-// equal keys (hex FNV-1a 64; a match is then confirmed field by field with
-// SameRequest, so a collision can never return another variation).
+// The digest of everything the setter asked for: the stored parameters,
+// smoothing flag, per input the route id and CRDL, and the visibility and
+// metadata as asked (name, grade, colour, wall, setter, date, notes; "" and
+// nullopt are "the default"). Equal requests give equal keys (two hex
+// FNV-1a 64 digests of different seeds; a match is then confirmed field by
+// field with SameRequest, and keys are looked up per owner, so a collision
+// can never return another owner's variation).
 std::string RequestKey(const std::string& params_json, bool smooth,
-                       const std::vector<store::RouteRecord>& inputs);
-// Whether the stored variation `existing` was made from exactly this request.
+                       const std::vector<store::RouteRecord>& inputs,
+                       std::optional<bool> is_public, const VariationMetadata& meta);
+// Whether the stored variation `existing` was made from exactly this request
+// (and still has the visibility and name it asked for).
 bool SameRequest(const store::RouteRecord& existing, const std::string& params_json, bool smooth,
-                 const std::vector<store::RouteRecord>& inputs);
+                 const std::vector<store::RouteRecord>& inputs, std::optional<bool> is_public,
+                 const VariationMetadata& meta);
 
 // What the setter's editing did to a variation's moves.
 struct EditSummary {

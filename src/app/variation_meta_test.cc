@@ -117,6 +117,39 @@ TEST_F(AppTest, TheSameRequestTwiceReturnsTheFirstVariation) {
   EXPECT_EQ(r->inputs[0].route_id, b);
 }
 
+TEST_F(AppTest, ARequestIsTheSameOnlyWhenNameAndVisibilityAreToo) {
+  Viewer alice = User("alice");
+  int64_t a = AddRoute(alice, kCrimpLadder);
+  VariationRequest priv;
+  priv.routes = {a};
+  priv.is_public = false;
+  priv.meta.name = "PubInputPrivVar";
+  Result<CreatedVariation> first = services_->variations.Create(alice, priv);
+  ASSERT_TRUE(first.ok()) << first.status().message();
+  // The case: a public one named otherwise is a new variation.
+  VariationRequest pub = priv;
+  pub.is_public = true;
+  pub.meta.name = "PubVar";
+  Result<CreatedVariation> second = services_->variations.Create(alice, pub);
+  ASSERT_TRUE(second.ok()) << second.status().message();
+  EXPECT_FALSE(second->existing);
+  EXPECT_NE(second->id, first->id);
+  EXPECT_TRUE(services_->routes.Get(alice, second->id)->is_public);
+  EXPECT_EQ(services_->routes.Get(alice, second->id)->name, "PubVar");
+  // Only visibility differs: new. Only the notes differ: new.
+  VariationRequest vis = priv;
+  vis.is_public = true;
+  EXPECT_FALSE(services_->variations.Create(alice, vis)->existing);
+  VariationRequest notes = priv;
+  notes.meta.notes = "other notes";
+  EXPECT_FALSE(services_->variations.Create(alice, notes)->existing);
+  // All the same: the first one.
+  Result<CreatedVariation> again = services_->variations.Create(alice, priv);
+  ASSERT_TRUE(again.ok());
+  EXPECT_TRUE(again->existing);
+  EXPECT_EQ(again->id, first->id);
+}
+
 TEST_F(AppTest, EditingAVariationUpdatesItsPlanAndKeepsProvenance) {
   Viewer alice = User("alice");
   int64_t a = AddRoute(alice, kCrimpLadder);

@@ -256,13 +256,13 @@ Result<CreatedVariation> Variations::Create(const Viewer& v, const VariationRequ
   // The parameters with the setter's request: one codec (plan::ParametersJson),
   // also the key of "the same request made again".
   const std::string params_json = plan::ParametersJson(req.params, req.setting);
-  const std::string key = RequestKey(params_json, req.smooth, recs);
+  const std::string key = RequestKey(params_json, req.smooth, recs, req.is_public, req.meta);
   if (!req.duplicate) {
     // The same request made before: that variation, not a second copy.
     Result<int64_t> found = store_->FindVariationByKey(*v.user_id, key);
     if (found.ok()) {
       Result<store::RouteRecord> old = store_->GetRoute(*found);
-      if (old.ok() && SameRequest(*old, params_json, req.smooth, recs)) {
+      if (old.ok() && SameRequest(*old, params_json, req.smooth, recs, req.is_public, req.meta)) {
         SB_ASSIGN_OR_RETURN(PlanView view, Plan(v, *found));
         CreatedVariation out;
         out.id = *found;

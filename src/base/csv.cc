@@ -1,5 +1,7 @@
 #include "base/csv.h"
 
+#include "base/number.h"
+
 namespace sb {
 
 Result<CsvTable> ParseCsv(std::string_view text, std::string_view name) {
@@ -75,11 +77,30 @@ Result<CsvTable> ParseCsv(std::string_view text, std::string_view name) {
   return table;
 }
 
+namespace {
+
+bool FormulaLead(char c) { return c == '=' || c == '+' || c == '-' || c == '@' || c == '\t' || c == '\r'; }
+
+}  // namespace
+
+bool CsvFieldNeedsNeutralising(std::string_view field) {
+  if (field.empty() || !FormulaLead(field[0])) return false;
+  double v = 0;
+  return !ParseDouble(field, &v);  // "-13.5" is a number, not a formula
+}
+
+std::string UnneutraliseCsvField(std::string_view field) {
+  if (field.size() >= 2 && field[0] == '\'' && FormulaLead(field[1])) {
+    return std::string(field.substr(1));
+  }
+  return std::string(field);
+}
+
 std::string FormatCsvRow(const CsvRow& row) {
   std::string out;
   for (size_t i = 0; i < row.size(); ++i) {
     if (i) out += ',';
-    const std::string& f = row[i];
+    const std::string f = CsvFieldNeedsNeutralising(row[i]) ? "'" + row[i] : row[i];
     if (f.find_first_of(",\"\r\n") == std::string::npos) {
       out += f;
       continue;

@@ -26,8 +26,20 @@ struct CsvTable {
 // field"). Pure; thread-safe.
 Result<CsvTable> ParseCsv(std::string_view text, std::string_view name);
 
-// Formats one row, quoting fields that need it, ending in "\n".
+// Formats one row, quoting fields that need it, ending in "\n". A field a
+// spreadsheet would run as a formula (the OWASP "CSV injection" rule: it
+// starts with =, +, -, @, a tab or a CR) and that is not a plain number
+// ("-13.5" stays) is written with a leading apostrophe, so it opens as text:
+// "=cmd|' /C calc'!A0" -> "'=cmd|' /C calc'!A0". UnneutraliseCsvField undoes it.
 std::string FormatCsvRow(const CsvRow& row);
+
+// Whether FormatCsvRow writes `field` with a leading apostrophe. Pure.
+bool CsvFieldNeedsNeutralising(std::string_view field);
+
+// A field as read back: a leading apostrophe followed by a character that
+// FormatCsvRow neutralises is dropped ("'=1+2" -> "=1+2"); anything else is
+// unchanged. Pure.
+std::string UnneutraliseCsvField(std::string_view field);
 
 }  // namespace sb
 

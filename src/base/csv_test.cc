@@ -22,6 +22,24 @@ TEST(Csv, RoundTrip) {
   EXPECT_EQ(t->rows[0], row);
 }
 
+TEST(Csv, FormulaLeadingFieldsAreWrittenAsText) {
+  CsvRow row = {"=cmd|' /C calc'!A0", "+1", "-x", "@SUM(A1)", "\tTAB", "\rCR", "-13.5", "1e3",
+                "a=b", ""};
+  std::string line = FormatCsvRow(row);
+  auto t = ParseCsv(line, "t");
+  ASSERT_TRUE(t.ok());
+  const CsvRow& got = t->rows[0];
+  ASSERT_EQ(got.size(), row.size());
+  for (size_t i = 0; i < 6; ++i) {
+    EXPECT_EQ(got[i], "'" + row[i]) << i;  // opens as text in a spreadsheet
+    EXPECT_EQ(UnneutraliseCsvField(got[i]), row[i]) << i;
+  }
+  EXPECT_EQ(got[6], "-13.5");  // numbers stay numbers
+  EXPECT_EQ(got[7], "1e3");
+  EXPECT_EQ(got[8], "a=b");
+  EXPECT_EQ(UnneutraliseCsvField("'quoted'"), "'quoted'");
+}
+
 TEST(Csv, Errors) {
   EXPECT_EQ(ParseCsv("a\n\"open,\n", "t.csv").status().message(),
             "t.csv:2:1: unterminated quoted field");

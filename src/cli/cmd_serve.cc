@@ -59,6 +59,12 @@ int RunServe(const std::vector<std::string>& args) {
   app.add_option("--base-url", base_url,
                  "the server's public address for links printed on route cards' QR codes "
                  "(e.g. https://gym.example.org; default: the address it listens on)");
+  std::vector<std::string> allowed_hosts;
+  app.add_option("--allowed-host", allowed_hosts,
+                 "a host name the server answers for (repeatable); besides it only the "
+                 "--base-url host, the --host address and loopback names (localhost, "
+                 "127.x.x.x, ::1); requests naming another Host get 421")
+      ->allow_extra_args(false);
   if (int rc = ParseArgs(app, args); rc >= 0) return rc;
 
   std::error_code ec;
@@ -94,6 +100,7 @@ int RunServe(const std::vector<std::string>& args) {
   options.access_log = log;
   options.secure_cookie = secure_cookie;
   options.base_url = base_url;
+  options.allowed_hosts = allowed_hosts;
   if (options.static_dir.empty() && web::DefaultStaticDir().empty()) {
     std::fprintf(stderr, "serve: warning: web assets (web/app.js) not found; pages lack style\n");
   }

@@ -65,6 +65,23 @@ class Table {
   std::map<std::string, size_t> cols_;
 };
 
+// A field as the original site (or this program's export) wrote it: the
+// apostrophe our export puts before a formula-leading field is dropped, and
+// the site's doubled single quotes are undone ("what''s" -> "what's"; it
+// doubled some twice, "o''''clock": any run becomes one quote).
+std::string SiteText(std::string_view raw) {
+  std::string s = UnneutraliseCsvField(raw);
+  std::string out;
+  out.reserve(s.size());
+  for (size_t i = 0; i < s.size(); ++i) {
+    out += s[i];
+    if (s[i] == '\'') {
+      while (i + 1 < s.size() && s[i + 1] == '\'') ++i;
+    }
+  }
+  return out;
+}
+
 // Newlines, CRs and tabs become spaces; both ends trimmed.
 std::string OneLine(std::string_view s) {
   std::string out(Trim(s));
@@ -85,16 +102,18 @@ Result<SiteRoute> ReadRouteRow(const Table& t, size_t i) {
   std::string pub(Trim(t.Get(i, "is_public")));
   r.is_public = pub.empty() || pub == "t";
   r.created_at = std::string(Trim(t.Get(i, "created_at")).substr(0, 19));
-  std::string name = OneLine(t.Get(i, "name"));
+  std::string name = OneLine(SiteText(t.Get(i, "name")));
   r.route.SetMeta("name", name.empty() ? "route " + std::to_string(r.id) : name);
-  if (std::string g = OneLine(t.Get(i, "grade")); !g.empty()) r.route.SetMeta("grade", g);
-  if (std::string ty = OneLine(t.Get(i, "type")); !ty.empty()) r.route.SetMeta("type", ty);
-  std::string description = t.Get(i, "description");
+  if (std::string g = OneLine(SiteText(t.Get(i, "grade"))); !g.empty()) {
+    r.route.SetMeta("grade", g);
+  }
+  if (std::string ty = OneLine(SiteText(t.Get(i, "type"))); !ty.empty()) {
+    r.route.SetMeta("type", ty);
+  }
+  // The export doubled single quotes ("what''s"); SiteText undoes that.
+  std::string description = SiteText(t.Get(i, "description"));
   for (std::string_view line : SplitLines(description)) {
-    std::string text(line);
-    // The export doubled single quotes ("what''s"); undo that.
-    for (size_t p; (p = text.find("''")) != std::string::npos;) text.replace(p, 2, "'");
-    r.route.header.push_back({"", SafeHeaderText(text)});
+    r.route.header.push_back({"", SafeHeaderText(line)});
   }
   while (!r.route.header.empty() && r.route.header.back().key.empty() &&
          Trim(r.route.header.back().value).empty()) {
@@ -118,7 +137,7 @@ Result<MoveRow> ReadMoveRow(const Table& t, size_t i) {
   std::optional<Hand> parsed = ParseHand(hand);
   if (!parsed) return t.Error(i, "hand: expected L or R, got \"" + hand.substr(0, 20) + "\"");
   row.move.hand = *parsed;
-  row.move.text = OneLine(t.Get(i, "move"));
+  row.move.text = OneLine(SiteText(t.Get(i, "move")));
   const std::string crux = ToLower(Trim(t.Get(i, "crux")));  // PostgreSQL's t, or true
   row.move.crux = crux == "t" || crux == "true";
   // Read the text as a CRDL move line would be, so it prints back the same.

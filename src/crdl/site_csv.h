@@ -30,10 +30,13 @@ struct SiteRoute {
   std::map<std::string, std::string> params;
   // A route that prints as valid CRDL: name (the row's, else "route ID"),
   // grade and type metadata, the description lines made safe as free text
-  // (SafeHeaderText; the export's doubled quotes '' undone), then the moves
+  // (SafeHeaderText), then the moves
   // in seq_no order, each on one line ("?" for an empty one), the `crux`
   // column as Move::crux (a text ending in " (crux)" flags it too). A route
-  // may have no moves in the export.
+  // may have no moves in the export. In every text field (name, grade,
+  // type, description, move) the site's doubled single quotes are undone
+  // (a run of them becomes one: "what''s", "o''''clock") and the apostrophe
+  // FormatCsvRow puts before a formula-leading field is dropped.
   Route route;
   // Move seq_no values as stored (variations number from 0, routes from 1).
   std::vector<int> seq_nos;

@@ -82,6 +82,43 @@ TEST(SiteCsv, ErrorsNameFileRecordAndColumn) {
   EXPECT_EQ(late.status().location()->line, 4);
 }
 
+TEST(SiteCsv, DoubledQuotesAreUndoneInEveryTextField) {
+  const char* routes =
+      "route_id,name,description,grade\n"
+      "1,Joe''s Arete,\"what''s this\",V3\n";
+  const char* moves =
+      "route_id,seq_no,hand,move\n"
+      "1,1,L,moving nine-o''clock to undercling\n"
+      "1,2,R,moving nine-o''''clock to undercling\n";
+  auto e = ParseSiteExport(routes, "r.csv", moves, "m.csv");
+  ASSERT_TRUE(e.ok()) << e.status().message();
+  const Route& r = e->routes[0].route;
+  EXPECT_EQ(r.Name(), "Joe's Arete");
+  ASSERT_FALSE(r.header.empty());
+  EXPECT_NE(PrintCrdl(r).find("what's this"), std::string::npos);
+  ASSERT_EQ(r.moves.size(), 2u);
+  EXPECT_EQ(r.moves[0].text, "moving nine-o'clock to undercling");
+  EXPECT_EQ(r.moves[1].text, "moving nine-o'clock to undercling");
+}
+
+TEST(SiteCsv, FormulaLeadingTextIsExportedAsTextAndReadBack) {
+  SiteExport ex;
+  SiteRoute sr;
+  sr.id = 7;
+  sr.route.SetMeta("name", "=HYPERLINK(\"x\")");
+  sr.route.moves.push_back(Move{});
+  sr.route.moves[0].text = "@jug";
+  ex.routes.push_back(sr);
+  std::string rc, mc;
+  FormatSiteExport(ex, &rc, &mc);
+  EXPECT_NE(rc.find("\"'=HYPERLINK"), std::string::npos) << rc;
+  EXPECT_NE(mc.find(",'@jug,"), std::string::npos) << mc;
+  auto back = ParseSiteExport(rc, "r.csv", mc, "m.csv");
+  ASSERT_TRUE(back.ok()) << back.status().message();
+  EXPECT_EQ(back->routes[0].route.Name(), "=HYPERLINK(\"x\")");
+  EXPECT_EQ(back->routes[0].route.moves[0].text, "@jug");
+}
+
 TEST(SiteCsv, RoutesPrintAsValidCrdlAndCruxesRoundTrip) {
   const char* routes =
       "route_id,name,description\n"

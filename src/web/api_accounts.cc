@@ -1,4 +1,6 @@
 // JSON API: accounts and sessions.
+#include <algorithm>
+
 #include "base/log.h"
 #include "web/handlers.h"
 
@@ -21,13 +23,24 @@ Status Credentials(const Request& req, std::string* user, std::string* pass) {
   return Status::Ok();
 }
 
+// The password-check queue is full: 503 with Retry-After (the server's
+// state, not the caller's fault).
+void Busy(Exchange& x, const Status& s, int retry_after) {
+  x.res.SetHeader("Retry-After", std::to_string(std::max(1, retry_after)));
+  ReplyJson(x.res, 503, json{{"error", s.message()}});
+}
+
 }  // namespace
 
 void PostUsers(Exchange& x) {
   std::string user, pass;
   if (Status s = Credentials(x.req, &user, &pass); !s.ok()) return ApiError(x, s);
-  Result<store::User> u = x.services.accounts.SignUp(user, pass, x.caller.viewer.address);
-  if (!u.ok()) return ApiError(x, u.status());
+  bool busy = false;
+  Result<store::User> u = x.services.accounts.SignUp(user, pass, x.caller.viewer.address, &busy);
+  if (!u.ok()) {
+    if (busy) return Busy(x, u.status(), 1);
+    return ApiError(x, u.status());
+  }
   // The install's first gym's first account is its head setter (issue 21).
   if (Status g = x.services.gyms.Welcome(u->id); !g.ok()) LogError("welcome: " + g.message());
   ReplyJson(x.res, 201, json{{"id", u->id}, {"username", u->username}});
@@ -37,9 +50,11 @@ void PostSessions(Exchange& x) {
   std::string user, pass;
   if (Status s = Credentials(x.req, &user, &pass); !s.ok()) return ApiError(x, s);
   int retry_after = 0;
+  bool busy = false;
   Result<app::NewSession> s =
-      x.services.accounts.LogIn(user, pass, x.caller.viewer.address, &retry_after);
+      x.services.accounts.LogIn(user, pass, x.caller.viewer.address, &retry_after, &busy);
   if (!s.ok()) {
+    if (busy) return Busy(x, s.status(), retry_after);
     if (retry_after > 0) x.res.SetHeader("Retry-After", std::to_string(retry_after));
     return ApiError(x, s.status());
   }

@@ -1,4 +1,6 @@
 // JSON API: routes, the editor's feedback, CSV import and export.
+#include <algorithm>
+
 #include "app/feedback.h"
 #include "web/handlers.h"
 
@@ -10,9 +12,17 @@ namespace {
 const char kNoRoute[] = "no such route";
 }  // namespace
 
+double ListCost(Exchange& x, std::optional<int> limit) {
+  const app::Limits& lim = x.services.options.limits;
+  int rows = std::clamp(limit.value_or(lim.default_list_rows), 1, lim.max_list_rows);
+  return rows * x.services.options.render_costs.list_per_row;
+}
+
 void ListRoutes(Exchange& x) {
   Result<app::RouteQuery> q = RouteQueryOf(x.req);
   if (!q.ok()) return ApiError(x, q.status());
+  auto slot = AdmitWork(x, ListCost(x, q->limit));
+  if (!slot) return;
   Result<app::RoutePage> page = x.services.routes.Search(x.caller.viewer, *q);
   if (!page.ok()) return ApiError(x, page.status());
   json arr = json::array();
@@ -29,6 +39,8 @@ void GetRoute(Exchange& x) {
   if (!id.ok()) return ApiError(x, id.status());
   Result<store::RouteRecord> r = x.services.routes.Get(x.caller.viewer, *id);
   if (!r.ok()) return ApiError(x, r.status());
+  auto slot = AdmitWork(x, r->move_count * x.services.options.render_costs.page_per_move);
+  if (!slot) return;
   ReplyJson(x.res, 200, RouteJson(*r));
 }
 
@@ -37,6 +49,8 @@ void GetRouteCrdl(Exchange& x) {
   if (!id.ok()) return ApiError(x, id.status());
   Result<store::RouteRecord> r = x.services.routes.Get(x.caller.viewer, *id);
   if (!r.ok()) return ApiError(x, r.status());
+  auto slot = AdmitWork(x, r->move_count * x.services.options.render_costs.page_per_move);
+  if (!slot) return;
   x.res.SetHeader("Content-Disposition",
                   "attachment; filename=\"route-" + std::to_string(*id) + ".crdl\"");
   x.res.SetBody(200, r->crdl, "text/plain; charset=utf-8");
@@ -98,7 +112,14 @@ void PostFeedback(Exchange& x) {
   if (!body.ok()) return ApiError(x, body.status());
   Result<std::string> crdl = StringField(*body, "crdl");
   if (!crdl.ok()) return ApiError(x, crdl.status());
-  app::EditorFeedback f = app::ReadForEditor(*crdl);
+  // Text over the editor's limits is refused before any work: no cost.
+  const size_t line_count = std::count(crdl->begin(), crdl->end(), '\n') + 1;
+  const bool over = crdl->size() > app::kMaxEditorBytes ||
+                    line_count > static_cast<size_t>(app::kMaxEditorLines);
+  auto slot =
+      AdmitWork(x, over ? 0 : line_count * x.services.options.render_costs.editor_per_line);
+  if (!slot) return;
+  app::EditorFeedback f = app::ReadForEditor(*crdl, x.services.options.limits.route);
   json out;
   out["ok"] = f.ok;
   out["error"] = f.error ? json{{"line", f.error->line},
@@ -149,6 +170,14 @@ void PostImportCsv(Exchange& x) {
 namespace {
 void Export(Exchange& x, bool routes_file) {
   bool mine = x.req.Query("mine").value_or("") == "1";
+  // The cost grows with the routes the caller can see: count them first.
+  app::RouteQuery q;
+  q.mine = mine;
+  q.limit = 1;
+  Result<app::RoutePage> count = x.services.routes.Search(x.caller.viewer, q);
+  if (!count.ok()) return ApiError(x, count.status());
+  auto slot = AdmitWork(x, count->total * x.services.options.render_costs.export_per_route);
+  if (!slot) return;
   Result<app::CsvFiles> ex = x.services.routes.ExportCsv(x.caller.viewer, mine);
   if (!ex.ok()) return ApiError(x, ex.status());
   x.res.SetHeader("Content-Disposition", std::string("attachment; filename=\"") +

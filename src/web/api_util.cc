@@ -10,6 +10,23 @@ namespace sb::web {
 
 using nlohmann::json;
 
+std::optional<app::WorkBudget::Slot> AdmitWork(Exchange& x, double cost) {
+  int retry_after = 0;
+  bool busy = false;
+  Result<app::WorkBudget::Slot> slot =
+      x.services.renders.Admit(x.caller.viewer, cost, &retry_after, &busy);
+  if (slot.ok()) return std::move(slot).value();
+  const int status = busy ? 503 : 429;
+  const std::string message = slot.status().message();
+  if (x.req.path.rfind("/api/", 0) == 0) {
+    ReplyJson(x.res, status, json{{"error", message}});
+  } else {
+    x.res.SetBody(status, ErrorPage(x.caller.page(), status, message), "text/html; charset=utf-8");
+  }
+  if (retry_after > 0) x.res.SetHeader("Retry-After", std::to_string(retry_after));
+  return std::nullopt;
+}
+
 PageViewer Caller::page() const {
   PageViewer p;
   p.logged_in = viewer.logged_in();

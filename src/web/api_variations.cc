@@ -1,4 +1,5 @@
 // JSON API: variations, their plans, IC maps and the IC picker.
+#include <algorithm>
 #include <climits>
 #include <cmath>
 
@@ -144,6 +145,10 @@ void PostVariation(Exchange& x) {
 void GetVariation(Exchange& x) {
   Result<int64_t> id = PathId(x.req, "no such variation");
   if (!id.ok()) return ApiError(x, id.status());
+  Result<store::RouteRecord> r = x.services.routes.Get(x.caller.viewer, *id);
+  if (!r.ok()) return ApiError(x, r.status());
+  auto slot = AdmitWork(x, r->move_count * x.services.options.render_costs.page_per_move);
+  if (!slot) return;
   Result<app::PlanView> p = x.services.variations.Plan(x.caller.viewer, *id);
   if (!p.ok()) return ApiError(x, p.status());
   // The route object with the plan (the `vary --format json` text) spliced in.
@@ -194,8 +199,9 @@ void GetPick(Exchange& x) {
   app::PickQuery pick;
   pick.effect = effect;
   if (change) pick.change = *change;
-  // Counts outside int range are refused by the service as out of range.
-  if (count) pick.count = *count >= 1 && *count <= 1e6 ? static_cast<int>(*count) : 0;
+  // The service checks the count against app::Limits::max_pick_count; here
+  // it is only kept inside int (a huge one is then refused as too many).
+  if (count) pick.count = static_cast<int>(std::clamp(*count, 0.0, double{INT_MAX}));
   int retry_after = 0;
   Result<std::vector<landscape::Candidate>> c =
       x.services.maps.Pick(x.caller.viewer, *q, pick, &retry_after);

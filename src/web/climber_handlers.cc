@@ -13,10 +13,6 @@ using nlohmann::json;
 
 namespace {
 
-// A JSON array may hold no more answers than this (any instrument's items,
-// any study's routes are far fewer; checked before the work).
-constexpr size_t kMaxJsonArray = 1000;
-
 void Html(Exchange& x, const std::string& html) {
   x.res.SetHeader("Cache-Control", "no-store");
   x.res.SetBody(200, html, "text/html; charset=utf-8");
@@ -29,6 +25,9 @@ void Download(Exchange& x, const std::string& body, const char* type, const std:
 }
 
 const app::ClimberPolicy& Policy(Exchange& x) { return x.services.options.climbers; }
+
+// Items a JSON array of the request may hold (app::Limits::max_json_array).
+size_t MaxItems(Exchange& x) { return x.services.options.limits.max_json_array; }
 
 std::string Token(Exchange& x) { return x.req.Cookie(kParticipantCookie); }
 
@@ -47,10 +46,10 @@ void ApiErrorRetry(Exchange& x, const Status& s, int retry_after) {
 }
 
 // [int|null, ...] as answers.
-Result<store::Answers> AnswersField(const json& body, const char* field) {
+Result<store::Answers> AnswersField(const json& body, const char* field, size_t max_items) {
   if (!body.contains(field)) return store::Answers();
   const json& a = body[field];
-  if (!a.is_array() || a.size() > kMaxJsonArray) {
+  if (!a.is_array() || a.size() > max_items) {
     return Status::InvalidInput(std::string(field) + ": expected an array of integers or nulls");
   }
   store::Answers out;
@@ -84,14 +83,14 @@ Result<std::optional<int>> OptInt(const json& o, const char* field, const std::s
 }
 
 // The study fields of a POST/PUT body.
-Result<app::StudySpec> SpecOf(const json& body) {
+Result<app::StudySpec> SpecOf(const json& body, size_t max_items) {
   app::StudySpec spec;
   if (body.contains("name")) {
     SB_ASSIGN_OR_RETURN(spec.name, StringField(body, "name"));
   }
   if (body.contains("routes")) {
     const json& r = body["routes"];
-    if (!r.is_array() || r.size() > kMaxJsonArray) {
+    if (!r.is_array() || r.size() > max_items) {
       return Status::InvalidInput("routes: expected an array of route ids");
     }
     std::vector<int64_t> ids;
@@ -278,7 +277,7 @@ void PostRouteFeedback(Exchange& x) {
   Result<json> body = BodyObject(x.req);
   if (!body.ok()) return ApiError(x, body.status());
   app::FeedbackInput in;
-  Result<store::Answers> answers = AnswersField(*body, "answers");
+  Result<store::Answers> answers = AnswersField(*body, "answers", MaxItems(x));
   if (!answers.ok()) return ApiError(x, answers.status());
   in.answers = std::move(answers).value();
   if (!(*body).contains("answers")) {  // a felt grade or comment alone: every item skipped
@@ -307,7 +306,7 @@ void PostRouteFeedback(Exchange& x) {
 void PostStudy(Exchange& x) {
   Result<json> body = BodyObject(x.req);
   if (!body.ok()) return ApiError(x, body.status());
-  Result<app::StudySpec> spec = SpecOf(*body);
+  Result<app::StudySpec> spec = SpecOf(*body, MaxItems(x));
   if (!spec.ok()) return ApiError(x, spec.status());
   int retry = 0;
   Result<int64_t> id = x.services.studies.Create(x.caller.viewer, *spec, &retry);
@@ -320,7 +319,7 @@ void PutStudy(Exchange& x) {
   if (!id.ok()) return ApiError(x, id.status());
   Result<json> body = BodyObject(x.req);
   if (!body.ok()) return ApiError(x, body.status());
-  Result<app::StudySpec> spec = SpecOf(*body);
+  Result<app::StudySpec> spec = SpecOf(*body, MaxItems(x));
   if (!spec.ok()) return ApiError(x, spec.status());
   int retry = 0;
   Status s = x.services.studies.Update(x.caller.viewer, *id, *spec, &retry);
@@ -335,7 +334,7 @@ void PostStudyResponse(Exchange& x) {
   if (!body.ok()) return ApiError(x, body.status());
   app::StudySubmission sub;
   const json& routes = (*body).contains("routes") ? (*body)["routes"] : json();
-  if (!routes.is_array() || routes.size() > kMaxJsonArray) {
+  if (!routes.is_array() || routes.size() > MaxItems(x)) {
     return ApiError(x, Status::InvalidInput("routes: expected an array, one object per route"));
   }
   for (size_t i = 0; i < routes.size(); ++i) {
@@ -344,7 +343,7 @@ void PostStudyResponse(Exchange& x) {
       return ApiError(x, Status::InvalidInput(where + ": expected an object"));
     }
     app::StudyRouteAnswer a;
-    Result<store::Answers> ans = AnswersField(routes[i], "answers");
+    Result<store::Answers> ans = AnswersField(routes[i], "answers", MaxItems(x));
     if (!ans.ok()) return ApiError(x, Status::InvalidInput(where + ": " + ans.status().message()));
     a.answers = std::move(ans).value();
     Result<std::optional<int>> rank = OptInt(routes[i], "rank", where);
@@ -357,7 +356,7 @@ void PostStudyResponse(Exchange& x) {
   }
   if ((*body).contains("demographics")) {
     const json& d = (*body)["demographics"];
-    if (!d.is_object() || d.size() > kMaxJsonArray) {
+    if (!d.is_object() || d.size() > MaxItems(x)) {
       return ApiError(x, Status::InvalidInput("demographics: expected an object"));
     }
     for (const auto& [k, v] : d.items()) {  // nlohmann's object order: sorted keys

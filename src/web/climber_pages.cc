@@ -87,8 +87,11 @@ std::string GradeBlock(const app::GradeSummary& g, int min_votes_note) {
   h += "<dt>Climbers' grade</dt><dd id=\"consensus-grade\">";
   if (g.votes == 0) {
     h += "no felt grades yet";
-  } else if (!g.shown) {
+  } else if (!g.shown && g.votes < min_votes_note) {
     h += "shown from " + std::to_string(min_votes_note) + " felt grades on";
+  } else if (!g.shown) {
+    // app::ConsensusRevealsNoVote: one vote would decide what is shown.
+    h += "shown once no single felt grade decides it";
   } else {
     h += E(g.median_grade) + " <span class=\"spread\">(" + E(g.low_grade) + "–" + E(g.high_grade) +
          ", " + std::to_string(g.consensus.count) + " vote" + (g.consensus.count == 1 ? "" : "s") +

@@ -52,6 +52,19 @@ void ApiError(Exchange& x, const Status& s);
 // The HTML error page for `s`.
 void PageError(Exchange& x, const Status& s);
 
+// ---- work budget of pages and files (api_util.cc) ----------------------------
+// Charges `cost` render units (app::RenderCosts) to the caller in
+// app::Services::renders before the rendering. Returns the slot to hold
+// while rendering, or nullopt when refused, with the reply written (JSON for
+// /api/, else an error page): 429 when over the per-request cap or the
+// caller's budget, 503 when the big-page slots are taken; Retry-After when
+// waiting helps. Pages under the free cost always pass.
+std::optional<app::WorkBudget::Slot> AdmitWork(Exchange& x, double cost);
+
+// The render cost of a route list of `limit` rows (default and cap as the
+// list service applies them).
+double ListCost(Exchange& x, std::optional<int> limit);
+
 // ---- JSON helpers (api_util.cc) ---------------------------------------------
 void ReplyJson(Response& res, int status, const nlohmann::json& body);
 // The body as a JSON object. kInvalidInput "malformed JSON body" or

@@ -15,6 +15,7 @@
 #include <memory>
 #include <string>
 
+#include "app/options.h"
 #include "base/status.h"
 #include "web/http.h"
 
@@ -26,8 +27,9 @@ struct TransportOptions {
   // Request bodies above this many bytes get 413: by Content-Length before
   // the body is read, and by the bytes decoded so far for chunked bodies.
   // Compressed bodies (Content-Encoding other than identity) get 415, so no
-  // body is ever inflated.
-  size_t max_body_bytes = 2 * 1024 * 1024;
+  // body is ever inflated. The server sets it from app::Limits (the one
+  // place the number and its reason are written).
+  size_t max_body_bytes = app::Limits{}.max_body_bytes;
   // Request line plus all header lines (431 above): cookies and a CSRF token
   // need < 1 KiB; browsers send < 4 KiB.
   size_t max_header_bytes = 16 * 1024;

@@ -39,14 +39,12 @@ std::vector<int64_t> SelectedIds(const std::string& s) {
 
 }  // namespace
 
-// Rows per page of the route list and of the vary page's search results.
-constexpr int kListPageRows = 50;
-constexpr int kPickerRows = 20;
-
 void PageIndex(Exchange& x) {
   Result<app::RouteQuery> rq = RouteQueryOf(x.req);
   if (!rq.ok()) return PageError(x, rq.status());
-  if (!rq->limit) rq->limit = kListPageRows;
+  if (!rq->limit) rq->limit = x.services.options.limits.list_page_rows;
+  auto slot = AdmitWork(x, ListCost(x, rq->limit));
+  if (!slot) return;
   Result<app::RoutePage> page = x.services.routes.Search(x.caller.viewer, *rq);
   if (!page.ok()) return PageError(x, page.status());
   Html(x, RouteListPage(x.caller.page(), *page, *rq));
@@ -68,6 +66,8 @@ void PageEditRoute(Exchange& x) {
     return PageError(x, Status::Permission("Only the route's owner may edit it."));
   }
   if (!r.ok()) return PageError(x, r.status());
+  auto slot = AdmitWork(x, r->move_count * x.services.options.render_costs.page_per_move);
+  if (!slot) return;
   Html(x, EditorPage(x.caller.page(), *r));
 }
 
@@ -81,6 +81,8 @@ void PageRoute(Exchange& x) {
     x.res.SetHeader("Location", "/variations/" + std::to_string(*id));
     return;
   }
+  auto slot = AdmitWork(x, r->move_count * x.services.options.render_costs.page_per_move);
+  if (!slot) return;
   std::vector<std::string> readings;
   if (Result<Route> parsed = ParseCrdl(r->crdl, "route"); parsed.ok()) {
     readings = app::MoveReadings(*parsed);
@@ -104,7 +106,7 @@ void PageVary(Exchange& x) {
   }
   app::RouteQuery q;
   q.text = x.req.Query("find").value_or("");
-  q.limit = kPickerRows;
+  q.limit = x.services.options.limits.picker_rows;
   Result<app::RoutePage> found = x.services.routes.Search(x.caller.viewer, q);
   if (!found.ok()) return PageError(x, found.status());
   Html(x, VaryPage(x.caller.page(), chosen, missing, *found, q.text));
@@ -113,9 +115,32 @@ void PageVary(Exchange& x) {
 void PageImport(Exchange& x) { Html(x, ImportPage(x.caller.page())); }
 
 namespace {
-Result<app::PlanView> PlanOf(Exchange& x) {
-  SB_ASSIGN_OR_RETURN(int64_t id, PathId(x.req, "No such variation."));
-  return x.services.variations.Plan(x.caller.viewer, id);
+// The variation's plan, admitted by the work budget at `per_move` render
+// units per move; nullopt when refused (the reply is written).
+struct AdmittedPlan {
+  app::PlanView view;
+  app::WorkBudget::Slot slot;
+};
+std::optional<AdmittedPlan> AdmittedPlanOf(Exchange& x, double per_move) {
+  Result<int64_t> id = PathId(x.req, "No such variation.");
+  if (!id.ok()) {
+    PageError(x, id.status());
+    return std::nullopt;
+  }
+  // The stored move count prices the work before the plan is (re)built.
+  Result<store::RouteRecord> r = x.services.routes.Get(x.caller.viewer, *id);
+  if (!r.ok()) {
+    PageError(x, r.status());
+    return std::nullopt;
+  }
+  std::optional<app::WorkBudget::Slot> slot = AdmitWork(x, r->move_count * per_move);
+  if (!slot) return std::nullopt;
+  Result<app::PlanView> p = x.services.variations.Plan(x.caller.viewer, *id);
+  if (!p.ok()) {
+    PageError(x, p.status());
+    return std::nullopt;
+  }
+  return AdmittedPlan{std::move(p).value(), std::move(*slot)};
 }
 }  // namespace
 
@@ -159,16 +184,18 @@ std::string ShortLink(Exchange& x, int64_t id) {
 }
 
 void PagePlan(Exchange& x) {
-  Result<app::PlanView> p = PlanOf(x);
-  if (!p.ok()) return PageError(x, p.status());
+  std::optional<AdmittedPlan> a = AdmittedPlanOf(x, x.services.options.render_costs.page_per_move);
+  if (!a) return;
+  const app::PlanView* p = &a->view;
   Html(x, WithBlock(PlanPage(x.caller.page(), p->record, *p->plan, p->smoothing_note,
                              CardInfoOf(x, p->record)),
                     ConsensusBlock(x, p->record)));
 }
 
 void PagePlanSvg(Exchange& x) {
-  Result<app::PlanView> p = PlanOf(x);
-  if (!p.ok()) return PageError(x, p.status());
+  std::optional<AdmittedPlan> a = AdmittedPlanOf(x, x.services.options.render_costs.card_per_move);
+  if (!a) return;
+  const app::PlanView* p = &a->view;
   Result<std::string> svg = plan::RenderCardSvg(*p->plan, CardInfoOf(x, p->record), PaperOf(x));
   if (!svg.ok()) return PageError(x, svg.status());
   x.res.SetHeader("Content-Disposition", AttachmentHeader(p->record.name, ".svg"));
@@ -176,8 +203,9 @@ void PagePlanSvg(Exchange& x) {
 }
 
 void PagePlanPdf(Exchange& x) {
-  Result<app::PlanView> p = PlanOf(x);
-  if (!p.ok()) return PageError(x, p.status());
+  std::optional<AdmittedPlan> a = AdmittedPlanOf(x, x.services.options.render_costs.card_per_move);
+  if (!a) return;
+  const app::PlanView* p = &a->view;
   plan::Paper paper = PaperOf(x);
   Result<std::string> pdf = plan::RenderCardPdf(*p->plan, CardInfoOf(x, p->record), paper);
   if (!pdf.ok()) return PageError(x, pdf.status());

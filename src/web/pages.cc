@@ -583,7 +583,7 @@ std::string ImportPage(const PageViewer& v) {
          "<label>routes CSV <input type=\"file\" id=\"routes-csv\" accept=\".csv\"></label>"
          "<label>moves CSV <input type=\"file\" id=\"moves-csv\" accept=\".csv\"></label>"
          "<button type=\"button\" id=\"import-csv\">Import</button><p class=\"msg\" "
-         "id=\"csv-msg\"></p></section>\n";
+         "id=\"csv-msg\"></p><ul class=\"notes\" id=\"csv-notes\" hidden></ul></section>\n";
   } else {
     b += "<p><a href=\"/login\">Log in</a> to import routes.</p>\n";
   }

@@ -121,13 +121,57 @@ void SecurityHeaders(Response* res) {
   res->SetHeader("Referrer-Policy", "same-origin");
 }
 
+// "Name:port" -> "name"; "[::1]:80" -> "::1"; lower case, no trailing dot.
+std::string HostName(std::string_view h) {
+  std::string s = ToLower(Trim(h));
+  if (!s.empty() && s[0] == '[') {
+    size_t e = s.find(']');
+    s = e == std::string::npos ? s.substr(1) : s.substr(1, e - 1);
+  } else if (size_t c = s.find(':'); c != std::string::npos && s.find(':', c + 1) == std::string::npos) {
+    s = s.substr(0, c);
+  }
+  while (!s.empty() && s.back() == '.') s.pop_back();
+  return s;
+}
+
+bool IsLoopbackName(const std::string& h) {
+  if (h == "localhost" || h == "::1") return true;
+  if (h.size() > 10 && h.compare(h.size() - 10, 10, ".localhost") == 0) return true;
+  // 127.0.0.0/8 as a dotted quad.
+  if (h.rfind("127.", 0) != 0) return false;
+  int dots = 0;
+  for (char c : h) {
+    if (c == '.') {
+      ++dots;
+    } else if (c < '0' || c > '9') {
+      return false;
+    }
+  }
+  return dots == 3;
+}
+
 }  // namespace
+
+std::string HostOfUrl(const std::string& url) {
+  size_t p = url.find("://");
+  std::string rest = p == std::string::npos ? url : url.substr(p + 3);
+  rest = rest.substr(0, rest.find_first_of("/?#"));
+  if (size_t at = rest.rfind('@'); at != std::string::npos) rest = rest.substr(at + 1);
+  return HostName(rest);
+}
+
+bool HostAllowed(const std::string& host_header, const std::vector<std::string>& allowed) {
+  if (Trim(host_header).empty()) return true;
+  std::string h = HostName(host_header);
+  if (IsLoopbackName(h)) return true;
+  return std::find(allowed.begin(), allowed.end(), h) != allowed.end();
+}
 
 // The transport's limits: ServerOptions::transport with the body limit and
 // worker count of ServerOptions.
 TransportOptions TransportFor(const ServerOptions& o) {
   TransportOptions t = o.transport;
-  t.max_body_bytes = o.max_body_bytes;
+  t.max_body_bytes = o.app.limits.max_body_bytes;
   t.threads = o.threads;
   return t;
 }
@@ -152,6 +196,9 @@ struct Server::Impl {
   Router<Handler> router;
   HttpTransport transport;
 
+  // Host names this server answers for (lower case; see ServerOptions).
+  std::vector<std::string> hosts;
+
   Impl(store::Store* store, ServerOptions o)
       : options(std::move(o)),
         services(store, options.app),
@@ -161,6 +208,14 @@ struct Server::Impl {
                     TransportError(q, status, s);
                   }) {
     for (const Endpoint& e : kEndpoints) router.Add(e.method, e.pattern, e.handler);
+    for (const std::string& h : options.allowed_hosts) AllowHost(h);
+    if (!options.base_url.empty()) AllowHost(HostOfUrl(options.base_url));
+  }
+
+  // Adds a host name or address (with or without a port) to `hosts`.
+  void AllowHost(const std::string& h) {
+    std::string name = HostName(h);
+    if (!name.empty()) hosts.push_back(name);
   }
 
   // Who is asking: the session named by the cookie, if any.
@@ -209,6 +264,12 @@ struct Server::Impl {
   }
 
   void Handle(const Request& in, Response* res) {
+    if (!HostAllowed(in.Header("host"), hosts)) {
+      Caller nobody;  // no session lookup for a request to another host
+      Exchange x{services, options, in, nobody, *res};
+      Failure(x, 421, "this server does not answer for that host name");
+      return Finish(in, res);
+    }
     Request req = in;
     Caller caller = CallerOf(req);
     bool method_mismatch = false;
@@ -266,6 +327,8 @@ Server::Server(store::Store* store, ServerOptions options)
 Server::~Server() { Stop(); }
 
 Result<int> Server::Bind(const std::string& host, int port) {
+  // A specific address it listens on is a name clients use for it.
+  if (host != "0.0.0.0" && host != "::" && host != "") impl_->AllowHost(host);
   return impl_->transport.Bind(host, port);
 }
 

@@ -17,6 +17,7 @@
 #include <cstddef>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "app/options.h"
 #include "base/status.h"
@@ -27,21 +28,18 @@
 namespace sb::web {
 
 struct ServerOptions {
-  // The application layer's limits, log-in policy and caches.
+  // The application layer's limits (the request body limit among them:
+  // app.limits.max_body_bytes, 413 above), log-in policy and caches.
   app::Options app;
   // Directory of the static assets (app.css, app.js) served under /static/;
   // "" = DefaultStaticDir().
   std::string static_dir;
-  // Request bodies above this many bytes get 413 (2 MiB: a route is a few
-  // KB; a CSV import of the original site's whole corpus needs a bigger
-  // server setting).
-  size_t max_body_bytes = 2 * 1024 * 1024;
   // Worker threads running handlers (0 = 4 x cores, at least 8). Open
   // connections do not hold workers (slow clients wait on the I/O threads).
   int threads = 0;
   // The transport's other limits (header size and count, deadlines,
-  // connections per address, queue); max_body_bytes and threads above
-  // override its fields of the same name.
+  // connections per address, queue); app.limits.max_body_bytes and threads
+  // above override its fields of the same name.
   TransportOptions transport;
   // Mark the session cookie Secure (when served behind HTTPS).
   bool secure_cookie = false;
@@ -51,7 +49,22 @@ struct ServerOptions {
   // slash needed) for absolute links such as the route card's QR code; ""
   // = taken from the request's Host header.
   std::string base_url;
+  // Host names (or addresses) the server answers for besides the loopback
+  // ones (localhost, *.localhost, 127.0.0.0/8, ::1), the host of base_url
+  // and the address given to Bind(); a request whose Host header names any
+  // other host gets 421 (DNS rebinding: another name resolving to this
+  // server must not drive it). Compared without the port, ignoring case.
+  std::vector<std::string> allowed_hosts;
 };
+
+// Whether `host_header` ("name", "name:port", "[v6]:port") names a host in
+// `allowed` (lower-case names without port) or a loopback one. An empty
+// header (HTTP/1.0) is allowed: there is no name to rebind. Pure.
+bool HostAllowed(const std::string& host_header, const std::vector<std::string>& allowed);
+
+// The host of a URL ("https://Gym.example.org:8443/x" -> "gym.example.org");
+// "" when none. Pure.
+std::string HostOfUrl(const std::string& url);
 
 // The directory holding the bundled web assets (sb::FindBundled(Bundle::kWeb));
 // "" when none exists.
