@@ -94,6 +94,12 @@
     let timer = null, seq = 0;
     async function refresh() {
       const mine = ++seq;
+      // Nothing typed yet: nothing to complain about (issue 21).
+      if (!ta.value.trim()) {
+        list.innerHTML = '';
+        say($('#save-msg'), '', true);
+        return;
+      }
       const r = await api('POST', '/api/feedback', { crdl: ta.value });
       if (mine !== seq || r.status !== 200) return;
       list.innerHTML = '';
@@ -111,7 +117,8 @@
           // The climbing part of the reading ("jug (big, good-hold)"), not the parser's internals.
           const climbing = (l.reading || '').split(' — ')[0];
           note.textContent = (l.hand === 'L' ? 'left hand' : 'right hand') + (l.crux ? ' · crux' : '') +
-            ' · ' + (r.data.language ? (l.parsed ? climbing : 'not understood as a move') : l.move);
+            ' · ' + (r.data.language ? (l.parsed ? climbing : 'not understood as a move') : l.move) +
+            (r.data.language && l.parsed && l.style ? ' · style: ' + l.style : '');
           for (const d of (l.did_you_mean || [])) {
             const dy = document.createElement('span');
             dy.className = 'did-you-mean';

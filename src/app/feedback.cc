@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <memory>
 #include <mutex>
+#include <string_view>
 
 #include "app/limits.h"
 #include "crdl/scan.h"
+#include "language/styles.h"
 #include "language/symbols.h"
 
 namespace sb::app {
@@ -77,10 +79,29 @@ std::vector<std::string> Words(std::string_view text) {
   return out;
 }
 
+// Common English words climbers write between the climbing words ("the",
+// "and", "with", ...): the grammar skips them, so they are not misspellings
+// and the editor must not suggest a climbing word for them ("the" is one
+// letter from "toe"). Sorted, for binary search.
+constexpr std::string_view kCommonWords[] = {
+    "about", "after", "again", "all",   "also",  "and",   "any",   "are",   "around", "bad",
+    "bit",   "bolt",  "bolts", "but",   "can",   "each",  "first", "for",   "from",   "gets",
+    "good",  "has",   "have",  "her",   "here",  "his",   "into",  "its",   "just",   "last",
+    "more",  "most",  "next",  "not",   "off",   "one",   "only",  "onto",  "other",  "our",
+    "own",   "same",  "second","she",   "some",  "than",  "that",  "the",   "their",  "them",
+    "then",  "there", "these", "they",  "this",  "three", "too",   "two",   "upon",   "use",
+    "very",  "was",   "way",   "were",  "what",  "when",  "where", "which", "while",  "will",
+    "with",  "you",   "your",
+};
+
+bool IsCommonWord(std::string_view w) {
+  return std::binary_search(std::begin(kCommonWords), std::end(kCommonWords), w);
+}
+
 }  // namespace
 
 std::string DidYouMean(std::string_view word, const std::vector<std::string>& vocabulary) {
-  if (word.size() < 3) return "";
+  if (word.size() < 3 || IsCommonWord(word)) return "";
   const int cap = word.size() <= 4 ? 1 : 2;
   std::string best;
   int best_d = cap + 1;
@@ -136,7 +157,9 @@ EditorFeedback ReadForEditor(std::string_view crdl, const RouteLimits& limits) {
       l.crux = c.crux;
       ++out.moves;
       if (lang && c.text.size() <= kMaxEditorMoveBytes) {
-        l.parsed = lang->Read(c.text).parse.ok();
+        const language::MoveReading reading = lang->Read(c.text);
+        l.parsed = reading.parse.ok();
+        l.style = language::StyleOfParse(reading.parse).Describe();
         l.reading = lang->Explain(c.text);
         const language::Grammar& g = lang->grammar();
         for (const std::string& w : Words(c.text)) {

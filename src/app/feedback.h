@@ -26,6 +26,9 @@ struct EditorLine {
   bool crux = false;    // moves: ends in " (crux)"
   bool parsed = false;  // moves: the grammar found a parse
   std::string reading;  // moves: how the grammar read it ("" without the grammar)
+  // moves: the style reading (language/styles.h), e.g. "crimp, sidepull",
+  // "unparsed", "no style named"; "" without the grammar.
+  std::string style;
   // moves: words the grammar's vocabulary lacks that are close (edit distance,
   // DidYouMean) to a word it has: "crmip" -> "crimp", in line order.
   std::vector<std::pair<std::string, std::string>> did_you_mean;
@@ -64,7 +67,8 @@ std::vector<std::string> MoveReadings(const Route& route);
 // The vocabulary word closest to `word` (lower case) by optimal string
 // alignment distance (adjacent swaps count 1), when it is at most 1 for words
 // of up to 4 letters and 2 for longer ones, and `word` is not itself in the
-// vocabulary; "" otherwise. Ties go to the first word in `vocabulary` order.
+// vocabulary nor a common English word ("the", "and", "with", ...: the
+// grammar skips those); "" otherwise. Ties go to the first word in `vocabulary` order.
 // Pure.
 std::string DidYouMean(std::string_view word, const std::vector<std::string>& vocabulary);
 

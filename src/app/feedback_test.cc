@@ -133,6 +133,29 @@ TEST(DidYouMeanTest, SuggestsTheClosestVocabularyWord) {
   EXPECT_EQ(DidYouMean("ju", vocab), "");          // too short to guess
 }
 
+TEST(DidYouMeanTest, SkipsCommonEnglishWords) {
+  const std::vector<std::string> vocab = {"toe", "hand", "wish"};
+  EXPECT_EQ(DidYouMean("the", vocab), "");   // one letter from "toe"
+  EXPECT_EQ(DidYouMean("and", vocab), "");   // one letter from "hand"
+  EXPECT_EQ(DidYouMean("with", vocab), "");  // one letter from "wish"
+  EXPECT_EQ(DidYouMean("tho", vocab), "toe");  // not a common word: still suggested
+}
+
+TEST(EditorStyleTest, TheEditorShowsTheStyleReading) {
+  if (!LanguageAvailable()) GTEST_SKIP() << "no grammar";
+  EditorFeedback f = ReadForEditor("name: t\n---\nR cross to good sidepull\nL xyzzy\n");
+  ASSERT_EQ(f.lines.size(), 4u);
+  EXPECT_EQ(f.lines[2].style, "cross, sidepull");
+  EXPECT_EQ(f.lines[3].style, "unparsed");
+}
+
+TEST(DidYouMeanTest, TheEditorDoesNotCorrectCommonWords) {
+  if (!LanguageAvailable()) GTEST_SKIP() << "no grammar";
+  EditorFeedback f = ReadForEditor("name: t\n---\nR reach the crack and match the jug\n");
+  ASSERT_EQ(f.lines.size(), 3u);
+  EXPECT_TRUE(f.lines[2].did_you_mean.empty());
+}
+
 TEST(DidYouMeanTest, TheEditorFlagsAMisspeltHold) {
   if (!LanguageAvailable()) GTEST_SKIP() << "no grammar";
   EditorFeedback f = ReadForEditor("name: t\n---\nR crmip\n", RouteLimits{});

@@ -322,7 +322,7 @@ std::vector<ConstraintOutcome> ConstraintChecker::Report(const Variation& v) con
   return out;
 }
 
-int AlternateHands(std::vector<VariedMove>* moves) {
+int AlternateHands(std::vector<VariedMove>* moves, bool keep_first_hand) {
   const size_t n = moves->size();
   if (n < 2) return 0;
   // Pattern p: position j gets the first move's hand when (j % 2 == 0) != p.
@@ -335,7 +335,7 @@ int AlternateHands(std::vector<VariedMove>* moves) {
     swaps[0] += (*moves)[j].hand != even;
     swaps[1] += (*moves)[j].hand != odd;
   }
-  const int pattern = swaps[1] < swaps[0] ? 1 : 0;
+  const int pattern = !keep_first_hand && swaps[1] < swaps[0] ? 1 : 0;
   int count = 0;
   for (size_t j = 0; j < n; ++j) {
     Hand want = (j % 2 == 0) == (pattern == 0) ? h0 : other;

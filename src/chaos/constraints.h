@@ -149,8 +149,11 @@ class ConstraintChecker {
 // the two alternating patterns the one needing fewer swaps (on a tie, the one
 // keeping the first move's hand). Each swapped move gets the note
 // "(hand swapped)". Returns the number of moves swapped. The setters' own fix
-// (paper section 8), used only where no IC alternates by itself.
-int AlternateHands(std::vector<VariedMove>* moves);
+// (paper section 8), used only where no IC alternates by itself. With
+// `keep_first_hand` (keep-start asked: the start is an input's start, hand
+// included) the pattern keeping the first move's hand is used whatever it
+// costs.
+int AlternateHands(std::vector<VariedMove>* moves, bool keep_first_hand = false);
 
 // Effect and total displacement of a mapping (as the landscape defines them;
 // a blank counts as changed with distance 0).

@@ -215,6 +215,22 @@ TEST(ConstraintCheckerTest, ReportExplainsEachRequestedConstraint) {
   EXPECT_EQ(c.Failures(v.mapping.data()), ConstraintBit(Constraint::kAlternateHands));
 }
 
+TEST(AlternateHandsTest, KeepsTheStartsHandWhenAsked) {
+  std::vector<VariedMove> m(4);
+  // L L R L: R L R L swaps only the start; L R L R swaps the other three.
+  m[0].hand = m[1].hand = m[3].hand = Hand::kLeft;
+  m[2].hand = Hand::kRight;
+  std::vector<VariedMove> fewest = m;
+  EXPECT_EQ(AlternateHands(&fewest), 1);
+  EXPECT_EQ(fewest[0].hand, Hand::kRight);
+  EXPECT_EQ(AlternateHands(&m, /*keep_first_hand=*/true), 3);
+  EXPECT_EQ(m[0].hand, Hand::kLeft);
+  EXPECT_TRUE(m[0].notes.empty());
+  EXPECT_EQ(m[1].hand, Hand::kRight);
+  EXPECT_EQ(m[2].hand, Hand::kLeft);
+  EXPECT_EQ(m[3].hand, Hand::kRight);
+}
+
 TEST(AlternateHandsTest, SwapsTheFewestMovesAndNotesThem) {
   std::vector<VariedMove> m(4);
   for (auto& x : m) x.hand = Hand::kRight;

@@ -569,12 +569,28 @@ Result<SearchResult> SearchVariation(const std::vector<InputRoute>& inputs,
   auto v = Vary(inputs, used, is_match);
   if (!v.ok()) return v.status();
   r.variation = std::move(*v);
-  if (swap_hands) r.hands_swapped = AlternateHands(&r.variation.moves);
+  if (swap_hands) {
+    r.hands_swapped = AlternateHands(&r.variation.moves, constraints.keep_start);
+  }
   r.outcomes = ev->checker().Report(r.variation);
+  auto swapped = [&](int j) {
+    const std::vector<std::string>& notes = r.variation.moves[j].notes;
+    return std::find(notes.begin(), notes.end(), "(hand swapped)") != notes.end();
+  };
   for (ConstraintOutcome& o : r.outcomes) {
     if (!o.held) {
       return Status::Internal(std::string("search: the variation at the IC found fails ") +
                               ConstraintName(o.constraint) + " (" + o.detail + ")");
+    }
+    // An input's start or finish move with its hand swapped is not that
+    // move any more (issue 22): not held, and the report says why.
+    const int n = static_cast<int>(r.variation.moves.size());
+    const int at = o.constraint == Constraint::kKeepStart    ? 0
+                   : o.constraint == Constraint::kKeepFinish ? n - 1
+                                                             : -1;
+    if (at >= 0 && n > 0 && swapped(at)) {
+      o.held = false;
+      o.detail += ", but its hand was swapped to alternate hands";
     }
     if (o.constraint == Constraint::kAlternateHands && r.hands_swapped > 0) {
       o.detail += " after " + std::to_string(r.hands_swapped) + " hand swap" +

@@ -252,6 +252,27 @@ TEST(SearchTest, SwapsHandsOnlyWhereNoIcAlternates) {
   EXPECT_EQ(r->offset, SearchOffsets(g)[FirstPassing(inputs, p, {}, rest, g)]);
 }
 
+// keep-start never reports "held" for a start whose hand was swapped
+// (issue 22): the swaps keep the start's hand.
+TEST(SearchTest, KeepStartKeepsTheStartsHandThroughHandSwaps) {
+  auto inputs = ThreeRoutes();
+  VaryParams p;
+  Constraints c;
+  c.alternate_hands = true;
+  c.keep_start = true;
+  SearchGrid g;
+  g.radius = 20;
+  auto r = SearchVariation(inputs, p, {}, c, g);
+  ASSERT_TRUE(r.ok()) << r.status().message();
+  if (r->hands_swapped == 0) GTEST_SKIP() << "an IC alternates by itself here";
+  const VariedMove& start = r->variation.moves[0];
+  ASSERT_TRUE(start.source.has_value());
+  EXPECT_EQ(start.hand, inputs[start.source->route].route.moves[start.source->move].hand);
+  for (const std::string& n : start.notes) EXPECT_NE(n, "(hand swapped)");
+  ASSERT_EQ(r->outcomes[0].constraint, Constraint::kKeepStart);
+  EXPECT_TRUE(r->outcomes[0].held) << r->outcomes[0].detail;
+}
+
 TEST(SearchTest, BadInputIsAnErrorNamingTheField) {
   auto inputs = ThreeRoutes();
   VaryParams p;

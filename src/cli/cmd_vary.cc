@@ -5,7 +5,9 @@
 // the variation is the paper's.
 #include <cstdio>
 
+#include "app/candidates.h"
 #include "app/variations.h"
+#include "base/text.h"
 #include "chaos/tokens.h"
 #include "cli/chaos_options.h"
 #include "cli/cli_util.h"
@@ -48,7 +50,11 @@ int RunVary(const std::vector<std::string>& args) {
       "Routes are concatenated in the order given. Explicit options override the preset.\n"
       "A setter's constraint or target (--keep-start ... --target-change) searches the\n"
       "variation ICs around --var-ic for the nearest that meets them (docs/setting.md).\n"
-      "--tokens varies sequences that are not routes, one token a line (docs/dance.md).",
+      "--tokens varies sequences that are not routes, one token a line (docs/dance.md).\n"
+      "--preset setter: the default preset's parameters with --max-repeat 1, --keep-start,\n"
+      "--keep-finish and --alternate-hands; variations from 9 ICs around the variation IC,\n"
+      "filtered and ranked as a setting day's gallery (--band, --style: the slot); prints\n"
+      "the best, then the ranking.",
       "strangebeta vary"};
   std::vector<std::string> files, token_files;
   std::string format = "text", out;
@@ -56,6 +62,7 @@ int RunVary(const std::vector<std::string>& args) {
   SettingOptions setting;
   app::SmoothingRequest smoothing;
   std::string smooth;
+  app::CandidateSlot slot;
   app.add_option("routes", files, "CRDL route files ('-' = stdin)");
   app.add_option("--tokens", token_files,
                  "a token sequence file (one token a line; docs/formats.md), repeatable; "
@@ -69,10 +76,23 @@ int RunVary(const std::vector<std::string>& args) {
   app.add_option("--smooth-min-bits", smoothing.min_bits,
                  "show only smoothing suggestions that save more than this many bits")
       ->capture_default_str();
+  app.add_option("--band", slot.band,
+                 "with --preset setter: the slot's grade band as on the tags (V3, 6B+, 5.10a)");
+  app.add_option("--band-to", slot.band_to,
+                 "with --preset setter: the band's upper end (a range --band..--band-to)");
+  app.add_option("--style", slot.style,
+                 "with --preset setter: the slot's style (crimp, heel hook, ...; docs/setting.md)");
   app.add_option("--format", format, "text, markdown, json or svg")->capture_default_str();
   app.add_option("-o,--output", out, "write to FILE instead of standard output");
   if (int rc = ParseArgs(app, args); rc >= 0) return rc;
 
+  // The setter's preset (issue 22): the default preset's parameters, then a
+  // gallery of candidates.
+  const bool setter_preset = ToLower(chaos.preset) == "setter";
+  if (setter_preset) chaos.preset = "default";
+  if (!setter_preset && (!slot.band.empty() || !slot.band_to.empty() || !slot.style.empty())) {
+    return Fail(kCmd, Status::InvalidInput("--band, --band-to and --style need --preset setter"));
+  }
   Result<chaos::VaryParams> params = ResolveChaosOptions(chaos);
   if (!params.ok()) return Fail(kCmd, params.status());
   Result<app::SettingRequest> req = ResolveSettingOptions(setting);
@@ -85,6 +105,27 @@ int RunVary(const std::vector<std::string>& args) {
   smoothing.enabled = !smooth.empty() || astar;
   smoothing.model = smooth.empty() ? "default" : smooth;
   app::SmoothingOutcome outcome;
+  std::string gallery_report;
+  if (setter_preset) {
+    if (!token_files.empty()) {
+      return Fail(kCmd, Status::InvalidInput("--preset setter: for routes, not --tokens"));
+    }
+    if (Status st = slot.Validate(); !st.ok()) {
+      return Fail(kCmd, Status::InvalidInput("--" + st.message()));
+    }
+    app::ApplySetterPreset(&*params, &*req, chaos.max_repeat.has_value());
+    Result<std::vector<app::Candidate>> gallery =
+        app::MakeGallery(*inputs, *params, *req, slot, app::GalleryOptions{});
+    if (!gallery.ok()) return Fail(kCmd, gallery.status().WithPrefix("--preset setter"));
+    // The best again, from the IC its search started at, with the smoothing asked.
+    params->var_ic = gallery->front().searched_from;
+    gallery_report = "\nSetter preset: " + std::to_string(gallery->size()) +
+                     " candidates (max-repeat 1, keep-start, keep-finish, alternate-hands; ICs "
+                     "around the default), ranked by "
+                     "the gallery's filter and score (docs/setting.md); the first is printed "
+                     "above:\n" +
+                     app::GalleryReport(*gallery);
+  }
   Result<plan::RoutePlan> p =
       app::BuildPlan(std::move(inputs).value(), *params, *req, smoothing, &outcome);
   if (!p.ok()) {
@@ -108,7 +149,9 @@ int RunVary(const std::vector<std::string>& args) {
     }
     return Fail(kCmd, outcome.status);
   }
-  return WriteOutput(kCmd, out, plan::Render(*p, *fmt));
+  std::string rendered = plan::Render(*p, *fmt);
+  if (*fmt == plan::Format::kText || *fmt == plan::Format::kMarkdown) rendered += gallery_report;
+  return WriteOutput(kCmd, out, rendered);
 }
 
 }  // namespace sb::cli

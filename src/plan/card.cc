@@ -85,7 +85,10 @@ std::string CardSummary(const RoutePlan& plan) {
 
 std::string CardLegend(const std::vector<CardRow>& rows) {
   bool changed = false, added = false, suggested = false, crux = false, diff = false;
+  bool match = false, swapped = false;
   for (const CardRow& r : rows) {
+    match |= r.text.find("(match?)") != std::string::npos;
+    swapped |= r.hand_swapped;
     changed |= r.mark == kMarkChanged;
     added |= r.mark == kMarkAdded;
     suggested |= r.mark == kMarkSuggested;
@@ -103,6 +106,10 @@ std::string CardLegend(const std::vector<CardRow>& rows) {
   add(suggested, std::string(kMarkSuggested) + " smoothing suggestion (a linking move)");
   add(crux, std::string(kMarkCrux) + " crux");
   add(diff, "bar: difficulty estimate (0 to 1)");
+  add(match,
+      "(match?): the input's move here was a match; the paper puts the other hand's previous "
+      "move in its place, so check the hands at the wall");
+  add(swapped, "(hand swapped): the hand was swapped so that hands alternate");
   return s;
 }
 
@@ -255,6 +262,9 @@ std::vector<std::string> WarningLines(const PlanWarnings& w) {
         break;
       case WarningKind::kStartAwayFromStart:
         line = "an input's start move mid-route: " + line;
+        break;
+      case WarningKind::kFinishMidRoute:
+        line = "finish move before the end: " + line;
         break;
       case WarningKind::kNoFinish:
         break;

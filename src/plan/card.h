@@ -65,7 +65,8 @@ std::vector<CardRow> CardRows(const RoutePlan& plan);
 // "12 of 30 moves changed", plus ", 2 added by the setter" when some were.
 std::string CardSummary(const RoutePlan& plan);
 // The legend of the marks actually used by `rows` ("◆ changed position ·
-// + smoothing suggestion", "★ crux", the difficulty bar), "" when none is.
+// + smoothing suggestion", "★ crux", the difficulty bar, the notes
+// "(match?)" and "(hand swapped)"), "" when none is.
 std::string CardLegend(const std::vector<CardRow>& rows);
 // The legend line the card prints: CardLegend(rows) and, when the plan has a
 // hardest stretch, "┃ Hardest stretch: moves 14-19 (mean estimate 0.31)"

@@ -5,6 +5,7 @@
 #include <cstdlib>
 
 #include "chaos/tokens.h"
+#include "language/parser.h"
 
 namespace sb::plan {
 
@@ -40,7 +41,76 @@ std::string RouteName(const chaos::Variation& v, int r) {
   return v.inputs[r].name.empty() ? "input " + std::to_string(r + 1) : v.inputs[r].name;
 }
 
+// Folded words of a move ("Jug-finish!" -> jug, finish).
+std::vector<std::string> Words(std::string_view text) {
+  return language::Tokenize(text, language::Tokenization::kFolded);
+}
+
+bool IsFinishWord(const std::string& w) {
+  return w == "finish" || w == "finsh" || w == "finishing" || w == "finished" ||
+         w == "topout" || w == "anchor" || w == "anchors";
+}
+
+// The longest run of each repeat class within one input route (classes of
+// the input moves, which follow the varied moves in `cls`), and the longest
+// same-hand run of any input route.
+struct InputRuns {
+  std::vector<int> by_class;  // indexed by class; 0 for classes no input move has
+  int hand = 0;
+};
+
+// `cls` holds the varied moves' classes (n), the raw input moves' (total),
+// then the prepared input moves' (total); runs are read from the prepared.
+InputRuns LongestInputRuns(const chaos::Variation& v, const std::vector<int>& cls, int n,
+                           int total) {
+  InputRuns r;
+  int max_cls = 0;
+  for (int c : cls) max_cls = std::max(max_cls, c);
+  r.by_class.assign(max_cls + 1, 0);
+  int flat = n + total;
+  for (const chaos::InputRoute& in : v.inputs) {
+    const int m = static_cast<int>(in.route.moves.size());
+    int run = 0, hand_run = 0;
+    for (int i = 0; i < m; ++i) {
+      const int c = cls[flat + i];
+      run = i > 0 && cls[flat + i - 1] == c ? run + 1 : 1;
+      r.by_class[c] = std::max(r.by_class[c], run);
+      hand_run = i > 0 && in.route.moves[i - 1].hand == in.route.moves[i].hand ? hand_run + 1 : 1;
+      r.hand = std::max(r.hand, hand_run);
+    }
+    flat += m;
+  }
+  return r;
+}
+
+std::string Times(int k) {
+  return k == 1 ? "once" : k == 2 ? "twice" : std::to_string(k) + " times";
+}
+
 }  // namespace
+
+bool IsFinishMoveText(std::string_view text) {
+  const std::vector<std::string> w = Words(text);
+  for (size_t i = 0; i < w.size(); ++i) {
+    if (IsFinishWord(w[i])) return true;
+    if (w[i] == "top" && (i + 1 == w.size() || w[i + 1] == "out")) return true;
+  }
+  return false;
+}
+
+bool IsMatchOnlyText(std::string_view text) {
+  const std::vector<std::string> w = Words(text);
+  if (w.empty() || w[0].rfind("match", 0) != 0) return false;
+  for (size_t i = 1; i < w.size(); ++i) {
+    const std::string& x = w[i];
+    if (x == "hand" || x == "hands" || x == "both" || x == "on" || x == "it" || x == "the" ||
+        x == "and" || x == "to" || x == "top" || x == "out" || IsFinishWord(x)) {
+      continue;
+    }
+    return false;
+  }
+  return true;
+}
 
 const char* WarningKindName(WarningKind k) {
   switch (k) {
@@ -54,6 +124,8 @@ const char* WarningKindName(WarningKind k) {
       return "early-crux";
     case WarningKind::kStartAwayFromStart:
       return "start-mid-route";
+    case WarningKind::kFinishMidRoute:
+      return "finish-mid-route";
   }
   return "?";
 }
@@ -79,31 +151,42 @@ PlanWarnings Warn(const chaos::Variation& v, const chaos::MoveFacts& facts) {
       texts.push_back(x);
     }
   }
+  // And the input moves as the variation shows them (a match as the other
+  // hand's previous move, the text rule), for the runs the inputs have.
+  for (const chaos::VariedMove& m : chaos::PrepareMoves(v.inputs)) texts.push_back(m);
   std::vector<int> cls = chaos::RepeatClasses(texts, tokens);
   auto blank = [&](int j) { return !v.moves[j].source.has_value(); };
+  const InputRuns input_runs = LongestInputRuns(v, cls, n, idx.total);
 
-  // The same move several times in a row.
+  // The same move more times in a row than any input has it.
   for (int j = 0; j < n;) {
     int e = j + 1;
     while (e < n && !blank(j) && !blank(e) && cls[e] == cls[j]) ++e;
-    if (e - j >= 2) {
+    const int allowed = std::max(1, input_runs.by_class[cls[j]]);
+    if (e - j > allowed) {
       Warning w{WarningKind::kRepeatedMove, j, e - 1, e - j, ""};
       w.message = MovesLabel(j, e - 1, tokens) + ": " + Quote(v.moves[j].text) + " " +
                   std::to_string(e - j) + " times in a row";
+      if (allowed > 1) w.message += " (the inputs have it at most " + Times(allowed) + ")";
       out.warnings.push_back(std::move(w));
     }
     j = e;
   }
-  // The same hand on consecutive moves (tokens have no hands).
+  // The same hand on more consecutive moves than any input has (tokens have
+  // no hands).
+  const int hand_allowed = std::max(1, input_runs.hand);
   for (int j = 0; j < n && !tokens;) {
     int e = j + 1;
     while (e < n && v.moves[e].hand == v.moves[j].hand) ++e;
-    if (e - j >= 2) {
+    if (e - j > hand_allowed) {
       Warning w{WarningKind::kSameHand, j, e - 1, e - j, ""};
       w.message = MovesLabel(j, e - 1) + ": " +
                   (v.moves[j].hand == Hand::kLeft ? "left" : "right") + " hand " +
                   (e - j == 2 ? std::string("twice") : std::to_string(e - j) + " times") +
                   " in a row";
+      if (hand_allowed > 1) {
+        w.message += " (the inputs have one hand at most " + Times(hand_allowed) + ")";
+      }
       out.warnings.push_back(std::move(w));
     }
     j = e;
@@ -155,6 +238,22 @@ PlanWarnings Warn(const chaos::Variation& v, const chaos::MoveFacts& facts) {
     Warning w{WarningKind::kStartAwayFromStart, j, j, 1, ""};
     w.message = MovesLabel(j, j, tokens) + ": " + Quote(v.moves[j].text) + " is the start of " +
                 RouteName(v, s->route) + ", away from the start";
+    out.warnings.push_back(std::move(w));
+  }
+
+  // A finish or top-out move with a move after it that is neither a finish
+  // nor a match (token sequences have no finish moves).
+  int last_other = -1;  // the last move that is neither
+  for (int j = 0; j < n && !tokens; ++j) {
+    if (!IsFinishMoveText(v.moves[j].text) && !IsMatchOnlyText(v.moves[j].text)) last_other = j;
+  }
+  for (int j = 0; j < last_other; ++j) {
+    if (!IsFinishMoveText(v.moves[j].text)) continue;
+    Warning w{WarningKind::kFinishMidRoute, j, j, 1, ""};
+    w.message = MovesLabel(j, j) + ": " + Quote(v.moves[j].text) + " is a finish move, " +
+                (j == 0 ? std::string("at the start") : std::string("mid-route")) + " (" +
+                std::to_string(n - 1 - j) + " move" + (n - 1 - j == 1 ? "" : "s") +
+                " follow)";
     out.warnings.push_back(std::move(w));
   }
 

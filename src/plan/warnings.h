@@ -6,6 +6,7 @@
 #define SB_PLAN_WARNINGS_H_
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "chaos/constraints.h"
@@ -19,8 +20,10 @@ enum class WarningKind {
   kNoFinish,            // the route does not end on an input's last move
   kEarlyCrux,           // a crux in the first fifth
   kStartAwayFromStart,  // an input's first move somewhere after the start
+  kFinishMidRoute,      // a finish or top-out move at the start or in the middle (issue 22)
 };
-// "repeated-move", "same-hand", "no-finish", "early-crux", "start-mid-route".
+// "repeated-move", "same-hand", "no-finish", "early-crux", "start-mid-route",
+// "finish-mid-route".
 const char* WarningKindName(WarningKind k);
 
 struct Warning {
@@ -50,7 +53,29 @@ struct PlanWarnings {
   ChangeSummary summary;
 };
 
-// The warnings of a variation. `facts` (one entry per input move in
+// Whether a move's text says it finishes the route: any of the words
+// "finish" (also "finsh", "finishing", "finished"), "topout", "anchor(s)",
+// the words "top out" together, or "top" as its last word ("throw to top").
+// Case and punctuation ignored ("Jug-finish!", "top-out"). Pure.
+bool IsFinishMoveText(std::string_view text);
+// Whether a move's text is only a match ("match", "match hands", "matched
+// finish"...): its first word is a form of "match" and every other word is
+// "hand(s)", "both", a filler ("on", "it", "the", "and", "to") or a finish
+// word (IsFinishMoveText). Pure.
+bool IsMatchOnlyText(std::string_view text);
+
+// The warnings of a variation:
+//   repeated-move    a run of one move (texts compared case- and
+//                    punctuation-blind) longer than that move's longest run
+//                    in any input route (a move the inputs never repeat:
+//                    twice in a row is already a warning);
+//   same-hand        a run of one hand longer than the longest same-hand run
+//                    of any input route (inputs that alternate: twice);
+//   no-finish, early-crux, start-mid-route (see docs/setting.md);
+//   finish-mid-route a finish or top-out move (IsFinishMoveText) followed
+//                    later by a move that is neither a finish move nor a
+//                    match (IsMatchOnlyText): at the start or mid-route.
+// `facts` (one entry per input move in
 // concatenation order, or empty) says which input moves are cruxes: the
 // flagged ones, or where none is flagged the hardest by the estimate (as the
 // crux window counts them); with neither, no crux warning is possible.

@@ -91,11 +91,13 @@ TEST(WarningsTest, FlagsWhatASetterWouldFindAtTheWall) {
             "position; moves travelled 1.83 positions on average (change), at most 3");
 }
 
-TEST(WarningsTest, TheInputsThemselvesWarnOnlyAboutTheMidRouteStart) {
+TEST(WarningsTest, TheInputsThemselvesWarnOnlyWhereTheyJoin) {
   chaos::Variation v = Make({0, 1, 2, 3, 4, 5});
   PlanWarnings w = Warn(v, {chaos::CruxFlags(v.inputs), {}});
-  ASSERT_EQ(w.warnings.size(), 1u) << w.warnings[0].message;
+  ASSERT_EQ(w.warnings.size(), 2u) << w.warnings[0].message;
   EXPECT_EQ(w.warnings[0].kind, WarningKind::kStartAwayFromStart);  // B's start at move 4
+  EXPECT_EQ(w.warnings[1].kind, WarningKind::kFinishMidRoute);      // A's finish at move 3
+  EXPECT_EQ(w.warnings[1].message, "move 3: \"jug finish\" is a finish move, mid-route (3 moves follow)");
   EXPECT_EQ(w.summary.changed, 0);
   EXPECT_EQ(w.summary.text_changed, 0);
   EXPECT_EQ(w.summary.change, 0.0);
@@ -160,7 +162,95 @@ TEST(ProfileTest, StretchesAreAFifthOfTheRouteEarliestOnTies) {
   EXPECT_DOUBLE_EQ(p.hardest_mean, 0.6);
 }
 
+// Routes made of one move text per line, hands alternating from R unless
+// given as "L:"/"R:" prefixes.
+Route RouteOf(const std::vector<std::string>& texts) {
+  Route r;
+  for (size_t i = 0; i < texts.size(); ++i) {
+    std::string t = texts[i];
+    Hand h = i % 2 ? Hand::kLeft : Hand::kRight;
+    if (t.rfind("L:", 0) == 0 || t.rfind("R:", 0) == 0) {
+      h = t[0] == 'L' ? Hand::kLeft : Hand::kRight;
+      t = t.substr(2);
+    }
+    r.moves.push_back(M(h, t));
+  }
+  return r;
+}
+
+chaos::Variation FromMapping(std::vector<chaos::InputRoute> inputs, const std::vector<int>& k) {
+  chaos::Variation v;
+  v.inputs = std::move(inputs);
+  std::vector<chaos::VariedMove> prepared = chaos::PrepareMoves(v.inputs);
+  v.mapping = k;
+  for (size_t j = 0; j < k.size(); ++j) {
+    chaos::VariedMove m = prepared[k[j]];
+    m.changed = k[j] != static_cast<int>(j);
+    v.moves.push_back(m);
+  }
+  return v;
+}
+
+TEST(FinishMoveTest, ReadsFinishAndTopOutMoves) {
+  for (const char* t : {"jug finish", "Throw to top to finish", "top out", "match finish",
+                        "Topout", "top-out the boulder", "go to the top", "Finish!",
+                        "finishing hold", "clip the anchors"}) {
+    EXPECT_TRUE(IsFinishMoveText(t)) << t;
+  }
+  for (const char* t : {"sloper", "top of the flake", "matched start", "stop and chalk",
+                        "finger crack", ""}) {
+    EXPECT_FALSE(IsFinishMoveText(t)) << t;
+  }
+  EXPECT_TRUE(IsMatchOnlyText("match"));
+  EXPECT_TRUE(IsMatchOnlyText("Match hands on the finish"));
+  EXPECT_FALSE(IsMatchOnlyText("match and throw to crimp"));
+  EXPECT_FALSE(IsMatchOnlyText("jug"));
+}
+
+TEST(FinishMoveTest, AFinishFirstOrMidRouteIsAWarningAtTheEndItIsNot) {
+  Route a = RouteOf({"pinch start", "crimp", "sloper", "jug finish", "match"});
+  Route b = RouteOf({"undercling start", "Throw to top to finish"});
+  std::vector<chaos::InputRoute> in = {{"A", a}, {"B", b}};
+  // "jug finish" first, "Throw to top to finish" mid-route, then A's end.
+  chaos::Variation v = FromMapping(in, {3, 1, 6, 2, 3, 4});
+  auto f = OfKind(Warn(v), WarningKind::kFinishMidRoute);
+  ASSERT_EQ(f.size(), 2u);
+  EXPECT_EQ(f[0].first, 0);
+  EXPECT_EQ(f[0].message, "move 1: \"jug finish\" is a finish move, at the start (5 moves follow)");
+  EXPECT_EQ(f[1].first, 2);
+  // The input as it is: the finish then a match ends the route, no warning.
+  EXPECT_TRUE(OfKind(Warn(FromMapping(in, {0, 1, 2, 3, 4})), WarningKind::kFinishMidRoute).empty());
+  // Two finish moves in a row at the end: none either.
+  EXPECT_TRUE(
+      OfKind(Warn(FromMapping(in, {0, 1, 2, 3, 6})), WarningKind::kFinishMidRoute).empty());
+}
+
+TEST(RunWarningsTest, RunsUpToWhatTheInputsHaveAreFine) {
+  // The input climbs three "small crimp" in a row, and three right hands.
+  Route a = RouteOf({"R:pinch", "R:small crimp", "R:small crimp", "L:small crimp", "R:jug"});
+  std::vector<chaos::InputRoute> in = {{"A", a}};
+  // small crimp x3 (as the input), hands R R R L R: no run warning.
+  chaos::Variation same = FromMapping(in, {0, 1, 2, 3, 4});
+  EXPECT_TRUE(OfKind(Warn(same), WarningKind::kRepeatedMove).empty());
+  EXPECT_TRUE(OfKind(Warn(same), WarningKind::kSameHand).empty());
+  // small crimp x4: one more than the input has.
+  chaos::Variation more = FromMapping(in, {0, 1, 2, 3, 1, 4});
+  auto rep = OfKind(Warn(more), WarningKind::kRepeatedMove);
+  ASSERT_EQ(rep.size(), 1u);
+  EXPECT_EQ(rep[0].count, 4);
+  EXPECT_EQ(rep[0].message,
+            "moves 2-5: \"small crimp\" 4 times in a row (the inputs have it at most 3 times)");
+  // Right hand four times: one more than the input has.
+  chaos::Variation hands = FromMapping(in, {0, 1, 2, 1, 4});
+  auto h = OfKind(Warn(hands), WarningKind::kSameHand);
+  ASSERT_EQ(h.size(), 1u);
+  EXPECT_EQ(h[0].count, 5);
+  EXPECT_EQ(h[0].message,
+            "moves 1-5: right hand 5 times in a row (the inputs have one hand at most 3 times)");
+}
+
 TEST(WarningKindTest, Names) {
+  EXPECT_STREQ(WarningKindName(WarningKind::kFinishMidRoute), "finish-mid-route");
   EXPECT_STREQ(WarningKindName(WarningKind::kRepeatedMove), "repeated-move");
   EXPECT_STREQ(WarningKindName(WarningKind::kStartAwayFromStart), "start-mid-route");
 }

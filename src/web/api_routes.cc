@@ -137,6 +137,7 @@ void PostFeedback(Exchange& x) {
       j["crux"] = l.crux;
       j["parsed"] = l.parsed;
       j["reading"] = l.reading;
+      j["style"] = l.style;
       json dym = json::array();
       for (const auto& [word, near] : l.did_you_mean) dym.push_back({{"word", word}, {"suggestion", near}});
       j["did_you_mean"] = dym;

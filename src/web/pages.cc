@@ -93,7 +93,7 @@ std::string MovesTable(const Route& route, const std::vector<std::string>& readi
          (route.moves[i].crux ? " <span class=\"tag crux\">crux</span>" : "") + "</td>";
     if (show) {
       std::string r = i < readings.size() ? readings[i] : "";
-      h += r.empty() ? "<td class=\"reading unparsed\">not understood</td>"
+      h += r.empty() ? "<td class=\"reading unparsed\">not understood as a move</td>"
                      : "<td class=\"reading\">" + E(r.substr(0, r.find(" \xE2\x80\x94 "))) + "</td>";
     }
     h += "</tr>\n";

@@ -1,0 +1,310 @@
+#include "app/candidates.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <optional>
+#include <set>
+
+#include "app/variations.h"
+#include "base/number.h"
+#include "grades/scale.h"
+#include "language/styles.h"
+#include "language/symbols.h"
+#include "markov/token_model.h"
+#include "plan/smooth.h"
+
+namespace sb::app {
+
+namespace {
+
+std::string Fixed(double x, int digits) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", digits, x);
+  return buf;
+}
+
+// The whole band of a grade text read in discipline `d` (and the plan's
+// scale when it has one); nullopt when it cannot be read.
+std::optional<int> BandOf(const std::string& text, grades::Discipline d,
+                          std::optional<grades::Scale> scale) {
+  grades::GradeContext ctx;
+  ctx.discipline = d;
+  auto g = grades::ParseGrade(text, ctx);
+  if (!g.ok() && scale) {
+    ctx.scale = scale;
+    g = grades::ParseGrade(text, ctx);
+  }
+  if (!g.ok()) {
+    // "6B/6B+": the first of a split band.
+    const size_t slash = text.find('/');
+    if (slash == std::string::npos || slash == 0) return std::nullopt;
+    return BandOf(text.substr(0, slash), d, scale);
+  }
+  return grades::Band(grades::Difficulty(*g, d));
+}
+
+std::string Plural(int n, const char* one, const char* many) {
+  return std::to_string(n) + " " + (n == 1 ? one : many);
+}
+
+}  // namespace
+
+Status CandidateSlot::Validate() const {
+  if (!style.empty() && !language::IsStyleName(style)) {
+    return Status::InvalidInput("style: unknown style \"" + style +
+                                "\" (the names are listed in docs/setting.md)");
+  }
+  if (!band_to.empty() && band.empty()) {
+    return Status::InvalidInput("band_to: given without band");
+  }
+  return Status::Ok();
+}
+
+bool RejectedByFilter(const plan::PlanWarnings& warnings, std::vector<std::string>* why) {
+  int finish = 0, moves = 0, hands = 0;
+  for (const plan::Warning& w : warnings.warnings) {
+    finish += w.kind == plan::WarningKind::kFinishMidRoute;
+    moves += w.kind == plan::WarningKind::kRepeatedMove;
+    hands += w.kind == plan::WarningKind::kSameHand;
+  }
+  if (why) {
+    if (finish) why->push_back("rejected: a finish move before the end (" + Plural(finish, "move", "moves") + ")");
+    if (moves) why->push_back("rejected: a move repeated more often in a row than in its inputs (" + Plural(moves, "run", "runs") + ")");
+    if (hands) why->push_back("rejected: one hand more often in a row than in its inputs (" + Plural(hands, "run", "runs") + ")");
+  }
+  return finish + moves + hands > 0;
+}
+
+struct CandidateScorer::Impl {
+  CandidateSlot slot;
+  language::MoveLanguage styles;   // the project's grammar (style reading)
+  language::MoveLanguage symbols;  // the model's own reading of moves
+  markov::TokenModel model;
+  int symbol_set = 0;  // 0..3 (k1..k4)
+  Impl(CandidateSlot s, language::MoveLanguage st, language::MoveLanguage sy, markov::TokenModel m,
+       int set)
+      : slot(std::move(s)),
+        styles(std::move(st)),
+        symbols(std::move(sy)),
+        model(std::move(m)),
+        symbol_set(set) {}
+};
+
+CandidateScorer::CandidateScorer(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+CandidateScorer::CandidateScorer(CandidateScorer&&) noexcept = default;
+CandidateScorer& CandidateScorer::operator=(CandidateScorer&&) noexcept = default;
+CandidateScorer::~CandidateScorer() = default;
+
+Result<CandidateScorer> CandidateScorer::Make(const CandidateSlot& slot, const std::string& model) {
+  SB_RETURN_IF_ERROR(slot.Validate());
+  std::string path = model == "default" ? plan::DefaultModelPath() : model;
+  if (path.empty()) return Status::NotFound("the bundled Markov model (data/models/default.sbm) was not found");
+  SB_ASSIGN_OR_RETURN(markov::TokenModel m, markov::LoadModel(path));
+  SB_ASSIGN_OR_RETURN(plan::SymbolSource src, plan::CheckSmoothingModel(m, path));
+  SB_ASSIGN_OR_RETURN(language::MoveLanguage sy, plan::LoadSymbolLanguage(src));
+  SB_ASSIGN_OR_RETURN(language::MoveLanguage st, language::MoveLanguage::LoadDefault());
+  const int set = src.symbol_set[1] - '1';
+  return CandidateScorer(
+      std::make_unique<Impl>(slot, std::move(st), std::move(sy), std::move(m), set));
+}
+
+double CandidateScorer::BitsPerMove(const std::vector<std::string>& moves) {
+  if (moves.empty()) return 0.0;
+  std::vector<std::string> tokens;
+  for (const std::string& m : moves) {
+    tokens.push_back(impl_->symbols.Read(m).symbols.k[impl_->symbol_set]);
+  }
+  auto ids = impl_->model.Encode(tokens);
+  if (!ids.ok()) return 0.0;  // a vocabulary model encodes every token
+  return impl_->model.model().LogLoss(*ids) / static_cast<double>(moves.size());
+}
+
+CandidateScore CandidateScorer::Score(const plan::RoutePlan& p) {
+  CandidateScore s;
+  const plan::PlanWarnings w = p.warnings ? *p.warnings : plan::Warn(p.variation);
+  const CandidateSlot& slot = impl_->slot;
+
+  // The filter.
+  s.rejected = RejectedByFilter(w, &s.reasons);
+  // A constraint asked and not held (a kept start or finish whose hand was
+  // swapped): not what the setter asked for.
+  if (p.search) {
+    for (const chaos::ConstraintOutcome& o : p.search->constraints) {
+      if (o.held) continue;
+      s.rejected = true;
+      s.reasons.push_back(std::string("rejected: ") + chaos::ConstraintName(o.constraint) +
+                          " not held (" + o.detail + ")");
+    }
+  }
+
+  // Warnings.
+  const int nw = static_cast<int>(w.warnings.size());
+  for (const plan::Warning& x : w.warnings) {
+    s.warnings.push_back(std::string(plan::WarningKindName(x.kind)) + ": " + x.message);
+  }
+  s.warnings_part = kScoreNoWarnings / (1.0 + nw);
+  if (nw == 0) {
+    s.reasons.push_back("no warnings");
+  } else {
+    std::string kinds;
+    std::set<std::string> seen;
+    for (const plan::Warning& x : w.warnings) {
+      if (seen.insert(plan::WarningKindName(x.kind)).second) {
+        kinds += (kinds.empty() ? "" : ", ") + std::string(plan::WarningKindName(x.kind));
+      }
+    }
+    s.reasons.push_back(Plural(nw, "warning", "warnings") + " (" + kinds + ")");
+  }
+
+  // The estimated grade against the band.
+  if (p.grades) s.estimated_band = p.grades->estimate;
+  if (slot.band.empty()) {
+    s.grade_part = kScoreGrade;
+    s.reasons.push_back("any grade (no band asked)" +
+                        (s.estimated_band.empty() ? "" : ": estimated " + s.estimated_band));
+  } else if (!p.grades || p.grades->estimate.empty() || p.grades->discipline.empty()) {
+    s.reasons.push_back("no grade estimate" +
+                        (p.grades && !p.grades->note.empty() ? ": " + p.grades->note : ""));
+  } else {
+    auto d = grades::ParseDiscipline(p.grades->discipline);
+    std::optional<grades::Scale> scale;
+    if (auto sc = grades::ParseScale(p.grades->scale); sc.ok()) scale = *sc;
+    std::optional<int> est = d.ok() ? BandOf(p.grades->estimate, *d, scale) : std::nullopt;
+    std::optional<int> lo = d.ok() ? BandOf(slot.band, *d, scale) : std::nullopt;
+    std::optional<int> hi =
+        d.ok() ? (slot.band_to.empty() ? lo : BandOf(slot.band_to, *d, scale)) : std::nullopt;
+    const std::string band = slot.band + (slot.band_to.empty() ? "" : "-" + slot.band_to);
+    if (!est || !lo || !hi) {
+      s.reasons.push_back("estimated " + p.grades->estimate + ", not comparable with band " +
+                          band);
+    } else {
+      if (*hi < *lo) std::swap(*lo, *hi);
+      const int off = *est < *lo ? *lo - *est : *est > *hi ? *est - *hi : 0;
+      s.grade_part = off == 0 ? kScoreGrade : off == 1 ? kScoreGrade / 2 : 0.0;
+      s.reasons.push_back("estimated " + p.grades->estimate +
+                          (off == 0 ? " inside band " : " " + Plural(off, "band", "bands") +
+                                                            " outside band ") +
+                          band);
+    }
+  }
+
+  // The slot's style.
+  if (slot.style.empty()) {
+    s.style_part = kScoreStyle;
+    s.reasons.push_back("any style (no style asked)");
+  } else {
+    for (const chaos::VariedMove& m : p.variation.moves) {
+      const std::vector<std::string> all = language::ReadStyle(impl_->styles, m.text).All();
+      s.style_moves += std::find(all.begin(), all.end(), slot.style) != all.end();
+    }
+    s.style_part = s.style_moves > 0 ? kScoreStyle : 0.0;
+    s.reasons.push_back(s.style_moves > 0 ? slot.style + " on " +
+                                                Plural(s.style_moves, "move", "moves")
+                                          : "no " + slot.style + " move");
+  }
+
+  // Smoothness: bits per move against the inputs' own.
+  std::vector<std::string> texts;
+  for (const chaos::VariedMove& m : p.variation.moves) texts.push_back(m.text);
+  s.bits_per_move = BitsPerMove(texts);
+  double in_bits = 0.0;
+  size_t in_moves = 0;
+  for (const chaos::InputRoute& in : p.variation.inputs) {
+    std::vector<std::string> t;
+    for (const Move& m : in.route.moves) t.push_back(m.text);
+    in_bits += BitsPerMove(t) * static_cast<double>(t.size());
+    in_moves += t.size();
+  }
+  s.input_bits_per_move = in_moves ? in_bits / static_cast<double>(in_moves) : 0.0;
+  const double extra = std::max(0.0, s.bits_per_move - s.input_bits_per_move);
+  s.smooth_part = kScoreSmooth * std::exp2(-extra);
+  s.reasons.push_back("smoothness " + Fixed(s.bits_per_move, 2) + " bits per move (inputs " +
+                      Fixed(s.input_bits_per_move, 2) + ")");
+
+  s.score = s.warnings_part + s.grade_part + s.style_part + s.smooth_part;
+  return s;
+}
+
+void RankCandidates(std::vector<Candidate>* c) {
+  std::stable_sort(c->begin(), c->end(), [](const Candidate& a, const Candidate& b) {
+    if (a.score.rejected != b.score.rejected) return !a.score.rejected;
+    if (a.score.score != b.score.score) return a.score.score > b.score.score;
+    return a.index < b.index;
+  });
+}
+
+Result<std::vector<Candidate>> MakeGallery(const std::vector<chaos::InputRoute>& inputs,
+                                           const chaos::VaryParams& params,
+                                           const SettingRequest& setting,
+                                           const CandidateSlot& slot,
+                                           const GalleryOptions& options) {
+  if (options.rings < 0 || options.rings > kMaxGalleryRings) {
+    return Status::InvalidInput("rings: between 0 and " + std::to_string(kMaxGalleryRings));
+  }
+  if (!(options.ring_step > 0.0) || !std::isfinite(options.ring_step)) {
+    return Status::InvalidInput("ring_step: a positive number");
+  }
+  SB_ASSIGN_OR_RETURN(CandidateScorer scorer, CandidateScorer::Make(slot, options.model));
+  std::vector<chaos::State> ics = {params.var_ic};
+  static constexpr int kDirs[8][2] = {{1, 0}, {1, 1}, {0, 1}, {-1, 1},
+                                      {-1, 0}, {-1, -1}, {0, -1}, {1, -1}};
+  for (int r = 1; r <= options.rings; ++r) {
+    for (const auto& d : kDirs) {
+      chaos::State ic = params.var_ic;
+      ic[0] += d[0] * r * options.ring_step;
+      ic[1] += d[1] * r * options.ring_step;
+      ics.push_back(ic);
+    }
+  }
+  std::vector<Candidate> out;
+  std::set<chaos::State> used;
+  Status first_error;
+  SmoothingRequest no_smoothing;
+  for (size_t i = 0; i < ics.size(); ++i) {
+    chaos::VaryParams p = params;
+    p.var_ic = ics[i];
+    SmoothingOutcome outcome;
+    Result<plan::RoutePlan> plan = BuildPlan(inputs, p, setting, no_smoothing, &outcome);
+    if (!plan.ok()) {
+      if (first_error.ok()) first_error = plan.status();
+      continue;
+    }
+    const chaos::State at = plan->search ? plan->search->used_ic : ics[i];
+    if (!used.insert(at).second) continue;
+    Candidate c;
+    c.score = scorer.Score(*plan);
+    c.plan = std::move(plan).value();
+    c.searched_from = ics[i];
+    c.index = static_cast<int>(i);
+    out.push_back(std::move(c));
+  }
+  if (out.empty()) return first_error;
+  RankCandidates(&out);
+  return out;
+}
+
+void ApplySetterPreset(chaos::VaryParams* params, SettingRequest* request, bool keep_max_repeat) {
+  request->constraints.keep_start = true;
+  request->constraints.keep_finish = true;
+  request->constraints.alternate_hands = true;
+  if (!keep_max_repeat) params->mapping.max_repeat = kSetterMaxRepeat;
+}
+
+std::string GalleryReport(const std::vector<Candidate>& candidates) {
+  std::string s;
+  int rank = 0;
+  for (const Candidate& c : candidates) {
+    const chaos::State& ic = c.plan.variation.params.var_ic;
+    s += std::to_string(++rank) + ". IC (" + FormatDouble(ic[0]) + ", " + FormatDouble(ic[1]) +
+         ", " + FormatDouble(ic[2]) + ") score " + Fixed(c.score.score, 1) +
+         (c.score.rejected ? " REJECTED" : "") + ": ";
+    for (size_t i = 0; i < c.score.reasons.size(); ++i) {
+      s += (i ? "; " : "") + c.score.reasons[i];
+    }
+    s += "\n";
+  }
+  return s;
+}
+
+}  // namespace sb::app

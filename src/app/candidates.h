@@ -1,0 +1,154 @@
+// Candidates for a setting day's slot (issue 22): the filter and the score a
+// setter's gallery ranks variations by, and a gallery of variations made at
+// several ICs near the one asked for (what `strangebeta vary --preset setter`
+// prints the best of). How the score is made: docs/setting.md, "The setter's
+// preset and the candidate score".
+//
+//   app::CandidateSlot slot{"V3", "V5", "crimp"};
+//   auto scorer = app::CandidateScorer::Make(slot);      // grammar + Markov model
+//   app::CandidateScore s = scorer->Score(plan);         // plan from app::BuildPlan
+//   s.rejected, s.score, s.reasons
+//
+//   auto gallery = app::MakeGallery(inputs, params, request, slot, {});
+//   (*gallery)[0]: the best candidate (plan, score, the IC it was searched from)
+#ifndef SB_APP_CANDIDATES_H_
+#define SB_APP_CANDIDATES_H_
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/setting.h"
+#include "base/status.h"
+#include "chaos/variation.h"
+#include "plan/plan.h"
+#include "plan/warnings.h"
+
+namespace sb::app {
+
+// What a slot asks of its candidates. Empty fields ask nothing.
+struct CandidateSlot {
+  // The grade band as the gym writes it on its tags ("V3", "6B+", "5.10a"),
+  // read in the candidates' discipline; `band_to` (optional) makes it a
+  // range band..band_to of whole bands (docs/grades.md, "Difficulty and
+  // bands").
+  std::string band;
+  std::string band_to;
+  // A style name (language/styles.h, docs/setting.md "Style names").
+  std::string style;
+  // kInvalidInput naming the field: an unknown style, band_to without band.
+  // Grades are read when scoring (they need the candidates' discipline).
+  Status Validate() const;
+};
+
+// The weights of the score's parts, out of 100 (docs/setting.md). No
+// warning at all earns the first in full (each warning shrinks it:
+// weight / (1 + warnings)); the estimated grade inside the band the second
+// (one band off: half); the slot's style on at least one move the third;
+// smoothness the fourth (in full when the candidate's bits per move under
+// the Markov model are at most its inputs', halved for each bit more).
+inline constexpr double kScoreNoWarnings = 30.0;
+inline constexpr double kScoreGrade = 30.0;
+inline constexpr double kScoreStyle = 20.0;
+inline constexpr double kScoreSmooth = 20.0;
+
+// The filter of a gallery: a candidate is rejected when its plan warns of a
+// finish or top-out move at the start or mid-route (finish-mid-route), or a
+// run of one move or one hand longer than its inputs have (repeated-move,
+// same-hand; plan::Warn). Appends to `why` one phrase per reason. Pure.
+bool RejectedByFilter(const plan::PlanWarnings& warnings, std::vector<std::string>* why);
+
+// A candidate's score and why. Value type.
+struct CandidateScore {
+  bool rejected = false;  // by RejectedByFilter, or a constraint of its search not held
+  double score = 0.0;                 // 0..100, the sum of the parts below
+  double warnings_part = 0.0, grade_part = 0.0, style_part = 0.0, smooth_part = 0.0;
+  std::vector<std::string> reasons;   // words, one per part (and the filter's)
+  std::vector<std::string> warnings;  // "kind: message", as the plan shows them
+  std::string estimated_band;         // the plan's estimated grade ("" = none)
+  int style_moves = 0;                // moves having the slot's style
+  double bits_per_move = 0.0;         // under the Markov model
+  double input_bits_per_move = 0.0;   // the inputs' own, each route scored alone
+};
+
+// Scores plans for one slot. Holds the grammar and the Markov model: not
+// thread-safe (make one per thread).
+class CandidateScorer {
+ public:
+  // `model`: a Markov model file made from move symbols, or "default" (the
+  // bundled data/models/default.sbm). Errors: the slot's (Validate), the
+  // grammar or the model cannot be loaded or read moves (kNotFound,
+  // kInvalidInput).
+  static Result<CandidateScorer> Make(const CandidateSlot& slot,
+                                      const std::string& model = "default");
+  CandidateScorer(CandidateScorer&&) noexcept;
+  CandidateScorer& operator=(CandidateScorer&&) noexcept;
+  ~CandidateScorer();
+
+  // The score of a plan made by app::BuildPlan (its warnings and grades are
+  // read; a plan without warnings is scored from plan::Warn of its
+  // variation). Deterministic.
+  CandidateScore Score(const plan::RoutePlan& plan);
+
+  // Bits per move of move texts under the model (-log2 P / moves); 0 for
+  // none.
+  double BitsPerMove(const std::vector<std::string>& moves);
+
+ private:
+  struct Impl;
+  explicit CandidateScorer(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+// One candidate of a gallery.
+struct Candidate {
+  plan::RoutePlan plan;
+  CandidateScore score;
+  chaos::State searched_from{};  // the IC its search started at
+  int index = 0;                 // its place in the order the ICs were tried
+};
+
+// Orders candidates: kept before rejected, then higher score, then lower
+// index. Stable and deterministic.
+void RankCandidates(std::vector<Candidate>* candidates);
+
+// How a gallery is made.
+struct GalleryOptions {
+  // Candidate ICs: params.var_ic, then the 8 points of each ring at
+  // `ring_step`, 2·`ring_step`, ... (x-y plane, ring by ring, each ring from
+  // +x counter-clockwise), `rings` rings.
+  int rings = 1;
+  double ring_step = 1.0;
+  std::string model = "default";  // for the smoothness part
+};
+// At most this many rings: 1 + 8·rings plans are built, each with its own
+// IC search (about 0.1 s each on the project's 2-core machine).
+inline constexpr int kMaxGalleryRings = 4;
+
+// Builds a plan (app::BuildPlan with `setting`) at each candidate IC, drops
+// those whose IC search fails and duplicates (the same IC reached from two
+// starts), scores the rest for `slot` and ranks them (RankCandidates).
+// Errors: bad options (kInvalidInput), the scorer's, and when no candidate
+// could be made, the first candidate's error. Deterministic.
+Result<std::vector<Candidate>> MakeGallery(const std::vector<chaos::InputRoute>& inputs,
+                                           const chaos::VaryParams& params,
+                                           const SettingRequest& setting,
+                                           const CandidateSlot& slot,
+                                           const GalleryOptions& options);
+
+// The setter's preset (`vary --preset setter`) on top of the default
+// preset's parameters: keep-start, keep-finish and alternate-hands (hand
+// swaps where no IC alternates, the setters' own fix) on `request`, and the
+// paper's max-repeat 1 (no source move twice in a row) on `params` unless
+// `keep_max_repeat` (the caller gave one). Pure.
+inline constexpr int kSetterMaxRepeat = 1;
+void ApplySetterPreset(chaos::VaryParams* params, SettingRequest* request,
+                       bool keep_max_repeat = false);
+
+// The text a CLI prints after the best plan: one line per candidate, rank,
+// IC, score, kept/rejected and the reasons. Pure.
+std::string GalleryReport(const std::vector<Candidate>& candidates);
+
+}  // namespace sb::app
+
+#endif  // SB_APP_CANDIDATES_H_

@@ -1,0 +1,194 @@
+#include "app/candidates.h"
+
+#include <gtest/gtest.h>
+
+#include "app/variations.h"
+#include "base/files.h"
+#include "crdl/route.h"
+#include "plan/warnings.h"
+
+namespace sb::app {
+namespace {
+
+Move M(Hand h, std::string text) {
+  Move m;
+  m.hand = h;
+  m.text = std::move(text);
+  return m;
+}
+
+chaos::Variation FromMapping(std::vector<chaos::InputRoute> inputs, const std::vector<int>& k) {
+  chaos::Variation v;
+  v.inputs = std::move(inputs);
+  std::vector<chaos::VariedMove> prepared = chaos::PrepareMoves(v.inputs);
+  v.mapping = k;
+  for (size_t j = 0; j < k.size(); ++j) {
+    chaos::VariedMove m = prepared[k[j]];
+    m.changed = k[j] != static_cast<int>(j);
+    v.moves.push_back(m);
+  }
+  return v;
+}
+
+// A: R pinch start, L small crimp, R small crimp, L sloper, R jug finish.
+std::vector<chaos::InputRoute> Inputs() {
+  Route a;
+  a.moves = {M(Hand::kRight, "pinch start"), M(Hand::kLeft, "small crimp"),
+             M(Hand::kRight, "small crimp"), M(Hand::kLeft, "sloper"),
+             M(Hand::kRight, "jug finish")};
+  return {{"A", a}};
+}
+
+TEST(CandidateFilterTest, RejectsAFinishFirstOrMidRouteAndLongerRuns) {
+  std::vector<std::string> why;
+  // The input itself passes.
+  EXPECT_FALSE(RejectedByFilter(plan::Warn(FromMapping(Inputs(), {0, 1, 2, 3, 4})), &why));
+  EXPECT_TRUE(why.empty());
+  // The finish first.
+  why.clear();
+  EXPECT_TRUE(RejectedByFilter(plan::Warn(FromMapping(Inputs(), {4, 1, 2, 3, 4})), &why));
+  ASSERT_EQ(why.size(), 1u);
+  EXPECT_EQ(why[0], "rejected: a finish move before the end (1 move)");
+  // The finish mid-route.
+  EXPECT_TRUE(RejectedByFilter(plan::Warn(FromMapping(Inputs(), {0, 1, 4, 3, 4})), nullptr));
+  // "small crimp" three times in a row where the input has it twice.
+  why.clear();
+  EXPECT_TRUE(RejectedByFilter(plan::Warn(FromMapping(Inputs(), {0, 1, 2, 1, 4})), &why));
+  ASSERT_EQ(why.size(), 1u);
+  EXPECT_EQ(why[0], "rejected: a move repeated more often in a row than in its inputs (1 run)");
+  // Twice in a row is what the input has: fine.
+  EXPECT_FALSE(RejectedByFilter(plan::Warn(FromMapping(Inputs(), {0, 2, 1, 3, 4})), nullptr));
+  // Right hand twice in a row where the input alternates.
+  why.clear();
+  EXPECT_TRUE(RejectedByFilter(plan::Warn(FromMapping(Inputs(), {0, 2, 3, 1, 4})), &why));
+  EXPECT_EQ(why, (std::vector<std::string>{
+                     "rejected: one hand more often in a row than in its inputs (1 run)"}));
+}
+
+TEST(CandidateSlotTest, Validates) {
+  EXPECT_TRUE((CandidateSlot{"V3", "", "heel hook"}).Validate().ok());
+  Status s = CandidateSlot{"", "", "jazz hands"}.Validate();
+  EXPECT_FALSE(s.ok());
+  EXPECT_EQ(s.message().rfind("style:", 0), 0u) << s.message();
+  EXPECT_FALSE((CandidateSlot{"", "V5", ""}).Validate().ok());
+}
+
+class ScorerTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    auto s = CandidateScorer::Make(CandidateSlot{"V3", "V4", "crimp"});
+    if (!s.ok()) GTEST_SKIP() << "grammar or model missing: " << s.status().message();
+  }
+};
+
+plan::RoutePlan PlanOf(const chaos::Variation& v, const std::string& estimate) {
+  plan::RoutePlan p;
+  p.variation = v;
+  p.warnings = plan::Warn(v);
+  plan::PlanGrades g;
+  g.discipline = "bouldering";
+  g.scale = "v";
+  g.estimate = estimate;
+  p.grades = g;
+  return p;
+}
+
+TEST_F(ScorerTest, ScoresEachPartAndSaysWhy) {
+  auto scorer = CandidateScorer::Make(CandidateSlot{"V3", "V4", "crimp"});
+  ASSERT_TRUE(scorer.ok());
+  chaos::Variation clean = FromMapping(Inputs(), {0, 1, 2, 3, 4});
+  CandidateScore in = scorer->Score(PlanOf(clean, "V4"));
+  EXPECT_FALSE(in.rejected);
+  EXPECT_DOUBLE_EQ(in.warnings_part, kScoreNoWarnings);
+  EXPECT_DOUBLE_EQ(in.grade_part, kScoreGrade);
+  EXPECT_DOUBLE_EQ(in.style_part, kScoreStyle);
+  EXPECT_EQ(in.style_moves, 2);
+  // The input itself is exactly as smooth as the input.
+  EXPECT_NEAR(in.bits_per_move, in.input_bits_per_move, 1e-9);
+  EXPECT_NEAR(in.smooth_part, kScoreSmooth, 1e-6);
+  EXPECT_NEAR(in.score, 100.0, 1e-6);
+  EXPECT_EQ(in.reasons[0], "no warnings");
+  EXPECT_EQ(in.reasons[1], "estimated V4 inside band V3-V4");
+  EXPECT_EQ(in.reasons[2], "crimp on 2 moves");
+
+  // One band above: half the grade part; two: none.
+  EXPECT_DOUBLE_EQ(scorer->Score(PlanOf(clean, "V5")).grade_part, kScoreGrade / 2);
+  CandidateScore far = scorer->Score(PlanOf(clean, "V7"));
+  EXPECT_DOUBLE_EQ(far.grade_part, 0.0);
+  EXPECT_EQ(far.reasons[1], "estimated V7 3 bands outside band V3-V4");
+
+  // A finish first: rejected, with warnings, less smooth, no crimp lost.
+  CandidateScore bad = scorer->Score(PlanOf(FromMapping(Inputs(), {4, 3, 0, 3, 4}), "V3"));
+  EXPECT_TRUE(bad.rejected);
+  EXPECT_LT(bad.warnings_part, kScoreNoWarnings);
+  EXPECT_FALSE(bad.warnings.empty());
+  EXPECT_DOUBLE_EQ(bad.style_part, 0.0);  // no crimp in it
+  EXPECT_LT(bad.score, in.score);
+}
+
+TEST(RankTest, KeptFirstThenScoreThenOrder) {
+  std::vector<Candidate> c(4);
+  c[0].score.score = 90, c[0].score.rejected = true, c[0].index = 0;
+  c[1].score.score = 50, c[1].index = 1;
+  c[2].score.score = 70, c[2].index = 2;
+  c[3].score.score = 70, c[3].index = 3;
+  RankCandidates(&c);
+  EXPECT_EQ(c[0].index, 2);
+  EXPECT_EQ(c[1].index, 3);
+  EXPECT_EQ(c[2].index, 1);
+  EXPECT_EQ(c[3].index, 0);
+}
+
+// The bundled examples `make run` varies: every kept candidate of the
+// setter's gallery starts and ends like a route and has no run longer than
+// its inputs'; the ranking is deterministic.
+TEST(GalleryTest, KeptCandidatesPassTheFilter) {
+  std::vector<chaos::InputRoute> in;
+  for (const char* f : {"examples/crimp-ladder.crdl", "examples/slab-dance.crdl"}) {
+    const std::string path = FindDataFile(f);
+    if (path.empty()) GTEST_SKIP() << "bundled examples missing";
+    auto r = ReadCrdlFile(path);
+    ASSERT_TRUE(r.ok()) << r.status().message();
+    in.push_back({r->Name("x"), *r});
+  }
+  if (!CandidateScorer::Make({}).ok()) GTEST_SKIP() << "grammar or model missing";
+  SettingRequest req;
+  chaos::VaryParams params;
+  ApplySetterPreset(&params, &req);
+  EXPECT_EQ(params.mapping.max_repeat, kSetterMaxRepeat);
+  EXPECT_TRUE(req.constraints.keep_start && req.constraints.keep_finish &&
+              req.constraints.alternate_hands);
+  auto g = MakeGallery(in, params, req, {}, {});
+  ASSERT_TRUE(g.ok()) << g.status().message();
+  ASSERT_FALSE(g->empty());
+  int kept = 0;
+  for (const Candidate& c : *g) {
+    if (c.score.rejected) continue;
+    ++kept;
+    const auto& moves = c.plan.variation.moves;
+    const int n = static_cast<int>(moves.size());
+    // No finish move with a non-finish, non-match move after it.
+    for (int j = 0; j + 1 < n; ++j) {
+      if (!plan::IsFinishMoveText(moves[j].text)) continue;
+      for (int k = j + 1; k < n; ++k) {
+        EXPECT_TRUE(plan::IsFinishMoveText(moves[k].text) || plan::IsMatchOnlyText(moves[k].text))
+            << "move " << j + 1 << " \"" << moves[j].text << "\" then \"" << moves[k].text << "\"";
+      }
+    }
+    // No hand run longer than the inputs' longest (1: the examples alternate).
+    for (int j = 1; j < n; ++j) EXPECT_NE(moves[j].hand, moves[j - 1].hand) << j;
+    // Starts with an input's start, ends with an input's finish.
+    ASSERT_TRUE(moves.front().source && moves.back().source);
+    EXPECT_EQ(moves.front().source->move, 0);
+    EXPECT_EQ(moves.back().source->move,
+              static_cast<int>(in[moves.back().source->route].route.moves.size()) - 1);
+  }
+  EXPECT_GT(kept, 0);
+  // Deterministic.
+  auto again = MakeGallery(in, params, req, {}, {});
+  ASSERT_TRUE(again.ok());
+  EXPECT_EQ(GalleryReport(*g), GalleryReport(*again));
+}
+
+}  // namespace
+}  // namespace sb::app
