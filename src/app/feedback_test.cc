@@ -143,7 +143,8 @@ TEST(DidYouMeanTest, SkipsCommonEnglishWords) {
 
 TEST(EditorStyleTest, TheEditorShowsTheStyleReading) {
   if (!LanguageAvailable()) GTEST_SKIP() << "no grammar";
-  EditorFeedback f = ReadForEditor("name: t\n---\nR cross to good sidepull\nL xyzzy\n");
+  EditorFeedback f = ReadForEditor("name: t\n---\nR cross to good sidepull\nL xyzzy\n",
+                                   RouteLimits{});
   ASSERT_EQ(f.lines.size(), 4u);
   EXPECT_EQ(f.lines[2].style, "cross, sidepull");
   EXPECT_EQ(f.lines[3].style, "unparsed");
@@ -151,7 +152,8 @@ TEST(EditorStyleTest, TheEditorShowsTheStyleReading) {
 
 TEST(DidYouMeanTest, TheEditorDoesNotCorrectCommonWords) {
   if (!LanguageAvailable()) GTEST_SKIP() << "no grammar";
-  EditorFeedback f = ReadForEditor("name: t\n---\nR reach the crack and match the jug\n");
+  EditorFeedback f = ReadForEditor("name: t\n---\nR reach the crack and match the jug\n",
+                                   RouteLimits{});
   ASSERT_EQ(f.lines.size(), 3u);
   EXPECT_TRUE(f.lines[2].did_you_mean.empty());
 }

@@ -12,6 +12,7 @@ namespace sb::app {
 namespace {
 
 using testing::AppTest;
+using testing::kCrimpLadder;
 using Code = Status::Code;
 
 const char kRoutes[] =

@@ -177,7 +177,7 @@ TEST_F(LogbookTest, SignInMergesTheDevicesTicksIntoTheLogbook) {
   const std::string token = a->participant.token;
   ASSERT_TRUE(book.Log(Anonymous(), other, token, Input("flash")).ok());
   Viewer ann = User("ann");
-  ASSERT_TRUE(book.Log(ann, route_, "", Input("attempt", 2)).ok());  // older than the device's? same time
+  ASSERT_TRUE(book.Log(ann, route_, "", Input("attempt", 2)).ok());
   clock_.Advance(60);
   ASSERT_TRUE(book.Log(Anonymous(), route_, token, Input("flash")).ok());  // the device's newer edit
   EXPECT_EQ(book.MergeDevice(Anonymous(), token).status().code(),
@@ -251,9 +251,17 @@ TEST_F(LogbookTest, AscentGradeHasAnIntervalAndFlagsOnlyOutsideTheBand) {
   } else {
     EXPECT_EQ(g->verdict, "");
   }
+  // The same evidence on both: the setter's grades keep them apart.
   Result<AscentGrade> e = book.Ascent(Anonymous(), easy);
   ASSERT_TRUE(e.ok());
-  EXPECT_EQ(e->verdict, "");  // everyone flashes a V0: no reason to move it out of its band
+  EXPECT_EQ(e->ticks, 40);
+  EXPECT_LT(e->value, g->value);
+  // A new tick is seen at once (the cache follows the gym's ticks).
+  ASSERT_TRUE(book.Log(Anonymous("10.0.2.1"), route_, "", Input("attempt", 20)).ok());
+  Result<AscentGrade> moved = book.Ascent(Anonymous(), route_);
+  ASSERT_TRUE(moved.ok());
+  EXPECT_EQ(moved->ticks, 41);
+  EXPECT_GT(moved->value, g->value);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "web/logbook_handlers.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -283,6 +284,7 @@ void PageLogbook(Exchange& x) {
 }
 
 std::string AscentBlock(Exchange& x, const store::RouteRecord& route) {
+  if (!route.gym_id) return "";
   Result<app::AscentGrade> a = x.services.logbook.Ascent(x.caller.viewer, route.id);
   if (!a.ok()) {
     LogError("ascent grade of route " + std::to_string(route.id) + ": " + a.status().message());
