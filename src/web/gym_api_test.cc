@@ -38,7 +38,7 @@ class Running {
     store_ = std::move(s).value();
     ServerOptions o;
     o.app.fast_password_hashing = true;
-    o.max_body_bytes = max_body;
+    o.app.limits.max_body_bytes = max_body;
     o.threads = 4;
     server_ = std::make_unique<Server>(store_.get(), o);
     Result<int> port = server_->Bind("127.0.0.1", 0);
