@@ -207,7 +207,8 @@ Result<Logbook::Fit> Logbook::FitGym(int64_t gym_id, const std::string& discipli
     used.push_back(&t);
   }
   for (const auto& [id, r] : routes) {
-    if (DisciplineOf(r) == discipline) route_index.emplace(id, static_cast<int>(route_index.size()));
+    if (DisciplineOf(r) != discipline) continue;
+    route_index.emplace(id, static_cast<int>(route_index.size()));
   }
   grades::RatingProblemBuilder b;
   b.EnsureRoutes(static_cast<int>(route_index.size()));

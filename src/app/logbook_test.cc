@@ -179,7 +179,8 @@ TEST_F(LogbookTest, SignInMergesTheDevicesTicksIntoTheLogbook) {
   Viewer ann = User("ann");
   ASSERT_TRUE(book.Log(ann, route_, "", Input("attempt", 2)).ok());
   clock_.Advance(60);
-  ASSERT_TRUE(book.Log(Anonymous(), route_, token, Input("flash")).ok());  // the device's newer edit
+  // The device edits its tick of the route later: the newer of the two.
+  ASSERT_TRUE(book.Log(Anonymous(), route_, token, Input("flash")).ok());
   EXPECT_EQ(book.MergeDevice(Anonymous(), token).status().code(),
             Status::Code::kUnauthenticated);
   Result<int> moved = book.MergeDevice(ann, token);

@@ -92,10 +92,10 @@ Result<std::string> OptStringField(const json& body, const char* field) {
 
 std::string AscentHtml(const app::AscentGrade& a) {
   if (!a.fitted) {
-    return "<p class=\"ascent\" id=\"ascent-grade\" data-ticks=\"0\">Ascent grade: no ticks "
-           "yet.</p>\n";
+    return "<p class=\"ascent no-print\" id=\"ascent-grade\" data-ticks=\"0\">Ascent grade: "
+           "no ticks yet.</p>\n";
   }
-  std::string b = "<p class=\"ascent\" id=\"ascent-grade\" data-ticks=\"" +
+  std::string b = "<p class=\"ascent no-print\" id=\"ascent-grade\" data-ticks=\"" +
                   std::to_string(a.ticks) + "\" data-value=\"" + Fixed(a.value) +
                   "\" data-lo=\"" + Fixed(a.lo) + "\" data-hi=\"" + Fixed(a.hi) + "\">";
   b += "Ascent grade <strong id=\"ascent-value\">" + E(a.grade) + "</strong> <span "
@@ -119,8 +119,8 @@ std::string HeldHtml(int64_t route_id, const std::vector<store::TickRecord>& tic
   int held = 0;
   for (const store::TickRecord& t : ticks) held += t.state == "held";
   if (held == 0) return b;
-  b += "<section id=\"held-ticks\" data-route=\"" + Id(route_id) + "\"><h2>Held ticks (" +
-       std::to_string(held) +
+  b += "<section id=\"held-ticks\" class=\"no-print\" data-route=\"" + Id(route_id) +
+       "\"><h2>Held ticks (" + std::to_string(held) +
        ")</h2>\n<p class=\"msg\">A burst of new identities from one address: these count "
        "nowhere until you accept them.</p>\n<ul>\n";
   for (const store::TickRecord& t : ticks) {
@@ -185,7 +185,8 @@ void PostTick(Exchange& x) {
 void GetRouteTicks(Exchange& x) {
   Result<int64_t> id = PathId(x.req, "no such route");
   if (!id.ok()) return ApiError(x, id.status());
-  Result<std::vector<store::TickRecord>> ticks = x.services.logbook.ForSetters(x.caller.viewer, *id);
+  Result<std::vector<store::TickRecord>> ticks =
+      x.services.logbook.ForSetters(x.caller.viewer, *id);
   if (!ticks.ok()) return ApiError(x, ticks.status());
   json arr = json::array();
   for (const store::TickRecord& t : *ticks) arr.push_back(TickJson(t));
