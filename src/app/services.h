@@ -11,6 +11,7 @@
 #include "app/climber_feedback.h"
 #include "app/clock.h"
 #include "app/gyms.h"
+#include "app/logbook.h"
 #include "app/maps.h"
 #include "app/options.h"
 #include "app/routes.h"
@@ -37,6 +38,8 @@ struct Services {
   // options.render_costs), taken by the web layer before rendering.
   WorkBudget renders;
   Gyms gyms;
+  // The climbers' logbook and ascent grades (issue 23).
+  Logbook logbook;
 };
 
 }  // namespace sb::app

@@ -1,5 +1,6 @@
 #include "store/copy.h"
 #include "store/gym_store.h"
+#include "store/tick_store.h"
 
 #include <gtest/gtest.h>
 
@@ -82,6 +83,23 @@ void Fill(Store& s) {
   resp.demographics = {{"years_climbing", "4"}};
   resp.ability = 1.0 / 3.0;
   ASSERT_TRUE(s.InsertStudyResponse(resp, 100).ok());
+  // A tick (schema 7), with a felt value that is not a short decimal.
+  TickStore* ts = TickStoreOf(&s);
+  ASSERT_NE(ts, nullptr);
+  TickRecord t;
+  t.route_id = r1;
+  t.gym_id = gym;
+  t.climber = "u:" + std::to_string(b);
+  t.user_id = b;
+  t.day = "2026-11-20";
+  t.outcome = "send";
+  t.attempts = 3;
+  t.stars = 4;
+  t.felt_grade = "V3";
+  t.felt_discipline = "bouldering";
+  t.felt_value = 0.1 + 0.2;
+  t.created_at = t.updated_at = "2026-11-20 10:00:00";
+  ASSERT_TRUE(ts->PutTick(t).ok());
 }
 
 // Copies through every pair of backends: SQLite -> PostgreSQL -> SQLite (and

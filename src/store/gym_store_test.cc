@@ -271,7 +271,7 @@ INSERT INTO studies(owner_id, name, instrument_json, created_at, updated_at)
     ASSERT_EQ(routes.size(), 5u);
   }
   Open();
-  EXPECT_EQ(store_->SchemaVersion(), 6);
+  EXPECT_EQ(store_->SchemaVersion(), kSchemaVersion);
   {
     Result<std::unique_ptr<sql::Connection>> c = connect();
     ASSERT_TRUE(c.ok());

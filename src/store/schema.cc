@@ -349,6 +349,37 @@ INSERT INTO route_setters(route_id, position, user_id, name)
   FROM routes r WHERE r.setter <> '';
 )sql"},
        }},
+      // Schema 7: the climbers' logbook (issue 23, docs/web.md "Logbook"). One
+      // tick per route, climber and day; `climber` is "u:ID" or "d:HASH".
+      {"ticks (the climbers' logbook)",
+       {
+           {Only::kBoth, R"sql(
+CREATE TABLE ticks (
+  id              {serial},
+  route_id        {int64} NOT NULL REFERENCES routes(id) ON DELETE CASCADE,
+  gym_id          {int64} NOT NULL REFERENCES gyms(id) ON DELETE CASCADE,
+  climber         TEXT NOT NULL,
+  user_id         {int64} REFERENCES users(id) ON DELETE CASCADE,
+  origin          TEXT NOT NULL DEFAULT '',
+  day             TEXT NOT NULL,
+  outcome         TEXT NOT NULL CHECK (outcome IN ('flash', 'send', 'attempt')),
+  attempts        INTEGER,
+  stars           INTEGER CHECK (stars BETWEEN 1 AND 5),
+  felt_grade      TEXT NOT NULL DEFAULT '',
+  felt_discipline TEXT NOT NULL DEFAULT '',
+  felt_value      {real},
+  comment         TEXT NOT NULL DEFAULT '',
+  state           TEXT NOT NULL DEFAULT 'ok' CHECK (state IN ('ok', 'held', 'discarded')),
+  created_at      TEXT NOT NULL,
+  updated_at      TEXT NOT NULL,
+  revision        INTEGER NOT NULL DEFAULT 1,
+  UNIQUE (route_id, climber, day)
+);
+CREATE INDEX ticks_gym ON ticks(gym_id);
+CREATE INDEX ticks_climber ON ticks(climber);
+CREATE INDEX ticks_user ON ticks(user_id);
+)sql"},
+       }},
   };
   return kMigrations;
 }
@@ -376,7 +407,8 @@ const std::vector<std::string>& SchemaTables() {
       "users",         "sessions",     "attempts",        "gyms",          "gym_members",
       "walls",         "circuits",     "routes",          "variation_inputs",
       "route_sources", "feedback",     "studies",         "study_routes",  "study_responses",
-      "study_answers", "study_demographics", "route_setters", "route_history"};
+      "study_answers", "study_demographics", "route_setters", "route_history",
+      "ticks"};
   return kTables;
 }
 

@@ -17,6 +17,8 @@
 #include "store/schema.h"
 #include "store/sql.h"
 #include "store/sqlite_store.h"
+#include "store/tick_sql.h"
+#include "store/tick_store.h"
 
 namespace sb::store {
 
@@ -176,7 +178,7 @@ VariationInput ReadInput(const Rows& s, size_t i, size_t first) {
   return vi;
 }
 
-class SqlStore final : public Store, public GymStore {
+class SqlStore final : public Store, public GymStore, public TickStore {
  public:
   explicit SqlStore(std::unique_ptr<sql::Pool> pool)
       : pool_(std::move(pool)), pg_(pool_->dialect() == sql::Dialect::kPostgres) {}
@@ -721,6 +723,48 @@ class SqlStore final : public Store, public GymStore {
           }
           return out;
         });
+  }
+
+  // -- ticks (TickStore, store/tick_sql.cc) --------------------------------
+
+  Result<TickRecord> PutTick(const TickRecord& t) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return ticks_sql::PutTick(*c, t);
+  }
+  Result<TickRecord> GetTick(int64_t id) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return ticks_sql::GetTick(*c, id);
+  }
+  Result<std::vector<TickRecord>> RouteTicks(int64_t route_id) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return ticks_sql::RouteTicks(*c, route_id);
+  }
+  Result<std::vector<TickRecord>> GymTicks(int64_t gym_id) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return ticks_sql::GymTicks(*c, gym_id);
+  }
+  Result<std::vector<TickRecord>> ClimberTicks(const std::string& climber) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return ticks_sql::ClimberTicks(*c, climber);
+  }
+  Result<TickVersion> GymTickVersion(int64_t gym_id) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return ticks_sql::GymTickVersion(*c, gym_id);
+  }
+  Status SetTickState(int64_t id, const std::string& state,
+                      const std::string& updated_at) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return ticks_sql::SetTickState(*c, id, state, updated_at);
+  }
+  Result<int> MergeTicks(const std::string& from, const std::string& to,
+                         int64_t user_id) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return ticks_sql::MergeTicks(*c, from, to, user_id);
+  }
+  Result<int> NewIdentitiesSince(int64_t route_id, const std::string& origin,
+                                 const std::string& since) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return ticks_sql::NewIdentitiesSince(*c, route_id, origin, since);
   }
 
   // -- gyms (GymStore) ------------------------------------------------------
@@ -1288,6 +1332,8 @@ Result<std::unique_ptr<Store>> StoreOver(Result<std::unique_ptr<sql::Pool>> pool
 }  // namespace
 
 GymStore* GymStoreOf(Store* store) { return dynamic_cast<GymStore*>(store); }
+
+TickStore* TickStoreOf(Store* store) { return dynamic_cast<TickStore*>(store); }
 
 bool IsDatabaseUrl(std::string_view db) {
   size_t colon = db.find(':');

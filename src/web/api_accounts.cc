@@ -3,6 +3,7 @@
 
 #include "base/log.h"
 #include "web/handlers.h"
+#include "web/logbook_handlers.h"
 
 namespace sb::web {
 
@@ -58,6 +59,7 @@ void PostSessions(Exchange& x) {
     if (retry_after > 0) x.res.SetHeader("Retry-After", std::to_string(retry_after));
     return ApiError(x, s.status());
   }
+  MergeDeviceTicks(x, s->session.user_id);  // the phone's ticks join the logbook
   x.res.SetHeader("Set-Cookie",
                   SessionCookie(x.options, s->token, x.services.options.session_seconds));
   ReplyJson(x.res, 200,

@@ -6,6 +6,7 @@
 #include "base/text.h"
 #include "studies/boxplot.h"
 #include "web/climber_pages.h"
+#include "web/logbook_handlers.h"
 
 namespace sb::web {
 
@@ -151,7 +152,8 @@ std::string ConsensusBlock(Exchange& x, const store::RouteRecord& route) {
     return "";
   }
   return ConsensusHtml(p->grade, route.id, app::IsOwner(route, x.caller.viewer),
-                       Policy(x).min_votes_shown);
+                       Policy(x).min_votes_shown) +
+         AscentBlock(x, route);
 }
 
 void PageFeedback(Exchange& x) {
@@ -160,7 +162,7 @@ void PageFeedback(Exchange& x) {
   Result<app::FeedbackPage> p = x.services.climber_feedback.Page(x.caller.viewer, *id, Token(x));
   if (!p.ok()) return PageError(x, p.status());
   Html(x, FeedbackPageHtml(x.caller.page(), *p, app::IsOwner(p->route, x.caller.viewer),
-                           Policy(x).min_votes_shown));
+                           Policy(x).min_votes_shown, TickBlock(x, p->route)));
 }
 
 void PageFeedbackAnswers(Exchange& x) {

@@ -139,7 +139,7 @@ std::string ConsensusHtml(const app::GradeSummary& grade, int64_t route_id, bool
 }
 
 std::string FeedbackPageHtml(const PageViewer& v, const app::FeedbackPage& page, bool owner,
-                             int min_votes_shown) {
+                             int min_votes_shown, const std::string& tick_block) {
   const store::RouteRecord& r = page.route;
   const studies::Instrument& in = page.instrument;
   std::string b = kAssets;
@@ -150,6 +150,7 @@ std::string FeedbackPageHtml(const PageViewer& v, const app::FeedbackPage& page,
          "/responses\" id=\"responses-link\">Climbers' answers</a> · <a href=\"/drift\">Your "
          "grade drift</a></p>\n";
   }
+  b += tick_block;
   const bool mine = page.mine.has_value();
   b += "<form id=\"feedback-form\" class=\"climber-form\" data-route=\"" + Id(r.id) +
        "\" data-items=\"" + std::to_string(in.items.size()) + "\">\n";

@@ -22,9 +22,10 @@ namespace sb::web {
 // variation (the climber's earlier answers filled in), with the setter's
 // grade, the climbers' consensus and the drift flag. `owner` adds links to
 // the setter's views.
-// `min_votes_shown` explains a withheld consensus.
+// `min_votes_shown` explains a withheld consensus. `tick_block` (HTML, the
+// logbook's tick form, issue 23) comes before the survey.
 std::string FeedbackPageHtml(const PageViewer& v, const app::FeedbackPage& page, bool owner,
-                             int min_votes_shown);
+                             int min_votes_shown, const std::string& tick_block = "");
 // "/r/{id}/responses": the route owner's view of its feedback.
 std::string SetterFeedbackHtml(const PageViewer& v, const app::SetterView& view,
                                int min_votes_shown);

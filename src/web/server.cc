@@ -11,6 +11,7 @@
 #include "web/climber_handlers.h"
 #include "web/handlers.h"
 #include "web/http_transport.h"
+#include "web/logbook_handlers.h"
 #include "web/router.h"
 
 namespace sb::web {
@@ -70,6 +71,14 @@ const Endpoint kEndpoints[] = {
     {"GET", "/r/{id}/responses", PageFeedbackAnswers},
     {"GET", "/r/{id}", PageFeedback},
     {"GET", "/drift", PageDrift},
+    // The climbers' logbook (logbook_handlers.cc, issue 23).
+    {"POST", "/api/routes/{id}/ticks", PostTick},
+    {"GET", "/api/routes/{id}/ticks", GetRouteTicks},
+    {"POST", "/api/routes/{id}/ticks/{tick}/accept", PostTickAccept},
+    {"POST", "/api/routes/{id}/ticks/{tick}/discard", PostTickDiscard},
+    {"GET", "/api/routes/{id}/ascent", GetRouteAscent},
+    {"GET", "/api/logbook", GetLogbook},
+    {"GET", "/logbook", PageLogbook},
     {"GET", "/studies", PageStudies},
     {"GET", "/studies/new", PageNewStudy},
     {"GET", "/studies/{id}/edit", PageEditStudy},

@@ -1,0 +1,168 @@
+// The climbers' logbook (issue 23; docs/web.md, "Logbook"): ticks of a
+// gym's routes from a phone at /r/{id} (device cookie) or a signed-in
+// climber, their budgets and burst rule, the setters' review of held ticks,
+// a climber's logbook, and a route's ascent grade (grades/ratings.h fitted
+// on the gym's unheld ticks with the setter's grade as prior).
+#ifndef SB_APP_LOGBOOK_H_
+#define SB_APP_LOGBOOK_H_
+
+#include <cstdint>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "app/clock.h"
+#include "app/options.h"
+#include "app/participants.h"
+#include "base/status.h"
+#include "store/store.h"
+#include "store/tick_store.h"
+
+namespace sb::app {
+
+// The logbook's limits, each with its reason.
+struct LogbookPolicy {
+  // The window of the budgets below.
+  int window_seconds = 3600;
+  // Ticks (new or edited) per address per window: a gym's wifi puts every
+  // climber behind one address, so this is generous; it bounds what one
+  // machine stuffs by clearing its cookie.
+  int ticks_per_address = 600;
+  // Ticks per route per window: a busy route gets a few dozen climbers an
+  // hour; hundreds is a script.
+  int ticks_per_route = 200;
+  // Ticks per climber (device or account) per window: a hard session logs
+  // some 30 routes and edits a few.
+  int ticks_per_climber = 60;
+  // The burst rule: a tick from a new identity (a device whose first tick is
+  // within burst_window_seconds) on a route is held for the route's setters
+  // when `burst_new_identities` new identities already ticked that route from
+  // the same address within the window. Five friends on the gym's wifi pass;
+  // a phone that clears its cookie to vote again is held from its sixth
+  // identity on (the setters accept what was real).
+  int burst_window_seconds = 600;
+  int burst_new_identities = 5;
+  // Fitted gyms kept in the ascent-grade cache (one entry per gym and
+  // discipline; each entry is refitted when the gym's ticks change).
+  int fit_cache_entries = 16;
+
+  // Every field > 0; errors name the field. Pure.
+  Status Validate() const;
+};
+
+// What a climber logs about one route.
+struct TickInput {
+  std::string outcome;           // "flash", "send" or "attempt"
+  std::optional<int> attempts;   // tries (send: including the send)
+  std::optional<int> stars;      // 1..5
+  std::string felt_grade;        // any scale grades reads; "" = none
+  std::string comment;           // "" = none
+};
+
+// The outcome of logging a tick.
+struct TickSaved {
+  Participant participant;  // device climbers: is_new means set the cookie
+  store::TickRecord tick;
+  bool edited = false;  // the climber's tick of that route and day was replaced
+  bool held = false;    // held for the route's setters (burst rule)
+};
+
+// A route's grade from ascents.
+struct AscentGrade {
+  int ticks = 0;         // unheld ticks of the route
+  bool fitted = false;   // false: no ticks (nothing below is set)
+  std::string discipline;
+  double value = 0, lo = 0, hi = 0;  // on the axis, 80% interval
+  std::string grade, lo_grade, hi_grade;  // in the route's scale
+  // "soft" (the interval lies below the setter's band), "sandbagged" (above)
+  // or "" (it overlaps the band, or the route has no setter's grade).
+  std::string verdict;
+  // The felt-grade consensus of the unheld ticks: median and count.
+  int felt_votes = 0;
+  std::string felt_median;
+};
+
+// One route of the logbook's "not tried yet" list.
+struct UntriedRoute {
+  int64_t id = 0;
+  std::string name, grade, colour;
+};
+
+// A climber's logbook.
+struct LogbookView {
+  std::string climber;  // "u:ID" or "d:HASH" ("" = nobody yet: no cookie)
+  std::vector<store::TickRecord> ticks;  // newest day first
+  std::map<int64_t, std::string> route_names;  // of the ticked routes
+  // Sends (flash or send) by band of the route's setter grade: (band name,
+  // count), hardest first; routes without a grade under "?".
+  std::vector<std::pair<std::string, int>> pyramid;
+  // The gym's routes on the wall (state "set") not ticked yet, by wall
+  // (wall name, routes); routes without a wall under "".
+  std::vector<std::pair<std::string, std::vector<UntriedRoute>>> untried;
+};
+
+// Thread-safe. Does not own `store` or `clock`.
+class Logbook {
+ public:
+  Logbook(store::Store* store, Clock* clock, LogbookPolicy policy = {});
+
+  // Logs (or edits: one per climber, route and day) a tick on a route
+  // visible to `v` that belongs to a gym. The climber is the account when
+  // signed in, else the device of `participant_token` (a new one when it
+  // names none). Errors: kNotFound "no route N"; kInvalidInput naming the
+  // field (outcome, attempts, stars, felt grade, comment, route not in a
+  // gym); kResourceExhausted over a budget ("too many ticks from this
+  // address ...", *retry_after_seconds set); kInternal when the
+  // store has no TickStore.
+  Result<TickSaved> Log(const Viewer& v, int64_t route_id, std::string_view participant_token,
+                        const TickInput& input, int* retry_after_seconds = nullptr);
+
+  // The ascent grade of a visible route (kNotFound as Log).
+  Result<AscentGrade> Ascent(const Viewer& v, int64_t route_id);
+
+  // Setters of the route's gym (head, setter) and the route's owner only:
+  // every tick of the route (kPermission otherwise, kUnauthenticated when
+  // not signed in).
+  Result<std::vector<store::TickRecord>> ForSetters(const Viewer& v, int64_t route_id);
+  // Setters: accepts (state "ok") or discards a tick of the route.
+  // kNotFound for a tick of another route.
+  Status Decide(const Viewer& v, int64_t route_id, int64_t tick_id, bool accept);
+
+  // The logbook of the signed-in climber, or of the device cookie.
+  Result<LogbookView> Mine(const Viewer& v, std::string_view participant_token);
+
+  // After sign-in: moves the device's ticks into the climber's logbook.
+  // Returns how many moved (0 without a usable cookie). kUnauthenticated
+  // when not signed in.
+  Result<int> MergeDevice(const Viewer& v, std::string_view participant_token);
+
+ private:
+  struct Fit {
+    store::TickVersion version;
+    std::map<int64_t, AscentGrade> routes;
+    uint64_t used = 0;
+  };
+  Result<store::RouteRecord> Visible(const Viewer& v, int64_t route_id);
+  Status RequireSetter(const Viewer& v, const store::RouteRecord& route);
+  Result<Fit> FitGym(int64_t gym_id, const std::string& discipline);
+
+  store::Store* store_;
+  store::TickStore* ticks_;
+  Clock* clock_;
+  const LogbookPolicy policy_;
+  std::mutex mu_;
+  std::map<std::pair<int64_t, std::string>, Fit> cache_;  // (gym, discipline)
+  uint64_t uses_ = 0;
+};
+
+// The climber key of a viewer or device: "u:ID", else "d:HASH" of a valid
+// token, else nullopt. Pure.
+std::optional<std::string> ClimberKey(const Viewer& v, std::string_view participant_token);
+
+}  // namespace sb::app
+
+#endif  // SB_APP_LOGBOOK_H_

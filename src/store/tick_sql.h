@@ -1,0 +1,31 @@
+// The SQL of store::TickStore (schema 7), written once for both backends
+// over sql::Connection; store/sql_store.cc forwards to these. Internal to
+// the store module.
+#ifndef SB_STORE_TICK_SQL_H_
+#define SB_STORE_TICK_SQL_H_
+
+#include <string>
+#include <vector>
+
+#include "store/sql.h"
+#include "store/tick_store.h"
+
+namespace sb::store::ticks_sql {
+
+// As the TickStore methods of the same names, on connection `c`.
+Result<TickRecord> PutTick(sql::Connection& c, const TickRecord& tick);
+Result<TickRecord> GetTick(sql::Connection& c, int64_t id);
+Result<std::vector<TickRecord>> RouteTicks(sql::Connection& c, int64_t route_id);
+Result<std::vector<TickRecord>> GymTicks(sql::Connection& c, int64_t gym_id);
+Result<std::vector<TickRecord>> ClimberTicks(sql::Connection& c, const std::string& climber);
+Result<TickVersion> GymTickVersion(sql::Connection& c, int64_t gym_id);
+Status SetTickState(sql::Connection& c, int64_t id, const std::string& state,
+                    const std::string& updated_at);
+Result<int> MergeTicks(sql::Connection& c, const std::string& from, const std::string& to,
+                       int64_t user_id);
+Result<int> NewIdentitiesSince(sql::Connection& c, int64_t route_id, const std::string& origin,
+                               const std::string& since);
+
+}  // namespace sb::store::ticks_sql
+
+#endif  // SB_STORE_TICK_SQL_H_

@@ -1,0 +1,94 @@
+// The climbers' logbook (schema 7, issue 23): ticks of routes. A separate
+// interface from store::Store over the same SQL layer (store/sql_store.cc
+// implements it in the same object as Store and GymStore). The table is
+// documented in docs/web.md ("Logbook").
+//
+// No SQLite or libpq types appear in this header.
+#ifndef SB_STORE_TICK_STORE_H_
+#define SB_STORE_TICK_STORE_H_
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "base/status.h"
+#include "store/store.h"
+
+namespace sb::store {
+
+// One tick: a climber's ascent (or tries) of a route on one day. `climber`
+// is the logbook's key: "u:ID" for a signed-in climber (user_id set), "d:HASH"
+// for a device (the participant token's hash). One tick per route, climber and
+// day. `origin` is a hash of the submitting address (burst detection only).
+struct TickRecord {
+  int64_t id = 0;
+  int64_t route_id = 0;
+  int64_t gym_id = 0;
+  std::string climber;
+  std::optional<int64_t> user_id;
+  std::string origin;
+  std::string day;      // "YYYY-MM-DD"
+  std::string outcome;  // "flash", "send" or "attempt"
+  std::optional<int> attempts;
+  std::optional<int> stars;  // 1..5
+  std::string felt_grade;    // as the climber typed it ("" = none)
+  std::string felt_discipline;
+  std::optional<double> felt_value;  // on felt_discipline's axis
+  std::string comment;
+  std::string state = "ok";  // "ok", "held" (a burst, for the setters) or "discarded"
+  std::string created_at;    // "YYYY-MM-DD HH:MM:SS" UTC, set by the caller
+  std::string updated_at;
+  int revision = 0;  // 1 on insert, +1 on every change (read only)
+};
+
+// What changes a gym's ticks have seen: a cache key for fits over them.
+struct TickVersion {
+  int64_t count = 0;
+  int64_t revisions = 0;
+  bool operator==(const TickVersion&) const = default;
+};
+
+// Thread-safe like Store. Errors: kNotFound for unknown ids, kIoError for
+// storage failures.
+class TickStore {
+ public:
+  virtual ~TickStore() = default;
+
+  // Inserts the tick, or, when the climber already has one on that route and
+  // day, replaces its outcome, attempts, stars, felt grade, comment, state
+  // and updated_at (keeping id and created_at). Returns the stored row.
+  // kNotFound for an unknown route or gym.
+  virtual Result<TickRecord> PutTick(const TickRecord& tick) = 0;
+  // A tick by id; kNotFound when absent.
+  virtual Result<TickRecord> GetTick(int64_t id) = 0;
+  // A route's ticks (every state), by day then id.
+  virtual Result<std::vector<TickRecord>> RouteTicks(int64_t route_id) = 0;
+  // A gym's ticks in state "ok", by id.
+  virtual Result<std::vector<TickRecord>> GymTicks(int64_t gym_id) = 0;
+  // A climber's ticks (every state but "discarded"), newest day first, then id.
+  virtual Result<std::vector<TickRecord>> ClimberTicks(const std::string& climber) = 0;
+  // The count and summed revisions of a gym's ticks.
+  virtual Result<TickVersion> GymTickVersion(int64_t gym_id) = 0;
+  // Sets a tick's state (and updated_at); kNotFound when absent.
+  virtual Status SetTickState(int64_t id, const std::string& state,
+                              const std::string& updated_at) = 0;
+  // Moves every tick of `from` to `to` (user `user_id`), in one transaction;
+  // where `to` already has a tick on the same route and day, the one updated
+  // last is kept. Returns how many ticks moved.
+  virtual Result<int> MergeTicks(const std::string& from, const std::string& to,
+                                 int64_t user_id) = 0;
+  // How many distinct device climbers ticked `route_id` from `origin` at or
+  // after `since`, counting only climbers whose first tick anywhere is at or
+  // after `since` (new identities). Times are "YYYY-MM-DD HH:MM:SS".
+  virtual Result<int> NewIdentitiesSince(int64_t route_id, const std::string& origin,
+                                         const std::string& since) = 0;
+};
+
+// The TickStore of a store opened by store::OpenStore (both backends);
+// nullptr for a Store that does not implement it. Not owned.
+TickStore* TickStoreOf(Store* store);
+
+}  // namespace sb::store
+
+#endif  // SB_STORE_TICK_STORE_H_

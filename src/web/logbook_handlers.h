@@ -1,0 +1,34 @@
+// Internal to web/: the climbers' logbook (issue 23; docs/web.md,
+// "Logbook"): the tick API, the setters' review of held ticks, the logbook
+// page and the blocks the route pages show. Bound to paths in server.cc.
+#ifndef SB_WEB_LOGBOOK_HANDLERS_H_
+#define SB_WEB_LOGBOOK_HANDLERS_H_
+
+#include <string>
+
+#include "store/store.h"
+#include "web/handlers.h"
+
+namespace sb::web {
+
+void PostTick(Exchange& x);           // POST /api/routes/{id}/ticks
+void GetRouteTicks(Exchange& x);      // GET /api/routes/{id}/ticks (setters)
+void PostTickAccept(Exchange& x);     // POST /api/routes/{id}/ticks/{tick}/accept (setters)
+void PostTickDiscard(Exchange& x);    // POST /api/routes/{id}/ticks/{tick}/discard (setters)
+void GetRouteAscent(Exchange& x);     // GET /api/routes/{id}/ascent
+void GetLogbook(Exchange& x);         // GET /api/logbook
+void PageLogbook(Exchange& x);        // GET /logbook
+
+// The ascent grade of a route (value, 80% interval, ticks) as HTML, for the
+// route and variation pages ("" when it cannot be made; logged).
+std::string AscentBlock(Exchange& x, const store::RouteRecord& route);
+// The tick form of /r/{id} (with the ascent grade and, for the route's
+// setters, its held ticks with accept/discard), placed before the survey.
+std::string TickBlock(Exchange& x, const store::RouteRecord& route);
+// After a sign-in as `user_id`: moves the device cookie's ticks into the
+// climber's logbook (failures are logged, never fail the sign-in).
+void MergeDeviceTicks(Exchange& x, int64_t user_id);
+
+}  // namespace sb::web
+
+#endif  // SB_WEB_LOGBOOK_HANDLERS_H_

@@ -1,0 +1,79 @@
+// The climbers' logbook (issue 23): the tick form of /r/{id} (outcome in one
+// tap, "Log tick" the second; stars, felt grade and comment optional) and the
+// setters' accept/discard of held ticks. JSON API in docs/web.md ("Logbook").
+'use strict';
+(function () {
+  const csrf = () => {
+    const m = document.querySelector('meta[name="csrf-token"]');
+    return m ? m.content : '';
+  };
+
+  async function send(method, url, body) {
+    const headers = { 'Content-Type': 'application/json' };
+    if (csrf()) headers['X-CSRF-Token'] = csrf();
+    const res = await fetch(url, { method, headers, body: JSON.stringify(body || {}),
+                                   credentials: 'same-origin' });
+    let data = {};
+    try { data = await res.json(); } catch (e) { /* empty body */ }
+    return { ok: res.ok, status: res.status, data };
+  }
+
+  function say(el, text, ok) {
+    el.textContent = text;
+    el.className = 'msg ' + (ok ? 'ok' : 'bad');
+  }
+
+  const form = document.getElementById('tick-form');
+  if (form) {
+    const tries = document.getElementById('attempts-field');
+    const sync = () => {
+      const o = form.querySelector('input[name="outcome"]:checked');
+      tries.hidden = !o || o.value === 'flash';
+    };
+    form.querySelectorAll('input[name="outcome"]').forEach((r) => r.addEventListener('change', sync));
+    sync();
+    form.addEventListener('submit', async (ev) => {
+      ev.preventDefault();
+      const msg = document.getElementById('tick-msg');
+      const o = form.querySelector('input[name="outcome"]:checked');
+      if (!o) { say(msg, 'Tap flash, send or attempt first.', false); return; }
+      const body = { outcome: o.value };
+      const a = document.getElementById('tick-attempts').value;
+      if (o.value !== 'flash' && a !== '') body.attempts = parseInt(a, 10);
+      const s = form.querySelector('input[name="stars"]:checked');
+      if (s) body.stars = parseInt(s.value, 10);
+      const felt = document.getElementById('tick-felt').value.trim();
+      if (felt) body.felt_grade = felt;
+      const c = document.getElementById('tick-comment').value.trim();
+      if (c) body.comment = c;
+      const r = await send('POST', '/api/routes/' + form.dataset.route + '/ticks', body);
+      if (!r.ok) { say(msg, r.data.error || ('error ' + r.status), false); return; }
+      say(msg, (r.data.edited ? 'Tick updated: ' : 'Ticked: ') + r.data.outcome +
+               (r.data.held ? ' (held for the setters to check)' : '') + '.', true);
+      const g = r.data.ascent;
+      const p = document.getElementById('ascent-ticks');
+      if (g && g.fitted && p) {
+        p.textContent = g.ticks;
+        document.getElementById('ascent-value').textContent = g.grade;
+        document.getElementById('ascent-interval').textContent =
+            '(80%: ' + g.lo_grade + ' to ' + g.hi_grade + ')';
+      }
+    });
+  }
+
+  const held = document.getElementById('held-ticks');
+  if (held) {
+    held.addEventListener('click', async (ev) => {
+      const b = ev.target;
+      if (!(b instanceof HTMLButtonElement)) return;
+      const li = b.closest('.held-tick');
+      const what = b.classList.contains('tick-accept') ? 'accept' : 'discard';
+      const r = await send('POST', '/api/routes/' + held.dataset.route + '/ticks/' +
+                                   li.dataset.tick + '/' + what, {});
+      if (r.ok) {
+        li.textContent = what === 'accept' ? 'Accepted.' : 'Discarded.';
+        li.className = 'decided';
+      }
+    });
+  }
+})();
