@@ -2,11 +2,15 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <tuple>
+#include <utility>
 
 #include "app/routes.h"
 #include "base/files.h"
 #include "crdl/route.h"
+#include "base/text.h"
 #include "store/auth.h"
+#include "store/gym_store.h"
 
 namespace sb::app {
 
@@ -20,8 +24,58 @@ Result<int64_t> EnsureDemoAccount(store::Store* store, bool fast_hash) {
   return store->CreateUser(kDemoUser, hash);
 }
 
+namespace {
+
+// A wall's angle guessed from its name (degrees from vertical, overhang > 0).
+double GuessAngle(const std::string& wall) {
+  const std::string w = ToLower(wall);
+  if (w.find("roof") != std::string::npos) return 45;
+  for (const char* word : {"steep", "cave", "prow", "board"}) {
+    if (w.find(word) != std::string::npos) return 30;
+  }
+  if (w.find("slab") != std::string::npos) return -10;
+  return 0;
+}
+
+// The wall row of `text` in `gym`, made on first use (cached in `walls`).
+Result<int64_t> WallFor(store::GymStore* gs, int64_t gym, const std::string& text,
+                        std::vector<std::pair<std::string, int64_t>>* walls) {
+  for (const auto& [name, id] : *walls) {
+    if (name == text) return id;
+  }
+  store::WallRecord w;
+  w.gym_id = gym;
+  w.name = text;
+  w.angle = GuessAngle(text);
+  w.position = static_cast<int>(walls->size()) + 1;
+  SB_ASSIGN_OR_RETURN(int64_t id, gs->InsertWall(w));
+  walls->emplace_back(text, id);
+  return id;
+}
+
+}  // namespace
+
+Result<int64_t> EnsureDemoGym(store::Store* store, const std::string& name, int64_t head) {
+  store::GymStore* gs = store::GymStoreOf(store);
+  if (gs == nullptr) return Status::Internal("this store has no gyms");
+  SB_ASSIGN_OR_RETURN(int64_t gym, gs->CreateGym(name.empty() ? "My gym" : name, head));
+  for (const auto& [colour, from, to] : {std::tuple{"blue", "V0", "V2"}, {"red", "V3", "V5"}}) {
+    store::CircuitRecord c;
+    c.gym_id = gym;
+    c.colour = colour;
+    c.grade_from = from;
+    c.grade_to = to;
+    SB_ASSIGN_OR_RETURN(int64_t id, gs->InsertCircuit(c));
+    (void)id;
+  }
+  return gym;
+}
+
 Result<int> SeedExamples(store::Store* store, const std::string& dir, int64_t owner,
-                         std::vector<std::string>* skipped) {
+                         std::vector<std::string>* skipped, std::optional<int64_t> gym) {
+  store::GymStore* gs = gym ? store::GymStoreOf(store) : nullptr;
+  if (gym && gs == nullptr) return Status::Internal("this store has no gyms");
+  std::vector<std::pair<std::string, int64_t>> walls;
   std::error_code ec;
   if (dir.empty() || !fs::is_directory(dir, ec)) return 0;
   std::vector<std::string> files;
@@ -42,6 +96,14 @@ Result<int> SeedExamples(store::Store* store, const std::string& dir, int64_t ow
     FillMetadata(*r, &rec);
     rec.crdl = PrintCrdl(*r);
     rec.is_public = true;
+    if (gym) {
+      rec.gym_id = gym;
+      rec.state = "set";
+      if (!Trim(rec.wall).empty()) {
+        SB_ASSIGN_OR_RETURN(int64_t wall, WallFor(gs, *gym, std::string(Trim(rec.wall)), &walls));
+        rec.wall_id = wall;
+      }
+    }
     records.push_back(std::move(rec));
   }
   if (records.empty()) return 0;

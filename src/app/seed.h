@@ -4,6 +4,7 @@
 #define SB_APP_SEED_H_
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,8 +25,18 @@ Result<int64_t> EnsureDemoAccount(store::Store* store, bool fast_hash = false);
 // by `owner`, in one transaction. Files that do not parse are skipped and
 // reported in `skipped` ("path:line:col: reason"). A missing directory
 // imports nothing (not an error). Returns the number imported.
+// With `gym` set (EnsureDemoGym), each route belongs to that gym and is on
+// the wall (state "set"), on a wall row made for each distinct `wall:` text
+// in order of first appearance (angle guessed from its words: "roof" 45,
+// "steep"/"cave"/"prow"/"board" 30, "slab" -10, else 0).
 Result<int> SeedExamples(store::Store* store, const std::string& dir, int64_t owner,
-                         std::vector<std::string>* skipped);
+                         std::vector<std::string>* skipped,
+                         std::optional<int64_t> gym = std::nullopt);
+
+// The demo gym of a fresh install (`make run`): a gym named `name` whose
+// head setter is `head`, with two circuits (blue V0-V2, red V3-V5). Returns
+// its id; kInternal when the store has no gyms (GymStoreOf is null).
+Result<int64_t> EnsureDemoGym(store::Store* store, const std::string& name, int64_t head);
 
 // The bundled examples (data/examples, see sb::FindBundled); "" when absent.
 std::string DefaultExamplesDir();

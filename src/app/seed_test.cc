@@ -32,5 +32,45 @@ TEST_F(AppTest, DemoAccountAndExamples) {
   EXPECT_FALSE(DefaultExamplesDir().empty());
 }
 
+// make run's demo: a gym whose head setter is the demo account, two circuits,
+// a wall row per distinct `wall:` text, every example on the wall.
+TEST_F(AppTest, DemoGymHoldsTheExamplesOnItsWalls) {
+  std::filesystem::create_directories(dir_ / "ex");
+  const char* files[][2] = {{"a.crdl", "name: A\nwall: big roof\n---\nR jug\n"},
+                            {"b.crdl", "name: B\nwall: slab\n---\nL crimp\n"},
+                            {"c.crdl", "name: C\nwall: big roof\n---\nR sloper\n"},
+                            {"d.crdl", "name: D\n---\nR pinch\n"}};
+  for (const auto& [name, text] : files) {
+    ASSERT_TRUE(WriteFileAtomic((dir_ / "ex" / name).string(), text).ok());
+  }
+  Result<int64_t> demo = EnsureDemoAccount(store_.get(), true);
+  ASSERT_TRUE(demo.ok());
+  Result<int64_t> gym = EnsureDemoGym(store_.get(), "Demo Gym", *demo);
+  ASSERT_TRUE(gym.ok()) << gym.status().message();
+  Result<int> n = SeedExamples(store_.get(), (dir_ / "ex").string(), *demo, nullptr, *gym);
+  ASSERT_TRUE(n.ok()) << n.status().message();
+  EXPECT_EQ(*n, 4);
+  Viewer head;
+  head.user_id = *demo;
+  head.username = kDemoUser;
+  Result<std::vector<Wall>> walls = services_->gyms.Walls(head, *gym);
+  ASSERT_TRUE(walls.ok()) << walls.status().message();
+  ASSERT_EQ(walls->size(), 2u);
+  EXPECT_EQ((*walls)[0].name, "big roof");
+  EXPECT_EQ((*walls)[0].angle, 45);
+  EXPECT_EQ((*walls)[1].name, "slab");
+  EXPECT_EQ((*walls)[1].angle, -10);
+  EXPECT_EQ(services_->gyms.Circuits(head, *gym)->size(), 2u);
+  EXPECT_EQ(*services_->gyms.RoleIn(head, *gym), "head");
+  auto all = store_->AllRoutes(std::nullopt);
+  ASSERT_EQ(all->size(), 4u);
+  for (const store::RouteRecord& r : *all) {
+    EXPECT_EQ(r.gym_id, *gym) << r.name;
+    EXPECT_EQ(r.state, "set") << r.name;
+    EXPECT_EQ(r.wall_id.has_value(), r.name != "D") << r.name;
+  }
+  EXPECT_EQ((*all)[0].wall_id, (*all)[2].wall_id);  // A and C share the roof
+}
+
 }  // namespace
 }  // namespace sb::app

@@ -90,7 +90,10 @@ int RunServe(const std::vector<std::string>& args) {
     if (!demo.ok()) return Fail("serve", demo.status());
     std::string dir = seed_dir.empty() ? app::DefaultExamplesDir() : seed_dir;
     std::vector<std::string> skipped;
-    Result<int> n = app::SeedExamples(store, dir, *demo, &skipped);
+    // The demo gym: the demo account its head setter, the examples on its walls.
+    Result<int64_t> gym = app::EnsureDemoGym(store, gym_name, *demo);
+    if (!gym.ok()) return Fail("serve", gym.status());
+    Result<int> n = app::SeedExamples(store, dir, *demo, &skipped, *gym);
     if (!n.ok()) return Fail("serve", n.status());
     for (const std::string& s : skipped) std::fprintf(stderr, "serve: skipped %s\n", s.c_str());
     std::printf("seeded %d example route%s%s%s\n", *n, *n == 1 ? "" : "s",
