@@ -578,6 +578,17 @@ Result<ImportSummary> Routes::ImportCsv(const Viewer& v, std::string_view routes
       out.skipped.push_back(where + "no moves");
       continue;
     }
+    // Exactly what the API would accept as a route; checked before the
+    // skip below, so a file with a bad row is refused whole.
+    std::string crdl = PrintCrdl(sr.route);
+    Result<Route> check = ParseCrdl(crdl, kRoutesFile);
+    if (!check.ok()) {
+      return Status::InvalidInputAt(at, "route " + std::to_string(sr.id) + ": " +
+                                            check.status().reason());
+    }
+    if (Status s = CheckRouteLimits(*check, lim.route); !s.ok()) {
+      return Status::InvalidInputAt(at, "route " + std::to_string(sr.id) + ": " + s.message());
+    }
     if (gym && gs) {
       // Recognised by the original site's id: importing twice duplicates nothing.
       // A setter's import is the gym's (anyone's earlier import of the id
@@ -590,16 +601,6 @@ Result<ImportSummary> Routes::ImportCsv(const Viewer& v, std::string_view routes
         out.skipped.push_back(where + "already imported as route " + std::to_string(*known));
         continue;
       }
-    }
-    // Exactly what the API would accept as a route.
-    std::string crdl = PrintCrdl(sr.route);
-    Result<Route> check = ParseCrdl(crdl, kRoutesFile);
-    if (!check.ok()) {
-      return Status::InvalidInputAt(at, "route " + std::to_string(sr.id) + ": " +
-                                            check.status().reason());
-    }
-    if (Status s = CheckRouteLimits(*check, lim.route); !s.ok()) {
-      return Status::InvalidInputAt(at, "route " + std::to_string(sr.id) + ": " + s.message());
     }
     Imported im{&sr, {}, {}};
     store::RouteRecord& rec = im.record;
