@@ -95,7 +95,7 @@ module.exports = async (t) => {
   const tagRes = await page.request.get(base + '/routes/' + rid + '/tag.pdf');
   const tagFile = path.join(out, '90-gym-tag.pdf');
   fs.writeFileSync(tagFile, await tagRes.body());
-  const tagText = execFileSync('pdftotext', [tagFile, '-']).toString();
+  const tagText = execFileSync('pdftotext', [tagFile, '-']).toString().replace(/\s+/g, ' ');
   check(tagRes.status() === 200 && ['Gym Ladder ' + n, 'V3', 'red', 'Cave', setter, '/r/' + rid]
     .every((f) => tagText.includes(f)), 'the tag shows name, grade, circuit, wall, setter and link');
   const qr = decode(out, tagFile, '90-gym-tag');
@@ -103,7 +103,8 @@ module.exports = async (t) => {
   const sheet = await page.request.get(base + '/api/gyms/' + gym + '/tags.pdf?wall=' + cave.id + '&state=set');
   const sheetFile = path.join(out, '90-gym-sheet.pdf');
   fs.writeFileSync(sheetFile, await sheet.body());
-  check(sheet.status() === 200 && execFileSync('pdftotext', [sheetFile, '-']).toString().includes('Gym Ladder ' + n),
+  check(sheet.status() === 200 &&
+        execFileSync('pdftotext', [sheetFile, '-']).toString().replace(/\s+/g, ' ').includes('Gym Ladder ' + n),
         'the wall\'s sheet of tags has it (' + sheet.status() + ')');
   await page.selectOption('#route-state-select', 'stripped');
   await submit('route-gym-form');
