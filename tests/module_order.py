@@ -18,7 +18,7 @@ INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]')
 
 
 def read_table(root):
-    levels, owners, confined = {}, [], []
+    levels, owners, confined, seams = {}, [], [], []
     with open(os.path.join(root, 'cmake', 'module_levels.txt')) as f:
         for n, line in enumerate(f, 1):
             words = line.split('#', 1)[0].split()
@@ -30,9 +30,11 @@ def read_table(root):
                 owners.append((words[1], words[2]))
             elif words[0] == 'confined' and len(words) == 3:
                 confined.append((words[1], words[2]))
+            elif words[0] == 'seam' and len(words) == 3:
+                seams.append((words[1], words[2]))
             else:
                 sys.exit('cmake/module_levels.txt:%d: cannot read %r' % (n, line.strip()))
-    return levels, owners, confined
+    return levels, owners, confined, seams
 
 
 def cmake_calls(text, name):
@@ -76,7 +78,7 @@ def declared_deps(root, module, levels):
 
 
 def check(root):
-    levels, owners, confined = read_table(root)
+    levels, owners, confined, seams = read_table(root)
     src = os.path.join(root, 'src')
     errors = []
     folders = sorted(d for d in os.listdir(src) if os.path.isdir(os.path.join(src, d)))
@@ -87,6 +89,10 @@ def check(root):
         if module not in levels:
             continue
         deps, test_deps = declared_deps(root, module, levels)
+        # Modules this one reaches only through a module between (seam lines):
+        # never included nor named as `M::`, tests included, whatever DEPS say.
+        hidden = [m for (user, m) in seams if user == module]
+        named = re.compile(r'\b(%s)::' % '|'.join(map(re.escape, hidden))) if hidden else None
         for dirpath, _, files in os.walk(os.path.join(src, module)):
             for name in sorted(files):
                 if not name.endswith(('.h', '.cc', '.inc')):
@@ -99,6 +105,12 @@ def check(root):
                     for n, line in enumerate(f, 1):
                         m = INCLUDE.match(line)
                         if not m:
+                            code = re.sub(r'"(\\.|[^"\\])*"', '""', line).split('//', 1)[0]
+                            if named and named.search(code):
+                                errors.append('%s:%d: names %s:: types (%s reaches %s only '
+                                              'through app; seam in cmake/module_levels.txt)' %
+                                              (rel, n, named.search(code).group(1), module,
+                                               named.search(code).group(1)))
                             continue
                         kind, inc = m.groups()
                         where = '%s:%d: #include %s%s%s' % (rel, n, kind, inc,
@@ -106,6 +118,11 @@ def check(root):
                         if kind == '"' and '/' in inc:
                             target = inc.split('/', 1)[0]
                             if target == module:
+                                continue
+                            if target in hidden:
+                                errors.append('%s: %s may not include %s (seam in '
+                                              'cmake/module_levels.txt: through app only)' %
+                                              (where, module, target))
                                 continue
                             if target not in levels:
                                 errors.append('%s: unknown module "%s"' % (where, target))
@@ -138,6 +155,15 @@ def self_test(root):
          'a nlohmann/ type in a header of plan'),
         ('src/web/server.cc', '#include <httplib.h>\n', 'src/web/server.cc:',
          'confined to src/web/http_transport.cc'),
+        # Issue 21: web and cli reach the database through app only.
+        ('src/web/server.cc', '#include "store/store.h"\n', 'src/web/server.cc:',
+         'web may not include store'),
+        ('src/cli/cmd_db.cc', '#include "store/open.h"\n', 'src/cli/cmd_db.cc:',
+         'cli may not include store'),
+        ('src/web/api_test_util.h', '#include "store/store_test_util.h"\n',
+         'src/web/api_test_util.h:', 'web may not include store'),
+        ('src/web/pages.cc', 'static store::RouteRecord* unused = nullptr;\n', 'src/web/pages.cc:',
+         'names store:: types'),
     ]
     failures = []
     for path, line, where, why in cases:

@@ -10,6 +10,7 @@
 
 #include "app/clock.h"
 #include "app/options.h"
+#include "app/types.h"
 #include "base/status.h"
 #include "store/store.h"
 
@@ -19,7 +20,7 @@ namespace sb::app {
 // and the stored session.
 struct NewSession {
   std::string token;
-  store::Session session;
+  Session session;
 };
 
 // Thread-safe: every method may run on many threads at once. Does not own
@@ -33,8 +34,8 @@ class Accounts {
   // is taken (ignoring case), kResourceExhausted when `address` made too many
   // sign-ups this hour, kIoError when the store fails.
   // A full password-check queue is kResourceExhausted with *busy = true.
-  Result<store::User> SignUp(std::string_view username, std::string_view password,
-                             std::string_view address, bool* busy = nullptr);
+  Result<User> SignUp(std::string_view username, std::string_view password,
+                      std::string_view address, bool* busy = nullptr);
 
   // Checks the credentials and opens a session. Unknown names cost the same
   // argon2id work as known ones. Never sleeps: a throttled attempt is
@@ -49,7 +50,7 @@ class Accounts {
                            bool* busy = nullptr);
 
   // The session of a cookie token. kNotFound when none, expired or malformed.
-  Result<store::Session> SessionOf(std::string_view token);
+  Result<Session> SessionOf(std::string_view token);
 
   // Ends the session of a token (nothing happens for an unknown one).
   Status LogOut(std::string_view token);
@@ -64,7 +65,7 @@ class Accounts {
   bool VerifyBounded(std::string_view password, const std::string& hash);
   const std::string& DummyHash();
 
-  store::Store* store_;
+  store::AccountStore* store_;  // the only interface it needs
   const Options options_;
   Clock* clock_;
   std::counting_semaphore<1024> checks_;

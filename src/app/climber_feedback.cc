@@ -76,7 +76,9 @@ bool ConsensusRevealsNoVote(const std::vector<double>& values, Discipline d, gra
 }
 
 ClimberFeedback::ClimberFeedback(store::Store* store, const Options& options, Clock* clock)
-    : store_(store),
+    : routes_(store),
+      feedback_(store),
+      attempts_(store),
       options_(options),
       clock_(clock),
       instrument_(studies::LoadInstrument(options.climbers.feedback_instrument)) {}
@@ -85,7 +87,7 @@ Result<studies::Instrument> ClimberFeedback::Instrument() const { return instrum
 
 Result<store::RouteRecord> ClimberFeedback::Visible(const Viewer& v, int64_t route_id) {
   Status none = Status::NotFound("no route " + std::to_string(route_id));
-  Result<store::RouteRecord> r = store_->GetRoute(route_id);
+  Result<store::RouteRecord> r = routes_->GetRoute(route_id);
   if (!r.ok()) return r.status().code() == Status::Code::kNotFound ? none : r.status();
   if (!IsVisible(*r, v)) return none;
   return r;
@@ -134,11 +136,11 @@ Result<FeedbackPage> ClimberFeedback::Page(const Viewer& v, int64_t route_id,
   FeedbackPage page;
   page.instrument = std::move(instrument);
   if (std::optional<std::string> hash = ParticipantHash(participant_token)) {
-    SB_ASSIGN_OR_RETURN(page.mine, store_->FindFeedback(route_id, *hash));
+    SB_ASSIGN_OR_RETURN(page.mine, feedback_->FindFeedback(route_id, *hash));
     // Answers to an earlier questionnaire do not fit this one.
     if (page.mine && page.mine->instrument != page.instrument.name) page.mine->answers.clear();
   }
-  SB_ASSIGN_OR_RETURN(std::vector<store::FeedbackRecord> all, store_->ListFeedback(route_id));
+  SB_ASSIGN_OR_RETURN(std::vector<store::FeedbackRecord> all, feedback_->ListFeedback(route_id));
   SB_ASSIGN_OR_RETURN(page.grade, Summarise(route, all, IsOwner(route, v)));
   page.route = std::move(route);
   return page;
@@ -184,12 +186,12 @@ Result<FeedbackSaved> ClimberFeedback::Submit(const Viewer& v, int64_t route_id,
   out.participant = ParticipantOf(participant_token);
   rec.participant = out.participant.hash;
   const ClimberPolicy& p = options_.climbers;
-  SB_RETURN_IF_ERROR(ThrottleSubmission(store_, clock_, p, "feedback", v.address,
+  SB_RETURN_IF_ERROR(ThrottleSubmission(attempts_, clock_, p, "feedback", v.address,
                                         out.participant.hash, p.feedback_per_address,
                                         p.feedback_per_participant, retry_after_seconds));
-  SB_ASSIGN_OR_RETURN(rec.id, store_->PutFeedback(rec));
+  SB_ASSIGN_OR_RETURN(rec.id, feedback_->PutFeedback(rec));
   SB_ASSIGN_OR_RETURN(std::optional<store::FeedbackRecord> stored,
-                      store_->FindFeedback(route_id, rec.participant));
+                      feedback_->FindFeedback(route_id, rec.participant));
   if (stored) rec = std::move(*stored);
   return out;
 }
@@ -201,7 +203,7 @@ Result<SetterView> ClimberFeedback::ForSetter(const Viewer& v, int64_t route_id)
   if (!IsOwner(route, v)) {
     return Status::Permission("only the route's owner sees its climbers' answers");
   }
-  SB_ASSIGN_OR_RETURN(std::vector<store::FeedbackRecord> all, store_->ListFeedback(route_id));
+  SB_ASSIGN_OR_RETURN(std::vector<store::FeedbackRecord> all, feedback_->ListFeedback(route_id));
   SetterView out;
   out.responses = static_cast<int>(all.size());
   // The questionnaire's statistics are the studies module's (one route).
@@ -254,9 +256,9 @@ Result<SetterView> ClimberFeedback::ForSetter(const Viewer& v, int64_t route_id)
 
 Result<DriftReport> ClimberFeedback::Drift(const Viewer& v) {
   if (!v.logged_in()) return Status::Unauthenticated("log in first");
-  SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> routes, store_->AllRoutes(*v.user_id));
+  SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> routes, routes_->AllRoutes(*v.user_id));
   SB_ASSIGN_OR_RETURN(std::vector<store::FeedbackRecord> all,
-                      store_->FeedbackOnRoutesOf(*v.user_id));
+                      feedback_->FeedbackOnRoutesOf(*v.user_id));
   std::map<int64_t, std::vector<store::FeedbackRecord>> by_route;
   for (store::FeedbackRecord& f : all) {
     if (f.felt_value) by_route[f.route_id].push_back(std::move(f));

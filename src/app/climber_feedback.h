@@ -17,6 +17,7 @@
 #include "app/clock.h"
 #include "app/options.h"
 #include "app/participants.h"
+#include "app/types.h"
 #include "base/status.h"
 #include "grades/consensus.h"
 #include "grades/scale.h"
@@ -27,7 +28,7 @@ namespace sb::app {
 
 // What a climber submits about one route.
 struct FeedbackInput {
-  store::Answers answers;  // one per item of the gym's instrument; nullopt = skipped
+  Answers answers;         // one per item of the gym's instrument; nullopt = skipped
   std::string felt_grade;  // as typed, any scale grades reads; "" = none
   std::string comment;     // free text; "" = none
 };
@@ -61,16 +62,16 @@ bool ConsensusRevealsNoVote(const std::vector<double>& values, grades::Disciplin
 
 // The climber's page of a route (/r/{id}).
 struct FeedbackPage {
-  store::RouteRecord route;
+  RouteView route;
   studies::Instrument instrument;
-  std::optional<store::FeedbackRecord> mine;  // this participant's answers, to edit
+  std::optional<Feedback> mine;  // this participant's answers, to edit
   GradeSummary grade;
 };
 
 // The outcome of a submission.
 struct FeedbackSaved {
   Participant participant;  // is_new: the caller sets the cookie
-  store::FeedbackRecord record;
+  Feedback record;
 };
 
 // One comment as the setter sees it: no participant, only what was typed.
@@ -90,7 +91,7 @@ struct FeltBand {
 
 // The route owner's view of its feedback (/r/{id}/responses).
 struct SetterView {
-  store::RouteRecord route;
+  RouteView route;
   studies::Instrument instrument;
   int responses = 0;         // every stored feedback on the route
   int answered = 0;          // of them, answering at least one item of `instrument`
@@ -154,11 +155,14 @@ class ClimberFeedback {
   Result<DriftReport> Drift(const Viewer& v);
 
  private:
-  Result<store::RouteRecord> Visible(const Viewer& v, int64_t route_id);
-  Result<GradeSummary> Summarise(const store::RouteRecord& route,
-                                 const std::vector<store::FeedbackRecord>& feedback, bool owner);
+  Result<RouteView> Visible(const Viewer& v, int64_t route_id);
+  Result<GradeSummary> Summarise(const RouteView& route, const std::vector<Feedback>& feedback,
+                                 bool owner);
 
-  store::Store* store_;
+  // The interfaces it needs (one Store in practice; not owned).
+  store::RouteStore* routes_;
+  store::FeedbackStore* feedback_;
+  store::AccountStore* attempts_;  // submission throttling
   const Options options_;
   Clock* clock_;
   Result<studies::Instrument> instrument_;

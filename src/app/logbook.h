@@ -18,6 +18,7 @@
 #include "app/clock.h"
 #include "app/options.h"
 #include "app/participants.h"
+#include "app/types.h"
 #include "base/status.h"
 #include "store/store.h"
 #include "store/tick_store.h"
@@ -66,7 +67,7 @@ struct TickInput {
 // The outcome of logging a tick.
 struct TickSaved {
   Participant participant;  // device climbers: is_new means set the cookie
-  store::TickRecord tick;
+  Tick tick;
   bool edited = false;  // the climber's tick of that route and day was replaced
   bool held = false;    // held for the route's setters (burst rule)
 };
@@ -95,7 +96,7 @@ struct UntriedRoute {
 // A climber's logbook.
 struct LogbookView {
   std::string climber;  // "u:ID" or "d:HASH" ("" = nobody yet: no cookie)
-  std::vector<store::TickRecord> ticks;  // newest day first
+  std::vector<Tick> ticks;                     // newest day first
   std::map<int64_t, std::string> route_names;  // of the ticked routes
   // Sends (flash or send) by band of the route's setter grade: (band name,
   // count), hardest first; routes without a grade under "?".
@@ -127,7 +128,7 @@ class Logbook {
   // Setters of the route's gym (head, setter) and the route's owner only:
   // every tick of the route (kPermission otherwise, kUnauthenticated when
   // not signed in).
-  Result<std::vector<store::TickRecord>> ForSetters(const Viewer& v, int64_t route_id);
+  Result<std::vector<Tick>> ForSetters(const Viewer& v, int64_t route_id);
   // Setters: accepts (state "ok") or discards a tick of the route.
   // kNotFound for a tick of another route.
   Status Decide(const Viewer& v, int64_t route_id, int64_t tick_id, bool accept);
@@ -146,8 +147,8 @@ class Logbook {
     std::map<int64_t, AscentGrade> routes;
     uint64_t used = 0;
   };
-  Result<store::RouteRecord> Visible(const Viewer& v, int64_t route_id);
-  Status RequireSetter(const Viewer& v, const store::RouteRecord& route);
+  Result<RouteView> Visible(const Viewer& v, int64_t route_id);
+  Status RequireSetter(const Viewer& v, const RouteView& route);
   Result<Fit> FitGym(int64_t gym_id, const std::string& discipline);
 
   store::Store* store_;

@@ -81,7 +81,7 @@ class Maps {
  private:
   Result<int> Length(const Viewer& v, const MapQuery& q);
 
-  store::Store* store_;
+  store::RouteStore* store_;  // the only interface it needs
   const Options options_;
   std::mutex mu_;
   std::map<std::string, std::shared_ptr<const MapSlice>> cache_;

@@ -78,6 +78,9 @@ struct Limits {
   // Rows in one route list (more are cut to this), and the default.
   int max_list_rows = 5000;
   int default_list_rows = 500;
+  // Rows a wall's page lists (its routes in every state; issue 21): a gym
+  // wall holds tens of routes, and the page renders in one response.
+  int wall_page_rows = 200;
   // Routes on one sheet of tags (GET /tags.pdf): 15 pages of 8, more than a
   // gym resets in a day; a tag costs about 2 ms of a core (docs/web.md, "The
   // tag on the wall"), so a full sheet stays near a quarter of a second, the

@@ -26,7 +26,7 @@ Participant ParticipantOf(std::string_view token) {
   return p;
 }
 
-Status Throttle(store::Store* store, Clock* clock, int window_seconds,
+Status Throttle(store::AccountStore* store, Clock* clock, int window_seconds,
                 const std::vector<ThrottleKey>& keys, std::string_view what,
                 int* retry_after_seconds) {
   std::vector<std::string> names;
@@ -46,7 +46,7 @@ Status Throttle(store::Store* store, Clock* clock, int window_seconds,
                                    " minutes; try again later");
 }
 
-Status ThrottleSubmission(store::Store* store, Clock* clock, const ClimberPolicy& policy,
+Status ThrottleSubmission(store::AccountStore* store, Clock* clock, const ClimberPolicy& policy,
                           std::string_view kind, std::string_view address, std::string_view hash,
                           int per_address, int per_participant, int* retry_after_seconds) {
   const std::string k(kind);

@@ -11,6 +11,7 @@
 
 #include "app/climber_policy.h"
 #include "app/clock.h"
+#include "app/types.h"
 #include "base/status.h"
 #include "store/store.h"
 #include "studies/instrument.h"
@@ -45,14 +46,14 @@ struct ThrottleKey {
 // *retry_after_seconds set to the window) when any count goes over its
 // limit; a refused attempt is taken back, so waiting a window is always
 // enough. kIoError when the store cannot count (fails closed). Thread-safe.
-Status Throttle(store::Store* store, Clock* clock, int window_seconds,
+Status Throttle(store::AccountStore* store, Clock* clock, int window_seconds,
                 const std::vector<ThrottleKey>& keys, std::string_view what,
                 int* retry_after_seconds);
 
 // Throttle for a climber's submission of `kind` ("feedback", "study"): per
 // address and per participant hash, with the given limits per
 // policy.window_seconds.
-Status ThrottleSubmission(store::Store* store, Clock* clock, const ClimberPolicy& policy,
+Status ThrottleSubmission(store::AccountStore* store, Clock* clock, const ClimberPolicy& policy,
                           std::string_view kind, std::string_view address, std::string_view hash,
                           int per_address, int per_participant, int* retry_after_seconds);
 
@@ -64,11 +65,11 @@ Status CheckFreeText(std::string_view text, size_t max_bytes, std::string_view f
 // Answers to `instrument`: exactly one per item (nullopt = skipped), each on
 // the scale. kInvalidInput "FIELD: expected N answers ..." or
 // "FIELD: q4: 7 is outside the scale [-2, 2]". Pure.
-Status CheckAnswers(const store::Answers& answers, const studies::Instrument& instrument,
+Status CheckAnswers(const Answers& answers, const studies::Instrument& instrument,
                     const std::string& field);
 
 // Whether any item is answered. Pure.
-bool AnyAnswer(const store::Answers& answers);
+bool AnyAnswer(const Answers& answers);
 
 }  // namespace sb::app
 

@@ -12,6 +12,7 @@
 
 #include "app/gyms.h"
 #include "app/options.h"
+#include "app/types.h"
 #include "base/status.h"
 #include "crdl/route.h"
 #include "store/store.h"
@@ -57,7 +58,7 @@ struct RouteQuery {
 
 // One page of a route list.
 struct RoutePage {
-  std::vector<store::RouteRecord> routes;
+  std::vector<RouteView> routes;
   int64_t total = 0;  // rows matching the query, all pages
   int offset = 0;
   int limit = 0;
@@ -98,24 +99,24 @@ struct CsvFiles {
 // database for lists.
 // Issue 21: a gym's members also see its routes that are not drafts
 // (climbers: only those set or stripped), by Viewer::gyms.
-bool IsVisible(const store::RouteRecord& r, const Viewer& v);
+bool IsVisible(const RouteView& r, const Viewer& v);
 // Whether any source of a variation (or the route itself when `self`) is
 // private: such a variation must stay private.
-bool HasPrivateSource(const store::RouteRecord& r, bool self);
+bool HasPrivateSource(const RouteView& r, bool self);
 
 // Fills the record's name (or `fallback_name`), grade (typed, discipline and
 // normalised value through src/grades; an unreadable grade is kept as typed,
 // without a value), setter, colour ("colour:" or "color:"), wall ("wall:" or
 // "area:"), set_on ("date:"), move_count and meta_version from `route`'s
 // header. Pure.
-void FillMetadata(const Route& route, store::RouteRecord* rec,
+void FillMetadata(const Route& route, RouteView* rec,
                   const std::string& fallback_name = "untitled");
 // Why a variation of a private route cannot be made public.
 inline constexpr char kPrivateSourceMessage[] =
     "public: a variation of a private route stays private (make the route public first)";
 
 // The ownership rule: only the owner (a logged-in user) may change a route.
-bool IsOwner(const store::RouteRecord& r, const Viewer& v);
+bool IsOwner(const RouteView& r, const Viewer& v);
 
 // Thread-safe. Does not own `store` or `plans`.
 class Routes {
@@ -123,20 +124,20 @@ class Routes {
   Routes(store::Store* store, const Options& options, PlanCache* plans);
 
   // Visible routes, newest first. Errors: kInvalidInput for a limit < 1.
-  Result<std::vector<store::RouteRecord>> List(const Viewer& v, const RouteQuery& q);
+  Result<std::vector<RouteView>> List(const Viewer& v, const RouteQuery& q);
   // One page of the visible routes matching `q`, with the total. Errors:
   // kInvalidInput naming the field (limit < 1, offset < 0, an unknown sort,
   // a grade range end that is not a grade).
   Result<RoutePage> Search(const Viewer& v, const RouteQuery& q);
   // One visible route. Absent and invisible routes give the same
   // kNotFound "no route N".
-  Result<store::RouteRecord> Get(const Viewer& v, int64_t id);
+  Result<RouteView> Get(const Viewer& v, int64_t id);
   // A route the viewer may change: kUnauthenticated when not logged in,
   // kNotFound as Get, kPermission when someone else's — unless the viewer
   // is a head setter or setter of the route's gym and the route is not a
   // draft (issue 21: setters edit the gym's routes together; a draft stays
   // its owner's).
-  Result<store::RouteRecord> GetOwned(const Viewer& v, int64_t id);
+  Result<RouteView> GetOwned(const Viewer& v, int64_t id);
 
   // Stores a new route owned by the viewer; returns its id. Errors:
   // kUnauthenticated, kInvalidInput located at route.crdl:line:col.
@@ -188,9 +189,9 @@ class Routes {
   Result<Viewer> WithGyms(const Viewer& v);
   // Applies the gym fields of a request to `rec` (its gym already set),
   // checking the role; appends what changed to `changes`.
-  Status ApplyGymFields(const Viewer& v, const GymFields& g, store::RouteRecord* rec,
+  Status ApplyGymFields(const Viewer& v, const GymFields& g, RouteView* rec,
                         std::vector<std::string>* changes,
-                        std::optional<std::vector<store::RouteSetter>>* setters);
+                        std::optional<std::vector<RouteSetter>>* setters);
 
   store::Store* store_;
   Gyms gyms_;

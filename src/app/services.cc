@@ -4,7 +4,7 @@
 
 namespace sb::app {
 
-Services::Services(store::Store* store, const Options& opts, Clock* clock)
+Services::Services(Database* store, const Options& opts, Clock* clock)
     : options(opts),
       plans(opts.plan_cache_entries),
       accounts(store, opts, clock),

@@ -1,7 +1,7 @@
 // The application layer in one object: what the web app and the CLI call.
 //
-//   auto store = store::OpenSqliteStore("var/strangebeta.db");
-//   app::Services services(store->get(), app::Options{});
+//   auto db = app::OpenDatabase("var/strangebeta.db");   // app/database.h
+//   app::Services services(db->get(), app::Options{});
 //   services.routes.List(viewer, {});
 #ifndef SB_APP_SERVICES_H_
 #define SB_APP_SERVICES_H_
@@ -16,15 +16,15 @@
 #include "app/options.h"
 #include "app/routes.h"
 #include "app/studies_service.h"
+#include "app/types.h"
 #include "app/variations.h"
-#include "store/store.h"
 
 namespace sb::app {
 
-// Owns the caches the services share; does not own `store` or `clock`.
+// Owns the caches the services share; does not own `db` or `clock`.
 // Thread-safe.
 struct Services {
-  Services(store::Store* store, const Options& options, Clock* clock = &SystemClock());
+  Services(Database* db, const Options& options, Clock* clock = &SystemClock());
 
   const Options options;
   PlanCache plans;

@@ -116,7 +116,7 @@ studies::ResponseTable StudyTable(const store::StudyRecord& study,
 }
 
 StudyService::StudyService(store::Store* store, const Options& options, Clock* clock)
-    : store_(store), options_(options), clock_(clock) {}
+    : studies_(store), routes_(store), attempts_(store), options_(options), clock_(clock) {}
 
 Result<studies::Instrument> StudyService::ParseChoice(const InstrumentChoice& c) {
   if (!c.builtin.empty()) {
@@ -158,7 +158,7 @@ Status StudyService::Apply(const Viewer& v, const StudySpec& spec, store::StudyR
     }
     st->routes.clear();
     for (size_t i = 0; i < ids.size(); ++i) {
-      Result<store::RouteRecord> r = store_->GetRoute(ids[i]);
+      Result<store::RouteRecord> r = routes_->GetRoute(ids[i]);
       if (!r.ok() && r.status().code() != Status::Code::kNotFound) return r.status();
       if (!r.ok() || !IsVisible(*r, v))
         return Status::NotFound("no route " + std::to_string(ids[i]));
@@ -187,10 +187,10 @@ Result<int64_t> StudyService::Create(const Viewer& v, const StudySpec& spec,
   SB_RETURN_IF_ERROR(Apply(v, spec, &st));
   const ClimberPolicy& p = options_.climbers;
   SB_RETURN_IF_ERROR(
-      Throttle(store_, clock_, p.window_seconds,
+      Throttle(attempts_, clock_, p.window_seconds,
                {{"study-user:" + std::to_string(*v.user_id), p.study_changes_per_user}},
                "study changes", retry_after_seconds));
-  return store_->InsertStudy(st);
+  return studies_->InsertStudy(st);
 }
 
 Status StudyService::Update(const Viewer& v, int64_t id, const StudySpec& spec,
@@ -209,20 +209,20 @@ Status StudyService::Update(const Viewer& v, int64_t id, const StudySpec& spec,
                             st.ask_rank != before.ask_rank || st.ask_order != before.ask_order;
   const ClimberPolicy& p = options_.climbers;
   SB_RETURN_IF_ERROR(
-      Throttle(store_, clock_, p.window_seconds,
+      Throttle(attempts_, clock_, p.window_seconds,
                {{"study-user:" + std::to_string(*v.user_id), p.study_changes_per_user}},
                "study changes", retry_after_seconds));
-  return store_->UpdateStudy(st, definition_changes);
+  return studies_->UpdateStudy(st, definition_changes);
 }
 
 Result<std::vector<store::StudyRecord>> StudyService::Mine(const Viewer& v) {
   if (!v.logged_in()) return Status::Unauthenticated("log in first");
-  return store_->ListStudies(*v.user_id);
+  return studies_->ListStudies(*v.user_id);
 }
 
 Result<store::StudyRecord> StudyService::Owned(const Viewer& v, int64_t id) {
   if (!v.logged_in()) return Status::Unauthenticated("log in first");
-  Result<store::StudyRecord> st = store_->GetStudy(id);
+  Result<store::StudyRecord> st = studies_->GetStudy(id);
   if (!st.ok()) return st.status().code() == Status::Code::kNotFound ? NoStudy(id) : st.status();
   if (st->owner_id != *v.user_id) {
     return Status::Permission("only the study's owner sees and changes it");
@@ -231,7 +231,7 @@ Result<store::StudyRecord> StudyService::Owned(const Viewer& v, int64_t id) {
 }
 
 Result<StudyForm> StudyService::Form(int64_t id, std::string_view participant_token) {
-  Result<store::StudyRecord> st = store_->GetStudy(id);
+  Result<store::StudyRecord> st = studies_->GetStudy(id);
   if (!st.ok()) return st.status().code() == Status::Code::kNotFound ? NoStudy(id) : st.status();
   StudyForm f;
   f.id = st->id;
@@ -243,7 +243,7 @@ Result<StudyForm> StudyService::Form(int64_t id, std::string_view participant_to
   f.ask_rank = st->ask_rank;
   f.ask_order = st->ask_order;
   if (std::optional<std::string> hash = ParticipantHash(participant_token)) {
-    SB_ASSIGN_OR_RETURN(f.answered, store_->HasStudyResponse(id, *hash));
+    SB_ASSIGN_OR_RETURN(f.answered, studies_->HasStudyResponse(id, *hash));
   }
   return f;
 }
@@ -251,7 +251,7 @@ Result<StudyForm> StudyService::Form(int64_t id, std::string_view participant_to
 Result<Participant> StudyService::Respond(const Viewer& v, int64_t id,
                                           std::string_view participant_token,
                                           const StudySubmission& sub, int* retry_after_seconds) {
-  Result<store::StudyRecord> found = store_->GetStudy(id);
+  Result<store::StudyRecord> found = studies_->GetStudy(id);
   if (!found.ok()) {
     return found.status().code() == Status::Code::kNotFound ? NoStudy(id) : found.status();
   }
@@ -318,13 +318,13 @@ Result<Participant> StudyService::Respond(const Viewer& v, int64_t id,
   SB_RETURN_IF_ERROR(studies::ValidateResponses(StudyTable(st, {rec}), instrument, "response"));
   Participant who = ParticipantOf(participant_token);
   rec.participant = who.hash;
-  SB_ASSIGN_OR_RETURN(bool answered, store_->HasStudyResponse(id, who.hash));
+  SB_ASSIGN_OR_RETURN(bool answered, studies_->HasStudyResponse(id, who.hash));
   if (answered) return Status::Conflict("you have already answered this study");
   const ClimberPolicy& p = options_.climbers;
-  SB_RETURN_IF_ERROR(ThrottleSubmission(store_, clock_, p, "study", v.address, who.hash,
+  SB_RETURN_IF_ERROR(ThrottleSubmission(attempts_, clock_, p, "study", v.address, who.hash,
                                         p.study_responses_per_address,
                                         p.study_responses_per_participant, retry_after_seconds));
-  SB_RETURN_IF_ERROR(store_->InsertStudyResponse(rec, kMaxStudyResponses).status());
+  SB_RETURN_IF_ERROR(studies_->InsertStudyResponse(rec, kMaxStudyResponses).status());
   return who;
 }
 
@@ -333,7 +333,7 @@ Result<StudyResults> StudyService::Load(const Viewer& v, int64_t id) {
   SB_ASSIGN_OR_RETURN(out.study, Owned(v, id));
   SB_ASSIGN_OR_RETURN(out.instrument, StoredInstrument(out.study));
   SB_ASSIGN_OR_RETURN(std::vector<store::StudyResponseRecord> responses,
-                      store_->ListStudyResponses(id));
+                      studies_->ListStudyResponses(id));
   out.table = StudyTable(out.study, responses);
   return out;
 }
@@ -361,7 +361,7 @@ Result<std::string> StudyService::InstrumentJson(const Viewer& v, int64_t id) {
 Result<std::string> StudyService::DemographicsCsv(const Viewer& v, int64_t id) {
   SB_ASSIGN_OR_RETURN(store::StudyRecord st, Owned(v, id));
   SB_ASSIGN_OR_RETURN(std::vector<store::StudyResponseRecord> responses,
-                      store_->ListStudyResponses(id));
+                      studies_->ListStudyResponses(id));
   CsvRow header = {"participant"};
   for (const std::string& k : DemographicKeys()) header.push_back(k);
   std::string out = FormatCsvRow(header);

@@ -16,6 +16,7 @@
 #include "app/clock.h"
 #include "app/options.h"
 #include "app/participants.h"
+#include "app/types.h"
 #include "base/status.h"
 #include "store/store.h"
 #include "studies/analysis.h"
@@ -55,7 +56,7 @@ struct StudyForm {
 
 // One climber's answers about one route of a study.
 struct StudyRouteAnswer {
-  store::Answers answers;  // one per instrument item; nullopt = skipped
+  Answers answers;  // one per instrument item; nullopt = skipped
   std::optional<int> rank;
   std::optional<int> order;
 };
@@ -70,7 +71,7 @@ struct StudySubmission {
 // The owner's view: the study, its instrument and, once there are
 // responses, the analysis.
 struct StudyResults {
-  store::StudyRecord study;
+  Study study;
   studies::Instrument instrument;
   studies::ResponseTable table;               // what the CSV export holds
   std::optional<studies::Analysis> analysis;  // nullopt without responses
@@ -100,10 +101,10 @@ class StudyService {
   Status Update(const Viewer& v, int64_t id, const StudySpec& spec,
                 int* retry_after_seconds = nullptr);
   // The viewer's studies, newest first. kUnauthenticated when not logged in.
-  Result<std::vector<store::StudyRecord>> Mine(const Viewer& v);
+  Result<std::vector<Study>> Mine(const Viewer& v);
   // A study of the viewer's. kUnauthenticated, kNotFound "no study N",
   // kPermission for someone else's.
-  Result<store::StudyRecord> Owned(const Viewer& v, int64_t id);
+  Result<Study> Owned(const Viewer& v, int64_t id);
 
   // The climbers' page of a study (anyone). kNotFound "no study N".
   Result<StudyForm> Form(int64_t id, std::string_view participant_token);
@@ -133,18 +134,20 @@ class StudyService {
 
  private:
   Result<studies::Instrument> ParseChoice(const InstrumentChoice& choice);
-  Status Apply(const Viewer& v, const StudySpec& spec, store::StudyRecord* st);
+  Status Apply(const Viewer& v, const StudySpec& spec, Study* st);
   Result<StudyResults> Load(const Viewer& v, int64_t id);
 
-  store::Store* store_;
+  // The interfaces it needs (one Store in practice; not owned).
+  store::StudyStore* studies_;
+  store::RouteStore* routes_;
+  store::AccountStore* attempts_;  // submission throttling
   const Options options_;
   Clock* clock_;
 };
 
 // The response table of stored responses (what Results and ResponsesCsv
 // use): participant "p<seq>", route "<label>". Pure.
-studies::ResponseTable StudyTable(const store::StudyRecord& study,
-                                  const std::vector<store::StudyResponseRecord>& responses);
+studies::ResponseTable StudyTable(const Study& study, const std::vector<StudyResponse>& responses);
 
 }  // namespace sb::app
 

@@ -10,6 +10,7 @@
 
 #include "app/options.h"
 #include "app/routes.h"
+#include "app/types.h"
 #include "base/status.h"
 #include "plan/tag.h"
 #include "store/store.h"
@@ -21,16 +22,16 @@ namespace sb::app {
 // split at commas, else its owner's name), set date (`set_on`, else the day
 // it was added) and `url` (its `/r/{id}` link, made by the caller, which
 // knows the server's address). Pure.
-plan::TagInfo TagInfoOf(const store::RouteRecord& r, const std::string& url);
+plan::TagInfo TagInfoOf(const RouteView& r, const std::string& url);
 
 // The routes of a sheet of tags, in the order of `ids` (repeats print
 // twice), each visible to `v` (Routes::Get). Errors: kInvalidInput naming
 // "ids" for none or more than limits.max_tag_sheet_routes; kNotFound
 // "no route N" for one that is absent or invisible (so a sheet never tells
 // which). Thread-safe.
-Result<std::vector<store::RouteRecord>> TagSheetRoutes(Routes& routes, const Viewer& v,
-                                                       const std::vector<int64_t>& ids,
-                                                       const Limits& limits);
+Result<std::vector<RouteView>> TagSheetRoutes(Routes& routes, const Viewer& v,
+                                              const std::vector<int64_t>& ids,
+                                              const Limits& limits);
 
 // The routes of a gym's sheet of tags (GET /api/gyms/{gym}/tags.pdf): those
 // of gym `gym` on wall `wall` (a wall id or name; "" = every wall) in state
@@ -39,10 +40,9 @@ Result<std::vector<store::RouteRecord>> TagSheetRoutes(Routes& routes, const Vie
 // not a member of the gym or the wall is another gym's; kInvalidInput naming
 // "state" for an unknown state and naming "wall" when more routes match than
 // limits.max_tag_sheet_routes (the message says how many). Thread-safe.
-Result<std::vector<store::RouteRecord>> GymTagSheetRoutes(Routes& routes, const Viewer& v,
-                                                          int64_t gym, const std::string& wall,
-                                                          const std::string& state,
-                                                          const Limits& limits);
+Result<std::vector<RouteView>> GymTagSheetRoutes(Routes& routes, const Viewer& v, int64_t gym,
+                                                 const std::string& wall, const std::string& state,
+                                                 const Limits& limits);
 
 }  // namespace sb::app
 

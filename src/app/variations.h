@@ -13,8 +13,9 @@
 #include <vector>
 
 #include "app/options.h"
-#include "app/variation_meta.h"
 #include "app/setting.h"
+#include "app/types.h"
+#include "app/variation_meta.h"
 #include "base/status.h"
 #include "chaos/variation.h"
 #include "plan/plan.h"
@@ -130,7 +131,7 @@ struct CreatedVariation {
 
 // A stored variation with its plan.
 struct PlanView {
-  store::RouteRecord record;
+  RouteView record;
   std::shared_ptr<const plan::RoutePlan> plan;
   std::string smoothing_note;  // "" unless smoothing was asked for and is missing
   EditSummary edits;           // what the setter's editing changed (app::ApplyEdits)

@@ -4,49 +4,48 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "app/database.h"
 #include "cli/cli_util.h"
 #include "cli/commands.h"
-#include "store/copy.h"
-#include "store/open.h"
 
 namespace sb::cli {
 
 namespace {
 
-int Info(const std::string& db, const store::StoreOptions& o) {
-  Result<store::DatabaseSummary> s = store::Summarize(db, o);
+int Info(const std::string& db, const app::DatabaseOptions& o) {
+  Result<app::DatabaseSummary> s = app::SummarizeDatabase(db, o);
   if (!s.ok()) return Fail("db info", s.status());
-  std::fputs(store::FormatSummary(*s).c_str(), stdout);
+  std::fputs(app::FormatDatabaseSummary(*s).c_str(), stdout);
   return 0;
 }
 
-int Migrate(const std::string& db, const store::StoreOptions& o) {
+int Migrate(const std::string& db, const app::DatabaseOptions& o) {
   int before = 0;
-  if (Result<store::DatabaseSummary> s = store::Summarize(db, o); s.ok()) {
+  if (Result<app::DatabaseSummary> s = app::SummarizeDatabase(db, o); s.ok()) {
     before = s->schema_version;
   } else if (s.status().code() != Status::Code::kNotFound) {
     return Fail("db migrate", s.status());
   }
-  Result<std::unique_ptr<store::Store>> st = store::OpenStore(db, o);
+  Result<std::unique_ptr<app::Database>> st = app::OpenDatabase(db, o);
   if (!st.ok()) return Fail("db migrate", st.status());
-  std::printf("%s: schema version %d -> %d\n", store::DisplayName(db).c_str(), before,
+  std::printf("%s: schema version %d -> %d\n", app::DatabaseDisplayName(db).c_str(), before,
               (*st)->SchemaVersion());
   return 0;
 }
 
-int Copy(const std::string& from, const std::string& to, const store::StoreOptions& o) {
-  if (!store::IsDatabaseUrl(to)) {
+int Copy(const std::string& from, const std::string& to, const app::DatabaseOptions& o) {
+  if (!app::IsDatabaseUrl(to)) {
     std::error_code ec;
     std::filesystem::path parent = std::filesystem::path(to).parent_path();
     if (!parent.empty() && !std::filesystem::is_directory(parent, ec)) {
       return Fail("db copy", Status::NotFound(parent.string() + ": no such directory"));
     }
   }
-  Result<store::DatabaseSummary> s = store::CopyDatabase(from, to, o);
+  Result<app::DatabaseSummary> s = app::CopyDatabase(from, to, o);
   if (!s.ok()) return Fail("db copy", s.status());
-  std::printf("copied %s -> %s; rows and checksums agree:\n", store::DisplayName(from).c_str(),
-              store::DisplayName(to).c_str());
-  std::fputs(store::FormatSummary(*s).c_str(), stdout);
+  std::printf("copied %s -> %s; rows and checksums agree:\n",
+              app::DatabaseDisplayName(from).c_str(), app::DatabaseDisplayName(to).c_str());
+  std::fputs(app::FormatDatabaseSummary(*s).c_str(), stdout);
   return 0;
 }
 
@@ -59,7 +58,7 @@ int RunDb(const std::vector<std::string>& args) {
       "See docs/deploy.md.",
       "strangebeta db"};
   app.require_subcommand(1);
-  store::StoreOptions options;
+  app::DatabaseOptions options;
   options.pool_size = 1;
   app.add_option("--db-timeout", options.connect_timeout_seconds,
                  "seconds to wait for a PostgreSQL server (default 10)")

@@ -6,10 +6,10 @@
 #include <filesystem>
 #include <thread>
 
+#include "app/database.h"
 #include "app/seed.h"
 #include "cli/cli_util.h"
 #include "cli/commands.h"
-#include "store/open.h"
 #include "web/server.h"
 
 namespace sb::cli {
@@ -30,10 +30,10 @@ int RunServe(const std::vector<std::string>& args) {
   app.add_option("--db", db,
                  "SQLite database file (created when absent) or PostgreSQL URL "
                  "postgresql://user@host:port/dbname (missing parts from the PG* variables)");
-  store::StoreOptions db_options;
+  app::DatabaseOptions db_options;
   app.add_option("--db-pool", db_options.pool_size,
                  "PostgreSQL connections this process keeps (default 8)")
-      ->check(CLI::Range(1, store::kMaxPoolSize));
+      ->check(CLI::Range(1, app::kMaxDatabasePool));
   app.add_option("--db-timeout", db_options.connect_timeout_seconds,
                  "seconds to wait for the PostgreSQL server at start-up (default 10)")
       ->check(CLI::Range(1, 300));
@@ -73,13 +73,13 @@ int RunServe(const std::vector<std::string>& args) {
 
   std::error_code ec;
   std::filesystem::path parent =
-      store::IsDatabaseUrl(db) ? std::filesystem::path() : std::filesystem::path(db).parent_path();
+      app::IsDatabaseUrl(db) ? std::filesystem::path() : std::filesystem::path(db).parent_path();
   if (!parent.empty() && !std::filesystem::create_directories(parent, ec) && ec) {
     return Fail("serve", Status::IoError(parent.string() + ": " + ec.message()));
   }
-  Result<std::unique_ptr<store::Store>> st = store::OpenStore(db, db_options);
+  Result<std::unique_ptr<app::Database>> st = app::OpenDatabase(db, db_options);
   if (!st.ok()) return Fail("serve", st.status());
-  store::Store* store = st->get();
+  app::Database* store = st->get();
 
   // A fresh database gets the demo account and the example routes.
   Result<int64_t> users = store->CountUsers();
@@ -126,7 +126,7 @@ int RunServe(const std::vector<std::string>& args) {
   if (!bound.ok()) return Fail("serve", bound.status());
   std::string shown = host == "0.0.0.0" ? "127.0.0.1" : host;
   std::printf("strangebeta web app on http://%s:%d/ (database %s)\n", shown.c_str(), *bound,
-              store::DisplayName(db).c_str());
+              app::DatabaseDisplayName(db).c_str());
   if (store->FindUserByName(app::kDemoUser).ok()) {
     std::printf("demo account: user %s, password %s\n", app::kDemoUser, app::kDemoPassword);
   }

@@ -246,13 +246,22 @@ std::string EncodeAnswers(const Answers& answers);
 // The inverse. kInvalidInput when the text is not such an array.
 Result<Answers> DecodeAnswers(const std::string& text);
 
-// The storage interface. Implementations must be safe to call from many
-// threads at once (the web server's worker pool) and must make every
-// multi-row change atomic. Errors: kNotFound for unknown ids, kConflict for
-// taken names, kIoError for storage failures, kInvalidInput for bad values.
-class Store {
+// The storage interfaces, one per kind of record (issue 21): accounts and
+// sessions (with the throttling attempts), routes and variations, climbers'
+// feedback, studies; gyms and walls (store/gym_store.h) and the logbook
+// (store/tick_store.h) beside them. `Store` is all of them over one SQL layer
+// (sql_store.cc: SQLite and PostgreSQL alike); app services hold only the
+// interfaces they use.
+//
+// Implementations must be safe to call from many threads at once (the web
+// server's worker pool) and must make every multi-row change atomic. Errors:
+// kNotFound for unknown ids, kConflict for taken names, kIoError for storage
+// failures, kInvalidInput for bad values.
+
+// Accounts, sessions and the attempts that throttle log-ins and sign-ups.
+class AccountStore {
  public:
-  virtual ~Store() = default;
+  virtual ~AccountStore() = default;
 
   // Accounts. CreateUser: kConflict when the name is taken (case-insensitive).
   virtual Result<int64_t> CreateUser(const std::string& username,
@@ -281,6 +290,12 @@ class Store {
                                                            int64_t now, int64_t since) = 0;
   virtual Status UndoAttempts(const std::vector<std::string>& keys, int64_t at) = 0;
   virtual Status ClearAttempts(const std::string& key) = 0;
+};
+
+// Routes and variations ("variations are stored like routes").
+class RouteStore {
+ public:
+  virtual ~RouteStore() = default;
 
   // Routes and variations. InsertRoute ignores `id`, `created_at`,
   // `updated_at`, `owner_name` and `sources` and returns the new id; the
@@ -314,6 +329,12 @@ class Store {
   // Inserts many routes in one transaction (import); returns their ids in
   // order. Nothing is written when any insert fails.
   virtual Result<std::vector<int64_t>> InsertRoutes(const std::vector<RouteRecord>& routes) = 0;
+};
+
+// Climbers' feedback on routes.
+class FeedbackStore {
+ public:
+  virtual ~FeedbackStore() = default;
 
   // Climbers' feedback. PutFeedback inserts or replaces (keyed by route
   // and participant; created_at survives a replacement) and returns the
@@ -326,6 +347,12 @@ class Store {
   virtual Result<std::vector<FeedbackRecord>> ListFeedback(int64_t route_id) = 0;
   // Every feedback on the routes `owner_id` owns, by route id then age.
   virtual Result<std::vector<FeedbackRecord>> FeedbackOnRoutesOf(int64_t owner_id) = 0;
+};
+
+// Studies and their responses.
+class StudyStore {
+ public:
+  virtual ~StudyStore() = default;
 
   // Studies. InsertStudy writes the study and its routes in one transaction
   // (ignores id, owner_name, responses and the times) and returns the id.
@@ -350,6 +377,14 @@ class Store {
   virtual Result<bool> HasStudyResponse(int64_t study_id, const std::string& participant) = 0;
   // Every response of a study in seq order, with answers and demographics.
   virtual Result<std::vector<StudyResponseRecord>> ListStudyResponses(int64_t study_id) = 0;
+};
+
+// The whole database: every per-kind interface above over one connection
+// (pool), as store::OpenStore returns it. GymStoreOf / TickStoreOf give its
+// gym and logbook interfaces.
+class Store : public AccountStore, public RouteStore, public FeedbackStore, public StudyStore {
+ public:
+  ~Store() override = default;
 
   // The schema version now in force (migrations applied).
   virtual int SchemaVersion() = 0;

@@ -37,7 +37,7 @@ void PostUsers(Exchange& x) {
   std::string user, pass;
   if (Status s = Credentials(x.req, &user, &pass); !s.ok()) return ApiError(x, s);
   bool busy = false;
-  Result<store::User> u = x.services.accounts.SignUp(user, pass, x.caller.viewer.address, &busy);
+  Result<app::User> u = x.services.accounts.SignUp(user, pass, x.caller.viewer.address, &busy);
   if (!u.ok()) {
     if (busy) return Busy(x, u.status(), 1);
     return ApiError(x, u.status());

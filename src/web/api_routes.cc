@@ -26,7 +26,7 @@ void ListRoutes(Exchange& x) {
   Result<app::RoutePage> page = x.services.routes.Search(x.caller.viewer, *q);
   if (!page.ok()) return ApiError(x, page.status());
   json arr = json::array();
-  for (const store::RouteRecord& r : page->routes) arr.push_back(RouteSummaryJson(r));
+  for (const app::RouteView& r : page->routes) arr.push_back(RouteSummaryJson(r));
   ReplyJson(x.res, 200,
             json{{"routes", arr},
                  {"total", page->total},
@@ -37,7 +37,7 @@ void ListRoutes(Exchange& x) {
 void GetRoute(Exchange& x) {
   Result<int64_t> id = PathId(x.req, kNoRoute);
   if (!id.ok()) return ApiError(x, id.status());
-  Result<store::RouteRecord> r = x.services.routes.Get(x.caller.viewer, *id);
+  Result<app::RouteView> r = x.services.routes.Get(x.caller.viewer, *id);
   if (!r.ok()) return ApiError(x, r.status());
   auto slot = AdmitWork(x, r->move_count * x.services.options.render_costs.page_per_move);
   if (!slot) return;
@@ -47,7 +47,7 @@ void GetRoute(Exchange& x) {
 void GetRouteCrdl(Exchange& x) {
   Result<int64_t> id = PathId(x.req, kNoRoute);
   if (!id.ok()) return ApiError(x, id.status());
-  Result<store::RouteRecord> r = x.services.routes.Get(x.caller.viewer, *id);
+  Result<app::RouteView> r = x.services.routes.Get(x.caller.viewer, *id);
   if (!r.ok()) return ApiError(x, r.status());
   auto slot = AdmitWork(x, r->move_count * x.services.options.render_costs.page_per_move);
   if (!slot) return;
@@ -75,7 +75,7 @@ void PutRoute(Exchange& x) {
   // Who may change which route comes first; then what the body asks.
   Result<int64_t> id = PathId(x.req, kNoRoute);
   if (!id.ok()) return ApiError(x, id.status());
-  if (Result<store::RouteRecord> r = x.services.routes.GetOwned(x.caller.viewer, *id); !r.ok()) {
+  if (Result<app::RouteView> r = x.services.routes.GetOwned(x.caller.viewer, *id); !r.ok()) {
     return ApiError(x, r.status());
   }
   Result<json> body = BodyObject(x.req);

@@ -11,9 +11,9 @@
 #include <set>
 #include <thread>
 
+#include "app/database.h"
+#include "app/test_database_test_util.h"
 #include "base/files.h"
-#include "store/open.h"
-#include "store/store_test_util.h"
 #include "web/api_test_util.h"
 #include "web/server.h"
 
@@ -230,7 +230,7 @@ TEST_F(ApiTest, ADeletedPrivateVariationNeverShowsAgain) {
 }
 
 TEST_F(ApiTest, APortAlreadyServedIsRefused) {
-  auto s = store::OpenStore((dir_ / "other.db").string());
+  auto s = app::OpenDatabase((dir_ / "other.db").string());
   ASSERT_TRUE(s.ok());
   ServerOptions o;
   o.threads = 2;

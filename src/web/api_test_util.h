@@ -15,8 +15,8 @@
 #include <string>
 #include <thread>
 
-#include "store/open.h"
-#include "store/store_test_util.h"
+#include "app/database.h"
+#include "app/test_database_test_util.h"
 #include "web/server.h"
 
 namespace sb::web::testing {
@@ -28,7 +28,7 @@ using nlohmann::json;
 class Running {
  public:
   explicit Running(const std::string& db, size_t max_body = 256 * 1024) {
-    Result<std::unique_ptr<store::Store>> s = store::OpenStore(db);
+    Result<std::unique_ptr<app::Database>> s = app::OpenDatabase(db);
     EXPECT_TRUE(s.ok()) << s.status().message();
     store_ = std::move(s).value();
     ServerOptions o;
@@ -47,10 +47,10 @@ class Running {
     thread_.join();
   }
   int port() const { return port_; }
-  store::Store* store() { return store_.get(); }
+  app::Database* store() { return store_.get(); }
 
  private:
-  std::unique_ptr<store::Store> store_;
+  std::unique_ptr<app::Database> store_;
   std::unique_ptr<Server> server_;
   std::thread thread_;
   int port_ = 0;
@@ -112,8 +112,8 @@ class Client {
 class ApiFixture : public ::testing::Test {
  protected:
   void SetUp() override {
-    database_ = std::make_unique<store::testing::TestDatabase>(
-        store::testing::BackendFromEnvironment(), "web");
+    database_ =
+        std::make_unique<app::testing::TestDatabase>(app::testing::BackendFromEnvironment(), "web");
     SB_REQUIRE_DATABASE(*database_);
     dir_ = database_->dir();
     db_ = database_->locator();
@@ -133,7 +133,7 @@ class ApiFixture : public ::testing::Test {
     return j.value("id", int64_t{0});
   }
 
-  std::unique_ptr<store::testing::TestDatabase> database_;
+  std::unique_ptr<app::testing::TestDatabase> database_;
   fs::path dir_;
   std::string db_;  // the database's locator
   std::unique_ptr<Running> server_;

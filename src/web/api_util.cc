@@ -127,7 +127,7 @@ std::string AttachmentHeader(const std::string& name, const std::string& ext) {
   return "attachment; filename=\"" + file + ext + "\"";
 }
 
-json RouteSummaryJson(const store::RouteRecord& r) {
+json RouteSummaryJson(const app::RouteView& r) {
   return json{{"id", r.id},
               {"name", r.name},
               {"grade", r.grade},
@@ -150,7 +150,7 @@ json RouteSummaryJson(const store::RouteRecord& r) {
               {"strip_on", r.strip_on}};
 }
 
-json RouteJson(const store::RouteRecord& r) {
+json RouteJson(const app::RouteView& r) {
   json j = RouteSummaryJson(r);
   j["crdl"] = r.crdl;
   Result<Route> parsed = ParseCrdl(r.crdl, "route " + std::to_string(r.id));
@@ -162,13 +162,13 @@ json RouteJson(const store::RouteRecord& r) {
   }
   j["move_list"] = moves;
   json setters = json::array();
-  for (const store::RouteSetter& s : r.setters) setters.push_back(s.name);
+  for (const app::RouteSetter& s : r.setters) setters.push_back(s.name);
   j["setters"] = setters;
   if (r.is_variation) {
     json p = json::parse(r.params_json, nullptr, false);
     j["parameters"] = p.is_discarded() ? json() : p;
     json in = json::array();
-    for (const store::VariationInput& vi : r.inputs) {
+    for (const app::VariationInput& vi : r.inputs) {
       in.push_back({{"route", vi.route_id ? json(*vi.route_id) : json()}, {"name", vi.name}});
     }
     j["inputs"] = in;

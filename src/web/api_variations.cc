@@ -145,7 +145,7 @@ void PostVariation(Exchange& x) {
 void GetVariation(Exchange& x) {
   Result<int64_t> id = PathId(x.req, "no such variation");
   if (!id.ok()) return ApiError(x, id.status());
-  Result<store::RouteRecord> r = x.services.routes.Get(x.caller.viewer, *id);
+  Result<app::RouteView> r = x.services.routes.Get(x.caller.viewer, *id);
   if (!r.ok()) return ApiError(x, r.status());
   auto slot = AdmitWork(x, r->move_count * x.services.options.render_costs.plan_per_move);
   if (!slot) return;

@@ -47,13 +47,13 @@ void ApiErrorRetry(Exchange& x, const Status& s, int retry_after) {
 }
 
 // [int|null, ...] as answers.
-Result<store::Answers> AnswersField(const json& body, const char* field, size_t max_items) {
-  if (!body.contains(field)) return store::Answers();
+Result<app::Answers> AnswersField(const json& body, const char* field, size_t max_items) {
+  if (!body.contains(field)) return app::Answers();
   const json& a = body[field];
   if (!a.is_array() || a.size() > max_items) {
     return Status::InvalidInput(std::string(field) + ": expected an array of integers or nulls");
   }
-  store::Answers out;
+  app::Answers out;
   for (const json& v : a) {
     if (v.is_null()) {
       out.push_back(std::nullopt);
@@ -145,7 +145,7 @@ Result<app::StudyResults> ResultsOf(Exchange& x, const studies::AnalysisOptions&
 
 }  // namespace
 
-std::string ConsensusBlock(Exchange& x, const store::RouteRecord& route) {
+std::string ConsensusBlock(Exchange& x, const app::RouteView& route) {
   Result<app::FeedbackPage> p = x.services.climber_feedback.Page(x.caller.viewer, route.id, "");
   if (!p.ok()) {
     LogError("consensus of route " + std::to_string(route.id) + ": " + p.status().message());
@@ -180,9 +180,9 @@ void PageDrift(Exchange& x) {
 }
 
 void PageStudies(Exchange& x) {
-  std::vector<store::StudyRecord> mine;
+  std::vector<app::Study> mine;
   if (x.caller.viewer.logged_in()) {
-    Result<std::vector<store::StudyRecord>> s = x.services.studies.Mine(x.caller.viewer);
+    Result<std::vector<app::Study>> s = x.services.studies.Mine(x.caller.viewer);
     if (!s.ok()) return PageError(x, s.status());
     mine = std::move(s).value();
   }
@@ -190,7 +190,7 @@ void PageStudies(Exchange& x) {
 }
 
 void PageNewStudy(Exchange& x) {
-  Result<std::vector<store::RouteRecord>> rs = x.services.routes.List(x.caller.viewer, {});
+  Result<std::vector<app::RouteView>> rs = x.services.routes.List(x.caller.viewer, {});
   if (!rs.ok()) return PageError(x, rs.status());
   Html(x, StudyEditorHtml(x.caller.page(), *rs, std::nullopt));
 }
@@ -198,9 +198,9 @@ void PageNewStudy(Exchange& x) {
 void PageEditStudy(Exchange& x) {
   Result<int64_t> id = PathId(x.req, "No such study.");
   if (!id.ok()) return PageError(x, id.status());
-  Result<store::StudyRecord> st = x.services.studies.Owned(x.caller.viewer, *id);
+  Result<app::Study> st = x.services.studies.Owned(x.caller.viewer, *id);
   if (!st.ok()) return PageError(x, st.status());
-  Result<std::vector<store::RouteRecord>> rs = x.services.routes.List(x.caller.viewer, {});
+  Result<std::vector<app::RouteView>> rs = x.services.routes.List(x.caller.viewer, {});
   if (!rs.ok()) return PageError(x, rs.status());
   Html(x, StudyEditorHtml(x.caller.page(), *rs, *st));
 }
@@ -279,7 +279,7 @@ void PostRouteFeedback(Exchange& x) {
   Result<json> body = BodyObject(x.req);
   if (!body.ok()) return ApiError(x, body.status());
   app::FeedbackInput in;
-  Result<store::Answers> answers = AnswersField(*body, "answers", MaxItems(x));
+  Result<app::Answers> answers = AnswersField(*body, "answers", MaxItems(x));
   if (!answers.ok()) return ApiError(x, answers.status());
   in.answers = std::move(answers).value();
   if (!(*body).contains("answers")) {  // a felt grade or comment alone: every item skipped
@@ -345,7 +345,7 @@ void PostStudyResponse(Exchange& x) {
       return ApiError(x, Status::InvalidInput(where + ": expected an object"));
     }
     app::StudyRouteAnswer a;
-    Result<store::Answers> ans = AnswersField(routes[i], "answers", MaxItems(x));
+    Result<app::Answers> ans = AnswersField(routes[i], "answers", MaxItems(x));
     if (!ans.ok()) return ApiError(x, Status::InvalidInput(where + ": " + ans.status().message()));
     a.answers = std::move(ans).value();
     Result<std::optional<int>> rank = OptInt(routes[i], "rank", where);

@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "store/store.h"
+#include "app/types.h"
 #include "web/handlers.h"
 
 namespace sb::web {
@@ -37,7 +37,7 @@ void PostStudyResponse(Exchange& x);  // POST /api/s/{id}/responses
 
 // The consensus block of the route and variation pages for `route` as the
 // caller sees it ("" when it cannot be made; the reason is logged).
-std::string ConsensusBlock(Exchange& x, const store::RouteRecord& route);
+std::string ConsensusBlock(Exchange& x, const app::RouteView& route);
 
 }  // namespace sb::web
 

@@ -140,7 +140,7 @@ std::string ConsensusHtml(const app::GradeSummary& grade, int64_t route_id, bool
 
 std::string FeedbackPageHtml(const PageViewer& v, const app::FeedbackPage& page, bool owner,
                              int min_votes_shown, const std::string& tick_block) {
-  const store::RouteRecord& r = page.route;
+  const app::RouteView& r = page.route;
   const studies::Instrument& in = page.instrument;
   std::string b = kAssets;
   b += "<h1 id=\"route-name\">" + E(r.name) + "</h1>\n";
@@ -180,7 +180,7 @@ std::string FeedbackPageHtml(const PageViewer& v, const app::FeedbackPage& page,
 
 std::string SetterFeedbackHtml(const PageViewer& v, const app::SetterView& view,
                                int min_votes_shown) {
-  const store::RouteRecord& r = view.route;
+  const app::RouteView& r = view.route;
   std::string b = kAssets;
   b += "<h1>" + E(r.name) + " · climbers' answers</h1>\n";
   b += "<p><a href=\"/r/" + Id(r.id) + "\">Feedback page</a> (the route card's QR code)</p>\n";
@@ -255,7 +255,7 @@ std::string DriftPageHtml(const PageViewer& v, const app::DriftReport& report) {
   return PageLayout(v, "Grade drift", b, "climber");
 }
 
-std::string StudiesPageHtml(const PageViewer& v, const std::vector<store::StudyRecord>& studies) {
+std::string StudiesPageHtml(const PageViewer& v, const std::vector<app::Study>& studies) {
   std::string b = kAssets;
   b += "<h1>Studies</h1>\n";
   if (!v.logged_in) {
@@ -265,7 +265,7 @@ std::string StudiesPageHtml(const PageViewer& v, const std::vector<store::StudyR
   b += "<p><a href=\"/studies/new\" id=\"new-study\">New study</a></p>\n";
   b += "<table class=\"studies\" id=\"studies\"><tr><th>Study</th><th>Routes</th>"
        "<th>Responses</th><th>State</th></tr>\n";
-  for (const store::StudyRecord& s : studies) {
+  for (const app::Study& s : studies) {
     b += "<tr><td><a href=\"/studies/" + Id(s.id) + "\">" + E(s.name) +
          "</a></td><td class=\"n\">" + std::to_string(s.routes.size()) + "</td><td class=\"n\">" +
          std::to_string(s.responses) + "</td><td>" + (s.is_open ? "open" : "closed") +
@@ -275,8 +275,8 @@ std::string StudiesPageHtml(const PageViewer& v, const std::vector<store::StudyR
   return PageLayout(v, "Studies", b, "climber");
 }
 
-std::string StudyEditorHtml(const PageViewer& v, const std::vector<store::RouteRecord>& routes,
-                            const std::optional<store::StudyRecord>& study) {
+std::string StudyEditorHtml(const PageViewer& v, const std::vector<app::RouteView>& routes,
+                            const std::optional<app::Study>& study) {
   std::string b = kAssets;
   b += std::string("<h1>") + (study ? "Edit study" : "New study") + "</h1>\n";
   if (!v.logged_in) {
@@ -298,11 +298,11 @@ std::string StudyEditorHtml(const PageViewer& v, const std::vector<store::RouteR
          "<div class=\"route-picks\">\n";
     std::map<int64_t, int> chosen;
     if (study) {
-      for (const store::StudyRoute& sr : study->routes) {
+      for (const app::StudyRoute& sr : study->routes) {
         if (sr.route_id) chosen[*sr.route_id] = sr.position;
       }
     }
-    for (const store::RouteRecord& r : routes) {
+    for (const app::RouteView& r : routes) {
       auto it = chosen.find(r.id);
       b += "<label class=\"check\"><input type=\"checkbox\" class=\"study-route\" value=\"" +
            Id(r.id) + "\"" +
@@ -408,7 +408,7 @@ std::string StudyFormHtml(const PageViewer& v, const app::StudyForm& f) {
 
 std::string StudyResultsHtml(const PageViewer& v, const app::StudyResults& res,
                              const std::string& drop, bool censor, const std::string& error) {
-  const store::StudyRecord& st = res.study;
+  const app::Study& st = res.study;
   const std::string sid = Id(st.id);
   std::string b = kAssets;
   b += "<h1 id=\"study-title\">" + E(st.name) + "</h1>\n";
@@ -418,7 +418,7 @@ std::string StudyResultsHtml(const PageViewer& v, const app::StudyResults& res,
        sid + "\">/s/" + sid + "</a> · <a href=\"/studies/" + sid +
        "/edit\" id=\"edit-study\">Edit</a></p>\n";
   b += "<table class=\"labels\"><tr><th>Label</th><th>Route</th></tr>\n";
-  for (const store::StudyRoute& sr : st.routes) {
+  for (const app::StudyRoute& sr : st.routes) {
     b += "<tr><td class=\"n\">" + std::to_string(sr.position) + "</td><td>" +
          (sr.route_id ? "<a href=\"/r/" + Id(*sr.route_id) + "\">" + E(sr.name) + "</a>"
                       : E(sr.name) + " (deleted)") +

@@ -13,7 +13,7 @@
 
 #include "app/climber_feedback.h"
 #include "app/studies_service.h"
-#include "store/store.h"
+#include "app/types.h"
 #include "web/pages.h"
 
 namespace sb::web {
@@ -37,11 +37,11 @@ std::string ConsensusHtml(const app::GradeSummary& grade, int64_t route_id, bool
 // "/drift": a setter's grades against the climbers' consensus, per route.
 std::string DriftPageHtml(const PageViewer& v, const app::DriftReport& report);
 // "/studies": the viewer's studies (or a log-in prompt).
-std::string StudiesPageHtml(const PageViewer& v, const std::vector<store::StudyRecord>& studies);
+std::string StudiesPageHtml(const PageViewer& v, const std::vector<app::Study>& studies);
 // "/studies/new" and "/studies/{id}/edit": the study editor over the routes
 // the viewer can see; `study` = nullopt for a new one.
-std::string StudyEditorHtml(const PageViewer& v, const std::vector<store::RouteRecord>& routes,
-                            const std::optional<store::StudyRecord>& study);
+std::string StudyEditorHtml(const PageViewer& v, const std::vector<app::RouteView>& routes,
+                            const std::optional<app::Study>& study);
 // "/s/{id}": the climbers' one-page response under neutral labels.
 std::string StudyFormHtml(const PageViewer& v, const app::StudyForm& form);
 // "/studies/{id}": the owner's results. `drop`/`censor` echo the censoring

@@ -9,9 +9,9 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "app/database.h"
+#include "app/test_database_test_util.h"
 #include "base/files.h"
-#include "store/open.h"
-#include "store/store_test_util.h"
 #include "web/api_test_util.h"
 #include "web/server.h"
 

@@ -7,9 +7,6 @@ namespace sb::web {
 
 namespace {
 
-// The rows a wall page lists (its routes in every state).
-constexpr int kWallPageRows = 200;
-
 void Html(Exchange& x, const std::string& html) {
   x.res.SetHeader("Cache-Control", "no-store");
   x.res.SetBody(200, html, "text/html; charset=utf-8");
@@ -48,14 +45,14 @@ void PageWall(Exchange& x) {
   app::RouteQuery q;
   q.gym = wall->gym_id;
   q.wall = std::to_string(wall->id);
-  q.limit = kWallPageRows;
+  q.limit = x.services.options.limits.wall_page_rows;
   q.sort = "set";
   Result<app::RoutePage> routes = x.services.routes.Search(x.caller.viewer, q);
   if (!routes.ok()) return PageError(x, routes.status());
   Html(x, WallPage(x.caller.page(), *gym, *wall, routes->routes));
 }
 
-std::string GymBlock(Exchange& x, const store::RouteRecord& r) {
+std::string GymBlock(Exchange& x, const app::RouteView& r) {
   if (!r.gym_id) return "";
   Result<std::string> role = x.services.gyms.RoleIn(x.caller.viewer, *r.gym_id);
   const bool member = role.ok() && !role->empty();

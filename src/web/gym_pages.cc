@@ -129,7 +129,7 @@ std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<
 }
 
 std::string WallPage(const PageViewer& v, const app::Gym& gym, const app::Wall& wall,
-                     const std::vector<store::RouteRecord>& routes) {
+                     const std::vector<app::RouteView>& routes) {
   std::string b = "<p><a href=\"/gyms/" + std::to_string(gym.id) + "\">" + E(gym.name) +
                   "</a></p>\n<h1 id=\"wall-title\">" + E(wall.name) + "</h1>\n<p>" +
                   E(wall.discipline) + ", " + FormatDouble(wall.angle) + "°" +
@@ -139,7 +139,7 @@ std::string WallPage(const PageViewer& v, const app::Gym& gym, const app::Wall& 
                   "</p>\n";
   for (const char* state : {"set", "planned", "draft", "stripped"}) {
     std::string rows;
-    for (const store::RouteRecord& r : routes) {
+    for (const app::RouteView& r : routes) {
       if (r.state != state) continue;
       rows += "<tr><td><a href=\"/routes/" + std::to_string(r.id) + "\">" + E(r.name) +
               "</a></td><td>" + E(r.grade) + "</td><td>" + E(r.colour) + "</td><td>" +
@@ -158,8 +158,8 @@ std::string WallPage(const PageViewer& v, const app::Gym& gym, const app::Wall& 
   return PageLayout(v, wall.name, b + Script());
 }
 
-std::string RouteGymBlock(const store::RouteRecord& r,
-                          const std::vector<app::HistoryEntry>& history, bool can_set) {
+std::string RouteGymBlock(const app::RouteView& r, const std::vector<app::HistoryEntry>& history,
+                          bool can_set) {
   std::string b = "<section class=\"gym-block\" id=\"route-gym\"><h2>On the wall</h2>\n<dl>";
   b += "<dt>State</dt><dd id=\"route-state\">" + E(StateName(r.state)) + "</dd>";
   b += "<dt>Wall</dt><dd id=\"route-wall\">" +
@@ -168,7 +168,7 @@ std::string RouteGymBlock(const store::RouteRecord& r,
                   : E(r.wall.empty() ? "—" : r.wall)) +
        "</dd>";
   std::string setters;
-  for (const store::RouteSetter& s : r.setters) setters += (setters.empty() ? "" : ", ") + s.name;
+  for (const app::RouteSetter& s : r.setters) setters += (setters.empty() ? "" : ", ") + s.name;
   b += "<dt>Setters</dt><dd id=\"route-setters\">" + E(setters.empty() ? "—" : setters) + "</dd>";
   if (!r.set_on.empty()) {
     b += std::string("<dt>") + (r.state == "planned" ? "Planned for" : "Set") +

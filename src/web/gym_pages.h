@@ -24,11 +24,11 @@ std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<
 // "/walls/{id}": the wall's routes grouped by state (on the wall, planned,
 // drafts, stripped), a form to plan a route on it for setters.
 std::string WallPage(const PageViewer& v, const app::Gym& gym, const app::Wall& wall,
-                     const std::vector<store::RouteRecord>& routes);
+                     const std::vector<app::RouteView>& routes);
 // The block a route page shows for a route of a gym: state, wall, setters,
 // set / strip dates and history; with `can_set`, a form to change them.
-std::string RouteGymBlock(const store::RouteRecord& r,
-                          const std::vector<app::HistoryEntry>& history, bool can_set);
+std::string RouteGymBlock(const app::RouteView& r, const std::vector<app::HistoryEntry>& history,
+                          bool can_set);
 
 }  // namespace sb::web
 

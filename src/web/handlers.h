@@ -10,8 +10,8 @@
 #include <string>
 
 #include "app/services.h"
+#include "app/types.h"
 #include "base/status.h"
-#include "store/store.h"
 #include "web/http.h"
 #include "web/pages.h"
 #include "web/server.h"
@@ -85,8 +85,8 @@ Result<app::RouteQuery> RouteQueryOf(const Request& req);
 // `name` (letters, digits, '-' and '_' kept, other runs become '-'; "route"
 // when nothing is left) and `ext` (".pdf").
 std::string AttachmentHeader(const std::string& name, const std::string& ext);
-nlohmann::json RouteSummaryJson(const store::RouteRecord& r);
-nlohmann::json RouteJson(const store::RouteRecord& r);
+nlohmann::json RouteSummaryJson(const app::RouteView& r);
+nlohmann::json RouteJson(const app::RouteView& r);
 
 // ---- handlers -----------------------------------------------------------
 // api_accounts.cc
@@ -127,7 +127,7 @@ void PageGym(Exchange& x);
 void PageWall(Exchange& x);
 // The gym block of a route page ("" for a route of no gym, or a draft to a
 // non-member).
-std::string GymBlock(Exchange& x, const store::RouteRecord& r);
+std::string GymBlock(Exchange& x, const app::RouteView& r);
 // api_variations.cc
 void PostVariation(Exchange& x);
 void GetVariation(Exchange& x);

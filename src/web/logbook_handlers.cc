@@ -43,7 +43,7 @@ std::string Fixed(double v) {
   return buf;
 }
 
-json TickJson(const store::TickRecord& t) {
+json TickJson(const app::Tick& t) {
   json j{{"id", t.id},
          {"route", t.route_id},
          {"day", t.day},
@@ -114,16 +114,16 @@ std::string AscentHtml(const app::AscentGrade& a) {
 }
 
 // The held ticks of a route with accept/discard, for its setters.
-std::string HeldHtml(int64_t route_id, const std::vector<store::TickRecord>& ticks) {
+std::string HeldHtml(int64_t route_id, const std::vector<app::Tick>& ticks) {
   std::string b;
   int held = 0;
-  for (const store::TickRecord& t : ticks) held += t.state == "held";
+  for (const app::Tick& t : ticks) held += t.state == "held";
   if (held == 0) return b;
   b += "<section id=\"held-ticks\" class=\"no-print\" data-route=\"" + Id(route_id) +
        "\"><h2>Held ticks (" + std::to_string(held) +
        ")</h2>\n<p class=\"msg\">A burst of new identities from one address: these count "
        "nowhere until you accept them.</p>\n<ul>\n";
-  for (const store::TickRecord& t : ticks) {
+  for (const app::Tick& t : ticks) {
     if (t.state != "held") continue;
     b += "<li class=\"held-tick\" data-tick=\"" + Id(t.id) + "\">" + E(t.day) + " " +
          E(t.outcome) + (t.attempts ? " (" + std::to_string(*t.attempts) + " tries)" : "") +
@@ -185,11 +185,10 @@ void PostTick(Exchange& x) {
 void GetRouteTicks(Exchange& x) {
   Result<int64_t> id = PathId(x.req, "no such route");
   if (!id.ok()) return ApiError(x, id.status());
-  Result<std::vector<store::TickRecord>> ticks =
-      x.services.logbook.ForSetters(x.caller.viewer, *id);
+  Result<std::vector<app::Tick>> ticks = x.services.logbook.ForSetters(x.caller.viewer, *id);
   if (!ticks.ok()) return ApiError(x, ticks.status());
   json arr = json::array();
-  for (const store::TickRecord& t : *ticks) arr.push_back(TickJson(t));
+  for (const app::Tick& t : *ticks) arr.push_back(TickJson(t));
   ReplyJson(x.res, 200, json{{"route", *id}, {"ticks", arr}});
 }
 
@@ -210,7 +209,7 @@ void GetLogbook(Exchange& x) {
   Result<app::LogbookView> v = x.services.logbook.Mine(x.caller.viewer, Token(x));
   if (!v.ok()) return ApiError(x, v.status());
   json ticks = json::array();
-  for (const store::TickRecord& t : v->ticks) {
+  for (const app::Tick& t : v->ticks) {
     json j = TickJson(t);
     j["route_name"] = v->route_names[t.route_id];
     ticks.push_back(j);
@@ -243,7 +242,7 @@ void PageLogbook(Exchange& x) {
   } else {
     b += "<table id=\"ticks\"><tr><th>Day</th><th>Route</th><th>Tick</th><th>Stars</th>"
          "<th>Felt</th></tr>\n";
-    for (const store::TickRecord& t : v->ticks) {
+    for (const app::Tick& t : v->ticks) {
       b += "<tr class=\"tick\" data-route=\"" + Id(t.route_id) + "\"><td>" + E(t.day) +
            "</td><td><a href=\"/r/" + Id(t.route_id) + "\">" + E(v->route_names[t.route_id]) +
            "</a></td><td class=\"outcome\">" + E(t.outcome) +
@@ -284,7 +283,7 @@ void PageLogbook(Exchange& x) {
                 "text/html; charset=utf-8");
 }
 
-std::string AscentBlock(Exchange& x, const store::RouteRecord& route) {
+std::string AscentBlock(Exchange& x, const app::RouteView& route) {
   if (!route.gym_id) return "";
   Result<app::AscentGrade> a = x.services.logbook.Ascent(x.caller.viewer, route.id);
   if (!a.ok()) {
@@ -293,14 +292,13 @@ std::string AscentBlock(Exchange& x, const store::RouteRecord& route) {
   }
   std::string b = "<script src=\"/static/logbook.js\" defer></script>\n" + AscentHtml(*a);
   if (x.caller.viewer.logged_in()) {
-    Result<std::vector<store::TickRecord>> ticks =
-        x.services.logbook.ForSetters(x.caller.viewer, route.id);
+    Result<std::vector<app::Tick>> ticks = x.services.logbook.ForSetters(x.caller.viewer, route.id);
     if (ticks.ok()) b += HeldHtml(route.id, *ticks);
   }
   return b;
 }
 
-std::string TickBlock(Exchange& x, const store::RouteRecord& route) {
+std::string TickBlock(Exchange& x, const app::RouteView& route) {
   if (!route.gym_id) return "";
   std::string b = AscentBlock(x, route);
   b += "<form id=\"tick-form\" class=\"climber-form\" data-route=\"" + Id(route.id) + "\">\n";

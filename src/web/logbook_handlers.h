@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "store/store.h"
+#include "app/types.h"
 #include "web/handlers.h"
 
 namespace sb::web {
@@ -21,10 +21,10 @@ void PageLogbook(Exchange& x);        // GET /logbook
 
 // The ascent grade of a route (value, 80% interval, ticks) as HTML, for the
 // route and variation pages ("" when it cannot be made; logged).
-std::string AscentBlock(Exchange& x, const store::RouteRecord& route);
+std::string AscentBlock(Exchange& x, const app::RouteView& route);
 // The tick form of /r/{id} (with the ascent grade and, for the route's
 // setters, its held ticks with accept/discard), placed before the survey.
-std::string TickBlock(Exchange& x, const store::RouteRecord& route);
+std::string TickBlock(Exchange& x, const app::RouteView& route);
 // After a sign-in as `user_id`: moves the device cookie's ticks into the
 // climber's logbook (failures are logged, never fail the sign-in).
 void MergeDeviceTicks(Exchange& x, int64_t user_id);

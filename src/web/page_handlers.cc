@@ -57,7 +57,7 @@ void PageNewRoute(Exchange& x) { Html(x, EditorPage(x.caller.page(), std::nullop
 void PageEditRoute(Exchange& x) {
   Result<int64_t> id = PathId(x.req, "No such route.");
   if (!id.ok()) return PageError(x, id.status());
-  Result<store::RouteRecord> r = x.services.routes.GetOwned(x.caller.viewer, *id);
+  Result<app::RouteView> r = x.services.routes.GetOwned(x.caller.viewer, *id);
   // Not logged in: the editor asks to log in first.
   if (r.status().code() == Status::Code::kUnauthenticated) {
     return Html(x, EditorPage(x.caller.page(), std::nullopt));
@@ -74,7 +74,7 @@ void PageEditRoute(Exchange& x) {
 void PageRoute(Exchange& x) {
   Result<int64_t> id = PathId(x.req, "No such route.");
   if (!id.ok()) return PageError(x, id.status());
-  Result<store::RouteRecord> r = x.services.routes.Get(x.caller.viewer, *id);
+  Result<app::RouteView> r = x.services.routes.Get(x.caller.viewer, *id);
   if (!r.ok()) return PageError(x, r.status());
   if (r->is_variation) {
     x.res.status = 302;
@@ -94,10 +94,10 @@ void PageRoute(Exchange& x) {
 void PageVary(Exchange& x) {
   // The chosen routes, in the order the URL names them, however old; the
   // ones the viewer may not see (or that are gone) are reported, not shown.
-  std::vector<store::RouteRecord> chosen;
+  std::vector<app::RouteView> chosen;
   std::vector<int64_t> missing;
   for (int64_t id : SelectedIds(x.req.Query("routes").value_or(""))) {
-    Result<store::RouteRecord> r = x.services.routes.Get(x.caller.viewer, id);
+    Result<app::RouteView> r = x.services.routes.Get(x.caller.viewer, id);
     if (r.ok()) {
       chosen.push_back(std::move(r).value());
     } else {
@@ -128,7 +128,7 @@ std::optional<AdmittedPlan> AdmittedPlanOf(Exchange& x, double base, double per_
     return std::nullopt;
   }
   // The stored move count prices the work before the plan is (re)built.
-  Result<store::RouteRecord> r = x.services.routes.Get(x.caller.viewer, *id);
+  Result<app::RouteView> r = x.services.routes.Get(x.caller.viewer, *id);
   if (!r.ok() || !r->is_variation) {
     PageError(x, r.ok() ? Status::NotFound("No such variation.") : r.status());
     return std::nullopt;
@@ -147,7 +147,7 @@ std::optional<AdmittedPlan> AdmittedPlanOf(Exchange& x, double base, double per_
 namespace {
 
 // What the card prints about a stored variation besides its plan.
-plan::CardInfo CardInfoOf(Exchange& x, const store::RouteRecord& rec) {
+plan::CardInfo CardInfoOf(Exchange& x, const app::RouteView& rec) {
   plan::CardInfo info;
   info.name = rec.name;
   info.grade = rec.grade;

@@ -63,9 +63,9 @@ std::string Layout(const PageViewer& v, const std::string& title, const std::str
   return h;
 }
 
-std::string RouteRows(const std::vector<store::RouteRecord>& routes) {
+std::string RouteRows(const std::vector<app::RouteView>& routes) {
   std::string h;
-  for (const store::RouteRecord& r : routes) {
+  for (const app::RouteView& r : routes) {
     std::string url =
         r.is_variation ? "/variations/" + std::to_string(r.id) : "/routes/" + std::to_string(r.id);
     h += "<tr><td><a href=\"" + url + "\">" + E(r.name) + "</a>";
@@ -244,7 +244,7 @@ std::string LoginPage(const PageViewer& v, bool signup) {
   return Layout(v, title, b);
 }
 
-std::string EditorPage(const PageViewer& v, const std::optional<store::RouteRecord>& route) {
+std::string EditorPage(const PageViewer& v, const std::optional<app::RouteView>& route) {
   std::string b;
   if (!v.logged_in) {
     b = "<h1>Route editor</h1><p>Please <a href=\"/login\">log in</a> to add or edit routes.</p>";
@@ -272,7 +272,7 @@ std::string EditorPage(const PageViewer& v, const std::optional<store::RouteReco
   return Layout(v, title, b, "page-editor");
 }
 
-std::string RoutePage(const PageViewer& v, const store::RouteRecord& r, bool can_change,
+std::string RoutePage(const PageViewer& v, const app::RouteView& r, bool can_change,
                       const std::vector<std::string>& readings) {
   std::string b = "<h1>" + E(r.name) + "</h1>\n";
   b += "<p class=\"byline\">";
@@ -307,7 +307,7 @@ namespace {
 
 // One route of the vary page's picker: in the chosen list (with its order
 // buttons) or in the search results (with an add button).
-std::string PickItem(const store::RouteRecord& r, bool chosen) {
+std::string PickItem(const app::RouteView& r, bool chosen) {
   std::string id = std::to_string(r.id);
   std::string h = "<li data-id=\"" + id + "\" data-moves=\"" + std::to_string(r.move_count) +
                   "\" data-name=\"" + E(r.name) + "\"><span class=\"pick-name\">" + E(r.name) +
@@ -327,7 +327,7 @@ std::string PickItem(const store::RouteRecord& r, bool chosen) {
 
 }  // namespace
 
-std::string VaryPage(const PageViewer& v, const std::vector<store::RouteRecord>& chosen,
+std::string VaryPage(const PageViewer& v, const std::vector<app::RouteView>& chosen,
                      const std::vector<int64_t>& missing, const app::RoutePage& found,
                      const std::string& find) {
   std::string b = "<h1>Vary routes</h1>\n";
@@ -339,7 +339,7 @@ std::string VaryPage(const PageViewer& v, const std::vector<store::RouteRecord>&
   b += "<form id=\"vary-form\" class=\"vary\">\n<fieldset><legend>1. Routes</legend>\n"
        "<p class=\"hint\">The variation follows the chosen routes in this order; move them with "
        "↑ and ↓.</p>\n<ol class=\"chosen\" id=\"chosen\">\n";
-  for (const store::RouteRecord& r : chosen) b += PickItem(r, true);
+  for (const app::RouteView& r : chosen) b += PickItem(r, true);
   b += "</ol>\n";
   if (chosen.empty()) b += "<p class=\"empty\" id=\"chosen-empty\">No route chosen yet: find "
                            "one below.</p>\n";
@@ -355,7 +355,7 @@ std::string VaryPage(const PageViewer& v, const std::vector<store::RouteRecord>&
        E(find) + "\"></label> <span class=\"msg\" id=\"found-count\">" +
        std::to_string(found.total) + " routes</span>\n<ul class=\"found\" id=\"found\" "
        "data-total=\"" + std::to_string(found.total) + "\">\n";
-  for (const store::RouteRecord& r : found.routes) b += PickItem(r, false);
+  for (const app::RouteView& r : found.routes) b += PickItem(r, false);
   b += "</ul><button type=\"button\" id=\"found-more\"" +
        std::string(static_cast<int64_t>(found.routes.size()) < found.total ? "" : " hidden") +
        ">More routes</button></div>\n</fieldset>\n";
@@ -445,9 +445,8 @@ std::string VaryPage(const PageViewer& v, const std::vector<store::RouteRecord>&
   return Layout(v, "Vary", b, "page-vary");
 }
 
-std::string PlanPage(const PageViewer& v, const store::RouteRecord& rec,
-                     const plan::RoutePlan& plan, const std::string& smoothing_note,
-                     const plan::CardInfo& card) {
+std::string PlanPage(const PageViewer& v, const app::RouteView& rec, const plan::RoutePlan& plan,
+                     const std::string& smoothing_note, const plan::CardInfo& card) {
   const chaos::Variation& var = plan.variation;
   std::string id = std::to_string(rec.id);
   const std::vector<plan::CardRow> rows = plan::CardRows(plan);

@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "app/routes.h"
+#include "app/types.h"
 #include "plan/card.h"
 #include "plan/plan.h"
-#include "store/store.h"
 
 namespace sb::web {
 
@@ -31,26 +31,25 @@ std::string RouteListPage(const PageViewer& v, const app::RoutePage& page,
 // "/login" or (signup) "/signup": the account form.
 std::string LoginPage(const PageViewer& v, bool signup);
 // The CRDL editor with live feedback; `route` = nullopt for a new route.
-std::string EditorPage(const PageViewer& v, const std::optional<store::RouteRecord>& route);
+std::string EditorPage(const PageViewer& v, const std::optional<app::RouteView>& route);
 // "/routes/{id}". `can_change` = the viewer may edit and delete it (the
 // ownership rule, app::IsOwner). `readings[i]` = how the grammar read move i
 // ("" when it does not parse; an empty vector when the grammar is not
 // available). Crux moves are marked.
-std::string RoutePage(const PageViewer& v, const store::RouteRecord& route, bool can_change,
+std::string RoutePage(const PageViewer& v, const app::RouteView& route, bool can_change,
                       const std::vector<std::string>& readings = {});
 // "/vary": `chosen` = the routes named in the URL, in that order (always
 // shown and chosen); `missing` = ids named there the viewer cannot see;
 // `found` = the first page of the picker's search for `find`.
-std::string VaryPage(const PageViewer& v, const std::vector<store::RouteRecord>& chosen,
+std::string VaryPage(const PageViewer& v, const std::vector<app::RouteView>& chosen,
                      const std::vector<int64_t>& missing, const app::RoutePage& found,
                      const std::string& find);
 // "/variations/{id}": the route plan (crux moves marked). `smoothing_note`
 // explains missing smoothing ("" when none is needed).
 // The page is the route card when printed (plan/card.h: same rows, marks,
 // legend and parameters as the server PDF and SVG; `card.url` for the QR).
-std::string PlanPage(const PageViewer& v, const store::RouteRecord& record,
-                     const plan::RoutePlan& plan, const std::string& smoothing_note,
-                     const plan::CardInfo& card);
+std::string PlanPage(const PageViewer& v, const app::RouteView& record, const plan::RoutePlan& plan,
+                     const std::string& smoothing_note, const plan::CardInfo& card);
 // "/import": CRDL and CSV import, CSV export links.
 std::string ImportPage(const PageViewer& v);
 // The page frame every page shares (head, navigation, footer) around

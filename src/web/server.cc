@@ -7,7 +7,6 @@
 #include "base/files.h"
 #include "base/log.h"
 #include "base/text.h"
-#include "store/auth.h"
 #include "web/climber_handlers.h"
 #include "web/handlers.h"
 #include "web/http_transport.h"
@@ -209,14 +208,12 @@ struct Server::Impl {
   // Host names this server answers for (lower case; see ServerOptions).
   std::vector<std::string> hosts;
 
-  Impl(store::Store* store, ServerOptions o)
+  Impl(app::Database* store, ServerOptions o)
       : options(std::move(o)),
         services(store, options.app),
-        transport(TransportFor(options),
-                  [this](const Request& q, Response* s) { Handle(q, s); },
-                  [this](const Request& q, int status, Response* s) {
-                    TransportError(q, status, s);
-                  }) {
+        transport(
+            TransportFor(options), [this](const Request& q, Response* s) { Handle(q, s); },
+            [this](const Request& q, int status, Response* s) { TransportError(q, status, s); }) {
     for (const Endpoint& e : kEndpoints) router.Add(e.method, e.pattern, e.handler);
     for (const std::string& h : options.allowed_hosts) AllowHost(h);
     if (!options.base_url.empty()) AllowHost(HostOfUrl(options.base_url));
@@ -234,7 +231,7 @@ struct Server::Impl {
     c.viewer.address = req.remote_address;
     std::string token = req.Cookie(kSessionCookie);
     if (token.empty()) return c;
-    Result<store::Session> s = services.accounts.SessionOf(token);
+    Result<app::Session> s = services.accounts.SessionOf(token);
     if (!s.ok()) {
       if (s.status().code() != Status::Code::kNotFound) LogError(s.status().message());
       return c;
@@ -267,7 +264,7 @@ struct Server::Impl {
         return Status::InvalidInput("Content-Type must be application/json");
       }
     }
-    if (c.viewer.logged_in() && !store::TokensEqual(req.Header("x-csrf-token"), c.csrf)) {
+    if (c.viewer.logged_in() && !app::TokensEqual(req.Header("x-csrf-token"), c.csrf)) {
       return Status::Permission("missing or wrong X-CSRF-Token header");
     }
     return Status::Ok();
@@ -331,7 +328,7 @@ struct Server::Impl {
   }
 };
 
-Server::Server(store::Store* store, ServerOptions options)
+Server::Server(app::Database* store, ServerOptions options)
     : impl_(std::make_unique<Impl>(store, std::move(options))) {}
 
 Server::~Server() { Stop(); }

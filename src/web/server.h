@@ -3,8 +3,8 @@
 //
 // Typical use (strangebeta serve):
 //
-//   auto store = store::OpenSqliteStore("var/strangebeta.db");
-//   web::Server server(store->get(), web::ServerOptions{});
+//   auto db = app::OpenDatabase("var/strangebeta.db");
+//   web::Server server(db->get(), web::ServerOptions{});
 //   Result<int> port = server.Bind("127.0.0.1", 8080);   // 0 = any free port
 //   server.Run();                                          // blocks until Stop()
 //
@@ -19,9 +19,10 @@
 #include <string>
 #include <vector>
 
+#include "app/database.h"
 #include "app/options.h"
+#include "app/types.h"
 #include "base/status.h"
-#include "store/store.h"
 #include "web/http.h"
 #include "web/http_transport.h"
 
@@ -70,11 +71,11 @@ std::string HostOfUrl(const std::string& url);
 // "" when none exists.
 std::string DefaultStaticDir();
 
-// The HTTP server. Does not own `store`, which must outlive it. Handlers run
-// on a worker pool; the store must be thread-safe (every Store is).
+// The HTTP server. Does not own `db`, which must outlive it (app::Database
+// is thread-safe). Handlers run on a worker pool.
 class Server {
  public:
-  Server(store::Store* store, ServerOptions options);
+  Server(app::Database* db, ServerOptions options);
   ~Server();
   Server(const Server&) = delete;
   Server& operator=(const Server&) = delete;

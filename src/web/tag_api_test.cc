@@ -15,8 +15,8 @@
 #include <thread>
 #include <vector>
 
-#include "store/open.h"
-#include "store/store_test_util.h"
+#include "app/database.h"
+#include "app/test_database_test_util.h"
 #include "web/server.h"
 
 namespace sb::web {
@@ -79,10 +79,10 @@ class Client {
 class TagApiTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    database_ = std::make_unique<store::testing::TestDatabase>(
-        store::testing::BackendFromEnvironment(), "tag");
+    database_ =
+        std::make_unique<app::testing::TestDatabase>(app::testing::BackendFromEnvironment(), "tag");
     SB_REQUIRE_DATABASE(*database_);
-    Result<std::unique_ptr<store::Store>> s = store::OpenStore(database_->locator());
+    Result<std::unique_ptr<app::Database>> s = app::OpenDatabase(database_->locator());
     ASSERT_TRUE(s.ok()) << s.status().message();
     store_ = std::move(s).value();
     ServerOptions o;
@@ -106,8 +106,8 @@ class TagApiTest : public ::testing::Test {
     database_.reset();
   }
 
-  std::unique_ptr<store::testing::TestDatabase> database_;
-  std::unique_ptr<store::Store> store_;
+  std::unique_ptr<app::testing::TestDatabase> database_;
+  std::unique_ptr<app::Database> store_;
   std::unique_ptr<Server> server_;
   std::thread thread_;
   int port_ = 0;

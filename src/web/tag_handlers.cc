@@ -18,9 +18,9 @@ plan::Paper TagPaperOf(const Request& req) {
 }
 
 // The route of the path's id, visible to the caller, and its tag.
-Result<std::pair<store::RouteRecord, plan::TagInfo>> TagOfPath(Exchange& x) {
+Result<std::pair<app::RouteView, plan::TagInfo>> TagOfPath(Exchange& x) {
   SB_ASSIGN_OR_RETURN(int64_t id, PathId(x.req, "No such route."));
-  SB_ASSIGN_OR_RETURN(store::RouteRecord r, x.services.routes.Get(x.caller.viewer, id));
+  SB_ASSIGN_OR_RETURN(app::RouteView r, x.services.routes.Get(x.caller.viewer, id));
   plan::TagInfo tag = app::TagInfoOf(r, ShortLink(x, r.id));
   return std::make_pair(std::move(r), std::move(tag));
 }
@@ -64,8 +64,8 @@ void GetTagSheetPdf(Exchange& x) {
     }
     ids.push_back(*id);
   }
-  Result<std::vector<store::RouteRecord>> routes = app::TagSheetRoutes(
-      x.services.routes, x.caller.viewer, ids, x.services.options.limits);
+  Result<std::vector<app::RouteView>> routes =
+      app::TagSheetRoutes(x.services.routes, x.caller.viewer, ids, x.services.options.limits);
   if (!routes.ok()) return PageError(x, routes.status());
   const app::RenderCosts& c = x.services.options.render_costs;
   std::optional<app::WorkBudget::Slot> slot =
@@ -73,7 +73,7 @@ void GetTagSheetPdf(Exchange& x) {
   if (!slot) return;
   std::vector<plan::TagInfo> tags;
   tags.reserve(routes->size());
-  for (const store::RouteRecord& r : *routes) tags.push_back(app::TagInfoOf(r, ShortLink(x, r.id)));
+  for (const app::RouteView& r : *routes) tags.push_back(app::TagInfoOf(r, ShortLink(x, r.id)));
   const plan::Paper paper = TagPaperOf(x.req);
   Result<std::string> pdf = plan::RenderTagSheetPdf(tags, paper);
   if (!pdf.ok()) return PageError(x, pdf.status());
@@ -83,7 +83,7 @@ void GetTagSheetPdf(Exchange& x) {
 void GetGymTagSheetPdf(Exchange& x) {
   std::optional<int64_t> gym = ParseId(x.req.PathParam("id"));
   if (!gym) return ApiError(x, Status::NotFound("no such gym"));
-  Result<std::vector<store::RouteRecord>> routes = app::GymTagSheetRoutes(
+  Result<std::vector<app::RouteView>> routes = app::GymTagSheetRoutes(
       x.services.routes, x.caller.viewer, *gym, x.req.Query("wall").value_or(""),
       x.req.Query("state").value_or(""), x.services.options.limits);
   if (!routes.ok()) return ApiError(x, routes.status());
@@ -96,7 +96,7 @@ void GetGymTagSheetPdf(Exchange& x) {
   if (!slot) return;
   std::vector<plan::TagInfo> tags;
   tags.reserve(routes->size());
-  for (const store::RouteRecord& r : *routes) tags.push_back(app::TagInfoOf(r, ShortLink(x, r.id)));
+  for (const app::RouteView& r : *routes) tags.push_back(app::TagInfoOf(r, ShortLink(x, r.id)));
   const plan::Paper paper = TagPaperOf(x.req);
   Result<std::string> pdf = plan::RenderTagSheetPdf(tags, paper);
   if (!pdf.ok()) return ApiError(x, pdf.status());
