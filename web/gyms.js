@@ -20,6 +20,19 @@
     return { status: res.status, data };
   }
 
+  // "V3: 2, V4: 1" -> {"V3": 2, "V4": 1} (data-map fields; the dashboard's targets).
+  function mapOf(text) {
+    const out = {};
+    for (const part of text.split(',')) {
+      const i = part.lastIndexOf(':');
+      if (i < 0) continue;
+      const key = part.slice(0, i).trim();
+      const n = Number(part.slice(i + 1).trim());
+      if (key) out[key] = Number.isNaN(n) ? part.slice(i + 1).trim() : n;
+    }
+    return out;
+  }
+
   function fieldsOf(form) {
     const body = {};
     for (const el of form.elements) {
@@ -30,6 +43,7 @@
       if (el.type === 'number' && v !== '') v = Number(v);
       else if (el.dataset.list !== undefined) v = v === '' ? [] : v.split(',').map((s) => s.trim()).filter(Boolean);
       else if (el.dataset.int !== undefined && v !== '') v = Number(v);
+      else if (el.dataset.map !== undefined) v = mapOf(v);
       body[el.name] = v;
     }
     return body;

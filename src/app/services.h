@@ -10,6 +10,7 @@
 #include "app/budget.h"
 #include "app/climber_feedback.h"
 #include "app/clock.h"
+#include "app/dashboard.h"
 #include "app/gyms.h"
 #include "app/logbook.h"
 #include "app/maps.h"
@@ -40,6 +41,8 @@ struct Services {
   Gyms gyms;
   // The climbers' logbook and ascent grades (issue 23).
   Logbook logbook;
+  // The setting dashboard and wall targets (issue 22).
+  Dashboard dashboard;
 };
 
 }  // namespace sb::app

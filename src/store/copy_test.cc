@@ -1,5 +1,6 @@
 #include "store/copy.h"
 #include "store/gym_store.h"
+#include "store/target_store.h"
 #include "store/tick_store.h"
 
 #include <gtest/gtest.h>
@@ -100,6 +101,12 @@ void Fill(Store& s) {
   t.felt_value = 0.1 + 0.2;
   t.created_at = t.updated_at = "2026-11-20 10:00:00";
   ASSERT_TRUE(ts->PutTick(t).ok());
+  // The wall's targets (schema 8), with a share that is not a short decimal.
+  TargetStore* targets = TargetStoreOf(&s);
+  ASSERT_NE(targets, nullptr);
+  ASSERT_TRUE(
+      targets->SetWallTargets(wall, {{0, "grade", "V3", 2}, {0, "style", "crimp", 0.1 + 0.2}})
+          .ok());
 }
 
 // Copies through every pair of backends: SQLite -> PostgreSQL -> SQLite (and
@@ -158,6 +165,13 @@ TEST_P(CopyTest, RoundTripKeepsRowsIdsAndCounters) {
   ASSERT_TRUE(rs.ok() && rs->size() == 1u);
   EXPECT_EQ((*rs)[0].ability, 1.0 / 3.0);
   EXPECT_EQ((*rs)[0].answers.size(), 2u);
+  Result<std::vector<GymRecord>> gyms = GymStoreOf(s->get())->ListGyms();
+  ASSERT_TRUE(gyms.ok() && gyms->size() == 1u);
+  Result<std::vector<TargetRecord>> targets =
+      TargetStoreOf(s->get())->GymTargets((*gyms)[0].id);
+  ASSERT_TRUE(targets.ok()) << targets.status().message();
+  ASSERT_EQ(targets->size(), 2u);
+  EXPECT_EQ((*targets)[1].value, 0.1 + 0.2);
   EXPECT_EQ((*(*s)->RecordAttempts({"acct:bob"}, 4'000'000'000, 0))[0].count, 2);
   Result<int64_t> next = (*s)->InsertRoute(Route(std::nullopt, "New"));
   ASSERT_TRUE(next.ok());

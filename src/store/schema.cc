@@ -380,6 +380,23 @@ CREATE INDEX ticks_climber ON ticks(climber);
 CREATE INDEX ticks_user ON ticks(user_id);
 )sql"},
        }},
+      // Schema 8: the head setter's targets per wall (issue 22, docs/setting.md
+      // "The dashboard"): kind 'grade' = a count of routes of band `name`
+      // (as the gym writes it, e.g. "V3"); kind 'style' = a share 0..1 of
+      // the wall's moves having style `name` (language/styles.h).
+      {"wall targets (the setting dashboard)",
+       {
+           {Only::kBoth, R"sql(
+CREATE TABLE wall_targets (
+  id      {serial},
+  wall_id {int64} NOT NULL REFERENCES walls(id) ON DELETE CASCADE,
+  kind    TEXT NOT NULL CHECK (kind IN ('grade', 'style')),
+  name    TEXT NOT NULL,
+  value   {real} NOT NULL,
+  UNIQUE (wall_id, kind, name)
+);
+)sql"},
+       }},
   };
   return kMigrations;
 }
@@ -408,7 +425,7 @@ const std::vector<std::string>& SchemaTables() {
       "walls",         "circuits",     "routes",          "variation_inputs",
       "route_sources", "feedback",     "studies",         "study_routes",  "study_responses",
       "study_answers", "study_demographics", "route_setters", "route_history",
-      "ticks"};
+      "ticks",         "wall_targets"};
   return kTables;
 }
 

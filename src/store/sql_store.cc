@@ -17,6 +17,8 @@
 #include "store/schema.h"
 #include "store/sql.h"
 #include "store/sqlite_store.h"
+#include "store/target_sql.h"
+#include "store/target_store.h"
 #include "store/tick_sql.h"
 #include "store/tick_store.h"
 
@@ -178,7 +180,7 @@ VariationInput ReadInput(const Rows& s, size_t i, size_t first) {
   return vi;
 }
 
-class SqlStore final : public Store, public GymStore, public TickStore {
+class SqlStore final : public Store, public GymStore, public TickStore, public TargetStore {
  public:
   explicit SqlStore(std::unique_ptr<sql::Pool> pool)
       : pool_(std::move(pool)), pg_(pool_->dialect() == sql::Dialect::kPostgres) {}
@@ -767,6 +769,21 @@ class SqlStore final : public Store, public GymStore, public TickStore {
     return ticks_sql::NewIdentitiesSince(*c, route_id, origin, since);
   }
 
+  // -- wall targets (TargetStore, store/target_sql.cc) -----------------------
+
+  Status SetWallTargets(int64_t wall_id, const std::vector<TargetRecord>& targets) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return targets_sql::SetWallTargets(*c, wall_id, targets);
+  }
+  Result<std::vector<TargetRecord>> WallTargets(int64_t wall_id) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return targets_sql::WallTargets(*c, wall_id);
+  }
+  Result<std::vector<TargetRecord>> GymTargets(int64_t gym_id) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return targets_sql::GymTargets(*c, gym_id);
+  }
+
   // -- gyms (GymStore) ------------------------------------------------------
 
   Result<int64_t> CreateGym(const std::string& name, std::optional<int64_t> head) override {
@@ -1334,6 +1351,8 @@ Result<std::unique_ptr<Store>> StoreOver(Result<std::unique_ptr<sql::Pool>> pool
 GymStore* GymStoreOf(Store* store) { return dynamic_cast<GymStore*>(store); }
 
 TickStore* TickStoreOf(Store* store) { return dynamic_cast<TickStore*>(store); }
+
+TargetStore* TargetStoreOf(Store* store) { return dynamic_cast<TargetStore*>(store); }
 
 bool IsDatabaseUrl(std::string_view db) {
   size_t colon = db.find(':');

@@ -8,6 +8,7 @@
 #include "base/log.h"
 #include "base/text.h"
 #include "web/climber_handlers.h"
+#include "web/dashboard_handlers.h"
 #include "web/handlers.h"
 #include "web/http_transport.h"
 #include "web/logbook_handlers.h"
@@ -62,6 +63,10 @@ const Endpoint kEndpoints[] = {
     {"GET", "/gyms", PageGyms},
     {"GET", "/gyms/{id}", PageGym},
     {"GET", "/walls/{id}", PageWall},
+    // The setting dashboard (dashboard_handlers.cc, issue 22).
+    {"GET", "/api/gyms/{id}/dashboard", GetDashboard},
+    {"PUT", "/api/gyms/{id}/walls/{wall}/targets", PutWallTargets},
+    {"GET", "/gyms/{id}/dashboard", PageDashboard},
     // Climbers' feedback and studies (climber_handlers.cc).
     {"POST", "/api/r/{id}/feedback", PostRouteFeedback},
     {"POST", "/api/studies", PostStudy},

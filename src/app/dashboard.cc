@@ -1,0 +1,631 @@
+#include "app/dashboard.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <set>
+#include <tuple>
+#include <utility>
+
+#include "base/text.h"
+#include "crdl/route.h"
+#include "grades/scale.h"
+#include "language/styles.h"
+#include "store/target_store.h"
+#include "store/tick_store.h"
+
+namespace sb::app {
+
+namespace {
+
+using grades::Discipline;
+using grades::Scale;
+
+// One MoveLanguage per thread (it is not thread-safe), cloned from a shared
+// prototype holding the grammar; null when the grammar cannot be loaded.
+language::MoveLanguage* ThreadLanguage() {
+  static std::once_flag once;
+  static std::unique_ptr<language::MoveLanguage> proto;
+  std::call_once(once, [] {
+    Result<language::MoveLanguage> l = language::MoveLanguage::LoadDefault();
+    if (l.ok()) proto = std::make_unique<language::MoveLanguage>(std::move(l).value());
+  });
+  if (!proto) return nullptr;
+  thread_local std::unique_ptr<language::MoveLanguage> mine;
+  if (!mine) mine = std::make_unique<language::MoveLanguage>(proto->Clone());
+  return mine.get();
+}
+
+Discipline DisciplineOf(const std::string& d) {
+  return d == "roped" ? Discipline::kRoped : Discipline::kBouldering;
+}
+
+Scale ScaleOrDefault(const std::string& scale, Discipline d) {
+  Result<Scale> s = grades::ParseScale(scale);
+  return s.ok() ? *s : grades::DefaultScale(d);
+}
+
+// Days since 1970-01-01 of a civil date (proleptic Gregorian).
+int64_t DaysFromCivil(int64_t y, unsigned m, unsigned d) {
+  y -= m <= 2;
+  const int64_t era = (y >= 0 ? y : y - 399) / 400;
+  const unsigned yoe = static_cast<unsigned>(y - era * 400);
+  const unsigned doy = (153 * (m + (m > 2 ? -3 : 9)) + 2) / 5 + d - 1;
+  const unsigned doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
+  return era * 146097 + static_cast<int64_t>(doe) - 719468;
+}
+
+// Days since the epoch of "YYYY-MM-DD" (a longer text's first 10 chars);
+// nullopt for anything else.
+std::optional<int64_t> DayNumber(const std::string& text) {
+  int y = 0, m = 0, d = 0;
+  char tail = 0;
+  if (text.size() < 10) return std::nullopt;
+  if (std::sscanf(text.substr(0, 10).c_str(), "%4d-%2d-%2d%c", &y, &m, &d, &tail) != 3) {
+    return std::nullopt;
+  }
+  if (y < 1900 || m < 1 || m > 12 || d < 1 || d > 31) return std::nullopt;
+  return DaysFromCivil(y, static_cast<unsigned>(m), static_cast<unsigned>(d));
+}
+
+std::string KindOf(const std::string& style) {
+  const auto& holds = language::HoldStyleNames();
+  if (std::find(holds.begin(), holds.end(), style) != holds.end()) return "hold";
+  if (style == language::kUnparsedStyle) return "unparsed";
+  return "movement";
+}
+
+// The documented order of styles (holds, movements, unparsed).
+int StyleRank(const std::string& style) {
+  const auto& holds = language::HoldStyleNames();
+  const auto& moves = language::MovementStyleNames();
+  if (auto it = std::find(holds.begin(), holds.end(), style); it != holds.end()) {
+    return static_cast<int>(it - holds.begin());
+  }
+  if (auto it = std::find(moves.begin(), moves.end(), style); it != moves.end()) {
+    return static_cast<int>(holds.size() + (it - moves.begin()));
+  }
+  return static_cast<int>(holds.size() + moves.size());
+}
+
+std::string Percent(double share) {
+  return std::to_string(static_cast<int>(std::lround(share * 100))) + "%";
+}
+
+}  // namespace
+
+// ---- pure arithmetic --------------------------------------------------------
+
+std::string BandKey(double value, const std::string& discipline, const std::string& scale) {
+  const Discipline d = DisciplineOf(discipline);
+  const Scale s = ScaleOrDefault(scale, d);
+  const int band = std::clamp(grades::Band(value), grades::MinBand(d), grades::MaxBand(d));
+  if (s == grades::DefaultScale(d)) return grades::BandName(d, band);
+  return grades::FormatValue(value, d, s);
+}
+
+Result<BandRow> BandOfText(const std::string& text, const std::string& discipline,
+                           const std::string& scale, const std::string& field) {
+  const Discipline d = DisciplineOf(discipline);
+  Result<grades::Grade> g = grades::ParseGrade(Trim(text), {d, std::nullopt}, field);
+  if (!g.ok()) return g.status();
+  BandRow row;
+  const double value = grades::Difficulty(*g, d);
+  row.band = BandKey(value, discipline, scale);
+  const Scale s = ScaleOrDefault(scale, d);
+  row.value = s == grades::DefaultScale(d) ? grades::Band(value) : value;
+  return row;
+}
+
+Status WallTargets::Validate(const std::string& discipline) const {
+  if (grades.size() > DashboardLimits::kMaxBands) {
+    return Status::InvalidInput("grades: at most " + std::to_string(DashboardLimits::kMaxBands) +
+                                " bands");
+  }
+  for (const auto& [band, count] : grades) {
+    const std::string field = "grades." + band;
+    if (count < 1 || count > DashboardLimits::kMaxCount) {
+      return Status::InvalidInput(field + ": expected a count from 1 to " +
+                                  std::to_string(DashboardLimits::kMaxCount));
+    }
+    Result<BandRow> b = BandOfText(band, discipline, "", field);
+    if (!b.ok()) return b.status();
+  }
+  if (styles.size() > DashboardLimits::kMaxStyles) {
+    return Status::InvalidInput("styles: at most " + std::to_string(DashboardLimits::kMaxStyles) +
+                                " styles");
+  }
+  for (const auto& [style, share] : styles) {
+    const std::string field = "styles." + style;
+    if (!language::IsStyleName(style)) {
+      return Status::InvalidInput(field + ": not a style name (docs/setting.md, \"Style names\")");
+    }
+    if (!(share >= DashboardLimits::kMinShare && share <= DashboardLimits::kMaxShare)) {
+      return Status::InvalidInput(field + ": expected a share from 0 to 1");
+    }
+  }
+  return Status::Ok();
+}
+
+std::vector<Gap> GradeGaps(const std::vector<BandRow>& bands) {
+  std::vector<Gap> out;
+  for (const BandRow& b : bands) {
+    if (!b.target || *b.target == b.current) continue;
+    Gap g;
+    g.kind = "grade";
+    g.name = b.band;
+    if (*b.target > b.current) g.missing = *b.target - b.current;
+    else g.over = b.current - *b.target;
+    out.push_back(std::move(g));
+  }
+  return out;
+}
+
+std::vector<Gap> StyleGaps(const std::vector<StyleRow>& styles) {
+  std::vector<Gap> out;
+  for (const StyleRow& s : styles) {
+    const bool dominant = s.share >= DashboardLimits::kDominantShare && s.kind != "unparsed";
+    const bool referenced = s.targeted || s.reference >= DashboardLimits::kMinArchiveShare;
+    const bool off = referenced && std::fabs(s.share - s.reference) > DashboardLimits::kStyleTolerance;
+    if (!dominant && !off) continue;
+    if (dominant && s.targeted && s.share <= s.reference + DashboardLimits::kStyleTolerance) {
+      continue;  // the head setter asked for it
+    }
+    Gap g;
+    g.kind = "style";
+    g.name = s.style;
+    g.share = s.share;
+    g.reference = s.reference;
+    out.push_back(std::move(g));
+  }
+  return out;
+}
+
+std::vector<std::string> GapWords(const std::string& wall, const std::vector<Gap>& gaps) {
+  std::vector<std::string> out;
+  std::string grades;
+  for (const Gap& g : gaps) {
+    if (g.kind != "grade") continue;
+    if (!grades.empty()) grades += ", ";
+    if (g.missing > 0) grades += std::to_string(g.missing) + " × " + g.name + " missing";
+    else grades += std::to_string(g.over) + " × " + g.name + " over";
+  }
+  if (!grades.empty()) out.push_back("wall " + wall + ": " + grades);
+  for (const Gap& g : gaps) {
+    if (g.kind != "style") continue;
+    if (g.share == 0) {
+      out.push_back("no " + g.name + " on " + wall);
+    } else if (g.share >= DashboardLimits::kDominantShare) {
+      out.push_back(wall + ": " + Percent(g.share) + " " + g.name);
+    } else {
+      out.push_back(wall + ": " + g.name + " " + Percent(g.share) + ", aim " +
+                    Percent(g.reference));
+    }
+  }
+  return out;
+}
+
+std::vector<SettingSlot> ProposeSlots(const std::vector<WallDashboard>& walls,
+                                      const std::vector<int64_t>& reset, int max_slots) {
+  std::vector<SettingSlot> out;
+  max_slots = std::clamp(max_slots, 0, DashboardLimits::kMaxSlots);
+  for (const WallDashboard& w : walls) {
+    const bool chosen = reset.empty() ? w.due
+                                      : std::find(reset.begin(), reset.end(), w.wall.id) !=
+                                            reset.end();
+    if (!chosen) continue;
+    // What stays: routes not due (a chosen wall with nothing due is stripped whole).
+    bool any_due = false;
+    for (const DashboardRoute& r : w.routes) any_due = any_due || r.due;
+    std::map<std::string, int> left;
+    std::vector<std::string> stripped;  // bands of the stripped routes, in route order
+    int remaining = 0;
+    for (const DashboardRoute& r : w.routes) {
+      if (!any_due || r.due) {
+        stripped.push_back(r.band);
+      } else {
+        ++left[r.band];
+        ++remaining;
+      }
+    }
+    // Bands easiest first; the missing routes per band after the strip.
+    std::vector<const BandRow*> bands;
+    for (const BandRow& b : w.bands) bands.push_back(&b);
+    std::vector<std::string> wanted;
+    std::map<std::string, int> room;  // how many more a band takes before it is over target
+    for (const BandRow* b : bands) {
+      const int have = left.count(b->band) ? left.at(b->band) : 0;
+      if (b->target) {
+        for (int i = have; i < *b->target; ++i) wanted.push_back(b->band);
+        room[b->band] = std::max(0, *b->target - have);
+      }
+    }
+    // Replacements for stripped routes whose band is neither targeted nor
+    // over target (targeted bands were counted above).
+    for (const std::string& band : stripped) {
+      if (band.empty()) continue;
+      if (room.count(band)) continue;
+      wanted.push_back(band);
+    }
+    // Styles: deficits against the reference, each slot closing 1/n.
+    const int n = std::max(1, remaining + static_cast<int>(wanted.size()));
+    std::vector<std::pair<std::string, double>> deficit;
+    for (const StyleRow& s : w.styles) {
+      if (s.kind == "unparsed") continue;
+      if (!s.targeted && s.reference < DashboardLimits::kMinArchiveShare) continue;
+      deficit.push_back({s.style, s.reference - s.share});
+    }
+    for (const std::string& band : wanted) {
+      if (static_cast<int>(out.size()) >= max_slots) return out;
+      SettingSlot slot{w.wall.id, band, ""};
+      // The style most under its reference (first in documented order on ties).
+      int best = -1;
+      for (size_t i = 0; i < deficit.size(); ++i) {
+        if (deficit[i].second <= 1e-9) continue;
+        if (best < 0 || deficit[i].second > deficit[best].second + 1e-12) best = static_cast<int>(i);
+      }
+      if (best >= 0) {
+        slot.style = deficit[best].first;
+        deficit[best].second -= 1.0 / n;
+      }
+      out.push_back(std::move(slot));
+    }
+  }
+  return out;
+}
+
+// ---- the service --------------------------------------------------------------
+
+Dashboard::Dashboard(store::Store* store, const Options& options, Clock* clock)
+    : store_(store),
+      targets_(store::TargetStoreOf(store)),
+      ticks_(store::TickStoreOf(store)),
+      gyms_(store, options),
+      clock_(clock) {}
+
+namespace {
+
+// The routes of a gym in `state` the viewer sees, newest set first.
+Result<std::vector<store::RouteRecord>> GymRoutes(store::Store* store, const Viewer& v,
+                                                  int64_t gym, const std::string& state) {
+  store::RouteFilter f;
+  f.viewer = v.user_id;
+  f.gym_id = gym;
+  f.state = state;
+  f.sort = store::RouteSort::kSetNewest;
+  f.limit = DashboardLimits::kMaxRoutesRead;
+  return store->ListRoutes(f);
+}
+
+// The most common scale of the routes' grades read in `d` (the default on none).
+std::string ScaleOfRoutes(const std::vector<const store::RouteRecord*>& routes, Discipline d) {
+  std::map<int, int> votes;
+  for (const store::RouteRecord* r : routes) {
+    if (r->grade.empty()) continue;
+    Result<grades::Grade> g = grades::ParseGrade(r->grade, {d, std::nullopt});
+    if (!g.ok() || g->discipline() != d) continue;
+    ++votes[static_cast<int>(g->scale)];
+  }
+  Scale best = grades::DefaultScale(d);
+  int most = 0;
+  for (const auto& [s, n] : votes) {
+    if (n > most) {
+      most = n;
+      best = static_cast<Scale>(s);
+    }
+  }
+  return grades::ScaleName(best);
+}
+
+// A route's value on the wall's axis, when graded.
+std::optional<double> ValueOn(const store::RouteRecord& r, Discipline d) {
+  if (!r.grade_value || r.grade_discipline.empty()) return std::nullopt;
+  const Discipline from = DisciplineOf(r.grade_discipline);
+  return grades::ConvertAxis(*r.grade_value, from, d);
+}
+
+}  // namespace
+
+Result<std::vector<WallDashboard>> Dashboard::Build(const Viewer& v, int64_t gym,
+                                                    const std::vector<Wall>& walls,
+                                                    std::map<std::string, double>* archive,
+                                                    std::vector<std::string>* circuit_words) {
+  SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> set, GymRoutes(store_, v, gym, "set"));
+  SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> gone, GymRoutes(store_, v, gym, "stripped"));
+  std::vector<store::TargetRecord> targets;
+  if (targets_) {
+    SB_ASSIGN_OR_RETURN(targets, targets_->GymTargets(gym));
+  }
+  // Ticks and stars per route.
+  struct Climbed {
+    int ticks = 0, votes = 0, stars = 0;
+  };
+  std::map<int64_t, Climbed> climbed;
+  if (ticks_) {
+    SB_ASSIGN_OR_RETURN(std::vector<store::TickRecord> ticks, ticks_->GymTicks(gym));
+    for (const store::TickRecord& t : ticks) {
+      Climbed& c = climbed[t.route_id];
+      ++c.ticks;
+      if (t.stars) {
+        ++c.votes;
+        c.stars += *t.stars;
+      }
+    }
+  }
+  // The style reading of every route's moves and its setters: ListRoutes
+  // has neither, so routes are read once (GetRoute) and kept by id while
+  // their updated_at stays.
+  std::vector<const store::RouteRecord*> listed;
+  for (const store::RouteRecord& r : set) listed.push_back(&r);
+  for (const store::RouteRecord& r : gone) listed.push_back(&r);
+  std::map<int64_t, std::shared_ptr<const RouteReading>> readings;
+  std::vector<int64_t> missing;
+  {
+    std::lock_guard<std::mutex> lock(mu_);
+    for (const store::RouteRecord* r : listed) {
+      auto it = routes_.find(r->id);
+      if (it != routes_.end() && it->second->updated_at == r->updated_at) {
+        readings[r->id] = it->second;
+      } else {
+        missing.push_back(r->id);
+      }
+    }
+  }
+  for (int64_t id : missing) {
+    Result<store::RouteRecord> full = store_->GetRoute(id);
+    if (!full.ok()) {
+      if (full.status().code() == Status::Code::kNotFound) continue;  // deleted meanwhile
+      return full.status();
+    }
+    auto reading = std::make_shared<RouteReading>();
+    reading->updated_at = full->updated_at;
+    for (const store::RouteSetter& st : full->setters) reading->setters.push_back(st.name);
+    if (Result<Route> parsed = ParseCrdl(full->crdl, "route"); parsed.ok()) {
+      language::MoveLanguage* lang = ThreadLanguage();
+      for (const Move& m : parsed->moves) {
+        reading->moves.push_back(lang ? language::ReadStyle(*lang, m.text).All()
+                                      : std::vector<std::string>{language::kUnparsedStyle});
+      }
+    }
+    readings[id] = reading;
+    std::lock_guard<std::mutex> lock(mu_);
+    if (routes_.size() >= DashboardLimits::kMaxRouteCacheEntries) routes_.clear();
+    routes_[id] = reading;
+  }
+  std::map<int64_t, std::vector<std::vector<std::string>>> route_styles;  // route -> per move
+  for (const auto& [id, reading] : readings) route_styles[id] = reading->moves;
+  auto mix_of = [&](const std::vector<const store::RouteRecord*>& routes, int* moves) {
+    std::map<std::string, double> mix;
+    int n = 0;
+    for (const store::RouteRecord* r : routes) {
+      for (const std::vector<std::string>& m : route_styles[r->id]) {
+        ++n;
+        for (const std::string& s : m) mix[s] += 1;
+      }
+    }
+    for (auto& [s, c] : mix) c /= n;
+    if (moves) *moves = n;
+    return mix;
+  };
+  // The archive: every set and stripped route of the gym.
+  std::vector<const store::RouteRecord*> all;
+  for (const store::RouteRecord& r : set) all.push_back(&r);
+  for (const store::RouteRecord& r : gone) all.push_back(&r);
+  *archive = mix_of(all, nullptr);
+
+  const int64_t today = clock_->Now() / 86400;
+  std::vector<WallDashboard> out;
+  for (const Wall& wall : walls) {
+    WallDashboard w;
+    w.wall = wall;
+    const Discipline d = DisciplineOf(wall.discipline);
+    std::vector<const store::RouteRecord*> on;
+    for (const store::RouteRecord& r : set) {
+      if (r.wall_id && *r.wall_id == wall.id) on.push_back(&r);
+    }
+    w.scale = ScaleOfRoutes(on, d);
+    w.on_wall = static_cast<int>(on.size());
+    std::map<std::string, BandRow> bands;
+    int votes = 0, stars = 0;
+    for (const store::RouteRecord* r : on) {
+      DashboardRoute dr;
+      dr.id = r->id;
+      dr.name = r->name;
+      dr.grade = r->grade;
+      dr.colour = r->colour;
+      if (auto it = readings.find(r->id); it != readings.end()) dr.setters = it->second->setters;
+      if (dr.setters.empty() && !r->setter.empty()) dr.setters.push_back(r->setter);
+      if (std::optional<int64_t> day = DayNumber(r->set_on)) {
+        dr.age_days = static_cast<int>(std::max<int64_t>(0, today - *day));
+      }
+      if (auto it = climbed.find(r->id); it != climbed.end()) {
+        dr.ticks = it->second.ticks;
+        dr.star_votes = it->second.votes;
+        dr.stars = dr.star_votes ? static_cast<double>(it->second.stars) / dr.star_votes : 0;
+        votes += it->second.votes;
+        stars += it->second.stars;
+      }
+      w.ticks += dr.ticks;
+      if (std::optional<double> value = ValueOn(*r, d)) {
+        const std::string key = BandKey(*value, wall.discipline, w.scale);
+        dr.band = key;
+        BandRow& b = bands[key];
+        if (b.band.empty()) {
+          b.band = key;
+          b.value = w.scale == grades::ScaleName(grades::DefaultScale(d)) ? grades::Band(*value)
+                                                                          : *value;
+        }
+        ++b.current;
+      } else {
+        ++w.ungraded;
+      }
+      if (wall.reset_weeks && dr.age_days && *dr.age_days >= *wall.reset_weeks * 7) dr.due = true;
+      if (dr.age_days && (!w.oldest_days || *dr.age_days > *w.oldest_days)) {
+        w.oldest_days = dr.age_days;
+      }
+      w.routes.push_back(std::move(dr));
+    }
+    w.stars = votes ? static_cast<double>(stars) / votes : 0;
+    w.due = wall.reset_weeks && w.oldest_days && *w.oldest_days >= *wall.reset_weeks * 7;
+    std::stable_sort(w.routes.begin(), w.routes.end(),
+                     [](const DashboardRoute& a, const DashboardRoute& b) {
+                       return std::make_tuple(a.ticks, a.stars, -a.age_days.value_or(-1), a.id) <
+                              std::make_tuple(b.ticks, b.stars, -b.age_days.value_or(-1), b.id);
+                     });
+    // Targets of this wall.
+    std::map<std::string, double> style_targets;
+    for (const store::TargetRecord& t : targets) {
+      if (t.wall_id != wall.id) continue;
+      if (t.kind == "style") {
+        style_targets[t.name] = t.value;
+        continue;
+      }
+      Result<BandRow> b = BandOfText(t.name, wall.discipline, w.scale, "target");
+      if (!b.ok()) continue;  // a target typed in a scale the wall no longer uses
+      BandRow& row = bands[b->band];
+      if (row.band.empty()) row = *b;
+      row.target = row.target.value_or(0) + static_cast<int>(t.value);
+    }
+    for (auto& [key, row] : bands) w.bands.push_back(row);
+    std::stable_sort(w.bands.begin(), w.bands.end(),
+                     [](const BandRow& a, const BandRow& b) { return a.value < b.value; });
+    // Styles.
+    std::map<std::string, double> mix = mix_of(on, &w.moves);
+    std::set<std::string> names;
+    for (const auto& [s, share] : mix) names.insert(s);
+    if (!style_targets.empty()) {
+      for (const auto& [s, share] : style_targets) names.insert(s);
+    } else {
+      for (const auto& [s, share] : *archive) {
+        if (share >= DashboardLimits::kMinArchiveShare) names.insert(s);
+      }
+    }
+    for (const std::string& s : names) {
+      StyleRow row;
+      row.style = s;
+      row.kind = KindOf(s);
+      row.share = mix.count(s) ? mix.at(s) : 0;
+      if (!style_targets.empty()) {
+        row.targeted = style_targets.count(s) > 0;
+        row.reference = row.targeted ? style_targets.at(s) : 0;
+      } else {
+        row.reference = archive->count(s) ? archive->at(s) : 0;
+      }
+      w.styles.push_back(std::move(row));
+    }
+    std::stable_sort(w.styles.begin(), w.styles.end(), [](const StyleRow& a, const StyleRow& b) {
+      return StyleRank(a.style) < StyleRank(b.style);
+    });
+    // Gaps: the grades, then styles (an empty wall has no style to speak of).
+    w.gaps = GradeGaps(w.bands);
+    if (w.moves > 0) {
+      std::vector<StyleRow> judged;
+      for (const StyleRow& s : w.styles) {
+        if (s.kind == "unparsed") continue;
+        if (style_targets.empty() || s.targeted || s.share >= DashboardLimits::kDominantShare) {
+          judged.push_back(s);
+        }
+      }
+      for (Gap& g : StyleGaps(judged)) w.gaps.push_back(std::move(g));
+    }
+    w.gap_words = GapWords(wall.name, w.gaps);
+    out.push_back(std::move(w));
+  }
+  // Circuits: archive styles absent from a colour's routes on the wall.
+  std::map<std::string, std::vector<const store::RouteRecord*>> by_colour;
+  for (const store::RouteRecord& r : set) {
+    if (!r.colour.empty()) by_colour[ToLower(r.colour)].push_back(&r);
+  }
+  for (const auto& [colour, routes] : by_colour) {
+    int moves = 0;
+    std::map<std::string, double> mix = mix_of(routes, &moves);
+    if (moves == 0) continue;
+    std::vector<std::string> absent;
+    for (const auto& [s, share] : *archive) {
+      if (s == language::kUnparsedStyle || share < DashboardLimits::kMinArchiveShare) continue;
+      if (!mix.count(s)) absent.push_back(s);
+    }
+    std::stable_sort(absent.begin(), absent.end(), [](const std::string& a, const std::string& b) {
+      return StyleRank(a) < StyleRank(b);
+    });
+    for (const std::string& s : absent) circuit_words->push_back("no " + s + " on " + colour);
+  }
+  // Walls: due first, then least climbed (ticks per route), least liked, position.
+  std::stable_sort(out.begin(), out.end(), [](const WallDashboard& a, const WallDashboard& b) {
+    auto per_route = [](const WallDashboard& w) {
+      return w.on_wall ? static_cast<double>(w.ticks) / w.on_wall : 0.0;
+    };
+    return std::make_tuple(!a.due, per_route(a), a.stars, a.wall.position, a.wall.id) <
+           std::make_tuple(!b.due, per_route(b), b.stars, b.wall.position, b.wall.id);
+  });
+  return out;
+}
+
+Result<GymDashboard> Dashboard::Get(const Viewer& v, int64_t gym) {
+  GymDashboard g;
+  SB_ASSIGN_OR_RETURN(g.gym, gyms_.Get(v, gym));
+  g.can_edit = g.gym.role == "head";
+  SB_ASSIGN_OR_RETURN(std::vector<Wall> walls, gyms_.Walls(v, gym));
+  SB_ASSIGN_OR_RETURN(g.walls, Build(v, gym, walls, &g.archive_styles, &g.circuit_words));
+  return g;
+}
+
+Result<WallDashboard> Dashboard::GetWall(const Viewer& v, int64_t wall) {
+  SB_ASSIGN_OR_RETURN(Wall w, gyms_.GetWall(v, wall));
+  std::map<std::string, double> archive;
+  std::vector<std::string> words;
+  SB_ASSIGN_OR_RETURN(std::vector<WallDashboard> one, Build(v, w.gym_id, {w}, &archive, &words));
+  return one.at(0);
+}
+
+Result<std::string> Dashboard::WallScale(const Viewer& v, const Wall& w) {
+  SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> set, GymRoutes(store_, v, w.gym_id, "set"));
+  std::vector<const store::RouteRecord*> on;
+  for (const store::RouteRecord& r : set) {
+    if (r.wall_id && *r.wall_id == w.id) on.push_back(&r);
+  }
+  return ScaleOfRoutes(on, DisciplineOf(w.discipline));
+}
+
+Result<WallTargets> Dashboard::Targets(const Viewer& v, int64_t gym, int64_t wall) {
+  SB_ASSIGN_OR_RETURN(Wall w, gyms_.GetWall(v, wall));
+  if (w.gym_id != gym) return Status::NotFound("no wall " + std::to_string(wall));
+  WallTargets t;
+  if (!targets_) return t;
+  SB_ASSIGN_OR_RETURN(std::vector<store::TargetRecord> rows, targets_->WallTargets(wall));
+  for (const store::TargetRecord& r : rows) {
+    if (r.kind == "grade") t.grades[r.name] = static_cast<int>(r.value);
+    else t.styles[r.name] = r.value;
+  }
+  return t;
+}
+
+Status Dashboard::SetTargets(const Viewer& v, int64_t gym, int64_t wall, const WallTargets& t) {
+  if (!v.logged_in()) return Status::Unauthenticated("log in first");
+  SB_ASSIGN_OR_RETURN(Gym g, gyms_.Get(v, gym));
+  SB_ASSIGN_OR_RETURN(Wall w, gyms_.GetWall(v, wall));
+  if (w.gym_id != gym) return Status::NotFound("no wall " + std::to_string(wall));
+  if (g.role != "head") return Status::Permission("only the gym's head setters may set targets");
+  SB_RETURN_IF_ERROR(t.Validate(w.discipline));
+  if (!targets_) return Status::Internal("the store keeps no targets");
+  SB_ASSIGN_OR_RETURN(std::string scale, WallScale(v, w));
+  // Bands as the wall writes them; two spellings of one band add up.
+  std::map<std::string, int> bands;
+  for (const auto& [text, count] : t.grades) {
+    SB_ASSIGN_OR_RETURN(BandRow b, BandOfText(text, w.discipline, scale, "grades." + text));
+    bands[b.band] += count;
+  }
+  std::vector<store::TargetRecord> rows;
+  for (const auto& [band, count] : bands) {
+    if (count > DashboardLimits::kMaxCount) {
+      return Status::InvalidInput("grades." + band + ": expected a count from 1 to " +
+                                  std::to_string(DashboardLimits::kMaxCount));
+    }
+    rows.push_back({wall, "grade", band, static_cast<double>(count)});
+  }
+  for (const auto& [style, share] : t.styles) rows.push_back({wall, "style", style, share});
+  return targets_->SetWallTargets(wall, rows);
+}
+
+}  // namespace sb::app

@@ -1,0 +1,84 @@
+#include "store/target_sql.h"
+
+#include <algorithm>
+#include <set>
+#include <tuple>
+#include <utility>
+
+namespace sb::store::targets_sql {
+
+namespace {
+
+using sql::Rows;
+using sql::Violation;
+
+std::vector<TargetRecord> Read(const Rows& r) {
+  std::vector<TargetRecord> out;
+  out.reserve(r.size());
+  for (size_t i = 0; i < r.size(); ++i) {
+    TargetRecord t;
+    t.wall_id = r.Int(i, 0);
+    t.kind = r.Text(i, 1);
+    t.name = r.Text(i, 2);
+    t.value = r.OptDouble(i, 3).value_or(0);
+    out.push_back(std::move(t));
+  }
+  // Byte order in C++, not the database's collation (PostgreSQL's follows
+  // the locale), so both backends list targets alike.
+  std::sort(out.begin(), out.end(), [](const TargetRecord& a, const TargetRecord& b) {
+    return std::tie(a.wall_id, a.kind, a.name) < std::tie(b.wall_id, b.kind, b.name);
+  });
+  return out;
+}
+
+}  // namespace
+
+Status SetWallTargets(sql::Connection& c, int64_t wall_id,
+                      const std::vector<TargetRecord>& targets) {
+  std::set<std::pair<std::string, std::string>> seen;
+  for (const TargetRecord& t : targets) {
+    if (t.kind != "grade" && t.kind != "style") {
+      return Status::InvalidInput("target kind: expected \"grade\" or \"style\", got \"" + t.kind +
+                                  "\"");
+    }
+    if (!seen.insert({t.kind, t.name}).second) {
+      return Status::InvalidInput("target " + t.kind + " \"" + t.name + "\" given twice");
+    }
+  }
+  return sql::RunInTransaction(c, [&]() -> Status {
+    SB_ASSIGN_OR_RETURN(Rows w, c.Query("SELECT id FROM walls WHERE id = ?", {wall_id}));
+    if (w.empty()) return Status::NotFound("no wall " + std::to_string(wall_id));
+    SB_ASSIGN_OR_RETURN(Rows gone, c.Query("DELETE FROM wall_targets WHERE wall_id = ? "
+                                           "RETURNING id",
+                                           {wall_id}));
+    (void)gone;
+    for (const TargetRecord& t : targets) {
+      Violation v;
+      Result<Rows> r = c.Query(
+          "INSERT INTO wall_targets(wall_id, kind, name, value) VALUES(?, ?, ?, ?) RETURNING id",
+          {wall_id, t.kind, t.name, t.value}, &v);
+      if (!r.ok() && v == Violation::kForeignKey) {
+        return Status::NotFound("no wall " + std::to_string(wall_id));
+      }
+      if (!r.ok()) return r.status().WithPrefix("set wall targets");
+    }
+    return Status::Ok();
+  });
+}
+
+Result<std::vector<TargetRecord>> WallTargets(sql::Connection& c, int64_t wall_id) {
+  SB_ASSIGN_OR_RETURN(Rows r, c.Query("SELECT wall_id, kind, name, value FROM wall_targets "
+                                      "WHERE wall_id = ?",
+                                      {wall_id}));
+  return Read(r);
+}
+
+Result<std::vector<TargetRecord>> GymTargets(sql::Connection& c, int64_t gym_id) {
+  SB_ASSIGN_OR_RETURN(Rows r, c.Query("SELECT t.wall_id, t.kind, t.name, t.value "
+                                      "FROM wall_targets t JOIN walls w ON w.id = t.wall_id "
+                                      "WHERE w.gym_id = ?",
+                                      {gym_id}));
+  return Read(r);
+}
+
+}  // namespace sb::store::targets_sql

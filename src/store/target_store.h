@@ -1,0 +1,54 @@
+// The head setter's targets per wall (schema 8, issue 22): how many routes
+// of each grade band a wall should carry, and what share of its moves each
+// style should have. A separate interface from store::Store over the same SQL
+// layer (store/sql_store.cc implements it in the same object as Store); the
+// table is documented in docs/setting.md ("The dashboard"). The application
+// layer (app/dashboard.h) validates targets; the store keeps what it gets.
+//
+// No SQLite or libpq types appear in this header.
+#ifndef SB_STORE_TARGET_STORE_H_
+#define SB_STORE_TARGET_STORE_H_
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "base/status.h"
+#include "store/store.h"
+
+namespace sb::store {
+
+// One target of a wall. kind "grade": `name` is a band as the gym writes it
+// ("V3", "5.10", "6B+") and `value` a route count; kind "style": `name` a
+// style name (language/styles.h) and `value` a share of moves in 0..1.
+struct TargetRecord {
+  int64_t wall_id = 0;
+  std::string kind;  // "grade" or "style"
+  std::string name;
+  double value = 0;
+  bool operator==(const TargetRecord&) const = default;
+};
+
+// Thread-safe like Store. Errors: kNotFound for unknown walls, kIoError for
+// storage failures.
+class TargetStore {
+ public:
+  virtual ~TargetStore() = default;
+
+  // Replaces every target of `wall_id` by `targets` (their wall_id is
+  // ignored) in one transaction. kNotFound for an unknown wall;
+  // kInvalidInput for a kind other than "grade"/"style" or a name twice.
+  virtual Status SetWallTargets(int64_t wall_id, const std::vector<TargetRecord>& targets) = 0;
+  // A wall's targets by kind then name (none for an unknown wall).
+  virtual Result<std::vector<TargetRecord>> WallTargets(int64_t wall_id) = 0;
+  // The targets of every wall of `gym_id`, by wall id, kind, name.
+  virtual Result<std::vector<TargetRecord>> GymTargets(int64_t gym_id) = 0;
+};
+
+// The TargetStore of a store opened by store::OpenStore (both backends);
+// nullptr for a Store that does not implement it. Not owned.
+TargetStore* TargetStoreOf(Store* store);
+
+}  // namespace sb::store
+
+#endif  // SB_STORE_TARGET_STORE_H_

@@ -1,0 +1,101 @@
+// TargetStore (schema 8) on both backends: a wall's targets are replaced as
+// a whole, listed in byte order, kept per wall, gone with the wall's gym;
+// bad kinds, duplicate names and unknown walls are refused without a change.
+#include "store/target_store.h"
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "store/gym_store.h"
+#include "store/open.h"
+#include "store/store.h"
+#include "store/store_test_util.h"
+
+namespace sb::store {
+namespace {
+
+using testing::Backend;
+using testing::TestDatabase;
+
+class TargetStoreTest : public ::testing::TestWithParam<Backend> {
+ protected:
+  void SetUp() override {
+    SB_REQUIRE_DATABASE(db_);
+    Result<std::unique_ptr<Store>> s = OpenStore(db_.locator());
+    ASSERT_TRUE(s.ok()) << s.status().message();
+    store_ = std::move(s).value();
+    targets_ = TargetStoreOf(store_.get());
+    ASSERT_NE(targets_, nullptr);
+    gyms_ = GymStoreOf(store_.get());
+    Result<int64_t> g = gyms_->CreateGym("G", std::nullopt);
+    ASSERT_TRUE(g.ok()) << g.status().message();
+    gym_ = *g;
+    WallRecord w;
+    w.gym_id = gym_;
+    w.name = "Cave";
+    cave_ = *gyms_->InsertWall(w);
+    w.name = "Slab";
+    slab_ = *gyms_->InsertWall(w);
+  }
+
+  TestDatabase db_{GetParam(), "target"};
+  std::unique_ptr<Store> store_;
+  TargetStore* targets_ = nullptr;
+  GymStore* gyms_ = nullptr;
+  int64_t gym_ = 0, cave_ = 0, slab_ = 0;
+};
+
+INSTANTIATE_TEST_SUITE_P(Backends, TargetStoreTest, testing::Backends(), testing::BackendName);
+
+TEST_P(TargetStoreTest, SetReplacesTheWallsTargetsAndListsThemInByteOrder) {
+  ASSERT_TRUE(targets_
+                  ->SetWallTargets(cave_, {{0, "grade", "V3", 2},
+                                           {0, "style", "heel hook", 0.1 + 0.2},
+                                           {0, "grade", "V10", 1},
+                                           {0, "grade", "V1", 3}})
+                  .ok());
+  ASSERT_TRUE(targets_->SetWallTargets(slab_, {{0, "style", "crimp", 0.25}}).ok());
+  Result<std::vector<TargetRecord>> t = targets_->WallTargets(cave_);
+  ASSERT_TRUE(t.ok()) << t.status().message();
+  ASSERT_EQ(t->size(), 4u);
+  EXPECT_EQ((*t)[0], (TargetRecord{cave_, "grade", "V1", 3}));
+  EXPECT_EQ((*t)[1], (TargetRecord{cave_, "grade", "V10", 1}));
+  EXPECT_EQ((*t)[2], (TargetRecord{cave_, "grade", "V3", 2}));
+  EXPECT_EQ((*t)[3].value, 0.1 + 0.2);  // doubles round-trip exactly
+  // A second set replaces, not merges.
+  ASSERT_TRUE(targets_->SetWallTargets(cave_, {{0, "grade", "V5", 4}}).ok());
+  t = targets_->WallTargets(cave_);
+  ASSERT_TRUE(t.ok());
+  ASSERT_EQ(t->size(), 1u);
+  EXPECT_EQ((*t)[0].name, "V5");
+  Result<std::vector<TargetRecord>> all = targets_->GymTargets(gym_);
+  ASSERT_TRUE(all.ok());
+  ASSERT_EQ(all->size(), 2u);
+  EXPECT_EQ((*all)[0].wall_id, cave_);
+  EXPECT_EQ((*all)[1].wall_id, slab_);
+  // An empty list clears.
+  ASSERT_TRUE(targets_->SetWallTargets(cave_, {}).ok());
+  EXPECT_TRUE(targets_->WallTargets(cave_)->empty());
+}
+
+TEST_P(TargetStoreTest, RefusesBadKindsDuplicatesAndUnknownWallsWithoutAChange) {
+  ASSERT_TRUE(targets_->SetWallTargets(cave_, {{0, "grade", "V3", 2}}).ok());
+  Status s = targets_->SetWallTargets(cave_, {{0, "grade", "V4", 1}, {0, "colour", "x", 1}});
+  EXPECT_EQ(s.code(), Status::Code::kInvalidInput) << s.message();
+  s = targets_->SetWallTargets(cave_, {{0, "grade", "V4", 1}, {0, "grade", "V4", 2}});
+  EXPECT_EQ(s.code(), Status::Code::kInvalidInput) << s.message();
+  EXPECT_NE(s.message().find("twice"), std::string::npos) << s.message();
+  s = targets_->SetWallTargets(999999, {{0, "grade", "V4", 1}});
+  EXPECT_EQ(s.code(), Status::Code::kNotFound) << s.message();
+  Result<std::vector<TargetRecord>> t = targets_->WallTargets(cave_);
+  ASSERT_TRUE(t.ok());
+  ASSERT_EQ(t->size(), 1u);
+  EXPECT_EQ((*t)[0].name, "V3");
+  EXPECT_TRUE(targets_->WallTargets(999999)->empty());
+}
+
+}  // namespace
+}  // namespace sb::store

@@ -1,0 +1,129 @@
+// API tests of the setting dashboard (issue 22): GET /api/gyms/{gym}/dashboard
+// and PUT /api/gyms/{gym}/walls/{wall}/targets on a real server over a real
+// database (SQLite, or PostgreSQL when $SB_TEST_BACKEND is "postgresql";
+// ctest runs every test on both); the page /gyms/{gym}/dashboard.
+#include <gtest/gtest.h>
+#include <httplib.h>
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "web/api_test_util.h"
+
+namespace sb::web {
+namespace {
+
+using nlohmann::json;
+using testing::Client;
+
+class DashboardApiTest : public testing::ApiFixture {};
+
+std::string Crdl(const std::string& name, const std::string& grade, const std::string& date,
+                 const std::string& colour, const std::string& moves) {
+  return "name: " + name + "\ngrade: " + grade + "\ndate: " + date + "\ncolour: " + colour +
+         "\n---\n" + moves;
+}
+
+TEST_F(DashboardApiTest, MembersSeeTheDashboardOnlyHeadSettersPutTargets) {
+  const int port = server_->port();
+  Client head(port), climber(port), rival(port), anon(port);
+  head.SignUp("head");  // the first account: head of the install's gym
+  ASSERT_TRUE(head.LogIn("head"));
+  climber.SignUp("climber");
+  ASSERT_TRUE(climber.LogIn("climber"));
+  rival.SignUp("rival");
+  ASSERT_TRUE(rival.LogIn("rival"));
+  const int64_t g = head.Json("GET", "/api/gyms", "", 200)["gyms"][0]["id"];
+  const std::string gp = "/api/gyms/" + std::to_string(g);
+  ASSERT_EQ(head.Status("POST", gp + "/members", R"({"username":"climber","role":"climber"})"), 201);
+  const int64_t cave = head.Json("POST", gp + "/walls",
+                                 R"({"name":"Cave","reset_weeks":1,"plan":{"x":0,"y":0,"w":6,"h":3}})",
+                                 201)["id"];
+  const int64_t slab = head.Json("POST", gp + "/walls", R"({"name":"Slab"})", 201)["id"];
+  for (const auto& [name, grade, date] :
+       {std::tuple<const char*, const char*, const char*>{"Old", "V3", "2020-01-01"},
+        {"Older", "V5", "2019-06-01"}}) {
+    json body{{"crdl", Crdl(name, grade, date, "blue", "R small crimp\nL heel hook the arete\n")},
+              {"public", true},
+              {"gym", g},
+              {"wall", "Cave"},
+              {"state", "set"},
+              {"set_on", date}};
+    head.Json("POST", "/api/routes", body.dump(), 201);
+  }
+
+  const std::string tp = gp + "/walls/" + std::to_string(cave) + "/targets";
+  const std::string targets = R"({"grades":{"V3":3,"v5":1},"styles":{"heel hook":0.2}})";
+  EXPECT_EQ(climber.Status("PUT", tp, targets), 403);
+  EXPECT_EQ(rival.Status("PUT", tp, targets), 404);
+  EXPECT_EQ(anon.Status("PUT", tp, targets, false), 401);
+  // Another gym's wall under this gym's id is not found, even to its own head setter.
+  const int64_t g2 = rival.Json("POST", "/api/gyms", R"({"name":"Rival"})", 201)["id"];
+  const int64_t roof =
+      rival.Json("POST", "/api/gyms/" + std::to_string(g2) + "/walls", R"({"name":"Roof"})", 201)["id"];
+  EXPECT_EQ(head.Status("PUT", gp + "/walls/" + std::to_string(roof) + "/targets", targets), 404);
+  EXPECT_EQ(rival.Status("PUT", "/api/gyms/" + std::to_string(g2) + "/walls/" +
+                                    std::to_string(cave) + "/targets",
+                         targets),
+            404);
+  // Bad bodies name the field.
+  json bad = head.Json("PUT", tp, R"({"grades":{"V3":"many"}})", 400);
+  EXPECT_NE(bad.dump().find("grades.V3"), std::string::npos) << bad.dump();
+  bad = head.Json("PUT", tp, R"({"styles":{"crimp":2}})", 400);
+  EXPECT_NE(bad.dump().find("styles.crimp"), std::string::npos) << bad.dump();
+  json put = head.Json("PUT", tp, targets, 200);
+  EXPECT_EQ(put["grades"], json({{"V3", 3}, {"V5", 1}}));
+  EXPECT_EQ(put["styles"]["heel hook"], 0.2);
+
+  EXPECT_EQ(rival.Status("GET", gp + "/dashboard"), 404);
+  EXPECT_EQ(anon.Status("GET", gp + "/dashboard"), 404);
+  json d = climber.Json("GET", gp + "/dashboard", "", 200);
+  EXPECT_EQ(d["can_edit"], false);
+  ASSERT_EQ(d["walls"].size(), 2u);
+  const json& w = d["walls"][0];  // Cave: due
+  EXPECT_EQ(w["id"], cave);
+  EXPECT_EQ(w["name"], "Cave");
+  EXPECT_EQ(w["on_wall"], 2);
+  EXPECT_EQ(w["due"], true);
+  EXPECT_GT(w["oldest_days"].get<int>(), 365);
+  EXPECT_EQ(w["grades"], json({{"V3", 1}, {"V5", 1}}));
+  EXPECT_EQ(w["targets"], json({{"V3", 3}, {"V5", 1}}));
+  EXPECT_EQ(w["styles"]["crimp"], 0.5);
+  EXPECT_EQ(w["styles"]["heel hook"], 0.5);
+  EXPECT_EQ(w["style_targets"]["heel hook"], 0.2);
+  ASSERT_TRUE(w["gaps"].is_array());
+  ASSERT_FALSE(w["gaps"].empty());
+  EXPECT_EQ(w["gaps"][0], json({{"kind", "grade"}, {"name", "V3"}, {"missing", 2}, {"over", 0}}));
+  EXPECT_EQ(w["gap_words"][0], "wall Cave: 2 × V3 missing");
+  EXPECT_EQ(w["routes"].size(), 2u);
+  EXPECT_EQ(d["walls"][1]["id"], slab);
+  EXPECT_EQ(d["walls"][1]["on_wall"], 0);
+  EXPECT_EQ(head.Json("GET", gp + "/dashboard", "", 200)["can_edit"], true);
+  // The same answer twice, byte for byte.
+  auto a = climber.Send("GET", gp + "/dashboard");
+  auto b = climber.Send("GET", gp + "/dashboard");
+  ASSERT_TRUE(a && b);
+  EXPECT_EQ(a->body, b->body);
+
+  // The page: plan SVG with a link per wall, the chart with its table, the gaps.
+  auto page = head.Send("GET", "/gyms/" + std::to_string(g) + "/dashboard");
+  ASSERT_TRUE(page);
+  EXPECT_EQ(page->status, 200);
+  EXPECT_NE(page->body.find("<svg id=\"plan\""), std::string::npos);
+  EXPECT_NE(page->body.find("href=\"/walls/" + std::to_string(cave) + "\" class=\"plan-wall\""),
+            std::string::npos);
+  EXPECT_NE(page->body.find("id=\"chart-" + std::to_string(cave)), std::string::npos);
+  EXPECT_NE(page->body.find("id=\"grades-" + std::to_string(cave)), std::string::npos);
+  EXPECT_NE(page->body.find("wall Cave: 2 × V3 missing"), std::string::npos);
+  EXPECT_NE(page->body.find("id=\"targets-" + std::to_string(cave)), std::string::npos);
+  auto only = climber.Send("GET", "/gyms/" + std::to_string(g) + "/dashboard?wall=" +
+                                      std::to_string(slab));
+  ASSERT_TRUE(only);
+  EXPECT_EQ(only->body.find("id=\"wall-" + std::to_string(cave) + "\""), std::string::npos);
+  EXPECT_NE(only->body.find("id=\"wall-" + std::to_string(slab) + "\""), std::string::npos);
+  EXPECT_EQ(only->body.find("id=\"targets-"), std::string::npos);  // climbers get no form
+  EXPECT_EQ(rival.Status("GET", "/gyms/" + std::to_string(g) + "/dashboard"), 404);
+}
+
+}  // namespace
+}  // namespace sb::web

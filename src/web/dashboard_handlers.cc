@@ -1,0 +1,432 @@
+// The setting dashboard (issue 22): GET /api/gyms/{id}/dashboard, PUT
+// /api/gyms/{id}/walls/{wall}/targets and the page /gyms/{id}/dashboard.
+#include "web/dashboard_handlers.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "base/number.h"
+#include "base/text.h"
+#include "web/pages.h"
+
+namespace sb::web {
+
+using nlohmann::json;
+
+namespace {
+
+std::string E(std::string_view s) { return XmlEscape(s); }
+
+std::string Id(int64_t id) { return std::to_string(id); }
+
+// A fixed-format number for SVG coordinates and percentages.
+std::string Fixed(double v, int decimals = 1) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  return buf;
+}
+
+std::string Percent(double share) { return Fixed(share * 100, 0) + "%"; }
+
+std::string Joined(const std::vector<std::string>& parts) {
+  std::string out;
+  for (const std::string& p : parts) out += (out.empty() ? "" : ", ") + p;
+  return out;
+}
+
+json WallJson(const app::WallDashboard& w) {
+  json grades = json::object(), targets = json::object(), styles = json::object(),
+       style_targets = json::object(), gaps = json::array(), routes = json::array();
+  for (const app::BandRow& b : w.bands) {
+    if (b.current > 0) grades[b.band] = b.current;
+    if (b.target) targets[b.band] = *b.target;
+  }
+  for (const app::StyleRow& s : w.styles) {
+    styles[s.style] = s.share;
+    if (s.targeted) style_targets[s.style] = s.reference;
+  }
+  for (const app::Gap& g : w.gaps) {
+    json j{{"kind", g.kind}, {"name", g.name}};
+    if (g.kind == "grade") {
+      j["missing"] = g.missing;
+      j["over"] = g.over;
+    } else {
+      j["share"] = g.share;
+      j["reference"] = g.reference;
+    }
+    gaps.push_back(j);
+  }
+  for (const app::DashboardRoute& r : w.routes) {
+    routes.push_back({{"id", r.id},
+                      {"name", r.name},
+                      {"grade", r.grade},
+                      {"band", r.band},
+                      {"colour", r.colour},
+                      {"setters", r.setters},
+                      {"age_days", r.age_days ? json(*r.age_days) : json()},
+                      {"ticks", r.ticks},
+                      {"stars", r.stars},
+                      {"star_votes", r.star_votes},
+                      {"due", r.due}});
+  }
+  return json{{"id", w.wall.id},
+              {"name", w.wall.name},
+              {"discipline", w.wall.discipline},
+              {"scale", w.scale},
+              {"reset_weeks", w.wall.reset_weeks ? json(*w.wall.reset_weeks) : json()},
+              {"on_wall", w.on_wall},
+              {"oldest_days", w.oldest_days ? json(*w.oldest_days) : json()},
+              {"due", w.due},
+              {"ticks", w.ticks},
+              {"stars", w.stars},
+              {"grades", grades},
+              {"ungraded", w.ungraded},
+              {"targets", targets},
+              {"moves", w.moves},
+              {"styles", styles},
+              {"style_targets", style_targets},
+              {"gaps", gaps},
+              {"gap_words", w.gap_words},
+              {"routes", routes}};
+}
+
+// The render units of a dashboard: a row per route on the walls.
+double Cost(Exchange& x, const app::GymDashboard& d) {
+  double rows = 0;
+  for (const app::WallDashboard& w : d.walls) rows += 1 + w.on_wall + w.bands.size() + w.styles.size();
+  return rows * x.services.options.render_costs.list_per_row;
+}
+
+// The fill of a wall on the plan: how far through its reset cycle (8 weeks
+// when it has none) the oldest route on it is.
+struct AgeColour {
+  const char* fill;
+  const char* label;
+};
+AgeColour AgeOf(const app::WallDashboard& w) {
+  if (w.on_wall == 0 || !w.oldest_days) return {"#d0d0d0", "empty or undated"};
+  const double cycle = 7.0 * w.wall.reset_weeks.value_or(8);
+  const double f = *w.oldest_days / cycle;
+  if (f >= 1) return {"#e06666", "due for a reset"};
+  if (f >= 0.5) return {"#f6b26b", "past half its cycle"};
+  return {"#93c47d", "fresh"};
+}
+
+std::string Legend() {
+  std::string b = "<ul class=\"plan-legend\">";
+  for (const auto& [fill, label] : {std::pair<const char*, const char*>{"#93c47d", "fresh"},
+                                    {"#f6b26b", "past half its reset cycle"},
+                                    {"#e06666", "due for a reset"},
+                                    {"#d0d0d0", "empty or undated"}}) {
+    b += "<li><svg width=\"14\" height=\"14\" aria-hidden=\"true\"><rect width=\"14\" "
+         "height=\"14\" fill=\"" + std::string(fill) + "\" stroke=\"#333\"/></svg> " +
+         std::string(label) + "</li>";
+  }
+  return b + "</ul>\n";
+}
+
+// The target-vs-current grade chart of a wall: a bar per band (routes on
+// the wall) with the target as an outlined bar behind it.
+std::string GradeChart(const app::WallDashboard& w) {
+  if (w.bands.empty()) return "";
+  int top = 1;
+  for (const app::BandRow& b : w.bands) top = std::max({top, b.current, b.target.value_or(0)});
+  const double bw = 36, gap = 8, h = 120, label = 18;
+  const double width = w.bands.size() * (bw + gap) + gap;
+  std::string s = "<svg class=\"grade-chart\" id=\"chart-" + Id(w.wall.id) +
+                  "\" viewBox=\"0 0 " + Fixed(width) + " " + Fixed(h + 2 * label) +
+                  "\" width=\"" + Fixed(width) + "\" role=\"img\" aria-label=\"" +
+                  E("Routes per band on " + w.wall.name + " against the targets") + "\">";
+  for (size_t i = 0; i < w.bands.size(); ++i) {
+    const app::BandRow& b = w.bands[i];
+    const double x = gap + i * (bw + gap);
+    if (b.target) {
+      const double th = h * *b.target / top;
+      s += "<rect class=\"target\" x=\"" + Fixed(x) + "\" y=\"" + Fixed(label + h - th) +
+           "\" width=\"" + Fixed(bw) + "\" height=\"" + Fixed(th) +
+           "\" fill=\"none\" stroke=\"#333\" stroke-dasharray=\"4 2\"/>";
+    }
+    const double ch = h * b.current / top;
+    const bool short_of = b.target && b.current < *b.target;
+    s += "<rect class=\"current\" x=\"" + Fixed(x + 6) + "\" y=\"" + Fixed(label + h - ch) +
+         "\" width=\"" + Fixed(bw - 12) + "\" height=\"" + Fixed(ch) + "\" fill=\"" +
+         (short_of ? "#e06666" : "#6d9eeb") + "\"/>";
+    s += "<text x=\"" + Fixed(x + bw / 2) + "\" y=\"" + Fixed(label - 4) +
+         "\" text-anchor=\"middle\" font-size=\"12\">" + std::to_string(b.current) +
+         (b.target ? "/" + std::to_string(*b.target) : std::string()) + "</text>";
+    s += "<text x=\"" + Fixed(x + bw / 2) + "\" y=\"" + Fixed(label + h + 14) +
+         "\" text-anchor=\"middle\" font-size=\"12\">" + E(b.band) + "</text>";
+  }
+  return s + "</svg>";
+}
+
+std::string GradeTable(const app::WallDashboard& w) {
+  std::string t = "<table class=\"list grade-table\" id=\"grades-" + Id(w.wall.id) +
+                  "\"><caption>Routes per band</caption><thead><tr><th>Band</th><th "
+                  "class=\"num\">On the wall</th><th class=\"num\">Target</th></tr></thead>"
+                  "<tbody>";
+  for (const app::BandRow& b : w.bands) {
+    t += "<tr><td>" + E(b.band) + "</td><td class=\"num\">" + std::to_string(b.current) +
+         "</td><td class=\"num\">" + (b.target ? std::to_string(*b.target) : "—") + "</td></tr>";
+  }
+  if (w.ungraded > 0) {
+    t += "<tr><td>ungraded</td><td class=\"num\">" + std::to_string(w.ungraded) +
+         "</td><td class=\"num\">—</td></tr>";
+  }
+  return t + "</tbody></table>";
+}
+
+std::string StyleMix(const app::WallDashboard& w) {
+  if (w.styles.empty()) return "";
+  std::string t = "<table class=\"list style-table\" id=\"styles-" + Id(w.wall.id) +
+                  "\"><caption>Style mix (share of " + std::to_string(w.moves) +
+                  " moves)</caption><thead><tr><th>Style</th><th>Share</th><th class=\"num\">"
+                  "Aim</th></tr></thead><tbody>";
+  for (const app::StyleRow& s : w.styles) {
+    const double pct = std::clamp(s.share, 0.0, 1.0) * 100;
+    t += "<tr><td>" + E(s.style) + "</td><td><svg class=\"bar\" viewBox=\"0 0 100 10\" "
+         "width=\"100\" height=\"10\" aria-hidden=\"true\"><rect width=\"" + Fixed(pct) +
+         "\" height=\"10\" fill=\"#6d9eeb\"/>" +
+         (s.reference > 0 ? "<line x1=\"" + Fixed(s.reference * 100) + "\" x2=\"" +
+                                Fixed(s.reference * 100) +
+                                "\" y1=\"0\" y2=\"10\" stroke=\"#333\" stroke-width=\"2\"/>"
+                          : std::string()) +
+         "</svg> " + Percent(s.share) + "</td><td class=\"num\">" +
+         (s.targeted || s.reference > 0 ? Percent(s.reference) + (s.targeted ? "" : " (archive)")
+                                        : std::string("—")) +
+         "</td></tr>";
+  }
+  return t + "</tbody></table>";
+}
+
+std::string RouteTable(const app::WallDashboard& w) {
+  if (w.routes.empty()) return "<p class=\"empty\">Nothing on this wall.</p>";
+  std::string t = "<div class=\"table-wrap\"><table class=\"list\" id=\"routes-" + Id(w.wall.id) +
+                  "\"><caption>On the wall (least climbed first)</caption><thead><tr><th>Route"
+                  "</th><th>Grade</th><th>Circuit</th><th>Setters</th><th class=\"num\">Days"
+                  "</th><th class=\"num\">Ticks</th><th class=\"num\">Stars</th></tr></thead>"
+                  "<tbody>";
+  for (const app::DashboardRoute& r : w.routes) {
+    t += "<tr" + std::string(r.due ? " class=\"due\"" : "") + "><td><a href=\"/routes/" +
+         Id(r.id) + "\">" + E(r.name) + "</a>" + (r.due ? " <span class=\"tag\">due</span>" : "") +
+         "</td><td>" + E(r.grade) + "</td><td>" + E(r.colour) + "</td><td>" +
+         E(Joined(r.setters)) + "</td><td class=\"num\">" +
+         (r.age_days ? std::to_string(*r.age_days) : "—") + "</td><td class=\"num\">" +
+         std::to_string(r.ticks) + "</td><td class=\"num\">" +
+         (r.star_votes ? Fixed(r.stars) : "—") + "</td></tr>";
+  }
+  return t + "</tbody></table></div>";
+}
+
+// "V3: 2, V4: 1" for the targets form.
+std::string MapText(const app::WallDashboard& w, bool grades) {
+  std::string out;
+  if (grades) {
+    for (const app::BandRow& b : w.bands) {
+      if (!b.target) continue;
+      if (!out.empty()) out += ", ";
+      out += b.band + ": " + std::to_string(*b.target);
+    }
+  } else {
+    for (const app::StyleRow& s : w.styles) {
+      if (!s.targeted) continue;
+      if (!out.empty()) out += ", ";
+      out += s.style + ": " + FormatDouble(s.reference);
+    }
+  }
+  return out;
+}
+
+std::string TargetForm(const app::GymDashboard& d, const app::WallDashboard& w) {
+  const std::string url = "/api/gyms/" + Id(d.gym.id) + "/walls/" + Id(w.wall.id) + "/targets";
+  return "<details class=\"no-print\"><summary>Set targets</summary><form class=\"gym-form "
+         "targets-form\" id=\"targets-" + Id(w.wall.id) + "\" data-api=\"PUT " + E(url) +
+         "\"><label>Routes per band <input name=\"grades\" data-map value=\"" +
+         E(MapText(w, true)) + "\" placeholder=\"V2: 3, V3: 4, V4: 3\"></label> <label>Share "
+         "of moves per style <input name=\"styles\" data-map value=\"" + E(MapText(w, false)) +
+         "\" placeholder=\"crimp: 0.3, heel hook: 0.1\"></label><button type=\"submit\">Save "
+         "targets</button><p class=\"msg\" role=\"status\"></p></form></details>";
+}
+
+std::string WallSection(const app::GymDashboard& d, const app::WallDashboard& w) {
+  const std::string id = Id(w.wall.id);
+  std::string b = "<section class=\"dash-wall" + std::string(w.due ? " due" : "") +
+                  "\" id=\"wall-" + id + "\"><h2><a href=\"/walls/" + id + "\">" +
+                  E(w.wall.name) + "</a>" +
+                  (w.due ? " <span class=\"tag due\">due for a reset</span>" : "") + "</h2>\n";
+  b += "<p>" + std::to_string(w.on_wall) + " on the wall" +
+       (w.oldest_days ? ", the oldest " + std::to_string(*w.oldest_days) + " days" : "") +
+       (w.wall.reset_weeks ? ", reset every " + std::to_string(*w.wall.reset_weeks) + " weeks"
+                           : "") +
+       "; " + std::to_string(w.ticks) + " ticks. <a href=\"?wall=" + id +
+       "\">Only this wall</a></p>\n";
+  if (!w.gap_words.empty()) {
+    b += "<ul class=\"gaps\" id=\"gaps-" + id + "\">";
+    for (const std::string& g : w.gap_words) b += "<li>" + E(g) + "</li>";
+    b += "</ul>\n";
+  } else {
+    b += "<p class=\"gaps empty\" id=\"gaps-" + id + "\">No gaps.</p>\n";
+  }
+  b += "<div class=\"chart-pair\">" + GradeChart(w) + GradeTable(w) + "</div>\n";
+  b += StyleMix(w) + "\n" + RouteTable(w) + "\n";
+  if (d.can_edit) b += TargetForm(d, w) + "\n";
+  return b + "</section>\n";
+}
+
+Result<int64_t> WallIdOf(const Request& req) {
+  std::optional<int64_t> id = ParseId(req.PathParam("wall"));
+  if (!id) return Status::NotFound("no such wall");
+  return *id;
+}
+
+// {"NAME": number, ...} as a map; kInvalidInput naming `field` otherwise.
+template <typename T>
+Result<std::map<std::string, T>> NumberMap(const json& body, const char* field, bool whole) {
+  std::map<std::string, T> out;
+  if (!body.contains(field) || body[field].is_null()) return out;
+  const json& m = body[field];
+  if (!m.is_object()) {
+    return Status::InvalidInput(std::string(field) + ": expected an object of numbers");
+  }
+  for (auto it = m.begin(); it != m.end(); ++it) {
+    const std::string name = std::string(field) + "." + it.key();
+    if (whole ? !it.value().is_number_integer() : !it.value().is_number()) {
+      return Status::InvalidInput(name + (whole ? ": expected a whole number" : ": expected a number"));
+    }
+    if (whole) {
+      const int64_t v = it.value().get<int64_t>();
+      if (v < 0 || v > 1000000) return Status::InvalidInput(name + ": out of range");
+      if (v == 0) continue;  // no target
+      out[it.key()] = static_cast<T>(v);
+    } else {
+      out[it.key()] = static_cast<T>(it.value().get<double>());
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string PlanSvg(const app::GymDashboard& d) {
+  constexpr double kCell = 20;  // SVG units per plan cell
+  double right = 0, bottom = 0;
+  for (const app::WallDashboard& w : d.walls) {
+    if (!w.wall.plan_x) continue;
+    right = std::max(right, (*w.wall.plan_x + *w.wall.plan_w) * kCell);
+    bottom = std::max(bottom, (*w.wall.plan_y + *w.wall.plan_h) * kCell);
+  }
+  if (right <= 0 || bottom <= 0) return "";
+  std::string s = "<svg id=\"plan\" class=\"plan\" viewBox=\"-4 -4 " + Fixed(right + 8) + " " +
+                  Fixed(bottom + 8) + "\" width=\"100%\" role=\"img\" aria-label=\"" +
+                  E("Floor plan of " + d.gym.name) + "\"><title>" + E("Floor plan of " + d.gym.name) +
+                  "</title>";
+  for (const app::WallDashboard& w : d.walls) {
+    if (!w.wall.plan_x) continue;
+    const double x = *w.wall.plan_x * kCell, y = *w.wall.plan_y * kCell,
+                 wd = *w.wall.plan_w * kCell, ht = *w.wall.plan_h * kCell;
+    const AgeColour c = AgeOf(w);
+    const double font = std::clamp(std::min(ht / 3, wd / std::max<size_t>(4, w.wall.name.size()) * 1.6),
+                                   8.0, 28.0);
+    const std::string age =
+        w.oldest_days ? std::to_string(*w.oldest_days) + " d" : std::string("empty");
+    s += "<a href=\"/walls/" + Id(w.wall.id) + "\" class=\"plan-wall\" id=\"plan-wall-" +
+         Id(w.wall.id) + "\"><title>" + E(w.wall.name + ": " + std::to_string(w.on_wall) +
+                                          " on the wall, " + c.label) +
+         "</title><rect x=\"" + Fixed(x) + "\" y=\"" + Fixed(y) + "\" width=\"" + Fixed(wd) +
+         "\" height=\"" + Fixed(ht) + "\" fill=\"" + c.fill +
+         "\" stroke=\"#333\" stroke-width=\"2\"/><text x=\"" + Fixed(x + wd / 2) + "\" y=\"" +
+         Fixed(y + ht / 2) + "\" text-anchor=\"middle\" font-size=\"" + Fixed(font) +
+         "\" fill=\"#000\">" + E(w.wall.name) + "</text><text x=\"" + Fixed(x + wd / 2) +
+         "\" y=\"" + Fixed(y + ht / 2 + font) + "\" text-anchor=\"middle\" font-size=\"" +
+         Fixed(font * 0.8) + "\" fill=\"#000\">" + E(age) + "</text></a>";
+  }
+  return s + "</svg>";
+}
+
+std::string DashboardPage(const PageViewer& v, const app::GymDashboard& d, int64_t only_wall) {
+  const std::string gid = Id(d.gym.id);
+  std::string b = "<p class=\"no-print\"><a href=\"/gyms/" + gid + "\">" + E(d.gym.name) +
+                  "</a></p>\n<h1 id=\"dashboard-title\">" + E(d.gym.name) +
+                  ": what is up, what is missing</h1>\n";
+  if (only_wall) b += "<p class=\"no-print\"><a href=\"/gyms/" + gid + "/dashboard\">All walls</a></p>\n";
+  const std::string plan = PlanSvg(d);
+  if (!only_wall) {
+    b += "<h2>Floor plan</h2>\n";
+    b += plan.empty() ? "<p class=\"empty\">No wall has a place on the floor plan yet (a head "
+                        "setter sets it on the gym page).</p>\n"
+                      : "<div class=\"plan-wrap\">" + plan + "</div>\n" + Legend();
+    if (!d.circuit_words.empty()) {
+      b += "<h2>Circuits</h2>\n<ul class=\"gaps\" id=\"circuit-gaps\">";
+      for (const std::string& w : d.circuit_words) b += "<li>" + E(w) + "</li>";
+      b += "</ul>\n";
+    }
+  }
+  bool any = false;
+  for (const app::WallDashboard& w : d.walls) {
+    if (only_wall && w.wall.id != only_wall) continue;
+    any = true;
+    b += WallSection(d, w);
+  }
+  if (!any) b += "<p class=\"empty\">No walls yet.</p>\n";
+  b += "<style>.chart-pair{display:flex;flex-wrap:wrap;gap:1em;align-items:flex-start}"
+       ".plan-wrap{max-width:48em}.plan-legend{list-style:none;padding:0;display:flex;"
+       "flex-wrap:wrap;gap:1em}.grade-chart{max-width:100%;height:auto}tr.due td{font-weight:"
+       "bold}.dash-wall{break-inside:avoid}@media print{.no-print{display:none}}</style>\n";
+  b += "<script src=\"/static/gyms.js\" defer></script>\n";
+  return PageLayout(v, d.gym.name + " dashboard", b);
+}
+
+void GetDashboard(Exchange& x) {
+  Result<int64_t> id = PathId(x.req, "no such gym");
+  if (!id.ok()) return ApiError(x, id.status());
+  Result<app::GymDashboard> d = x.services.dashboard.Get(x.caller.viewer, *id);
+  if (!d.ok()) return ApiError(x, d.status());
+  auto slot = AdmitWork(x, Cost(x, *d));
+  if (!slot) return;
+  json walls = json::array();
+  for (const app::WallDashboard& w : d->walls) walls.push_back(WallJson(w));
+  ReplyJson(x.res, 200,
+            json{{"gym", d->gym.id},
+                 {"can_edit", d->can_edit},
+                 {"walls", walls},
+                 {"circuit_words", d->circuit_words},
+                 {"archive_styles", d->archive_styles}});
+}
+
+void PutWallTargets(Exchange& x) {
+  Result<int64_t> gym = PathId(x.req, "no such gym");
+  if (!gym.ok()) return ApiError(x, gym.status());
+  Result<int64_t> wall = WallIdOf(x.req);
+  if (!wall.ok()) return ApiError(x, wall.status());
+  Result<json> body = BodyObject(x.req);
+  if (!body.ok()) return ApiError(x, body.status());
+  app::WallTargets t;
+  Result<std::map<std::string, int>> grades = NumberMap<int>(*body, "grades", true);
+  if (!grades.ok()) return ApiError(x, grades.status());
+  Result<std::map<std::string, double>> styles = NumberMap<double>(*body, "styles", false);
+  if (!styles.ok()) return ApiError(x, styles.status());
+  t.grades = std::move(grades).value();
+  t.styles = std::move(styles).value();
+  if (Status s = x.services.dashboard.SetTargets(x.caller.viewer, *gym, *wall, t); !s.ok()) {
+    return ApiError(x, s);
+  }
+  Result<app::WallTargets> stored = x.services.dashboard.Targets(x.caller.viewer, *gym, *wall);
+  if (!stored.ok()) return ApiError(x, stored.status());
+  ReplyJson(x.res, 200, json{{"wall", *wall}, {"grades", stored->grades}, {"styles", stored->styles}});
+}
+
+void PageDashboard(Exchange& x) {
+  Result<int64_t> id = PathId(x.req, "No such gym.");
+  if (!id.ok()) return PageError(x, id.status());
+  Result<app::GymDashboard> d = x.services.dashboard.Get(x.caller.viewer, *id);
+  if (!d.ok()) return PageError(x, d.status());
+  auto slot = AdmitWork(x, Cost(x, *d));
+  if (!slot) return;
+  int64_t only = 0;
+  if (std::optional<std::string> w = x.req.Query("wall")) only = ParseId(*w).value_or(0);
+  x.res.SetHeader("Cache-Control", "no-store");
+  x.res.SetBody(200, DashboardPage(x.caller.page(), *d, only), "text/html; charset=utf-8");
+}
+
+}  // namespace sb::web

@@ -1,0 +1,30 @@
+// Internal to web/: the setting dashboard (issue 22; docs/web.md
+// "Dashboard", docs/setting.md "The dashboard"): its JSON API, the head
+// setter's targets, and the page /gyms/{id}/dashboard with the floor plan
+// and the per-wall charts as server-rendered SVG. Bound to paths in
+// server.cc; every answer comes from app::Dashboard.
+#ifndef SB_WEB_DASHBOARD_HANDLERS_H_
+#define SB_WEB_DASHBOARD_HANDLERS_H_
+
+#include <string>
+
+#include "app/dashboard.h"
+#include "web/handlers.h"
+
+namespace sb::web {
+
+void GetDashboard(Exchange& x);    // GET /api/gyms/{id}/dashboard (members)
+void PutWallTargets(Exchange& x);  // PUT /api/gyms/{id}/walls/{wall}/targets (head setters)
+void PageDashboard(Exchange& x);   // GET /gyms/{id}/dashboard[?wall=W] (members)
+
+// The page's HTML (escaped user text; SVG plan and charts with data
+// tables). `only_wall` shows one wall's section (0 = every wall). Pure.
+std::string DashboardPage(const PageViewer& v, const app::GymDashboard& d, int64_t only_wall);
+// The floor plan as SVG: walls on their plan rectangles, filled by the age
+// of what is on them, each a link to /walls/{id}; "" when no wall has a
+// rectangle. Pure.
+std::string PlanSvg(const app::GymDashboard& d);
+
+}  // namespace sb::web
+
+#endif  // SB_WEB_DASHBOARD_HANDLERS_H_
