@@ -14,6 +14,7 @@
 #include "app/logbook.h"
 #include "app/maps.h"
 #include "app/options.h"
+#include "app/report.h"
 #include "app/routes.h"
 #include "app/studies_service.h"
 #include "app/variations.h"
@@ -40,6 +41,8 @@ struct Services {
   Gyms gyms;
   // The climbers' logbook and ascent grades (issue 23).
   Logbook logbook;
+  // The wall and setting-day reports over the logbook (issue 23).
+  Reports reports;
 };
 
 }  // namespace sb::app
