@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <map>
 #include <string>
@@ -166,6 +167,8 @@ TEST_F(ReportTest, VariationsAgainstHandSetRoutesOfTheSameBandsMatchScipy) {
   EXPECT_EQ(c.bands[2].band, "V6");
   EXPECT_EQ(c.bands[2].variation_n, 0);
   EXPECT_TRUE(c.enough);
+  // The figure docs/studies.md quotes ("The wall and setting-day report").
+  std::printf("report verdict: %s\n", c.verdict.c_str());
   EXPECT_NE(c.verdict.find("liked less"), std::string::npos) << c.verdict;
   EXPECT_NE(c.verdict.find("13 star ratings of variations and 13 of hand-set"),
             std::string::npos)
