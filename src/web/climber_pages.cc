@@ -533,8 +533,11 @@ std::string StudyResultsHtml(const PageViewer& v, const app::StudyResults& res,
               ? std::string("No item is reverse-keyed.")
               : "Reverse-keyed (marked −): " + E(reversed) +
                     ". Their statements are negative, so an answer x counts as " +
-                    std::to_string(res.instrument.scale_min + res.instrument.scale_max) +
-                    " − x: a high mean there means climbers disagreed with the negative "
+                    (res.instrument.scale_min + res.instrument.scale_max == 0
+                         ? std::string("−x")
+                         : std::to_string(res.instrument.scale_min + res.instrument.scale_max) +
+                               " − x") +
+                    ": a high mean there means climbers disagreed with the negative "
                     "statement.") +
          "</p>\n";
   }

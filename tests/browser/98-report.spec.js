@@ -102,6 +102,18 @@ module.exports = async (t) => {
   await page.waitForFunction(() => document.querySelectorAll('input.study-route').length === 2);
   check(await page.isChecked('input.study-route[value="' + vary[0] + '"]'), 'a new search keeps the chosen routes');
 
+  // More routes than the first page: "More routes" fetches the next ones.
+  let total = (await api('GET', '/api/routes?limit=1')).data.total;
+  for (let k = 0; total <= 55; ++k, ++total) {
+    await api('POST', '/api/routes', { crdl: 'name: Filler ' + k + '\ngrade: V1\n---\nR jug\n', public: true });
+  }
+  await page.goto(base + '/studies/new');
+  const firstPage = (await page.$$('input.study-route')).length;
+  check(firstPage === 50 && await page.isVisible('#study-more'), 'the picker lists 50 routes and offers more (' + firstPage + ')');
+  await page.click('#study-more');
+  await page.waitForFunction((k) => document.querySelectorAll('input.study-route').length > k, firstPage);
+  check((await page.$$('input.study-route')).length > 50, '"More routes" adds the next page');
+
   // Studies and Drift are in the navigation.
   check(await page.$('#nav-studies') !== null && await page.$('#nav-drift') !== null,
         'Studies and Drift are in the navigation');
