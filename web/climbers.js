@@ -94,9 +94,8 @@
       .sort((a, b) => a.dataset.pos - b.dataset.pos).map((el) => el.value);
     const list = document.getElementById('study-order');
     const names = {};
-    for (const el of sf.querySelectorAll('input.study-route')) {
-      names[el.value] = el.parentElement.textContent.trim();
-    }
+    const nameOf = (el) => el.parentElement.textContent.trim();
+    for (const el of sf.querySelectorAll('input.study-route')) names[el.value] = nameOf(el);
     const show = () => {
       if (!list) return;
       list.textContent = '';
@@ -106,12 +105,65 @@
         list.appendChild(li);
       });
     };
-    for (const el of sf.querySelectorAll('input.study-route')) {
-      el.addEventListener('change', () => {
+    // Any number of routes (issue 23): one delegated handler, and the search
+    // box and "More routes" fetch pages of /api/routes into the list.
+    const picks = sf.querySelector('.route-picks');
+    if (picks) {
+      picks.addEventListener('change', (ev) => {
+        const el = ev.target.closest('input.study-route');
+        if (!el) return;
+        names[el.value] = nameOf(el);
         order = order.filter((id) => id !== el.value);
         if (el.checked) order.push(el.value);
         show();
       });
+      const gyms = JSON.parse(picks.dataset.gyms || '{}');
+      const find = document.getElementById('study-find');
+      const more = document.getElementById('study-more');
+      const found = document.getElementById('study-found');
+      let offset = parseInt(picks.dataset.offset || '0', 10), seq = 0, timer = null;
+      const label = (r) => {
+        const l = document.createElement('label');
+        l.className = 'check';
+        const box = document.createElement('input');
+        box.type = 'checkbox'; box.className = 'study-route'; box.value = String(r.id);
+        l.append(box, ' ' + r.name);
+        if (r.is_variation) {
+          const t = document.createElement('span'); t.className = 'tag'; t.textContent = 'variation';
+          l.append(' ', t);
+        }
+        const g = document.createElement('small'); g.textContent = r.grade || '';
+        const where = [r.gym != null ? gyms[String(r.gym)] : '', r.wall_name || r.wall,
+                       r.setter || r.owner, r.set_on || (r.created_at || '').slice(0, 10)]
+          .filter((x) => x);
+        const w = document.createElement('small'); w.className = 'where';
+        w.textContent = where.join(' · ');
+        l.append(' ', g, ' ', w);
+        return l;
+      };
+      const load = async (again) => {
+        const mine = ++seq;
+        const q = new URLSearchParams({ limit: '50', offset: String(again ? offset : 0) });
+        if (find.value.trim()) q.set('q', find.value.trim());
+        const res = await fetch('/api/routes?' + q.toString(), { credentials: 'same-origin' });
+        if (mine !== seq || !res.ok) return;
+        const data = await res.json();
+        if (!again) {
+          // Keep the chosen routes; replace the rest with the results.
+          for (const el of [...picks.querySelectorAll('input.study-route')]) {
+            if (!el.checked) el.parentElement.remove();
+          }
+          offset = 0;
+        }
+        const present = new Set([...picks.querySelectorAll('input.study-route')].map((el) => el.value));
+        for (const r of data.routes) if (!present.has(String(r.id))) picks.appendChild(label(r));
+        offset += data.routes.length;
+        found.textContent = data.total + ' routes';
+        more.hidden = offset >= data.total;
+      };
+      find.addEventListener('input', () => { clearTimeout(timer); timer = setTimeout(() => load(false), 200); });
+      find.addEventListener('keydown', (ev) => { if (ev.key === 'Enter') { ev.preventDefault(); load(false); } });
+      more.addEventListener('click', () => load(true));
     }
     show();
     sf.addEventListener('submit', async (ev) => {

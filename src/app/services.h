@@ -15,6 +15,7 @@
 #include "app/logbook.h"
 #include "app/maps.h"
 #include "app/options.h"
+#include "app/report.h"
 #include "app/routes.h"
 #include "app/studies_service.h"
 #include "app/types.h"
@@ -43,6 +44,8 @@ struct Services {
   Logbook logbook;
   // The setting dashboard and wall targets (issue 22).
   Dashboard dashboard;
+  // The wall and setting-day reports over the logbook (issue 23).
+  Reports reports;
 };
 
 }  // namespace sb::app

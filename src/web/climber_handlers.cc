@@ -1,6 +1,8 @@
 // The climbers' side: feedback pages, the setter's views, studies (docs/web.md).
 #include "web/climber_handlers.h"
 
+#include <map>
+
 #include "app/routes.h"
 #include "base/log.h"
 #include "base/text.h"
@@ -26,6 +28,26 @@ void Download(Exchange& x, const std::string& body, const char* type, const std:
 }
 
 const app::ClimberPolicy& Policy(Exchange& x) { return x.services.options.climbers; }
+
+// Routes the study editor lists at first (issue 23): its search box and
+// "More routes" fetch the rest from /api/routes, so any number works.
+constexpr int kStudyPickerRows = 50;
+
+// The study editor's first page of routes and the viewer's gyms by id.
+struct StudyPicker {
+  app::RoutePage page;
+  std::map<int64_t, std::string> gyms;
+};
+Result<StudyPicker> StudyPickerOf(Exchange& x) {
+  app::RouteQuery q;
+  q.limit = kStudyPickerRows;
+  StudyPicker p;
+  SB_ASSIGN_OR_RETURN(p.page, x.services.routes.Search(x.caller.viewer, q));
+  if (Result<std::vector<app::Gym>> g = x.services.gyms.Mine(x.caller.viewer); g.ok()) {
+    for (const app::Gym& gym : *g) p.gyms[gym.id] = gym.name;
+  }
+  return p;
+}
 
 // Items a JSON array of the request may hold (app::Limits::max_json_array).
 size_t MaxItems(Exchange& x) { return x.services.options.limits.max_json_array; }
@@ -190,9 +212,9 @@ void PageStudies(Exchange& x) {
 }
 
 void PageNewStudy(Exchange& x) {
-  Result<std::vector<app::RouteView>> rs = x.services.routes.List(x.caller.viewer, {});
-  if (!rs.ok()) return PageError(x, rs.status());
-  Html(x, StudyEditorHtml(x.caller.page(), *rs, std::nullopt));
+  Result<StudyPicker> p = StudyPickerOf(x);
+  if (!p.ok()) return PageError(x, p.status());
+  Html(x, StudyEditorHtml(x.caller.page(), p->page.routes, std::nullopt, p->page.total, p->gyms));
 }
 
 void PageEditStudy(Exchange& x) {
@@ -200,9 +222,9 @@ void PageEditStudy(Exchange& x) {
   if (!id.ok()) return PageError(x, id.status());
   Result<app::Study> st = x.services.studies.Owned(x.caller.viewer, *id);
   if (!st.ok()) return PageError(x, st.status());
-  Result<std::vector<app::RouteView>> rs = x.services.routes.List(x.caller.viewer, {});
-  if (!rs.ok()) return PageError(x, rs.status());
-  Html(x, StudyEditorHtml(x.caller.page(), *rs, *st));
+  Result<StudyPicker> p = StudyPickerOf(x);
+  if (!p.ok()) return PageError(x, p.status());
+  Html(x, StudyEditorHtml(x.caller.page(), p->page.routes, *st, p->page.total, p->gyms));
 }
 
 void PageStudyResults(Exchange& x) {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <nlohmann/json.hpp>
 
 #include "base/number.h"
 #include "base/text.h"
@@ -276,7 +277,8 @@ std::string StudiesPageHtml(const PageViewer& v, const std::vector<app::Study>& 
 }
 
 std::string StudyEditorHtml(const PageViewer& v, const std::vector<app::RouteView>& routes,
-                            const std::optional<app::Study>& study) {
+                            const std::optional<app::Study>& study, int64_t total,
+                            const std::map<int64_t, std::string>& gym_names) {
   std::string b = kAssets;
   b += std::string("<h1>") + (study ? "Edit study" : "New study") + "</h1>\n";
   if (!v.logged_in) {
@@ -295,22 +297,57 @@ std::string StudyEditorHtml(const PageViewer& v, const std::vector<app::RouteVie
   } else {
     b += "<fieldset><legend>Routes, in the order climbers see them (labels 1, 2, …): tick them "
          "in that order</legend>\n<ol id=\"study-order\" class=\"msg\"></ol>\n"
-         "<div class=\"route-picks\">\n";
+         "<p class=\"route-find\"><input type=\"search\" id=\"study-find\" "
+         "placeholder=\"Find routes: name, grade, setter, wall\" aria-label=\"Find routes\"> "
+         "<small id=\"study-found\">" +
+         std::to_string(total < 0 ? static_cast<int64_t>(routes.size()) : total) +
+         " routes</small></p>\n";
+    nlohmann::json gyms = nlohmann::json::object();
+    for (const auto& [id, name] : gym_names) gyms[std::to_string(id)] = name;
+    b += "<div class=\"route-picks\" data-offset=\"" + std::to_string(routes.size()) +
+         "\" data-total=\"" + std::to_string(total < 0 ? 0 : total) + "\" data-gyms=\"" +
+         E(gyms.dump()) + "\">\n";
     std::map<int64_t, int> chosen;
     if (study) {
       for (const app::StudyRoute& sr : study->routes) {
         if (sr.route_id) chosen[*sr.route_id] = sr.position;
       }
     }
+    // Chosen routes beyond the first page come first, by their study name.
+    std::map<int64_t, bool> listed;
+    for (const app::RouteView& r : routes) listed[r.id] = true;
+    if (study) {
+      for (const app::StudyRoute& sr : study->routes) {
+        if (!sr.route_id || listed.count(*sr.route_id)) continue;
+        b += "<label class=\"check\"><input type=\"checkbox\" class=\"study-route\" value=\"" +
+             Id(*sr.route_id) + "\" checked data-pos=\"" + std::to_string(sr.position) + "\"> " +
+             E(sr.name) + "</label>\n";
+      }
+    }
     for (const app::RouteView& r : routes) {
       auto it = chosen.find(r.id);
+      // What tells routes of one name apart: gym, wall, setter, date.
+      std::string where;
+      auto add = [&](const std::string& part) {
+        if (!part.empty()) where += (where.empty() ? "" : " · ") + part;
+      };
+      if (r.gym_id) {
+        auto g = gym_names.find(*r.gym_id);
+        add(g == gym_names.end() ? std::string() : g->second);
+      }
+      add(r.wall_name.empty() ? r.wall : r.wall_name);
+      add(r.setter.empty() ? r.owner_name : r.setter);
+      add(r.set_on.empty() ? r.created_at.substr(0, 10) : r.set_on);
       b += "<label class=\"check\"><input type=\"checkbox\" class=\"study-route\" value=\"" +
            Id(r.id) + "\"" +
            (it != chosen.end() ? " checked data-pos=\"" + std::to_string(it->second) + "\"" : "") +
            "> " + E(r.name) + (r.is_variation ? " <span class=\"tag\">variation</span>" : "") +
-           " <small>" + E(r.grade) + "</small></label>\n";
+           " <small>" + E(r.grade) + "</small> <small class=\"where\">" + E(where) +
+           "</small></label>\n";
     }
-    b += "</div></fieldset>\n";
+    b += "</div>\n<button type=\"button\" id=\"study-more\"" +
+         std::string(total >= 0 && static_cast<int64_t>(routes.size()) < total ? "" : " hidden") +
+         ">More routes</button></fieldset>\n";
     b += "<fieldset><legend>Questionnaire</legend>\n"
          "<label class=\"check\"><input type=\"radio\" name=\"instrument\" value=\"brc\" "
          "checked> The paper's 14 items (BRC study)</label>\n"
@@ -425,6 +462,15 @@ std::string StudyResultsHtml(const PageViewer& v, const app::StudyResults& res,
          "</td></tr>\n";
   }
   b += "</table>\n";
+  // The owner reads the routes by name (issue 23): label -> "1 · Name".
+  std::map<std::string, std::string> named;
+  for (const app::StudyRoute& sr : st.routes) {
+    named[std::to_string(sr.position)] = std::to_string(sr.position) + " · " + sr.name;
+  }
+  auto name_of = [&](const std::string& label) {
+    auto it = named.find(label);
+    return it == named.end() ? label : it->second;
+  };
   b += "<p class=\"exports\">Export: <a id=\"export-csv\" href=\"/studies/" + sid +
        "/responses.csv\">responses.csv</a> · <a id=\"export-instrument\" href=\"/studies/" + sid +
        "/instrument.json\">instrument.json</a> · <a href=\"/studies/" + sid +
@@ -474,13 +520,34 @@ std::string StudyResultsHtml(const PageViewer& v, const app::StudyResults& res,
          Num(it.tau_item_total_p, k + "tau_item_total_p") + "</tr>\n";
   }
   b += "</table></div>\n";
+  {
+    std::string reversed;
+    for (const studies::ItemStats& it : a.items) {
+      if (it.negative) reversed += (reversed.empty() ? "" : ", ") + it.id;
+    }
+    b += "<p class=\"msg\" id=\"items-explained\">Each mean is the climbers' average answer "
+         "from " + std::to_string(res.instrument.scale_min) + " (strongly disagree) to " +
+         std::to_string(res.instrument.scale_max) +
+         " (strongly agree), keyed so that higher = more enjoyable for every item. " +
+         (reversed.empty()
+              ? std::string("No item is reverse-keyed.")
+              : "Reverse-keyed (marked −): " + E(reversed) +
+                    ". Their statements are negative, so an answer x counts as " +
+                    (res.instrument.scale_min + res.instrument.scale_max == 0
+                         ? std::string("−x")
+                         : std::to_string(res.instrument.scale_min + res.instrument.scale_max) +
+                               " − x") +
+                    ": a high mean there means climbers disagreed with the negative "
+                    "statement.") +
+         "</p>\n";
+  }
   b += "<h2>Routes</h2>\n<div class=\"scroll\"><table class=\"stats\" id=\"routes\"><tr><th>"
        "Route</th><th>n</th><th>Median sum</th><th>Mean % positive</th><th>Median rank</th>"
        "</tr>\n";
   for (size_t i = 0; i < a.routes.size(); ++i) {
     const studies::RouteStats& r = a.routes[i];
     const std::string k = "/routes/" + std::to_string(i) + "/";
-    b += "<tr><th>" + E(r.route) + "</th><td class=\"n\">" + std::to_string(r.n) + "</td>" +
+    b += "<tr><th>" + E(name_of(r.route)) + "</th><td class=\"n\">" + std::to_string(r.n) + "</td>" +
          Num(r.median_sum, k + "median_sum") +
          Num(r.mean_percent_positive, k + "mean_percent_positive") +
          Num(r.median_rank, k + "median_rank") + "</tr>\n";
@@ -497,7 +564,7 @@ std::string StudyResultsHtml(const PageViewer& v, const app::StudyResults& res,
   for (size_t i = 0; i < a.pairs.size(); ++i) {
     const studies::PairStats& p = a.pairs[i];
     const std::string k = "/pairs/" + std::to_string(i) + "/";
-    b += "<tr><th>" + E(p.a) + "–" + E(p.b) + "</th>" + Num(p.wilcoxon.p, k + "wilcoxon_p") +
+    b += "<tr><th>" + E(name_of(p.a)) + " – " + E(name_of(p.b)) + "</th>" + Num(p.wilcoxon.p, k + "wilcoxon_p") +
          Num(p.welch.t, k + "welch_t") + Num(p.welch.p, k + "welch_p") + "</tr>\n";
   }
   b += "</table></div>\n";

@@ -7,6 +7,8 @@
 #ifndef SB_WEB_CLIMBER_PAGES_H_
 #define SB_WEB_CLIMBER_PAGES_H_
 
+#include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -39,9 +41,13 @@ std::string DriftPageHtml(const PageViewer& v, const app::DriftReport& report);
 // "/studies": the viewer's studies (or a log-in prompt).
 std::string StudiesPageHtml(const PageViewer& v, const std::vector<app::Study>& studies);
 // "/studies/new" and "/studies/{id}/edit": the study editor over the routes
-// the viewer can see; `study` = nullopt for a new one.
+// the viewer can see; `study` = nullopt for a new one. `routes` is the first
+// page of `total` (the page's search box and "More routes" fetch the rest
+// from /api/routes); each route shows its gym (`gym_names`), wall, setter
+// and date so routes sharing a name can be told apart.
 std::string StudyEditorHtml(const PageViewer& v, const std::vector<app::RouteView>& routes,
-                            const std::optional<app::Study>& study);
+                            const std::optional<app::Study>& study, int64_t total = -1,
+                            const std::map<int64_t, std::string>& gym_names = {});
 // "/s/{id}": the climbers' one-page response under neutral labels.
 std::string StudyFormHtml(const PageViewer& v, const app::StudyForm& form);
 // "/studies/{id}": the owner's results. `drop`/`censor` echo the censoring

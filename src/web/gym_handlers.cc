@@ -2,6 +2,7 @@
 // a route page. Each asks app::Gyms / app::Routes and renders (gym_pages.h).
 #include "web/gym_pages.h"
 #include "web/handlers.h"
+#include "web/logbook_handlers.h"
 
 namespace sb::web {
 
@@ -49,7 +50,13 @@ void PageWall(Exchange& x) {
   q.sort = "set";
   Result<app::RoutePage> routes = x.services.routes.Search(x.caller.viewer, q);
   if (!routes.ok()) return PageError(x, routes.status());
-  Html(x, WallPage(x.caller.page(), *gym, *wall, routes->routes));
+  // Each route's grade from ascents (one cached fit of the gym, issue 23).
+  std::map<int64_t, std::string> ascent;
+  for (const auto& r : routes->routes) {
+    Result<app::AscentGrade> a = x.services.logbook.Ascent(x.caller.viewer, r.id);
+    if (a.ok()) ascent[r.id] = AscentCell(*a);
+  }
+  Html(x, WallPage(x.caller.page(), *gym, *wall, routes->routes, &ascent));
 }
 
 std::string GymBlock(Exchange& x, const app::RouteView& r) {

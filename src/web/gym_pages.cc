@@ -66,14 +66,16 @@ std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<
     b += "<p class=\"empty\">No walls yet.</p>\n";
   } else {
     b += "<div class=\"table-wrap\"><table class=\"list\" id=\"wall-list\"><thead><tr><th>Wall"
-         "</th><th>Discipline</th><th class=\"num\">Angle</th><th class=\"num\">Reset</th></tr>"
+         "</th><th>Discipline</th><th class=\"num\">Angle</th><th class=\"num\">Reset</th>"
+         "<th>Climbers</th></tr>"
          "</thead><tbody>\n";
     for (const app::Wall& w : walls) {
       b += "<tr><td><a href=\"/walls/" + std::to_string(w.id) + "\">" + E(w.name) + "</a></td><td>" +
            E(w.discipline) + "</td><td class=\"num\">" + FormatDouble(w.angle) +
            "°</td><td class=\"num\">" +
            (w.reset_weeks ? std::to_string(*w.reset_weeks) + " weeks" : std::string("—")) +
-           "</td></tr>\n";
+           "</td><td><a class=\"wall-report\" href=\"/gyms/" + gid + "/report?wall=" +
+           std::to_string(w.id) + "\">report</a></td></tr>\n";
     }
     b += "</tbody></table></div>\n";
   }
@@ -88,6 +90,9 @@ std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<
                  "min=\"1\" max=\"104\" size=\"3\"> weeks</label>",
                  "Add wall");
   }
+  b += "<form method=\"get\" class=\"no-print\" id=\"day-report\" action=\"/gyms/" + gid +
+       "/report\"><label>What climbers said about a setting day <input type=\"date\" "
+       "name=\"date\" required></label> <button type=\"submit\">Report</button></form>\n";
   b += "<h2>Circuits</h2>\n";
   if (circuits.empty()) {
     b += "<p class=\"empty\">No circuits yet.</p>\n";
@@ -130,26 +135,34 @@ std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<
 }
 
 std::string WallPage(const PageViewer& v, const app::Gym& gym, const app::Wall& wall,
-                     const std::vector<app::RouteView>& routes) {
+                     const std::vector<app::RouteView>& routes,
+                     const std::map<int64_t, std::string>* ascent_cells) {
   std::string b = "<p><a href=\"/gyms/" + std::to_string(gym.id) + "\">" + E(gym.name) +
                   "</a></p>\n<h1 id=\"wall-title\">" + E(wall.name) + "</h1>\n<p>" +
                   E(wall.discipline) + ", " + FormatDouble(wall.angle) + "°" +
                   (wall.reset_weeks ? ", reset every " + std::to_string(*wall.reset_weeks) +
                                           " weeks"
                                     : std::string()) +
-                  "</p>\n";
+                  "</p>\n<p><a id=\"wall-report\" href=\"/gyms/" + std::to_string(gym.id) +
+                  "/report?wall=" + std::to_string(wall.id) + "\">What climbers said</a></p>\n";
   for (const char* state : {"set", "planned", "draft", "stripped"}) {
     std::string rows;
     for (const app::RouteView& r : routes) {
       if (r.state != state) continue;
       rows += "<tr><td><a href=\"/routes/" + std::to_string(r.id) + "\">" + E(r.name) +
               "</a></td><td>" + E(r.grade) + "</td><td>" + E(r.colour) + "</td><td>" +
-              E(r.state == "stripped" ? r.strip_on : r.set_on) + "</td></tr>\n";
+              E(r.state == "stripped" ? r.strip_on : r.set_on) + "</td>";
+      if (ascent_cells) {
+        auto it = ascent_cells->find(r.id);
+        rows += it == ascent_cells->end() ? "<td></td>" : it->second;
+      }
+      rows += "</tr>\n";
     }
     if (rows.empty()) continue;
     b += "<h2>" + E(StateName(state)) + "</h2>\n<div class=\"table-wrap\"><table class=\"list\" "
          "id=\"wall-" + std::string(state) + "\"><thead><tr><th>Route</th><th>Grade</th><th>"
-         "Colour</th><th>Date</th></tr></thead><tbody>\n" + rows + "</tbody></table></div>\n";
+         "Colour</th><th>Date</th>" + (ascent_cells ? "<th>Ascent grade</th>" : "") +
+         "</tr></thead><tbody>\n" + rows + "</tbody></table></div>\n";
   }
   if (routes.empty()) b += "<p class=\"empty\">Nothing on this wall yet.</p>\n";
   if (app::CanSet(gym.role)) {

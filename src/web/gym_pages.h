@@ -5,6 +5,8 @@
 #ifndef SB_WEB_GYM_PAGES_H_
 #define SB_WEB_GYM_PAGES_H_
 
+#include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -22,9 +24,13 @@ std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<
                     const std::vector<app::Circuit>& circuits,
                     const std::vector<app::Member>& members);
 // "/walls/{id}": the wall's routes grouped by state (on the wall, planned,
-// drafts, stripped), a form to plan a route on it for setters.
+// drafts, stripped), a form to plan a route on it for setters. With
+// `ascent_cells` (route id -> a <td>, logbook_handlers.h AscentCell) each
+// row shows the route's ascent grade (issue 23); the page links the wall's
+// climbers' report.
 std::string WallPage(const PageViewer& v, const app::Gym& gym, const app::Wall& wall,
-                     const std::vector<app::RouteView>& routes);
+                     const std::vector<app::RouteView>& routes,
+                     const std::map<int64_t, std::string>* ascent_cells = nullptr);
 // The block a route page shows for a route of a gym: state, wall, setters,
 // set / strip dates and history; with `can_set`, a form to change them.
 std::string RouteGymBlock(const app::RouteView& r, const std::vector<app::HistoryEntry>& history,

@@ -95,22 +95,10 @@ std::string AscentHtml(const app::AscentGrade& a) {
     return "<p class=\"ascent no-print\" id=\"ascent-grade\" data-ticks=\"0\">Ascent grade: "
            "no ticks yet.</p>\n";
   }
-  std::string b = "<p class=\"ascent no-print\" id=\"ascent-grade\" data-ticks=\"" +
-                  std::to_string(a.ticks) + "\" data-value=\"" + Fixed(a.value) +
-                  "\" data-lo=\"" + Fixed(a.lo) + "\" data-hi=\"" + Fixed(a.hi) + "\">";
-  b += "Ascent grade <strong id=\"ascent-value\">" + E(a.grade) + "</strong> <span "
-       "id=\"ascent-interval\">(80%: " + E(a.lo_grade) + " to " + E(a.hi_grade) +
-       ")</span> from <span id=\"ascent-ticks\">" + std::to_string(a.ticks) + "</span> tick" +
-       (a.ticks == 1 ? "" : "s");
-  if (a.felt_votes > 0) {
-    b += "; felt by climbers who ticked it: " + E(a.felt_median) + " (" +
-         std::to_string(a.felt_votes) + ")";
-  }
-  if (!a.verdict.empty()) {
-    b += " <span class=\"tag\" id=\"ascent-verdict\">" + E(a.verdict) + "</span>";
-  }
-  b += "</p>\n";
-  return b;
+  return "<p class=\"ascent no-print\" id=\"ascent-grade\" data-ticks=\"" +
+         std::to_string(a.ticks) + "\" data-value=\"" + Fixed(a.value) + "\" data-lo=\"" +
+         Fixed(a.lo) + "\" data-hi=\"" + Fixed(a.hi) + "\">Ascent grade " + AscentText(a, true) +
+         "</p>\n";
 }
 
 // The held ticks of a route with accept/discard, for its setters.
@@ -324,6 +312,38 @@ std::string TickBlock(Exchange& x, const app::RouteView& route) {
   b += "<p><a href=\"/logbook\" id=\"logbook-link\">Your logbook</a></p>\n</form>\n";
   b += "<p class=\"msg\">The survey below is optional.</p>\n";
   return b;
+}
+
+json AscentGradeJson(const app::AscentGrade& a) { return AscentJson(a); }
+
+std::string AscentText(const app::AscentGrade& a, bool with_ids) {
+  if (!a.fitted) return "no ticks yet";
+  auto id = [&](const char* name) {
+    return with_ids ? std::string(" id=\"") + name + "\"" : std::string();
+  };
+  std::string b = "<strong" + id("ascent-value") + " class=\"ascent-value\">" + E(a.grade) +
+                  "</strong> <span" + id("ascent-interval") + " class=\"ascent-interval\">(80%: " +
+                  E(a.lo_grade) + " to " + E(a.hi_grade) + ")</span> from <span" +
+                  id("ascent-ticks") + " class=\"ascent-ticks\">" + std::to_string(a.ticks) +
+                  "</span> tick" + (a.ticks == 1 ? "" : "s");
+  if (a.felt_votes > 0) {
+    b += "; felt by climbers who ticked it: " + E(a.felt_median) + " (" +
+         std::to_string(a.felt_votes) + ")";
+  }
+  if (!a.verdict.empty()) {
+    b += " <span class=\"tag ascent-verdict\"" + id("ascent-verdict") + ">" + E(a.verdict) +
+         "</span>";
+  }
+  return b;
+}
+
+std::string AscentCell(const app::AscentGrade& a) {
+  return "<td class=\"ascent\" data-ticks=\"" + std::to_string(a.ticks) + "\"" +
+         (a.fitted ? " data-value=\"" + Fixed(a.value) + "\" data-lo=\"" + Fixed(a.lo) +
+                         "\" data-hi=\"" + Fixed(a.hi) + "\""
+                   : std::string()) +
+         (a.verdict.empty() ? std::string() : " data-verdict=\"" + E(a.verdict) + "\"") + ">" +
+         AscentText(a, false) + "</td>";
 }
 
 void MergeDeviceTicks(Exchange& x, int64_t user_id) {

@@ -4,8 +4,10 @@
 #ifndef SB_WEB_LOGBOOK_HANDLERS_H_
 #define SB_WEB_LOGBOOK_HANDLERS_H_
 
+#include <nlohmann/json.hpp>
 #include <string>
 
+#include "app/logbook.h"
 #include "app/types.h"
 #include "web/handlers.h"
 
@@ -25,6 +27,17 @@ std::string AscentBlock(Exchange& x, const app::RouteView& route);
 // The tick form of /r/{id} (with the ascent grade and, for the route's
 // setters, its held ticks with accept/discard), placed before the survey.
 std::string TickBlock(Exchange& x, const app::RouteView& route);
+// The ascent grade as JSON: ticks, fitted, discipline and, when fitted,
+// value, lo, hi (80%), grade, lo_grade, hi_grade, verdict, felt_votes,
+// felt_median.
+nlohmann::json AscentGradeJson(const app::AscentGrade& a);
+// The ascent grade in words (HTML, escaped): "<strong>V4</strong> (80%: V3
+// to V5) from 6 ticks", the felt median and the soft/sandbagged tag; with
+// `with_ids` the elements carry the route page's ids (one per page).
+std::string AscentText(const app::AscentGrade& a, bool with_ids);
+// A table cell (<td class="ascent">, data-ticks/value/lo/hi/verdict) with
+// AscentText, for the wall pages and the report.
+std::string AscentCell(const app::AscentGrade& a);
 // After a sign-in as `user_id`: moves the device cookie's ticks into the
 // climber's logbook (failures are logged, never fail the sign-in).
 void MergeDeviceTicks(Exchange& x, int64_t user_id);

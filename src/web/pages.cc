@@ -49,6 +49,10 @@ std::string Layout(const PageViewer& v, const std::string& title, const std::str
   if (v.logged_in) h += "<a href=\"/routes/new\" id=\"nav-new\">New route</a>\n";
   h += "<a href=\"/vary\" id=\"nav-vary\">Vary</a>\n";
   if (v.logged_in) h += "<a href=\"/gyms\" id=\"nav-gyms\">Gyms</a>\n";
+  if (v.logged_in) {  // issue 23: the climbers' side of a setter's work
+    h += "<a href=\"/studies\" id=\"nav-studies\">Studies</a>\n<a href=\"/drift\" "
+         "id=\"nav-drift\">Drift</a>\n";
+  }
   h += "<a href=\"/import\">Import/export</a>\n</nav>\n<div class=\"who\">";
   if (v.logged_in) {
     h += "<span id=\"whoami\">" + E(v.username) +

@@ -12,6 +12,7 @@
 #include "web/handlers.h"
 #include "web/http_transport.h"
 #include "web/logbook_handlers.h"
+#include "web/report_handlers.h"
 #include "web/router.h"
 
 namespace sb::web {
@@ -83,6 +84,9 @@ const Endpoint kEndpoints[] = {
     {"GET", "/api/routes/{id}/ascent", GetRouteAscent},
     {"GET", "/api/logbook", GetLogbook},
     {"GET", "/logbook", PageLogbook},
+    // The wall and setting-day reports (report_handlers.cc, issue 23).
+    {"GET", "/api/gyms/{id}/report", GetGymReport},
+    {"GET", "/gyms/{id}/report", PageGymReport},
     {"GET", "/studies", PageStudies},
     {"GET", "/studies/new", PageNewStudy},
     {"GET", "/studies/{id}/edit", PageEditStudy},

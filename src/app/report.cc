@@ -1,0 +1,285 @@
+#include "app/report.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <set>
+#include <utility>
+
+#include "app/routes.h"
+#include "base/number.h"
+#include "base/text.h"
+#include "grades/consensus.h"
+#include "grades/scale.h"
+#include "store/tick_store.h"
+#include "studies/stats.h"
+
+namespace sb::app {
+
+namespace {
+
+// Routes read per store call.
+constexpr int kPage = 1000;
+
+bool IsIsoDate(const std::string& d) {
+  bool ok = d.size() == 10 && d[4] == '-' && d[7] == '-';
+  for (size_t i = 0; ok && i < d.size(); ++i) {
+    if (i != 4 && i != 7 && !std::isdigit(static_cast<unsigned char>(d[i]))) ok = false;
+  }
+  if (ok) {
+    const int m = std::stoi(d.substr(5, 2)), day = std::stoi(d.substr(8, 2));
+    ok = m >= 1 && m <= 12 && day >= 1 && day <= 31;
+  }
+  return ok;
+}
+
+bool IsSend(const std::string& outcome) { return outcome == "flash" || outcome == "send"; }
+
+double MeanOr0(double sum, int n) { return n > 0 ? sum / n : 0; }
+
+// Two decimals, for the verdict's words.
+std::string Two(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2f", v);
+  return buf;
+}
+
+std::string PText(double p) {
+  if (std::isnan(p)) return "n/a";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, p < 0.001 ? "%.1e" : "%.3f", p);
+  return buf;
+}
+
+// The scale a route's grade is written in (the discipline's default when unreadable).
+grades::Scale ScaleOf(const store::RouteRecord& r, grades::Discipline d) {
+  if (!r.grade.empty()) {
+    Result<grades::Grade> g = grades::ParseGrade(r.grade, {d, std::nullopt});
+    if (g.ok()) return g->scale;
+  }
+  return grades::DefaultScale(d);
+}
+
+}  // namespace
+
+VariationComparison CompareStars(std::vector<double> variation, std::vector<double> hand) {
+  VariationComparison c;
+  c.variation_stars = std::move(variation);
+  c.hand_stars = std::move(hand);
+  const int nv = static_cast<int>(c.variation_stars.size());
+  const int nh = static_cast<int>(c.hand_stars.size());
+  c.variation_mean = studies::Mean(c.variation_stars);
+  c.hand_mean = studies::Mean(c.hand_stars);
+  const studies::MannWhitneyResult mw = studies::MannWhitneyU(c.variation_stars, c.hand_stars);
+  c.wilcoxon_u = mw.u;
+  c.wilcoxon_p = mw.p;
+  c.wilcoxon_exact = mw.exact;
+  const studies::WelchResult w = studies::WelchT(c.variation_stars, c.hand_stars);
+  c.welch_t = w.t;
+  c.welch_df = w.df;
+  c.welch_p = w.p;
+  c.enough = nv >= ReportLimits::kMinRatingsPerGroup && nh >= ReportLimits::kMinRatingsPerGroup;
+  const std::string counts = std::to_string(nv) + " star rating" + (nv == 1 ? "" : "s") +
+                             " of variations and " + std::to_string(nh) + " of hand-set routes";
+  if (!c.enough) {
+    c.verdict = "Too few ratings to compare: " + counts +
+                " in the grade bands both kinds share; at least " +
+                std::to_string(ReportLimits::kMinRatingsPerGroup) +
+                " a side are needed before the tests mean anything.";
+  } else if (!std::isnan(c.wilcoxon_p) && c.wilcoxon_p < ReportLimits::kSignificance) {
+    c.verdict = std::string("Variations are liked ") +
+                (c.variation_mean > c.hand_mean ? "more" : "less") +
+                " than hand-set routes of the same grades: " + Two(c.variation_mean) + " vs " +
+                Two(c.hand_mean) + " stars on average (Wilcoxon rank-sum p = " +
+                PText(c.wilcoxon_p) + ", Welch's t p = " + PText(c.welch_p) + "; " + counts +
+                ").";
+  } else {
+    c.verdict = "No difference shown: variations get " + Two(c.variation_mean) +
+                " stars on average, hand-set routes of the same grades " + Two(c.hand_mean) +
+                " (Wilcoxon rank-sum p = " + PText(c.wilcoxon_p) + ", Welch's t p = " +
+                PText(c.welch_p) + "; " + counts + ").";
+  }
+  return c;
+}
+
+Reports::Reports(store::Store* store, Gyms* gyms, Logbook* logbook)
+    : store_(store), gyms_(gyms), logbook_(logbook) {}
+
+Result<GymReport> Reports::Report(const Viewer& v, int64_t gym, const ReportQuery& q) {
+  store::TickStore* ticks = store::TickStoreOf(store_);
+  if (ticks == nullptr) return Status::Internal("this store keeps no ticks");
+  SB_ASSIGN_OR_RETURN(Gym g, gyms_->Get(v, gym));
+  const std::string wall_key(Trim(q.wall)), date(Trim(q.date));
+  if (wall_key.empty() == date.empty()) {
+    return Status::InvalidInput("wall: give either a wall or a date (YYYY-MM-DD), not " +
+                                std::string(wall_key.empty() ? "neither" : "both"));
+  }
+  GymReport out;
+  out.gym_id = g.id;
+  out.gym_name = g.name;
+  out.can_set = CanSet(g.role);
+  store::RouteFilter f;
+  f.viewer = v.user_id;
+  f.gym_id = gym;
+  f.sort = store::RouteSort::kOldest;
+  if (!wall_key.empty()) {
+    SB_ASSIGN_OR_RETURN(Wall w, gyms_->ResolveWall(gym, wall_key));
+    out.scope = "wall";
+    out.wall_id = w.id;
+    out.wall_name = w.name;
+    f.wall_id = w.id;
+  } else {
+    if (!IsIsoDate(date)) {
+      return Status::InvalidInput("date: expected a date YYYY-MM-DD, got '" + date + "'");
+    }
+    out.scope = "date";
+    out.date = date;
+  }
+  // The routes, by id.
+  std::map<int64_t, store::RouteRecord> routes;
+  for (f.offset = 0, f.limit = kPage; f.offset < ReportLimits::kMaxRoutes; f.offset += kPage) {
+    SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> page, store_->ListRoutes(f));
+    for (store::RouteRecord& r : page) {
+      if (!IsVisible(r, v)) continue;
+      if (!date.empty() && r.set_on != date && r.planned_on != date) continue;
+      const int64_t id = r.id;
+      routes.emplace(id, std::move(r));
+    }
+    if (static_cast<int>(page.size()) < kPage) break;
+  }
+
+  // The unheld ticks of those routes (GymTicks: state "ok", by id).
+  SB_ASSIGN_OR_RETURN(std::vector<store::TickRecord> all, ticks->GymTicks(gym));
+  std::map<int64_t, std::vector<const store::TickRecord*>> by_route;
+  for (const store::TickRecord& t : all) {
+    if (routes.count(t.route_id)) by_route[t.route_id].push_back(&t);
+  }
+
+  // Star ratings per band: (band, is_variation) -> stars; routes behind them.
+  // Keyed by (discipline, band): a roped band never meets a bouldering one.
+  using BandKey = std::pair<std::string, int>;
+  std::map<BandKey, std::pair<std::vector<double>, std::vector<double>>> band_stars;
+  std::map<BandKey, std::pair<std::set<int64_t>, std::set<int64_t>>> band_routes;
+  std::map<BandKey, std::string> band_names;
+  std::set<std::string> climbers;
+  double stars_sum = 0;
+  for (const auto& [id, r] : routes) {
+    ReportRoute rr;
+    rr.id = id;
+    rr.name = r.name;
+    rr.grade = r.grade;
+    rr.colour = r.colour;
+    rr.state = r.state;
+    rr.set_on = r.set_on;
+    rr.planned_on = r.planned_on;
+    rr.wall_name = r.wall_name;
+    rr.is_variation = r.is_variation;
+    Result<grades::Discipline> d = grades::ParseDiscipline(r.grade_discipline);
+    const bool graded = r.grade_value.has_value() && d.ok();
+    // The latest tick with stars / a felt grade of each climber.
+    std::map<std::string, const store::TickRecord*> starred, felt;
+    std::set<std::string> route_climbers;
+    for (const store::TickRecord* t : by_route[id]) {
+      ++rr.ticks;
+      if (t->outcome == "flash") ++rr.flashes;
+      if (t->outcome == "send") ++rr.sends;
+      if (!IsSend(t->outcome)) ++rr.attempts;
+      route_climbers.insert(t->climber);
+      climbers.insert(t->climber);
+      auto later = [](const store::TickRecord* a, const store::TickRecord* b) {
+        return std::make_pair(a->day, a->id) < std::make_pair(b->day, b->id);
+      };
+      if (t->stars) {
+        auto& s = starred[t->climber];
+        if (s == nullptr || later(s, t)) s = t;
+      }
+      if (t->felt_value && graded && t->felt_discipline == r.grade_discipline) {
+        auto& s = felt[t->climber];
+        if (s == nullptr || later(s, t)) s = t;
+      }
+      if (out.can_set && !t->comment.empty()) {
+        out.comments.push_back({id, r.name, t->day, t->outcome, t->comment});
+      }
+    }
+    rr.climbers = static_cast<int>(route_climbers.size());
+    double sum = 0;
+    for (const auto& [c, t] : starred) {
+      sum += *t->stars;
+      if (graded) {
+        const BandKey band{r.grade_discipline, grades::Band(*r.grade_value)};
+        band_names[band] = grades::BandName(*d, band.second);
+        auto& side = band_stars[band];
+        (r.is_variation ? side.first : side.second).push_back(*t->stars);
+        auto& rs = band_routes[band];
+        (r.is_variation ? rs.first : rs.second).insert(id);
+      }
+    }
+    rr.stars_n = static_cast<int>(starred.size());
+    rr.stars_mean = MeanOr0(sum, rr.stars_n);
+    stars_sum += sum;
+    out.stars_n += rr.stars_n;
+    if (graded && !felt.empty()) {
+      const int setter_band = grades::Band(*r.grade_value);
+      std::vector<double> values;
+      for (const auto& [c, t] : felt) {
+        values.push_back(*t->felt_value);
+        const int b = grades::Band(*t->felt_value);
+        if (b > setter_band) ++rr.felt_harder;
+        if (b == setter_band) ++rr.felt_same;
+        if (b < setter_band) ++rr.felt_softer;
+      }
+      rr.felt_n = static_cast<int>(values.size());
+      Result<grades::Consensus> cons = grades::ConsensusOf(values);
+      if (cons.ok()) rr.felt_median = grades::FormatValue(cons->median, *d, ScaleOf(r, *d));
+    }
+    if (!by_route[id].empty()) {
+      Result<AscentGrade> a = logbook_->Ascent(v, id);
+      if (a.ok()) rr.ascent = std::move(a).value();
+    }
+    out.ticks += rr.ticks;
+    out.felt_n += rr.felt_n;
+    out.felt_harder += rr.felt_harder;
+    out.felt_same += rr.felt_same;
+    out.felt_softer += rr.felt_softer;
+    out.routes.push_back(std::move(rr));
+  }
+  out.climbers = static_cast<int>(climbers.size());
+  out.stars_mean = MeanOr0(stars_sum, out.stars_n);
+
+  // Variations against hand-set routes of the same bands.
+  std::vector<double> variation, hand;
+  std::set<int64_t> variation_routes, hand_routes;
+  std::vector<BandStars> bands;
+  for (const auto& [band, sides] : band_stars) {
+    BandStars bs;
+    bs.band = band_names[band];
+    bs.variation_n = static_cast<int>(sides.first.size());
+    bs.hand_n = static_cast<int>(sides.second.size());
+    double sv = 0, sh = 0;
+    for (double s : sides.first) sv += s;
+    for (double s : sides.second) sh += s;
+    bs.variation_mean = MeanOr0(sv, bs.variation_n);
+    bs.hand_mean = MeanOr0(sh, bs.hand_n);
+    bands.push_back(bs);
+    if (bs.variation_n == 0 || bs.hand_n == 0) continue;
+    variation.insert(variation.end(), sides.first.begin(), sides.first.end());
+    hand.insert(hand.end(), sides.second.begin(), sides.second.end());
+    variation_routes.insert(band_routes[band].first.begin(), band_routes[band].first.end());
+    hand_routes.insert(band_routes[band].second.begin(), band_routes[band].second.end());
+  }
+  out.comparison = CompareStars(std::move(variation), std::move(hand));
+  out.comparison.bands = std::move(bands);
+  out.comparison.variation_routes = static_cast<int>(variation_routes.size());
+  out.comparison.hand_routes = static_cast<int>(hand_routes.size());
+
+  std::stable_sort(out.comments.begin(), out.comments.end(),
+                   [](const ReportComment& a, const ReportComment& b) {
+                     if (a.day != b.day) return a.day > b.day;
+                     return a.route_id < b.route_id;
+                   });
+  return out;
+}
+
+}  // namespace sb::app

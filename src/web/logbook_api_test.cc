@@ -1,0 +1,170 @@
+// API tests of the climbers' logbook and the wall report (issue 23) on a
+// real server over a real database (SQLite, or PostgreSQL when
+// $SB_TEST_BACKEND is "postgresql"; ctest runs every test on both): a tick,
+// a second tick the same day edits it, a burst of new identities is held and
+// the setters accept or discard it, a device's ticks merge into the account
+// on sign-in, another gym's setter is refused; the report and wall pages.
+#include <gtest/gtest.h>
+#include <httplib.h>
+
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "web/api_test_util.h"
+
+namespace sb::web {
+namespace {
+
+using nlohmann::json;
+using testing::Client;
+
+const char kRoute[] =
+    "name: Crimp Ladder\n"
+    "grade: V4\n"
+    "---\n"
+    "R small crimp\n"
+    "L small crimp\n"
+    "R jug\n"
+    "L jug finish\n";
+
+class LogbookApiTest : public testing::ApiFixture {
+ protected:
+  // A logged-in client.
+  Client* LoggedIn(const std::string& name) {
+    all_.push_back(std::make_unique<Client>(server_->port()));
+    all_.back()->SignUp(name);
+    EXPECT_TRUE(all_.back()->LogIn(name));
+    return all_.back().get();
+  }
+  // A phone without an account: ticks `path` and keeps the device cookie.
+  json Tick(Client& phone, const std::string& path, const json& body, int expect) {
+    auto r = phone.Send("POST", path, body.dump());
+    EXPECT_TRUE(r);
+    if (!r) return json();
+    EXPECT_EQ(r->status, expect) << r->body;
+    const std::string sc = r->get_header_value("Set-Cookie");
+    if (sc.rfind("sb_climber=", 0) == 0) phone.cookie() = sc.substr(0, sc.find(';'));
+    return json::parse(r->body, nullptr, false);
+  }
+
+  std::vector<std::unique_ptr<Client>> all_;
+};
+
+TEST_F(LogbookApiTest, TicksEditsBurstsReviewMergeAndGymIsolation) {
+  Client& head = *LoggedIn("head");
+  Client& setter = *LoggedIn("setter");
+  Client& climber = *LoggedIn("climber");
+  Client& rival = *LoggedIn("rival");
+  const int64_t g = head.Json("POST", "/api/gyms", R"({"name":"Boulder Barn"})", 201)["id"];
+  ASSERT_EQ(rival.Status("POST", "/api/gyms", R"({"name":"Rival Rocks"})"), 201);
+  const std::string gp = "/api/gyms/" + std::to_string(g);
+  ASSERT_EQ(head.Status("POST", gp + "/members", R"({"username":"setter","role":"setter"})"), 201);
+  ASSERT_EQ(head.Status("POST", gp + "/members", R"({"username":"climber","role":"climber"})"),
+            201);
+  const int64_t wall = head.Json("POST", gp + "/walls", R"({"name":"Cave"})", 201)["id"];
+  json body{{"crdl", kRoute}, {"gym", g}, {"wall", "cave"}, {"state", "set"}};
+  const int64_t route = setter.Json("POST", "/api/routes", body.dump(), 201)["id"];
+  const int64_t other = setter.Json("POST", "/api/routes", body.dump(), 201)["id"];
+  const std::string rp = "/api/routes/" + std::to_string(route);
+
+  // A tick, then a second one the same day edits it.
+  Client ann(server_->port());
+  json first = Tick(ann, rp + "/ticks",
+                    {{"outcome", "send"}, {"attempts", 3}, {"stars", 4}, {"felt_grade", "V5"},
+                     {"comment", "sharp crimps"}},
+                    201);
+  ASSERT_FALSE(ann.cookie().empty());
+  EXPECT_FALSE(first["edited"].get<bool>());
+  EXPECT_FALSE(first["held"].get<bool>());
+  EXPECT_EQ(first["ascent"]["ticks"], 1);
+  json again = Tick(ann, rp + "/ticks",
+                    {{"outcome", "flash"}, {"stars", 5}, {"comment", "sharp crimps"}}, 200);
+  EXPECT_TRUE(again["edited"].get<bool>());
+  EXPECT_EQ(again["id"], first["id"]);
+  EXPECT_EQ(again["outcome"], "flash");
+  EXPECT_NE(Tick(ann, rp + "/ticks", {{"outcome", "onsight"}}, 400)["error"].get<std::string>()
+                .find("outcome"),
+            std::string::npos);
+
+  // Four more phones on the same address pass; from the sixth new identity on, held.
+  std::vector<std::unique_ptr<Client>> phones;
+  for (int i = 0; i < 6; ++i) {
+    phones.push_back(std::make_unique<Client>(server_->port()));
+    json t = Tick(*phones.back(), rp + "/ticks",
+                  {{"outcome", "attempt"}, {"attempts", 9}, {"felt_grade", "V9"}}, 201);
+    EXPECT_EQ(t["held"].get<bool>(), i >= 4) << i;
+  }
+  json ascent = ann.Json("GET", rp + "/ascent", "", 200);
+  EXPECT_EQ(ascent["ticks"], 5);  // the two held ones count nowhere
+
+  // The route's setters see and decide; others may not.
+  json seen = setter.Json("GET", rp + "/ticks", "", 200);
+  std::vector<int64_t> held;
+  for (const json& t : seen["ticks"]) {
+    if (t["state"] == "held") held.push_back(t["id"]);
+  }
+  ASSERT_EQ(held.size(), 2u);
+  EXPECT_EQ(climber.Status("GET", rp + "/ticks"), 403);
+  EXPECT_EQ(rival.Status("GET", rp + "/ticks"), 403);  // another gym's setter
+  EXPECT_EQ(ann.Status("GET", rp + "/ticks"), 401);
+  const std::string accept = rp + "/ticks/" + std::to_string(held[0]) + "/accept";
+  EXPECT_EQ(rival.Status("POST", accept, "{}"), 403);
+  EXPECT_EQ(climber.Status("POST", accept, "{}"), 403);
+  EXPECT_EQ(setter.Json("POST", accept, "{}", 200)["state"], "ok");
+  EXPECT_EQ(head.Json("POST", rp + "/ticks/" + std::to_string(held[1]) + "/discard", "{}",
+                      200)["state"],
+            "discarded");
+  EXPECT_EQ(setter.Status("POST",
+                          "/api/routes/" + std::to_string(other) + "/ticks/" +
+                              std::to_string(held[0]) + "/accept",
+                          "{}"),
+            404);
+  EXPECT_EQ(ann.Json("GET", rp + "/ascent", "", 200)["ticks"], 6);
+
+  // Sign-in merges the phone's ticks into the account's logbook.
+  ann.SignUp("ann");
+  ASSERT_TRUE(ann.LogIn("ann"));
+  json book = ann.Json("GET", "/api/logbook", "", 200);
+  ASSERT_EQ(book["ticks"].size(), 1u);
+  EXPECT_EQ(book["ticks"][0]["route"], route);
+  EXPECT_TRUE(book["ticks"][0]["account"].get<bool>());
+  EXPECT_EQ(book["ticks"][0]["outcome"], "flash");
+
+  // The wall's report: members only; comments for setters only.
+  const std::string report = gp + "/report?wall=" + std::to_string(wall);
+  json r = head.Json("GET", report, "", 200);
+  EXPECT_EQ(r["scope"], "wall");
+  EXPECT_EQ(r["totals"]["routes"], 2);
+  EXPECT_EQ(r["totals"]["ticks"], 6);
+  ASSERT_EQ(r["comments"].size(), 1u);
+  EXPECT_EQ(r["comments"][0]["text"], "sharp crimps");
+  EXPECT_FALSE(r["variations_vs_hand_set"]["enough"].get<bool>());
+  EXPECT_NE(r["variations_vs_hand_set"]["verdict"].get<std::string>().find("Too few"),
+            std::string::npos);
+  json as_climber = climber.Json("GET", report, "", 200);
+  EXPECT_FALSE(as_climber.contains("comments"));
+  EXPECT_EQ(rival.Status("GET", report), 404);
+  EXPECT_EQ(head.Status("GET", gp + "/report?date=tomorrow"), 400);
+  EXPECT_EQ(head.Status("GET", gp + "/report"), 400);
+  auto page = head.Send("GET", "/gyms/" + std::to_string(g) + "/report?wall=cave");
+  ASSERT_TRUE(page);
+  EXPECT_EQ(page->status, 200);
+  EXPECT_NE(page->body.find("id=\"report-verdict\""), std::string::npos);
+  EXPECT_NE(page->body.find("sharp crimps"), std::string::npos);
+  auto climber_page = climber.Send("GET", "/gyms/" + std::to_string(g) + "/report?wall=cave");
+  ASSERT_TRUE(climber_page);
+  EXPECT_EQ(climber_page->body.find("sharp crimps"), std::string::npos);
+
+  // The wall page shows each route's ascent grade.
+  auto wall_page = head.Send("GET", "/walls/" + std::to_string(wall));
+  ASSERT_TRUE(wall_page);
+  EXPECT_EQ(wall_page->status, 200);
+  EXPECT_NE(wall_page->body.find("<td class=\"ascent\" data-ticks=\"6\""), std::string::npos);
+  EXPECT_NE(wall_page->body.find("<td class=\"ascent\" data-ticks=\"0\""), std::string::npos);
+  EXPECT_NE(wall_page->body.find("id=\"wall-report\""), std::string::npos);
+}
+
+}  // namespace
+}  // namespace sb::web

@@ -1,0 +1,257 @@
+#include "web/report_handlers.h"
+
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+#include "base/number.h"
+#include "base/text.h"
+#include "web/logbook_handlers.h"
+
+namespace sb::web {
+
+namespace {
+
+using nlohmann::json;
+
+std::string E(std::string_view s) { return XmlEscape(s); }
+std::string Id(int64_t id) { return std::to_string(id); }
+
+// A number in JSON: null when undefined (NaN, infinite).
+json Number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+// A number for reading (`decimals` places, p-values below 0.001 in
+// scientific notation, "–" when undefined) with its exact value in data-v.
+std::string Cell(double v, int decimals, const std::string& id = "") {
+  char buf[64];
+  if (!std::isfinite(v)) {
+    std::snprintf(buf, sizeof buf, "–");
+  } else if (decimals == 3 && v != 0 && std::abs(v) < 0.001) {
+    std::snprintf(buf, sizeof buf, "%.1e", v);
+  } else {
+    std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  }
+  return "<td class=\"n\"" + (id.empty() ? std::string() : " id=\"" + id + "\"") + " data-v=\"" +
+         FormatDouble(v) + "\">" + buf + "</td>";
+}
+
+app::ReportQuery QueryOf(const Request& req) {
+  app::ReportQuery q;
+  q.wall = req.Query("wall").value_or("");
+  q.date = req.Query("date").value_or("");
+  return q;
+}
+
+json ReportJson(const app::GymReport& r) {
+  json routes = json::array();
+  for (const app::ReportRoute& rr : r.routes) {
+    routes.push_back(json{
+        {"id", rr.id},
+        {"name", rr.name},
+        {"grade", rr.grade},
+        {"colour", rr.colour},
+        {"state", rr.state},
+        {"set_on", rr.set_on},
+        {"planned_on", rr.planned_on},
+        {"wall", rr.wall_name},
+        {"variation", rr.is_variation},
+        {"ticks", rr.ticks},
+        {"flashes", rr.flashes},
+        {"sends", rr.sends},
+        {"attempts", rr.attempts},
+        {"climbers", rr.climbers},
+        {"stars", {{"n", rr.stars_n}, {"mean", rr.stars_n ? json(rr.stars_mean) : json(nullptr)}}},
+        {"felt",
+         {{"n", rr.felt_n},
+          {"median", rr.felt_median},
+          {"harder", rr.felt_harder},
+          {"same", rr.felt_same},
+          {"softer", rr.felt_softer}}},
+        {"ascent", AscentGradeJson(rr.ascent)}});
+  }
+  const app::VariationComparison& c = r.comparison;
+  json bands = json::array();
+  for (const app::BandStars& b : c.bands) {
+    bands.push_back(json{{"band", b.band},
+                         {"variation_n", b.variation_n},
+                         {"variation_mean", b.variation_n ? json(b.variation_mean) : json(nullptr)},
+                         {"hand_n", b.hand_n},
+                         {"hand_mean", b.hand_n ? json(b.hand_mean) : json(nullptr)}});
+  }
+  json out{
+      {"gym", r.gym_id},
+      {"gym_name", r.gym_name},
+      {"scope", r.scope},
+      {"wall", r.wall_id ? json{{"id", *r.wall_id}, {"name", r.wall_name}} : json(nullptr)},
+      {"date", r.date},
+      {"totals",
+       {{"routes", r.routes.size()},
+        {"ticks", r.ticks},
+        {"climbers", r.climbers},
+        {"stars", {{"n", r.stars_n}, {"mean", r.stars_n ? json(r.stars_mean) : json(nullptr)}}},
+        {"felt",
+         {{"n", r.felt_n},
+          {"harder", r.felt_harder},
+          {"same", r.felt_same},
+          {"softer", r.felt_softer}}}}},
+      {"routes", routes},
+      {"variations_vs_hand_set",
+       {{"bands", bands},
+        {"variation", {{"ratings", c.variation_stars.size()},
+                       {"routes", c.variation_routes},
+                       {"mean", Number(c.variation_mean)}}},
+        {"hand_set", {{"ratings", c.hand_stars.size()},
+                      {"routes", c.hand_routes},
+                      {"mean", Number(c.hand_mean)}}},
+        {"wilcoxon", {{"u", Number(c.wilcoxon_u)},
+                      {"p", Number(c.wilcoxon_p)},
+                      {"exact", c.wilcoxon_exact}}},
+        {"welch", {{"t", Number(c.welch_t)}, {"df", Number(c.welch_df)}, {"p", Number(c.welch_p)}}},
+        {"enough", c.enough},
+        {"min_ratings", app::ReportLimits::kMinRatingsPerGroup},
+        {"verdict", c.verdict}}}};
+  if (r.can_set) {
+    json comments = json::array();
+    for (const app::ReportComment& cm : r.comments) {
+      comments.push_back(json{{"route", cm.route_id},
+                              {"route_name", cm.route_name},
+                              {"day", cm.day},
+                              {"outcome", cm.outcome},
+                              {"text", cm.text}});
+    }
+    out["comments"] = comments;
+  }
+  return out;
+}
+
+std::string RouteLink(const app::ReportRoute& r) {
+  return "<a href=\"/" + std::string(r.is_variation ? "variations/" : "routes/") + Id(r.id) +
+         "\">" + E(r.name) + "</a>";
+}
+
+}  // namespace
+
+std::string ReportPageHtml(const PageViewer& v, const app::GymReport& r) {
+  const std::string title = r.scope == "wall" ? "Report: " + r.wall_name
+                                              : "Report: setting day " + r.date;
+  std::string b = "<link rel=\"stylesheet\" href=\"/static/climbers.css\">\n";
+  b += "<p><a href=\"/gyms/" + Id(r.gym_id) + "\">" + E(r.gym_name) + "</a>" +
+       (r.wall_id ? " · <a href=\"/walls/" + Id(*r.wall_id) + "\">" + E(r.wall_name) + "</a>"
+                  : std::string()) +
+       " · <a href=\"/api/gyms/" + Id(r.gym_id) + "/report?" +
+       (r.scope == "wall" ? "wall=" + Id(r.wall_id.value_or(0)) : "date=" + E(r.date)) +
+       "\" id=\"report-json\">JSON</a></p>\n";
+  b += "<h1 id=\"report-title\">" + E(title) + "</h1>\n";
+  b += "<p id=\"report-totals\" data-routes=\"" + std::to_string(r.routes.size()) +
+       "\" data-ticks=\"" + std::to_string(r.ticks) + "\" data-climbers=\"" +
+       std::to_string(r.climbers) + "\">" + std::to_string(r.routes.size()) + " route" +
+       (r.routes.size() == 1 ? "" : "s") + ", " + std::to_string(r.ticks) + " tick" +
+       (r.ticks == 1 ? "" : "s") + " from " + std::to_string(r.climbers) + " climber" +
+       (r.climbers == 1 ? "" : "s") + ". ";
+  if (r.stars_n > 0) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.2f", r.stars_mean);
+    b += "Stars: " + std::string(buf) + " on average from " + std::to_string(r.stars_n) +
+         " rating" + (r.stars_n == 1 ? "" : "s") + ". ";
+  }
+  if (r.felt_n > 0) {
+    b += "Grade opinions against the setters' grades: " + std::to_string(r.felt_harder) +
+         " felt harder, " + std::to_string(r.felt_same) + " the same band, " +
+         std::to_string(r.felt_softer) + " softer (" + std::to_string(r.felt_n) + " in all).";
+  }
+  b += "</p>\n<p class=\"msg\">Held ticks (bursts waiting for a setter) count nowhere here; "
+       "stars and felt grades count once per climber and route (their latest).</p>\n";
+
+  // The paper's question.
+  const app::VariationComparison& c = r.comparison;
+  b += "<h2>Variations against hand-set routes</h2>\n<section id=\"report-comparison\" "
+       "data-enough=\"" + std::string(c.enough ? "1" : "0") + "\" data-variation-ratings=\"" +
+       std::to_string(c.variation_stars.size()) + "\" data-hand-ratings=\"" +
+       std::to_string(c.hand_stars.size()) + "\">\n<p id=\"report-verdict\" class=\"" +
+       (c.enough ? "msg ok" : "msg") + "\">" + E(c.verdict) + "</p>\n";
+  b += "<div class=\"scroll\"><table class=\"stats\" id=\"report-tests\"><tr><th>Test</th>"
+       "<th>Statistic</th><th>p</th><th>Ratings (variations / hand-set)</th></tr>\n";
+  const std::string counts = "<td class=\"n\">" + std::to_string(c.variation_stars.size()) +
+                             " / " + std::to_string(c.hand_stars.size()) + "</td>";
+  b += "<tr><th>Wilcoxon rank-sum (U)</th>" + Cell(c.wilcoxon_u, 1) +
+       Cell(c.wilcoxon_p, 3, "wilcoxon-p") + counts + "</tr>\n";
+  b += "<tr><th>Welch's t</th>" + Cell(c.welch_t, 3) + Cell(c.welch_p, 3, "welch-p") + counts +
+       "</tr>\n</table></div>\n";
+  if (!c.bands.empty()) {
+    b += "<div class=\"scroll\"><table class=\"stats\" id=\"report-bands\"><tr><th>Grade</th>"
+         "<th>Variations: ratings</th><th>stars</th><th>Hand-set: ratings</th><th>stars</th>"
+         "</tr>\n";
+    for (const app::BandStars& s : c.bands) {
+      const bool matched = s.variation_n > 0 && s.hand_n > 0;
+      b += "<tr" + std::string(matched ? "" : " class=\"dropped\" title=\"not compared: one "
+                                              "kind has no ratings in this band\"") +
+           "><th>" + E(s.band) + "</th><td class=\"n\">" + std::to_string(s.variation_n) +
+           "</td>" + Cell(s.variation_n ? s.variation_mean : NAN, 2) + "<td class=\"n\">" +
+           std::to_string(s.hand_n) + "</td>" + Cell(s.hand_n ? s.hand_mean : NAN, 2) +
+           "</tr>\n";
+    }
+    b += "</table></div>\n";
+  }
+  b += "<p class=\"msg\">Only grade bands with ratings of both kinds enter the tests; each "
+       "rests on the ratings counted above.</p>\n</section>\n";
+
+  // The routes.
+  b += "<h2>Routes</h2>\n";
+  if (r.routes.empty()) {
+    b += "<p class=\"empty\" id=\"report-empty\">No routes here.</p>\n";
+  } else {
+    b += "<div class=\"scroll\"><table class=\"list\" id=\"report-routes\"><thead><tr><th>Route"
+         "</th><th>Setter's grade</th><th>Ascent grade</th><th class=\"num\">Ticks</th><th>"
+         "Flash / send / tries</th><th class=\"num\">Stars</th><th>Felt</th></tr></thead>"
+         "<tbody>\n";
+    for (const app::ReportRoute& rr : r.routes) {
+      b += "<tr class=\"report-route\" data-route=\"" + Id(rr.id) + "\"><td>" + RouteLink(rr) +
+           (rr.is_variation ? " <span class=\"tag\">variation</span>" : "") + "</td><td>" +
+           E(rr.grade) + "</td>" + AscentCell(rr.ascent) + "<td class=\"num\">" +
+           std::to_string(rr.ticks) + "</td><td>" + std::to_string(rr.flashes) + " / " +
+           std::to_string(rr.sends) + " / " + std::to_string(rr.attempts) + "</td>" +
+           Cell(rr.stars_n ? rr.stars_mean : NAN, 2) + "<td>" +
+           (rr.felt_n ? E(rr.felt_median) + " <small>(" + std::to_string(rr.felt_n) + ": " +
+                            std::to_string(rr.felt_harder) + " harder, " +
+                            std::to_string(rr.felt_same) + " same, " +
+                            std::to_string(rr.felt_softer) + " softer)</small>"
+                      : std::string("—")) +
+           "</td></tr>\n";
+    }
+    b += "</tbody></table></div>\n";
+  }
+  if (r.can_set) {
+    b += "<h2>Comments</h2>\n";
+    if (r.comments.empty()) {
+      b += "<p class=\"empty\">No comments.</p>\n";
+    } else {
+      b += "<ul class=\"comments\" id=\"report-comments\">\n";
+      for (const app::ReportComment& cm : r.comments) {
+        b += "<li><p>" + E(cm.text) + "</p><small>" + E(cm.day) + " · " + E(cm.route_name) +
+             " · " + E(cm.outcome) + "</small></li>\n";
+      }
+      b += "</ul>\n";
+    }
+  }
+  return PageLayout(v, title, b, "climber results");
+}
+
+void GetGymReport(Exchange& x) {
+  Result<int64_t> id = PathId(x.req, "no such gym");
+  if (!id.ok()) return ApiError(x, id.status());
+  Result<app::GymReport> r = x.services.reports.Report(x.caller.viewer, *id, QueryOf(x.req));
+  if (!r.ok()) return ApiError(x, r.status());
+  x.res.SetHeader("Cache-Control", "no-store");
+  ReplyJson(x.res, 200, ReportJson(*r));
+}
+
+void PageGymReport(Exchange& x) {
+  Result<int64_t> id = PathId(x.req, "No such gym.");
+  if (!id.ok()) return PageError(x, id.status());
+  Result<app::GymReport> r = x.services.reports.Report(x.caller.viewer, *id, QueryOf(x.req));
+  if (!r.ok()) return PageError(x, r.status());
+  x.res.SetHeader("Cache-Control", "no-store");
+  x.res.SetBody(200, ReportPageHtml(x.caller.page(), *r), "text/html; charset=utf-8");
+}
+
+}  // namespace sb::web
