@@ -15,7 +15,8 @@ Services::Services(store::Store* store, const Options& opts, Clock* clock)
       studies(store, opts, clock),
       renders(opts.renders),
       gyms(store, opts),
-      logbook(store, clock) {
+      logbook(store, clock),
+      setting_days(store, opts, &routes, &gyms, &variations, &renders) {
   // An install starts with one gym (issue 21), named at its first start.
   if (Status g = gyms.EnsureFirstGym(opts.first_gym_name); !g.ok()) {
     LogError("first gym: " + g.message());

@@ -15,6 +15,7 @@
 #include "app/maps.h"
 #include "app/options.h"
 #include "app/routes.h"
+#include "app/setting_day.h"
 #include "app/studies_service.h"
 #include "app/variations.h"
 #include "store/store.h"
@@ -40,6 +41,8 @@ struct Services {
   Gyms gyms;
   // The climbers' logbook and ascent grades (issue 23).
   Logbook logbook;
+  // Setting days (issue 22): proposals and accepting a candidate.
+  SettingDays setting_days;
 };
 
 }  // namespace sb::app
