@@ -134,5 +134,27 @@ TEST_F(SettingDayApiTest, ProposeAcceptAndTheRoles) {
   EXPECT_EQ(climber.Status("GET", "/gyms/" + std::to_string(g) + "/setting-day"), 403);
 }
 
+// POST /api/variations with "preset": "setter": the setter's constraints,
+// stored in the parameters (so the variation rebuilds the same).
+TEST_F(SettingDayApiTest, TheSetterPresetOfTheVariationApi) {
+  Client c = NewClient();
+  c.SignUp("setter1");
+  ASSERT_TRUE(c.LogIn("setter1"));
+  const int64_t a = AddRoute(c, "name: A\ngrade: V3\n---\nR small crimp\nL sloper\nR pinch\nL jug finish\n");
+  const int64_t b = AddRoute(c, "name: B\ngrade: V4\n---\nL jug\nR crimp\nL gaston\nR top out\n");
+  const json made =
+      c.Json("POST", "/api/variations", json{{"routes", {a, b}}, {"preset", "setter"}}.dump(), 201);
+  const json v = c.Json("GET", "/api/variations/" + std::to_string(made["id"].get<int64_t>()), "", 200);
+  EXPECT_TRUE(v["parameters"].value("keep_start", false)) << v["parameters"].dump();
+  EXPECT_TRUE(v["parameters"].value("keep_finish", false));
+  EXPECT_TRUE(v["parameters"].value("alternate_hands", false));
+  EXPECT_EQ(v["parameters"]["preset"], "default");
+  // The paper's presets stay as they were, by name.
+  const json plain = c.Json("POST", "/api/variations",
+                            json{{"routes", {a, b}}, {"preset", "default"}}.dump(), 201);
+  const json pv = c.Json("GET", "/api/variations/" + std::to_string(plain["id"].get<int64_t>()), "", 200);
+  EXPECT_FALSE(pv["parameters"].value("keep_start", false));
+}
+
 }  // namespace
 }  // namespace sb::web
