@@ -121,6 +121,10 @@ TEST_F(SettingDayApiTest, ProposeAcceptAndTheRoles) {
   EXPECT_EQ(sheet->status, 200);
   EXPECT_NE(sheet->body.find("/routes/" + std::to_string(id) + "/tag.pdf"), std::string::npos);
   EXPECT_NE(sheet->body.find("sam"), std::string::npos);
+  EXPECT_NE(sheet->body.find("/tags.pdf?ids=" + std::to_string(id) + "\""), std::string::npos);
+  auto tags = head.Send("GET", "/tags.pdf?ids=" + std::to_string(id));
+  ASSERT_TRUE(tags);
+  EXPECT_EQ(tags->status, 200);
   auto other_day =
       head.Send("GET", "/gyms/" + std::to_string(g) + "/setting-day/sheet?date=2026-12-02");
   ASSERT_TRUE(other_day);

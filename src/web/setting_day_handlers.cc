@@ -314,9 +314,16 @@ void PageSettingDaySheet(Exchange& x) {
   const std::string g = std::to_string(*gid);
   std::string b = "<h1 id=\"sheet-title\">Setting day " + E(date.empty() ? "(every date)" : date) +
                   " · " + E(gym->name) + "</h1>\n";
+  // The day's tags: the sheet of tags of exactly these routes (/tags.pdf?ids=,
+  // at most app::Limits::max_tag_sheet_routes, as Planned lists).
+  std::string ids;
+  for (const app::DayRoute& r : *routes) ids += (ids.empty() ? "" : ",") + std::to_string(r.id);
   b += "<p class=\"no-print\"><a href=\"/gyms/" + g + "/setting-day?date=" + E(date) +
-       "\">Plan this day</a> · <a id=\"sheet-tags\" href=\"/api/gyms/" + g +
-       "/tags.pdf?state=planned\">Tags of the planned routes (PDF)</a></p>\n";
+       "\">Plan this day</a>" +
+       (ids.empty() ? std::string()
+                    : " · <a id=\"sheet-tags\" href=\"/tags.pdf?ids=" + ids +
+                          "\">The day's tags (PDF)</a>") +
+       "</p>\n";
   if (routes->empty()) {
     b += "<p class=\"empty\">Nothing planned for this day yet.</p>\n";
   } else {

@@ -60,5 +60,10 @@ module.exports = async (t) => {
   const sheet = await page.textContent('main');
   check(sheet.includes(head) && sheet.includes('Cave') && sheet.includes(route.name.slice(0, 20)),
         'the day\'s sheet lists what each setter sets where');
+  const tags = await page.request.get(base + await page.getAttribute('#sheet-tags', 'href'));
+  const tagsFile = path.join(out, '97-setting-day-tags.pdf');
+  fs.writeFileSync(tagsFile, await tags.body());
+  check(tags.status() === 200 && execFileSync('pdftotext', [tagsFile, '-']).toString().replace(/\s+/g, ' ').includes(route.name.slice(0, 20)),
+        'the day\'s sheet of tags prints it');
   await shot('97-setting-day-sheet');
 };
