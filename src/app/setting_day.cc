@@ -455,6 +455,9 @@ Result<int64_t> SettingDays::Accept(const Viewer& v, const AcceptRequest& req) {
   vr.meta.wall = wall->name;
   vr.meta.setter = setter;
   vr.meta.date = req.date;
+  // Its grade until the setter grades it: the estimate from its moves (the
+  // one the gallery scored it by).
+  if (plan.grades) vr.meta.grade = plan.grades->estimate;
   SB_ASSIGN_OR_RETURN(CreatedVariation created, variations_->Create(v, vr));
   RouteEdit edit;
   edit.gym.wall = std::to_string(wall->id);

@@ -210,6 +210,7 @@ TEST_F(SettingDayTest, AcceptingMakesAPlannedRouteAndChecksTheMoves) {
   EXPECT_EQ(r->setters[0].name, "sam");
   EXPECT_TRUE(r->is_variation);
   EXPECT_EQ(r->move_count, static_cast<int>(c.moves.size()));
+  EXPECT_EQ(r->grade, c.score.estimated_band);  // graded by its estimate until the setter grades it
   // The sheet lists it on its day only.
   Result<std::vector<DayRoute>> day = services_->setting_days.Planned(head_, gym_, "2026-12-01");
   ASSERT_TRUE(day.ok());
