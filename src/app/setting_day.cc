@@ -346,7 +346,7 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
       if (!work[j].ids.empty()) used_first.insert(work[j].ids.front());
     }
     size_t start = 0;
-    while (start + kDayInputs < pool.size() + 0 && used_first.count(pool[start].rec->id)) ++start;
+    while (start + kDayInputs < pool.size() && used_first.count(pool[start].rec->id)) ++start;
     for (size_t j = start; j < pool.size() && work[i].inputs.size() < kDayInputs; ++j) {
       work[i].inputs.push_back({pool[j].rec->name, pool[j].route});
       work[i].ids.push_back(pool[j].rec->id);
@@ -471,8 +471,7 @@ Result<int64_t> SettingDays::Accept(const Viewer& v, const AcceptRequest& req) {
 Result<std::vector<DayRoute>> SettingDays::Planned(const Viewer& v, int64_t gym,
                                                    const std::string& date) {
   if (!date.empty()) SB_RETURN_IF_ERROR(CheckDayDate(date));
-  SB_ASSIGN_OR_RETURN(Gym g, gyms_->Get(v, gym));
-  (void)g;
+  SB_RETURN_IF_ERROR(gyms_->Get(v, gym).status());  // members only
   RouteQuery q;
   q.gym = gym;
   q.state = "planned";
