@@ -28,6 +28,14 @@ struct Gym {
   sb::app::Viewer head;
   int64_t gym = 0;
   std::vector<int64_t> walls;
+  Gym() = default;
+  Gym(Gym&&) = default;
+  ~Gym() {  // the temporary database goes with the process
+    services.reset();
+    store.reset();
+    std::error_code ec;
+    if (!dir.empty()) fs::remove_all(dir, ec);
+  }
 };
 
 void Die(const std::string& what) {
