@@ -181,6 +181,9 @@ struct RenderCosts {
   // 0.40 s of server CPU (2 ms a tag), one tag PDF ~30 ms on the loaded machine.
   double tag_base = 20e3;
   double tag_each = 3e3;
+  // Issue 22: one candidate of a setting-day proposal (its share of a
+  // gallery: 9 IC searches and plans per slot; docs/BENCHMARKS.md).
+  double day_candidate = 8e3;
 };
 
 struct Options {

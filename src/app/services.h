@@ -17,6 +17,7 @@
 #include "app/options.h"
 #include "app/report.h"
 #include "app/routes.h"
+#include "app/setting_day.h"
 #include "app/studies_service.h"
 #include "app/types.h"
 #include "app/variations.h"
@@ -46,6 +47,8 @@ struct Services {
   Dashboard dashboard;
   // The wall and setting-day reports over the logbook (issue 23).
   Reports reports;
+  // Setting days (issue 22): proposals and accepting a candidate.
+  SettingDays setting_days;
 };
 
 }  // namespace sb::app

@@ -3,6 +3,7 @@
 #include <climits>
 #include <cmath>
 
+#include "app/candidates.h"
 #include "base/number.h"
 #include "base/text.h"
 #include "chaos/variation.h"
@@ -120,7 +121,14 @@ void PostVariation(Exchange& x) {
     }
     *out = (*body)[field].get<std::string>();
   }
-  Result<chaos::VaryParams> params = chaos::ParamsFromJson(x.req.body);
+  // Issue 22: "preset": "setter" is the default preset's parameters with the
+  // setter's constraints (app::ApplySetterPreset: keep start and finish,
+  // alternate hands, max_repeat 1 unless given); stored as such, so the
+  // variation rebuilds the same.
+  const bool setter_preset = body->value("preset", json()) == "setter";
+  json chaos_body = *body;
+  if (setter_preset) chaos_body["preset"] = "default";
+  Result<chaos::VaryParams> params = chaos::ParamsFromJson(chaos_body.dump());
   if (!params.ok()) return ApiError(x, params.status());
   vr.params = *params;
   // The setter's fields (keep_start, ..., smooth_method): the codec of the
@@ -128,6 +136,9 @@ void PostVariation(Exchange& x) {
   Result<plan::SetterOptions> setting = plan::SetterOptionsFromJson(x.req.body);
   if (!setting.ok()) return ApiError(x, setting.status());
   vr.setting = *setting;
+  if (setter_preset) {
+    app::ApplySetterPreset(&vr.params, &vr.setting, body->contains("max_repeat"));
+  }
   Result<app::CreatedVariation> v = x.services.variations.Create(x.caller.viewer, vr);
   if (!v.ok()) return ApiError(x, v.status());
   json smoothing{{"requested", v->smoothing.requested}, {"applied", v->smoothing.applied}};

@@ -60,7 +60,11 @@ std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<
                   E(gym.role) + "</strong> here. <a href=\"/?gym=" + gid +
                   "\" id=\"gym-routes\">Routes</a> · <a href=\"/?gym=" + gid +
                   "&amp;state=stripped\" id=\"gym-archive\">Archive</a> · <a href=\"/gyms/" + gid +
-                  "/dashboard\" id=\"gym-dashboard\">Dashboard</a></p>\n";
+                  "/dashboard\" id=\"gym-dashboard\">Dashboard</a>" +
+       (app::CanSet(gym.role) ? " · <a href=\"/gyms/" + gid +
+                                    "/setting-day\" id=\"gym-setting-day\">Setting day</a>"
+                              : std::string()) +
+       "</p>\n";
   b += "<h2>Walls</h2>\n";
   if (walls.empty()) {
     b += "<p class=\"empty\">No walls yet.</p>\n";

@@ -14,6 +14,7 @@
 #include "web/logbook_handlers.h"
 #include "web/report_handlers.h"
 #include "web/router.h"
+#include "web/setting_day_handlers.h"
 
 namespace sb::web {
 
@@ -60,6 +61,11 @@ const Endpoint kEndpoints[] = {
     {"POST", "/api/gyms/{id}/circuits", PostCircuit},
     {"GET", "/api/gyms/{id}/circuits", ListCircuits},
     {"GET", "/api/gyms/{id}/tags.pdf", GetGymTagSheetPdf},
+    // Setting days (setting_day_handlers.cc, issue 22).
+    {"POST", "/api/gyms/{id}/setting-days", PostSettingDay},
+    {"POST", "/api/gyms/{id}/setting-days/accept", PostSettingDayAccept},
+    {"GET", "/gyms/{id}/setting-day", PageSettingDay},
+    {"GET", "/gyms/{id}/setting-day/sheet", PageSettingDaySheet},
     {"GET", "/api/routes/{id}/history", GetRouteHistory},
     {"GET", "/gyms", PageGyms},
     {"GET", "/gyms/{id}", PageGym},

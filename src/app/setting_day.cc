@@ -1,0 +1,503 @@
+#include "app/setting_day.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cctype>
+#include <cstdio>
+#include <set>
+#include <thread>
+#include <tuple>
+
+#include "base/hash.h"
+#include "base/text.h"
+#include "chaos/variation.h"
+#include "crdl/route.h"
+#include "grades/scale.h"
+#include "language/styles.h"
+#include "language/symbols.h"
+#include "plan/plan.h"
+#include "store/tick_store.h"
+
+namespace sb::app {
+
+namespace {
+
+// Worker threads of a proposal (the project's 2-core machine).
+constexpr int kDayThreads = 2;
+
+Status CheckDayDate(const std::string& d) {
+  bool ok = d.size() == 10 && d[4] == '-' && d[7] == '-';
+  for (size_t i = 0; ok && i < d.size(); ++i) {
+    if (i != 4 && i != 7 && !std::isdigit(static_cast<unsigned char>(d[i]))) ok = false;
+  }
+  if (ok) {
+    const int m = std::stoi(d.substr(5, 2)), day = std::stoi(d.substr(8, 2));
+    ok = m >= 1 && m <= 12 && day >= 1 && day <= 31;
+  }
+  return ok ? Status::Ok() : Status::InvalidInput("date: expected a date YYYY-MM-DD");
+}
+
+grades::Discipline DisciplineOfWall(const Wall& w) {
+  return w.discipline == "roped" ? grades::Discipline::kRoped : grades::Discipline::kBouldering;
+}
+
+// The band of a grade text in discipline `d`; nullopt when unreadable.
+std::optional<int> BandOfText(const std::string& text, grades::Discipline d) {
+  grades::GradeContext ctx;
+  ctx.discipline = d;
+  Result<grades::Grade> g = grades::ParseGrade(text, ctx);
+  if (!g.ok()) return std::nullopt;
+  return grades::Band(grades::Difficulty(*g, d));
+}
+
+std::optional<int> BandOfRecord(const store::RouteRecord& r, grades::Discipline d) {
+  if (!r.grade_value || r.grade_discipline.empty()) return std::nullopt;
+  Result<grades::Discipline> rd = grades::ParseDiscipline(r.grade_discipline);
+  if (!rd.ok()) return std::nullopt;
+  return grades::Band(grades::ConvertAxis(*r.grade_value, *rd, d));
+}
+
+std::vector<std::string> MoveStrings(const chaos::Variation& v) {
+  std::vector<std::string> out;
+  for (const chaos::VariedMove& m : v.moves) {
+    out.push_back(std::string(HandLetter(m.hand)) + " " + (m.text.empty() ? "(blank)" : m.text));
+  }
+  return out;
+}
+
+// A possible input of a slot and its rank key.
+struct Pool {
+  const store::RouteRecord* rec;
+  Route route;
+  int style_moves = 0;
+  int band_off = 0;
+  double stars = 0;  // mean climbers' stars, 0 = none
+  bool same_wall = false;
+  bool gym = false;
+};
+
+// What a slot's gallery is made from (chosen on the calling thread).
+struct SlotWork {
+  DaySlot slot;
+  std::vector<chaos::InputRoute> inputs;
+  std::vector<int64_t> ids;
+  std::vector<std::string> names;
+};
+
+}  // namespace
+
+Status SettingDayRequest::Validate() const {
+  SB_RETURN_IF_ERROR(CheckDayDate(date));
+  if (walls.empty()) return Status::InvalidInput("walls: expected at least one wall id");
+  if (walls.size() > kMaxDayWalls) {
+    return Status::InvalidInput("walls: at most " + std::to_string(kMaxDayWalls));
+  }
+  if (slots.size() > kMaxDaySlots) {
+    return Status::InvalidInput("slots: at most " + std::to_string(kMaxDaySlots) +
+                                " on one setting day");
+  }
+  for (size_t i = 0; i < slots.size(); ++i) {
+    const std::string f = "slots[" + std::to_string(i) + "]";
+    if (std::find(walls.begin(), walls.end(), slots[i].wall) == walls.end()) {
+      return Status::InvalidInput(f + ".wall: not one of the day's walls");
+    }
+    if (!slots[i].style.empty() && !language::IsStyleName(slots[i].style)) {
+      return Status::InvalidInput(f + ".style: unknown style \"" + slots[i].style +
+                                  "\" (the names are listed in docs/setting.md)");
+    }
+    if (slots[i].band.size() > grades::kMaxGradeChars) {
+      return Status::InvalidInput(f + ".band: too long");
+    }
+  }
+  if (candidates < 1 || candidates > kMaxDayCandidates) {
+    return Status::InvalidInput("candidates: between 1 and " + std::to_string(kMaxDayCandidates));
+  }
+  return Status::Ok();
+}
+
+std::vector<DaySlot> DefaultSlots(
+    const std::vector<Wall>& walls, const std::vector<Circuit>& circuits,
+    const std::map<int64_t, std::vector<store::RouteRecord>>& on_wall,
+    const std::map<int64_t, std::map<std::string, double>>& style_share) {
+  std::vector<DaySlot> out;
+  for (const Wall& w : walls) {
+    const grades::Discipline d = DisciplineOfWall(w);
+    static const std::vector<store::RouteRecord> kNone;
+    auto it = on_wall.find(w.id);
+    const std::vector<store::RouteRecord>& routes = it == on_wall.end() ? kNone : it->second;
+    // The range: the circuits' (in this discipline), else the wall's routes'.
+    std::optional<int> lo, hi;
+    auto widen = [&](int b) {
+      lo = lo ? std::min(*lo, b) : b;
+      hi = hi ? std::max(*hi, b) : b;
+    };
+    for (const Circuit& c : circuits) {
+      std::optional<int> a = c.grade_from.empty() ? std::nullopt : BandOfText(c.grade_from, d);
+      std::optional<int> b = c.grade_to.empty() ? a : BandOfText(c.grade_to, d);
+      if (a) widen(*a);
+      if (b) widen(*b);
+    }
+    if (!lo) {
+      for (const store::RouteRecord& r : routes) {
+        if (std::optional<int> b = BandOfRecord(r, d)) widen(*b);
+      }
+    }
+    if (!lo) {  // nothing to go by: the middle of a gym's range
+      lo = d == grades::Discipline::kBouldering ? 2 : 9;
+      hi = d == grades::Discipline::kBouldering ? 5 : 11;
+    }
+    std::map<int, int> count;
+    for (const store::RouteRecord& r : routes) {
+      if (std::optional<int> b = BandOfRecord(r, d)) ++count[*b];
+    }
+    int best = *lo, best_n = INT32_MAX;
+    for (int b = *lo; b <= *hi; ++b) {
+      const int n = count.count(b) ? count[b] : 0;
+      if (n < best_n) best = b, best_n = n;
+    }
+    std::string style = kDefaultSlotStyles.front();
+    double least = 2.0;
+    auto sh = style_share.find(w.id);
+    for (const std::string& s : kDefaultSlotStyles) {
+      double share = 0;
+      if (sh != style_share.end()) {
+        auto f = sh->second.find(s);
+        if (f != sh->second.end()) share = f->second;
+      }
+      if (share < least) least = share, style = s;
+    }
+    out.push_back(DaySlot{w.id, grades::BandName(d, best), style});
+  }
+  return out;
+}
+
+std::string CandidateId(const std::string& params_json, const std::vector<int64_t>& inputs,
+                        const std::vector<std::string>& moves) {
+  std::string s = params_json + "\n";
+  for (int64_t id : inputs) s += std::to_string(id) + ",";
+  s += "\n";
+  for (const std::string& m : moves) s += m + "\n";
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(Fnv1a64(s)));
+  return buf;
+}
+
+SettingDays::SettingDays(store::Store* store, const Options& options, Routes* routes, Gyms* gyms,
+                         Variations* variations, WorkBudget* budget)
+    : store_(store),
+      options_(options),
+      routes_(routes),
+      gyms_(gyms),
+      variations_(variations),
+      budget_(budget) {}
+
+Status SettingDays::RequireSetter(const Viewer& v, int64_t gym) {
+  if (!v.logged_in()) return Status::Unauthenticated("log in first");
+  SB_ASSIGN_OR_RETURN(std::string role, gyms_->RoleIn(v, gym));
+  if (role.empty()) return Status::NotFound("no gym " + std::to_string(gym));
+  if (!CanSet(role)) return Status::Permission("only the gym's setters plan setting days");
+  return Status::Ok();
+}
+
+Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDayRequest& req,
+                                                int* retry_after_seconds) {
+  SB_RETURN_IF_ERROR(RequireSetter(v, req.gym));
+  SB_RETURN_IF_ERROR(req.Validate());
+  std::map<int64_t, Wall> walls;
+  std::vector<Wall> day_walls;
+  for (int64_t id : req.walls) {
+    Result<Wall> w = gyms_->ResolveWall(req.gym, std::to_string(id));
+    if (!w.ok()) return Status::InvalidInput("walls: no wall " + std::to_string(id) + " in this gym");
+    if (walls.emplace(id, *w).second) day_walls.push_back(*w);
+  }
+  // The slots: asked, or one per wall.
+  SB_ASSIGN_OR_RETURN(language::MoveLanguage lang, language::MoveLanguage::LoadDefault());
+  std::map<int64_t, std::vector<store::RouteRecord>> on_wall;
+  for (const Wall& w : day_walls) {
+    RouteQuery q;
+    q.gym = req.gym;
+    q.wall = std::to_string(w.id);
+    q.state = "set";
+    SB_ASSIGN_OR_RETURN(on_wall[w.id], routes_->List(v, q));
+  }
+  std::vector<DaySlot> slots = req.slots;
+  if (slots.empty()) {
+    SB_ASSIGN_OR_RETURN(std::vector<Circuit> circuits, gyms_->Circuits(v, req.gym));
+    std::map<int64_t, std::map<std::string, double>> shares;
+    for (const auto& [id, routes] : on_wall) {
+      std::vector<std::vector<std::string>> texts;
+      for (const store::RouteRecord& r : routes) {
+        Result<Route> route = ParseCrdl(r.crdl, r.name);
+        if (!route.ok()) continue;
+        texts.emplace_back();
+        for (const Move& m : route->moves) texts.back().push_back(m.text);
+      }
+      const language::StyleMix mix = language::MixOf(lang, texts);
+      for (const std::string& s : kDefaultSlotStyles) shares[id][s] = mix.Share(s);
+    }
+    slots = DefaultSlots(day_walls, circuits, on_wall, shares);
+  }
+  // The budget, before the work.
+  const double cost = options_.render_costs.day_candidate * static_cast<double>(slots.size()) *
+                      req.candidates;
+  int retry = 0;
+  Result<WorkBudget::Slot> admitted = budget_->Admit(v, cost, &retry);
+  if (retry_after_seconds) *retry_after_seconds = retry;
+  if (!admitted.ok()) return admitted.status();
+
+  // Climbers' stars of the gym's routes.
+  std::map<int64_t, std::pair<double, int>> stars;
+  if (store::TickStore* ticks = store::TickStoreOf(store_)) {
+    Result<std::vector<store::TickRecord>> all = ticks->GymTicks(req.gym);
+    if (all.ok()) {
+      for (const store::TickRecord& t : *all) {
+        if (t.state != "ok" || !t.stars) continue;
+        stars[t.route_id].first += *t.stars;
+        stars[t.route_id].second += 1;
+      }
+    }
+  }
+
+  // Inputs of each slot (this thread: the store and the grammar).
+  SettingDayProposal out;
+  out.gym = req.gym;
+  out.date = req.date;
+  std::vector<SlotWork> work(slots.size());
+  std::map<int64_t, std::optional<Route>> parsed;  // pool routes read so far
+  for (size_t i = 0; i < slots.size(); ++i) {
+    const DaySlot& slot = slots[i];
+    const Wall& w = walls.at(slot.wall);
+    const grades::Discipline d = DisciplineOfWall(w);
+    DaySlotProposal sp;
+    sp.slot = slot;
+    sp.wall_name = w.name;
+    sp.discipline = w.discipline;
+    work[i].slot = slot;
+    std::optional<int> band = slot.band.empty() ? std::nullopt : BandOfText(slot.band, d);
+    if (!slot.band.empty() && !band) {
+      return Status::InvalidInput("slots[" + std::to_string(i) + "].band: \"" + slot.band +
+                                  "\" is not a " + w.discipline + " grade");
+    }
+    // The pool: the gym's routes (set or stripped) and public routes, near the band.
+    std::vector<store::RouteRecord> recs;
+    std::set<int64_t> seen;
+    for (int pass = 0; pass < 2; ++pass) {
+      RouteQuery q;
+      if (pass == 0) q.gym = req.gym;
+      q.variations = false;
+      q.limit = kMaxDayInputPool;
+      q.sort = "oldest";
+      if (band) {
+        q.grade_from = grades::BandName(d, std::max(*band - 1, grades::MinBand(d)));
+        q.grade_to = grades::BandName(d, std::min(*band + 1, grades::MaxBand(d)));
+      }
+      SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> list, routes_->List(v, q));
+      for (store::RouteRecord& r : list) {
+        const bool ours = r.gym_id && *r.gym_id == req.gym;
+        if (pass == 0 && r.state != "set" && r.state != "stripped") continue;
+        if (pass == 1 && (ours || !r.is_public)) continue;
+        if (r.move_count < 2 || !seen.insert(r.id).second) continue;
+        recs.push_back(std::move(r));
+      }
+    }
+    std::vector<Pool> pool;
+    for (const store::RouteRecord& r : recs) {
+      // Lists carry no CRDL: each route is read once per proposal.
+      auto cached = parsed.find(r.id);
+      if (cached == parsed.end()) {
+        std::optional<Route> route;
+        if (Result<store::RouteRecord> full = store_->GetRoute(r.id); full.ok()) {
+          if (Result<Route> pr = ParseCrdl(full->crdl, r.name); pr.ok() && pr->moves.size() >= 2) {
+            route = std::move(pr).value();
+          }
+        }
+        cached = parsed.emplace(r.id, std::move(route)).first;
+      }
+      if (!cached->second) continue;
+      Pool p{&r, *cached->second};
+      if (!slot.style.empty()) {
+        for (const Move& m : p.route.moves) {
+          const std::vector<std::string> all = language::ReadStyle(lang, m.text).All();
+          p.style_moves += std::find(all.begin(), all.end(), slot.style) != all.end();
+        }
+      }
+      if (band) {
+        std::optional<int> b = BandOfRecord(r, d);
+        p.band_off = b ? std::abs(*b - *band) : 3;
+      }
+      if (auto s = stars.find(r.id); s != stars.end()) {
+        p.stars = s->second.first / s->second.second;
+      }
+      p.same_wall = r.wall_id && *r.wall_id == w.id;
+      p.gym = r.gym_id && *r.gym_id == req.gym;
+      pool.push_back(std::move(p));
+    }
+    // Style first, then the band, the climbers' stars, this wall, this gym, id.
+    std::stable_sort(pool.begin(), pool.end(), [](const Pool& a, const Pool& b) {
+      return std::make_tuple(a.style_moves == 0, a.band_off, -a.stars, !a.same_wall, !a.gym,
+                             a.rec->id) < std::make_tuple(b.style_moves == 0, b.band_off,
+                                                          -b.stars, !b.same_wall, !b.gym,
+                                                          b.rec->id);
+    });
+    // Two slots alike on one day should not get the same inputs: earlier
+    // slots' first input is skipped when another is at hand.
+    std::set<int64_t> used_first;
+    for (size_t j = 0; j < i; ++j) {
+      if (!work[j].ids.empty()) used_first.insert(work[j].ids.front());
+    }
+    size_t start = 0;
+    while (start + kDayInputs < pool.size() && used_first.count(pool[start].rec->id)) ++start;
+    for (size_t j = start; j < pool.size() && work[i].inputs.size() < kDayInputs; ++j) {
+      work[i].inputs.push_back({pool[j].rec->name, pool[j].route});
+      work[i].ids.push_back(pool[j].rec->id);
+      work[i].names.push_back(pool[j].rec->name);
+    }
+    if (work[i].inputs.empty()) {
+      sp.note = "no route of this gym or public route near " +
+                (slot.band.empty() ? std::string("any band") : slot.band) + " to vary";
+    }
+    out.slots.push_back(std::move(sp));
+  }
+
+  // The galleries, on up to kDayThreads threads (each slot's result is its
+  // own; the order of work does not change it).
+  chaos::VaryParams params;
+  SettingRequest setting;
+  setting.grid.radius = kDaySearchRadius;
+  ApplySetterPreset(&params, &setting);
+  std::atomic<size_t> next{0};
+  auto run = [&] {
+    for (size_t i = next++; i < work.size(); i = next++) {
+      if (work[i].inputs.empty()) continue;
+      CandidateSlot cs;
+      cs.band = work[i].slot.band;
+      cs.style = work[i].slot.style;
+      Result<std::vector<Candidate>> gallery =
+          MakeGallery(work[i].inputs, params, setting, cs, GalleryOptions{});
+      DaySlotProposal& sp = out.slots[i];
+      if (!gallery.ok()) {
+        sp.note = "no candidate: " + gallery.status().message();
+        continue;
+      }
+      for (const Candidate& c : *gallery) {
+        if (static_cast<int>(sp.candidates.size()) >= req.candidates) break;
+        DayCandidate dc;
+        chaos::VaryParams p = params;
+        p.var_ic = c.searched_from;
+        dc.params_json = plan::ParametersJson(p, setting);
+        dc.moves = MoveStrings(c.plan.variation);
+        dc.score = c.score;
+        dc.inputs = work[i].ids;
+        dc.input_names = work[i].names;
+        dc.id = CandidateId(dc.params_json, dc.inputs, dc.moves);
+        sp.candidates.push_back(std::move(dc));
+      }
+      if (static_cast<int>(sp.candidates.size()) < req.candidates) {
+        sp.note = std::to_string(sp.candidates.size()) +
+                  " distinct candidates near the preset's IC (the others repeat an IC or found "
+                  "none keeping start and finish)";
+      }
+    }
+  };
+  std::vector<std::thread> threads;
+  const int n = static_cast<int>(std::min<size_t>(kDayThreads, work.size()));
+  for (int t = 1; t < n; ++t) threads.emplace_back(run);
+  run();
+  for (std::thread& t : threads) t.join();
+  return out;
+}
+
+Result<int64_t> SettingDays::Accept(const Viewer& v, const AcceptRequest& req) {
+  SB_RETURN_IF_ERROR(RequireSetter(v, req.gym));
+  SB_RETURN_IF_ERROR(CheckDayDate(req.date));
+  if (req.inputs.empty() || req.inputs.size() > options_.limits.max_vary_routes) {
+    return Status::InvalidInput("candidate.inputs: expected the candidate's input route ids");
+  }
+  Result<Wall> wall = gyms_->ResolveWall(req.gym, req.wall);
+  if (!wall.ok()) return Status::InvalidInput("wall: " + wall.status().message());
+  const std::string setter = Trim(req.setter).empty() ? v.username : std::string(Trim(req.setter));
+  SB_ASSIGN_OR_RETURN(std::vector<Member> members, gyms_->Members(v, req.gym));
+  if (std::none_of(members.begin(), members.end(),
+                   [&](const Member& m) { return m.username == setter; })) {
+    return Status::InvalidInput("setter: " + setter + " is not a member of this gym");
+  }
+  Result<chaos::VaryParams> params = chaos::ParamsFromJson(req.params_json);
+  if (!params.ok()) return params.status().WithPrefix("candidate.params");
+  Result<SettingRequest> setting = plan::SetterOptionsFromJson(req.params_json);
+  if (!setting.ok()) return setting.status().WithPrefix("candidate.params");
+  // Re-derive: the moves come from params and inputs, never from the post.
+  std::vector<chaos::InputRoute> inputs;
+  int total = 0;
+  for (int64_t id : req.inputs) {
+    SB_ASSIGN_OR_RETURN(store::RouteRecord r, routes_->Get(v, id));
+    Result<Route> route = ParseCrdl(r.crdl, r.name);
+    if (!route.ok()) return route.status().WithPrefix("route " + std::to_string(id));
+    total += static_cast<int>(route->moves.size());
+    inputs.push_back({r.name, std::move(route).value()});
+  }
+  SB_RETURN_IF_ERROR(CheckRequestSearchBudget(*setting, *params, total));
+  SB_ASSIGN_OR_RETURN(plan::RoutePlan plan, BuildPlan(inputs, *params, *setting, {}, nullptr));
+  const std::vector<std::string> moves = MoveStrings(plan.variation);
+  if (req.moves && *req.moves != moves) {
+    return Status::Conflict(
+        "moves: the candidate's parameters and inputs give other moves than those posted");
+  }
+  if (!req.id.empty() &&
+      req.id != CandidateId(plan::ParametersJson(*params, *setting), req.inputs, moves)) {
+    return Status::Conflict("id: not the candidate these parameters and inputs give");
+  }
+  VariationRequest vr;
+  vr.routes = req.inputs;
+  vr.params = *params;
+  vr.setting = *setting;
+  vr.gym = req.gym;
+  vr.meta.name = req.name;
+  vr.meta.wall = wall->name;
+  vr.meta.setter = setter;
+  vr.meta.date = req.date;
+  // Its grade until the setter grades it: the estimate from its moves (the
+  // one the gallery scored it by).
+  if (plan.grades) vr.meta.grade = plan.grades->estimate;
+  SB_ASSIGN_OR_RETURN(CreatedVariation created, variations_->Create(v, vr));
+  RouteEdit edit;
+  edit.gym.wall = std::to_string(wall->id);
+  edit.gym.state = "planned";
+  edit.gym.set_on = req.date;
+  edit.gym.setters = std::vector<std::string>{setter};
+  SB_RETURN_IF_ERROR(routes_->Update(v, created.id, edit));
+  return created.id;
+}
+
+Result<std::vector<DayRoute>> SettingDays::Planned(const Viewer& v, int64_t gym,
+                                                   const std::string& date) {
+  if (!date.empty()) SB_RETURN_IF_ERROR(CheckDayDate(date));
+  SB_RETURN_IF_ERROR(gyms_->Get(v, gym).status());  // members only
+  RouteQuery q;
+  q.gym = gym;
+  q.state = "planned";
+  q.limit = options_.limits.max_tag_sheet_routes;
+  SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> list, routes_->List(v, q));
+  std::vector<DayRoute> out;
+  for (const store::RouteRecord& r : list) {
+    if (!date.empty() && r.planned_on != date) continue;
+    DayRoute d;
+    d.id = r.id;
+    d.name = r.name;
+    d.grade = r.grade;
+    d.colour = r.colour;
+    d.state = r.state;
+    d.planned_on = r.planned_on;
+    d.wall_name = r.wall_name;
+    d.move_count = r.move_count;
+    if (Result<store::RouteRecord> full = routes_->Get(v, r.id); full.ok()) {
+      for (const store::RouteSetter& s : full->setters) d.setters.push_back(s.name);
+    }
+    out.push_back(std::move(d));
+  }
+  std::stable_sort(out.begin(), out.end(), [](const DayRoute& a, const DayRoute& b) {
+    return std::tie(a.wall_name, a.name, a.id) < std::tie(b.wall_name, b.name, b.id);
+  });
+  return out;
+}
+
+}  // namespace sb::app

@@ -1,0 +1,194 @@
+// Setting days (issue 22, "What to set next"; docs/setting.md "Setting
+// days"): a head setter picks a date and the walls to reset; for each slot
+// (wall × grade band × style) the product proposes a ranked gallery of
+// candidate variations made from the gym's routes (on the wall and archived)
+// and public routes; a setter accepts one and it becomes a planned route on
+// that wall, assigned to a setter, with its card and tag.
+//
+// No table of its own: a setting day is (gym, date) and its planned routes
+// (state "planned", planned_on = the date, wall, setters).
+//
+//   app::SettingDayRequest req{.gym = 1, .date = "2026-12-01", .walls = {3}};
+//   auto day = services.setting_days.Propose(viewer, req);
+//   // day->slots[0].candidates[0]: moves, score (app::CandidateScore), params, inputs
+//   app::AcceptRequest a{...the candidate's params_json and inputs...};
+//   auto id = services.setting_days.Accept(viewer, a);  // a planned route
+#ifndef SB_APP_SETTING_DAY_H_
+#define SB_APP_SETTING_DAY_H_
+
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/budget.h"
+#include "app/candidates.h"
+#include "app/gyms.h"
+#include "app/options.h"
+#include "app/routes.h"
+#include "app/variations.h"
+#include "base/status.h"
+#include "store/store.h"
+
+namespace sb::app {
+
+// ---- limits, with their reasons --------------------------------------------
+
+// Slots of one proposal: a big gym resets five or six walls on a setting day
+// with three or four routes each; 20 slots cover it, and 20 x 6 candidates
+// is the proposal the benchmark times (docs/BENCHMARKS.md, < 2 s).
+inline constexpr size_t kMaxDaySlots = 20;
+// Candidates per slot: a gallery a setter reads on a phone; one ring of ICs
+// (9 plans) can give at most 9.
+inline constexpr int kMaxDayCandidates = 6;
+inline constexpr int kDefaultDayCandidates = 3;
+// Walls of one setting day (each gets one default slot).
+inline constexpr size_t kMaxDayWalls = kMaxDaySlots;
+// Input routes per candidate: two routes concatenated, the paper's usual
+// variation of a pair (more inputs make longer routes than a gym problem).
+inline constexpr size_t kDayInputs = 2;
+// Routes read per slot when choosing inputs (gym and public, each): the
+// oldest this many in the band range; each is read whole (lists carry no
+// CRDL) and its moves parsed by the grammar, so the pool is bounded (20
+// slots x 2 x 60 reads at most, each route once per proposal).
+inline constexpr int kMaxDayInputPool = 60;
+// The IC search radius of a candidate (grid steps): the CLI's default is
+// 100 (201^2 ICs); a proposal makes up to 20 x 9 plans, so each searches a
+// 21-step radius (about 1,400 ICs), keeping 20 x 6 candidates under 2 s.
+inline constexpr int kDaySearchRadius = 20;
+
+// ---- requests and views ------------------------------------------------------
+
+// One slot: a wall of the gym, a grade band as the gym writes it on its tags
+// ("V3"; "" = any) and a style name (language/styles.h; "" = any).
+struct DaySlot {
+  int64_t wall = 0;
+  std::string band;
+  std::string style;
+};
+
+// What a proposal asks for.
+struct SettingDayRequest {
+  int64_t gym = 0;
+  std::string date;             // "YYYY-MM-DD"
+  std::vector<int64_t> walls;   // the walls to reset (at least one)
+  std::vector<DaySlot> slots;   // empty: DefaultSlots, one per wall
+  int candidates = kDefaultDayCandidates;
+  // kInvalidInput naming the field: date, walls (none, too many), slots (too
+  // many; a slot's wall not among `walls`; an unknown style), candidates.
+  Status Validate() const;
+};
+
+// One candidate as the API shows it. `id` is a digest of params, inputs and
+// moves (hex), so an accepted candidate can be checked against the one shown.
+struct DayCandidate {
+  std::string id;
+  std::vector<std::string> moves;  // "R small crimp" (hand letter, text)
+  CandidateScore score;
+  std::string params_json;         // plan::ParametersJson: re-derives the moves
+  std::vector<int64_t> inputs;     // input route ids, in order
+  std::vector<std::string> input_names;
+};
+
+struct DaySlotProposal {
+  DaySlot slot;
+  std::string wall_name;
+  std::string discipline;          // the wall's
+  std::vector<DayCandidate> candidates;  // ranked, best first (kept before rejected)
+  std::string note;                // why there are none or fewer ("" = none)
+};
+
+struct SettingDayProposal {
+  int64_t gym = 0;
+  std::string date;
+  std::vector<DaySlotProposal> slots;
+};
+
+// Accepting a candidate.
+struct AcceptRequest {
+  int64_t gym = 0;
+  std::string date;
+  std::string wall;    // a wall id or name of the gym
+  std::string setter;  // a member's user name ("" = the viewer)
+  std::string params_json;
+  std::vector<int64_t> inputs;
+  // When given, the moves re-derived from params and inputs must equal them
+  // (and `id` the candidate's digest): kConflict otherwise.
+  std::optional<std::vector<std::string>> moves;
+  std::string id;
+  std::string name;  // "" = the default variation name
+};
+
+// A route of a setting day's sheet (an app view: fields named as the store
+// record's).
+struct DayRoute {
+  int64_t id = 0;
+  std::string name, grade, colour, state, planned_on, wall_name;
+  std::vector<std::string> setters;
+  int move_count = 0;
+};
+
+// The slots a setting day proposes when none are given: one per wall, band =
+// the band of the gym's circuits' ranges (in the wall's discipline; without
+// circuits, the range of the wall's routes, else V2..V5 / 5.9..5.11) having
+// fewest routes on the wall (ties: the lower), style = the least present on
+// the wall of kDefaultSlotStyles (ties: the list's order). `on_wall` are the
+// routes on each wall (wall id -> routes, state set), `style_share` each
+// wall's share of moves by style. Pure; deterministic.
+// (Issue 22's dashboard replaces it by its gap-based ProposeSlots.)
+inline const std::vector<std::string> kDefaultSlotStyles = {
+    "crimp", "sloper", "pinch", "pocket", "heel hook", "toe hook", "gaston", "undercling",
+    "dyno", "mantle"};
+std::vector<DaySlot> DefaultSlots(const std::vector<Wall>& walls,
+                                  const std::vector<Circuit>& circuits,
+                                  const std::map<int64_t, std::vector<store::RouteRecord>>& on_wall,
+                                  const std::map<int64_t, std::map<std::string, double>>& style_share);
+
+// The candidate digest of params, inputs and moves (16 hex digits). Pure.
+std::string CandidateId(const std::string& params_json, const std::vector<int64_t>& inputs,
+                        const std::vector<std::string>& moves);
+
+// Thread-safe. Does not own its arguments.
+class SettingDays {
+ public:
+  SettingDays(store::Store* store, const Options& options, Routes* routes, Gyms* gyms,
+              Variations* variations, WorkBudget* budget);
+
+  // A proposal for the gym's setting day: head setters and setters only
+  // (kNotFound "no gym N" for non-members, kPermission for climbers,
+  // kUnauthenticated when not logged in); kInvalidInput as Validate and
+  // naming "walls" for another gym's wall. Takes the work budget before the
+  // work (cost: render_costs.day_candidate per slot x candidate;
+  // kResourceExhausted with *retry_after_seconds). Slots run on up to two
+  // threads; the result does not depend on it. Deterministic.
+  Result<SettingDayProposal> Propose(const Viewer& v, const SettingDayRequest& req,
+                                     int* retry_after_seconds = nullptr);
+
+  // Makes the candidate a planned route on the wall: a variation of
+  // `inputs` with `params_json` (Variations::Create, in the gym), then
+  // state planned, planned on `date`, the setter assigned. Returns its id.
+  // Errors: as Propose for roles; kInvalidInput naming the field (date,
+  // params, inputs, setter not a member, wall); kConflict "moves: ..." when
+  // re-deriving gives other moves than those posted (or another id).
+  Result<int64_t> Accept(const Viewer& v, const AcceptRequest& req);
+
+  // The gym's planned routes of `date` (all dates when ""), by wall and name,
+  // for the sheet. Members only (kNotFound otherwise).
+  Result<std::vector<DayRoute>> Planned(const Viewer& v, int64_t gym, const std::string& date);
+
+ private:
+  Status RequireSetter(const Viewer& v, int64_t gym);
+
+  store::Store* store_;
+  const Options options_;
+  Routes* routes_;
+  Gyms* gyms_;
+  Variations* variations_;
+  WorkBudget* budget_;
+};
+
+}  // namespace sb::app
+
+#endif  // SB_APP_SETTING_DAY_H_

@@ -1,0 +1,164 @@
+// Setting days over HTTP (issue 22): POST /api/gyms/{gym}/setting-days
+// proposes ranked galleries, .../accept makes a planned route with its card
+// and tag, the roles (climbers 403, other gyms 404), and the pages. A real
+// server over a real database (SQLite, or PostgreSQL when $SB_TEST_BACKEND
+// is "postgresql"; ctest runs both).
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "web/api_test_util.h"
+
+namespace sb::web {
+namespace {
+
+using nlohmann::json;
+using testing::Client;
+
+class SettingDayApiTest : public testing::ApiFixture {};
+
+Client* LoggedIn(std::vector<std::unique_ptr<Client>>& all, int port, const std::string& name) {
+  all.push_back(std::make_unique<Client>(port));
+  all.back()->SignUp(name);
+  EXPECT_TRUE(all.back()->LogIn(name));
+  return all.back().get();
+}
+
+TEST_F(SettingDayApiTest, ProposeAcceptAndTheRoles) {
+  std::vector<std::unique_ptr<Client>> all;
+  const int port = server_->port();
+  Client& head = *LoggedIn(all, port, "head");
+  Client& setter = *LoggedIn(all, port, "sam");
+  Client& climber = *LoggedIn(all, port, "climber");
+  Client& rival = *LoggedIn(all, port, "rival");
+  const int64_t g = head.Json("GET", "/api/gyms", "", 200)["gyms"][0]["id"];
+  const std::string gp = "/api/gyms/" + std::to_string(g);
+  ASSERT_EQ(head.Status("POST", gp + "/members", R"({"username":"sam","role":"setter"})"), 201);
+  ASSERT_EQ(head.Status("POST", gp + "/members", R"({"username":"climber","role":"climber"})"),
+            201);
+  const int64_t cave = head.Json("POST", gp + "/walls", R"({"name":"Cave"})", 201)["id"];
+  const std::vector<std::pair<std::string, std::string>> routes = {
+      {"V3", "R small crimp\nL small crimp\nR sidepull\nL gaston\nR crimp\nL jug finish\n"},
+      {"V4", "L sloper\nR small crimp\nL heel hook\nR pinch\nL crimp\nR top out\n"},
+      {"V5", "R jug\nL crimp\nR crimp\nL undercling\nR sloper\nL jug finish\n"}};
+  for (size_t i = 0; i < routes.size(); ++i) {
+    json body{{"crdl", "name: Route " + std::to_string(i) + "\ngrade: " + routes[i].first +
+                           "\n---\n" + routes[i].second},
+              {"public", true},
+              {"gym", g},
+              {"wall", std::to_string(cave)},
+              {"state", "set"}};
+    head.Json("POST", "/api/routes", body.dump(), 201);
+  }
+
+  const json ask{{"date", "2026-12-01"},
+                 {"walls", {cave}},
+                 {"slots", {{{"wall", cave}, {"band", "V4"}, {"style", "crimp"}}}},
+                 {"candidates", 2}};
+  const json day = setter.Json("POST", gp + "/setting-days", ask.dump(), 200);
+  ASSERT_EQ(day["slots"].size(), 1u);
+  const json& slot = day["slots"][0];
+  EXPECT_EQ(slot["wall"], cave);
+  EXPECT_EQ(slot["band"], "V4");
+  EXPECT_EQ(slot["style"], "crimp");
+  ASSERT_GE(slot["candidates"].size(), 1u) << slot.dump();
+  EXPECT_LE(slot["candidates"].size(), 2u);
+  const json cand = slot["candidates"][0];
+  for (const char* k : {"moves", "score", "reasons", "warnings", "estimated_band", "params",
+                        "inputs", "id"}) {
+    EXPECT_TRUE(cand.contains(k)) << k;
+  }
+  EXPECT_TRUE(cand["params"].is_object());
+  EXPECT_TRUE(cand["params"].value("keep_start", false));
+  // The same request again: the same candidates (determinism).
+  EXPECT_EQ(head.Json("POST", gp + "/setting-days", ask.dump(), 200), day);
+  // Without slots: one per wall.
+  json d2 = head.Json("POST", gp + "/setting-days",
+                      json{{"date", "2026-12-01"}, {"walls", {cave}}, {"candidates", 1}}.dump(),
+                      200);
+  EXPECT_EQ(d2["slots"].size(), 1u);
+
+  // Roles and field errors.
+  EXPECT_EQ(climber.Status("POST", gp + "/setting-days", ask.dump()), 403);
+  EXPECT_EQ(rival.Status("POST", gp + "/setting-days", ask.dump()), 404);
+  EXPECT_EQ(head.Status("POST", "/api/gyms/999999/setting-days", ask.dump()), 404);
+  json bad = ask;
+  bad["candidates"] = 99;
+  EXPECT_EQ(head.Json("POST", gp + "/setting-days", bad.dump(), 400)["error"].get<std::string>()
+                .rfind("candidates", 0),
+            0u);
+  bad = ask;
+  bad["date"] = "soon";
+  EXPECT_EQ(head.Status("POST", gp + "/setting-days", bad.dump()), 400);
+
+  // Accept: tampered moves are refused; the candidate becomes a planned route.
+  json accept{{"date", "2026-12-01"}, {"wall", cave}, {"setter", "sam"}, {"candidate", cand}};
+  json tampered = accept;
+  tampered["candidate"]["moves"][0] = "R campus to the moon";
+  EXPECT_EQ(setter.Status("POST", gp + "/setting-days/accept", tampered.dump()), 409);
+  EXPECT_EQ(climber.Status("POST", gp + "/setting-days/accept", accept.dump()), 403);
+  EXPECT_EQ(rival.Status("POST", gp + "/setting-days/accept", accept.dump()), 404);
+  const json made = setter.Json("POST", gp + "/setting-days/accept", accept.dump(), 201);
+  const int64_t id = made["id"];
+  const json route = head.Json("GET", "/api/routes/" + std::to_string(id), "", 200);
+  EXPECT_EQ(route["state"], "planned") << route.dump();
+  EXPECT_EQ(route["wall_id"], cave);
+  EXPECT_EQ(route["move_list"].size(), cand["moves"].size());
+  EXPECT_EQ(route["setters"], json::array({"sam"}));
+  // Its card and tag, and the day's sheet lists it.
+  auto tag = head.Send("GET", "/routes/" + std::to_string(id) + "/tag.pdf");
+  ASSERT_TRUE(tag);
+  EXPECT_EQ(tag->status, 200);
+  EXPECT_EQ(tag->body.rfind("%PDF", 0), 0u);
+  auto card = head.Send("GET", "/variations/" + std::to_string(id) + ".pdf");
+  ASSERT_TRUE(card);
+  EXPECT_EQ(card->status, 200);
+  auto sheet = head.Send("GET", "/gyms/" + std::to_string(g) + "/setting-day/sheet?date=2026-12-01");
+  ASSERT_TRUE(sheet);
+  EXPECT_EQ(sheet->status, 200);
+  EXPECT_NE(sheet->body.find("/routes/" + std::to_string(id) + "/tag.pdf"), std::string::npos);
+  EXPECT_NE(sheet->body.find("sam"), std::string::npos);
+  EXPECT_NE(sheet->body.find("/tags.pdf?ids=" + std::to_string(id) + "\""), std::string::npos);
+  auto tags = head.Send("GET", "/tags.pdf?ids=" + std::to_string(id));
+  ASSERT_TRUE(tags);
+  EXPECT_EQ(tags->status, 200);
+  auto other_day =
+      head.Send("GET", "/gyms/" + std::to_string(g) + "/setting-day/sheet?date=2026-12-02");
+  ASSERT_TRUE(other_day);
+  EXPECT_EQ(other_day->body.find("/routes/" + std::to_string(id) + "/tag.pdf"), std::string::npos);
+  // The page shows the galleries with an Accept per candidate.
+  auto page = setter.Send("GET", "/gyms/" + std::to_string(g) + "/setting-day?date=2026-12-01&walls=" +
+                                     std::to_string(cave) + "&k=1");
+  ASSERT_TRUE(page);
+  EXPECT_EQ(page->status, 200);
+  EXPECT_NE(page->body.find("day-accept"), std::string::npos);
+  EXPECT_EQ(climber.Status("GET", "/gyms/" + std::to_string(g) + "/setting-day"), 403);
+}
+
+// POST /api/variations with "preset": "setter": the setter's constraints,
+// stored in the parameters (so the variation rebuilds the same).
+TEST_F(SettingDayApiTest, TheSetterPresetOfTheVariationApi) {
+  Client c = NewClient();
+  c.SignUp("setter1");
+  ASSERT_TRUE(c.LogIn("setter1"));
+  const int64_t a = AddRoute(c, "name: A\ngrade: V3\n---\nR small crimp\nL sloper\nR pinch\nL jug finish\n");
+  const int64_t b = AddRoute(c, "name: B\ngrade: V4\n---\nL jug\nR crimp\nL gaston\nR top out\n");
+  const json made =
+      c.Json("POST", "/api/variations", json{{"routes", {a, b}}, {"preset", "setter"}}.dump(), 201);
+  const json v = c.Json("GET", "/api/variations/" + std::to_string(made["id"].get<int64_t>()), "", 200);
+  EXPECT_TRUE(v["parameters"].value("keep_start", false)) << v["parameters"].dump();
+  EXPECT_TRUE(v["parameters"].value("keep_finish", false));
+  EXPECT_TRUE(v["parameters"].value("alternate_hands", false));
+  EXPECT_EQ(v["parameters"]["preset"], "default");
+  // The paper's presets stay as they were, by name.
+  const json plain = c.Json("POST", "/api/variations",
+                            json{{"routes", {a, b}}, {"preset", "default"}}.dump(), 201);
+  const json pv = c.Json("GET", "/api/variations/" + std::to_string(plain["id"].get<int64_t>()), "", 200);
+  EXPECT_FALSE(pv["parameters"].value("keep_start", false));
+}
+
+}  // namespace
+}  // namespace sb::web

@@ -1,0 +1,353 @@
+// Setting days over HTTP (issue 22): decode, call app::SettingDays, render.
+#include "web/setting_day_handlers.h"
+
+#include <climits>
+
+#include "app/setting_day.h"
+#include "base/number.h"
+#include "base/text.h"
+
+namespace sb::web {
+
+using nlohmann::json;
+
+namespace {
+
+std::string E(std::string_view s) { return XmlEscape(s); }
+
+void Html(Exchange& x, const std::string& html) {
+  x.res.SetHeader("Cache-Control", "no-store");
+  x.res.SetBody(200, html, "text/html; charset=utf-8");
+}
+
+Result<int64_t> IdOf(const json& j, const std::string& field) {
+  if (!j.is_number_integer() || j.get<int64_t>() <= 0) {
+    return Status::InvalidInput(field + ": expected an id (a positive integer)");
+  }
+  return j.get<int64_t>();
+}
+
+Result<app::SettingDayRequest> DayRequestOf(const json& body, int64_t gym) {
+  app::SettingDayRequest r;
+  r.gym = gym;
+  if (!body.contains("date") || !body["date"].is_string()) {
+    return Status::InvalidInput("date: expected a date YYYY-MM-DD");
+  }
+  r.date = body["date"].get<std::string>();
+  if (!body.contains("walls") || !body["walls"].is_array()) {
+    return Status::InvalidInput("walls: expected an array of wall ids");
+  }
+  for (const json& w : body["walls"]) {
+    if (r.walls.size() > app::kMaxDayWalls) break;  // Validate names the limit
+    SB_ASSIGN_OR_RETURN(int64_t id, IdOf(w, "walls"));
+    r.walls.push_back(id);
+  }
+  if (body.contains("slots")) {
+    if (!body["slots"].is_array()) return Status::InvalidInput("slots: expected an array");
+    for (size_t i = 0; i < body["slots"].size() && i <= app::kMaxDaySlots; ++i) {
+      const json& s = body["slots"][i];
+      const std::string f = "slots[" + std::to_string(i) + "]";
+      if (!s.is_object()) return Status::InvalidInput(f + ": expected an object");
+      app::DaySlot slot;
+      SB_ASSIGN_OR_RETURN(slot.wall, IdOf(s.value("wall", json()), f + ".wall"));
+      for (const char* k : {"band", "style"}) {
+        if (s.contains(k) && !s[k].is_string()) {
+          return Status::InvalidInput(f + "." + k + ": expected text");
+        }
+      }
+      slot.band = s.value("band", "");
+      slot.style = s.value("style", "");
+      r.slots.push_back(std::move(slot));
+    }
+  }
+  if (body.contains("candidates")) {
+    if (!body["candidates"].is_number_integer()) {
+      return Status::InvalidInput("candidates: expected a whole number");
+    }
+    const int64_t k = body["candidates"].get<int64_t>();
+    r.candidates = static_cast<int>(std::clamp<int64_t>(k, INT_MIN, INT_MAX));
+  }
+  return r;
+}
+
+json CandidateJson(const app::DayCandidate& c) {
+  json params = json::parse(c.params_json, nullptr, false);
+  return json{{"id", c.id},
+              {"moves", c.moves},
+              {"score", c.score.score},
+              {"rejected", c.score.rejected},
+              {"reasons", c.score.reasons},
+              {"warnings", c.score.warnings},
+              {"estimated_band", c.score.estimated_band},
+              {"params", params},
+              {"inputs", c.inputs},
+              {"input_names", c.input_names}};
+}
+
+json ProposalJson(const app::SettingDayProposal& p) {
+  json slots = json::array();
+  for (const app::DaySlotProposal& s : p.slots) {
+    json cands = json::array();
+    for (const app::DayCandidate& c : s.candidates) cands.push_back(CandidateJson(c));
+    json j{{"wall", s.slot.wall},  {"wall_name", s.wall_name}, {"band", s.slot.band},
+           {"style", s.slot.style}, {"candidates", cands}};
+    if (!s.note.empty()) j["note"] = s.note;
+    slots.push_back(std::move(j));
+  }
+  return json{{"gym", p.gym}, {"date", p.date}, {"slots", slots}};
+}
+
+std::string Fixed1(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1f", v);
+  return buf;
+}
+
+// The walls of the query: walls=1,2 or walls=1&walls=2.
+std::vector<int64_t> WallsOfQuery(const Request& req) {
+  std::vector<int64_t> out;
+  auto [lo, hi] = req.query.equal_range("walls");
+  for (auto it = lo; it != hi; ++it) {
+    for (std::string_view part : Split(it->second, ',')) {
+      if (std::optional<int64_t> id = ParseId(std::string(Trim(part)))) out.push_back(*id);
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+void PostSettingDay(Exchange& x) {
+  Result<int64_t> gym = PathId(x.req, "no such gym");
+  if (!gym.ok()) return ApiError(x, gym.status());
+  Result<json> body = BodyObject(x.req);
+  if (!body.ok()) return ApiError(x, body.status());
+  Result<app::SettingDayRequest> r = DayRequestOf(*body, *gym);
+  if (!r.ok()) return ApiError(x, r.status());
+  int retry = 0;
+  Result<app::SettingDayProposal> p =
+      x.services.setting_days.Propose(x.caller.viewer, *r, &retry);
+  if (!p.ok()) {
+    ApiError(x, p.status());
+    if (retry > 0) x.res.SetHeader("Retry-After", std::to_string(retry));
+    return;
+  }
+  ReplyJson(x.res, 200, ProposalJson(*p));
+}
+
+void PostSettingDayAccept(Exchange& x) {
+  Result<int64_t> gym = PathId(x.req, "no such gym");
+  if (!gym.ok()) return ApiError(x, gym.status());
+  Result<json> body = BodyObject(x.req);
+  if (!body.ok()) return ApiError(x, body.status());
+  const json& b = *body;
+  app::AcceptRequest a;
+  a.gym = *gym;
+  for (const auto& [k, out] : {std::pair<const char*, std::string*>{"date", &a.date},
+                               {"setter", &a.setter}, {"name", &a.name}}) {
+    if (!b.contains(k)) continue;
+    if (!b[k].is_string()) return ApiError(x, Status::InvalidInput(std::string(k) + ": expected text"));
+    *out = b[k].get<std::string>();
+  }
+  if (b.contains("wall") && b["wall"].is_number_integer()) {
+    a.wall = std::to_string(b["wall"].get<int64_t>());
+  } else if (b.contains("wall") && b["wall"].is_string()) {
+    a.wall = b["wall"].get<std::string>();
+  } else {
+    return ApiError(x, Status::InvalidInput("wall: expected a wall id or name"));
+  }
+  if (!b.contains("candidate") || !b["candidate"].is_object()) {
+    return ApiError(x, Status::InvalidInput(
+                           "candidate: expected the candidate as proposed (params and inputs)"));
+  }
+  const json& c = b["candidate"];
+  if (!c.contains("params") || !c["params"].is_object()) {
+    return ApiError(x, Status::InvalidInput("candidate.params: expected an object"));
+  }
+  a.params_json = c["params"].dump();
+  if (!c.contains("inputs") || !c["inputs"].is_array()) {
+    return ApiError(x, Status::InvalidInput("candidate.inputs: expected an array of route ids"));
+  }
+  for (const json& i : c["inputs"]) {
+    Result<int64_t> id = IdOf(i, "candidate.inputs");
+    if (!id.ok()) return ApiError(x, id.status());
+    a.inputs.push_back(*id);
+  }
+  if (c.contains("moves")) {
+    if (!c["moves"].is_array()) {
+      return ApiError(x, Status::InvalidInput("candidate.moves: expected an array of moves"));
+    }
+    std::vector<std::string> moves;
+    for (const json& m : c["moves"]) {
+      if (!m.is_string()) {
+        return ApiError(x, Status::InvalidInput("candidate.moves: expected text"));
+      }
+      moves.push_back(m.get<std::string>());
+    }
+    a.moves = std::move(moves);
+  }
+  if (c.contains("id") && c["id"].is_string()) a.id = c["id"].get<std::string>();
+  Result<int64_t> id = x.services.setting_days.Accept(x.caller.viewer, a);
+  if (!id.ok()) return ApiError(x, id.status());
+  const std::string url = "/variations/" + std::to_string(*id);
+  x.res.SetHeader("Location", url);
+  ReplyJson(x.res, 201,
+            json{{"id", *id},
+                 {"url", url},
+                 {"card", url + ".pdf"},
+                 {"tag", "/routes/" + std::to_string(*id) + "/tag.pdf"}});
+}
+
+void PageSettingDay(Exchange& x) {
+  Result<int64_t> gid = PathId(x.req, "No such gym.");
+  if (!gid.ok()) return PageError(x, gid.status());
+  if (!x.caller.viewer.logged_in()) return PageError(x, Status::Unauthenticated("Log in first."));
+  Result<app::Gym> gym = x.services.gyms.Get(x.caller.viewer, *gid);
+  if (!gym.ok()) return PageError(x, gym.status());
+  if (!app::CanSet(gym->role)) {
+    return PageError(x, Status::Permission("Only the gym's setters plan setting days."));
+  }
+  Result<std::vector<app::Wall>> walls = x.services.gyms.Walls(x.caller.viewer, *gid);
+  if (!walls.ok()) return PageError(x, walls.status());
+  Result<std::vector<app::Member>> members = x.services.gyms.Members(x.caller.viewer, *gid);
+  if (!members.ok()) return PageError(x, members.status());
+  const std::string date = x.req.Query("date").value_or("");
+  const std::vector<int64_t> chosen = WallsOfQuery(x.req);
+  int k = app::kDefaultDayCandidates;
+  if (std::optional<std::string> ks = x.req.Query("k")) {
+    if (std::optional<int64_t> n = ParseId(*ks)) k = static_cast<int>(std::min<int64_t>(*n, 100));
+  }
+  const std::string g = std::to_string(*gid);
+
+  std::string b = "<h1 id=\"day-title\">Setting day · " + E(gym->name) + "</h1>\n";
+  b += "<p><a href=\"/gyms/" + g + "\">Back to the gym</a>";
+  if (!date.empty()) {
+    b += " · <a id=\"day-sheet\" href=\"/gyms/" + g + "/setting-day/sheet?date=" + E(date) +
+         "\">The day's sheet</a>";
+  }
+  b += "</p>\n<form method=\"get\" id=\"day-form\" class=\"no-print\"><label>Date <input "
+       "type=\"date\" name=\"date\" id=\"day-date\" required value=\"" +
+       E(date) + "\"></label>\n<fieldset><legend>Walls to reset</legend>\n";
+  for (const app::Wall& w : *walls) {
+    const bool on = std::find(chosen.begin(), chosen.end(), w.id) != chosen.end();
+    b += "<label class=\"inline\"><input type=\"checkbox\" name=\"walls\" value=\"" +
+         std::to_string(w.id) + "\"" + (on ? " checked" : "") + "> " + E(w.name) + "</label>\n";
+  }
+  if (walls->empty()) b += "<p class=\"empty\">This gym has no walls yet.</p>\n";
+  b += "</fieldset><label>Candidates per slot <input type=\"number\" name=\"k\" min=\"1\" max=\"" +
+       std::to_string(app::kMaxDayCandidates) + "\" value=\"" + std::to_string(k) +
+       "\"></label>\n<button type=\"submit\" id=\"day-propose\">Propose</button></form>\n";
+
+  if (!date.empty() && !chosen.empty()) {
+    app::SettingDayRequest r;
+    r.gym = *gid;
+    r.date = date;
+    r.walls = chosen;
+    r.candidates = k;
+    int retry = 0;
+    Result<app::SettingDayProposal> p = x.services.setting_days.Propose(x.caller.viewer, r, &retry);
+    if (!p.ok()) {
+      b += "<p class=\"msg bad\" role=\"alert\">" + E(p.status().message()) + "</p>\n";
+    } else {
+      std::string setters;
+      for (const app::Member& m : *members) {
+        if (!app::CanSet(m.role)) continue;
+        setters += "<option" +
+                   std::string(m.username == x.caller.viewer.username ? " selected" : "") + ">" +
+                   E(m.username) + "</option>";
+      }
+      int slot_no = 0;
+      for (const app::DaySlotProposal& s : p->slots) {
+        ++slot_no;
+        b += "<section class=\"day-slot\" id=\"slot-" + std::to_string(slot_no) + "\"><h2>" +
+             E(s.wall_name) + ": " + E(s.slot.band.empty() ? "any grade" : s.slot.band) + " · " +
+             E(s.slot.style.empty() ? "any style" : s.slot.style) + "</h2>\n";
+        if (!s.note.empty()) b += "<p class=\"note\">" + E(s.note) + "</p>\n";
+        int rank = 0;
+        for (const app::DayCandidate& c : s.candidates) {
+          ++rank;
+          json accept{{"date", date},
+                      {"wall", s.slot.wall},
+                      {"candidate", CandidateJson(c)}};
+          b += "<article class=\"day-candidate\" data-id=\"" + E(c.id) + "\"><h3>" +
+               std::to_string(rank) + ". score " + Fixed1(c.score.score) + " / 100" +
+               (c.score.rejected ? " <span class=\"bad\">(rejected)</span>" : "") +
+               (c.score.estimated_band.empty() ? "" : " · estimated " + E(c.score.estimated_band)) +
+               "</h3>\n<p class=\"inputs\">From: ";
+          for (size_t i = 0; i < c.inputs.size(); ++i) {
+            b += (i ? ", " : "") + std::string("<a href=\"/routes/") + std::to_string(c.inputs[i]) +
+                 "\">" + E(c.input_names[i]) + "</a>";
+          }
+          b += "</p>\n<ol class=\"moves\">";
+          for (const std::string& m : c.moves) b += "<li>" + E(m) + "</li>";
+          b += "</ol>\n<details><summary>Why it ranks here</summary><ul class=\"reasons\">";
+          for (const std::string& r2 : c.score.reasons) b += "<li>" + E(r2) + "</li>";
+          b += "</ul>";
+          if (!c.score.warnings.empty()) {
+            b += "<p>Warnings:</p><ul class=\"warnings\">";
+            for (const std::string& w : c.score.warnings) b += "<li>" + E(w) + "</li>";
+            b += "</ul>";
+          }
+          b += "</details>\n<form class=\"day-accept no-print\" data-accept=\"" +
+               E(accept.dump()) + "\" data-url=\"/api/gyms/" + g +
+               "/setting-days/accept\"><label>Setter <select name=\"setter\">" + setters +
+               "</select></label> <button type=\"submit\">Accept</button><p class=\"msg\" "
+               "role=\"status\"></p></form></article>\n";
+        }
+        b += "</section>\n";
+      }
+    }
+  }
+  b += "<script src=\"/static/setting_day.js\" defer></script>\n";
+  Html(x, PageLayout(x.caller.page(), "Setting day · " + gym->name, b));
+}
+
+void PageSettingDaySheet(Exchange& x) {
+  Result<int64_t> gid = PathId(x.req, "No such gym.");
+  if (!gid.ok()) return PageError(x, gid.status());
+  Result<app::Gym> gym = x.services.gyms.Get(x.caller.viewer, *gid);
+  if (!gym.ok()) return PageError(x, gym.status());
+  const std::string date = x.req.Query("date").value_or("");
+  Result<std::vector<app::DayRoute>> routes =
+      x.services.setting_days.Planned(x.caller.viewer, *gid, date);
+  if (!routes.ok()) return PageError(x, routes.status());
+  const std::string g = std::to_string(*gid);
+  std::string b = "<h1 id=\"sheet-title\">Setting day " + E(date.empty() ? "(every date)" : date) +
+                  " · " + E(gym->name) + "</h1>\n";
+  // The day's tags: the sheet of tags of exactly these routes (/tags.pdf?ids=,
+  // at most app::Limits::max_tag_sheet_routes, as Planned lists).
+  std::string ids;
+  for (const app::DayRoute& r : *routes) ids += (ids.empty() ? "" : ",") + std::to_string(r.id);
+  b += "<p class=\"no-print\"><a href=\"/gyms/" + g + "/setting-day?date=" + E(date) +
+       "\">Plan this day</a>" +
+       (ids.empty() ? std::string()
+                    : " · <a id=\"sheet-tags\" href=\"/tags.pdf?ids=" + ids +
+                          "\">The day's tags (PDF)</a>") +
+       "</p>\n";
+  if (routes->empty()) {
+    b += "<p class=\"empty\">Nothing planned for this day yet.</p>\n";
+  } else {
+    // By setter: what each sets where.
+    std::map<std::string, std::vector<const app::DayRoute*>> by_setter;
+    for (const app::DayRoute& r : *routes) {
+      if (r.setters.empty()) by_setter["(no setter)"].push_back(&r);
+      for (const std::string& s : r.setters) by_setter[s].push_back(&r);
+    }
+    for (const auto& [setter, list] : by_setter) {
+      b += "<h2>" + E(setter) + "</h2>\n<div class=\"table-wrap\"><table class=\"list "
+           "day-sheet\"><thead><tr><th>Wall</th><th>Route</th><th>Grade</th><th class=\"num\">"
+           "Moves</th><th class=\"no-print\">Card · tag</th></tr></thead><tbody>\n";
+      for (const app::DayRoute* r : list) {
+        const std::string id = std::to_string(r->id);
+        b += "<tr><td>" + E(r->wall_name) + "</td><td><a href=\"/variations/" + id + "\">" +
+             E(r->name) + "</a></td><td>" + E(r->grade) + "</td><td class=\"num\">" +
+             std::to_string(r->move_count) + "</td><td class=\"no-print\"><a href=\"/variations/" +
+             id + ".pdf\">card</a> · <a href=\"/routes/" + id + "/tag.pdf\">tag</a></td></tr>\n";
+      }
+      b += "</tbody></table></div>\n";
+    }
+  }
+  Html(x, PageLayout(x.caller.page(), "Setting day sheet · " + gym->name, b));
+}
+
+}  // namespace sb::web

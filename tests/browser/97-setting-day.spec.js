@@ -1,0 +1,69 @@
+// Setting days (issue 22): a head setter proposes a setting day for a wall, reads the ranked
+// gallery (score, reasons), accepts a candidate for a setter; the planned route's tag PDF prints
+// its name (pdftotext) and the day's sheet lists it.
+'use strict';
+const fs = require('fs');
+const path = require('path');
+const { execFileSync } = require('child_process');
+
+module.exports = async (t) => {
+  const { page, base, check, shot, api, out } = t;
+  const n = Date.now() % 100000;
+  const head = 'dayhead' + n;
+  const password = 'correct horse battery';
+  await page.context().clearCookies();
+  await page.goto(base + '/signup');
+  await page.fill('#username', head);
+  await page.fill('#password', password);
+  await Promise.all([page.waitForURL(base + '/'), page.click('#submit')]);
+
+  const gym = (await api('POST', '/api/gyms', { name: 'Day Gym ' + n })).data.id;
+  const wall = (await api('POST', '/api/gyms/' + gym + '/walls', { name: 'Cave' })).data.id;
+  const routes = [
+    ['V3', 'R small crimp\nL small crimp\nR sidepull\nL gaston\nR crimp\nL jug finish\n'],
+    ['V4', 'L sloper\nR small crimp\nL heel hook\nR pinch\nL crimp\nR top out\n'],
+    ['V5', 'R jug\nL crimp\nR crimp\nL undercling\nR sloper\nL jug finish\n']];
+  for (const [i, [grade, moves]] of routes.entries()) {
+    const r = await api('POST', '/api/routes', { crdl: 'name: Day Route ' + n + '-' + i + '\ngrade: ' + grade +
+                                                 '\n---\n' + moves, public: true, gym, wall: wall, state: 'set' });
+    check(r.status === 201, 'a route on the wall (' + r.status + ')');
+  }
+
+  await page.goto(base + '/gyms/' + gym);
+  await Promise.all([page.waitForURL(/setting-day/), page.click('#gym-setting-day')]);
+  await page.fill('#day-date', '2026-12-01');
+  await page.check('input[name="walls"][value="' + wall + '"]');
+  await Promise.all([page.waitForURL(/walls=/), page.click('#day-propose')]);
+  check(page.url().includes('date=2026-12-01'), 'the day\'s state is in the URL');
+  const cands = await page.$$('.day-candidate');
+  check(cands.length >= 1, 'the slot shows a ranked gallery (' + cands.length + ' candidates)');
+  const first = await page.textContent('.day-candidate h3');
+  check(/score \d+\.\d \/ 100/.test(first), 'each candidate shows its score (' + first.trim() + ')');
+  check((await page.$$('.day-candidate ul.reasons li')).length >= 4, 'and why it ranks there');
+  await shot('97-setting-day');
+
+  await page.click('.day-candidate form.day-accept button[type="submit"]');
+  await page.waitForSelector('.day-candidate .accepted-tag');
+  const tagHref = await page.getAttribute('.day-candidate .accepted-tag', 'href');
+  const id = Number(tagHref.match(/\/routes\/(\d+)\/tag\.pdf/)[1]);
+  const route = (await api('GET', '/api/routes/' + id)).data;
+  check(route.state === 'planned' && route.set_on === '2026-12-01' && route.wall_id === wall,
+        'the accepted candidate is a planned route on the wall (' + route.state + ')');
+  const tagRes = await page.request.get(base + tagHref);
+  const tagFile = path.join(out, '97-setting-day-tag.pdf');
+  fs.writeFileSync(tagFile, await tagRes.body());
+  const tagText = execFileSync('pdftotext', [tagFile, '-']).toString().replace(/\s+/g, ' ');
+  check(tagRes.status() === 200 && tagText.includes(route.name.slice(0, 20)) && tagText.includes(head),
+        'its tag prints its name and setter');
+
+  await page.goto(base + '/gyms/' + gym + '/setting-day/sheet?date=2026-12-01');
+  const sheet = await page.textContent('main');
+  check(sheet.includes(head) && sheet.includes('Cave') && sheet.includes(route.name.slice(0, 20)),
+        'the day\'s sheet lists what each setter sets where');
+  const tags = await page.request.get(base + await page.getAttribute('#sheet-tags', 'href'));
+  const tagsFile = path.join(out, '97-setting-day-tags.pdf');
+  fs.writeFileSync(tagsFile, await tags.body());
+  check(tags.status() === 200 && execFileSync('pdftotext', [tagsFile, '-']).toString().replace(/\s+/g, ' ').includes(route.name.slice(0, 20)),
+        'the day\'s sheet of tags prints it');
+  await shot('97-setting-day-sheet');
+};
