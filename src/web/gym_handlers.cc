@@ -1,5 +1,6 @@
 // Gym pages (issue 21): /gyms, /gyms/{id}, /walls/{id}, and the gym block of
 // a route page. Each asks app::Gyms / app::Routes and renders (gym_pages.h).
+#include "web/dashboard_handlers.h"
 #include "web/gym_pages.h"
 #include "web/handlers.h"
 
@@ -52,7 +53,10 @@ void PageWall(Exchange& x) {
   q.sort = "set";
   Result<app::RoutePage> routes = x.services.routes.Search(x.caller.viewer, q);
   if (!routes.ok()) return PageError(x, routes.status());
-  Html(x, WallPage(x.caller.page(), *gym, *wall, routes->routes));
+  std::vector<std::pair<std::string, std::string>> dates;  // (state, set date) for the status line
+  for (const auto& r : routes->routes) dates.emplace_back(r.state, r.set_on);
+  Html(x, WallPage(x.caller.page(), *gym, *wall, routes->routes,
+                   WallStatus(*wall, dates, app::SystemClock().Now())));
 }
 
 std::string GymBlock(Exchange& x, const store::RouteRecord& r) {

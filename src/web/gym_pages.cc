@@ -130,14 +130,14 @@ std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<
 }
 
 std::string WallPage(const PageViewer& v, const app::Gym& gym, const app::Wall& wall,
-                     const std::vector<store::RouteRecord>& routes) {
+                     const std::vector<store::RouteRecord>& routes, const std::string& status) {
   std::string b = "<p><a href=\"/gyms/" + std::to_string(gym.id) + "\">" + E(gym.name) +
                   "</a></p>\n<h1 id=\"wall-title\">" + E(wall.name) + "</h1>\n<p>" +
                   E(wall.discipline) + ", " + FormatDouble(wall.angle) + "°" +
                   (wall.reset_weeks ? ", reset every " + std::to_string(*wall.reset_weeks) +
                                           " weeks"
                                     : std::string()) +
-                  "</p>\n";
+                  "</p>\n" + status;
   for (const char* state : {"set", "planned", "draft", "stripped"}) {
     std::string rows;
     for (const store::RouteRecord& r : routes) {

@@ -23,8 +23,11 @@ std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<
                     const std::vector<app::Member>& members);
 // "/walls/{id}": the wall's routes grouped by state (on the wall, planned,
 // drafts, stripped), a form to plan a route on it for setters.
+// `status` (HTML, not escaped) goes under the title: the dashboard's age and
+// due line (dashboard_handlers.h, WallStatus).
 std::string WallPage(const PageViewer& v, const app::Gym& gym, const app::Wall& wall,
-                     const std::vector<store::RouteRecord>& routes);
+                     const std::vector<store::RouteRecord>& routes,
+                     const std::string& status = "");
 // The block a route page shows for a route of a gym: state, wall, setters,
 // set / strip dates and history; with `can_set`, a form to change them.
 std::string RouteGymBlock(const store::RouteRecord& r,
