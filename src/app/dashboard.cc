@@ -342,15 +342,11 @@ Result<std::vector<WallDashboard>> Dashboard::Build(const Viewer& v, int64_t gym
     int ticks = 0, votes = 0, stars = 0;
   };
   std::map<int64_t, Climbed> climbed;
-  if (ticks_) {
-    SB_ASSIGN_OR_RETURN(std::vector<store::TickRecord> ticks, ticks_->GymTicks(gym));
-    for (const store::TickRecord& t : ticks) {
-      Climbed& c = climbed[t.route_id];
-      ++c.ticks;
-      if (t.stars) {
-        ++c.votes;
-        c.stars += *t.stars;
-      }
+  if (targets_) {
+    SB_ASSIGN_OR_RETURN(std::vector<store::RouteTickSum> sums, targets_->GymTickSums(gym));
+    for (const store::RouteTickSum& t : sums) {
+      climbed[t.route_id] = {static_cast<int>(t.ticks), static_cast<int>(t.star_votes),
+                             static_cast<int>(t.star_sum)};
     }
   }
   // The style reading of every route's moves and its setters: ListRoutes

@@ -222,6 +222,9 @@ TEST_F(DashboardTest, WhatIsUpAndWhatIsMissingPerWall) {
   t.stars = 4;
   ASSERT_TRUE(store::TickStoreOf(store_.get())->PutTick(t).ok());
 
+  ASSERT_TRUE(gs_->SetRouteSetters(old_, {{head_.user_id, "head"}, {std::nullopt, "Guest"}},
+                                   head_.user_id, "")
+                  .ok());
   WallTargets targets;
   targets.grades = {{"V3", 3}, {"v6", 1}};
   ASSERT_TRUE(services_->dashboard.SetTargets(head_, gym_, cave_, targets).ok());
@@ -241,6 +244,7 @@ TEST_F(DashboardTest, WhatIsUpAndWhatIsMissingPerWall) {
   EXPECT_EQ(cave.routes[1].ticks, 2);
   EXPECT_DOUBLE_EQ(cave.routes[1].stars, 3.0);
   EXPECT_TRUE(cave.routes[1].due);
+  EXPECT_EQ(cave.routes[1].setters, (std::vector<std::string>{"head", "Guest"}));
   EXPECT_FALSE(cave.routes[0].due);  // 4 days
   // V3 and V3+ are both band V3; the target "v6" is written V6.
   ASSERT_EQ(cave.bands.size(), 2u);

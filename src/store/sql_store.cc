@@ -783,6 +783,10 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
     SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
     return targets_sql::GymTargets(*c, gym_id);
   }
+  Result<std::vector<RouteTickSum>> GymTickSums(int64_t gym_id) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return targets_sql::GymTickSums(*c, gym_id);
+  }
 
   // -- gyms (GymStore) ------------------------------------------------------
 

@@ -81,4 +81,17 @@ Result<std::vector<TargetRecord>> GymTargets(sql::Connection& c, int64_t gym_id)
   return Read(r);
 }
 
+Result<std::vector<RouteTickSum>> GymTickSums(sql::Connection& c, int64_t gym_id) {
+  SB_ASSIGN_OR_RETURN(Rows r, c.Query("SELECT route_id, count(*), count(stars), "
+                                      "coalesce(sum(stars), 0) FROM ticks WHERE gym_id = ? "
+                                      "AND state = 'ok' GROUP BY route_id ORDER BY route_id",
+                                      {gym_id}));
+  std::vector<RouteTickSum> out;
+  out.reserve(r.size());
+  for (size_t i = 0; i < r.size(); ++i) {
+    out.push_back({r.Int(i, 0), r.Int(i, 1), r.Int(i, 2), r.Int(i, 3)});
+  }
+  return out;
+}
+
 }  // namespace sb::store::targets_sql

@@ -16,6 +16,7 @@ Status SetWallTargets(sql::Connection& c, int64_t wall_id,
                       const std::vector<TargetRecord>& targets);
 Result<std::vector<TargetRecord>> WallTargets(sql::Connection& c, int64_t wall_id);
 Result<std::vector<TargetRecord>> GymTargets(sql::Connection& c, int64_t gym_id);
+Result<std::vector<RouteTickSum>> GymTickSums(sql::Connection& c, int64_t gym_id);
 
 }  // namespace sb::store::targets_sql
 

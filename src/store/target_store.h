@@ -29,6 +29,15 @@ struct TargetRecord {
   bool operator==(const TargetRecord&) const = default;
 };
 
+// The climbers' ticks of one route summed (the dashboard's "ticks" and
+// "stars"): unheld ticks (state "ok"), how many gave stars, their sum.
+struct RouteTickSum {
+  int64_t route_id = 0;
+  int64_t ticks = 0;
+  int64_t star_votes = 0;
+  int64_t star_sum = 0;
+};
+
 // Thread-safe like Store. Errors: kNotFound for unknown walls, kIoError for
 // storage failures.
 class TargetStore {
@@ -43,6 +52,9 @@ class TargetStore {
   virtual Result<std::vector<TargetRecord>> WallTargets(int64_t wall_id) = 0;
   // The targets of every wall of `gym_id`, by wall id, kind, name.
   virtual Result<std::vector<TargetRecord>> GymTargets(int64_t gym_id) = 0;
+  // The tick sums of every ticked route of `gym_id`, by route id (one
+  // aggregate query: a gym has up to ~250,000 ticks).
+  virtual Result<std::vector<RouteTickSum>> GymTickSums(int64_t gym_id) = 0;
 };
 
 // The TargetStore of a store opened by store::OpenStore (both backends);

@@ -7,12 +7,14 @@
 
 #include <memory>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "store/gym_store.h"
 #include "store/open.h"
 #include "store/store.h"
 #include "store/store_test_util.h"
+#include "store/tick_store.h"
 
 namespace sb::store {
 namespace {
@@ -95,6 +97,41 @@ TEST_P(TargetStoreTest, RefusesBadKindsDuplicatesAndUnknownWallsWithoutAChange) 
   ASSERT_EQ(t->size(), 1u);
   EXPECT_EQ((*t)[0].name, "V3");
   EXPECT_TRUE(targets_->WallTargets(999999)->empty());
+}
+
+TEST_P(TargetStoreTest, TickSumsCountUnheldTicksAndStarsPerRoute) {
+  RouteRecord r;
+  r.name = "A";
+  r.crdl = "name: A\n---\nR jug\n";
+  r.move_count = 1;
+  r.gym_id = gym_;
+  r.state = "set";
+  const int64_t a = *store_->InsertRoute(r);
+  TickStore* ticks = TickStoreOf(store_.get());
+  ASSERT_NE(ticks, nullptr);
+  int n = 0;
+  for (auto [climber, stars, state] : {std::tuple<const char*, int, const char*>{"u:1", 4, "ok"},
+                                       {"u:2", 0, "ok"},
+                                       {"u:3", 5, "ok"},
+                                       {"d:x", 1, "held"}}) {
+    TickRecord t;
+    t.route_id = a;
+    t.gym_id = gym_;
+    t.climber = climber;
+    t.day = "2026-11-2" + std::to_string(n++);
+    t.outcome = "send";
+    if (stars) t.stars = stars;
+    t.state = state;
+    t.created_at = t.updated_at = "2026-11-20 10:00:00";
+    ASSERT_TRUE(ticks->PutTick(t).ok());
+  }
+  Result<std::vector<RouteTickSum>> sums = targets_->GymTickSums(gym_);
+  ASSERT_TRUE(sums.ok()) << sums.status().message();
+  ASSERT_EQ(sums->size(), 1u);
+  EXPECT_EQ((*sums)[0].route_id, a);
+  EXPECT_EQ((*sums)[0].ticks, 3);
+  EXPECT_EQ((*sums)[0].star_votes, 2);
+  EXPECT_EQ((*sums)[0].star_sum, 9);
 }
 
 }  // namespace

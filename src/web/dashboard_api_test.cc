@@ -123,6 +123,11 @@ TEST_F(DashboardApiTest, MembersSeeTheDashboardOnlyHeadSettersPutTargets) {
   EXPECT_NE(only->body.find("id=\"wall-" + std::to_string(slab) + "\""), std::string::npos);
   EXPECT_EQ(only->body.find("id=\"targets-"), std::string::npos);  // climbers get no form
   EXPECT_EQ(rival.Status("GET", "/gyms/" + std::to_string(g) + "/dashboard"), 404);
+  // The wall page says how old the wall is and that it is due.
+  auto wall_page = climber.Send("GET", "/walls/" + std::to_string(cave));
+  ASSERT_TRUE(wall_page);
+  EXPECT_NE(wall_page->body.find("id=\"wall-status\">2 on the wall, the oldest"), std::string::npos);
+  EXPECT_NE(wall_page->body.find("due for a reset"), std::string::npos);
 }
 
 }  // namespace

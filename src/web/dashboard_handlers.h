@@ -7,6 +7,8 @@
 #define SB_WEB_DASHBOARD_HANDLERS_H_
 
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "app/dashboard.h"
 #include "web/handlers.h"
@@ -24,6 +26,14 @@ std::string DashboardPage(const PageViewer& v, const app::GymDashboard& d, int64
 // of what is on them, each a link to /walls/{id}; "" when no wall has a
 // rectangle. Pure.
 std::string PlanSvg(const app::GymDashboard& d);
+// The wall page's line from the routes it lists, each as (state, set date
+// "YYYY-MM-DD"): how many are on the wall (state "set"), the oldest one's age
+// in days at `now` (unix seconds) and whether the wall is due for a reset
+// (app::Dashboard's rule), with a link to the gym's dashboard; "" when
+// nothing is on the wall. Pure.
+std::string WallStatus(const app::Wall& wall,
+                       const std::vector<std::pair<std::string, std::string>>& routes,
+                       int64_t now);
 
 }  // namespace sb::web
 

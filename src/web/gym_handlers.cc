@@ -1,5 +1,6 @@
 // Gym pages (issue 21): /gyms, /gyms/{id}, /walls/{id}, and the gym block of
 // a route page. Each asks app::Gyms / app::Routes and renders (gym_pages.h).
+#include "web/dashboard_handlers.h"
 #include "web/gym_pages.h"
 #include "web/handlers.h"
 #include "web/logbook_handlers.h"
@@ -56,7 +57,10 @@ void PageWall(Exchange& x) {
     Result<app::AscentGrade> a = x.services.logbook.Ascent(x.caller.viewer, r.id);
     if (a.ok()) ascent[r.id] = AscentCell(*a);
   }
-  Html(x, WallPage(x.caller.page(), *gym, *wall, routes->routes, &ascent));
+  std::vector<std::pair<std::string, std::string>> dates;  // (state, set date) for the status line
+  for (const auto& r : routes->routes) dates.emplace_back(r.state, r.set_on);
+  Html(x, WallPage(x.caller.page(), *gym, *wall, routes->routes, &ascent,
+                   WallStatus(*wall, dates, app::SystemClock().Now())));
 }
 
 std::string GymBlock(Exchange& x, const app::RouteView& r) {

@@ -140,14 +140,14 @@ std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<
 
 std::string WallPage(const PageViewer& v, const app::Gym& gym, const app::Wall& wall,
                      const std::vector<app::RouteView>& routes,
-                     const std::map<int64_t, std::string>* ascent_cells) {
+                     const std::map<int64_t, std::string>* ascent_cells, const std::string& status) {
   std::string b = "<p><a href=\"/gyms/" + std::to_string(gym.id) + "\">" + E(gym.name) +
                   "</a></p>\n<h1 id=\"wall-title\">" + E(wall.name) + "</h1>\n<p>" +
                   E(wall.discipline) + ", " + FormatDouble(wall.angle) + "°" +
                   (wall.reset_weeks ? ", reset every " + std::to_string(*wall.reset_weeks) +
                                           " weeks"
                                     : std::string()) +
-                  "</p>\n<p><a id=\"wall-report\" href=\"/gyms/" + std::to_string(gym.id) +
+                  "</p>\n" + status + "<p><a id=\"wall-report\" href=\"/gyms/" + std::to_string(gym.id) +
                   "/report?wall=" + std::to_string(wall.id) + "\">What climbers said</a></p>\n";
   for (const char* state : {"set", "planned", "draft", "stripped"}) {
     std::string rows;

@@ -27,10 +27,12 @@ std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<
 // drafts, stripped), a form to plan a route on it for setters. With
 // `ascent_cells` (route id -> a <td>, logbook_handlers.h AscentCell) each
 // row shows the route's ascent grade (issue 23); the page links the wall's
-// climbers' report.
+// climbers' report. `status` (HTML, not escaped) goes under the title: the
+// dashboard's age and due line (dashboard_handlers.h, WallStatus).
 std::string WallPage(const PageViewer& v, const app::Gym& gym, const app::Wall& wall,
                      const std::vector<app::RouteView>& routes,
-                     const std::map<int64_t, std::string>* ascent_cells = nullptr);
+                     const std::map<int64_t, std::string>* ascent_cells = nullptr,
+                     const std::string& status = "");
 // The block a route page shows for a route of a gym: state, wall, setters,
 // set / strip dates and history; with `can_set`, a form to change them.
 std::string RouteGymBlock(const app::RouteView& r, const std::vector<app::HistoryEntry>& history,
