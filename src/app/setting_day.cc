@@ -183,13 +183,14 @@ std::string CandidateId(const std::string& params_json, const std::vector<int64_
 }
 
 SettingDays::SettingDays(store::Store* store, const Options& options, Routes* routes, Gyms* gyms,
-                         Variations* variations, WorkBudget* budget)
+                         Variations* variations, WorkBudget* budget, Dashboard* dashboard)
     : store_(store),
       options_(options),
       routes_(routes),
       gyms_(gyms),
       variations_(variations),
-      budget_(budget) {}
+      budget_(budget),
+      dashboard_(dashboard) {}
 
 Status SettingDays::RequireSetter(const Viewer& v, int64_t gym) {
   if (!v.logged_in()) return Status::Unauthenticated("log in first");
@@ -221,7 +222,20 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
     SB_ASSIGN_OR_RETURN(on_wall[w.id], routes_->List(v, q));
   }
   std::vector<DaySlot> slots = req.slots;
-  if (slots.empty()) {
+  if (slots.empty() && dashboard_ != nullptr) {
+    // The gaps of the dashboard once the walls' due routes are stripped.
+    SB_ASSIGN_OR_RETURN(GymDashboard g, dashboard_->Get(v, req.gym));
+    for (const SettingSlot& s : ProposeSlots(g.walls, req.walls, static_cast<int>(kMaxDaySlots))) {
+      if (walls.count(s.wall_id)) slots.push_back(DaySlot{s.wall_id, s.band, s.style});
+    }
+  }
+  std::vector<Wall> unslotted;
+  for (const Wall& w : day_walls) {
+    bool has = false;
+    for (const DaySlot& s : slots) has = has || s.wall == w.id;
+    if (!has && req.slots.empty()) unslotted.push_back(w);
+  }
+  if (!unslotted.empty()) {
     SB_ASSIGN_OR_RETURN(std::vector<Circuit> circuits, gyms_->Circuits(v, req.gym));
     std::map<int64_t, std::map<std::string, double>> shares;
     for (const auto& [id, routes] : on_wall) {
@@ -235,7 +249,9 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
       const language::StyleMix mix = language::MixOf(lang, texts);
       for (const std::string& s : kDefaultSlotStyles) shares[id][s] = mix.Share(s);
     }
-    slots = DefaultSlots(day_walls, circuits, on_wall, shares);
+    for (const DaySlot& s : DefaultSlots(unslotted, circuits, on_wall, shares)) {
+      if (slots.size() < kMaxDaySlots) slots.push_back(s);
+    }
   }
   // The budget, before the work.
   const double cost = options_.render_costs.day_candidate * static_cast<double>(slots.size()) *

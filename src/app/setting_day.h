@@ -25,6 +25,7 @@
 
 #include "app/budget.h"
 #include "app/candidates.h"
+#include "app/dashboard.h"
 #include "app/gyms.h"
 #include "app/options.h"
 #include "app/routes.h"
@@ -74,7 +75,7 @@ struct SettingDayRequest {
   int64_t gym = 0;
   std::string date;             // "YYYY-MM-DD"
   std::vector<int64_t> walls;   // the walls to reset (at least one)
-  std::vector<DaySlot> slots;   // empty: DefaultSlots, one per wall
+  std::vector<DaySlot> slots;   // empty: the dashboard's ProposeSlots, else DefaultSlots
   int candidates = kDefaultDayCandidates;
   // kInvalidInput naming the field: date, walls (none, too many), slots (too
   // many; a slot's wall not among `walls`; an unknown style), candidates.
@@ -153,8 +154,11 @@ std::string CandidateId(const std::string& params_json, const std::vector<int64_
 // Thread-safe. Does not own its arguments.
 class SettingDays {
  public:
+  // With `dashboard`, a request without slots gets the dashboard's
+  // gap-based slots (ProposeSlots); walls it gives none, and every wall
+  // without `dashboard`, get DefaultSlots.
   SettingDays(store::Store* store, const Options& options, Routes* routes, Gyms* gyms,
-              Variations* variations, WorkBudget* budget);
+              Variations* variations, WorkBudget* budget, Dashboard* dashboard = nullptr);
 
   // A proposal for the gym's setting day: head setters and setters only
   // (kNotFound "no gym N" for non-members, kPermission for climbers,
@@ -187,6 +191,7 @@ class SettingDays {
   Gyms* gyms_;
   Variations* variations_;
   WorkBudget* budget_;
+  Dashboard* dashboard_;
 };
 
 }  // namespace sb::app
