@@ -29,7 +29,7 @@ int64_t DelayAfter(int before, int free, int cap) {
 
 }  // namespace
 
-Accounts::Accounts(store::Store* store, const Options& options, Clock* clock)
+Accounts::Accounts(store::AccountStore* store, const Options& options, Clock* clock)
     : store_(store),
       options_(options),
       clock_(clock),

@@ -27,7 +27,7 @@ struct NewSession {
 // `store` or `clock`, which must outlive it.
 class Accounts {
  public:
-  Accounts(store::Store* store, const Options& options, Clock* clock);
+  Accounts(store::AccountStore* store, const Options& options, Clock* clock);
 
   // Creates an account. Errors: kInvalidInput naming the field (user name
   // 1-40 of A-Z a-z 0-9 _ - .; password 8-1024 bytes), kConflict when the name

@@ -7,7 +7,7 @@
 
 namespace sb::app {
 
-Maps::Maps(store::Store* store, const Options& options)
+Maps::Maps(store::RouteStore* store, const Options& options)
     : store_(store), options_(options), budget_(options.budget) {}
 
 double Maps::SliceCost(const MapQuery& q, int length) {

@@ -59,7 +59,7 @@ struct PickQuery {
 // Thread-safe. Does not own `store`.
 class Maps {
  public:
-  Maps(store::Store* store, const Options& options);
+  Maps(store::RouteStore* store, const Options& options);
 
   // Errors: kInvalidInput naming the field (grid, spacing, length, skip,
   // plane, mapping, parameters; limits from Options), kNotFound "no route N",
