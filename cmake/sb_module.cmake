@@ -11,7 +11,7 @@ set(SB_DATABASE_TEST_MODULES app web)
 # Test sources compile without optimisation: the work they check runs in the
 # (optimised) libraries, and -O0 halves the compile time of GoogleTest-heavy
 # files (20.8 s -> 9.7 s for web/api_test.cc), which is most of `make test`'s
-# two builds (DEVELOPERS.md, "Test time"). Floating point is unchanged:
+# two builds (DEVELOPERS.md, "make test stays under 45 minutes"). Floating point is unchanged:
 # x86-64 SSE and -ffp-contract=off give the same results at every level.
 set(SB_TEST_COMPILE_OPTIONS -O0)
 function(sb_module name)
