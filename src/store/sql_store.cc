@@ -12,6 +12,8 @@
 
 #include "base/fold.h"
 #include "base/log.h"
+#include "store/bulk_sql.h"
+#include "store/bulk_store.h"
 #include "store/gym_store.h"
 #include "store/open.h"
 #include "store/schema.h"
@@ -178,7 +180,7 @@ VariationInput ReadInput(const Rows& s, size_t i, size_t first) {
   return vi;
 }
 
-class SqlStore final : public Store, public GymStore, public TickStore {
+class SqlStore final : public Store, public GymStore, public TickStore, public BulkStore {
  public:
   explicit SqlStore(std::unique_ptr<sql::Pool> pool)
       : pool_(std::move(pool)), pg_(pool_->dialect() == sql::Dialect::kPostgres) {}
@@ -194,6 +196,18 @@ class SqlStore final : public Store, public GymStore, public TickStore {
     if (!c.ok()) return 0;
     Result<int> v = (*c)->SchemaVersion();
     return v.ok() ? *v : 0;
+  }
+
+  // -- bulk loading (issue 22; store/bulk_sql.cc) ----------------------------
+
+  Result<std::vector<int64_t>> BulkInsertRoutes(const std::vector<RouteRecord>& routes) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return bulk_sql::InsertRoutes(*c, routes, {SearchText, kSearchVersion});
+  }
+
+  Status BulkInsertTicks(const std::vector<TickRecord>& ticks) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return bulk_sql::InsertTicks(*c, ticks);
   }
 
   // -- accounts -------------------------------------------------------------
@@ -1334,6 +1348,8 @@ Result<std::unique_ptr<Store>> StoreOver(Result<std::unique_ptr<sql::Pool>> pool
 GymStore* GymStoreOf(Store* store) { return dynamic_cast<GymStore*>(store); }
 
 TickStore* TickStoreOf(Store* store) { return dynamic_cast<TickStore*>(store); }
+
+BulkStore* BulkStoreOf(Store* store) { return dynamic_cast<BulkStore*>(store); }
 
 bool IsDatabaseUrl(std::string_view db) {
   size_t colon = db.find(':');
