@@ -25,7 +25,8 @@ Kinds (G = the user's gym, W = one of its walls, drawn per request):
   api_grade    /api/routes?gym=G&from=V3&to=V5&state=set
   dashboard    /gyms/G/dashboard             (skipped when the server answers 404)
   api_dashboard /api/gyms/G/dashboard        (skipped when the server answers 404)
-Pages of 50 (the server's default page size, issue 21) unless the server says otherwise.
+Every /api/routes request asks for a page of 50 (limit=50, issue 21); the list page uses the
+server's page size.
 A non-2xx answer counts as an error for its kind (the latency is still recorded).
 """
 import argparse
@@ -73,15 +74,19 @@ def sign_in(host, port, src, username, password):
     if st != 200:
         raise SystemExit('web_load.py: GET walls of gym %d: %d' % (gym, st))
     walls = [w['id'] for w in json.loads(data)['walls']]
-    return conn, headers, gym, walls
+    conn.close()  # the server may close idle connections while the others sign in
+    return headers, gym, walls
 
 
 def path_of(kind, gym, wall, setter):
-    q = urllib.parse.urlencode
+    def q(d):
+        if 'state' in d or 'q' in d or 'setter' in d:
+            d = dict(d, limit=50)  # issue 21's page of 50 (the API's default is larger)
+        return urllib.parse.urlencode(d)
     return {
         'gym': '/gyms/%d' % gym,
         'wall': '/walls/%d' % wall,
-        'list': '/?' + q({'gym': gym, 'state': 'set', 'sort': 'age'}),
+        'list': '/?' + urllib.parse.urlencode({'gym': gym, 'state': 'set', 'sort': 'age'}),
         'api_wall': '/api/routes?' + q({'gym': gym, 'state': 'set', 'wall': wall}),
         'api_set': '/api/routes?' + q({'gym': gym, 'state': 'set', 'sort': 'age'}),
         'api_archive': '/api/routes?' + q({'gym': gym, 'state': 'stripped', 'sort': 'hardest'}),
@@ -126,10 +131,11 @@ def main():
     users = []
     for i in range(1, a.users + 1):
         src = '127.0.60.%d' % i
-        conn, headers, gym, walls = sign_in(host, port, src, a.user_format % i, a.password)
-        users.append((src, conn, headers, gym, walls, 'setter-%d-1' % gym))
+        headers, gym, walls = sign_in(host, port, src, a.user_format % i, a.password)
+        users.append((src, headers, gym, walls, 'setter-%d-1' % gym))
     # Kinds the server does not have (404 on the first user's gym) are left out.
-    src, conn, headers, gym, walls, setter = users[0]
+    src, headers, gym, walls, setter = users[0]
+    conn = connect(host, port, src)
     for k in list(kinds):
         if k in OPTIONAL:
             st, _, _ = call(conn, 'GET', path_of(k, gym, walls[0], setter), headers=headers)
@@ -145,7 +151,8 @@ def main():
     stop = record_from + a.seconds
 
     def worker(n, user):
-        src, conn, headers, gym, walls, setter = user
+        src, headers, gym, walls, setter = user
+        conn = connect(host, port, src)
         rng = random.Random(a.seed * 1000 + n)
         mine = {k: [] for k in kinds}
         bad = {k: 0 for k in kinds}

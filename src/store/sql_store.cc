@@ -1101,6 +1101,11 @@ class SqlStore final : public Store, public GymStore, public TickStore, public B
   }
 
   // The WHERE clause of a route filter, its values appended to `params`.
+  // Only variations have sources, so the sources' test is skipped for other
+  // rows; CROSS JOIN makes SQLite walk a variation's few route_sources rows
+  // first (with a plain JOIN and no ANALYZE statistics it scanned every
+  // private route per listed row: seconds per page at 200,000 routes, issue
+  // 22, docs/BENCHMARKS.md "A chain at scale"); PostgreSQL reads it as JOIN.
   // The visibility rule: the row is public or the viewer's, and so is every
   // route it was made from (app::IsVisible is the same rule over a
   // RouteRecord).
@@ -1108,10 +1113,10 @@ class SqlStore final : public Store, public GymStore, public TickStore, public B
     const int64_t viewer = f.viewer.value_or(-1);
     std::string w =
         " WHERE (r.is_public = 1 OR r.owner_id = ? OR " + MemberSees("r") +
-        ") AND NOT EXISTS (SELECT 1 FROM "
-        "route_sources s JOIN routes src ON src.id = s.route_id WHERE s.variation_id = r.id "
-        "AND src.is_public = 0 AND (src.owner_id IS NULL OR src.owner_id <> ?) AND NOT " +
-        MemberSees("src") + ")";
+        ") AND (r.is_variation = 0 OR NOT EXISTS (SELECT 1 FROM "
+        "route_sources s CROSS JOIN routes src WHERE src.id = s.route_id AND "
+        "s.variation_id = r.id AND src.is_public = 0 AND (src.owner_id IS NULL OR src.owner_id <> ?) AND NOT " +
+        MemberSees("src") + "))";
     params->insert(params->end(), {viewer, viewer, viewer, viewer});
     if (f.gym_id) {
       w += " AND r.gym_id = ?";
