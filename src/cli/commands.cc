@@ -26,6 +26,7 @@ const Command kCommands[] = {
      RunGraph},
     {"serve", "run the web app", RunServe},
     {"db", "database operations: info, migrate, copy between SQLite and PostgreSQL", RunDb},
+    {"synth", "fill a fresh database with a synthetic gym chain (benchmarks at scale)", RunSynth},
 };
 
 void PrintUsage(std::FILE* out) {

@@ -40,6 +40,7 @@ int RunStudy(const std::vector<std::string>& args);
 int RunGrade(const std::vector<std::string>& args);
 int RunDifficulty(const std::vector<std::string>& args);
 int RunRatings(const std::vector<std::string>& args);
+int RunSynth(const std::vector<std::string>& args);  // cmd_synth.cc (issue 22)
 
 }  // namespace sb::cli
 

@@ -397,6 +397,18 @@ CREATE TABLE wall_targets (
 );
 )sql"},
        }},
+      // Issue 22 (schema 9): a gym's route list filtered by state and a grade range
+      // (`?gym=G&state=set&from=V3&to=V5`) walked routes_grade over every
+      // gym's routes (5.8 s at 210,000 routes on SQLite); this index finds a
+      // gym's routes of one state and discipline in grade order.
+      // docs/BENCHMARKS.md "A chain at scale".
+      {"an index for a gym's route list by state and grade (issue 22)",
+       {
+           {Only::kBoth, R"sql(
+CREATE INDEX IF NOT EXISTS routes_gym_state_grade
+  ON routes(gym_id, state, grade_discipline, grade_value);
+)sql"},
+       }},
   };
   return kMigrations;
 }

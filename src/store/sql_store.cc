@@ -12,6 +12,8 @@
 
 #include "base/fold.h"
 #include "base/log.h"
+#include "store/bulk_sql.h"
+#include "store/bulk_store.h"
 #include "store/gym_store.h"
 #include "store/open.h"
 #include "store/schema.h"
@@ -180,7 +182,8 @@ VariationInput ReadInput(const Rows& s, size_t i, size_t first) {
   return vi;
 }
 
-class SqlStore final : public Store, public GymStore, public TickStore, public TargetStore {
+class SqlStore final : public Store, public GymStore, public TickStore, public TargetStore,
+                       public BulkStore {
  public:
   explicit SqlStore(std::unique_ptr<sql::Pool> pool)
       : pool_(std::move(pool)), pg_(pool_->dialect() == sql::Dialect::kPostgres) {}
@@ -196,6 +199,18 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
     if (!c.ok()) return 0;
     Result<int> v = (*c)->SchemaVersion();
     return v.ok() ? *v : 0;
+  }
+
+  // -- bulk loading (issue 22; store/bulk_sql.cc) ----------------------------
+
+  Result<std::vector<int64_t>> BulkInsertRoutes(const std::vector<RouteRecord>& routes) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return bulk_sql::InsertRoutes(*c, routes, {SearchText, kSearchVersion});
+  }
+
+  Status BulkInsertTicks(const std::vector<TickRecord>& ticks) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return bulk_sql::InsertTicks(*c, ticks);
   }
 
   // -- accounts -------------------------------------------------------------
@@ -1108,6 +1123,11 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
   }
 
   // The WHERE clause of a route filter, its values appended to `params`.
+  // Only variations have sources, so the sources' test is skipped for other
+  // rows; CROSS JOIN makes SQLite walk a variation's few route_sources rows
+  // first (with a plain JOIN and no ANALYZE statistics it scanned every
+  // private route per listed row: seconds per page at 200,000 routes, issue
+  // 22, docs/BENCHMARKS.md "A chain at scale"); PostgreSQL reads it as JOIN.
   // The visibility rule: the row is public or the viewer's, and so is every
   // route it was made from (app::IsVisible is the same rule over a
   // RouteRecord).
@@ -1115,10 +1135,10 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
     const int64_t viewer = f.viewer.value_or(-1);
     std::string w =
         " WHERE (r.is_public = 1 OR r.owner_id = ? OR " + MemberSees("r") +
-        ") AND NOT EXISTS (SELECT 1 FROM "
-        "route_sources s JOIN routes src ON src.id = s.route_id WHERE s.variation_id = r.id "
-        "AND src.is_public = 0 AND (src.owner_id IS NULL OR src.owner_id <> ?) AND NOT " +
-        MemberSees("src") + ")";
+        ") AND (r.is_variation = 0 OR NOT EXISTS (SELECT 1 FROM "
+        "route_sources s CROSS JOIN routes src WHERE src.id = s.route_id AND "
+        "s.variation_id = r.id AND src.is_public = 0 AND (src.owner_id IS NULL OR src.owner_id <> ?) AND NOT " +
+        MemberSees("src") + "))";
     params->insert(params->end(), {viewer, viewer, viewer, viewer});
     if (f.gym_id) {
       w += " AND r.gym_id = ?";
@@ -1357,6 +1377,7 @@ GymStore* GymStoreOf(Store* store) { return dynamic_cast<GymStore*>(store); }
 TickStore* TickStoreOf(Store* store) { return dynamic_cast<TickStore*>(store); }
 
 TargetStore* TargetStoreOf(Store* store) { return dynamic_cast<TargetStore*>(store); }
+BulkStore* BulkStoreOf(Store* store) { return dynamic_cast<BulkStore*>(store); }
 
 bool IsDatabaseUrl(std::string_view db) {
   size_t colon = db.find(':');
