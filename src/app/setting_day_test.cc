@@ -148,14 +148,22 @@ TEST_F(SettingDayTest, AProposalRanksKeptCandidatesFirstAndIsDeterministic) {
   for (size_t i = 0; i < s.candidates.size(); ++i) {
     EXPECT_EQ(b->slots[0].candidates[i].id, s.candidates[i].id);
   }
-  // Without slots: one default slot per wall.
+  // Without slots: the dashboard's gap-based slots for the chosen walls.
   SettingDayRequest r = Request(1);
   r.slots.clear();
   Result<SettingDayProposal> d = services_->setting_days.Propose(head_, r);
   ASSERT_TRUE(d.ok()) << d.status().message();
-  ASSERT_EQ(d->slots.size(), 1u);
-  EXPECT_FALSE(d->slots[0].slot.band.empty());
-  EXPECT_FALSE(d->slots[0].slot.style.empty());
+  Result<GymDashboard> dash = services_->dashboard.Get(head_, gym_);
+  ASSERT_TRUE(dash.ok()) << dash.status().message();
+  std::vector<SettingSlot> want = ProposeSlots(dash->walls, r.walls, 20);
+  ASSERT_FALSE(want.empty());
+  ASSERT_EQ(d->slots.size(), want.size());
+  for (size_t i = 0; i < want.size(); ++i) {
+    EXPECT_EQ(d->slots[i].slot.wall, want[i].wall_id);
+    EXPECT_EQ(d->slots[i].slot.band, want[i].band);
+    EXPECT_EQ(d->slots[i].slot.style, want[i].style);
+    EXPECT_FALSE(d->slots[i].slot.band.empty());
+  }
 }
 
 TEST_F(SettingDayTest, RolesClimbersAreRefusedAndOtherGymsAreAbsent) {

@@ -75,11 +75,16 @@ TEST_F(SettingDayApiTest, ProposeAcceptAndTheRoles) {
   EXPECT_TRUE(cand["params"].value("keep_start", false));
   // The same request again: the same candidates (determinism).
   EXPECT_EQ(head.Json("POST", gp + "/setting-days", ask.dump(), 200), day);
-  // Without slots: one per wall.
+  // Without slots: the dashboard's slots for the chosen wall (its routes due
+  // are stripped and replaced), each on that wall with a band.
   json d2 = head.Json("POST", gp + "/setting-days",
                       json{{"date", "2026-12-01"}, {"walls", {cave}}, {"candidates", 1}}.dump(),
                       200);
-  EXPECT_EQ(d2["slots"].size(), 1u);
+  ASSERT_FALSE(d2["slots"].empty());
+  for (const json& slot : d2["slots"]) {
+    EXPECT_EQ(slot["wall"], cave);
+    EXPECT_FALSE(slot["band"].get<std::string>().empty());
+  }
 
   // Roles and field errors.
   EXPECT_EQ(climber.Status("POST", gp + "/setting-days", ask.dump()), 403);
