@@ -3,7 +3,7 @@
 # command-line and browser tests, then the sanitizer suite (scripts/sanitize.sh)
 # and bounded fuzzing of every input format (scripts/fuzz.sh).
 # Usage: scripts/test.sh BUILD_DIR
-# SB_TEST_SANITIZE=0 skips the sanitizer suite; SB_TEST_FUZZ_SECONDS (20)
+# SB_TEST_SANITIZE=0 skips the sanitizer suite; SB_TEST_FUZZ_SECONDS (10)
 # sets the fuzzing time per format, 0 skips it. docs/testing.md.
 set -euo pipefail
 build=${1:-build}
@@ -21,7 +21,7 @@ if [[ "${SB_TEST_SANITIZE:-1}" != 0 ]]; then
   stage scripts/sanitize.sh
   bash scripts/sanitize.sh || status=1
 fi
-fuzz_seconds=${SB_TEST_FUZZ_SECONDS:-20}
+fuzz_seconds=${SB_TEST_FUZZ_SECONDS:-10}
 if [[ "$fuzz_seconds" != 0 ]]; then
   stage "scripts/fuzz.sh $fuzz_seconds"
   bash scripts/fuzz.sh "$fuzz_seconds" || status=1
