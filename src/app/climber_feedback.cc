@@ -5,6 +5,7 @@
 #include <map>
 #include <span>
 
+#include "app/discipline.h"
 #include "app/routes.h"
 #include "base/text.h"
 #include "crdl/route.h"
@@ -24,6 +25,15 @@ GradeSummary AxisOf(const store::RouteRecord& r) {
   g.setter_grade = r.grade;
   Result<Route> parsed = ParseCrdl(r.crdl, "route " + std::to_string(r.id));
   if (!parsed.ok()) return g;
+  // The route's discipline by the one rule (app/discipline.h), as stored.
+  if (Result<Discipline> d = grades::ParseDiscipline(r.grade_discipline); d.ok()) {
+    g.discipline = *d;
+    g.scale = grades::DefaultScale(*d);
+    g.setter_value = r.grade_value;
+    Result<grades::Grade> typed = grades::ParseGrade(r.grade, {*d, std::nullopt});
+    if (typed.ok() && typed->discipline() == *d) g.scale = typed->scale;
+    return g;
+  }
   Result<grades::RouteGrade> rg = grades::GradeOfRoute(*parsed, "route");
   if (rg.ok()) {
     g.discipline = rg->discipline;
@@ -105,6 +115,9 @@ Result<GradeSummary> ClimberFeedback::Summarise(const store::RouteRecord& route,
     if (!f.felt_value) continue;
     Result<Discipline> d = grades::ParseDiscipline(f.felt_discipline);
     if (!d.ok()) continue;
+    // A vote in another discipline's scale (accepted on a route graded in
+    // that scale, app/discipline.h) has no value on the route's axis.
+    if (g.discipline && *d != *g.discipline) continue;
     votes.emplace_back(*d, *f.felt_value);
     bouldering += *d == Discipline::kBouldering;
   }
@@ -165,7 +178,8 @@ Result<FeedbackSaved> ClimberFeedback::Submit(const Viewer& v, int64_t route_id,
     GradeSummary axis = AxisOf(route);
     SB_ASSIGN_OR_RETURN(grades::Grade g,
                         grades::ParseGrade(felt, {axis.discipline, std::nullopt}, "felt grade"));
-    if (axis.discipline && g.discipline() != *axis.discipline) {
+    if (axis.discipline && g.discipline() != *axis.discipline &&
+        !FeltGradeFits(g, route.grade, grades::DisciplineName(*axis.discipline))) {
       return Status::InvalidInput(
           "felt grade: '" + std::string(felt) + "' is a " + grades::DisciplineName(g.discipline()) +
           " grade; this route is graded " + grades::DisciplineName(*axis.discipline) +

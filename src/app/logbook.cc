@@ -8,6 +8,7 @@
 #include <set>
 
 #include "app/climber_policy.h"
+#include "app/discipline.h"
 #include "app/routes.h"
 #include "base/text.h"
 #include "grades/consensus.h"
@@ -130,7 +131,8 @@ Result<TickSaved> Logbook::Log(const Viewer& v, int64_t route_id,
                         grades::ParseGrade(felt, {d.ok() ? std::optional(*d) : std::nullopt,
                                                   std::nullopt},
                                            "felt grade"));
-    if (!route.grade_discipline.empty() && g.discipline() != *d) {
+    if (!route.grade_discipline.empty() && g.discipline() != *d &&
+        !FeltGradeFits(g, route.grade, route.grade_discipline)) {
       return Status::InvalidInput("felt grade: '" + std::string(felt) + "' is a " +
                                   grades::DisciplineName(g.discipline()) +
                                   " grade; this route is graded " + route.grade_discipline);
@@ -222,7 +224,9 @@ Result<Logbook::Fit> Logbook::FitGym(int64_t gym_id, const std::string& discipli
     std::optional<double> f;
     if (t->felt_value && !t->felt_discipline.empty()) {
       Result<Discipline> fd = grades::ParseDiscipline(t->felt_discipline);
-      if (fd.ok()) f = grades::ConvertAxis(*t->felt_value, *fd, d);
+      // A felt grade in another discipline's scale (accepted on a route
+      // graded in that scale, app/discipline.h) has no value on this axis.
+      if (fd.ok() && *fd == d) f = *t->felt_value;
     }
     if (f) felt[t->route_id].push_back(*f);
     b.AddTick(c->second, route_index.at(t->route_id), *g, f);

@@ -5,6 +5,7 @@
 #include <ctime>
 #include <map>
 
+#include "app/discipline.h"
 #include "app/limits.h"
 #include "app/variations.h"
 #include "base/number.h"
@@ -62,15 +63,18 @@ void FillMetadata(const Route& route, store::RouteRecord* rec, const std::string
   rec->wall = meta({"wall", "area"});
   rec->set_on = meta({"date", "set"});  // "set:" is an alias of "date:" (issue 21)
   rec->move_count = static_cast<int>(route.moves.size());
-  rec->grade_discipline.clear();
-  rec->grade_value.reset();
   // An unreadable grade is kept as typed, without a value (it cannot be
-  // sorted or filtered by difficulty); the editor says why.
-  if (Result<grades::RouteGrade> g = grades::GradeOfRoute(route, "route"); g.ok()) {
-    rec->grade_discipline = grades::DisciplineName(g->discipline);
-    rec->grade_value = g->value;
-  }
+  // sorted or filtered by difficulty); the editor says why. The wall's
+  // discipline is applied by Routes::ApplyWallDiscipline once the wall is known.
+  ApplyDiscipline(route, "", rec);
   rec->meta_version = kRouteMetaVersion;
+}
+
+void ApplyDiscipline(const Route& route, std::string_view wall_discipline,
+                     store::RouteRecord* rec) {
+  RouteDiscipline d = DisciplineOfRoute(route, wall_discipline);
+  rec->grade_discipline = d.discipline;
+  rec->grade_value = d.grade_value;
 }
 
 bool IsOwner(const store::RouteRecord& r, const Viewer& v) {
@@ -201,6 +205,7 @@ Result<RoutePage> Routes::Search(const Viewer& v, const RouteQuery& q) {
       f.grade_discipline = grades::DisciplineName(g->discipline());
       f.grade_min = BandLow(g->value);
       f.grade_max = BandHigh(g->value);
+      f.grade_typed = grade;  // a grade typed in another discipline's scale
     } else {
       f.grade = grade;
     }
@@ -232,10 +237,64 @@ Result<int> Routes::RefreshMetadata() {
     Result<Route> r = ParseCrdl(rec.crdl, "route " + std::to_string(rec.id));
     if (!r.ok()) continue;  // stored text always parses; nothing to derive otherwise
     FillMetadata(*r, &rec, rec.name);
+    SB_RETURN_IF_ERROR(ApplyWallDiscipline(&rec));
     SB_RETURN_IF_ERROR(store_->UpdateRouteMetadata(rec));
     ++changed;
   }
   return changed;
+}
+
+Result<RouteDiscipline> Routes::DisciplineOf(const store::RouteRecord& rec) {
+  std::string wall;
+  if (store::GymStore* gs = store::GymStoreOf(store_); gs && rec.wall_id) {
+    SB_ASSIGN_OR_RETURN(store::WallRecord w, gs->GetWall(*rec.wall_id));
+    wall = w.discipline;
+  }
+  SB_ASSIGN_OR_RETURN(Route r, ParseCrdl(rec.crdl, "route.crdl"));
+  return DisciplineOfRoute(r, wall);
+}
+
+Status Routes::ApplyWallDiscipline(store::RouteRecord* rec) {
+  SB_ASSIGN_OR_RETURN(RouteDiscipline d, DisciplineOf(*rec));
+  rec->grade_discipline = d.discipline;
+  rec->grade_value = d.grade_value;
+  return Status::Ok();
+}
+
+Status Routes::CheckDisciplineRole(const Viewer& v, const store::RouteRecord& rec) {
+  if (rec.gym_id) {
+    SB_ASSIGN_OR_RETURN(std::string role, gyms_.RoleIn(v, *rec.gym_id));
+    // The owner who is no member of the gym (a climber's own route put in
+    // the install's first gym) counts as the owner of a gym-less route.
+    if (role != "head" && !(role.empty() && IsOwner(rec, v))) {
+      return Status::Permission("only the gym's head setters may set a route's discipline");
+    }
+  } else if (!IsOwner(rec, v)) {
+    return Status::Permission("only the route's owner may set its discipline");
+  }
+  return Status::Ok();
+}
+
+Status Routes::SetDiscipline(const Viewer& v, const std::string& discipline,
+                             store::RouteRecord* rec, std::vector<std::string>* changes) {
+  std::string d = ToLower(Trim(discipline));
+  if (!d.empty() && d != "bouldering" && d != "roped") {
+    return Status::InvalidInput("discipline: expected bouldering, roped or \"\" (from its wall)");
+  }
+  SB_RETURN_IF_ERROR(CheckDisciplineRole(v, *rec));
+  SB_ASSIGN_OR_RETURN(Route r, ParseCrdl(rec->crdl, "route.crdl"));
+  std::optional<std::string> before = r.Meta(kDisciplineKey);
+  if (before && ToLower(Trim(*before)) == d) return Status::Ok();
+  if (!before && d.empty()) return Status::Ok();
+  std::vector<HeaderLine> kept;
+  for (HeaderLine& h : r.header) {
+    if (ToLower(h.key) != kDisciplineKey) kept.push_back(std::move(h));
+  }
+  r.header = std::move(kept);
+  if (!d.empty()) r.SetMeta(kDisciplineKey, d);
+  rec->crdl = PrintCrdl(r);
+  changes->push_back(d.empty() ? "discipline: from its wall" : "discipline: " + d);
+  return Status::Ok();
 }
 
 Result<store::RouteRecord> Routes::Get(const Viewer& viewer, int64_t id) {
@@ -301,6 +360,14 @@ GymFields WithHeaderFields(std::string_view crdl, GymFields g) {
     if (std::optional<std::string> s = r->Meta("strip")) g.strip_on = std::string(Trim(*s));
   }
   return g;
+}
+
+// The CRDL's "discipline:" line, lower case ("" without one or unparsable text).
+std::string HeaderDiscipline(std::string_view crdl) {
+  Result<Route> r = ParseCrdl(crdl, "route.crdl");
+  if (!r.ok()) return "";
+  std::optional<std::string> d = r->Meta(kDisciplineKey);
+  return d ? ToLower(Trim(*d)) : "";
 }
 
 // Every "setter:" line of the header, in order (the key may repeat).
@@ -431,6 +498,7 @@ Result<int64_t> Routes::Create(const Viewer& v, std::string_view crdl, bool is_p
     // The CRDL's "setter:" lines name the setters (free text, as before).
     for (const std::string& name : HeaderSetters(crdl)) rec.setters.push_back({std::nullopt, name});
   }
+  SB_RETURN_IF_ERROR(ApplyWallDiscipline(&rec));
   SB_ASSIGN_OR_RETURN(int64_t id, store_->InsertRoute(rec));
   if (store::GymStore* gs = store::GymStoreOf(store_); gs && rec.gym_id) {
     std::string what = "created (" + rec.state + ")";
@@ -456,7 +524,12 @@ Status Routes::Update(const Viewer& v, int64_t id, const RouteEdit& edit) {
     const std::string set_on = r.set_on;
     if (MoveLines(*edit.crdl) != MoveLines(r.crdl)) changes.push_back("moves edited");
     else if (*edit.crdl != r.crdl) changes.push_back("text edited");
+    const std::string discipline_before = HeaderDiscipline(r.crdl);
     SB_RETURN_IF_ERROR(FillFromCrdl(*edit.crdl, options_.limits.route, &r));
+    if (HeaderDiscipline(r.crdl) != discipline_before) {
+      // The text changes the "discipline:" line: the same rule as the field.
+      SB_RETURN_IF_ERROR(CheckDisciplineRole(v, r));
+    }
     if (r.set_on.empty()) r.set_on = set_on;  // a set date given by the API stays
   }
   if (edit.is_public) {
@@ -476,6 +549,8 @@ Status Routes::Update(const Viewer& v, int64_t id, const RouteEdit& edit) {
   if (g.state && *g.state == r.state && !edit.gym.state) g.state.reset();  // unchanged header
   if (g.strip_on && *g.strip_on == r.strip_on && !edit.gym.strip_on) g.strip_on.reset();
   SB_RETURN_IF_ERROR(ApplyGymFields(v, g, &r, &changes, &setters));
+  if (edit.discipline) SB_RETURN_IF_ERROR(SetDiscipline(v, *edit.discipline, &r, &changes));
+  SB_RETURN_IF_ERROR(ApplyWallDiscipline(&r));
   SB_RETURN_IF_ERROR(store_->UpdateRoute(r));
   plans_->Forget(id);
   if (store::GymStore* gs = store::GymStoreOf(store_); gs && !changes.empty()) {
@@ -620,7 +695,10 @@ Result<ImportSummary> Routes::ImportCsv(const Viewer& v, std::string_view routes
       if (CheckDate("strip", std::string(Trim(*strip))).ok()) rec.strip_on = std::string(Trim(*strip));
     }
     if (rec.gym_id && !rec.wall.empty()) {
-      if (Result<Wall> w = gyms_.ResolveWall(*rec.gym_id, rec.wall); w.ok()) rec.wall_id = w->id;
+      if (Result<Wall> w = gyms_.ResolveWall(*rec.gym_id, rec.wall); w.ok()) {
+        rec.wall_id = w->id;
+        ApplyDiscipline(sr.route, w->discipline, &rec);
+      }
     }
     for (const HeaderLine& h : sr.route.header) {
       if (ToLower(h.key) == "setter" && !Trim(h.value).empty() &&

@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "app/discipline.h"
 #include "app/gyms.h"
 #include "app/options.h"
 #include "app/types.h"
@@ -24,7 +25,8 @@ class PlanCache;
 // The version of the metadata columns this code fills (RouteRecord::
 // meta_version). Bump it when their derivation changes: RefreshMetadata then
 // recomputes every older row from its CRDL.
-inline constexpr int kRouteMetaVersion = 1;
+// 2: a route's discipline by the one rule of app/discipline.h (issue 21).
+inline constexpr int kRouteMetaVersion = 2;
 
 // The list filters (empty strings do not filter).
 struct RouteQuery {
@@ -80,6 +82,11 @@ struct RouteEdit {
   std::optional<std::string> crdl;
   std::optional<bool> is_public;
   GymFields gym;
+  // "bouldering" / "roped" sets the route's discipline (the CRDL header line
+  // "discipline:"; app/discipline.h); "" removes it (back to its wall's).
+  // Head setters of the route's gym; the owner for a gym-less route (or one
+  // in a gym the owner is no member of).
+  std::optional<std::string> discipline;
 };
 
 struct ImportSummary {
@@ -111,6 +118,9 @@ bool HasPrivateSource(const RouteView& r, bool self);
 // header. Pure.
 void FillMetadata(const Route& route, RouteView* rec,
                   const std::string& fallback_name = "untitled");
+// Fills the record's grade_discipline and grade_value by the one rule of
+// app/discipline.h, for a route on a wall of `wall_discipline` ("" none). Pure.
+void ApplyDiscipline(const Route& route, std::string_view wall_discipline, RouteView* rec);
 // Why a variation of a private route cannot be made public.
 inline constexpr char kPrivateSourceMessage[] =
     "public: a variation of a private route stays private (make the route public first)";
@@ -155,6 +165,10 @@ class Routes {
   // Errors as GetOwned, and as Create for new CRDL.
   Status Update(const Viewer& v, int64_t id, const RouteEdit& edit);
   // Deletes a route (variations made from it keep their input snapshots).
+  // The route's discipline by the rule of app/discipline.h, with where it
+  // comes from ("bouldering (from its wall)") and its grade note. Errors:
+  // the wall's lookup, an unparsable stored CRDL.
+  Result<RouteDiscipline> DisciplineOf(const RouteView& r);
   // Errors as GetOwned.
   Status Delete(const Viewer& v, int64_t id);
 
@@ -184,6 +198,17 @@ class Routes {
   Result<int> RefreshMetadata();
 
  private:
+  // Re-reads the record's discipline with its wall's (rec->wall_id). Errors:
+  // the wall's lookup, an unparsable stored CRDL.
+  Status ApplyWallDiscipline(RouteView* rec);
+  // The role rule of a route's discipline: head setters of its gym, the
+  // owner of a gym-less route (or of one in a gym they are no member of).
+  // Errors: kPermission.
+  Status CheckDisciplineRole(const Viewer& v, const RouteView& rec);
+  // RouteEdit::discipline: the role rule, then the CRDL header line.
+  Status SetDiscipline(const Viewer& v, const std::string& discipline, RouteView* rec,
+                       std::vector<std::string>* changes);
+
   Status HideOwnVariationsOf(const Viewer& v, int64_t id);
   // `v` with its gym roles loaded (when logged in and not loaded yet).
   Result<Viewer> WithGyms(const Viewer& v);

@@ -1184,7 +1184,7 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
       params->push_back(*f.owner);
     }
     if (!f.grade_discipline.empty()) {
-      w += " AND r.grade_discipline = ? AND r.grade_value IS NOT NULL";
+      w += " AND ((r.grade_discipline = ? AND r.grade_value IS NOT NULL";
       params->push_back(f.grade_discipline);
       if (f.grade_min) {
         w += " AND r.grade_value >= ?";
@@ -1194,6 +1194,12 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
         w += " AND r.grade_value <= ?";
         params->push_back(*f.grade_max);
       }
+      w += ")";
+      if (!f.grade_typed.empty()) {
+        w += " OR lower(r.grade) = lower(?)";
+        params->push_back(f.grade_typed);
+      }
+      w += ")";
     }
     return w;
   }

@@ -164,6 +164,10 @@ struct RouteFilter {
   // grade_discipline is empty.
   std::string grade_discipline;
   std::optional<double> grade_min, grade_max;
+  // With grade_discipline: a route whose typed grade is this text (exact,
+  // case-insensitive) matches too, whatever its discipline (a "5.8" on a
+  // boulder has no value on the bouldering axis; app/discipline.h).
+  std::string grade_typed;
   RouteSort sort = RouteSort::kNewest;
   int offset = 0;  // rows skipped (paging)
   int limit = 500;

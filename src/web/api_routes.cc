@@ -41,7 +41,13 @@ void GetRoute(Exchange& x) {
   if (!r.ok()) return ApiError(x, r.status());
   auto slot = AdmitWork(x, r->move_count * x.services.options.render_costs.page_per_move);
   if (!slot) return;
-  ReplyJson(x.res, 200, RouteJson(*r));
+  json j = RouteJson(*r);
+  if (Result<app::RouteDiscipline> d = x.services.routes.DisciplineOf(*r); d.ok()) {
+    j["discipline"] = d->discipline;
+    j["discipline_source"] = d->source;
+    j["grade_note"] = d->grade_note;
+  }
+  ReplyJson(x.res, 200, j);
 }
 
 void GetRouteCrdl(Exchange& x) {
@@ -94,6 +100,15 @@ void PutRoute(Exchange& x) {
   Result<app::GymFields> gym = GymFieldsOf(*body);
   if (!gym.ok()) return ApiError(x, gym.status());
   edit.gym = *gym;
+  if (body->contains("discipline")) {
+    if ((*body)["discipline"].is_null()) {
+      edit.discipline = "";
+    } else {
+      Result<std::string> d = StringField(*body, "discipline");
+      if (!d.ok()) return ApiError(x, d.status());
+      edit.discipline = *d;
+    }
+  }
   if (Status s = x.services.routes.Update(x.caller.viewer, *id, edit); !s.ok()) {
     return ApiError(x, s);
   }

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cctype>
 
+#include "app/discipline.h"
 #include "base/number.h"
 #include "crdl/route.h"
 #include "web/handlers.h"
@@ -147,7 +148,11 @@ json RouteSummaryJson(const app::RouteView& r) {
               {"wall_name", r.wall_name},
               {"state", r.state},
               {"set_on", r.set_on},
-              {"strip_on", r.strip_on}};
+              {"strip_on", r.strip_on},
+              // The route's discipline by the one rule (app/discipline.h) and
+              // "grade in another discipline's scale" or "".
+              {"discipline", r.grade_discipline},
+              {"grade_note", app::GradeNote(r.grade, r.grade_discipline)}};
 }
 
 json RouteJson(const app::RouteView& r) {

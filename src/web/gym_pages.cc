@@ -1,5 +1,6 @@
 #include "web/gym_pages.h"
 
+#include "app/discipline.h"
 #include "base/number.h"
 #include "base/text.h"
 
@@ -138,6 +139,12 @@ std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<
   return PageLayout(v, gym.name, b + Script());
 }
 
+// " (grade in another discipline's scale)" after a route's grade, or "".
+std::string GradeNoteHtml(const app::RouteView& r) {
+  std::string note = app::GradeNote(r.grade, r.grade_discipline);
+  return note.empty() ? "" : " <span class=\"grade-note\">(" + E(note) + ")</span>";
+}
+
 std::string WallPage(const PageViewer& v, const app::Gym& gym, const app::Wall& wall,
                      const std::vector<app::RouteView>& routes,
                      const std::map<int64_t, std::string>* ascent_cells, const std::string& status) {
@@ -154,7 +161,7 @@ std::string WallPage(const PageViewer& v, const app::Gym& gym, const app::Wall& 
     for (const app::RouteView& r : routes) {
       if (r.state != state) continue;
       rows += "<tr><td><a href=\"/routes/" + std::to_string(r.id) + "\">" + E(r.name) +
-              "</a></td><td>" + E(r.grade) + "</td><td>" + E(r.colour) + "</td><td>" +
+              "</a></td><td>" + E(r.grade) + GradeNoteHtml(r) + "</td><td>" + E(r.colour) + "</td><td>" +
               E(r.state == "stripped" ? r.strip_on : r.set_on) + "</td>";
       if (ascent_cells) {
         auto it = ascent_cells->find(r.id);

@@ -87,7 +87,12 @@ void PageRoute(Exchange& x) {
   if (Result<Route> parsed = ParseCrdl(r->crdl, "route"); parsed.ok()) {
     readings = app::MoveReadings(*parsed);
   }
-  Html(x, WithBlock(RoutePage(x.caller.page(), *r, app::IsOwner(*r, x.caller.viewer), readings),
+  std::string discipline;
+  if (Result<app::RouteDiscipline> d = x.services.routes.DisciplineOf(*r); d.ok()) {
+    discipline = d->Describe();
+  }
+  Html(x, WithBlock(RoutePage(x.caller.page(), *r, app::IsOwner(*r, x.caller.viewer), readings,
+                              discipline),
                     GymBlock(x, *r) + ConsensusBlock(x, *r)));
 }
 

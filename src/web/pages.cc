@@ -5,6 +5,7 @@
 #include <map>
 #include <set>
 
+#include "app/discipline.h"
 #include "base/text.h"
 #include "plan/qr.h"
 #include "crdl/route.h"
@@ -277,10 +278,18 @@ std::string EditorPage(const PageViewer& v, const std::optional<app::RouteView>&
 }
 
 std::string RoutePage(const PageViewer& v, const app::RouteView& r, bool can_change,
-                      const std::vector<std::string>& readings) {
+                      const std::vector<std::string>& readings, const std::string& discipline) {
   std::string b = "<h1>" + E(r.name) + "</h1>\n";
   b += "<p class=\"byline\">";
-  if (!r.grade.empty()) b += "Grade " + E(r.grade) + " · ";
+  if (!r.grade.empty()) {
+    const std::string note = app::GradeNote(r.grade, r.grade_discipline);
+    b += "Grade " + E(r.grade) +
+         (note.empty() ? "" : " <span class=\"grade-note\" id=\"grade-note\">(" + E(note) + ")</span>") +
+         " · ";
+  }
+  if (!discipline.empty()) {
+    b += "<span id=\"route-discipline\">" + E(discipline) + "</span> · ";
+  }
   if (!r.setter.empty()) b += "set by " + E(r.setter) + " · ";
   b += "added by " + E(r.owner_name.empty() ? "nobody" : r.owner_name) + " on " +
        E(r.created_at.substr(0, 10));

@@ -36,8 +36,10 @@ std::string EditorPage(const PageViewer& v, const std::optional<app::RouteView>&
 // ownership rule, app::IsOwner). `readings[i]` = how the grammar read move i
 // ("" when it does not parse; an empty vector when the grammar is not
 // available). Crux moves are marked.
+// `discipline` describes the route's discipline ("bouldering (from its wall)").
 std::string RoutePage(const PageViewer& v, const app::RouteView& route, bool can_change,
-                      const std::vector<std::string>& readings = {});
+                      const std::vector<std::string>& readings = {},
+                      const std::string& discipline = "");
 // "/vary": `chosen` = the routes named in the URL, in that order (always
 // shown and chosen); `missing` = ids named there the viewer cannot see;
 // `found` = the first page of the picker's search for `find`.
