@@ -112,11 +112,25 @@ Result<chaos::MoveFacts> InputFacts(const std::vector<chaos::InputRoute>& inputs
   return f;
 }
 
+int DropInnerFinishes(std::vector<chaos::InputRoute>* inputs) {
+  if (chaos::AreTokens(*inputs)) return 0;
+  int dropped = 0;
+  for (size_t i = 0; i + 1 < inputs->size(); ++i) {
+    std::vector<Move>& moves = (*inputs)[i].route.moves;
+    while (moves.size() > 1 && plan::IsFinishMoveText(moves.back().text)) {
+      moves.pop_back();
+      ++dropped;
+    }
+  }
+  return dropped;
+}
+
 Result<SettingOutcome> VaryWithSetting(std::vector<chaos::InputRoute> inputs,
                                        const chaos::VaryParams& params,
                                        const SettingRequest& request,
                                        language::MoveLanguage* lang) {
   SB_RETURN_IF_ERROR(chaos::CheckInputKinds(inputs));
+  if (request.drop_inner_finishes) DropInnerFinishes(&inputs);
   SB_RETURN_IF_ERROR(CheckRequestForInputs(request, inputs));
   std::vector<bool> is_match;
   SettingOutcome out;

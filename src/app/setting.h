@@ -82,6 +82,13 @@ Result<chaos::MoveFacts> InputFacts(const std::vector<chaos::InputRoute>& inputs
                                     bool match_grammar, std::vector<bool>* is_match,
                                     language::MoveLanguage* lang = nullptr);
 
+// Removes from every input but the last the finish moves that end it
+// (plan::IsFinishMoveText: "jug finish", "top out", "match finish"...),
+// keeping at least one move of each input; token sequences are left alone.
+// Returns the number of moves removed. VaryWithSetting calls it when the
+// request asks drop_inner_finishes. Pure.
+int DropInnerFinishes(std::vector<chaos::InputRoute>* inputs);
+
 // Varies `inputs` with the setter's request: with no constraint asked,
 // exactly chaos::Vary (with the match rule); otherwise
 // chaos::SearchVariation from params.var_ic. Warnings are computed either

@@ -395,13 +395,18 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
         sp.note = "no candidate: " + gallery.status().message();
         continue;
       }
+      // Two ICs whose searches end in the same moves are one candidate for a
+      // setter: the first (best ranked) is shown, the others skipped.
+      std::set<std::vector<std::string>> shown;
       for (const Candidate& c : *gallery) {
         if (static_cast<int>(sp.candidates.size()) >= req.candidates) break;
+        std::vector<std::string> moves = MoveStrings(c.plan.variation);
+        if (!shown.insert(moves).second) continue;
         DayCandidate dc;
         chaos::VaryParams p = params;
         p.var_ic = c.searched_from;
         dc.params_json = plan::ParametersJson(p, setting);
-        dc.moves = MoveStrings(c.plan.variation);
+        dc.moves = std::move(moves);
         dc.score = c.score;
         dc.inputs = work[i].ids;
         dc.input_names = work[i].names;
@@ -410,8 +415,8 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
       }
       if (static_cast<int>(sp.candidates.size()) < req.candidates) {
         sp.note = std::to_string(sp.candidates.size()) +
-                  " distinct candidates near the preset's IC (the others repeat an IC or found "
-                  "none keeping start and finish)";
+                  " distinct candidates near the preset's IC (the others repeat the moves of one "
+                  "shown or found none keeping start and finish)";
       }
     }
   };

@@ -122,6 +122,10 @@ TEST_F(SettingDayTest, AProposalRanksKeptCandidatesFirstAndIsDeterministic) {
   EXPECT_EQ(s.wall_name, "Cave");
   ASSERT_FALSE(s.candidates.empty()) << s.note;
   EXPECT_LE(s.candidates.size(), 3u);
+  // No two candidates of a slot are the same moves (ICs reaching one mapping).
+  for (size_t i = 0; i < s.candidates.size(); ++i) {
+    for (size_t j = 0; j < i; ++j) EXPECT_NE(s.candidates[i].moves, s.candidates[j].moves);
+  }
   bool seen_rejected = false;
   for (const DayCandidate& c : s.candidates) {
     EXPECT_EQ(c.inputs.size(), 2u);

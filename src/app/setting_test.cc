@@ -54,6 +54,35 @@ TEST(Setting, WithoutConstraintsItIsExactlyVary) {
   EXPECT_FALSE(out->warnings.summary.message.empty());
 }
 
+TEST(Setting, DropInnerFinishesLeavesNoInputsFinishMidRoute) {
+  auto a = ParseCrdl("name: A\n---\nR jug\nL crimp\nR jug finish\nL top out\n", "a.crdl");
+  auto b = ParseCrdl("name: B\n---\nL undercling\nR gaston\nL match finish\n", "b.crdl");
+  auto c = ParseCrdl("name: C\n---\nR finish jug\n", "c.crdl");
+  ASSERT_TRUE(a.ok() && b.ok() && c.ok());
+  std::vector<chaos::InputRoute> in = {{"A", *a}, {"C", *c}, {"B", *b}};
+  EXPECT_EQ(DropInnerFinishes(&in), 2);
+  ASSERT_EQ(in[0].route.moves.size(), 2u);  // "jug finish" and "top out" gone
+  EXPECT_EQ(in[0].route.moves.back().text, "crimp");
+  EXPECT_EQ(in[1].route.moves.size(), 1u);  // one move is always kept
+  EXPECT_EQ(in[2].route.moves.size(), 3u);  // the last input keeps its finish
+  // Asked of VaryWithSetting: no finish of A reaches the variation; without
+  // it, the identity-like default variation carries A's finish.
+  chaos::VaryParams p;
+  SettingRequest drop;
+  drop.drop_inner_finishes = true;
+  std::vector<chaos::InputRoute> ab = {{"A", *a}, {"B", *b}};
+  auto with = VaryWithSetting(ab, p, drop);
+  ASSERT_TRUE(with.ok()) << with.status().message();
+  for (const chaos::VariedMove& m : with->variation.moves) {
+    EXPECT_NE(m.text, "jug finish");
+    EXPECT_NE(m.text, "top out");
+  }
+  auto without = VaryWithSetting(ab, p, SettingRequest{});
+  ASSERT_TRUE(without.ok());
+  EXPECT_EQ(without->variation.moves.size(), 7u);
+  EXPECT_EQ(with->variation.moves.size(), 5u);
+}
+
 TEST(Setting, ConstraintsRunTheSearchAndHold) {
   SettingRequest req;
   req.constraints.keep_start = true;

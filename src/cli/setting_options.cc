@@ -17,6 +17,9 @@ void AddConstraintOptions(CLI::App& app, SettingOptions* o) {
   app.add_flag("--alternate-hands", o->alternate_hands,
                "no two consecutive moves by the same hand; where no IC gives that, hands are "
                "swapped and marked \"(hand swapped)\" [off]");
+  app.add_flag("--drop-inner-finishes", o->drop_inner_finishes,
+               "before varying, drop the finish moves ending every input but the last, so "
+               "no input's finish lands mid-route (the setter's preset) [off]");
   app.add_option("--match", o->match,
                  "match moves: text (the original site's rule: the whole text is \"match\") or "
                  "grammar (the grammar reads a match: \"match on jug\", \"matched start\")")
@@ -63,6 +66,7 @@ Result<app::SettingRequest> ResolveSettingOptions(const SettingOptions& o) {
   r.constraints.keep_start = o.keep_start;
   r.constraints.keep_finish = o.keep_finish;
   r.constraints.alternate_hands = o.alternate_hands;
+  r.drop_inner_finishes = o.drop_inner_finishes;
   if (!o.crux_window.empty()) {
     auto w = chaos::ParseCruxWindow(o.crux_window);
     if (!w.ok()) return bad("--crux-window", w.status());

@@ -28,6 +28,7 @@ struct SettingOptions {
   bool keep_finish = false;
   std::string crux_window;  // "A,B"; empty = off
   bool alternate_hands = false;
+  bool drop_inner_finishes = false;  // --drop-inner-finishes
   std::string match = "text";
   std::optional<double> target_effect;
   std::optional<double> target_change;

@@ -91,6 +91,7 @@ std::string ParametersJson(const VaryParams& p, const SetterOptions& o) {
   if (o.smooth_method != SmoothingMethod::kVomm) {
     j["smooth_method"] = SmoothingMethodName(o.smooth_method);
   }
+  if (o.drop_inner_finishes) j["drop_inner_finishes"] = true;
   return j.dump(-1, ' ', false, json::error_handler_t::replace);
 }
 
@@ -159,6 +160,7 @@ Result<SetterOptions> SetterOptionsFromJson(std::string_view json_text) {
   SB_RETURN_IF_ERROR(GetBool(j, "keep_finish", &c.keep_finish));
   SB_RETURN_IF_ERROR(GetCruxWindow(j, &c.crux_window));
   SB_RETURN_IF_ERROR(GetBool(j, "alternate_hands", &c.alternate_hands));
+  SB_RETURN_IF_ERROR(GetBool(j, "drop_inner_finishes", &o.drop_inner_finishes));
   if (j.contains("match")) {
     const json& m = j["match"];
     if (!m.is_string() || (m != "text" && m != "grammar")) {
@@ -241,6 +243,7 @@ std::string ReproduceOptions(const VaryParams& p, const SetterOptions& o) {
          FormatNumber(c.crux_window->end);
   }
   if (c.alternate_hands) s += " --alternate-hands";
+  if (o.drop_inner_finishes) s += " --drop-inner-finishes";
   if (o.match_grammar) s += " --match grammar";
   if (c.target_effect) s += " --target-effect " + FormatNumber(*c.target_effect);
   if (c.target_change) s += " --target-change " + FormatNumber(*c.target_change);

@@ -63,6 +63,11 @@ struct SetterOptions {
   chaos::SearchGrid grid;
   bool match_grammar = false;  // `--match grammar`; false = the original site's text rule
   SmoothingMethod smooth_method = SmoothingMethod::kVomm;
+  // Before varying, drop the finish moves that end every input but the last
+  // (app::DropInnerFinishes): joined routes otherwise carry the first one's
+  // finish into the middle of the variation (issue 22). The setter's preset
+  // asks it; the paper's presets do not.
+  bool drop_inner_finishes = false;
   // Whether the IC search runs (a constraint or target is asked for).
   bool Search() const { return constraints.Any(); }
 };
@@ -71,8 +76,9 @@ struct SetterOptions {
 // "Variation parameters"): keep_start, keep_finish, crux_window [a, b],
 // alternate_hands, match, target_effect, target_change, effect_tolerance,
 // change_tolerance, search_spacing, search_radius, search_plane,
-// smooth_method — only those that differ from the defaults, so a plain
-// variation's parameters are exactly chaos::ParamsToJson's. The one codec of
+// smooth_method, drop_inner_finishes — only those that differ from the
+// defaults, so a plain variation's parameters are exactly
+// chaos::ParamsToJson's. The one codec of
 // the fields, for the plan JSON, the stored variation and the JSON API.
 //
 // ParametersJson: chaos::ParamsToJson(p) with these fields added, one
