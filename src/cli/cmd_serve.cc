@@ -51,6 +51,11 @@ int RunServe(const std::vector<std::string>& args) {
                  "open connections per client address; more get 503 (default 64; raise it "
                  "when many users share one NAT address)")
       ->check(CLI::Range(1, 100000));
+  int signups = app::Options{}.login.signups_per_address_per_hour;
+  app.add_option("--signups-per-hour", signups,
+                 "new accounts per client address per hour; more get 429 (default 10; raise "
+                 "it for a sign-up evening behind one NAT address, or a test suite)")
+      ->check(CLI::Range(1, 100000));
   bool secure_cookie = false;
   app.add_flag("--secure-cookies", secure_cookie,
                "mark the session cookie Secure (when behind an HTTPS proxy)");
@@ -108,6 +113,7 @@ int RunServe(const std::vector<std::string>& args) {
   options.secure_cookie = secure_cookie;
   options.base_url = base_url;
   options.app.first_gym_name = gym_name;
+  options.app.login.signups_per_address_per_hour = signups;
   options.allowed_hosts = allowed_hosts;
   if (options.static_dir.empty() && web::DefaultStaticDir().empty()) {
     std::fprintf(stderr, "serve: warning: web assets (web/app.js) not found; pages lack style\n");
