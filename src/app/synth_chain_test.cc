@@ -64,7 +64,10 @@ TEST_F(SynthChainTest, WritesTheCountsAskedFor) {
   ASSERT_EQ(gyms->size(), 2u);
   int64_t set = 0, stripped = 0, ticks = 0;
   for (const store::GymRecord& g : *gyms) {
-    for (const store::RouteRecord& r : store_->AllRoutes(std::nullopt).value()) {
+    // Each Result is kept alive for its loop (value() of a temporary would dangle).
+    Result<std::vector<store::RouteRecord>> all = store_->AllRoutes(std::nullopt);
+    ASSERT_TRUE(all.ok());
+    for (const store::RouteRecord& r : *all) {
       if (r.gym_id != g.id) continue;
       set += r.state == "set";
       stripped += r.state == "stripped";
@@ -115,7 +118,10 @@ TEST_F(SynthChainTest, RoutesReadAsRoutesWithDatesInTheirWindow) {
     }
     for (const Move& m : parsed->moves) known_moves += vocabulary.count(m.text) ? 1 : 0;
     // Ticks fall on days the route was up.
-    for (const store::TickRecord& t : store::TickStoreOf(store_.get())->RouteTicks(r.id).value()) {
+    Result<std::vector<store::TickRecord>> route_ticks =
+        store::TickStoreOf(store_.get())->RouteTicks(r.id);
+    ASSERT_TRUE(route_ticks.ok());
+    for (const store::TickRecord& t : *route_ticks) {
       EXPECT_GE(t.day, r.set_on);
       EXPECT_LE(t.day, r.state == "set" ? std::string("2026-11-26") : r.strip_on);
     }
