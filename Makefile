@@ -3,7 +3,7 @@ BUILD ?= build
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 # Seconds per input format for `make fuzz` (`make test` fuzzes each for
-# SB_TEST_FUZZ_SECONDS, default 10; docs/testing.md).
+# SB_TEST_FUZZ_SECONDS, default 6; docs/testing.md).
 FUZZ_SECONDS ?= 60
 
 .PHONY: all setup configure build test test-sanitize fuzz run bench clean
