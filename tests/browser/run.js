@@ -55,8 +55,10 @@ function check(cond, what) {
     pdfPages: (buf) => (buf.toString('latin1').match(/\/Type\s*\/Page[^s]/g) || []).length,
   };
   const specs = fs.readdirSync(__dirname).filter((f) => f.endsWith('.spec.js') && f.includes(filter)).sort();
+  const started = Date.now();
   for (const f of specs) {
     console.log('---- ' + f);
+    const specStarted = Date.now();
     try {
       await require(path.join(__dirname, f))(t);
     } catch (e) {
@@ -64,10 +66,12 @@ function check(cond, what) {
       console.log('FAIL ' + f + ': ' + (e && e.stack || e));
       try { await t.shot('failure-' + f.replace(/\.spec\.js$/, '')); } catch (_) { /* ignore */ }
     }
+    console.log(`---- ${f}: ${((Date.now() - specStarted) / 1000).toFixed(1)} s`);
   }
   check(consoleErrors.length === 0, 'no script errors (' + consoleErrors.join('; ') + ')');
   await context.close();
   fs.rmSync(userDir, { recursive: true, force: true });
-  console.log(`browser: ${passes} passed, ${failures} failed (${specs.length} spec files)`);
+  console.log(`browser: ${passes} passed, ${failures} failed (${specs.length} spec files, ` +
+              `${((Date.now() - started) / 1000).toFixed(1)} s)`);
   process.exit(failures ? 1 : 0);
 })();
