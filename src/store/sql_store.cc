@@ -1283,10 +1283,9 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
     std::vector<Value> row;
     row.reserve(sql_rows::kRouteColumns);
     sql_rows::AppendRouteRow(r, now, SearchText(r.name, r.crdl), kSearchVersion, &row);
-    SB_ASSIGN_OR_RETURN(Rows ins, c.Query(std::string(sql_rows::kRouteInsert) +
-                                              sql_rows::Placeholders(sql_rows::kRouteColumns, 1) +
-                                              " RETURNING id",
-                                          row));
+    const std::string insert = std::string(sql_rows::kRouteInsert) +
+                               sql_rows::Placeholders(sql_rows::kRouteColumns, 1) + " RETURNING id";
+    SB_ASSIGN_OR_RETURN(Rows ins, c.Query(insert, row));
     int64_t id = ins.Int(0, 0);
     SB_RETURN_IF_ERROR(WriteSetters(c, id, r.setters));
     for (size_t i = 0; i < r.inputs.size(); ++i) {
