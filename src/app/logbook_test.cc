@@ -8,42 +8,24 @@
 #include <string>
 #include <vector>
 
-#include "app/app_test_util.h"
+#include "app/logbook_fixture.h"
 #include "store/gym_store.h"
 #include "store/tick_store.h"
 
 namespace sb::app {
 namespace {
 
-using testing::AppTest;
+using testing::LogbookFixture;
 
-class LogbookTest : public AppTest {
+class LogbookTest : public LogbookFixture {
  protected:
   void SetUp() override {
-    AppTest::SetUp();
+    LogbookFixture::SetUp();
     if (IsSkipped() || HasFatalFailure()) return;
-    setter_ = User("setter");
-    Result<int64_t> gym = store::GymStoreOf(store_.get())->CreateGym("Gym", setter_.user_id);
-    ASSERT_TRUE(gym.ok()) << gym.status().message();
-    gym_ = *gym;
     route_ = Route("Crimp Ladder", "V4");
   }
   int64_t Route(const std::string& name, const std::string& grade) {
-    store::RouteRecord r;
-    r.owner_id = setter_.user_id;
-    r.name = name;
-    r.grade = grade;
-    r.crdl = "name: " + name + "\ngrade: " + grade + "\n---\nR jug\n";
-    r.move_count = 1;
-    r.is_public = true;
-    r.gym_id = gym_;
-    r.state = "set";
-    r.grade_discipline = "bouldering";
-    Result<grades::Grade> g = grades::ParseGrade(grade, {});
-    if (g.ok()) r.grade_value = g->value;
-    Result<int64_t> id = store_->InsertRoute(r);
-    EXPECT_TRUE(id.ok()) << id.status().message();
-    return id.ok() ? *id : 0;
+    return Insert(GymRoute(name, grade));
   }
   static Viewer Anonymous(const std::string& address = "10.0.0.9") {
     Viewer v;
@@ -59,8 +41,7 @@ class LogbookTest : public AppTest {
     return in;
   }
 
-  Viewer setter_;
-  int64_t gym_ = 0, route_ = 0;
+  int64_t route_ = 0;
 };
 
 TEST_F(LogbookTest, OneTickPerClimberRouteAndDayASecondEditsIt) {

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "app/routes.h"
+#include "base/date.h"
 #include "base/number.h"
 #include "base/text.h"
 #include "grades/consensus.h"
@@ -22,18 +23,6 @@ namespace {
 
 // Routes read per store call.
 constexpr int kPage = 1000;
-
-bool IsIsoDate(const std::string& d) {
-  bool ok = d.size() == 10 && d[4] == '-' && d[7] == '-';
-  for (size_t i = 0; ok && i < d.size(); ++i) {
-    if (i != 4 && i != 7 && !std::isdigit(static_cast<unsigned char>(d[i]))) ok = false;
-  }
-  if (ok) {
-    const int m = std::stoi(d.substr(5, 2)), day = std::stoi(d.substr(8, 2));
-    ok = m >= 1 && m <= 12 && day >= 1 && day <= 31;
-  }
-  return ok;
-}
 
 bool IsSend(const std::string& outcome) { return outcome == "flash" || outcome == "send"; }
 

@@ -14,25 +14,21 @@
 #include <string>
 #include <vector>
 
-#include "app/app_test_util.h"
+#include "app/logbook_fixture.h"
 #include "store/gym_store.h"
 #include "studies/studies_test_util.h"
 
 namespace sb::app {
 namespace {
 
-using testing::AppTest;
+using testing::LogbookFixture;
 
-class ReportTest : public AppTest {
+class ReportTest : public LogbookFixture {
  protected:
   void SetUp() override {
-    AppTest::SetUp();
+    LogbookFixture::SetUp();
     if (IsSkipped() || HasFatalFailure()) return;
-    setter_ = User("setter");
     store::GymStore* gs = store::GymStoreOf(store_.get());
-    Result<int64_t> gym = gs->CreateGym("Gym", setter_.user_id);
-    ASSERT_TRUE(gym.ok()) << gym.status().message();
-    gym_ = *gym;
     store::WallRecord w;
     w.gym_id = gym_;
     w.name = "Cave";
@@ -54,24 +50,11 @@ class ReportTest : public AppTest {
   }
   int64_t Route(const std::string& name, const std::string& grade, bool variation,
                 int64_t wall, const std::string& set_on) {
-    store::RouteRecord r;
-    r.owner_id = setter_.user_id;
-    r.name = name;
-    r.grade = grade;
-    r.crdl = "name: " + name + "\ngrade: " + grade + "\n---\nR jug\n";
-    r.move_count = 1;
-    r.is_public = true;
+    store::RouteRecord r = GymRoute(name, grade);
     r.is_variation = variation;
-    r.gym_id = gym_;
     r.wall_id = wall;
-    r.state = "set";
     r.set_on = set_on;
-    r.grade_discipline = "bouldering";
-    Result<grades::Grade> g = grades::ParseGrade(grade, {});
-    if (g.ok()) r.grade_value = g->value;
-    Result<int64_t> id = store_->InsertRoute(r);
-    EXPECT_TRUE(id.ok()) << id.status().message();
-    return id.ok() ? *id : 0;
+    return Insert(r);
   }
   // Climber `i` (a phone of its own address) ticks `route`.
   void Tick(int i, int64_t route, const std::string& outcome, std::optional<int> stars,
@@ -90,8 +73,8 @@ class ReportTest : public AppTest {
     if (t->participant.is_new) token = t->participant.token;
   }
 
-  Viewer setter_, climber_, outsider_;
-  int64_t gym_ = 0, wall_ = 0, other_wall_ = 0;
+  Viewer climber_, outsider_;
+  int64_t wall_ = 0, other_wall_ = 0;
   std::map<int, std::string> tokens_;
 };
 

@@ -8,6 +8,7 @@
 #include "app/discipline.h"
 #include "app/limits.h"
 #include "app/variations.h"
+#include "base/date.h"
 #include "base/number.h"
 #include "base/text.h"
 #include "store/gym_store.h"
@@ -327,15 +328,9 @@ namespace {
 // An ISO date "YYYY-MM-DD" (or "" to clear); kInvalidInput naming `field`.
 Status CheckDate(const char* field, const std::string& d) {
   if (d.empty()) return Status::Ok();
-  bool ok = d.size() == 10 && d[4] == '-' && d[7] == '-';
-  for (size_t i = 0; ok && i < d.size(); ++i) {
-    if (i != 4 && i != 7 && !std::isdigit(static_cast<unsigned char>(d[i]))) ok = false;
+  if (!IsIsoDate(d)) {
+    return Status::InvalidInput(std::string(field) + ": expected a date YYYY-MM-DD");
   }
-  if (ok) {
-    int m = std::stoi(d.substr(5, 2)), day = std::stoi(d.substr(8, 2));
-    ok = m >= 1 && m <= 12 && day >= 1 && day <= 31;
-  }
-  if (!ok) return Status::InvalidInput(std::string(field) + ": expected a date YYYY-MM-DD");
   return Status::Ok();
 }
 

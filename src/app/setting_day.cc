@@ -8,6 +8,7 @@
 #include <thread>
 #include <tuple>
 
+#include "base/date.h"
 #include "base/hash.h"
 #include "base/text.h"
 #include "chaos/variation.h"
@@ -26,15 +27,7 @@ namespace {
 constexpr int kDayThreads = 2;
 
 Status CheckDayDate(const std::string& d) {
-  bool ok = d.size() == 10 && d[4] == '-' && d[7] == '-';
-  for (size_t i = 0; ok && i < d.size(); ++i) {
-    if (i != 4 && i != 7 && !std::isdigit(static_cast<unsigned char>(d[i]))) ok = false;
-  }
-  if (ok) {
-    const int m = std::stoi(d.substr(5, 2)), day = std::stoi(d.substr(8, 2));
-    ok = m >= 1 && m <= 12 && day >= 1 && day <= 31;
-  }
-  return ok ? Status::Ok() : Status::InvalidInput("date: expected a date YYYY-MM-DD");
+  return IsIsoDate(d) ? Status::Ok() : Status::InvalidInput("date: expected a date YYYY-MM-DD");
 }
 
 grades::Discipline DisciplineOfWall(const Wall& w) {

@@ -4,6 +4,7 @@
 #include <unordered_map>
 
 #include "base/csv.h"
+#include "base/date.h"
 #include "base/number.h"
 #include "base/text.h"
 
@@ -65,16 +66,6 @@ int IndexOf(std::unordered_map<std::string, int>* index, std::vector<std::string
 }
 
 }  // namespace
-
-bool IsIsoDate(std::string_view t) {
-  if (t.size() != 10 || t[4] != '-' || t[7] != '-') return false;
-  for (size_t i : {0, 1, 2, 3, 5, 6, 8, 9}) {
-    if (t[i] < '0' || t[i] > '9') return false;
-  }
-  const int month = (t[5] - '0') * 10 + (t[6] - '0');
-  const int day = (t[8] - '0') * 10 + (t[9] - '0');
-  return month >= 1 && month <= 12 && day >= 1 && day <= 31;
-}
 
 Result<RatingsInput> ReadRatingsInput(std::string_view ticks_csv, std::string_view ticks_name,
                                       std::optional<std::string_view> routes_csv,

@@ -60,9 +60,6 @@ Result<RatingsInput> ReadRatingsInput(std::string_view ticks_csv, std::string_vi
                                       std::optional<std::string_view> routes_csv,
                                       std::string_view routes_name = "ROUTES.csv");
 
-// Whether `text` is a date YYYY-MM-DD (month 01-12, day 01-31). Pure.
-bool IsIsoDate(std::string_view text);
-
 }  // namespace sb::grades
 
 #endif  // SB_GRADES_RATINGS_IO_H_

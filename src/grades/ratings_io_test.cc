@@ -127,14 +127,5 @@ TEST(RatingsIo, DisciplineFromFeltGradesOrDefault) {
   EXPECT_EQ(moved.problem.felt_count[0], 1);
 }
 
-TEST(RatingsIo, IsoDates) {
-  EXPECT_TRUE(IsIsoDate("2026-11-26"));
-  EXPECT_FALSE(IsIsoDate("2026-11-32"));
-  EXPECT_FALSE(IsIsoDate("2026-00-10"));
-  EXPECT_FALSE(IsIsoDate("26-11-2026"));
-  EXPECT_FALSE(IsIsoDate("2026/11/26"));
-  EXPECT_FALSE(IsIsoDate(""));
-}
-
 }  // namespace
 }  // namespace sb::grades

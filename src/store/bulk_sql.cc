@@ -1,9 +1,10 @@
 #include "store/bulk_sql.h"
 
 #include <algorithm>
-#include <ctime>
 #include <string_view>
 #include <utility>
+
+#include "store/sql_rows.h"
 
 namespace sb::store::bulk_sql {
 
@@ -12,37 +13,10 @@ namespace {
 using sql::Rows;
 using sql::Value;
 using sql::Violation;
-
-std::string NowText() {
-  std::time_t t = std::time(nullptr);
-  std::tm tm{};
-  gmtime_r(&t, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M:%S", &tm);
-  return buf;
-}
-
-// "(?, ?, ..., ?)" repeated `rows` times, comma-separated.
-std::string Placeholders(int columns, size_t rows) {
-  std::string one = "(";
-  for (int i = 0; i < columns; ++i) one += i ? ", ?" : "?";
-  one += ")";
-  std::string out;
-  out.reserve(rows * (one.size() + 2));
-  for (size_t r = 0; r < rows; ++r) {
-    if (r) out += ", ";
-    out += one;
-  }
-  return out;
-}
-
-constexpr int kRouteColumns = 28;
-constexpr std::string_view kRouteInsert =
-    "INSERT INTO routes(owner_id, name, grade, setter, crdl, move_count, is_public, "
-    "is_variation, params_json, plan_json, smooth, created_at, updated_at, colour, "
-    "wall, set_on, grade_discipline, grade_value, meta_version, request_key, "
-    "gym_id, wall_id, state, planned_on, strip_on, original_id, search_text, "
-    "search_version) VALUES ";
+using sql_rows::kRouteColumns;
+using sql_rows::kRouteInsert;
+using sql_rows::NowText;
+using sql_rows::Placeholders;
 
 constexpr int kSetterColumns = 4;
 constexpr int kBulkSetterRows = 2000;  // 8,000 parameters (see kBulkRouteRows)
@@ -88,18 +62,7 @@ Result<std::vector<int64_t>> InsertRoutes(sql::Connection& c,
       params.reserve(n * kRouteColumns);
       for (size_t i = first; i < first + n; ++i) {
         const RouteRecord& r = routes[i];
-        const std::string& at = r.created_at.empty() ? now : r.created_at;
-        Value vals[kRouteColumns] = {sql::Nullable(r.owner_id), r.name, r.grade, r.setter, r.crdl,
-                                     int64_t{r.move_count}, int64_t{r.is_public},
-                                     int64_t{r.is_variation}, r.params_json, r.plan_json,
-                                     int64_t{r.smooth}, at, at, r.colour, r.wall, r.set_on,
-                                     r.grade_discipline, sql::Nullable(r.grade_value),
-                                     int64_t{r.meta_version}, r.request_key,
-                                     sql::Nullable(r.gym_id), sql::Nullable(r.wall_id),
-                                     r.state.empty() ? std::string("draft") : r.state,
-                                     r.planned_on, r.strip_on, sql::Nullable(r.original_id),
-                                     search.text(r.name, r.crdl), int64_t{search.version}};
-        for (Value& v : vals) params.push_back(std::move(v));
+        sql_rows::AppendRouteRow(r, now, search.text(r.name, r.crdl), search.version, &params);
       }
       Violation v = Violation::kNone;
       Result<Rows> ins = c.Query(std::string(kRouteInsert) + Placeholders(kRouteColumns, n) +

@@ -9,29 +9,18 @@
 #include <string>
 #include <vector>
 
-#include "store/gym_store.h"
-#include "store/open.h"
-#include "store/store_test_util.h"
+#include "store/test_backends.h"
 #include "store/tick_store.h"
 
 namespace sb::store {
 namespace {
 
-using testing::Backend;
-using testing::TestDatabase;
-
-class BulkStoreTest : public ::testing::TestWithParam<Backend> {
+class BulkStoreTest : public testing::BackendTest {
  protected:
-  void SetUp() override {
-    SB_REQUIRE_DATABASE(db_);
-    Result<std::unique_ptr<Store>> s = OpenStore(db_.locator());
-    ASSERT_TRUE(s.ok()) << s.status().message();
-    store_ = std::move(s).value();
+  BulkStoreTest() : BackendTest("bulk", testing::Make::kStoreAndGym) {}
+  void SetUpStore() override {
     bulk_ = BulkStoreOf(store_.get());
     ASSERT_NE(bulk_, nullptr);
-    Result<int64_t> g = GymStoreOf(store_.get())->CreateGym("G", std::nullopt);
-    ASSERT_TRUE(g.ok());
-    gym_ = *g;
   }
   RouteRecord Route(int i) {
     RouteRecord r;
@@ -44,10 +33,7 @@ class BulkStoreTest : public ::testing::TestWithParam<Backend> {
     r.setters = {{std::nullopt, "Ann"}, {std::nullopt, "Bob " + std::to_string(i)}};
     return r;
   }
-  TestDatabase db_{GetParam(), "bulk"};
-  std::unique_ptr<Store> store_;
   BulkStore* bulk_ = nullptr;
-  int64_t gym_ = 0;
 };
 
 INSTANTIATE_TEST_SUITE_P(Backends, BulkStoreTest, testing::Backends(), testing::BackendName);

@@ -11,7 +11,7 @@
 #include "store/schema.h"
 #include "store/sql.h"
 #include "store/store.h"
-#include "store/store_test_util.h"
+#include "store/test_backends.h"
 
 namespace sb::store {
 namespace {
@@ -20,13 +20,10 @@ namespace fs = std::filesystem;
 using testing::Backend;
 using testing::TestDatabase;
 
-class ClimbersStoreTest : public ::testing::TestWithParam<Backend> {
+class ClimbersStoreTest : public testing::BackendTest {
  protected:
-  void SetUp() override {
-    SB_REQUIRE_DATABASE(db_);
-    Result<std::unique_ptr<Store>> s = OpenStore(db_.locator());
-    ASSERT_TRUE(s.ok()) << s.status().message();
-    store_ = std::move(s).value();
+  ClimbersStoreTest() : BackendTest("climbers") {}
+  void SetUpStore() override {
     Result<int64_t> u = store_->CreateUser("setter", "h");
     ASSERT_TRUE(u.ok());
     user_ = *u;
@@ -71,8 +68,6 @@ class ClimbersStoreTest : public ::testing::TestWithParam<Backend> {
     return r;
   }
 
-  TestDatabase db_{GetParam(), "climbers"};
-  std::unique_ptr<Store> store_;
   int64_t user_ = 0, route_ = 0;
 };
 

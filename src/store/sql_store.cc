@@ -18,6 +18,7 @@
 #include "store/open.h"
 #include "store/schema.h"
 #include "store/sql.h"
+#include "store/sql_rows.h"
 #include "store/sqlite_store.h"
 #include "store/target_sql.h"
 #include "store/target_store.h"
@@ -31,15 +32,7 @@ namespace {
 using sql::Rows;
 using sql::Value;
 using sql::Violation;
-
-std::string NowText() {
-  std::time_t t = std::time(nullptr);
-  std::tm tm{};
-  gmtime_r(&t, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M:%S", &tm);
-  return buf;
-}
+using sql_rows::NowText;
 
 // How long throttling attempts are kept (longer than any window).
 constexpr int64_t kAttemptRetentionSeconds = 24 * 3600;
@@ -1287,23 +1280,12 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
   static Result<int64_t> InsertOne(sql::Connection& c, const RouteRecord& r,
                                    const std::vector<int64_t>& batch) {
     std::string now = r.created_at.empty() ? NowText() : r.created_at;
-    SB_ASSIGN_OR_RETURN(
-        Rows ins,
-        c.Query("INSERT INTO routes(owner_id, name, grade, setter, crdl, move_count, is_public, "
-                "is_variation, params_json, plan_json, smooth, created_at, updated_at, colour, "
-                "wall, set_on, grade_discipline, grade_value, meta_version, request_key, "
-                "gym_id, wall_id, state, planned_on, strip_on, original_id, search_text, "
-                "search_version) "
-                "VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, "
-                "?, ?, ?, ?, ?, ?, ?, ?) RETURNING id",
-                {sql::Nullable(r.owner_id), r.name, r.grade, r.setter, r.crdl,
-                 int64_t{r.move_count}, int64_t{r.is_public}, int64_t{r.is_variation},
-                 r.params_json, r.plan_json, int64_t{r.smooth}, now, now, r.colour, r.wall,
-                 r.set_on, r.grade_discipline, sql::Nullable(r.grade_value),
-                 int64_t{r.meta_version}, r.request_key, sql::Nullable(r.gym_id),
-                 sql::Nullable(r.wall_id), r.state.empty() ? std::string("draft") : r.state,
-                 r.planned_on, r.strip_on, sql::Nullable(r.original_id),
-                 SearchText(r.name, r.crdl), int64_t{kSearchVersion}}));
+    std::vector<Value> row;
+    row.reserve(sql_rows::kRouteColumns);
+    sql_rows::AppendRouteRow(r, now, SearchText(r.name, r.crdl), kSearchVersion, &row);
+    const std::string insert = std::string(sql_rows::kRouteInsert) +
+                               sql_rows::Placeholders(sql_rows::kRouteColumns, 1) + " RETURNING id";
+    SB_ASSIGN_OR_RETURN(Rows ins, c.Query(insert, row));
     int64_t id = ins.Int(0, 0);
     SB_RETURN_IF_ERROR(WriteSetters(c, id, r.setters));
     for (size_t i = 0; i < r.inputs.size(); ++i) {

@@ -13,7 +13,7 @@
 #include "store/auth.h"
 #include "store/open.h"
 #include "store/sqlite_store.h"
-#include "store/store_test_util.h"
+#include "store/test_backends.h"
 
 namespace sb::store {
 namespace {
@@ -24,14 +24,9 @@ using testing::TestDatabase;
 
 // Every test of the store runs on both backends (a SQLite file and a
 // database of the test PostgreSQL server), through the same interface.
-class StoreTest : public ::testing::TestWithParam<Backend> {
+class StoreTest : public testing::BackendTest {
  protected:
-  void SetUp() override { SB_REQUIRE_DATABASE(db_); }
-  std::unique_ptr<Store> Open() {
-    Result<std::unique_ptr<Store>> s = OpenStore(db_.locator());
-    EXPECT_TRUE(s.ok()) << s.status().message();
-    return s.ok() ? std::move(s).value() : nullptr;
-  }
+  StoreTest() : BackendTest("t", testing::Make::kDatabase) {}
   static RouteRecord MakeRoute(std::optional<int64_t> owner, std::string name, bool pub = true) {
     RouteRecord r;
     r.owner_id = owner;
@@ -42,7 +37,6 @@ class StoreTest : public ::testing::TestWithParam<Backend> {
     r.is_public = pub;
     return r;
   }
-  TestDatabase db_{GetParam()};
 };
 
 INSTANTIATE_TEST_SUITE_P(Backends, StoreTest, testing::Backends(), testing::BackendName);

@@ -10,31 +10,19 @@
 #include <tuple>
 #include <vector>
 
-#include "store/gym_store.h"
-#include "store/open.h"
-#include "store/store.h"
-#include "store/store_test_util.h"
+#include "store/test_backends.h"
 #include "store/tick_store.h"
 
 namespace sb::store {
 namespace {
 
-using testing::Backend;
-using testing::TestDatabase;
-
-class TargetStoreTest : public ::testing::TestWithParam<Backend> {
+class TargetStoreTest : public testing::BackendTest {
  protected:
-  void SetUp() override {
-    SB_REQUIRE_DATABASE(db_);
-    Result<std::unique_ptr<Store>> s = OpenStore(db_.locator());
-    ASSERT_TRUE(s.ok()) << s.status().message();
-    store_ = std::move(s).value();
+  TargetStoreTest() : BackendTest("target", testing::Make::kStoreAndGym) {}
+  void SetUpStore() override {
     targets_ = TargetStoreOf(store_.get());
     ASSERT_NE(targets_, nullptr);
     gyms_ = GymStoreOf(store_.get());
-    Result<int64_t> g = gyms_->CreateGym("G", std::nullopt);
-    ASSERT_TRUE(g.ok()) << g.status().message();
-    gym_ = *g;
     WallRecord w;
     w.gym_id = gym_;
     w.name = "Cave";
@@ -43,11 +31,9 @@ class TargetStoreTest : public ::testing::TestWithParam<Backend> {
     slab_ = *gyms_->InsertWall(w);
   }
 
-  TestDatabase db_{GetParam(), "target"};
-  std::unique_ptr<Store> store_;
   TargetStore* targets_ = nullptr;
   GymStore* gyms_ = nullptr;
-  int64_t gym_ = 0, cave_ = 0, slab_ = 0;
+  int64_t cave_ = 0, slab_ = 0;
 };
 
 INSTANTIATE_TEST_SUITE_P(Backends, TargetStoreTest, testing::Backends(), testing::BackendName);

@@ -9,29 +9,17 @@
 #include <string>
 #include <vector>
 
-#include "store/gym_store.h"
-#include "store/open.h"
-#include "store/store.h"
-#include "store/store_test_util.h"
+#include "store/test_backends.h"
 
 namespace sb::store {
 namespace {
 
-using testing::Backend;
-using testing::TestDatabase;
-
-class TickStoreTest : public ::testing::TestWithParam<Backend> {
+class TickStoreTest : public testing::BackendTest {
  protected:
-  void SetUp() override {
-    SB_REQUIRE_DATABASE(db_);
-    Result<std::unique_ptr<Store>> s = OpenStore(db_.locator());
-    ASSERT_TRUE(s.ok()) << s.status().message();
-    store_ = std::move(s).value();
+  TickStoreTest() : BackendTest("tick", testing::Make::kStoreAndGym) {}
+  void SetUpStore() override {
     ticks_ = TickStoreOf(store_.get());
     ASSERT_NE(ticks_, nullptr);
-    Result<int64_t> g = GymStoreOf(store_.get())->CreateGym("G", std::nullopt);
-    ASSERT_TRUE(g.ok()) << g.status().message();
-    gym_ = *g;
     route_ = Route("A");
     other_ = Route("B");
   }
@@ -60,10 +48,8 @@ class TickStoreTest : public ::testing::TestWithParam<Backend> {
     return t;
   }
 
-  TestDatabase db_{GetParam(), "tick"};
-  std::unique_ptr<Store> store_;
   TickStore* ticks_ = nullptr;
-  int64_t gym_ = 0, route_ = 0, other_ = 0;
+  int64_t route_ = 0, other_ = 0;
 };
 
 INSTANTIATE_TEST_SUITE_P(Backends, TickStoreTest, testing::Backends(), testing::BackendName);
