@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "app/setting_day.h"
 #include "app/variations.h"
 #include "base/files.h"
 #include "crdl/route.h"
@@ -185,7 +186,11 @@ TEST(GalleryTest, KeptCandidatesPassTheFilter) {
     }
     if (!CandidateScorer::Make({}).ok()) GTEST_SKIP() << "grammar or model missing";
     SCOPED_TRACE(std::string(files[0]) + " + " + files[1]);
-    auto g = MakeGallery(in, params, req, {}, {});
+    // The second pair with the setting day's search radius: cheaper, and
+    // what a slot's gallery uses.
+    SettingRequest r = req;
+    if (files[0] != std::string("crimp-ladder")) r.grid.radius = kDaySearchRadius;
+    auto g = MakeGallery(in, params, r, {}, {});
     ASSERT_TRUE(g.ok()) << g.status().message();
     ASSERT_FALSE(g->empty());
     int kept = 0;
