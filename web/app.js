@@ -182,7 +182,7 @@
       'visibility', 'metric', 'crux_window', 'match', 'target_effect', 'target_change', 'smooth_method'];
     // Checkboxes of the form state (the setter's constraints), '1' in the URL when ticked.
     const CHECKS = ['keep_start', 'keep_finish', 'alternate_hands'];
-    const DEFAULTS = { preset: 'default', metric: 'effect', match: 'text', smooth_method: 'vomm' };
+    const DEFAULTS = { preset: 'setter', metric: 'effect', match: 'text', smooth_method: 'vomm' };
     const ADVANCED = ['system', 'params', 'integrator', 'step', 'ref_ic', 'var_ic', 'skip', 'mapping', 'mask',
       'max_repeat', 'crux_window', 'match', 'target_effect', 'target_change', 'smooth_method'].concat(CHECKS);
     const chosen = $('#chosen');

@@ -61,13 +61,17 @@ Status CandidateSlot::Validate() const {
   return Status::Ok();
 }
 
-bool RejectedByFilter(const plan::PlanWarnings& warnings, std::vector<std::string>* why) {
-  int finish = 0, moves = 0, hands = 0;
+bool RejectedByFilter(const plan::PlanWarnings& warnings, std::vector<std::string>* why,
+                      bool excuse_one_hand_pair) {
+  int finish = 0, moves = 0, hands = 0, pairs = 0;
   for (const plan::Warning& w : warnings.warnings) {
     finish += w.kind == plan::WarningKind::kFinishMidRoute;
     moves += w.kind == plan::WarningKind::kRepeatedMove;
     hands += w.kind == plan::WarningKind::kSameHand;
+    pairs += w.kind == plan::WarningKind::kSameHand && w.count == 2;
   }
+  // The one same-hand pair the kept ends' parity demands (and no other run).
+  if (excuse_one_hand_pair && hands == 1 && pairs == 1) hands = 0;
   if (why) {
     if (finish) why->push_back("rejected: a finish move before the end (" + Plural(finish, "move", "moves") + ")");
     if (moves) why->push_back("rejected: a move repeated more often in a row than in its inputs (" + Plural(moves, "run", "runs") + ")");
@@ -125,13 +129,25 @@ CandidateScore CandidateScorer::Score(const plan::RoutePlan& p) {
   const plan::PlanWarnings w = p.warnings ? *p.warnings : plan::Warn(p.variation);
   const CandidateSlot& slot = impl_->slot;
 
-  // The filter.
-  s.rejected = RejectedByFilter(w, &s.reasons);
+  // The filter. Alternate-hands is not held only where the kept ends' hands
+  // demand one same-hand pair (chaos::SearchVariation): that pair is said,
+  // not rejected; any other hand run longer than the inputs' still is.
+  bool parity_pair = false;
+  if (p.search) {
+    for (const chaos::ConstraintOutcome& o : p.search->constraints) {
+      parity_pair |= o.constraint == chaos::Constraint::kAlternateHands && !o.held;
+    }
+  }
+  s.rejected = RejectedByFilter(w, &s.reasons, parity_pair);
   // A constraint asked and not held (a kept start or finish whose hand was
   // swapped): not what the setter asked for.
   if (p.search) {
     for (const chaos::ConstraintOutcome& o : p.search->constraints) {
       if (o.held) continue;
+      if (o.constraint == chaos::Constraint::kAlternateHands) {
+        s.reasons.push_back("one same-hand pair allowed: " + o.detail);
+        continue;
+      }
       s.rejected = true;
       s.reasons.push_back(std::string("rejected: ") + chaos::ConstraintName(o.constraint) +
                           " not held (" + o.detail + ")");

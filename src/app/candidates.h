@@ -55,12 +55,20 @@ inline constexpr double kScoreSmooth = 20.0;
 // The filter of a gallery: a candidate is rejected when its plan warns of a
 // finish or top-out move at the start or mid-route (finish-mid-route), or a
 // run of one move or one hand longer than its inputs have (repeated-move,
-// same-hand; plan::Warn). Appends to `why` one phrase per reason. Pure.
-bool RejectedByFilter(const plan::PlanWarnings& warnings, std::vector<std::string>* why);
+// same-hand; plan::Warn). With `excuse_one_hand_pair` (keep-start,
+// keep-finish and alternate-hands asked and the ends' hands of different
+// parity: chaos::AlternateHands leaves one same-hand pair), a single
+// same-hand warning of two moves is not a rejection (it stays a warning).
+// Appends to `why` one phrase per reason. Pure.
+bool RejectedByFilter(const plan::PlanWarnings& warnings, std::vector<std::string>* why,
+                      bool excuse_one_hand_pair = false);
 
 // A candidate's score and why. Value type.
 struct CandidateScore {
-  bool rejected = false;  // by RejectedByFilter, or a constraint of its search not held
+  // By RejectedByFilter, or a constraint of its search not held (but
+  // alternate-hands, whose one same-hand pair the kept ends demand: a
+  // reason, and that pair's same-hand warning excused by the filter).
+  bool rejected = false;
   double score = 0.0;                 // 0..100, the sum of the parts below
   double warnings_part = 0.0, grade_part = 0.0, style_part = 0.0, smooth_part = 0.0;
   std::vector<std::string> reasons;   // words, one per part (and the filter's)

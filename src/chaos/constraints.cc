@@ -322,30 +322,48 @@ std::vector<ConstraintOutcome> ConstraintChecker::Report(const Variation& v) con
   return out;
 }
 
-int AlternateHands(std::vector<VariedMove>* moves, bool keep_first_hand, bool keep_last_hand) {
+int AlternateHands(std::vector<VariedMove>* moves, bool keep_first_hand, bool keep_last_hand,
+                   int* same_hand_at) {
+  if (same_hand_at) *same_hand_at = -1;
   const size_t n = moves->size();
   if (n < 2) return 0;
   // Pattern p: position j gets the first move's hand when (j % 2 == 0) != p.
   size_t swaps[2] = {0, 0};
   const Hand h0 = (*moves)[0].hand;
   const Hand other = h0 == Hand::kLeft ? Hand::kRight : Hand::kLeft;
+  auto want_in = [&](int pattern, size_t j) {
+    return (j % 2 == 0) == (pattern == 0) ? h0 : other;
+  };
   for (size_t j = 0; j < n; ++j) {
-    Hand even = j % 2 == 0 ? h0 : other;  // pattern 0 keeps the first hand
-    Hand odd = j % 2 == 0 ? other : h0;   // pattern 1 swaps it
-    swaps[0] += (*moves)[j].hand != even;
-    swaps[1] += (*moves)[j].hand != odd;
+    swaps[0] += (*moves)[j].hand != want_in(0, j);
+    swaps[1] += (*moves)[j].hand != want_in(1, j);
   }
   int pattern = swaps[1] < swaps[0] ? 1 : 0;
-  if (keep_first_hand) {
+  // The pattern giving the last position its own hand.
+  const int last_pattern = want_in(0, n - 1) == (*moves)[n - 1].hand ? 0 : 1;
+  // Both ends kept and of different parity: pattern 0 up to a split s,
+  // pattern 1 from s on (moves s-1 and s share a hand), s where the fewest
+  // moves are swapped (the first such s).
+  size_t split = 0;  // 0 = one pattern throughout
+  if (keep_first_hand && keep_last_hand && last_pattern == 1) {
+    size_t suffix = swaps[1] - ((*moves)[0].hand != want_in(1, 0));  // pattern 1 over [1, n)
+    size_t prefix = (*moves)[0].hand != want_in(0, 0);                // pattern 0 over [0, 1)
+    size_t best = prefix + suffix;
+    split = 1;
+    for (size_t s = 2; s < n; ++s) {
+      prefix += (*moves)[s - 1].hand != want_in(0, s - 1);
+      suffix -= (*moves)[s - 1].hand != want_in(1, s - 1);
+      if (prefix + suffix < best) best = prefix + suffix, split = s;
+    }
+    if (same_hand_at) *same_hand_at = static_cast<int>(split);
+  } else if (keep_first_hand) {
     pattern = 0;
   } else if (keep_last_hand) {
-    // The pattern giving the last position its own hand.
-    const Hand last = (*moves)[n - 1].hand;
-    pattern = (((n - 1) % 2 == 0) ? h0 : other) == last ? 0 : 1;
+    pattern = last_pattern;
   }
   int count = 0;
   for (size_t j = 0; j < n; ++j) {
-    Hand want = (j % 2 == 0) == (pattern == 0) ? h0 : other;
+    const Hand want = want_in(split == 0 ? pattern : (j < split ? 0 : 1), j);
     VariedMove& m = (*moves)[j];
     if (m.hand != want) {
       m.hand = want;

@@ -153,11 +153,13 @@ class ConstraintChecker {
 // `keep_first_hand` (keep-start asked: the start is an input's start, hand
 // included) the pattern keeping the first move's hand is used whatever it
 // costs; else with `keep_last_hand` (keep-finish) the one keeping the last
-// move's. (With both asked and the ends' hands not fitting one alternating
-// pattern, the finish's hand is swapped; the search then reports
-// keep-finish as not held.)
+// move's. With both, and the ends' hands not fitting one alternating pattern
+// (of different parity), both ends keep their hands and exactly one pair of
+// consecutive moves shares a hand: the pair (s-1, s) whose placement swaps
+// fewest moves (the first such s). `same_hand_at`, when given, receives that
+// s (0-based index of the pair's second move), else -1.
 int AlternateHands(std::vector<VariedMove>* moves, bool keep_first_hand = false,
-                   bool keep_last_hand = false);
+                   bool keep_last_hand = false, int* same_hand_at = nullptr);
 
 // Effect and total displacement of a mapping (as the landscape defines them;
 // a blank counts as changed with distance 0).

@@ -233,6 +233,69 @@ TEST(AlternateHandsTest, KeepsTheStartsHandWhenAsked) {
   EXPECT_EQ(m[3].hand, Hand::kRight);
 }
 
+// Both ends kept (issue 22): hands of the same parity alternate throughout;
+// of different parity, both ends keep their hands and one same-hand pair is
+// placed where it swaps fewest moves.
+TEST(AlternateHandsTest, KeepsBothEndsHandsWithOneSameHandPairWhereParityDemands) {
+  const Hand L = Hand::kLeft, R = Hand::kRight;
+  auto make = [](std::vector<Hand> hands) {
+    std::vector<VariedMove> m(hands.size());
+    for (size_t j = 0; j < hands.size(); ++j) m[j].hand = hands[j];
+    return m;
+  };
+  auto hands = [](const std::vector<VariedMove>& m) {
+    std::vector<Hand> h;
+    for (const VariedMove& x : m) h.push_back(x.hand);
+    return h;
+  };
+  // Same parity (L ... R over 4 moves): L R L R, no pair.
+  std::vector<VariedMove> same = make({L, L, L, R});
+  int at = 7;
+  EXPECT_EQ(AlternateHands(&same, true, true, &at), 1);
+  EXPECT_EQ(at, -1);
+  EXPECT_EQ(hands(same), (std::vector<Hand>{L, R, L, R}));
+  // Different parity (L ... L over 6 moves): splits after 1..5 swap 3, 2, 3,
+  // 2, 1 moves; the pair goes at moves 5-6 and only move 3 is swapped.
+  std::vector<VariedMove> diff = make({L, R, R, R, L, L});
+  EXPECT_EQ(AlternateHands(&diff, true, true, &at), 1);
+  EXPECT_EQ(at, 5);
+  EXPECT_EQ(hands(diff), (std::vector<Hand>{L, R, L, R, L, L}));
+  EXPECT_TRUE(diff[0].notes.empty() && diff[5].notes.empty());
+  EXPECT_EQ(diff[2].notes, (std::vector<std::string>{"(hand swapped)"}));
+  // Without keep-finish the finish's hand is swapped instead (no pair).
+  std::vector<VariedMove> first_only = make({L, R, R, R, L, L});
+  EXPECT_EQ(AlternateHands(&first_only, true, false, &at), 2);
+  EXPECT_EQ(at, -1);
+  EXPECT_EQ(first_only[5].hand, R);
+
+  // Every hand sequence of 2..9 moves: the ends keep their hands, at most one
+  // same-hand pair (exactly one when the parity differs), swaps noted.
+  for (int n = 2; n <= 9; ++n) {
+    for (int bits = 0; bits < (1 << n); ++bits) {
+      std::vector<Hand> in;
+      for (int j = 0; j < n; ++j) in.push_back((bits >> j) & 1 ? R : L);
+      std::vector<VariedMove> m = make(in);
+      const int swaps = AlternateHands(&m, true, true, &at);
+      const bool differ = (in[0] == in[n - 1]) != ((n - 1) % 2 == 0);
+      EXPECT_EQ(m[0].hand, in[0]);
+      EXPECT_EQ(m[n - 1].hand, in[n - 1]);
+      int pairs = 0, noted = 0, changed = 0;
+      for (int j = 0; j < n; ++j) {
+        if (j > 0 && m[j].hand == m[j - 1].hand) {
+          ++pairs;
+          EXPECT_EQ(at, j);
+        }
+        noted += !m[j].notes.empty();
+        changed += m[j].hand != in[j];
+      }
+      EXPECT_EQ(pairs, differ ? 1 : 0) << "n " << n << " bits " << bits;
+      EXPECT_EQ(at >= 0, differ);
+      EXPECT_EQ(noted, swaps);
+      EXPECT_EQ(changed, swaps);
+    }
+  }
+}
+
 TEST(AlternateHandsTest, SwapsTheFewestMovesAndNotesThem) {
   std::vector<VariedMove> m(4);
   for (auto& x : m) x.hand = Hand::kRight;

@@ -569,9 +569,10 @@ Result<SearchResult> SearchVariation(const std::vector<InputRoute>& inputs,
   auto v = Vary(inputs, used, is_match);
   if (!v.ok()) return v.status();
   r.variation = std::move(*v);
+  int same_hand_at = -1;  // the one same-hand pair the kept ends' parity demands
   if (swap_hands) {
-    r.hands_swapped =
-        AlternateHands(&r.variation.moves, constraints.keep_start, constraints.keep_finish);
+    r.hands_swapped = AlternateHands(&r.variation.moves, constraints.keep_start,
+                                     constraints.keep_finish, &same_hand_at);
   }
   r.outcomes = ev->checker().Report(r.variation);
   auto swapped = [&](int j) {
@@ -579,7 +580,11 @@ Result<SearchResult> SearchVariation(const std::vector<InputRoute>& inputs,
     return std::find(notes.begin(), notes.end(), "(hand swapped)") != notes.end();
   };
   for (ConstraintOutcome& o : r.outcomes) {
-    if (!o.held) {
+    // Both ends kept, of different parity: the one same-hand pair is the
+    // price of keeping both (AlternateHands); not held, and said so.
+    if (!o.held && o.constraint == Constraint::kAlternateHands && same_hand_at > 0) {
+      o.detail += " only (the kept start's and finish's hands demand one same-hand pair)";
+    } else if (!o.held) {
       return Status::Internal(std::string("search: the variation at the IC found fails ") +
                               ConstraintName(o.constraint) + " (" + o.detail + ")");
     }

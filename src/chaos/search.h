@@ -117,8 +117,13 @@ class IcEvaluator {
 // variation meets every constraint (see top). Where alternate-hands is asked
 // and no IC within the radius meets it with the rest, the nearest IC meeting
 // all the others is used and hands are swapped (AlternateHands, noted
-// "(hand swapped)"). Errors: the Make errors above; kNotFound when no IC
-// within the radius qualifies, naming the constraint that failed most often
+// "(hand swapped)"). With keep-start and keep-finish also asked and the
+// ends' hands of different parity, both ends keep their hands and one
+// same-hand pair remains: alternate-hands is then reported not held
+// ("same hand at moves 5-6 only (the kept start's and finish's hands demand
+// one same-hand pair) ..."), the only outcome that may be not held.
+// Errors: the Make errors above; kNotFound when no IC within the radius
+// qualifies, naming the constraint that failed most often
 // (with how often each failed). Deterministic; thread-safe.
 Result<SearchResult> SearchVariation(const std::vector<InputRoute>& inputs,
                                      const VaryParams& params, const MoveFacts& facts,

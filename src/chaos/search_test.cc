@@ -273,6 +273,54 @@ TEST(SearchTest, KeepStartKeepsTheStartsHandThroughHandSwaps) {
   EXPECT_TRUE(r->outcomes[0].held) << r->outcomes[0].detail;
 }
 
+// keep-start + keep-finish + alternate-hands (the setter's preset, issue
+// 22): both ends keep their input's hand (both held, truthfully), at most
+// one same-hand pair, and where the ends' parity demands it alternate-hands
+// is reported not held with the reason, never an internal error.
+TEST(SearchTest, KeepsBothEndsHandsThroughHandSwaps) {
+  Constraints c;
+  c.alternate_hands = c.keep_start = c.keep_finish = true;
+  SearchGrid g;
+  g.radius = 20;
+  int with_pair = 0, without = 0;
+  // Routes of 10 moves (R..L, L..R): any start and finish fit one alternating
+  // pattern. Two routes of 9 moves, R..R each (18 moves): no start and finish
+  // do, so a same-hand pair is unavoidable. Three of 9 (R..R, L..L, R..R):
+  // either, depending on the IC.
+  std::vector<InputRoute> odd = ThreeRoutes(9);
+  odd.erase(odd.begin() + 1);
+  const std::vector<std::vector<InputRoute>> cases = {ThreeRoutes(10), odd, ThreeRoutes(9)};
+  for (size_t per = 0; per < cases.size(); ++per) {
+    const std::vector<InputRoute>& inputs = cases[per];
+    VaryParams p;
+    auto r = SearchVariation(inputs, p, {}, c, g);
+    ASSERT_TRUE(r.ok()) << per << ": " << r.status().message();
+    const std::vector<VariedMove>& m = r->variation.moves;
+    const int n = static_cast<int>(m.size());
+    for (int end : {0, n - 1}) {
+      ASSERT_TRUE(m[end].source.has_value());
+      EXPECT_EQ(m[end].hand, inputs[m[end].source->route].route.moves[m[end].source->move].hand)
+          << per << ": move " << end + 1;
+      for (const std::string& note : m[end].notes) EXPECT_NE(note, "(hand swapped)");
+    }
+    int pairs = 0;
+    for (int j = 1; j < n; ++j) pairs += m[j].hand == m[j - 1].hand;
+    EXPECT_LE(pairs, 1) << per;
+    (pairs ? with_pair : without)++;
+    ASSERT_EQ(r->outcomes.size(), 3u);
+    for (const ConstraintOutcome& o : r->outcomes) {
+      if (o.constraint != Constraint::kAlternateHands) {
+        EXPECT_TRUE(o.held) << per << ": " << o.detail;
+      } else {
+        EXPECT_EQ(o.held, pairs == 0) << per << ": " << o.detail;
+        if (pairs) EXPECT_NE(o.detail.find("demand one same-hand pair"), std::string::npos) << o.detail;
+      }
+    }
+  }
+  EXPECT_GT(with_pair, 0);
+  EXPECT_GT(without, 0);
+}
+
 TEST(SearchTest, BadInputIsAnErrorNamingTheField) {
   auto inputs = ThreeRoutes();
   VaryParams p;

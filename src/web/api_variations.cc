@@ -66,7 +66,17 @@ Result<app::MapQuery> MapQueryOf(const Request& req) {
     }
   }
   if (std::optional<std::string> preset = req.Query("preset")) pj["preset"] = *preset;
+  // Issue 22: the vary page's default preset "setter" maps the variations the
+  // setter's preset makes: the default preset's IC parameters with its
+  // max_repeat (app::ApplySetterPreset; its constraints and drop-inner-finishes
+  // are not part of a map).
+  const bool setter_preset = pj.value("preset", json()) == "setter";
+  if (setter_preset) pj["preset"] = "default";
   SB_ASSIGN_OR_RETURN(q.params, chaos::ParamsFromJson(pj.dump()));
+  if (setter_preset) {
+    app::SettingRequest unused;
+    app::ApplySetterPreset(&q.params, &unused, pj.contains("max_repeat"));
+  }
   SB_ASSIGN_OR_RETURN(q.routes, IdList(req.Query("routes").value_or(""), "routes"));
   auto whole = [&](const char* name, int* out) -> Status {
     std::optional<std::string> v = req.Query(name);

@@ -388,8 +388,11 @@ std::string VaryPage(const PageViewer& v, const std::vector<app::RouteView>& cho
        "<label class=\"inline\"><input type=\"checkbox\" id=\"duplicate\"> Make a new copy even "
        "if I made this exact variation before</label></fieldset>\n";
   b += "<fieldset><legend>2. Parameters</legend>\n"
-       "<label>Preset <select id=\"preset\"><option value=\"default\">default (variation IC "
-       "-16,-12,52)</option><option value=\"more\">more (IC -16,-13.5,52, skip 100)</option>"
+       "<label>Preset <select id=\"preset\"><option value=\"setter\" selected>setter (starts "
+       "and finishes like a route, hands alternate, no move twice in a row)</option><option value=\"default\">"
+       "default (the paper's: variation IC "
+       "-16,-12,52)</option><option value=\"more\">more (the paper's: IC -16,-13.5,52, skip "
+       "100)</option>"
        "</select></label>\n"
        "<label class=\"inline\"><input type=\"checkbox\" id=\"smooth\"> Smooth (suggest linking "
        "moves)</label>\n"

@@ -163,6 +163,14 @@ TEST_F(SettingDayApiTest, TheSetterPresetOfTheVariationApi) {
                             json{{"routes", {a, b}}, {"preset", "default"}}.dump(), 201);
   const json pv = c.Json("GET", "/api/variations/" + std::to_string(plain["id"].get<int64_t>()), "", 200);
   EXPECT_FALSE(pv["parameters"].value("keep_start", false));
+  // The vary page's default (issue 22): its preset select starts at "setter",
+  // and the IC map and picker take that preset too.
+  auto page = c.Send("GET", "/vary");
+  ASSERT_TRUE(page);
+  EXPECT_NE(page->body.find("<option value=\"setter\" selected>"), std::string::npos);
+  const std::string ids = std::to_string(a) + "," + std::to_string(b);
+  EXPECT_EQ(c.Status("GET", "/api/landscape?routes=" + ids + "&preset=setter&grid=5"), 200);
+  EXPECT_EQ(c.Status("GET", "/api/landscape?routes=" + ids + "&preset=wild&grid=5"), 400);
 }
 
 }  // namespace

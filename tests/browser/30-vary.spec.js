@@ -1,7 +1,7 @@
 // The vary page: three routes chosen in a given order give that order;
 // Back after generating restores exactly the same form; the IC map has a
 // legend and a read-out and clicking it never scrolls it away; the same form
-// twice gives the same variation.
+// twice gives the same variation; the setter preset is the default (issue 22).
 'use strict';
 const route = (name, moves) => ['name: ' + name, 'grade: V2', '---'].concat(moves).join('\n');
 module.exports = async (t) => {
@@ -16,6 +16,10 @@ module.exports = async (t) => {
   }
   // Choose Charlie, Alpha, Bravo through the picker's search box.
   await page.goto(base + '/vary');
+  // Issue 22: the setter's preset first and chosen; the paper's stay selectable by name.
+  const presets = await page.$$eval('#preset option', (os) => os.map((o) => o.value));
+  check((await page.inputValue('#preset')) === 'setter' && presets.join(',') === 'setter,default,more',
+        'the vary page defaults to the setter preset (' + presets + ')');
   for (const name of ['Charlie', 'Alpha', 'Bravo']) {
     await page.fill('#route-find', 'Order ' + name);
     await page.waitForFunction((n) => {
@@ -52,6 +56,8 @@ module.exports = async (t) => {
   const v = await api('GET', '/api/variations/' + varId);
   const inputs = v.data.inputs.map((i) => i.route);
   check(inputs.join(',') === [ids[2], ids[1], ids[0]].join(','), 'vary uses the chosen order (' + inputs + ')');
+  check(v.data.parameters.keep_start === true && v.data.parameters.keep_finish === true && !formUrl.includes('preset='),
+        'the default form varies with the setter preset (kept start and finish)');
   check((await page.textContent('h1')) === 'Three in order', 'the variation has the chosen name');
   await shot('07-plan');
   // Back: the same routes in the same order, the same IC and name.

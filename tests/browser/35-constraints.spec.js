@@ -16,6 +16,7 @@ module.exports = async (t) => {
     ids.push(r.data.id);
   }
   await page.goto(base + '/vary?routes=' + ids.join(','));
+  await page.selectOption('#preset', 'default');  // the paper's preset, by name (issue 22)
   await page.click('#advanced summary');
   await page.check('#keep_start');
   await page.check('#alternate_hands');
