@@ -1,5 +1,7 @@
 #include "app/dashboard.h"
 
+#include "app/convert.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

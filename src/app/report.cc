@@ -1,5 +1,7 @@
 #include "app/report.h"
 
+#include "app/convert.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
