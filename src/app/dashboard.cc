@@ -1,7 +1,5 @@
 #include "app/dashboard.h"
 
-#include "app/convert.h"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

@@ -1,7 +1,5 @@
 #include "app/report.h"
 
-#include "app/convert.h"
-
 #include <algorithm>
 #include <cctype>
 #include <cmath>
