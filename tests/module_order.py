@@ -18,7 +18,7 @@ INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]')
 
 
 def read_table(root):
-    levels, owners, confined, seams = {}, [], [], []
+    levels, owners, confined, seams, seam_files = {}, [], [], [], []
     with open(os.path.join(root, 'cmake', 'module_levels.txt')) as f:
         for n, line in enumerate(f, 1):
             words = line.split('#', 1)[0].split()
@@ -32,9 +32,11 @@ def read_table(root):
                 confined.append((words[1], words[2]))
             elif words[0] == 'seam' and len(words) == 3:
                 seams.append((words[1], words[2]))
+            elif words[0] == 'seam-file' and len(words) == 3:
+                seam_files.append((words[1], words[2]))
             else:
                 sys.exit('cmake/module_levels.txt:%d: cannot read %r' % (n, line.strip()))
-    return levels, owners, confined, seams
+    return levels, owners, confined, seams, seam_files
 
 
 def cmake_calls(text, name):
@@ -78,7 +80,7 @@ def declared_deps(root, module, levels):
 
 
 def check(root):
-    levels, owners, confined, seams = read_table(root)
+    levels, owners, confined, seams, seam_files = read_table(root)
     src = os.path.join(root, 'src')
     errors = []
     folders = sorted(d for d in os.listdir(src) if os.path.isdir(os.path.join(src, d)))
@@ -100,6 +102,7 @@ def check(root):
                 path = os.path.join(dirpath, name)
                 rel = os.path.relpath(path, root)
                 is_test = name.endswith('_test.cc') or name.endswith('_test_util.h')
+                file_hidden = [m for (only, m) in seam_files if only == rel]
                 allowed = deps | (test_deps if is_test else set())
                 with open(path, errors='replace') as f:
                     for n, line in enumerate(f, 1):
@@ -118,6 +121,10 @@ def check(root):
                         if kind == '"' and '/' in inc:
                             target = inc.split('/', 1)[0]
                             if target == module:
+                                continue
+                            if target in file_hidden:
+                                errors.append('%s: %s may not include %s (seam-file in '
+                                              'cmake/module_levels.txt)' % (where, rel, target))
                                 continue
                             if target in hidden:
                                 errors.append('%s: %s may not include %s (seam in '
@@ -164,6 +171,8 @@ def self_test(root):
          'src/web/api_test_util.h:', 'web may not include store'),
         ('src/web/pages.cc', 'static store::RouteRecord* unused = nullptr;\n', 'src/web/pages.cc:',
          'names store:: types'),
+        ('src/app/types.h', '#include "store/store.h"\n', 'src/app/types.h:',
+         'src/app/types.h may not include store'),
     ]
     failures = []
     for path, line, where, why in cases:

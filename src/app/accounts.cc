@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "app/convert.h"
 #include "base/log.h"
 #include "base/text.h"
 #include "store/auth.h"
@@ -69,8 +70,8 @@ const std::string& Accounts::DummyHash() {
   return dummy_hash_;
 }
 
-Result<store::User> Accounts::SignUp(std::string_view username, std::string_view password,
-                                     std::string_view address, bool* busy) {
+Result<User> Accounts::SignUp(std::string_view username, std::string_view password,
+                              std::string_view address, bool* busy) {
   if (busy) *busy = false;
   SB_RETURN_IF_ERROR(store::CheckUsername(username));
   SB_RETURN_IF_ERROR(store::CheckPassword(password));
@@ -95,7 +96,10 @@ Result<store::User> Accounts::SignUp(std::string_view username, std::string_view
   LeaveCheckQueue();
   if (!hash.ok()) return hash.status();
   SB_ASSIGN_OR_RETURN(int64_t id, store_->CreateUser(name, *hash));
-  return store_->FindUser(id);
+  SB_ASSIGN_OR_RETURN(store::User created, store_->FindUser(id));
+  User out = ToView(created);
+  out.password_hash.clear();  // never leaves the services
+  return out;
 }
 
 Result<NewSession> Accounts::LogIn(std::string_view username, std::string_view password,
@@ -179,14 +183,15 @@ Result<NewSession> Accounts::LogIn(std::string_view username, std::string_view p
   out.session.username = user->username;
   out.session.csrf = store::RandomToken();
   out.session.expires_at = now + options_.session_seconds;
-  SB_RETURN_IF_ERROR(store_->CreateSession(out.session));
+  SB_RETURN_IF_ERROR(store_->CreateSession(ToRecord(out.session)));
   return out;
 }
 
-Result<store::Session> Accounts::SessionOf(std::string_view token) {
+Result<Session> Accounts::SessionOf(std::string_view token) {
   // Tokens are 64 hex digits; anything much longer is not one of ours.
   if (token.empty() || token.size() > 128) return Status::NotFound("no such session");
-  return store_->FindSession(store::HashToken(token), clock_->Now());
+  SB_ASSIGN_OR_RETURN(store::Session s, store_->FindSession(store::HashToken(token), clock_->Now()));
+  return ToView(s);
 }
 
 Status Accounts::LogOut(std::string_view token) {

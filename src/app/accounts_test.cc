@@ -46,7 +46,7 @@ TEST_F(AppTest, LogInOpensASessionAndLogOutEndsIt) {
   ASSERT_TRUE(s.ok()) << s.status().message();
   EXPECT_EQ(s->token.size(), 64u);
   EXPECT_NE(s->session.id_hash, s->token);  // only the hash is stored
-  Result<store::Session> found = a.SessionOf(s->token);
+  Result<app::Session> found = a.SessionOf(s->token);
   ASSERT_TRUE(found.ok());
   EXPECT_EQ(found->username, "alice");
   EXPECT_EQ(found->csrf, s->session.csrf);
@@ -206,7 +206,7 @@ TEST_F(AppTest, AFullPasswordCheckQueueRefusesAtOnceInsteadOfWaiting) {
       ++ready;
       while (ready.load() < kThreads) std::this_thread::yield();
       bool is_busy = false;
-      Result<store::User> u = services_->accounts.SignUp(
+      Result<app::User> u = services_->accounts.SignUp(
           "user" + std::to_string(i), "password123", "10.1.0." + std::to_string(i), &is_busy);
       if (u.ok()) {
         ++ok;

@@ -80,7 +80,7 @@ class AppTest : public ::testing::Test {
   }
   // Signs a user up and returns them as a viewer from `address`.
   Viewer User(const std::string& name, const std::string& address = "10.0.0.1") {
-    Result<store::User> u = services_->accounts.SignUp(name, "password123", address);
+    Result<app::User> u = services_->accounts.SignUp(name, "password123", address);
     EXPECT_TRUE(u.ok()) << u.status().message();
     Viewer v;
     if (u.ok()) v.user_id = u->id;

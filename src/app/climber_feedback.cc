@@ -5,6 +5,7 @@
 #include <map>
 #include <span>
 
+#include "app/convert.h"
 #include "app/discipline.h"
 #include "app/routes.h"
 #include "base/text.h"
@@ -149,13 +150,15 @@ Result<FeedbackPage> ClimberFeedback::Page(const Viewer& v, int64_t route_id,
   FeedbackPage page;
   page.instrument = std::move(instrument);
   if (std::optional<std::string> hash = ParticipantHash(participant_token)) {
-    SB_ASSIGN_OR_RETURN(page.mine, feedback_->FindFeedback(route_id, *hash));
+    SB_ASSIGN_OR_RETURN(std::optional<store::FeedbackRecord> mine,
+                        feedback_->FindFeedback(route_id, *hash));
+    if (mine) page.mine = ToView(*mine);
     // Answers to an earlier questionnaire do not fit this one.
     if (page.mine && page.mine->instrument != page.instrument.name) page.mine->answers.clear();
   }
   SB_ASSIGN_OR_RETURN(std::vector<store::FeedbackRecord> all, feedback_->ListFeedback(route_id));
   SB_ASSIGN_OR_RETURN(page.grade, Summarise(route, all, IsOwner(route, v)));
-  page.route = std::move(route);
+  page.route = ToView(route);
   return page;
 }
 
@@ -168,7 +171,7 @@ Result<FeedbackSaved> ClimberFeedback::Submit(const Viewer& v, int64_t route_id,
   SB_RETURN_IF_ERROR(CheckAnswers(input.answers, instrument, "answers"));
   SB_RETURN_IF_ERROR(CheckFreeText(input.comment, kMaxCommentBytes, "comment"));
   FeedbackSaved out;
-  store::FeedbackRecord& rec = out.record;
+  store::FeedbackRecord rec;
   rec.route_id = route_id;
   rec.instrument = instrument.name;
   rec.answers = input.answers;
@@ -207,6 +210,7 @@ Result<FeedbackSaved> ClimberFeedback::Submit(const Viewer& v, int64_t route_id,
   SB_ASSIGN_OR_RETURN(std::optional<store::FeedbackRecord> stored,
                       feedback_->FindFeedback(route_id, rec.participant));
   if (stored) rec = std::move(*stored);
+  out.record = ToView(rec);
   return out;
 }
 
@@ -264,7 +268,7 @@ Result<SetterView> ClimberFeedback::ForSetter(const Viewer& v, int64_t route_id)
     out.comments.push_back({f.comment, f.felt_grade, f.updated_at.substr(0, 10)});
   }
   out.instrument = std::move(instrument);
-  out.route = std::move(route);
+  out.route = ToView(route);
   return out;
 }
 

@@ -155,8 +155,9 @@ class ClimberFeedback {
   Result<DriftReport> Drift(const Viewer& v);
 
  private:
-  Result<RouteView> Visible(const Viewer& v, int64_t route_id);
-  Result<GradeSummary> Summarise(const RouteView& route, const std::vector<Feedback>& feedback,
+  Result<store::RouteRecord> Visible(const Viewer& v, int64_t route_id);
+  Result<GradeSummary> Summarise(const store::RouteRecord& route,
+                                 const std::vector<store::FeedbackRecord>& feedback,
                                  bool owner);
 
   // The interfaces it needs (one Store in practice; not owned).

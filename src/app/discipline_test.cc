@@ -153,6 +153,41 @@ TEST_F(DisciplineTest, OnlyHeadSettersSetARoutesDiscipline) {
   EXPECT_EQ(r.DisciplineOf(*r.Get(head_, cave8))->Describe(), "bouldering (from its wall)");
 }
 
+// A wall's new discipline reaches its routes at once (issue 21): their stored
+// discipline and grade value, what lists and filters read, without an edit;
+// a head setter's "discipline:" line and routes on other walls keep theirs.
+TEST_F(DisciplineTest, AWallsNewDisciplineReachesItsRoutesAtOnce) {
+  Routes& r = services_->routes;
+  Gyms& gyms = services_->gyms;
+  const int64_t cave8 = Set("name: Cave\ngrade: 5.8\n---\nR crimp\n", true);
+  const int64_t pinned = Set("name: Pinned\ngrade: 5.9\n---\nR crimp\n", true);
+  const int64_t off = Set("name: Off\ngrade: V1\n---\nR jug\n", false);
+  RouteEdit e;
+  e.discipline = "bouldering";
+  ASSERT_TRUE(r.Update(head_, pinned, e).ok());
+  EXPECT_EQ(r.Get(head_, cave8)->grade_discipline, "bouldering");
+  EXPECT_FALSE(r.Get(head_, cave8)->grade_value);
+
+  Wall w = *gyms.GetWall(head_, wall_);
+  w.discipline = "roped";
+  EXPECT_EQ(gyms.EditWall(setter_, w).code(), Code::kPermission);
+  EXPECT_EQ(r.Get(head_, cave8)->grade_discipline, "bouldering");  // nothing changed
+  ASSERT_TRUE(gyms.EditWall(head_, w).ok());
+  RouteView v = *r.Get(head_, cave8);
+  EXPECT_EQ(v.grade_discipline, "roped");
+  EXPECT_EQ(v.grade_value, 8.0);
+  EXPECT_EQ(r.DisciplineOf(v)->Describe(), "roped (from its wall)");
+  EXPECT_EQ(r.Get(head_, pinned)->grade_discipline, "bouldering");  // the head setter's line
+  EXPECT_EQ(r.Get(head_, off)->grade_discipline, "bouldering");     // another wall's (none)
+  RouteQuery q;
+  q.grade = "5.8";
+  EXPECT_EQ(Ids(q), (std::vector<int64_t>{cave8}));
+  // A rename keeps the discipline and the routes as they are.
+  w.name = "Big cave";
+  ASSERT_TRUE(gyms.EditWall(head_, w).ok());
+  EXPECT_EQ(r.Get(head_, cave8)->grade_value, 8.0);
+}
+
 TEST_F(AppTest, TheOwnerSetsAGymlessRoutesDiscipline) {
   Routes& r = services_->routes;
   RouteEdit e;

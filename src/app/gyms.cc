@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "app/discipline.h"
 #include "base/number.h"
 #include "base/text.h"
+#include "crdl/route.h"
 #include "grades/scale.h"
 
 namespace sb::app {
@@ -230,7 +232,20 @@ Status Gyms::EditWall(const Viewer& v, const Wall& w) {
   Wall edited = w;
   edited.gym_id = stored.gym_id;
   SB_RETURN_IF_ERROR(ValidateWall(edited));
-  return gyms_->UpdateWall(ToRecord(edited));
+  if (edited.discipline == stored.discipline) return gyms_->UpdateWall(ToRecord(edited));
+  // A new discipline reaches the wall's routes in the same transaction: each
+  // route's stored discipline and grade value by the rule of
+  // app/discipline.h (a head setter's "discipline:" line still wins).
+  const std::string discipline = edited.discipline;
+  return gyms_->UpdateWall(ToRecord(edited), [&discipline](store::RouteAxis* a) {
+    Result<Route> r = ParseCrdl(a->crdl, "route " + std::to_string(a->route_id));
+    if (!r.ok()) return false;  // stored text always parses; nothing to derive otherwise
+    RouteDiscipline d = DisciplineOfRoute(*r, discipline);
+    if (d.discipline == a->grade_discipline && d.grade_value == a->grade_value) return false;
+    a->grade_discipline = d.discipline;
+    a->grade_value = d.grade_value;
+    return true;
+  });
 }
 
 Result<std::vector<Wall>> Gyms::Walls(const Viewer& v, int64_t gym) {

@@ -85,7 +85,7 @@ TEST_F(AppTest, RolesWallsAndAnotherGymsIds) {
   f.setters = std::vector<std::string>{"setter", "A Guest"};
   Result<int64_t> r = services_->routes.Create(setter, testing::kCrimpLadder, false, f);
   ASSERT_TRUE(r.ok()) << r.status().message();
-  Result<store::RouteRecord> got = services_->routes.Get(head, *r);
+  Result<RouteView> got = services_->routes.Get(head, *r);
   ASSERT_TRUE(got.ok());
   EXPECT_EQ(got->wall_id, *w);
   ASSERT_EQ(got->setters.size(), 2u);
@@ -134,7 +134,7 @@ TEST_F(AppTest, ImportingTheOriginalExportTwiceDuplicatesNothing) {
   ASSERT_TRUE(later.ok()) << later.status().message();
   ASSERT_EQ(later->ids.size(), 2u);
   EXPECT_EQ(later->ids[0].first, 80);
-  Result<store::RouteRecord> v = services_->routes.Get(head, later->ids[1].second);
+  Result<RouteView> v = services_->routes.Get(head, later->ids[1].second);
   ASSERT_TRUE(v.ok());
   ASSERT_EQ(v->inputs.size(), 1u);
   EXPECT_EQ(v->inputs[0].route_id, first->ids[0].second);
@@ -171,7 +171,7 @@ TEST_F(AppTest, GymFieldsTravelThroughTheCrdlHeaderAndTheCsvExport) {
   f.gym = *g;
   Result<int64_t> r = services_->routes.Create(head, crdl, true, f);
   ASSERT_TRUE(r.ok()) << r.status().message();
-  store::RouteRecord got = *services_->routes.Get(head, *r);
+  RouteView got = *services_->routes.Get(head, *r);
   EXPECT_EQ(got.state, "stripped");
   EXPECT_EQ(got.strip_on, "2026-11-20");
   EXPECT_EQ(got.set_on, "2026-10-01");
@@ -188,7 +188,7 @@ TEST_F(AppTest, GymFieldsTravelThroughTheCrdlHeaderAndTheCsvExport) {
   Result<ImportSummary> im = services_->routes.ImportCsv(other, ex->routes_csv, ex->moves_csv, *g2);
   ASSERT_TRUE(im.ok()) << im.status().message();
   ASSERT_EQ(im->ids.size(), 1u);
-  store::RouteRecord back = *services_->routes.Get(other, im->ids[0].second);
+  RouteView back = *services_->routes.Get(other, im->ids[0].second);
   EXPECT_EQ(back.gym_id, *g2);
   EXPECT_EQ(back.state, "stripped");
   EXPECT_EQ(back.strip_on, "2026-11-20");

@@ -39,7 +39,7 @@ TEST_F(AppTest, ImportsRoutesMovesAndVariationParameters) {
   ASSERT_EQ(im->ids.size(), 3u);
   EXPECT_EQ(im->skipped.size(), 2u);  // route 75 has no moves; route 99 unknown
   EXPECT_EQ(im->ids[0].first, 72);
-  Result<store::RouteRecord> base = services_->routes.Get(anon, im->ids[0].second);
+  Result<RouteView> base = services_->routes.Get(anon, im->ids[0].second);
   ASSERT_TRUE(base.ok());
   EXPECT_EQ(base->name, "Base");
   EXPECT_EQ(base->grade, "V4");
@@ -81,8 +81,8 @@ TEST_F(AppTest, ExportReimportsToTheSameRoutes) {
   ASSERT_TRUE(again.ok()) << again.status().message();
   ASSERT_EQ(again->ids.size(), im->ids.size());
   for (size_t i = 0; i < im->ids.size(); ++i) {
-    Result<store::RouteRecord> x = services_->routes.Get(bob, im->ids[i].second);
-    Result<store::RouteRecord> y = services_->routes.Get(bob, again->ids[i].second);
+    Result<RouteView> x = services_->routes.Get(bob, im->ids[i].second);
+    Result<RouteView> y = services_->routes.Get(bob, again->ids[i].second);
     ASSERT_TRUE(x.ok() && y.ok());
     EXPECT_EQ(*ParseCrdl(x->crdl, "x"), *ParseCrdl(y->crdl, "y")) << i;
   }
@@ -137,11 +137,11 @@ TEST_F(AppTest, ImportsTheOriginalCorpusAndEveryPlanBuilds) {
   RouteQuery q;
   q.variations = true;
   q.limit = 5000;
-  Result<std::vector<store::RouteRecord>> vs = services_->routes.List(gym, q);
+  Result<std::vector<RouteView>> vs = services_->routes.List(gym, q);
   ASSERT_TRUE(vs.ok());
   EXPECT_GT(vs->size(), 100u);
   size_t linked = 0;
-  for (const store::RouteRecord& r : *vs) {
+  for (const RouteView& r : *vs) {
     Result<PlanView> p = services_->variations.Plan(gym, r.id);
     ASSERT_TRUE(p.ok()) << r.id << ": " << p.status().message();
     linked += !p->record.inputs.empty();

@@ -1,5 +1,7 @@
 #include "app/logbook.h"
 
+#include "app/convert.h"
+
 #include <algorithm>
 #include <climits>
 #include <cstdint>
@@ -117,7 +119,7 @@ Result<TickSaved> Logbook::Log(const Viewer& v, int64_t route_id,
   SB_RETURN_IF_ERROR(CheckFreeText(input.comment, kMaxCommentBytes, "comment"));
 
   TickSaved out;
-  store::TickRecord& t = out.tick;
+  store::TickRecord t;
   t.route_id = route_id;
   t.gym_id = *route.gym_id;
   t.outcome = grades::TickOutcomeName(outcome);
@@ -177,6 +179,7 @@ Result<TickSaved> Logbook::Log(const Viewer& v, int64_t route_id,
   }
   out.held = t.state == "held";
   SB_ASSIGN_OR_RETURN(t, ticks_->PutTick(t));
+  out.tick = ToView(t);
   return out;
 }
 
@@ -293,12 +296,13 @@ Result<AscentGrade> Logbook::Ascent(const Viewer& v, int64_t route_id) {
   return it == fit.routes.end() ? none : it->second;
 }
 
-Result<std::vector<store::TickRecord>> Logbook::ForSetters(const Viewer& v, int64_t route_id) {
+Result<std::vector<Tick>> Logbook::ForSetters(const Viewer& v, int64_t route_id) {
   if (ticks_ == nullptr) return Status::Internal("this store keeps no ticks");
   if (!v.logged_in()) return Status::Unauthenticated("log in first");
   SB_ASSIGN_OR_RETURN(store::RouteRecord route, Visible(v, route_id));
   SB_RETURN_IF_ERROR(RequireSetter(v, route));
-  return ticks_->RouteTicks(route_id);
+  SB_ASSIGN_OR_RETURN(std::vector<store::TickRecord> ticks, ticks_->RouteTicks(route_id));
+  return ToViews(ticks);
 }
 
 Status Logbook::Decide(const Viewer& v, int64_t route_id, int64_t tick_id, bool accept) {
@@ -320,12 +324,13 @@ Result<LogbookView> Logbook::Mine(const Viewer& v, std::string_view participant_
   std::optional<std::string> key = ClimberKey(v, participant_token);
   if (key) {
     out.climber = *key;
-    SB_ASSIGN_OR_RETURN(out.ticks, ticks_->ClimberTicks(*key));
+    SB_ASSIGN_OR_RETURN(std::vector<store::TickRecord> ticks, ticks_->ClimberTicks(*key));
+    out.ticks = ToViews(ticks);
   }
   std::map<int, int> sends;  // band -> count; INT32_MIN for no grade
   std::map<int, std::string> band_names;
   std::set<int64_t> tried, sent, gyms;
-  for (const store::TickRecord& t : out.ticks) {
+  for (const Tick& t : out.ticks) {
     tried.insert(t.route_id);
     gyms.insert(t.gym_id);
     if (IsSend(t.outcome)) sent.insert(t.route_id);

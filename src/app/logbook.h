@@ -147,8 +147,8 @@ class Logbook {
     std::map<int64_t, AscentGrade> routes;
     uint64_t used = 0;
   };
-  Result<RouteView> Visible(const Viewer& v, int64_t route_id);
-  Status RequireSetter(const Viewer& v, const RouteView& route);
+  Result<store::RouteRecord> Visible(const Viewer& v, int64_t route_id);
+  Status RequireSetter(const Viewer& v, const store::RouteRecord& route);
   Result<Fit> FitGym(int64_t gym_id, const std::string& discipline);
 
   store::Store* store_;

@@ -126,7 +126,7 @@ TEST_F(LogbookTest, BurstOfNewIdentitiesIsHeldOutUntilASetterAccepts) {
   EXPECT_EQ(after->felt_votes, 5);
 
   // The setter sees them; a climber may not.
-  Result<std::vector<store::TickRecord>> seen = book.ForSetters(setter_, route_);
+  Result<std::vector<Tick>> seen = book.ForSetters(setter_, route_);
   ASSERT_TRUE(seen.ok()) << seen.status().message();
   EXPECT_EQ(seen->size(), 12u);
   Viewer climber = User("climber");
@@ -170,7 +170,7 @@ TEST_F(LogbookTest, SignInMergesTheDevicesTicksIntoTheLogbook) {
   Result<LogbookView> mine = book.Mine(ann, "");
   ASSERT_TRUE(mine.ok());
   ASSERT_EQ(mine->ticks.size(), 2u);
-  for (const store::TickRecord& t : mine->ticks) {
+  for (const Tick& t : mine->ticks) {
     EXPECT_EQ(t.climber, "u:" + std::to_string(*ann.user_id));
     EXPECT_EQ(t.outcome, "flash");  // both flashes; the newer edit won
   }

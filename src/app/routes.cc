@@ -5,6 +5,7 @@
 #include <ctime>
 #include <map>
 
+#include "app/convert.h"
 #include "app/discipline.h"
 #include "app/limits.h"
 #include "app/variations.h"
@@ -79,6 +80,10 @@ void ApplyDiscipline(const Route& route, std::string_view wall_discipline,
 }
 
 bool IsOwner(const store::RouteRecord& r, const Viewer& v) {
+  return v.user_id && r.owner_id && *r.owner_id == *v.user_id;
+}
+
+bool IsOwner(const RouteView& r, const Viewer& v) {
   return v.user_id && r.owner_id && *r.owner_id == *v.user_id;
 }
 
@@ -162,12 +167,28 @@ Result<Viewer> Routes::WithGyms(const Viewer& v) {
   return out;
 }
 
-Result<std::vector<store::RouteRecord>> Routes::List(const Viewer& v, const RouteQuery& q) {
-  SB_ASSIGN_OR_RETURN(RoutePage page, Search(v, q));
-  return std::move(page.routes);
+Result<std::vector<RouteView>> Routes::List(const Viewer& v, const RouteQuery& q) {
+  SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> rows, ListRows(v, q));
+  return ToViews(rows);
+}
+
+Result<std::vector<store::RouteRecord>> Routes::ListRows(const Viewer& v, const RouteQuery& q) {
+  SB_ASSIGN_OR_RETURN(store::RouteFilter f, FilterOf(v, q));
+  return store_->ListRoutes(f);
 }
 
 Result<RoutePage> Routes::Search(const Viewer& v, const RouteQuery& q) {
+  SB_ASSIGN_OR_RETURN(store::RouteFilter f, FilterOf(v, q));
+  RoutePage page;
+  page.offset = f.offset;
+  page.limit = f.limit;
+  SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> rows, store_->ListRoutes(f));
+  page.routes = ToViews(rows);
+  SB_ASSIGN_OR_RETURN(page.total, store_->CountRoutes(f));
+  return page;
+}
+
+Result<store::RouteFilter> Routes::FilterOf(const Viewer& v, const RouteQuery& q) {
   store::RouteFilter f;
   f.viewer = v.user_id;
   f.text = std::string(Trim(q.text));
@@ -222,12 +243,7 @@ Result<RoutePage> Routes::Search(const Viewer& v, const RouteQuery& q) {
     if (range->lo) f.grade_min = f.grade_min ? std::max(*f.grade_min, *range->lo) : *range->lo;
     if (range->hi) f.grade_max = f.grade_max ? std::min(*f.grade_max, *range->hi) : *range->hi;
   }
-  RoutePage page;
-  page.offset = f.offset;
-  page.limit = f.limit;
-  SB_ASSIGN_OR_RETURN(page.routes, store_->ListRoutes(f));
-  SB_ASSIGN_OR_RETURN(page.total, store_->CountRoutes(f));
-  return page;
+  return f;
 }
 
 Result<int> Routes::RefreshMetadata() {
@@ -243,6 +259,10 @@ Result<int> Routes::RefreshMetadata() {
     ++changed;
   }
   return changed;
+}
+
+Result<RouteDiscipline> Routes::DisciplineOf(const RouteView& r) {
+  return DisciplineOf(ToRecord(r));
 }
 
 Result<RouteDiscipline> Routes::DisciplineOf(const store::RouteRecord& rec) {
@@ -298,7 +318,17 @@ Status Routes::SetDiscipline(const Viewer& v, const std::string& discipline,
   return Status::Ok();
 }
 
-Result<store::RouteRecord> Routes::Get(const Viewer& viewer, int64_t id) {
+Result<RouteView> Routes::Get(const Viewer& v, int64_t id) {
+  SB_ASSIGN_OR_RETURN(store::RouteRecord r, GetRow(v, id));
+  return ToView(r);
+}
+
+Result<RouteView> Routes::GetOwned(const Viewer& v, int64_t id) {
+  SB_ASSIGN_OR_RETURN(store::RouteRecord r, GetOwnedRow(v, id));
+  return ToView(r);
+}
+
+Result<store::RouteRecord> Routes::GetRow(const Viewer& viewer, int64_t id) {
   Result<store::RouteRecord> r = store_->GetRoute(id);
   if (!r.ok()) return r.status().code() == Status::Code::kNotFound ? NoRoute(id) : r.status();
   if (IsVisible(*r, viewer)) return r;
@@ -307,9 +337,9 @@ Result<store::RouteRecord> Routes::Get(const Viewer& viewer, int64_t id) {
   return r;
 }
 
-Result<store::RouteRecord> Routes::GetOwned(const Viewer& v, int64_t id) {
+Result<store::RouteRecord> Routes::GetOwnedRow(const Viewer& v, int64_t id) {
   if (!v.logged_in()) return Status::Unauthenticated("log in first");
-  SB_ASSIGN_OR_RETURN(store::RouteRecord r, Get(v, id));
+  SB_ASSIGN_OR_RETURN(store::RouteRecord r, GetRow(v, id));
   if (IsOwner(r, v)) return r;
   if (r.gym_id && r.state != "draft") {  // a draft stays its owner's
     SB_ASSIGN_OR_RETURN(std::string role, gyms_.RoleIn(v, *r.gym_id));
@@ -504,12 +534,12 @@ Result<int64_t> Routes::Create(const Viewer& v, std::string_view crdl, bool is_p
 }
 
 Result<std::vector<HistoryEntry>> Routes::History(const Viewer& v, int64_t id) {
-  SB_ASSIGN_OR_RETURN(store::RouteRecord r, Get(v, id));
+  SB_ASSIGN_OR_RETURN(store::RouteRecord r, GetRow(v, id));
   return gyms_.History(r.id);
 }
 
 Status Routes::Update(const Viewer& v, int64_t id, const RouteEdit& edit) {
-  SB_ASSIGN_OR_RETURN(store::RouteRecord r, GetOwned(v, id));
+  SB_ASSIGN_OR_RETURN(store::RouteRecord r, GetOwnedRow(v, id));
   const bool was_public = r.is_public;
   std::vector<std::string> changes;
   if (edit.crdl) {
@@ -579,7 +609,7 @@ Status Routes::HideOwnVariationsOf(const Viewer& v, int64_t id) {
 }
 
 Status Routes::Delete(const Viewer& v, int64_t id) {
-  SB_ASSIGN_OR_RETURN(store::RouteRecord r, GetOwned(v, id));
+  SB_ASSIGN_OR_RETURN(store::RouteRecord r, GetOwnedRow(v, id));
   if (!IsOwner(r, v)) {
     // Setters edit the gym's routes together; only a head setter deletes
     // someone else's (strip it to keep it in the archive instead).

@@ -106,27 +106,29 @@ struct CsvFiles {
 // database for lists.
 // Issue 21: a gym's members also see its routes that are not drafts
 // (climbers: only those set or stripped), by Viewer::gyms.
-bool IsVisible(const RouteView& r, const Viewer& v);
+bool IsVisible(const store::RouteRecord& r, const Viewer& v);
 // Whether any source of a variation (or the route itself when `self`) is
 // private: such a variation must stay private.
-bool HasPrivateSource(const RouteView& r, bool self);
+bool HasPrivateSource(const store::RouteRecord& r, bool self);
 
 // Fills the record's name (or `fallback_name`), grade (typed, discipline and
 // normalised value through src/grades; an unreadable grade is kept as typed,
 // without a value), setter, colour ("colour:" or "color:"), wall ("wall:" or
 // "area:"), set_on ("date:"), move_count and meta_version from `route`'s
 // header. Pure.
-void FillMetadata(const Route& route, RouteView* rec,
+void FillMetadata(const Route& route, store::RouteRecord* rec,
                   const std::string& fallback_name = "untitled");
 // Fills the record's grade_discipline and grade_value by the one rule of
 // app/discipline.h, for a route on a wall of `wall_discipline` ("" none). Pure.
-void ApplyDiscipline(const Route& route, std::string_view wall_discipline, RouteView* rec);
+void ApplyDiscipline(const Route& route, std::string_view wall_discipline,
+                     store::RouteRecord* rec);
 // Why a variation of a private route cannot be made public.
 inline constexpr char kPrivateSourceMessage[] =
     "public: a variation of a private route stays private (make the route public first)";
 
 // The ownership rule: only the owner (a logged-in user) may change a route.
 bool IsOwner(const RouteView& r, const Viewer& v);
+bool IsOwner(const store::RouteRecord& r, const Viewer& v);
 
 // Thread-safe. Does not own `store` or `plans`.
 class Routes {
@@ -148,6 +150,11 @@ class Routes {
   // draft (issue 21: setters edit the gym's routes together; a draft stays
   // its owner's).
   Result<RouteView> GetOwned(const Viewer& v, int64_t id);
+  // The same as the store's rows, for the app's other services (web and CLI
+  // use the views above).
+  Result<std::vector<store::RouteRecord>> ListRows(const Viewer& v, const RouteQuery& q);
+  Result<store::RouteRecord> GetRow(const Viewer& v, int64_t id);
+  Result<store::RouteRecord> GetOwnedRow(const Viewer& v, int64_t id);
 
   // Stores a new route owned by the viewer; returns its id. Errors:
   // kUnauthenticated, kInvalidInput located at route.crdl:line:col.
@@ -169,6 +176,7 @@ class Routes {
   // comes from ("bouldering (from its wall)") and its grade note. Errors:
   // the wall's lookup, an unparsable stored CRDL.
   Result<RouteDiscipline> DisciplineOf(const RouteView& r);
+  Result<RouteDiscipline> DisciplineOf(const store::RouteRecord& r);
   // Errors as GetOwned.
   Status Delete(const Viewer& v, int64_t id);
 
@@ -200,13 +208,13 @@ class Routes {
  private:
   // Re-reads the record's discipline with its wall's (rec->wall_id). Errors:
   // the wall's lookup, an unparsable stored CRDL.
-  Status ApplyWallDiscipline(RouteView* rec);
+  Status ApplyWallDiscipline(store::RouteRecord* rec);
   // The role rule of a route's discipline: head setters of its gym, the
   // owner of a gym-less route (or of one in a gym they are no member of).
   // Errors: kPermission.
-  Status CheckDisciplineRole(const Viewer& v, const RouteView& rec);
+  Status CheckDisciplineRole(const Viewer& v, const store::RouteRecord& rec);
   // RouteEdit::discipline: the role rule, then the CRDL header line.
-  Status SetDiscipline(const Viewer& v, const std::string& discipline, RouteView* rec,
+  Status SetDiscipline(const Viewer& v, const std::string& discipline, store::RouteRecord* rec,
                        std::vector<std::string>* changes);
 
   Status HideOwnVariationsOf(const Viewer& v, int64_t id);
@@ -214,9 +222,11 @@ class Routes {
   Result<Viewer> WithGyms(const Viewer& v);
   // Applies the gym fields of a request to `rec` (its gym already set),
   // checking the role; appends what changed to `changes`.
-  Status ApplyGymFields(const Viewer& v, const GymFields& g, RouteView* rec,
+  Status ApplyGymFields(const Viewer& v, const GymFields& g, store::RouteRecord* rec,
                         std::vector<std::string>* changes,
-                        std::optional<std::vector<RouteSetter>>* setters);
+                        std::optional<std::vector<store::RouteSetter>>* setters);
+  // The store's filter for a query (Search's checks).
+  Result<store::RouteFilter> FilterOf(const Viewer& v, const RouteQuery& q);
 
   store::Store* store_;
   Gyms gyms_;

@@ -1,5 +1,7 @@
 #include "app/setting_day.h"
 
+#include "app/convert.h"
+
 #include <algorithm>
 #include <atomic>
 #include <cctype>
@@ -212,7 +214,7 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
     q.gym = req.gym;
     q.wall = std::to_string(w.id);
     q.state = "set";
-    SB_ASSIGN_OR_RETURN(on_wall[w.id], routes_->List(v, q));
+    SB_ASSIGN_OR_RETURN(on_wall[w.id], routes_->ListRows(v, q));
   }
   std::vector<DaySlot> slots = req.slots;
   if (slots.empty() && dashboard_ != nullptr) {
@@ -300,7 +302,7 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
         q.grade_from = grades::BandName(d, std::max(*band - 1, grades::MinBand(d)));
         q.grade_to = grades::BandName(d, std::min(*band + 1, grades::MaxBand(d)));
       }
-      SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> list, routes_->List(v, q));
+      SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> list, routes_->ListRows(v, q));
       for (store::RouteRecord& r : list) {
         const bool ours = r.gym_id && *r.gym_id == req.gym;
         if (pass == 0 && r.state != "set" && r.state != "stripped") continue;
@@ -443,7 +445,7 @@ Result<int64_t> SettingDays::Accept(const Viewer& v, const AcceptRequest& req) {
   std::vector<chaos::InputRoute> inputs;
   int total = 0;
   for (int64_t id : req.inputs) {
-    SB_ASSIGN_OR_RETURN(store::RouteRecord r, routes_->Get(v, id));
+    SB_ASSIGN_OR_RETURN(store::RouteRecord r, routes_->GetRow(v, id));
     Result<Route> route = ParseCrdl(r.crdl, r.name);
     if (!route.ok()) return route.status().WithPrefix("route " + std::to_string(id));
     total += static_cast<int>(route->moves.size());
@@ -490,7 +492,7 @@ Result<std::vector<DayRoute>> SettingDays::Planned(const Viewer& v, int64_t gym,
   q.gym = gym;
   q.state = "planned";
   q.limit = options_.limits.max_tag_sheet_routes;
-  SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> list, routes_->List(v, q));
+  SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> list, routes_->ListRows(v, q));
   std::vector<DayRoute> out;
   for (const store::RouteRecord& r : list) {
     if (!date.empty() && r.planned_on != date) continue;
@@ -503,7 +505,7 @@ Result<std::vector<DayRoute>> SettingDays::Planned(const Viewer& v, int64_t gym,
     d.planned_on = r.planned_on;
     d.wall_name = r.wall_name;
     d.move_count = r.move_count;
-    if (Result<store::RouteRecord> full = routes_->Get(v, r.id); full.ok()) {
+    if (Result<store::RouteRecord> full = routes_->GetRow(v, r.id); full.ok()) {
       for (const store::RouteSetter& s : full->setters) d.setters.push_back(s.name);
     }
     out.push_back(std::move(d));

@@ -213,7 +213,7 @@ TEST_F(SettingDayTest, AcceptingMakesAPlannedRouteAndChecksTheMoves) {
   a.setter = "sam";
   Result<int64_t> id = services_->setting_days.Accept(setter, a);
   ASSERT_TRUE(id.ok()) << id.status().message();
-  Result<store::RouteRecord> r = services_->routes.Get(head_, *id);
+  Result<RouteView> r = services_->routes.Get(head_, *id);
   ASSERT_TRUE(r.ok()) << r.status().message();
   EXPECT_EQ(r->state, "planned");
   EXPECT_EQ(r->planned_on, "2026-12-01");

@@ -1,5 +1,7 @@
 #include "app/studies_service.h"
 
+#include "app/convert.h"
+
 #include <algorithm>
 #include <filesystem>
 #include <map>
@@ -195,7 +197,7 @@ Result<int64_t> StudyService::Create(const Viewer& v, const StudySpec& spec,
 
 Status StudyService::Update(const Viewer& v, int64_t id, const StudySpec& spec,
                             int* retry_after_seconds) {
-  SB_ASSIGN_OR_RETURN(store::StudyRecord st, Owned(v, id));
+  SB_ASSIGN_OR_RETURN(store::StudyRecord st, OwnedRow(v, id));
   const store::StudyRecord before = st;
   SB_RETURN_IF_ERROR(Apply(v, spec, &st));
   auto route_ids = [](const store::StudyRecord& s) {
@@ -215,12 +217,18 @@ Status StudyService::Update(const Viewer& v, int64_t id, const StudySpec& spec,
   return studies_->UpdateStudy(st, definition_changes);
 }
 
-Result<std::vector<store::StudyRecord>> StudyService::Mine(const Viewer& v) {
+Result<std::vector<Study>> StudyService::Mine(const Viewer& v) {
   if (!v.logged_in()) return Status::Unauthenticated("log in first");
-  return studies_->ListStudies(*v.user_id);
+  SB_ASSIGN_OR_RETURN(std::vector<store::StudyRecord> mine, studies_->ListStudies(*v.user_id));
+  return ToViews(mine);
 }
 
-Result<store::StudyRecord> StudyService::Owned(const Viewer& v, int64_t id) {
+Result<Study> StudyService::Owned(const Viewer& v, int64_t id) {
+  SB_ASSIGN_OR_RETURN(store::StudyRecord st, OwnedRow(v, id));
+  return ToView(st);
+}
+
+Result<store::StudyRecord> StudyService::OwnedRow(const Viewer& v, int64_t id) {
   if (!v.logged_in()) return Status::Unauthenticated("log in first");
   Result<store::StudyRecord> st = studies_->GetStudy(id);
   if (!st.ok()) return st.status().code() == Status::Code::kNotFound ? NoStudy(id) : st.status();
@@ -330,11 +338,12 @@ Result<Participant> StudyService::Respond(const Viewer& v, int64_t id,
 
 Result<StudyResults> StudyService::Load(const Viewer& v, int64_t id) {
   StudyResults out;
-  SB_ASSIGN_OR_RETURN(out.study, Owned(v, id));
-  SB_ASSIGN_OR_RETURN(out.instrument, StoredInstrument(out.study));
+  SB_ASSIGN_OR_RETURN(store::StudyRecord st, OwnedRow(v, id));
+  out.study = ToView(st);
+  SB_ASSIGN_OR_RETURN(out.instrument, StoredInstrument(st));
   SB_ASSIGN_OR_RETURN(std::vector<store::StudyResponseRecord> responses,
                       studies_->ListStudyResponses(id));
-  out.table = StudyTable(out.study, responses);
+  out.table = StudyTable(st, responses);
   return out;
 }
 
@@ -353,13 +362,13 @@ Result<std::string> StudyService::ResponsesCsv(const Viewer& v, int64_t id) {
 }
 
 Result<std::string> StudyService::InstrumentJson(const Viewer& v, int64_t id) {
-  SB_ASSIGN_OR_RETURN(store::StudyRecord st, Owned(v, id));
+  SB_ASSIGN_OR_RETURN(store::StudyRecord st, OwnedRow(v, id));
   SB_ASSIGN_OR_RETURN(studies::Instrument in, StoredInstrument(st));
   return studies::InstrumentToJson(in);
 }
 
 Result<std::string> StudyService::DemographicsCsv(const Viewer& v, int64_t id) {
-  SB_ASSIGN_OR_RETURN(store::StudyRecord st, Owned(v, id));
+  SB_ASSIGN_OR_RETURN(store::StudyRecord st, OwnedRow(v, id));
   SB_ASSIGN_OR_RETURN(std::vector<store::StudyResponseRecord> responses,
                       studies_->ListStudyResponses(id));
   CsvRow header = {"participant"};

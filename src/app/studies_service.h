@@ -134,7 +134,9 @@ class StudyService {
 
  private:
   Result<studies::Instrument> ParseChoice(const InstrumentChoice& choice);
-  Status Apply(const Viewer& v, const StudySpec& spec, Study* st);
+  Status Apply(const Viewer& v, const StudySpec& spec, store::StudyRecord* st);
+  // Owned's row.
+  Result<store::StudyRecord> OwnedRow(const Viewer& v, int64_t id);
   Result<StudyResults> Load(const Viewer& v, int64_t id);
 
   // The interfaces it needs (one Store in practice; not owned).
@@ -147,7 +149,8 @@ class StudyService {
 
 // The response table of stored responses (what Results and ResponsesCsv
 // use): participant "p<seq>", route "<label>". Pure.
-studies::ResponseTable StudyTable(const Study& study, const std::vector<StudyResponse>& responses);
+studies::ResponseTable StudyTable(const store::StudyRecord& study,
+                                  const std::vector<store::StudyResponseRecord>& responses);
 
 }  // namespace sb::app
 

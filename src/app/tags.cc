@@ -6,7 +6,7 @@
 
 namespace sb::app {
 
-plan::TagInfo TagInfoOf(const store::RouteRecord& r, const std::string& url) {
+plan::TagInfo TagInfoOf(const RouteView& r, const std::string& url) {
   plan::TagInfo t;
   t.name = r.name;
   t.grade = r.grade;
@@ -14,7 +14,7 @@ plan::TagInfo TagInfoOf(const store::RouteRecord& r, const std::string& url) {
   // The gym's wall row and assigned setters (issue 21) before the CRDL's
   // free text.
   t.wall = r.wall_name.empty() ? r.wall : r.wall_name;
-  for (const store::RouteSetter& s : r.setters) {
+  for (const RouteSetter& s : r.setters) {
     if (!Trim(s.name).empty()) t.setters.emplace_back(Trim(s.name));
   }
   if (t.setters.empty()) {
@@ -28,7 +28,7 @@ plan::TagInfo TagInfoOf(const store::RouteRecord& r, const std::string& url) {
   return t;
 }
 
-Result<std::vector<store::RouteRecord>> TagSheetRoutes(Routes& routes, const Viewer& v,
+Result<std::vector<RouteView>> TagSheetRoutes(Routes& routes, const Viewer& v,
                                                        const std::vector<int64_t>& ids,
                                                        const Limits& limits) {
   if (ids.empty()) return Status::InvalidInput("ids: name at least one route (ids=1,2,3)");
@@ -37,16 +37,16 @@ Result<std::vector<store::RouteRecord>> TagSheetRoutes(Routes& routes, const Vie
                                 " routes per sheet of tags (" + std::to_string(ids.size()) +
                                 " given)");
   }
-  std::vector<store::RouteRecord> out;
+  std::vector<RouteView> out;
   out.reserve(ids.size());
   for (int64_t id : ids) {
-    SB_ASSIGN_OR_RETURN(store::RouteRecord r, routes.Get(v, id));
+    SB_ASSIGN_OR_RETURN(RouteView r, routes.Get(v, id));
     out.push_back(std::move(r));
   }
   return out;
 }
 
-Result<std::vector<store::RouteRecord>> GymTagSheetRoutes(Routes& routes, const Viewer& v,
+Result<std::vector<RouteView>> GymTagSheetRoutes(Routes& routes, const Viewer& v,
                                                           int64_t gym, const std::string& wall,
                                                           const std::string& state,
                                                           const Limits& limits) {
@@ -56,7 +56,7 @@ Result<std::vector<store::RouteRecord>> GymTagSheetRoutes(Routes& routes, const 
   } else {
     states = {std::string(Trim(state))};
   }
-  std::vector<store::RouteRecord> listed;
+  std::vector<RouteView> listed;
   for (const std::string& s : states) {
     RouteQuery q;
     q.gym = gym;
@@ -71,17 +71,17 @@ Result<std::vector<store::RouteRecord>> GymTagSheetRoutes(Routes& routes, const 
           " routes match, at most " + std::to_string(limits.max_tag_sheet_routes) +
           " print on one sheet of tags; choose a wall or a state");
     }
-    for (store::RouteRecord& r : page.routes) listed.push_back(std::move(r));
+    for (RouteView& r : page.routes) listed.push_back(std::move(r));
   }
-  std::vector<store::RouteRecord> out;
+  std::vector<RouteView> out;
   out.reserve(listed.size());
-  for (const store::RouteRecord& r : listed) {
+  for (const RouteView& r : listed) {
     // GetRoute fills the setters, which lists leave out.
-    SB_ASSIGN_OR_RETURN(store::RouteRecord full, routes.Get(v, r.id));
+    SB_ASSIGN_OR_RETURN(RouteView full, routes.Get(v, r.id));
     out.push_back(std::move(full));
   }
-  std::stable_sort(out.begin(), out.end(), [](const store::RouteRecord& a,
-                                              const store::RouteRecord& b) {
+  std::stable_sort(out.begin(), out.end(), [](const RouteView& a,
+                                              const RouteView& b) {
     const std::string& wa = a.wall_name.empty() ? a.wall : a.wall_name;
     const std::string& wb = b.wall_name.empty() ? b.wall : b.wall_name;
     if (wa != wb) return wa < wb;

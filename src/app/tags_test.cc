@@ -11,7 +11,7 @@ using testing::AppTest;
 using Code = Status::Code;
 
 TEST(TagInfoTest, ARouteRecordFillsTheTag) {
-  store::RouteRecord r;
+  RouteView r;
   r.id = 7;
   r.name = "Crimp Ladder";
   r.grade = "V4";
@@ -43,7 +43,7 @@ TEST_F(AppTest, ASheetPrintsVisibleRoutesInOrderUpToTheLimit) {
   const int64_t b = AddRoute(alice, testing::kSlabDance, false);
   Limits limits;
   limits.max_tag_sheet_routes = 3;
-  Result<std::vector<store::RouteRecord>> got =
+  Result<std::vector<RouteView>> got =
       TagSheetRoutes(services_->routes, alice, {b, a, b}, limits);
   ASSERT_TRUE(got.ok()) << got.status().message();
   ASSERT_EQ(got->size(), 3u);

@@ -64,7 +64,7 @@ Route VariationRoute(const VariationMetadata& meta, const std::vector<int64_t>& 
 // any input (or anything an input was made from) is private, else public.
 // Errors: kInvalidInput kPrivateSourceMessage when public is asked over a
 // private source.
-Result<bool> VariationVisibility(const std::vector<RouteView>& inputs, std::optional<bool> asked);
+Result<bool> VariationVisibility(const std::vector<store::RouteRecord>& inputs, std::optional<bool> asked);
 
 // The digest of everything the setter asked for: the stored parameters,
 // smoothing flag, per input the route id and CRDL, and the visibility and
@@ -74,12 +74,12 @@ Result<bool> VariationVisibility(const std::vector<RouteView>& inputs, std::opti
 // field with SameRequest, and keys are looked up per owner, so a collision
 // can never return another owner's variation).
 std::string RequestKey(const std::string& params_json, bool smooth,
-                       const std::vector<RouteView>& inputs, std::optional<bool> is_public,
+                       const std::vector<store::RouteRecord>& inputs, std::optional<bool> is_public,
                        const VariationMetadata& meta);
 // Whether the stored variation `existing` was made from exactly this request
 // (and still has the visibility and name it asked for).
-bool SameRequest(const RouteView& existing, const std::string& params_json, bool smooth,
-                 const std::vector<RouteView>& inputs, std::optional<bool> is_public,
+bool SameRequest(const store::RouteRecord& existing, const std::string& params_json, bool smooth,
+                 const std::vector<store::RouteRecord>& inputs, std::optional<bool> is_public,
                  const VariationMetadata& meta);
 
 // What the setter's editing did to a variation's moves.

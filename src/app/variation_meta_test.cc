@@ -41,7 +41,7 @@ TEST_F(AppTest, AVariationOfAPrivateRouteNeverShowsItsMovesToOthers) {
   req.is_public.reset();
   Result<CreatedVariation> v = services_->variations.Create(alice, req);
   ASSERT_TRUE(v.ok()) << v.status().message();
-  Result<store::RouteRecord> own = services_->routes.Get(alice, v->id);
+  Result<RouteView> own = services_->routes.Get(alice, v->id);
   ASSERT_TRUE(own.ok());
   EXPECT_FALSE(own->is_public);
   EXPECT_EQ(own->name, "Variation of Slab Dance and Crimp Ladder");
@@ -52,9 +52,9 @@ TEST_F(AppTest, AVariationOfAPrivateRouteNeverShowsItsMovesToOthers) {
   for (const Viewer* who : {&bob, &anon}) {
     EXPECT_EQ(services_->routes.Get(*who, v->id).status().code(), Code::kNotFound);
     EXPECT_EQ(services_->variations.Plan(*who, v->id).status().code(), Code::kNotFound);
-    Result<std::vector<store::RouteRecord>> list = services_->routes.List(*who, {});
+    Result<std::vector<RouteView>> list = services_->routes.List(*who, {});
     ASSERT_TRUE(list.ok());
-    for (const store::RouteRecord& r : *list) EXPECT_NE(r.id, v->id);
+    for (const RouteView& r : *list) EXPECT_NE(r.id, v->id);
     Result<CsvFiles> csv = services_->routes.ExportCsv(*who, false);
     ASSERT_TRUE(csv.ok());
     EXPECT_EQ(csv->moves_csv.find("small crimp"), std::string::npos);
@@ -110,7 +110,7 @@ TEST_F(AppTest, TheSameRequestTwiceReturnsTheFirstVariation) {
   req.routes = {a, b};  // another order is another request
   req.duplicate = false;
   EXPECT_NE(services_->variations.Create(alice, req)->id, first->id);
-  Result<store::RouteRecord> r = services_->routes.Get(alice, first->id);
+  Result<RouteView> r = services_->routes.Get(alice, first->id);
   EXPECT_EQ(r->name, "Sunday set");
   EXPECT_EQ(r->colour, "yellow");
   EXPECT_EQ(r->setter, "alice");
@@ -158,7 +158,7 @@ TEST_F(AppTest, EditingAVariationUpdatesItsPlanAndKeepsProvenance) {
   req.params.var_ic = {-16, -12, 52};
   Result<CreatedVariation> v = services_->variations.Create(alice, req);
   ASSERT_TRUE(v.ok());
-  Result<store::RouteRecord> rec = services_->routes.Get(alice, v->id);
+  Result<RouteView> rec = services_->routes.Get(alice, v->id);
   Result<Route> route = ParseCrdl(rec->crdl, "v");
   ASSERT_TRUE(route.ok());
   const size_t n = route->moves.size();

@@ -1,5 +1,7 @@
 #include "app/variations.h"
 
+#include "app/convert.h"
+
 #include <algorithm>
 
 #include "app/routes.h"
@@ -228,7 +230,7 @@ Result<CreatedVariation> Variations::Create(const Viewer& v, const VariationRequ
   std::vector<chaos::InputRoute> inputs;
   int total_moves = 0;
   for (int64_t id : req.routes) {
-    SB_ASSIGN_OR_RETURN(store::RouteRecord r, routes.Get(v, id));
+    SB_ASSIGN_OR_RETURN(store::RouteRecord r, routes.GetRow(v, id));
     Result<Route> route = ParseCrdl(r.crdl, r.name);
     if (!route.ok()) return route.status().WithPrefix("route " + std::to_string(id));
     total_moves += static_cast<int>(route->moves.size());
@@ -339,7 +341,7 @@ Result<PlanView> Variations::Plan(const Viewer& v, int64_t id) {
     plans_->Put(id, entry);
   }
   PlanView out;
-  out.record = std::move(r).value();
+  out.record = ToView(*r);
   out.plan = std::shared_ptr<const plan::RoutePlan>(entry, &entry->plan);
   out.smoothing_note = entry->note;
   out.edits = entry->edits;

@@ -23,7 +23,7 @@ TEST_F(AppTest, VariationsAreStoredLikeRoutesAndTheirPlansRebuilt) {
   ASSERT_TRUE(v.ok()) << v.status().message();
   ASSERT_EQ(v->plan.variation.moves.size(), 11u);
   EXPECT_FALSE(v->smoothing.requested);
-  Result<store::RouteRecord> stored = services_->routes.Get(anon, v->id);
+  Result<RouteView> stored = services_->routes.Get(anon, v->id);
   ASSERT_TRUE(stored.ok());
   EXPECT_TRUE(stored->is_variation);
   EXPECT_EQ(stored->name, "Variation of Crimp Ladder and Slab Dance");
@@ -187,7 +187,7 @@ TEST_F(AppTest, ConstrainedVariationsAreStoredAndRebuiltToTheSameSearch) {
   for (const chaos::ConstraintOutcome& c : v->plan.search->constraints) EXPECT_TRUE(c.held);
   EXPECT_EQ(v->plan.variation.moves.front().source->move, 0);
   EXPECT_EQ(v->plan.variation.moves.back().source->move, 4);  // Slab Dance's last move
-  Result<store::RouteRecord> stored = services_->routes.Get(anon, v->id);
+  Result<RouteView> stored = services_->routes.Get(anon, v->id);
   ASSERT_TRUE(stored.ok());
   EXPECT_NE(stored->params_json.find("\"keep_start\":true"), std::string::npos)
       << stored->params_json;

@@ -65,14 +65,40 @@ std::vector<size_t> ColumnsByName(const Rows& r) {
   return order;
 }
 
+// Columns that a migration from schema 6 on (the gym, issue 21) added to a
+// table older than it. A table's content checksum leaves them out, so it
+// reads the same before and after `db migrate` when every row kept every
+// value it had (docs/formats.md, "Database checksums"). A migration that adds
+// a column to an existing table adds it here.
+const std::vector<std::string>& AddedColumns(const std::string& table) {
+  static const std::vector<std::string> kRoutes = {
+      "gym_id",      "wall_id", "state", "planned_on", "strip_on", "original_id",
+      "search_text", "search_version"};
+  static const std::vector<std::string> kStudies = {"gym_id"};
+  static const std::vector<std::string> kNone;
+  if (table == "routes") return kRoutes;
+  if (table == "studies") return kStudies;
+  return kNone;
+}
+
 Result<TableSummary> SummarizeTable(sql::Connection& c, const std::string& table) {
   TableSummary t;
   t.name = table;
   Result<Rows> r = c.Query("SELECT * FROM " + table, {});
   if (!r.ok()) return r.status().WithPrefix("table " + table);
   std::vector<size_t> order = ColumnsByName(*r);
+  std::vector<size_t> content;
+  const std::vector<std::string>& added = AddedColumns(table);
+  for (size_t col : order) {
+    if (std::find(added.begin(), added.end(), r->columns[col]) == added.end()) {
+      content.push_back(col);
+    }
+  }
   t.rows = static_cast<int64_t>(r->size());
-  for (size_t i = 0; i < r->size(); ++i) t.checksum += Fnv1a64(CanonicalRow(*r, i, order));
+  for (size_t i = 0; i < r->size(); ++i) {
+    t.checksum += Fnv1a64(CanonicalRow(*r, i, order));
+    t.content_checksum += Fnv1a64(CanonicalRow(*r, i, content));
+  }
   if (std::find(r->columns.begin(), r->columns.end(), "id") != r->columns.end()) {
     Result<int64_t> next = c.NextId(table);
     if (!next.ok()) return next.status().WithPrefix("table " + table);
@@ -81,14 +107,29 @@ Result<TableSummary> SummarizeTable(sql::Connection& c, const std::string& table
   return t;
 }
 
-// The summary of the database of `c`; tables only at kSchemaVersion.
+// Whether the database of `c` has a table of that name.
+Result<bool> HasTable(sql::Connection& c, const std::string& table) {
+  const char* sql = c.dialect() == sql::Dialect::kPostgres
+                        ? "SELECT count(*) FROM information_schema.tables WHERE "
+                          "table_schema = current_schema() AND table_name = ?"
+                        : "SELECT count(*) FROM sqlite_master WHERE type = 'table' AND name = ?";
+  SB_ASSIGN_OR_RETURN(Rows r, c.Query(sql, {table}));
+  return r.Int(0, 0) > 0;
+}
+
+// The summary of the database of `c`: every table of this program's schema;
+// at another schema version, those of them it has (so `db info` before and
+// after `db migrate` can be compared).
 Result<DatabaseSummary> SummarizeConnection(sql::Connection& c, const std::string& db) {
   DatabaseSummary s;
   s.shown = DisplayName(db);
   s.backend = sql::DialectName(c.dialect());
   SB_ASSIGN_OR_RETURN(s.schema_version, c.SchemaVersion());
-  if (s.schema_version != kSchemaVersion) return s;
   for (const std::string& table : SchemaTables()) {
+    if (s.schema_version != kSchemaVersion) {
+      SB_ASSIGN_OR_RETURN(bool has, HasTable(c, table));
+      if (!has) continue;
+    }
     SB_ASSIGN_OR_RETURN(TableSummary t, SummarizeTable(c, table));
     s.tables.push_back(std::move(t));
   }
@@ -199,15 +240,15 @@ std::string FormatSummary(const DatabaseSummary& s) {
   std::string out = "database: " + s.shown + " (" + s.backend + ")\n";
   out += "schema version: " + std::to_string(s.schema_version) + " (this program: " +
          std::to_string(kSchemaVersion) + ")\n";
-  if (s.schema_version != kSchemaVersion) return out;
+  if (s.tables.empty()) return out;
   char line[160];
-  std::snprintf(line, sizeof line, "%-18s %10s  %-16s  %s\n", "table", "rows", "checksum",
-                "next id");
+  std::snprintf(line, sizeof line, "%-18s %10s  %-16s  %-7s  %s\n", "table", "rows", "checksum",
+                "next id", "content");
   out += line;
   for (const TableSummary& t : s.tables) {
     std::string next = t.next_id > 0 ? std::to_string(t.next_id) : "-";
-    std::snprintf(line, sizeof line, "%-18s %10" PRId64 "  %016" PRIx64 "  %s\n", t.name.c_str(),
-                  t.rows, t.checksum, next.c_str());
+    std::snprintf(line, sizeof line, "%-18s %10" PRId64 "  %016" PRIx64 "  %-7s  %016" PRIx64 "\n",
+                  t.name.c_str(), t.rows, t.checksum, next.c_str(), t.content_checksum);
     out += line;
   }
   return out;

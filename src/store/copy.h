@@ -21,17 +21,22 @@ struct TableSummary {
   int64_t rows = 0;
   uint64_t checksum = 0;  // sum mod 2^64 of the rows' FNV-1a 64 (docs/formats.md)
   int64_t next_id = 0;    // the next id a new row takes; 0 for tables without `id`
+  // The checksum without the columns the gym migration (schema 6) and later
+  // ones added to older tables (docs/formats.md): equal before and after
+  // `db migrate` when every row kept its values.
+  uint64_t content_checksum = 0;
 };
 
 struct DatabaseSummary {
   std::string shown;    // the locator without password
   std::string backend;  // "sqlite" or "postgresql"
   int schema_version = 0;
-  std::vector<TableSummary> tables;  // SchemaTables() order; empty unless at kSchemaVersion
+  // SchemaTables() order; at another schema version, the ones the database has.
+  std::vector<TableSummary> tables;
 };
 
 // Counts and checksums of an existing database, without changing it (no
-// migration). A SQLite file must exist. Errors: kNotFound for a missing
+// migration); at an older schema version, of the tables it has. A SQLite file must exist. Errors: kNotFound for a missing
 // file, kInvalidInput for an unsupported URL, kIoError when it cannot be read.
 Result<DatabaseSummary> Summarize(const std::string& db, const StoreOptions& options = {});
 

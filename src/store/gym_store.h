@@ -10,6 +10,7 @@
 #define SB_STORE_GYM_STORE_H_
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -67,6 +68,20 @@ struct HistoryRecord {
   std::string what;
 };
 
+// What UpdateWall hands its `rederive` callback for each route on the wall:
+// the route's CRDL and the stored discipline columns the app derives from it
+// and the wall (app/discipline.h), for the callback to recompute.
+struct RouteAxis {
+  int64_t route_id = 0;
+  std::string crdl;
+  std::string grade_discipline;
+  std::optional<double> grade_value;
+};
+// Recomputes `route`'s discipline columns for the wall as updated; returns
+// whether they changed (the row is written only then). Must not touch the
+// store (it runs inside UpdateWall's transaction).
+using RederiveRoute = std::function<bool(RouteAxis* route)>;
+
 // Thread-safe like Store; every multi-row change is atomic. Errors: kNotFound
 // for unknown ids, kConflict for taken names, kIoError for storage failures.
 class GymStore {
@@ -93,9 +108,13 @@ class GymStore {
 
   // Walls. InsertWall ignores `id` and returns the new one; kConflict when
   // the gym has a wall of that name. UpdateWall replaces every field but
-  // gym_id (kNotFound, kConflict as InsertWall).
+  // gym_id (kNotFound, kConflict as InsertWall); with `rederive`, in the
+  // same transaction, it calls `rederive` on every route whose wall_id is
+  // the wall's and writes the discipline columns of those it changed (a
+  // wall's new discipline reaches its routes at once, issue 21).
   virtual Result<int64_t> InsertWall(const WallRecord& wall) = 0;
-  virtual Status UpdateWall(const WallRecord& wall) = 0;
+  virtual Status UpdateWall(const WallRecord& wall, const RederiveRoute& rederive) = 0;
+  Status UpdateWall(const WallRecord& wall) { return UpdateWall(wall, nullptr); }
   virtual Result<WallRecord> GetWall(int64_t id) = 0;
   // A gym's walls by position, then id.
   virtual Result<std::vector<WallRecord>> ListWalls(int64_t gym_id) = 0;

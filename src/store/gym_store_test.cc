@@ -6,9 +6,11 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
 #include <string>
 #include <vector>
 
+#include "store/copy.h"
 #include "store/open.h"
 #include "store/schema.h"
 #include "store/sql.h"
@@ -270,8 +272,31 @@ INSERT INTO studies(owner_id, name, instrument_json, created_at, updated_at)
     studies = RowsOf(**c, kOldStudies);
     ASSERT_EQ(routes.size(), 5u);
   }
+  // `db info` before: the tables a version-5 database has.
+  Result<DatabaseSummary> before = Summarize(db_.locator());
+  ASSERT_TRUE(before.ok()) << before.status().message();
+  EXPECT_EQ(before->schema_version, 5);
+  std::map<std::string, TableSummary> old_tables;
+  for (const TableSummary& t : before->tables) old_tables[t.name] = t;
+  EXPECT_EQ(old_tables.count("walls"), 0u);
+  ASSERT_EQ(old_tables.count("routes"), 1u);
+  EXPECT_EQ(old_tables["routes"].rows, 5);
+  EXPECT_NE(FormatSummary(*before).find("\nroutes "), std::string::npos);
   Open();
   EXPECT_EQ(store_->SchemaVersion(), kSchemaVersion);
+  // ... and after: every old table keeps its rows and content checksum (the
+  // columns it had); the free-text walls became wall rows.
+  Result<DatabaseSummary> after = Summarize(db_.locator());
+  ASSERT_TRUE(after.ok()) << after.status().message();
+  std::map<std::string, TableSummary> new_tables;
+  for (const TableSummary& t : after->tables) new_tables[t.name] = t;
+  for (const auto& [name, t] : old_tables) {
+    ASSERT_EQ(new_tables.count(name), 1u) << name;
+    EXPECT_EQ(new_tables[name].rows, t.rows) << name;
+    EXPECT_EQ(new_tables[name].content_checksum, t.content_checksum) << name;
+  }
+  EXPECT_NE(new_tables["routes"].checksum, old_tables["routes"].checksum);  // new columns
+  EXPECT_EQ(new_tables["walls"].rows, 2);
   {
     Result<std::unique_ptr<sql::Connection>> c = connect();
     ASSERT_TRUE(c.ok());

@@ -899,10 +899,35 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
     return r->Int(0, 0);
   }
 
-  Status UpdateWall(const WallRecord& w) override {
+  Status UpdateWall(const WallRecord& w, const RederiveRoute& rederive) override {
     SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return sql::RunInTransaction(*c, [&]() -> Status {
+      SB_RETURN_IF_ERROR(UpdateWallRow(*c, w));
+      if (!rederive) return Status::Ok();
+      SB_ASSIGN_OR_RETURN(
+          Rows r, c->Query("SELECT id, crdl, grade_discipline, grade_value FROM routes "
+                           "WHERE wall_id = ? ORDER BY id",
+                           {w.id}));
+      for (size_t i = 0; i < r.size(); ++i) {
+        RouteAxis a;
+        a.route_id = r.Int(i, 0);
+        a.crdl = r.Text(i, 1);
+        a.grade_discipline = r.Text(i, 2);
+        a.grade_value = r.OptDouble(i, 3);
+        if (!rederive(&a)) continue;
+        SB_RETURN_IF_ERROR(
+            c->Query("UPDATE routes SET grade_discipline = ?, grade_value = ? WHERE id = ?",
+                     {a.grade_discipline, sql::Nullable(a.grade_value), a.route_id})
+                .status());
+      }
+      return Status::Ok();
+    });
+  }
+
+  // The wall row's update (UpdateWall), on `c`.
+  static Status UpdateWallRow(sql::Connection& c, const WallRecord& w) {
     Violation v;
-    Result<Rows> r = c->Query(
+    Result<Rows> r = c.Query(
         "UPDATE walls SET name = ?, discipline = ?, angle = ?, position = ?, reset_weeks = ?, "
         "plan_x = ?, plan_y = ?, plan_w = ?, plan_h = ? WHERE id = ? RETURNING id",
         {w.name, w.discipline, w.angle, int64_t{w.position}, sql::Nullable(w.reset_weeks),
