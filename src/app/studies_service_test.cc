@@ -384,9 +384,10 @@ TEST_F(StudyServiceTest, BurstOfNewIdentitiesIsHeldForTheOwner) {
 }
 
 TEST(BurstRuleTest, ValidatesAndHoldsFromTheThresholdOn) {
-  EXPECT_EQ(BurstRule{0, 5}.Validate().message(), "burst.window_seconds: must be > 0, got 0");
-  EXPECT_EQ(BurstRule{600, -1}.Validate().message(), "burst.new_identities: must be > 0, got -1");
-  EXPECT_EQ(BurstWindowStart(BurstRule{600, 5}, 1'700'000'600), "2023-11-14 22:13:20");
+  EXPECT_EQ((BurstRule{0, 5}.Validate().message()), "burst.window_seconds: must be > 0, got 0");
+  EXPECT_EQ((BurstRule{600, -1}.Validate().message()),
+            "burst.new_identities: must be > 0, got -1");
+  EXPECT_EQ((BurstWindowStart(BurstRule{600, 5}, 1'700'000'600)), "2023-11-14 22:13:20");
   std::string asked;
   auto count = [&](int n) {
     return [&asked, n](const std::string& since) -> Result<int> {
@@ -394,11 +395,11 @@ TEST(BurstRuleTest, ValidatesAndHoldsFromTheThresholdOn) {
       return n;
     };
   };
-  EXPECT_FALSE(*BurstHolds(BurstRule{}, 1'700'000'600, false, count(4)));
+  EXPECT_FALSE((*BurstHolds(BurstRule{}, 1'700'000'600, false, count(4))));
   EXPECT_EQ(asked, "2023-11-14 22:13:20");
-  EXPECT_TRUE(*BurstHolds(BurstRule{}, 1'700'000'600, false, count(5)));
-  EXPECT_FALSE(*BurstHolds(BurstRule{}, 1'700'000'600, true, count(50)));
-  EXPECT_FALSE(BurstHolds(BurstRule{0, 5}, 0, false, count(5)).ok());
+  EXPECT_TRUE((*BurstHolds(BurstRule{}, 1'700'000'600, false, count(5))));
+  EXPECT_FALSE((*BurstHolds(BurstRule{}, 1'700'000'600, true, count(50))));
+  EXPECT_FALSE((BurstHolds(BurstRule{0, 5}, 0, false, count(5)).ok()));
 }
 
 }  // namespace

@@ -864,16 +864,16 @@ TEST_F(ApiTest, StudiesAreAnsweredOnceAndReadOnlyByTheirOwner) {
   auto held_page = setter.Send("GET", "/studies/" + sid);
   ASSERT_TRUE(held_page);
   EXPECT_NE(held_page->body.find("id=\"held-responses\""), std::string::npos);
-  csv = setter.Send("GET", "/studies/" + sid + "/responses.csv");
-  ASSERT_TRUE(csv);
-  EXPECT_EQ(csv->body.find("p6,"), std::string::npos);  // held: not exported
-  EXPECT_NE(csv->body.find("p5,"), std::string::npos);
+  auto csv_held = setter.Send("GET", "/studies/" + sid + "/responses.csv");
+  ASSERT_TRUE(csv_held);
+  EXPECT_EQ(csv_held->body.find("p6,"), std::string::npos);  // held: not exported
+  EXPECT_NE(csv_held->body.find("p5,"), std::string::npos);
   EXPECT_EQ(other.Status("POST", decide + "/accept", "{}"), 403);
   EXPECT_EQ(setter.Json("POST", decide + "/accept", "{}", 200)["state"], "ok");
   EXPECT_TRUE(setter.Json("GET", "/api/studies/" + sid + "/held", "", 200)["held"].empty());
-  csv = setter.Send("GET", "/studies/" + sid + "/responses.csv");
-  ASSERT_TRUE(csv);
-  EXPECT_NE(csv->body.find("p6,"), std::string::npos);  // accepted: counted
+  auto csv_accepted = setter.Send("GET", "/studies/" + sid + "/responses.csv");
+  ASSERT_TRUE(csv_accepted);
+  EXPECT_NE(csv_accepted->body.find("p6,"), std::string::npos);  // accepted: counted
   // Frozen once answered; closed refuses responses.
   EXPECT_EQ(setter.Status("PUT", "/api/studies/" + sid, json{{"routes", {a, b}}}.dump()), 409);
   setter.Json("PUT", "/api/studies/" + sid, json{{"open", false}}.dump(), 200);
