@@ -196,4 +196,20 @@
       }
     });
   }
+  // ---- /studies/{id}: held responses (the burst rule, issue 23) --------------
+  const heldResponses = document.getElementById('held-responses');
+  if (heldResponses) {
+    heldResponses.addEventListener('click', async (ev) => {
+      const b = ev.target;
+      if (!(b instanceof HTMLButtonElement)) return;
+      const li = b.closest('.held-response');
+      const what = b.classList.contains('response-accept') ? 'accept' : 'discard';
+      const r = await send('POST', '/api/studies/' + heldResponses.dataset.study + '/responses/' +
+                                   li.dataset.response + '/' + what, {});
+      if (r.ok) {
+        li.textContent = what === 'accept' ? 'Accepted (reload to see the numbers).' : 'Discarded.';
+        li.className = 'decided';
+      }
+    });
+  }
 })();

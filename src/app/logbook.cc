@@ -164,7 +164,8 @@ Result<TickSaved> Logbook::Log(const Viewer& v, int64_t route_id,
 
   // One per climber, route and day: an edit keeps a held tick held.
   SB_ASSIGN_OR_RETURN(std::vector<store::TickRecord> mine, ticks_->ClimberTicks(t.climber));
-  const std::string since = TimeText(now - policy_.burst_window_seconds);
+  const BurstRule burst{policy_.burst_window_seconds, policy_.burst_new_identities};
+  const std::string since = BurstWindowStart(burst, now);
   bool known = false;
   for (const store::TickRecord& m : mine) {
     if (m.route_id == route_id && m.day == t.day) {
@@ -173,10 +174,12 @@ Result<TickSaved> Logbook::Log(const Viewer& v, int64_t route_id,
     }
     if (m.created_at < since) known = true;
   }
-  if (!v.user_id && !known && !out.edited) {
-    SB_ASSIGN_OR_RETURN(int fresh, ticks_->NewIdentitiesSince(route_id, t.origin, since));
-    if (fresh >= policy_.burst_new_identities) t.state = "held";
-  }
+  SB_ASSIGN_OR_RETURN(bool burst_held,
+                      BurstHolds(burst, now, v.user_id || known || out.edited,
+                                 [&](const std::string& from) {
+                                   return ticks_->NewIdentitiesSince(route_id, t.origin, from);
+                                 }));
+  if (burst_held) t.state = "held";
   out.held = t.state == "held";
   SB_ASSIGN_OR_RETURN(t, ticks_->PutTick(t));
   out.tick = ToView(t);
@@ -294,6 +297,21 @@ Result<AscentGrade> Logbook::Ascent(const Viewer& v, int64_t route_id) {
   SB_ASSIGN_OR_RETURN(Fit fit, FitGym(*route.gym_id, none.discipline));
   auto it = fit.routes.find(route_id);
   return it == fit.routes.end() ? none : it->second;
+}
+
+Result<std::map<int64_t, AscentGrade>> Logbook::Ascents(int64_t gym_id,
+                                                        const std::vector<int64_t>& route_ids) {
+  if (ticks_ == nullptr) return Status::Internal("this store keeps no ticks");
+  std::map<int64_t, AscentGrade> out;
+  for (int64_t id : route_ids) out[id];
+  if (out.empty()) return out;
+  for (Discipline d : {Discipline::kBouldering, Discipline::kRoped}) {
+    SB_ASSIGN_OR_RETURN(Fit fit, FitGym(gym_id, grades::DisciplineName(d)));
+    for (auto& [id, a] : out) {
+      if (auto it = fit.routes.find(id); it != fit.routes.end()) a = it->second;
+    }
+  }
+  return out;
 }
 
 Result<std::vector<Tick>> Logbook::ForSetters(const Viewer& v, int64_t route_id) {

@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "app/burst.h"
 #include "app/clock.h"
 #include "app/options.h"
 #include "app/participants.h"
@@ -39,14 +40,13 @@ struct LogbookPolicy {
   // Ticks per climber (device or account) per window: a hard session logs
   // some 30 routes and edits a few.
   int ticks_per_climber = 60;
-  // The burst rule: a tick from a new identity (a device whose first tick is
-  // within burst_window_seconds) on a route is held for the route's setters
-  // when `burst_new_identities` new identities already ticked that route from
-  // the same address within the window. Five friends on the gym's wifi pass;
-  // a phone that clears its cookie to vote again is held from its sixth
-  // identity on (the setters accept what was real).
-  int burst_window_seconds = 600;
-  int burst_new_identities = 5;
+  // The burst rule (app/burst.h, shared with study responses): a tick from a
+  // new identity (a device whose first tick is within burst_window_seconds)
+  // on a route is held for the route's setters when `burst_new_identities`
+  // new identities already ticked that route from the same address within
+  // the window.
+  int burst_window_seconds = BurstRule{}.window_seconds;
+  int burst_new_identities = BurstRule{}.new_identities;
   // Fitted gyms kept in the ascent-grade cache (one entry per gym and
   // discipline; each entry is refitted when the gym's ticks change).
   int fit_cache_entries = 16;
@@ -124,6 +124,12 @@ class Logbook {
 
   // The ascent grade of a visible route (kNotFound as Log).
   Result<AscentGrade> Ascent(const Viewer& v, int64_t route_id);
+  // The ascent grades of many routes of one gym at once (the dashboard's
+  // rows, issue 22/23), from the same cached fits as Ascent: route id ->
+  // grade, every id present (fitted = false without unheld ticks; routes of
+  // other gyms too). The caller has checked the viewer sees `route_ids`.
+  Result<std::map<int64_t, AscentGrade>> Ascents(int64_t gym_id,
+                                                 const std::vector<int64_t>& route_ids);
 
   // Setters of the route's gym (head, setter) and the route's owner only:
   // every tick of the route (kPermission otherwise, kUnauthenticated when

@@ -51,6 +51,16 @@ grades::Scale ScaleOf(const store::RouteRecord& r, grades::Discipline d) {
   return grades::DefaultScale(d);
 }
 
+// 10000 -> "10,000". Pure.
+std::string FormatCount(int n) {
+  std::string digits = std::to_string(n), out;
+  for (size_t i = 0; i < digits.size(); ++i) {
+    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
+    out += digits[i];
+  }
+  return out;
+}
+
 }  // namespace
 
 VariationComparison CompareStars(std::vector<double> variation, std::vector<double> hand) {
@@ -93,8 +103,8 @@ VariationComparison CompareStars(std::vector<double> variation, std::vector<doub
   return c;
 }
 
-Reports::Reports(store::Store* store, Gyms* gyms, Logbook* logbook)
-    : store_(store), gyms_(gyms), logbook_(logbook) {}
+Reports::Reports(store::Store* store, Gyms* gyms, Logbook* logbook, int max_routes)
+    : store_(store), gyms_(gyms), logbook_(logbook), max_routes_(std::max(1, max_routes)) {}
 
 Result<GymReport> Reports::Report(const Viewer& v, int64_t gym, const ReportQuery& q) {
   store::TickStore* ticks = store::TickStoreOf(store_);
@@ -112,7 +122,8 @@ Result<GymReport> Reports::Report(const Viewer& v, int64_t gym, const ReportQuer
   store::RouteFilter f;
   f.viewer = v.user_id;
   f.gym_id = gym;
-  f.sort = store::RouteSort::kOldest;
+  // Newest first: when the cap applies, the oldest history is what is left out.
+  f.sort = store::RouteSort::kNewest;
   if (!wall_key.empty()) {
     SB_ASSIGN_OR_RETURN(Wall w, gyms_->ResolveWall(gym, wall_key));
     out.scope = "wall";
@@ -128,15 +139,32 @@ Result<GymReport> Reports::Report(const Viewer& v, int64_t gym, const ReportQuer
   }
   // The routes, by id.
   std::map<int64_t, store::RouteRecord> routes;
-  for (f.offset = 0, f.limit = kPage; f.offset < ReportLimits::kMaxRoutes; f.offset += kPage) {
+  out.max_routes = max_routes_;
+  for (f.offset = 0; f.offset < max_routes_; f.offset += f.limit) {
+    f.limit = std::min(kPage, max_routes_ - f.offset);
     SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> page, store_->ListRoutes(f));
+    const bool full = static_cast<int>(page.size()) == f.limit;
     for (store::RouteRecord& r : page) {
       if (!IsVisible(r, v)) continue;
       if (!date.empty() && r.set_on != date && r.planned_on != date) continue;
       const int64_t id = r.id;
       routes.emplace(id, std::move(r));
     }
-    if (static_cast<int>(page.size()) < kPage) break;
+    if (!full) break;
+    if (f.offset + f.limit >= max_routes_) {
+      // The cap is reached: is there anything beyond it?
+      store::RouteFilter beyond = f;
+      beyond.offset = max_routes_;
+      beyond.limit = 1;
+      SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> more, store_->ListRoutes(beyond));
+      out.capped = !more.empty();
+    }
+  }
+  if (out.capped) {
+    out.capped_note = "More routes than the report reads: it covers the newest " +
+                      FormatCount(max_routes_) + " routes" +
+                      (out.scope == "wall" ? " of this wall" : " of the gym") +
+                      " only; narrow by wall or date.";
   }
 
   // The unheld ticks of those routes (GymTicks: state "ok", by id).

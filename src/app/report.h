@@ -31,8 +31,11 @@ struct ReportQuery {
 
 // The report's limits, each with its reason.
 struct ReportLimits {
-  // Routes a report reads from a gym's history (every state): a large gym
-  // sets some 2,000 routes a year; more is a script, not a gym.
+  // Routes a report reads from a gym's history (every state, newest first):
+  // a large gym sets some 2,000 routes a year, so this is five years of
+  // setting, and it bounds one request's memory and time (the ticks of those
+  // routes are read with them). A gym with more gets the newest 10,000 and
+  // the report says so (GymReport::capped): narrow by wall or date.
   static constexpr int kMaxRoutes = 10000;
   // Ratings each group needs before the report says anything about the
   // difference: below five a side, a two-sided rank-sum test on a five-star
@@ -104,12 +107,20 @@ struct GymReport {
   int felt_harder = 0, felt_same = 0, felt_softer = 0;
   std::vector<ReportComment> comments;  // newest day first, then route id (setters only)
   VariationComparison comparison;
+  // The gym has more routes than the report reads (`max_routes`, the cap:
+  // ReportLimits::kMaxRoutes): only the newest were read, and `capped_note`
+  // says so in words for the page and the API ("" when not capped).
+  bool capped = false;
+  int max_routes = 0;
+  std::string capped_note;
 };
 
 // Thread-safe. Does not own its arguments.
 class Reports {
  public:
-  Reports(store::Store* store, Gyms* gyms, Logbook* logbook);
+  // `max_routes`: the cap on routes read (tests lower it; > 0).
+  Reports(store::Store* store, Gyms* gyms, Logbook* logbook,
+          int max_routes = ReportLimits::kMaxRoutes);
 
   // The report of a wall or setting day of `gym` for a member of it.
   // Errors: kNotFound "no gym N" for non-members and "no wall ..." for
@@ -122,6 +133,7 @@ class Reports {
   store::Store* store_;
   Gyms* gyms_;
   Logbook* logbook_;
+  const int max_routes_;
 };
 
 // The comparison of two groups of star ratings (exposed for tests): means,

@@ -221,6 +221,37 @@ TEST_F(ReportTest, RefusesOutsidersAndBadQueriesNamingTheField) {
   EXPECT_NE(bad.status().message().find("date"), std::string::npos);
 }
 
+// The cap on routes read (ReportLimits::kMaxRoutes, lowered here to 2) is
+// said, not applied silently, and keeps the newest routes.
+TEST_F(ReportTest, ACappedReportSaysSoAndKeepsTheNewest) {
+  Route("Oldest", "V3", false, wall_, "2024-05-01");
+  const int64_t mid = Route("Middle", "V3", false, wall_, "2024-05-01");
+  const int64_t newest = Route("Newest", "V3", false, wall_, "2024-05-01");
+  ReportQuery q;
+  q.wall = "Cave";
+  Result<GymReport> all = services_->reports.Report(setter_, gym_, q);
+  ASSERT_TRUE(all.ok()) << all.status().message();
+  EXPECT_FALSE(all->capped);
+  EXPECT_EQ(all->max_routes, ReportLimits::kMaxRoutes);
+  EXPECT_EQ(all->routes.size(), 3u);
+  Reports small(store_.get(), &services_->gyms, &services_->logbook, 2);
+  Result<GymReport> r = small.Report(setter_, gym_, q);
+  ASSERT_TRUE(r.ok()) << r.status().message();
+  EXPECT_TRUE(r->capped);
+  ASSERT_EQ(r->routes.size(), 2u);
+  EXPECT_EQ(r->routes[0].id, mid);
+  EXPECT_EQ(r->routes[1].id, newest);
+  EXPECT_EQ(r->capped_note,
+            "More routes than the report reads: it covers the newest 2 routes of this wall only; "
+            "narrow by wall or date.");
+  // Exactly at the cap: nothing left out, nothing said.
+  Reports three(store_.get(), &services_->gyms, &services_->logbook, 3);
+  Result<GymReport> exact = three.Report(setter_, gym_, q);
+  ASSERT_TRUE(exact.ok());
+  EXPECT_FALSE(exact->capped);
+  EXPECT_TRUE(exact->capped_note.empty());
+}
+
 TEST(CompareStarsTest, EmptySidesGiveNaNAndTooFew) {
   VariationComparison c = CompareStars({}, {4, 5});
   EXPECT_FALSE(c.enough);

@@ -12,6 +12,7 @@
 #include "base/number.h"
 #include "base/text.h"
 #include "grades/scale.h"
+#include "store/auth.h"
 
 namespace sb::app {
 
@@ -117,8 +118,14 @@ studies::ResponseTable StudyTable(const store::StudyRecord& study,
   return t;
 }
 
-StudyService::StudyService(store::Store* store, const Options& options, Clock* clock)
-    : studies_(store), routes_(store), attempts_(store), options_(options), clock_(clock) {}
+StudyService::StudyService(store::Store* store, const Options& options, Clock* clock,
+                           BurstRule burst)
+    : studies_(store),
+      routes_(store),
+      attempts_(store),
+      options_(options),
+      clock_(clock),
+      burst_(burst) {}
 
 Result<studies::Instrument> StudyService::ParseChoice(const InstrumentChoice& c) {
   if (!c.builtin.empty()) {
@@ -258,7 +265,8 @@ Result<StudyForm> StudyService::Form(int64_t id, std::string_view participant_to
 
 Result<Participant> StudyService::Respond(const Viewer& v, int64_t id,
                                           std::string_view participant_token,
-                                          const StudySubmission& sub, int* retry_after_seconds) {
+                                          const StudySubmission& sub, int* retry_after_seconds,
+                                          bool* held) {
   Result<store::StudyRecord> found = studies_->GetStudy(id);
   if (!found.ok()) {
     return found.status().code() == Status::Code::kNotFound ? NoStudy(id) : found.status();
@@ -332,6 +340,20 @@ Result<Participant> StudyService::Respond(const Viewer& v, int64_t id,
   SB_RETURN_IF_ERROR(ThrottleSubmission(attempts_, clock_, p, "study", v.address, who.hash,
                                         p.study_responses_per_address,
                                         p.study_responses_per_participant, retry_after_seconds));
+  // The logbook's burst rule: every response is a new one (one per
+  // participant and study), so a participant is established only by
+  // answering some study before the window.
+  const int64_t now = clock_->Now();
+  rec.origin = store::HashToken(v.address);
+  rec.created_at = StoreTimeText(now);
+  SB_ASSIGN_OR_RETURN(bool known,
+                      studies_->StudyParticipantBefore(who.hash, BurstWindowStart(burst_, now)));
+  SB_ASSIGN_OR_RETURN(bool burst_held,
+                      BurstHolds(burst_, now, known, [&](const std::string& since) {
+                        return studies_->NewStudyIdentitiesSince(id, rec.origin, since);
+                      }));
+  rec.state = burst_held ? "held" : "ok";
+  if (held != nullptr) *held = burst_held;
   SB_RETURN_IF_ERROR(studies_->InsertStudyResponse(rec, kMaxStudyResponses).status());
   return who;
 }
@@ -343,8 +365,25 @@ Result<StudyResults> StudyService::Load(const Viewer& v, int64_t id) {
   SB_ASSIGN_OR_RETURN(out.instrument, StoredInstrument(st));
   SB_ASSIGN_OR_RETURN(std::vector<store::StudyResponseRecord> responses,
                       studies_->ListStudyResponses(id));
-  out.table = StudyTable(st, responses);
+  std::vector<store::StudyResponseRecord> counted;
+  for (store::StudyResponseRecord& r : responses) {
+    if (r.state == "held") {
+      out.held.push_back({r.id, "p" + std::to_string(r.seq), r.created_at,
+                          static_cast<int>(r.answers.size())});
+    } else if (r.state == "discarded") {
+      ++out.discarded;
+    } else {
+      counted.push_back(std::move(r));
+    }
+  }
+  out.table = StudyTable(st, counted);
   return out;
+}
+
+Status StudyService::DecideResponse(const Viewer& v, int64_t id, int64_t response_id,
+                                    bool accept) {
+  SB_RETURN_IF_ERROR(Owned(v, id).status());
+  return studies_->SetStudyResponseState(id, response_id, accept ? "ok" : "discarded");
 }
 
 Result<StudyResults> StudyService::Results(const Viewer& v, int64_t id,
@@ -375,6 +414,7 @@ Result<std::string> StudyService::DemographicsCsv(const Viewer& v, int64_t id) {
   for (const std::string& k : DemographicKeys()) header.push_back(k);
   std::string out = FormatCsvRow(header);
   for (const store::StudyResponseRecord& r : responses) {
+    if (r.state != "ok") continue;  // held or discarded: not in the exports
     std::map<std::string, std::string> answers(r.demographics.begin(), r.demographics.end());
     CsvRow row = {"p" + std::to_string(r.seq)};
     for (const std::string& k : DemographicKeys()) row.push_back(answers[k]);

@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "app/burst.h"
 #include "app/clock.h"
 #include "app/options.h"
 #include "app/participants.h"
@@ -68,13 +69,24 @@ struct StudySubmission {
   std::vector<std::pair<std::string, std::string>> demographics;
 };
 
+// A response the burst rule held (app/burst.h): out of the study's
+// statistics and exports until the study's owner accepts it.
+struct HeldStudyResponse {
+  int64_t id = 0;           // for DecideResponse
+  std::string participant;  // "p<seq>", as the export would name it
+  std::string created_at;   // "YYYY-MM-DD HH:MM:SS" UTC
+  int routes_answered = 0;
+};
+
 // The owner's view: the study, its instrument and, once there are
 // responses, the analysis.
 struct StudyResults {
   Study study;
   studies::Instrument instrument;
-  studies::ResponseTable table;               // what the CSV export holds
+  studies::ResponseTable table;               // what the CSV export holds ("ok" responses)
   std::optional<studies::Analysis> analysis;  // nullopt without responses
+  std::vector<HeldStudyResponse> held;        // held by the burst rule, oldest first
+  int discarded = 0;                          // responses the owner discarded
 };
 
 // The demographic answers a submission may carry: the number, grade and
@@ -85,7 +97,8 @@ const std::vector<std::string>& DemographicKeys();
 // Thread-safe. Does not own `store` or `clock`.
 class StudyService {
  public:
-  StudyService(store::Store* store, const Options& options, Clock* clock);
+  // `burst`: the logbook's burst rule, applied to responses (issue 23).
+  StudyService(store::Store* store, const Options& options, Clock* clock, BurstRule burst = {});
 
   // Creates a study owned by the viewer. Needs name, routes (kMinStudyRoutes
   // to kMaxStudyRoutes distinct routes the viewer can see) and an
@@ -111,10 +124,16 @@ class StudyService {
   // Stores a climber's response. Errors: kNotFound; kConflict when the
   // study is closed, the participant has answered it already or it is
   // full; kInvalidInput naming the route and field ("route 2: q4: ..."),
-  // nothing answered; kResourceExhausted over the rate limits.
+  // nothing answered; kResourceExhausted over the rate limits. A response
+  // from a new identity in a burst from one address (app/burst.h) is stored
+  // held (`*held` set when given): out of the statistics until the owner
+  // accepts it.
   Result<Participant> Respond(const Viewer& v, int64_t id, std::string_view participant_token,
                               const StudySubmission& submission,
-                              int* retry_after_seconds = nullptr);
+                              int* retry_after_seconds = nullptr, bool* held = nullptr);
+  // The owner accepts (into the statistics) or discards a response of the
+  // study. Errors as Owned; kNotFound for a response of another study.
+  Status DecideResponse(const Viewer& v, int64_t id, int64_t response_id, bool accept);
 
   // The owner's results: every response as a studies::ResponseTable
   // (participants p1, p2, ... in answering order; routes by label) and its
@@ -145,6 +164,7 @@ class StudyService {
   store::AccountStore* attempts_;  // submission throttling
   const Options options_;
   Clock* clock_;
+  const BurstRule burst_;
 };
 
 // The response table of stored responses (what Results and ResponsesCsv

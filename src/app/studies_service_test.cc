@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "app/app_test_util.h"
@@ -273,7 +274,7 @@ TEST_F(StudyServiceTest, ResultsEqualTheAnalysisOfTheExport) {
   }
   for (size_t i = 0; i < order.size(); ++i) {
     Result<Participant> p =
-        st().Respond(Climber("10.2.0." + std::to_string(i % 3)), id, "", subs[order[i]]);
+        st().Respond(Climber("10.2.0." + std::to_string(i)), id, "", subs[order[i]]);
     ASSERT_TRUE(p.ok()) << order[i] << ": " << p.status().message();
   }
   Result<StudyResults> r = st().Results(owner_, id, {{}, /*censor=*/true});
@@ -315,6 +316,90 @@ TEST_F(StudyServiceTest, ResultsEqualTheAnalysisOfTheExport) {
   // The owner's drop list is checked.
   EXPECT_EQ(st().Results(owner_, id, {{"q99"}, false}).status().code(),
             Status::Code::kInvalidInput);
+}
+
+// Issue 23, "studies get the same protection": the logbook's burst rule
+// (app/burst.h) on responses. Five new identities from one address pass; the
+// sixth on is held out of the statistics and the exports until the owner
+// accepts it; an identity known from before the window is never held.
+TEST_F(StudyServiceTest, BurstOfNewIdentitiesIsHeldForTheOwner) {
+  int64_t earlier = Make(Spec({routes_[0], routes_[1]}));
+  Result<Participant> regular = st().Respond(Climber("10.9.9.9"), earlier, "", Pilot(2, 3));
+  ASSERT_TRUE(regular.ok()) << regular.status().message();
+  clock_.Advance(BurstRule{}.window_seconds + 1);
+
+  int64_t id = Make(Spec({routes_[0], routes_[1]}));
+  for (int i = 0; i < BurstRule{}.new_identities; ++i) {
+    bool held = true;
+    ASSERT_TRUE(st().Respond(Climber("10.9.9.9"), id, "", Pilot(2, 4), nullptr, &held).ok());
+    EXPECT_FALSE(held) << i;
+  }
+  std::vector<bool> held(2, false);
+  for (int i = 0; i < 2; ++i) {
+    bool h = false;
+    ASSERT_TRUE(st().Respond(Climber("10.9.9.9"), id, "", Pilot(2, 1), nullptr, &h).ok());
+    held[i] = h;
+  }
+  EXPECT_EQ(held, std::vector<bool>({true, true}));
+  // Another address, and the participant known from the earlier study, pass.
+  bool h = true;
+  ASSERT_TRUE(st().Respond(Climber("10.9.9.8"), id, "", Pilot(2, 4), nullptr, &h).ok());
+  EXPECT_FALSE(h);
+  ASSERT_TRUE(st().Respond(Climber("10.9.9.9"), id, regular->token, Pilot(2, 4), nullptr, &h).ok());
+  EXPECT_FALSE(h);
+
+  Result<StudyResults> r = st().Results(owner_, id, {});
+  ASSERT_TRUE(r.ok()) << r.status().message();
+  ASSERT_TRUE(r->analysis);
+  EXPECT_EQ(r->analysis->participants, 7);
+  ASSERT_EQ(r->held.size(), 2u);
+  EXPECT_EQ(r->held[0].participant, "p6");
+  EXPECT_EQ(r->held[1].participant, "p7");
+  EXPECT_EQ(r->held[0].routes_answered, 2);
+  Result<std::string> csv = st().ResponsesCsv(owner_, id);
+  ASSERT_TRUE(csv.ok());
+  EXPECT_EQ(csv->find("p6,"), std::string::npos) << *csv;  // held: not exported
+  Result<std::string> demo = st().DemographicsCsv(owner_, id);
+  ASSERT_TRUE(demo.ok());
+  EXPECT_EQ(std::count(demo->begin(), demo->end(), '\n'), 8);  // header + 7
+
+  // Only the owner decides; a response of another study is not found.
+  Viewer other = User("other");
+  EXPECT_EQ(st().DecideResponse(other, id, r->held[0].id, true).code(),
+            Status::Code::kPermission);
+  EXPECT_EQ(st().DecideResponse(owner_, earlier, r->held[0].id, true).code(),
+            Status::Code::kNotFound);
+  ASSERT_TRUE(st().DecideResponse(owner_, id, r->held[0].id, true).ok());
+  ASSERT_TRUE(st().DecideResponse(owner_, id, r->held[1].id, false).ok());
+  r = st().Results(owner_, id, {});
+  ASSERT_TRUE(r.ok() && r->analysis);
+  EXPECT_EQ(r->analysis->participants, 8);
+  EXPECT_TRUE(r->held.empty());
+  EXPECT_EQ(r->discarded, 1);
+
+  // After the window, a new identity from that address passes again.
+  clock_.Advance(BurstRule{}.window_seconds + 1);
+  ASSERT_TRUE(st().Respond(Climber("10.9.9.9"), id, "", Pilot(2, 4), nullptr, &h).ok());
+  EXPECT_FALSE(h);
+}
+
+TEST(BurstRuleTest, ValidatesAndHoldsFromTheThresholdOn) {
+  EXPECT_EQ((BurstRule{0, 5}.Validate().message()), "burst.window_seconds: must be > 0, got 0");
+  EXPECT_EQ((BurstRule{600, -1}.Validate().message()),
+            "burst.new_identities: must be > 0, got -1");
+  EXPECT_EQ((BurstWindowStart(BurstRule{600, 5}, 1'700'000'600)), "2023-11-14 22:13:20");
+  std::string asked;
+  auto count = [&](int n) {
+    return [&asked, n](const std::string& since) -> Result<int> {
+      asked = since;
+      return n;
+    };
+  };
+  EXPECT_FALSE((*BurstHolds(BurstRule{}, 1'700'000'600, false, count(4))));
+  EXPECT_EQ(asked, "2023-11-14 22:13:20");
+  EXPECT_TRUE((*BurstHolds(BurstRule{}, 1'700'000'600, false, count(5))));
+  EXPECT_FALSE((*BurstHolds(BurstRule{}, 1'700'000'600, true, count(50))));
+  EXPECT_FALSE((BurstHolds(BurstRule{0, 5}, 0, false, count(5)).ok()));
 }
 
 }  // namespace

@@ -409,6 +409,20 @@ CREATE INDEX IF NOT EXISTS routes_gym_state_grade
   ON routes(gym_id, state, grade_discipline, grade_value);
 )sql"},
        }},
+      // Schema 10 (issue 23, "studies get the same protection"): the burst
+      // rule of the logbook (app/burst.h) on study responses: the hashed
+      // address a response came from, and its state ("held" responses stay
+      // out of the study's statistics until its owner accepts them).
+      {"study responses: origin and state (the burst rule, issue 23)",
+       {
+           {Only::kBoth, R"sql(
+ALTER TABLE study_responses ADD COLUMN origin TEXT NOT NULL DEFAULT '';
+ALTER TABLE study_responses ADD COLUMN state TEXT NOT NULL DEFAULT 'ok'
+  CHECK (state IN ('ok', 'held', 'discarded'));
+CREATE INDEX study_responses_origin ON study_responses(study_id, origin, created_at);
+CREATE INDEX study_responses_participant ON study_responses(participant, created_at);
+)sql"},
+       }},
   };
   return kMigrations;
 }

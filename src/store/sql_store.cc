@@ -630,9 +630,11 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
       const int seq = static_cast<int>(s.Int(0, 2)) + 1;
       Violation v;
       Result<Rows> ins = c->Query(
-          "INSERT INTO study_responses(study_id, participant, seq, ability, created_at) "
-          "VALUES(?, ?, ?, ?, ?) RETURNING id",
-          {r.study_id, r.participant, int64_t{seq}, sql::Nullable(r.ability), NowText()}, &v);
+          "INSERT INTO study_responses(study_id, participant, seq, ability, created_at, "
+          "origin, state) VALUES(?, ?, ?, ?, ?, ?, ?) RETURNING id",
+          {r.study_id, r.participant, int64_t{seq}, sql::Nullable(r.ability),
+           r.created_at.empty() ? NowText() : r.created_at, r.origin, r.state},
+          &v);
       if (!ins.ok() && v == Violation::kUnique) {
         return Status::Conflict("you have already answered this study");
       }
@@ -681,8 +683,8 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
           std::vector<StudyResponseRecord> out;
           std::map<int64_t, size_t> index;  // response id -> position in out
           SB_ASSIGN_OR_RETURN(
-              Rows s, c->Query("SELECT id, study_id, participant, seq, ability, created_at "
-                               "FROM study_responses WHERE study_id = ? ORDER BY seq",
+              Rows s, c->Query("SELECT id, study_id, participant, seq, ability, created_at, "
+                               "origin, state FROM study_responses WHERE study_id = ? ORDER BY seq",
                                {study_id}));
           for (size_t i = 0; i < s.size(); ++i) {
             StudyResponseRecord r;
@@ -692,6 +694,8 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
             r.seq = static_cast<int>(s.Int(i, 3));
             r.ability = s.OptDouble(i, 4);
             r.created_at = s.Text(i, 5);
+            r.origin = s.Text(i, 6);
+            r.state = s.Text(i, 7);
             index[r.id] = out.size();
             out.push_back(std::move(r));
           }
@@ -733,6 +737,40 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
           }
           return out;
         });
+  }
+
+  Result<int> NewStudyIdentitiesSince(int64_t study_id, const std::string& origin,
+                                      const std::string& since) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(
+        Rows r, c->Query("SELECT count(DISTINCT r.participant) FROM study_responses r "
+                         "WHERE r.study_id = ? AND r.origin = ? AND r.created_at >= ? "
+                         "AND NOT EXISTS (SELECT 1 FROM study_responses o "
+                         "WHERE o.participant = r.participant AND o.created_at < ?)",
+                         {study_id, origin, since, since}));
+    return static_cast<int>(r.Int(0, 0));
+  }
+
+  Result<bool> StudyParticipantBefore(const std::string& participant,
+                                      const std::string& since) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(Rows r, c->Query("SELECT 1 FROM study_responses WHERE participant = ? "
+                                         "AND created_at < ? LIMIT 1",
+                                         {participant, since}));
+    return !r.empty();
+  }
+
+  Status SetStudyResponseState(int64_t study_id, int64_t response_id,
+                               const std::string& state) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(Rows r, c->Query("UPDATE study_responses SET state = ? "
+                                         "WHERE id = ? AND study_id = ? RETURNING id",
+                                         {state, response_id, study_id}));
+    if (r.empty()) {
+      return Status::NotFound("study " + std::to_string(study_id) + " has no response " +
+                              std::to_string(response_id));
+    }
+    return Status::Ok();
   }
 
   // -- ticks (TickStore, store/tick_sql.cc) --------------------------------

@@ -241,7 +241,12 @@ struct StudyResponseRecord {
   std::vector<StudyAnswer> answers;                               // position order
   std::vector<std::pair<std::string, std::string>> demographics;  // (question id, answer)
   std::optional<double> ability;
-  std::string created_at;
+  std::string created_at;  // "YYYY-MM-DD HH:MM:SS" UTC; "" = the store's clock
+  // Burst rule (issue 23, app/burst.h): a hash of the submitting address, and
+  // "ok", "held" (a burst, for the study's owner) or "discarded". Only "ok"
+  // responses enter the study's statistics and exports.
+  std::string origin;
+  std::string state = "ok";
 };
 
 // Answers as stored: a JSON array of integers and nulls, no spaces
@@ -381,6 +386,19 @@ class StudyStore {
   virtual Result<bool> HasStudyResponse(int64_t study_id, const std::string& participant) = 0;
   // Every response of a study in seq order, with answers and demographics.
   virtual Result<std::vector<StudyResponseRecord>> ListStudyResponses(int64_t study_id) = 0;
+  // The burst rule for responses (issue 23, app/burst.h): how many distinct
+  // participants answered `study_id` from `origin` at or after `since`,
+  // counting only participants with no study response before `since` (new
+  // identities). Times are "YYYY-MM-DD HH:MM:SS".
+  virtual Result<int> NewStudyIdentitiesSince(int64_t study_id, const std::string& origin,
+                                              const std::string& since) = 0;
+  // Whether the participant answered any study before `since`.
+  virtual Result<bool> StudyParticipantBefore(const std::string& participant,
+                                              const std::string& since) = 0;
+  // Sets the state ("ok", "held", "discarded") of a response of the study;
+  // kNotFound when the study has no response `response_id`.
+  virtual Status SetStudyResponseState(int64_t study_id, int64_t response_id,
+                                       const std::string& state) = 0;
 };
 
 // The whole database: every per-kind interface above over one connection

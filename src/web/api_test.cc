@@ -846,6 +846,34 @@ TEST_F(ApiTest, StudiesAreAnsweredOnceAndReadOnlyByTheirOwner) {
   auto results = setter.Send("GET", "/studies/" + sid);
   ASSERT_TRUE(results);
   EXPECT_NE(results->body.find("data-k=\"/alpha\""), std::string::npos);
+  EXPECT_EQ(results->body.find("id=\"held-responses\""), std::string::npos);
+  // Issue 23, the burst rule: new identities from one address (every client
+  // here is 127.0.0.1) pass five times; the sixth is held for the owner.
+  for (int i = 0; i < 5; ++i) {
+    json saved = NewClient().Json("POST", "/api/s/" + sid + "/responses", body, 201);
+    EXPECT_EQ(saved["held"], i == 4) << i;
+  }
+  EXPECT_EQ(other.Status("GET", "/api/studies/" + sid + "/held"), 403);
+  EXPECT_EQ(NewClient().Status("GET", "/api/studies/" + sid + "/held", "", false), 401);
+  json held = setter.Json("GET", "/api/studies/" + sid + "/held", "", 200);
+  ASSERT_EQ(held["held"].size(), 1u) << held.dump();
+  EXPECT_EQ(held["held"][0]["participant"], "p6");
+  EXPECT_EQ(held["held"][0]["routes"], 2);
+  const std::string decide =
+      "/api/studies/" + sid + "/responses/" + std::to_string(held["held"][0]["id"].get<int64_t>());
+  auto held_page = setter.Send("GET", "/studies/" + sid);
+  ASSERT_TRUE(held_page);
+  EXPECT_NE(held_page->body.find("id=\"held-responses\""), std::string::npos);
+  auto csv_held = setter.Send("GET", "/studies/" + sid + "/responses.csv");
+  ASSERT_TRUE(csv_held);
+  EXPECT_EQ(csv_held->body.find("p6,"), std::string::npos);  // held: not exported
+  EXPECT_NE(csv_held->body.find("p5,"), std::string::npos);
+  EXPECT_EQ(other.Status("POST", decide + "/accept", "{}"), 403);
+  EXPECT_EQ(setter.Json("POST", decide + "/accept", "{}", 200)["state"], "ok");
+  EXPECT_TRUE(setter.Json("GET", "/api/studies/" + sid + "/held", "", 200)["held"].empty());
+  auto csv_accepted = setter.Send("GET", "/studies/" + sid + "/responses.csv");
+  ASSERT_TRUE(csv_accepted);
+  EXPECT_NE(csv_accepted->body.find("p6,"), std::string::npos);  // accepted: counted
   // Frozen once answered; closed refuses responses.
   EXPECT_EQ(setter.Status("PUT", "/api/studies/" + sid, json{{"routes", {a, b}}}.dump()), 409);
   setter.Json("PUT", "/api/studies/" + sid, json{{"open", false}}.dump(), 200);

@@ -391,11 +391,43 @@ void PostStudyResponse(Exchange& x) {
     }
   }
   int retry = 0;
+  bool held = false;
   Result<app::Participant> who =
-      x.services.studies.Respond(x.caller.viewer, *id, Token(x), sub, &retry);
+      x.services.studies.Respond(x.caller.viewer, *id, Token(x), sub, &retry, &held);
   if (!who.ok()) return ApiErrorRetry(x, who.status(), retry);
   RememberParticipant(x, *who);
-  ReplyJson(x.res, 201, json{{"study", *id}, {"saved", true}});
+  ReplyJson(x.res, 201, json{{"study", *id}, {"saved", true}, {"held", held}});
 }
+
+void GetStudyHeld(Exchange& x) {
+  Result<app::StudyResults> r = ResultsOf(x, {});
+  if (!r.ok()) return ApiError(x, r.status());
+  json held = json::array();
+  for (const app::HeldStudyResponse& h : r->held) {
+    held.push_back(json{{"id", h.id},
+                        {"participant", h.participant},
+                        {"created_at", h.created_at},
+                        {"routes", h.routes_answered}});
+  }
+  x.res.SetHeader("Cache-Control", "no-store");
+  ReplyJson(x.res, 200, json{{"study", r->study.id}, {"held", held}, {"discarded", r->discarded}});
+}
+
+namespace {
+
+void DecideStudyResponse(Exchange& x, bool accept) {
+  Result<int64_t> id = PathId(x.req, "No such study.");
+  if (!id.ok()) return ApiError(x, id.status());
+  std::optional<int64_t> response = ParseId(x.req.PathParam("response"));
+  if (!response) return ApiError(x, Status::NotFound("no such response"));
+  Status s = x.services.studies.DecideResponse(x.caller.viewer, *id, *response, accept);
+  if (!s.ok()) return ApiError(x, s);
+  ReplyJson(x.res, 200, json{{"id", *response}, {"state", accept ? "ok" : "discarded"}});
+}
+
+}  // namespace
+
+void PostStudyResponseAccept(Exchange& x) { DecideStudyResponse(x, true); }
+void PostStudyResponseDiscard(Exchange& x) { DecideStudyResponse(x, false); }
 
 }  // namespace sb::web

@@ -34,6 +34,10 @@ void PostRouteFeedback(Exchange& x);  // POST /api/r/{id}/feedback
 void PostStudy(Exchange& x);          // POST /api/studies
 void PutStudy(Exchange& x);           // PUT /api/studies/{id}
 void PostStudyResponse(Exchange& x);  // POST /api/s/{id}/responses
+// The burst rule on study responses (issue 23, app/burst.h), owner only:
+void GetStudyHeld(Exchange& x);              // GET /api/studies/{id}/held
+void PostStudyResponseAccept(Exchange& x);   // POST /api/studies/{id}/responses/{response}/accept
+void PostStudyResponseDiscard(Exchange& x);  // POST .../responses/{response}/discard
 
 // The consensus block of the route and variation pages for `route` as the
 // caller sees it ("" when it cannot be made; the reason is logged).

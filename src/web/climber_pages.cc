@@ -496,6 +496,28 @@ std::string StudyResultsHtml(const PageViewer& v, const app::StudyResults& res,
        "> the paper's rule (drop items that raise α)</label>"
        "<button type=\"submit\" id=\"reanalyse\">Analyse</button></form>\n";
   if (!error.empty()) b += "<p class=\"error\" id=\"analysis-error\">" + E(error) + "</p>\n";
+  // The burst rule (issue 23, app/burst.h): held responses, for the owner.
+  if (!res.held.empty()) {
+    b += "<section id=\"held-responses\" class=\"no-print\" data-study=\"" + sid +
+         "\"><h2>Held responses (" + std::to_string(res.held.size()) +
+         ")</h2>\n<p class=\"msg\">A burst of new identities from one address answered this "
+         "study: these responses are left out of every number below and of the exports until "
+         "you accept them.</p>\n<ul>\n";
+    for (const app::HeldStudyResponse& h : res.held) {
+      b += "<li class=\"held-response\" data-response=\"" + Id(h.id) + "\">" +
+           E(h.participant) + ", " + E(h.created_at) + " UTC, " +
+           std::to_string(h.routes_answered) +
+           (h.routes_answered == 1 ? " route" : " routes") +
+           " answered <button type=\"button\" class=\"response-accept\">Accept</button> "
+           "<button type=\"button\" class=\"response-discard\">Discard</button></li>\n";
+    }
+    b += "</ul></section>\n";
+  }
+  if (res.discarded > 0) {
+    b += "<p class=\"msg\" id=\"discarded-responses\">" + std::to_string(res.discarded) +
+         " discarded " + (res.discarded == 1 ? "response is" : "responses are") +
+         " left out.</p>\n";
+  }
   if (!res.analysis) {
     b += "<p class=\"msg\" id=\"no-responses\">No responses yet.</p>\n";
     return PageLayout(v, st.name, b, "climber results");

@@ -128,6 +128,39 @@ TEST_F(DashboardApiTest, MembersSeeTheDashboardOnlyHeadSettersPutTargets) {
   ASSERT_TRUE(wall_page);
   EXPECT_NE(wall_page->body.find("id=\"wall-status\">2 on the wall, the oldest"), std::string::npos);
   EXPECT_NE(wall_page->body.find("due for a reset"), std::string::npos);
+
+  // Issues 22/23: each route row carries its grade from ascents, as the wall
+  // page shows it: none before a tick, then the grade, its 80% interval and
+  // the tick count; no soft/sandbagged flag while the interval holds the
+  // setter's band.
+  for (const json& r : w["routes"]) {
+    EXPECT_EQ(r["ascent"]["ticks"], 0) << r.dump();
+    EXPECT_EQ(r["ascent"]["fitted"], false) << r.dump();
+  }
+  const int64_t ticked = w["routes"][0]["id"];
+  climber.Json("POST", "/api/routes/" + std::to_string(ticked) + "/ticks",
+               R"({"outcome":"send","attempts":3})", 201);
+  json after = climber.Json("GET", gp + "/dashboard", "", 200);
+  int seen = 0;
+  for (const json& r : after["walls"][0]["routes"]) {
+    if (r["id"] != ticked) continue;
+    ++seen;
+    const json& a = r["ascent"];
+    EXPECT_EQ(a["ticks"], 1) << a.dump();
+    ASSERT_EQ(a["fitted"], true) << a.dump();
+    EXPECT_LT(a["lo"].get<double>(), a["value"].get<double>());
+    EXPECT_LT(a["value"].get<double>(), a["hi"].get<double>());
+    EXPECT_FALSE(a["grade"].get<std::string>().empty());
+    EXPECT_EQ(a["verdict"], "");  // one tick: the interval holds the setter's band
+  }
+  EXPECT_EQ(seen, 1);
+  auto dash = climber.Send("GET", "/gyms/" + std::to_string(g) + "/dashboard");
+  ASSERT_TRUE(dash);
+  EXPECT_NE(dash->body.find("<th>Ascent grade</th>"), std::string::npos);
+  EXPECT_NE(dash->body.find("<td class=\"ascent\" data-ticks=\"1\" data-value="),
+            std::string::npos);
+  EXPECT_NE(dash->body.find("from <span class=\"ascent-ticks\">1</span> tick"),
+            std::string::npos);
 }
 
 }  // namespace

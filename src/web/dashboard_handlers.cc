@@ -6,9 +6,11 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <map>
 
 #include "base/number.h"
 #include "base/text.h"
+#include "web/logbook_handlers.h"
 #include "web/pages.h"
 
 namespace sb::web {
@@ -36,7 +38,7 @@ std::string Joined(const std::vector<std::string>& parts) {
   return out;
 }
 
-json WallJson(const app::WallDashboard& w) {
+json WallJson(const app::WallDashboard& w, const DashboardAscents& ascents) {
   json grades = json::object(), targets = json::object(), styles = json::object(),
        style_targets = json::object(), gaps = json::array(), routes = json::array();
   for (const app::BandRow& b : w.bands) {
@@ -70,6 +72,9 @@ json WallJson(const app::WallDashboard& w) {
                       {"stars", r.stars},
                       {"star_votes", r.star_votes},
                       {"due", r.due}});
+    if (auto a = ascents.find(r.id); a != ascents.end()) {
+      routes.back()["ascent"] = AscentGradeJson(a->second);
+    }
   }
   return json{{"id", w.wall.id},
               {"name", w.wall.name},
@@ -90,6 +95,16 @@ json WallJson(const app::WallDashboard& w) {
               {"gaps", gaps},
               {"gap_words", w.gap_words},
               {"routes", routes}};
+}
+
+// The ascent grades of the dashboard's routes: one cached fit of the gym
+// (app::Logbook::Ascents), the wall page's numbers.
+Result<DashboardAscents> AscentsOf(Exchange& x, const app::GymDashboard& d) {
+  std::vector<int64_t> ids;
+  for (const app::WallDashboard& w : d.walls) {
+    for (const app::DashboardRoute& r : w.routes) ids.push_back(r.id);
+  }
+  return x.services.logbook.Ascents(d.gym.id, ids);
 }
 
 // The render units of a dashboard: a row per route on the walls.
@@ -201,12 +216,13 @@ std::string StyleMix(const app::WallDashboard& w) {
   return t + "</tbody></table>";
 }
 
-std::string RouteTable(const app::WallDashboard& w) {
+std::string RouteTable(const app::WallDashboard& w, const DashboardAscents& ascents) {
   if (w.routes.empty()) return "<p class=\"empty\">Nothing on this wall.</p>";
   std::string t = "<div class=\"table-wrap\"><table class=\"list\" id=\"routes-" + Id(w.wall.id) +
                   "\"><caption>On the wall (least climbed first)</caption><thead><tr><th>Route"
                   "</th><th>Grade</th><th>Circuit</th><th>Setters</th><th class=\"num\">Days"
-                  "</th><th class=\"num\">Ticks</th><th class=\"num\">Stars</th></tr></thead>"
+                  "</th><th class=\"num\">Ticks</th><th class=\"num\">Stars</th><th>Ascent grade"
+                  "</th></tr></thead>"
                   "<tbody>";
   for (const app::DashboardRoute& r : w.routes) {
     t += "<tr" + std::string(r.due ? " class=\"due\"" : "") + "><td><a href=\"/routes/" +
@@ -215,7 +231,9 @@ std::string RouteTable(const app::WallDashboard& w) {
          E(Joined(r.setters)) + "</td><td class=\"num\">" +
          (r.age_days ? std::to_string(*r.age_days) : "—") + "</td><td class=\"num\">" +
          std::to_string(r.ticks) + "</td><td class=\"num\">" +
-         (r.star_votes ? Fixed(r.stars) : "—") + "</td></tr>";
+         (r.star_votes ? Fixed(r.stars) : "—") + "</td>";
+    auto a = ascents.find(r.id);
+    t += (a == ascents.end() ? "<td></td>" : AscentCell(a->second)) + "</tr>";
   }
   return t + "</tbody></table></div>";
 }
@@ -250,7 +268,8 @@ std::string TargetForm(const app::GymDashboard& d, const app::WallDashboard& w) 
          "targets</button><p class=\"msg\" role=\"status\"></p></form></details>";
 }
 
-std::string WallSection(const app::GymDashboard& d, const app::WallDashboard& w) {
+std::string WallSection(const app::GymDashboard& d, const app::WallDashboard& w,
+                        const DashboardAscents& ascents) {
   const std::string id = Id(w.wall.id);
   std::string b = "<section class=\"dash-wall" + std::string(w.due ? " due" : "") +
                   "\" id=\"wall-" + id + "\"><h2><a href=\"/walls/" + id + "\">" +
@@ -270,7 +289,7 @@ std::string WallSection(const app::GymDashboard& d, const app::WallDashboard& w)
     b += "<p class=\"gaps empty\" id=\"gaps-" + id + "\">No gaps.</p>\n";
   }
   b += "<div class=\"chart-pair\">" + GradeChart(w) + GradeTable(w) + "</div>\n";
-  b += StyleMix(w) + "\n" + RouteTable(w) + "\n";
+  b += StyleMix(w) + "\n" + RouteTable(w, ascents) + "\n";
   if (d.can_edit) b += TargetForm(d, w) + "\n";
   return b + "</section>\n";
 }
@@ -375,7 +394,8 @@ std::string WallStatus(const app::Wall& wall,
          "\">Dashboard</a></p>\n";
 }
 
-std::string DashboardPage(const PageViewer& v, const app::GymDashboard& d, int64_t only_wall) {
+std::string DashboardPage(const PageViewer& v, const app::GymDashboard& d, int64_t only_wall,
+                          const DashboardAscents& ascents) {
   const std::string gid = Id(d.gym.id);
   std::string b = "<p class=\"no-print\"><a href=\"/gyms/" + gid + "\">" + E(d.gym.name) +
                   "</a></p>\n<h1 id=\"dashboard-title\">" + E(d.gym.name) +
@@ -397,7 +417,7 @@ std::string DashboardPage(const PageViewer& v, const app::GymDashboard& d, int64
   for (const app::WallDashboard& w : d.walls) {
     if (only_wall && w.wall.id != only_wall) continue;
     any = true;
-    b += WallSection(d, w);
+    b += WallSection(d, w, ascents);
   }
   if (!any) b += "<p class=\"empty\">No walls yet.</p>\n";
   b += "<style>.chart-pair{display:flex;flex-wrap:wrap;gap:1em;align-items:flex-start}"
@@ -416,7 +436,9 @@ void GetDashboard(Exchange& x) {
   auto slot = AdmitWork(x, Cost(x, *d));
   if (!slot) return;
   json walls = json::array();
-  for (const app::WallDashboard& w : d->walls) walls.push_back(WallJson(w));
+  Result<DashboardAscents> ascents = AscentsOf(x, *d);
+  if (!ascents.ok()) return ApiError(x, ascents.status());
+  for (const app::WallDashboard& w : d->walls) walls.push_back(WallJson(w, *ascents));
   ReplyJson(x.res, 200,
             json{{"gym", d->gym.id},
                  {"can_edit", d->can_edit},
@@ -457,7 +479,10 @@ void PageDashboard(Exchange& x) {
   int64_t only = 0;
   if (std::optional<std::string> w = x.req.Query("wall")) only = ParseId(*w).value_or(0);
   x.res.SetHeader("Cache-Control", "no-store");
-  x.res.SetBody(200, DashboardPage(x.caller.page(), *d, only), "text/html; charset=utf-8");
+  Result<DashboardAscents> ascents = AscentsOf(x, *d);
+  if (!ascents.ok()) return PageError(x, ascents.status());
+  x.res.SetBody(200, DashboardPage(x.caller.page(), *d, only, *ascents),
+                "text/html; charset=utf-8");
 }
 
 }  // namespace sb::web

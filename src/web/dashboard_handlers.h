@@ -6,11 +6,14 @@
 #ifndef SB_WEB_DASHBOARD_HANDLERS_H_
 #define SB_WEB_DASHBOARD_HANDLERS_H_
 
+#include <cstdint>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "app/dashboard.h"
+#include "app/logbook.h"
 #include "web/handlers.h"
 
 namespace sb::web {
@@ -19,9 +22,14 @@ void GetDashboard(Exchange& x);    // GET /api/gyms/{id}/dashboard (members)
 void PutWallTargets(Exchange& x);  // PUT /api/gyms/{id}/walls/{wall}/targets (head setters)
 void PageDashboard(Exchange& x);   // GET /gyms/{id}/dashboard[?wall=W] (members)
 
+// Route id -> its grade from ascents (issue 23; app::Logbook::Ascents).
+using DashboardAscents = std::map<int64_t, app::AscentGrade>;
+
 // The page's HTML (escaped user text; SVG plan and charts with data
-// tables). `only_wall` shows one wall's section (0 = every wall). Pure.
-std::string DashboardPage(const PageViewer& v, const app::GymDashboard& d, int64_t only_wall);
+// tables). `only_wall` shows one wall's section (0 = every wall); each
+// route row shows its grade from `ascents` (an empty cell when absent). Pure.
+std::string DashboardPage(const PageViewer& v, const app::GymDashboard& d, int64_t only_wall,
+                          const DashboardAscents& ascents = {});
 // The floor plan as SVG: walls on their plan rectangles, filled by the age
 // of what is on them, each a link to /walls/{id}; "" when no wall has a
 // rectangle. Pure.

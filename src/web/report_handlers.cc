@@ -110,6 +110,9 @@ json ReportJson(const app::GymReport& r) {
         {"enough", c.enough},
         {"min_ratings", app::ReportLimits::kMinRatingsPerGroup},
         {"verdict", c.verdict}}}};
+  out["capped"] = r.capped;  // only the newest max_routes routes were read
+  out["max_routes"] = r.max_routes;
+  if (r.capped) out["capped_note"] = r.capped_note;
   if (r.can_set) {
     json comments = json::array();
     for (const app::ReportComment& cm : r.comments) {
@@ -142,6 +145,7 @@ std::string ReportPageHtml(const PageViewer& v, const app::GymReport& r) {
        (r.scope == "wall" ? "wall=" + Id(r.wall_id.value_or(0)) : "date=" + E(r.date)) +
        "\" id=\"report-json\">JSON</a></p>\n";
   b += "<h1 id=\"report-title\">" + E(title) + "</h1>\n";
+  if (r.capped) b += "<p class=\"msg bad\" id=\"report-capped\">" + E(r.capped_note) + "</p>\n";
   b += "<p id=\"report-totals\" data-routes=\"" + std::to_string(r.routes.size()) +
        "\" data-ticks=\"" + std::to_string(r.ticks) + "\" data-climbers=\"" +
        std::to_string(r.climbers) + "\">" + std::to_string(r.routes.size()) + " route" +

@@ -1,0 +1,40 @@
+#include "app/burst.h"
+
+#include <ctime>
+
+namespace sb::app {
+
+Status BurstRule::Validate() const {
+  if (window_seconds <= 0) {
+    return Status::InvalidInput("burst.window_seconds: must be > 0, got " +
+                                std::to_string(window_seconds));
+  }
+  if (new_identities <= 0) {
+    return Status::InvalidInput("burst.new_identities: must be > 0, got " +
+                                std::to_string(new_identities));
+  }
+  return Status::Ok();
+}
+
+std::string BurstWindowStart(const BurstRule& rule, int64_t now) {
+  return StoreTimeText(now - rule.window_seconds);
+}
+
+std::string StoreTimeText(int64_t unix_seconds) {
+  std::time_t tt = static_cast<std::time_t>(unix_seconds);
+  std::tm tm{};
+  gmtime_r(&tt, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M:%S", &tm);
+  return buf;
+}
+
+Result<bool> BurstHolds(const BurstRule& rule, int64_t now, bool established,
+                        const std::function<Result<int>(const std::string&)>& count_new) {
+  SB_RETURN_IF_ERROR(rule.Validate());
+  if (established) return false;
+  SB_ASSIGN_OR_RETURN(int fresh, count_new(BurstWindowStart(rule, now)));
+  return fresh >= rule.new_identities;
+}
+
+}  // namespace sb::app
