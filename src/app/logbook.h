@@ -124,6 +124,14 @@ class Logbook {
 
   // The ascent grade of a visible route (kNotFound as Log).
   Result<AscentGrade> Ascent(const Viewer& v, int64_t route_id);
+  // The ascent grades of routes `v` already read through a listing (a wall
+  // page's rows), by route id: one version check and one cached fit per
+  // (gym, discipline) for the whole list, not per route (issue 22: a wall
+  // page of 200 routes read the gym's tick version 200 times). Routes
+  // outside a gym get the empty grade. Visibility is the listing's: routes
+  // are not read again.
+  Result<std::map<int64_t, AscentGrade>> Ascents(const Viewer& v,
+                                                 const std::vector<RouteView>& routes);
 
   // Setters of the route's gym (head, setter) and the route's owner only:
   // every tick of the route (kPermission otherwise, kUnauthenticated when
