@@ -48,8 +48,11 @@ struct LogbookPolicy {
   int burst_window_seconds = 600;
   int burst_new_identities = 5;
   // Fitted gyms kept in the ascent-grade cache (one entry per gym and
-  // discipline; each entry is refitted when the gym's ticks change).
-  int fit_cache_entries = 16;
+  // discipline; each entry is refitted when the gym's ticks change). A
+  // chain of 20 gyms with bouldering and roped walls needs 40 (issue 22: at
+  // 16, wall pages of the chain refitted a gym on most requests, 15-40 s
+  // each); an entry holds one grade per ticked route (~10,500 at chain scale).
+  int fit_cache_entries = 48;
 
   // Every field > 0; errors name the field. Pure.
   Status Validate() const;
