@@ -343,7 +343,9 @@ Result<std::vector<WallDashboard>> Dashboard::Build(const Viewer& v, int64_t gym
   };
   std::map<int64_t, Climbed> climbed;
   if (targets_) {
-    SB_ASSIGN_OR_RETURN(std::vector<store::RouteTickSum> sums, targets_->GymTickSums(gym));
+    // Only the routes on the wall are shown with their ticks.
+    SB_ASSIGN_OR_RETURN(std::vector<store::RouteTickSum> sums,
+                        targets_->StateTickSums(gym, "set"));
     for (const store::RouteTickSum& t : sums) {
       climbed[t.route_id] = {static_cast<int>(t.ticks), static_cast<int>(t.star_votes),
                              static_cast<int>(t.star_sum)};
@@ -389,13 +391,15 @@ Result<std::vector<WallDashboard>> Dashboard::Build(const Viewer& v, int64_t gym
     if (routes_.size() >= DashboardLimits::kMaxRouteCacheEntries) routes_.clear();
     routes_[id] = reading;
   }
-  std::map<int64_t, std::vector<std::vector<std::string>>> route_styles;  // route -> per move
-  for (const auto& [id, reading] : readings) route_styles[id] = reading->moves;
+  // The readings are used in place (issue 22: copying every route's
+  // per-move styles cost more than the mix itself at 5,500 routes).
   auto mix_of = [&](const std::vector<const store::RouteRecord*>& routes, int* moves) {
     std::map<std::string, double> mix;
     int n = 0;
     for (const store::RouteRecord* r : routes) {
-      for (const std::vector<std::string>& m : route_styles[r->id]) {
+      auto it = readings.find(r->id);
+      if (it == readings.end()) continue;
+      for (const std::vector<std::string>& m : it->second->moves) {
         ++n;
         for (const std::string& s : m) mix[s] += 1;
       }

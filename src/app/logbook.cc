@@ -314,6 +314,31 @@ Result<std::map<int64_t, AscentGrade>> Logbook::Ascents(int64_t gym_id,
   return out;
 }
 
+Result<std::map<int64_t, AscentGrade>> Logbook::Ascents(const Viewer& v,
+                                                       const std::vector<RouteView>& routes) {
+  (void)v;  // the routes come from a listing already filtered for `v`
+  if (ticks_ == nullptr) return Status::Internal("this store keeps no ticks");
+  std::map<int64_t, AscentGrade> out;
+  std::map<std::pair<int64_t, std::string>, Fit> fits;  // one per (gym, discipline) asked
+  for (const RouteView& route : routes) {
+    AscentGrade none;
+    none.discipline = DisciplineOf(route);
+    if (!route.gym_id) {
+      out[route.id] = none;
+      continue;
+    }
+    const auto key = std::make_pair(*route.gym_id, none.discipline);
+    auto f = fits.find(key);
+    if (f == fits.end()) {
+      SB_ASSIGN_OR_RETURN(Fit fit, FitGym(*route.gym_id, none.discipline));
+      f = fits.emplace(key, std::move(fit)).first;
+    }
+    auto it = f->second.routes.find(route.id);
+    out[route.id] = it == f->second.routes.end() ? none : it->second;
+  }
+  return out;
+}
+
 Result<std::vector<Tick>> Logbook::ForSetters(const Viewer& v, int64_t route_id) {
   if (ticks_ == nullptr) return Status::Internal("this store keeps no ticks");
   if (!v.logged_in()) return Status::Unauthenticated("log in first");

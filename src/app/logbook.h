@@ -48,8 +48,11 @@ struct LogbookPolicy {
   int burst_window_seconds = BurstRule{}.window_seconds;
   int burst_new_identities = BurstRule{}.new_identities;
   // Fitted gyms kept in the ascent-grade cache (one entry per gym and
-  // discipline; each entry is refitted when the gym's ticks change).
-  int fit_cache_entries = 16;
+  // discipline; each entry is refitted when the gym's ticks change). A
+  // chain of 20 gyms with bouldering and roped walls needs 40 (issue 22: at
+  // 16, wall pages of the chain refitted a gym on most requests, 15-40 s
+  // each); an entry holds one grade per ticked route (~10,500 at chain scale).
+  int fit_cache_entries = 48;
 
   // Every field > 0; errors name the field. Pure.
   Status Validate() const;
@@ -130,6 +133,14 @@ class Logbook {
   // other gyms too). The caller has checked the viewer sees `route_ids`.
   Result<std::map<int64_t, AscentGrade>> Ascents(int64_t gym_id,
                                                  const std::vector<int64_t>& route_ids);
+  // The ascent grades of routes `v` already read through a listing (a wall
+  // page's rows), by route id: one version check and one cached fit per
+  // (gym, discipline) for the whole list, not per route (issue 22: a wall
+  // page of 200 routes read the gym's tick version 200 times). Routes
+  // outside a gym get the empty grade. Visibility is the listing's: routes
+  // are not read again.
+  Result<std::map<int64_t, AscentGrade>> Ascents(const Viewer& v,
+                                                 const std::vector<RouteView>& routes);
 
   // Setters of the route's gym (head, setter) and the route's owner only:
   // every tick of the route (kPermission otherwise, kUnauthenticated when

@@ -244,6 +244,23 @@ TEST_F(LogbookTest, AscentGradeHasAnIntervalAndFlagsOnlyOutsideTheBand) {
   ASSERT_TRUE(moved.ok());
   EXPECT_EQ(moved->ticks, 41);
   EXPECT_GT(moved->value, g->value);
+  // A page's routes at once (issue 22): the same grades as one by one; an
+  // untried route and a route outside a gym are not fitted.
+  const int64_t untried = Route("Untried", "V2");
+  std::vector<RouteView> page;
+  for (int64_t id : {route_, easy, untried}) page.push_back(*store_->GetRoute(id));
+  RouteView loose;
+  loose.id = 999999;
+  page.push_back(loose);
+  Result<std::map<int64_t, AscentGrade>> all = book.Ascents(Anonymous(), page);
+  ASSERT_TRUE(all.ok()) << all.status().message();
+  ASSERT_EQ(all->size(), 4u);
+  EXPECT_EQ(all->at(route_).value, book.Ascent(Anonymous(), route_)->value);
+  EXPECT_EQ(all->at(route_).ticks, 41);
+  EXPECT_EQ(all->at(easy).value, book.Ascent(Anonymous(), easy)->value);
+  EXPECT_EQ(all->at(easy).grade, book.Ascent(Anonymous(), easy)->grade);
+  EXPECT_FALSE(all->at(untried).fitted);
+  EXPECT_FALSE(all->at(999999).fitted);
 }
 
 }  // namespace

@@ -94,4 +94,22 @@ Result<std::vector<RouteTickSum>> GymTickSums(sql::Connection& c, int64_t gym_id
   return out;
 }
 
+Result<std::vector<RouteTickSum>> StateTickSums(sql::Connection& c, int64_t gym_id,
+                                                const std::string& route_state) {
+  // From the gym's routes in the state (routes_gym_state*) to their ticks by
+  // the (route_id, climber, day) key.
+  SB_ASSIGN_OR_RETURN(Rows r, c.Query("SELECT t.route_id, count(*), count(t.stars), "
+                                      "coalesce(sum(t.stars), 0) FROM routes r "
+                                      "JOIN ticks t ON t.route_id = r.id "
+                                      "WHERE r.gym_id = ? AND r.state = ? AND t.state = 'ok' "
+                                      "GROUP BY t.route_id ORDER BY t.route_id",
+                                      {gym_id, route_state}));
+  std::vector<RouteTickSum> out;
+  out.reserve(r.size());
+  for (size_t i = 0; i < r.size(); ++i) {
+    out.push_back({r.Int(i, 0), r.Int(i, 1), r.Int(i, 2), r.Int(i, 3)});
+  }
+  return out;
+}
+
 }  // namespace sb::store::targets_sql

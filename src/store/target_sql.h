@@ -17,6 +17,8 @@ Status SetWallTargets(sql::Connection& c, int64_t wall_id,
 Result<std::vector<TargetRecord>> WallTargets(sql::Connection& c, int64_t wall_id);
 Result<std::vector<TargetRecord>> GymTargets(sql::Connection& c, int64_t gym_id);
 Result<std::vector<RouteTickSum>> GymTickSums(sql::Connection& c, int64_t gym_id);
+Result<std::vector<RouteTickSum>> StateTickSums(sql::Connection& c, int64_t gym_id,
+                                                const std::string& route_state);
 
 }  // namespace sb::store::targets_sql
 

@@ -118,6 +118,35 @@ TEST_P(TargetStoreTest, TickSumsCountUnheldTicksAndStarsPerRoute) {
   EXPECT_EQ((*sums)[0].ticks, 3);
   EXPECT_EQ((*sums)[0].star_votes, 2);
   EXPECT_EQ((*sums)[0].star_sum, 9);
+  // By route state: a stripped route's ticks count in its state only.
+  RouteRecord old = r;
+  old.name = "B";
+  old.state = "stripped";
+  const int64_t b = *store_->InsertRoute(old);
+  TickRecord t;
+  t.route_id = b;
+  t.gym_id = gym_;
+  t.climber = "u:1";
+  t.day = "2026-10-01";
+  t.outcome = "flash";
+  t.stars = 2;
+  t.created_at = t.updated_at = "2026-10-01 10:00:00";
+  ASSERT_TRUE(ticks->PutTick(t).ok());
+  Result<std::vector<RouteTickSum>> set = targets_->StateTickSums(gym_, "set");
+  ASSERT_TRUE(set.ok()) << set.status().message();
+  ASSERT_EQ(set->size(), 1u);
+  EXPECT_EQ((*set)[0].route_id, a);
+  EXPECT_EQ((*set)[0].ticks, 3);
+  EXPECT_EQ((*set)[0].star_sum, 9);
+  Result<std::vector<RouteTickSum>> gone = targets_->StateTickSums(gym_, "stripped");
+  ASSERT_TRUE(gone.ok()) << gone.status().message();
+  ASSERT_EQ(gone->size(), 1u);
+  EXPECT_EQ((*gone)[0].route_id, b);
+  EXPECT_EQ((*gone)[0].ticks, 1);
+  EXPECT_EQ((*gone)[0].star_votes, 1);
+  EXPECT_EQ((*gone)[0].star_sum, 2);
+  EXPECT_EQ(targets_->GymTickSums(gym_)->size(), 2u);
+  EXPECT_TRUE(targets_->StateTickSums(gym_ + 1000, "set")->empty());
 }
 
 }  // namespace

@@ -52,10 +52,12 @@ void PageWall(Exchange& x) {
   Result<app::RoutePage> routes = x.services.routes.Search(x.caller.viewer, q);
   if (!routes.ok()) return PageError(x, routes.status());
   // Each route's grade from ascents (one cached fit of the gym, issue 23).
+  // One fit for the page (issue 22: not one tick-version query per route).
   std::map<int64_t, std::string> ascent;
-  for (const auto& r : routes->routes) {
-    Result<app::AscentGrade> a = x.services.logbook.Ascent(x.caller.viewer, r.id);
-    if (a.ok()) ascent[r.id] = AscentCell(*a);
+  Result<std::map<int64_t, app::AscentGrade>> ascents =
+      x.services.logbook.Ascents(x.caller.viewer, routes->routes);
+  if (ascents.ok()) {
+    for (const auto& [id, a] : *ascents) ascent[id] = AscentCell(a);
   }
   std::vector<std::pair<std::string, std::string>> dates;  // (state, set date) for the status line
   for (const auto& r : routes->routes) dates.emplace_back(r.state, r.set_on);
