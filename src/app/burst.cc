@@ -2,6 +2,8 @@
 
 #include <ctime>
 
+#include "base/date.h"
+
 namespace sb::app {
 
 Status BurstRule::Validate() const {
@@ -20,14 +22,7 @@ std::string BurstWindowStart(const BurstRule& rule, int64_t now) {
   return StoreTimeText(now - rule.window_seconds);
 }
 
-std::string StoreTimeText(int64_t unix_seconds) {
-  std::time_t tt = static_cast<std::time_t>(unix_seconds);
-  std::tm tm{};
-  gmtime_r(&tt, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M:%S", &tm);
-  return buf;
-}
+std::string StoreTimeText(int64_t unix_seconds) { return UtcTimeText(unix_seconds); }
 
 Result<bool> BurstHolds(const BurstRule& rule, int64_t now, bool established,
                         const std::function<Result<int>(const std::string&)>& count_new) {

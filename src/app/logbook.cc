@@ -1,7 +1,5 @@
 #include "app/logbook.h"
 
-#include "app/convert.h"
-
 #include <algorithm>
 #include <climits>
 #include <cstdint>
@@ -10,8 +8,10 @@
 #include <set>
 
 #include "app/climber_policy.h"
+#include "app/convert.h"
 #include "app/discipline.h"
 #include "app/routes.h"
+#include "base/date.h"
 #include "base/text.h"
 #include "grades/consensus.h"
 #include "grades/ratings.h"
@@ -26,21 +26,16 @@ namespace {
 using grades::Discipline;
 
 // "YYYY-MM-DD HH:MM:SS" (UTC) of unix seconds.
-std::string TimeText(int64_t t) {
-  std::time_t tt = static_cast<std::time_t>(t);
-  std::tm tm{};
-  gmtime_r(&tt, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M:%S", &tm);
-  return buf;
-}
+std::string TimeText(int64_t t) { return UtcTimeText(t); }
 
 bool IsSend(const std::string& outcome) { return outcome == "flash" || outcome == "send"; }
 
 // The route's discipline for the fit: its grade's, else bouldering.
-std::string DisciplineOf(const store::RouteRecord& r) {
-  return r.grade_discipline.empty() ? "bouldering" : r.grade_discipline;
+std::string DisciplineOf(const std::string& grade_discipline) {
+  return grade_discipline.empty() ? "bouldering" : grade_discipline;
 }
+std::string DisciplineOf(const store::RouteRecord& r) { return DisciplineOf(r.grade_discipline); }
+std::string DisciplineOf(const RouteView& r) { return DisciplineOf(r.grade_discipline); }
 
 // The scale a route's grade is written in (the discipline's default when
 // unreadable).

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "app/convert.h"
 #include "app/logbook_fixture.h"
 #include "store/gym_store.h"
 #include "store/tick_store.h"
@@ -248,7 +249,7 @@ TEST_F(LogbookTest, AscentGradeHasAnIntervalAndFlagsOnlyOutsideTheBand) {
   // untried route and a route outside a gym are not fitted.
   const int64_t untried = Route("Untried", "V2");
   std::vector<RouteView> page;
-  for (int64_t id : {route_, easy, untried}) page.push_back(*store_->GetRoute(id));
+  for (int64_t id : {route_, easy, untried}) page.push_back(ToView(*store_->GetRoute(id)));
   RouteView loose;
   loose.id = 999999;
   page.push_back(loose);

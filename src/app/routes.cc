@@ -364,14 +364,7 @@ Status CheckDate(const char* field, const std::string& d) {
   return Status::Ok();
 }
 
-std::string Today() {
-  std::time_t t = std::time(nullptr);
-  std::tm tm{};
-  gmtime_r(&t, &tm);
-  char buf[16];
-  std::strftime(buf, sizeof buf, "%Y-%m-%d", &tm);
-  return buf;
-}
+std::string Today() { return UtcDateText(std::time(nullptr)); }
 
 // The gym fields a request gives, completed by the CRDL header's "state:"
 // and "strip:" lines where the request does not give them (docs/formats.md).

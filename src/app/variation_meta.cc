@@ -6,6 +6,7 @@
 #include <map>
 
 #include "app/routes.h"
+#include "base/date.h"
 #include "base/hash.h"
 #include "base/text.h"
 #include "crdl/site_csv.h"
@@ -39,14 +40,7 @@ std::string OneLine(std::string_view s) {
   return out;
 }
 
-std::string Today() {
-  std::time_t t = std::time(nullptr);
-  std::tm tm{};
-  gmtime_r(&t, &tm);
-  char buf[16];
-  std::strftime(buf, sizeof buf, "%Y-%m-%d", &tm);
-  return buf;
-}
+std::string Today() { return UtcDateText(std::time(nullptr)); }
 
 // A move's identity for matching edits: hand and text, case and runs of
 // blanks folded; "(blank)" (how a blank is written) is the empty text.

@@ -1,5 +1,7 @@
 #include "base/date.h"
 
+#include <ctime>
+
 namespace sb {
 
 namespace {
@@ -27,5 +29,22 @@ bool IsIsoDate(std::string_view t) {
   const int year = Digits(t, 0, 4), month = Digits(t, 5, 2), day = Digits(t, 8, 2);
   return month >= 1 && month <= 12 && day >= 1 && day <= DaysInMonth(year, month);
 }
+
+namespace {
+
+std::string Format(int64_t unix_seconds, const char* format) {
+  std::time_t t = static_cast<std::time_t>(unix_seconds);
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, format, &tm);
+  return buf;
+}
+
+}  // namespace
+
+std::string UtcDateText(int64_t unix_seconds) { return Format(unix_seconds, "%Y-%m-%d"); }
+
+std::string UtcTimeText(int64_t unix_seconds) { return Format(unix_seconds, "%Y-%m-%d %H:%M:%S"); }
 
 }  // namespace sb

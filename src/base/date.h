@@ -1,7 +1,10 @@
-// Calendar dates as text: the one check of an ISO date "YYYY-MM-DD".
+// Calendar dates as text: the one check of an ISO date "YYYY-MM-DD" and the
+// one way to write a moment as UTC text.
 #ifndef SB_BASE_DATE_H_
 #define SB_BASE_DATE_H_
 
+#include <cstdint>
+#include <string>
 #include <string_view>
 
 namespace sb {
@@ -13,6 +16,13 @@ namespace sb {
 // Year 0000 is accepted as a year like any other. Callers keep their own error
 // text. Pure; thread-safe.
 bool IsIsoDate(std::string_view text);
+
+// The UTC calendar day of `unix_seconds` as "YYYY-MM-DD". Pure; thread-safe.
+std::string UtcDateText(int64_t unix_seconds);
+
+// The UTC moment `unix_seconds` as "YYYY-MM-DD HH:MM:SS", the text the
+// database keeps (and orders by). Pure; thread-safe.
+std::string UtcTimeText(int64_t unix_seconds);
 
 }  // namespace sb
 

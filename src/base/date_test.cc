@@ -1,4 +1,5 @@
-// The one ISO date check (date.h): shape, months, month lengths, leap days.
+// The one ISO date check (date.h): shape, months, month lengths, leap days;
+// the one UTC text of a moment.
 #include "base/date.h"
 
 #include <gtest/gtest.h>
@@ -40,6 +41,16 @@ TEST(Date, IsIsoDate) {
   EXPECT_FALSE(IsIsoDate("2024-02-30"));
   EXPECT_FALSE(IsIsoDate("1900-02-29"));
   EXPECT_TRUE(IsIsoDate("2000-02-29"));
+}
+
+TEST(Date, UtcTextOfUnixSeconds) {
+  EXPECT_EQ(UtcDateText(0), "1970-01-01");
+  EXPECT_EQ(UtcTimeText(0), "1970-01-01 00:00:00");
+  // 2024-02-29 23:59:59 UTC: a leap day, one second before March.
+  EXPECT_EQ(UtcDateText(1709251199), "2024-02-29");
+  EXPECT_EQ(UtcTimeText(1709251199), "2024-02-29 23:59:59");
+  EXPECT_EQ(UtcTimeText(1709251200), "2024-03-01 00:00:00");
+  EXPECT_TRUE(IsIsoDate(UtcDateText(1709251199)));
 }
 
 }  // namespace

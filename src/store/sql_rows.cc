@@ -3,16 +3,11 @@
 #include <ctime>
 #include <utility>
 
+#include "base/date.h"
+
 namespace sb::store::sql_rows {
 
-std::string NowText() {
-  std::time_t t = std::time(nullptr);
-  std::tm tm{};
-  gmtime_r(&t, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M:%S", &tm);
-  return buf;
-}
+std::string NowText() { return UtcTimeText(std::time(nullptr)); }
 
 std::string Placeholders(int columns, size_t rows) {
   std::string one = "(";
