@@ -199,17 +199,30 @@
   // ---- /studies/{id}: held responses (the burst rule, issue 23) --------------
   const heldResponses = document.getElementById('held-responses');
   if (heldResponses) {
-    heldResponses.addEventListener('click', async (ev) => {
-      const b = ev.target;
-      if (!(b instanceof HTMLButtonElement)) return;
-      const li = b.closest('.held-response');
-      const what = b.classList.contains('response-accept') ? 'accept' : 'discard';
+    const decide = async (li, what) => {
       const r = await send('POST', '/api/studies/' + heldResponses.dataset.study + '/responses/' +
                                    li.dataset.response + '/' + what, {});
       if (r.ok) {
         li.textContent = what === 'accept' ? 'Accepted (reload to see the numbers).' : 'Discarded.';
         li.className = 'decided';
       }
+      return r.ok;
+    };
+    heldResponses.addEventListener('click', async (ev) => {
+      const b = ev.target;
+      if (!(b instanceof HTMLButtonElement)) return;
+      if (b.id === 'accept-all-held') {
+        // One response after another, as the buttons do; stops at the first refusal.
+        b.disabled = true;
+        for (const li of heldResponses.querySelectorAll('li.held-response')) {
+          if (!(await decide(li, 'accept'))) break;
+        }
+        b.disabled = false;
+        return;
+      }
+      const li = b.closest('.held-response');
+      if (!li) return;
+      await decide(li, b.classList.contains('response-accept') ? 'accept' : 'discard');
     });
   }
 })();

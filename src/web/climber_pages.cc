@@ -502,7 +502,10 @@ std::string StudyResultsHtml(const PageViewer& v, const app::StudyResults& res,
          "\"><h2>Held responses (" + std::to_string(res.held.size()) +
          ")</h2>\n<p class=\"msg\">A burst of new identities from one address answered this "
          "study: these responses are left out of every number below and of the exports until "
-         "you accept them.</p>\n<ul>\n";
+         "you accept them.</p>\n"
+         "<p><button type=\"button\" id=\"accept-all-held\">Accept all " +
+         std::to_string(res.held.size()) +
+         "</button> (people answering together on one network share its address)</p>\n<ul>\n";
     for (const app::HeldStudyResponse& h : res.held) {
       b += "<li class=\"held-response\" data-response=\"" + Id(h.id) + "\">" +
            E(h.participant) + ", " + E(h.created_at) + " UTC, " +

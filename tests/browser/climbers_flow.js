@@ -283,7 +283,7 @@ async function signUp(ctx, name) {
     await setter.goto(base + '/studies/' + studyId);
     const heldN = await setter.$$eval('#held-responses li.held-response', (l) => l.length);
     check(heldN >= 1 && heldN <= 39, `the burst is held for the study's owner (${heldN} held)`);
-    for (const b of await setter.$$('#held-responses button.response-accept')) await b.click();
+    await setter.click('#accept-all-held');
     await setter.waitForFunction(
         () => document.querySelectorAll('#held-responses li.held-response').length === 0);
 
