@@ -1,5 +1,9 @@
 #include "app/convert.h"
 
+#include <string>
+
+#include "base/text.h"
+
 namespace sb::app {
 
 // A field added to a row and not to its view (or the other way round) makes
@@ -308,6 +312,38 @@ store::TickRecord ToRecord(const Tick& v) {
   r.created_at = v.created_at;
   r.updated_at = v.updated_at;
   r.revision = v.revision;
+  return r;
+}
+
+Wall ToView(const store::WallRecord& r) {
+  Wall w;
+  w.id = r.id;
+  w.gym_id = r.gym_id;
+  w.name = r.name;
+  w.discipline = r.discipline;
+  w.angle = r.angle;
+  w.position = r.position;
+  w.reset_weeks = r.reset_weeks;
+  w.plan_x = r.plan_x;
+  w.plan_y = r.plan_y;
+  w.plan_w = r.plan_w;
+  w.plan_h = r.plan_h;
+  return w;
+}
+
+store::WallRecord ToRecord(const Wall& w) {
+  store::WallRecord r;
+  r.id = w.id;
+  r.gym_id = w.gym_id;
+  r.name = std::string(Trim(w.name));
+  r.discipline = w.discipline;
+  r.angle = w.angle;
+  r.position = w.position;
+  r.reset_weeks = w.reset_weeks;
+  r.plan_x = w.plan_x;
+  r.plan_y = w.plan_y;
+  r.plan_w = w.plan_w;
+  r.plan_h = w.plan_h;
   return r;
 }
 

@@ -8,7 +8,9 @@
 #include <utility>
 #include <vector>
 
+#include "app/gyms.h"
 #include "app/types.h"
+#include "store/gym_store.h"
 #include "store/store.h"
 #include "store/tick_store.h"
 
@@ -34,6 +36,9 @@ Study ToView(const store::StudyRecord& r);
 store::StudyRecord ToRecord(const Study& v);
 Tick ToView(const store::TickRecord& r);
 store::TickRecord ToRecord(const Tick& v);
+// A wall (app/gyms.h); its name is stored trimmed.
+Wall ToView(const store::WallRecord& r);
+store::WallRecord ToRecord(const Wall& v);
 
 // The same for every row of a list, in order.
 template <typename Row>

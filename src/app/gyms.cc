@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "app/convert.h"
 #include "app/discipline.h"
 #include "base/number.h"
 #include "base/text.h"
@@ -25,38 +26,6 @@ Status CheckName(const std::string& field, const std::string& name, size_t max) 
     if (c < 0x20 || c == 0x7F) return Status::InvalidInput(field + ": no control characters");
   }
   return Status::Ok();
-}
-
-Wall ToWall(const store::WallRecord& r) {
-  Wall w;
-  w.id = r.id;
-  w.gym_id = r.gym_id;
-  w.name = r.name;
-  w.discipline = r.discipline;
-  w.angle = r.angle;
-  w.position = r.position;
-  w.reset_weeks = r.reset_weeks;
-  w.plan_x = r.plan_x;
-  w.plan_y = r.plan_y;
-  w.plan_w = r.plan_w;
-  w.plan_h = r.plan_h;
-  return w;
-}
-
-store::WallRecord ToRecord(const Wall& w) {
-  store::WallRecord r;
-  r.id = w.id;
-  r.gym_id = w.gym_id;
-  r.name = std::string(Trim(w.name));
-  r.discipline = w.discipline;
-  r.angle = w.angle;
-  r.position = w.position;
-  r.reset_weeks = w.reset_weeks;
-  r.plan_x = w.plan_x;
-  r.plan_y = w.plan_y;
-  r.plan_w = w.plan_w;
-  r.plan_h = w.plan_h;
-  return r;
 }
 
 }  // namespace
@@ -253,7 +222,7 @@ Result<std::vector<Wall>> Gyms::Walls(const Viewer& v, int64_t gym) {
   (void)role;
   SB_ASSIGN_OR_RETURN(std::vector<store::WallRecord> all, gyms_->ListWalls(gym));
   std::vector<Wall> out;
-  for (const store::WallRecord& r : all) out.push_back(ToWall(r));
+  for (const store::WallRecord& r : all) out.push_back(ToView(r));
   return out;
 }
 
@@ -266,7 +235,7 @@ Result<Wall> Gyms::GetWall(const Viewer& v, int64_t wall) {
   }
   SB_ASSIGN_OR_RETURN(std::string role, RoleIn(v, r->gym_id));
   if (role.empty()) return NoWall(std::to_string(wall));  // another gym's id: never its data
-  return ToWall(*r);
+  return ToView(*r);
 }
 
 Result<Wall> Gyms::ResolveWall(int64_t gym, const std::string& id_or_name) {
@@ -276,11 +245,11 @@ Result<Wall> Gyms::ResolveWall(int64_t gym, const std::string& id_or_name) {
   if (ParseInt(key, &id) && id > 0) {
     Result<store::WallRecord> r = gyms_->GetWall(id);
     if (!r.ok() || r->gym_id != gym) return NoWall(key);
-    return ToWall(*r);
+    return ToView(*r);
   }
   SB_ASSIGN_OR_RETURN(std::vector<store::WallRecord> all, gyms_->ListWalls(gym));
   for (const store::WallRecord& r : all) {
-    if (ToLower(r.name) == ToLower(key)) return ToWall(r);
+    if (ToLower(r.name) == ToLower(key)) return ToView(r);
   }
   return NoWall("'" + key + "' in this gym");
 }
