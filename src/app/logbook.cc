@@ -301,10 +301,7 @@ Result<std::map<int64_t, AscentGrade>> Logbook::Ascents(int64_t gym_id,
   for (int64_t id : route_ids) out[id];
   if (out.empty()) return out;
   for (Discipline d : {Discipline::kBouldering, Discipline::kRoped}) {
-    SB_ASSIGN_OR_RETURN(Fit fit, FitGym(gym_id, grades::DisciplineName(d)));
-    for (auto& [id, a] : out) {
-      if (auto it = fit.routes.find(id); it != fit.routes.end()) a = it->second;
-    }
+    SB_RETURN_IF_ERROR(FillAscents(gym_id, grades::DisciplineName(d), &out));
   }
   return out;
 }
@@ -313,25 +310,30 @@ Result<std::map<int64_t, AscentGrade>> Logbook::Ascents(const Viewer& v,
                                                        const std::vector<RouteView>& routes) {
   (void)v;  // the routes come from a listing already filtered for `v`
   if (ticks_ == nullptr) return Status::Internal("this store keeps no ticks");
+  // Each route starts as its discipline's empty grade; then one cached fit per
+  // (gym, discipline) the list has fills the ticked ones.
   std::map<int64_t, AscentGrade> out;
-  std::map<std::pair<int64_t, std::string>, Fit> fits;  // one per (gym, discipline) asked
+  std::map<std::pair<int64_t, std::string>, std::map<int64_t, AscentGrade>> groups;
   for (const RouteView& route : routes) {
     AscentGrade none;
     none.discipline = DisciplineOf(route);
-    if (!route.gym_id) {
-      out[route.id] = none;
-      continue;
-    }
-    const auto key = std::make_pair(*route.gym_id, none.discipline);
-    auto f = fits.find(key);
-    if (f == fits.end()) {
-      SB_ASSIGN_OR_RETURN(Fit fit, FitGym(*route.gym_id, none.discipline));
-      f = fits.emplace(key, std::move(fit)).first;
-    }
-    auto it = f->second.routes.find(route.id);
-    out[route.id] = it == f->second.routes.end() ? none : it->second;
+    out[route.id] = none;
+    if (route.gym_id) groups[{*route.gym_id, none.discipline}][route.id] = none;
+  }
+  for (auto& [key, group] : groups) {
+    SB_RETURN_IF_ERROR(FillAscents(key.first, key.second, &group));
+    for (auto& [id, a] : group) out[id] = std::move(a);
   }
   return out;
+}
+
+Status Logbook::FillAscents(int64_t gym_id, const std::string& discipline,
+                            std::map<int64_t, AscentGrade>* grades) {
+  SB_ASSIGN_OR_RETURN(Fit fit, FitGym(gym_id, discipline));
+  for (auto& [id, a] : *grades) {
+    if (auto it = fit.routes.find(id); it != fit.routes.end()) a = it->second;
+  }
+  return Status::Ok();
 }
 
 Result<std::vector<Tick>> Logbook::ForSetters(const Viewer& v, int64_t route_id) {

@@ -167,6 +167,10 @@ class Logbook {
   Result<store::RouteRecord> Visible(const Viewer& v, int64_t route_id);
   Status RequireSetter(const Viewer& v, const store::RouteRecord& route);
   Result<Fit> FitGym(int64_t gym_id, const std::string& discipline);
+  // Replaces each grade of `grades` (route id -> grade) whose route the
+  // gym's cached `discipline` fit has; the others stay as they are.
+  Status FillAscents(int64_t gym_id, const std::string& discipline,
+                     std::map<int64_t, AscentGrade>* grades);
 
   store::Store* store_;
   store::TickStore* ticks_;
