@@ -5,7 +5,10 @@
 #include <cstdint>
 #include <cmath>
 #include <ctime>
+#include <memory>
+#include <optional>
 #include <set>
+#include <vector>
 
 #include "app/climber_policy.h"
 #include "app/convert.h"
@@ -47,6 +50,232 @@ grades::Scale ScaleOf(const store::RouteRecord& r, Discipline d) {
   return grades::DefaultScale(d);
 }
 
+// A tick's felt grade on the axis of `d`, when it has one there (a felt grade
+// in another discipline's scale, accepted on a route graded in that scale,
+// app/discipline.h, has no value on this axis).
+std::optional<double> FeltOn(const store::TickRecord& t, Discipline d) {
+  if (!t.felt_value || t.felt_discipline.empty()) return std::nullopt;
+  Result<Discipline> fd = grades::ParseDiscipline(t.felt_discipline);
+  if (fd.ok() && *fd == d) return *t.felt_value;
+  return std::nullopt;
+}
+
+// The ascent grade of route `r` in `discipline` (= d) from its difficulty
+// `value` and standard deviation `sd`: the 80% interval, the grades in the
+// route's scale, the verdict against the setter's band and the felt-grade
+// consensus of `felt` (may be null). The one place a fit's numbers become an
+// AscentGrade (the full fit and the single-route update).
+AscentGrade MakeGrade(const std::string& discipline, Discipline d, const store::RouteRecord& r,
+                      int ticks, double value, double sd, const std::vector<double>* felt) {
+  const grades::Scale scale = ScaleOf(r, d);
+  AscentGrade a;
+  a.ticks = ticks;
+  a.fitted = true;
+  a.discipline = discipline;
+  a.value = value;
+  a.lo = value - grades::kZ80 * sd;
+  a.hi = value + grades::kZ80 * sd;
+  a.grade = grades::FormatValue(a.value, d, scale);
+  a.lo_grade = grades::FormatValue(a.lo, d, scale);
+  a.hi_grade = grades::FormatValue(a.hi, d, scale);
+  if (r.grade_value && r.grade_discipline == discipline) {
+    const int band = grades::Band(*r.grade_value);
+    if (a.hi < band - 0.5) a.verdict = "soft";
+    if (a.lo >= band + 0.5) a.verdict = "sandbagged";
+  }
+  if (felt != nullptr && !felt->empty()) {
+    Result<grades::Consensus> c = grades::ConsensusOf(*felt);
+    if (c.ok()) {
+      a.felt_votes = c->count;
+      a.felt_median = grades::FormatValue(c->median, d, scale);
+    }
+  }
+  return a;
+}
+
+// What one tick contributes to a fit: its games and felt grade on the axis.
+struct Counted {
+  grades::Games games;
+  std::optional<double> felt;
+};
+
+// The contribution of `t` to a fit of discipline `d`: none unless its state
+// is "ok" and its outcome and attempts are readable (as FitGym counts them).
+std::optional<Counted> CountedOf(const store::TickRecord& t, Discipline d) {
+  if (t.state != "ok") return std::nullopt;
+  Result<grades::TickOutcome> o = grades::ParseTickOutcome(t.outcome);
+  if (!o.ok()) return std::nullopt;
+  Result<grades::Games> g = grades::TickGames(*o, t.attempts);
+  if (!g.ok()) return std::nullopt;
+  return Counted{*g, FeltOn(t, d)};
+}
+
+}  // namespace
+
+// The full fit's data the single-route update reads and keeps current: the
+// problem (pairs of every route, per-route felt sums and tick counts), the
+// fit's abilities, the dense indices, and the felt grades per route (their
+// median). At chain scale (~250,000 ticks, ~10,000 routes) some 6 MB.
+namespace logbook_internal {
+struct FitState {
+  grades::RatingParams params;
+  grades::RatingProblem problem;
+  grades::RatingFit fit;
+  std::map<std::string, int> climbers;           // climber key -> index
+  std::map<int64_t, int> routes;                 // route id -> index
+  std::map<int64_t, std::vector<double>> felt;   // route id -> felt values
+  int64_t fitted_ticks = 0;                      // ticks of the full fit
+  int64_t absorbed = 0;                          // ticks absorbed since
+};
+}  // namespace logbook_internal
+
+using logbook_internal::FitState;
+
+namespace {
+
+// Replaces `route`'s pairs in the problem's (route, climber)-sorted pairs by
+// `pairs` (this route's, any order; empty ones dropped).
+void PutRoutePairs(grades::RatingProblem* p, int route, std::vector<grades::RatingPair> pairs) {
+  std::erase_if(pairs, [](const grades::RatingPair& q) { return q.wins + q.losses == 0; });
+  for (grades::RatingPair& q : pairs) q.route = route;
+  std::sort(pairs.begin(), pairs.end(),
+            [](const grades::RatingPair& a, const grades::RatingPair& b) {
+              return a.climber < b.climber;
+            });
+  auto lo = std::lower_bound(p->pairs.begin(), p->pairs.end(), route,
+                             [](const grades::RatingPair& q, int r) { return q.route < r; });
+  auto hi = lo;
+  while (hi != p->pairs.end() && hi->route == route) ++hi;
+  lo = p->pairs.erase(lo, hi);
+  p->pairs.insert(lo, pairs.begin(), pairs.end());
+}
+
+// Alternations of RateJointly: each is two one-dimensional Newton solves
+// over a climber's and a route's pairs; the pair (route, climber) settles to
+// 1e-6 grade units within some 10 (the coupling is one pair among many, or,
+// for a new climber, one pair against the ability prior).
+constexpr int kJointRounds = 30;
+
+// The route's rating after a tick of climber `c`: the route's difficulty and
+// the climber's ability are solved together (alternating one-dimensional
+// Newton solves, grades::RateRoute for both: the climber's solve is the
+// route's with signs mirrored, d' = -a against "abilities" -d_r), every other
+// climber and route held at the fit's values. Holding the ticking climber
+// fixed too would put a new climber at the prior mean, and a new climber's
+// failures on an easy route would then count as a strong climber's (measured:
+// 0.6 grades off a refit on the synthetic test gym). The fit's ability of `c`
+// and difficulty of `route` are set to the solution, so the next ticks see
+// them.
+Result<grades::RouteRating> RateJointly(FitState* s, const grades::RouteEvidence& e, int route,
+                                        int c) {
+  grades::RatingFit& fit = s->fit;
+  if (fit.ability.size() <= size_t(c)) {
+    fit.ability.resize(size_t(c) + 1, fit.prior_mean);
+    fit.ability_sd.resize(size_t(c) + 1, s->params.climber_sd);
+  }
+  if (fit.difficulty.size() <= size_t(route)) {
+    fit.difficulty.resize(size_t(route) + 1, e.prior_mean);
+    fit.difficulty_sd.resize(size_t(route) + 1, e.prior_sd);
+  }
+  // The climber's pairs, mirrored: local index i stands for route routes[i].
+  grades::RouteEvidence mine;
+  mine.prior_mean = -fit.prior_mean;
+  mine.prior_sd = s->params.climber_sd;
+  grades::RatingFit mirror;
+  mirror.prior_mean = 0;
+  int here = -1;  // local index of `route`
+  for (const grades::RatingPair& q : s->problem.pairs) {
+    if (q.climber != c) continue;
+    if (q.route == route) here = static_cast<int>(mine.pairs.size());
+    mine.pairs.push_back({static_cast<int32_t>(mine.pairs.size()), 0, q.wins, q.losses});
+    mirror.ability.push_back(-fit.difficulty[size_t(q.route)]);
+    mirror.ability_sd.push_back(fit.difficulty_sd[size_t(q.route)]);
+    ++mine.ticks;
+  }
+  grades::RouteRating rating;
+  for (int round = 0; round < kJointRounds; ++round) {
+    SB_ASSIGN_OR_RETURN(grades::RouteRating a, grades::RateRoute(mine, mirror, s->params));
+    fit.ability[size_t(c)] = -a.value;
+    fit.ability_sd[size_t(c)] = a.sd;
+    SB_ASSIGN_OR_RETURN(rating, grades::RateRoute(e, fit, s->params));
+    const double moved = std::abs(rating.value - fit.difficulty[size_t(route)]);
+    fit.difficulty[size_t(route)] = rating.value;
+    fit.difficulty_sd[size_t(route)] = rating.sd;
+    if (here < 0 || moved < 1e-9) break;
+    mirror.ability[size_t(here)] = -rating.value;
+    mirror.ability_sd[size_t(here)] = rating.sd;
+  }
+  return rating;
+}
+
+// The single-route update of `s` for route `r` (discipline `discipline` = d):
+// takes `remove` (the replaced tick's contribution) off and puts `add` on for
+// `climber`, re-rates the route by grades::RateRoute with the climbers at the
+// fit's abilities, and returns its grade (nullopt: the route has no counted
+// ticks left). kInternal when `remove` names a route or climber the fit does
+// not have (the caller then leaves the entry to be refitted).
+Result<std::optional<AscentGrade>> Absorb(FitState* s, const store::RouteRecord& r,
+                                          const std::string& discipline, Discipline d,
+                                          const std::string& climber,
+                                          const std::optional<Counted>& remove,
+                                          const std::optional<Counted>& add) {
+  grades::RatingProblem& p = s->problem;
+  auto ri = s->routes.find(r.id);
+  auto ci = s->climbers.find(climber);
+  if (remove && (ri == s->routes.end() || ci == s->climbers.end())) {
+    return Status::Internal("fit: the replaced tick is not in the fit");
+  }
+  if (ri == s->routes.end()) {
+    ri = s->routes.emplace(r.id, p.num_routes()).first;
+    p.setter.push_back(r.grade_value && r.grade_discipline == discipline
+                           ? std::optional<double>(*r.grade_value)
+                           : std::nullopt);
+    p.felt_sum.push_back(0);
+    p.felt_count.push_back(0);
+    p.route_ticks.push_back(0);
+  }
+  if (ci == s->climbers.end()) {
+    ci = s->climbers.emplace(climber, p.num_climbers++).first;
+    p.climber_ticks.push_back(0);
+  }
+  const int route = ri->second, c = ci->second;
+  SB_ASSIGN_OR_RETURN(grades::RouteEvidence e, grades::EvidenceOf(p, s->params, s->fit, route));
+  std::vector<double>& felt = s->felt[r.id];
+  if (remove) {
+    auto q = std::find_if(e.pairs.begin(), e.pairs.end(),
+                          [&](const grades::RatingPair& x) { return x.climber == c; });
+    if (q == e.pairs.end() || q->wins < remove->games.wins ||
+        q->losses < remove->games.losses) {
+      return Status::Internal("fit: the replaced tick's games are not in the fit");
+    }
+    q->wins -= remove->games.wins;
+    q->losses -= remove->games.losses;
+    --e.ticks;
+    --p.climber_ticks[size_t(c)];
+    if (remove->felt) {
+      e.felt_sum -= *remove->felt;
+      --e.felt_count;
+      if (auto f = std::find(felt.begin(), felt.end(), *remove->felt); f != felt.end()) {
+        felt.erase(f);
+      }
+    }
+  }
+  if (add) {
+    grades::AddTickTo(&e, c, add->games, add->felt);
+    ++p.climber_ticks[size_t(c)];
+    if (add->felt) felt.push_back(*add->felt);
+  }
+  p.felt_sum[size_t(route)] = e.felt_sum;
+  p.felt_count[size_t(route)] = e.felt_count;
+  p.route_ticks[size_t(route)] = e.ticks;
+  PutRoutePairs(&p, route, e.pairs);
+  ++s->absorbed;
+  if (e.ticks <= 0) return std::optional<AscentGrade>();
+  SB_ASSIGN_OR_RETURN(grades::RouteRating rating, RateJointly(s, e, route, c));
+  return std::optional<AscentGrade>(
+      MakeGrade(discipline, d, r, e.ticks, rating.value, rating.sd, &felt));
+}
+
 }  // namespace
 
 Status LogbookPolicy::Validate() const {
@@ -57,7 +286,9 @@ Status LogbookPolicy::Validate() const {
       {"ticks_per_climber", ticks_per_climber},
       {"burst_window_seconds", burst_window_seconds},
       {"burst_new_identities", burst_new_identities},
-      {"fit_cache_entries", fit_cache_entries}};
+      {"fit_cache_entries", fit_cache_entries},
+      {"fit_incremental_percent", fit_incremental_percent},
+      {"fit_incremental_min_ticks", fit_incremental_min_ticks}};
   for (const auto& [name, value] : fields) {
     if (value <= 0) {
       return Status::InvalidInput(std::string("logbook.") + name + ": must be > 0, got " +
@@ -162,9 +393,11 @@ Result<TickSaved> Logbook::Log(const Viewer& v, int64_t route_id,
   const BurstRule burst{policy_.burst_window_seconds, policy_.burst_new_identities};
   const std::string since = BurstWindowStart(burst, now);
   bool known = false;
+  std::optional<store::TickRecord> replaced;  // the tick this one edits
   for (const store::TickRecord& m : mine) {
     if (m.route_id == route_id && m.day == t.day) {
       out.edited = true;
+      replaced = m;
       if (m.state == "held") t.state = "held";
     }
     if (m.created_at < since) known = true;
@@ -176,9 +409,75 @@ Result<TickSaved> Logbook::Log(const Viewer& v, int64_t route_id,
                                  }));
   if (burst_held) t.state = "held";
   out.held = t.state == "held";
+  // The single-route update (AbsorbTick) when a fit of the gym is cached: the
+  // gym's tick version before and after the write tells whether this tick
+  // was the only change.
+  std::optional<store::TickVersion> before;
+  if (HasCachedFit(*route.gym_id)) {
+    if (Result<store::TickVersion> b = ticks_->GymTickVersion(*route.gym_id); b.ok()) before = *b;
+  }
   SB_ASSIGN_OR_RETURN(t, ticks_->PutTick(t));
   out.tick = ToView(t);
+  if (before) {
+    // A new row adds 1 to the count; every write adds 1 to the revisions.
+    const store::TickVersion expected{before->count + (t.revision == 1 ? 1 : 0),
+                                      before->revisions + 1};
+    Result<store::TickVersion> after = ticks_->GymTickVersion(*route.gym_id);
+    if (after.ok() && *after == expected) AbsorbTick(route, t, replaced, *before, *after);
+  }
   return out;
+}
+
+bool Logbook::HasCachedFit(int64_t gym_id) {
+  std::lock_guard<std::mutex> lock(mu_);
+  auto it = cache_.lower_bound({gym_id, std::string()});
+  return it != cache_.end() && it->first.first == gym_id;
+}
+
+void Logbook::AbsorbTick(const store::RouteRecord& route, const store::TickRecord& saved,
+                         const std::optional<store::TickRecord>& old,
+                         const store::TickVersion& before, const store::TickVersion& after) {
+  const std::string discipline = DisciplineOf(route);
+  Result<Discipline> d = grades::ParseDiscipline(discipline);
+  std::optional<Counted> add, remove;
+  if (d.ok()) {
+    add = CountedOf(saved, *d);
+    if (old) remove = CountedOf(*old, *d);
+  }
+  std::lock_guard<std::mutex> lock(mu_);
+  for (auto it = cache_.lower_bound({route.gym_id.value_or(0), std::string()});
+       it != cache_.end() && it->first.first == route.gym_id; ++it) {
+    Fit& fit = it->second;
+    // Stale already (another change): refitted on its next read.
+    if (!(fit.version == before)) continue;
+    // The other discipline's ticks, or nothing counted, did not change.
+    if (it->first.second != discipline || (!add && !remove)) {
+      fit.version = after;
+      continue;
+    }
+    FitState* s = fit.state.get();
+    if (s == nullptr || !d.ok()) continue;
+    // Drift budget spent: left stale, so the next read refits (lazily).
+    const int64_t budget =
+        std::max<int64_t>(policy_.fit_incremental_min_ticks,
+                          s->fitted_ticks * policy_.fit_incremental_percent / 100);
+    if (s->absorbed >= budget) {
+      fit.state.reset();
+      continue;
+    }
+    Result<std::optional<AscentGrade>> g = Absorb(s, route, discipline, *d, saved.climber,
+                                                  remove, add);
+    if (!g.ok()) {
+      fit.state.reset();  // inconsistent: refit on the next read
+      continue;
+    }
+    if (*g) {
+      fit.routes[route.id] = std::move(**g);
+    } else {
+      fit.routes.erase(route.id);
+    }
+    fit.version = after;
+  }
 }
 
 Result<Logbook::Fit> Logbook::FitGym(int64_t gym_id, const std::string& discipline) {
@@ -194,6 +493,10 @@ Result<Logbook::Fit> Logbook::FitGym(int64_t gym_id, const std::string& discipli
   }
   SB_ASSIGN_OR_RETURN(Discipline d, grades::ParseDiscipline(discipline));
   SB_ASSIGN_OR_RETURN(std::vector<store::TickRecord> all, ticks_->GymTicks(gym_id));
+  // The ticks read are those of `version` only when it has not moved: else
+  // the entry is refitted later, never updated (it may hold a newer tick).
+  Result<store::TickVersion> settled = ticks_->GymTickVersion(gym_id);
+  const bool consistent = settled.ok() && *settled == version;
   // Routes of this discipline with ticks, dense indices in id order.
   std::map<int64_t, store::RouteRecord> routes;
   std::map<int64_t, int> route_index;
@@ -222,13 +525,7 @@ Result<Logbook::Fit> Logbook::FitGym(int64_t gym_id, const std::string& discipli
     SB_ASSIGN_OR_RETURN(grades::TickOutcome o, grades::ParseTickOutcome(t->outcome));
     Result<grades::Games> g = grades::TickGames(o, t->attempts);
     if (!g.ok()) continue;
-    std::optional<double> f;
-    if (t->felt_value && !t->felt_discipline.empty()) {
-      Result<Discipline> fd = grades::ParseDiscipline(t->felt_discipline);
-      // A felt grade in another discipline's scale (accepted on a route
-      // graded in that scale, app/discipline.h) has no value on this axis.
-      if (fd.ok() && *fd == d) f = *t->felt_value;
-    }
+    const std::optional<double> f = FeltOn(*t, d);
     if (f) felt[t->route_id].push_back(*f);
     b.AddTick(c->second, route_index.at(t->route_id), *g, f);
   }
@@ -240,38 +537,28 @@ Result<Logbook::Fit> Logbook::FitGym(int64_t gym_id, const std::string& discipli
   Fit fit;
   fit.version = version;
   if (!route_index.empty()) {
-    grades::RatingProblem problem = b.Build();
-    SB_ASSIGN_OR_RETURN(grades::RatingFit rf,
-                        grades::FitRatings(problem, grades::RatingParams::For(d)));
+    auto state = std::make_shared<FitState>();
+    state->params = grades::RatingParams::For(d);
+    state->problem = b.Build();
+    const grades::RatingProblem& problem = state->problem;
+    SB_ASSIGN_OR_RETURN(state->fit, grades::FitRatings(problem, state->params));
+    const grades::RatingFit& rf = state->fit;
     for (const auto& [id, idx] : route_index) {
-      const store::RouteRecord& r = routes.at(id);
-      const grades::Scale scale = ScaleOf(r, d);
-      AscentGrade a;
-      a.ticks = problem.route_ticks[idx];
-      a.fitted = true;
-      a.discipline = discipline;
-      a.value = rf.difficulty[idx];
-      a.lo = a.value - grades::kZ80 * rf.difficulty_sd[idx];
-      a.hi = a.value + grades::kZ80 * rf.difficulty_sd[idx];
-      a.grade = grades::FormatValue(a.value, d, scale);
-      a.lo_grade = grades::FormatValue(a.lo, d, scale);
-      a.hi_grade = grades::FormatValue(a.hi, d, scale);
-      if (r.grade_value && r.grade_discipline == discipline) {
-        const int band = grades::Band(*r.grade_value);
-        if (a.hi < band - 0.5) a.verdict = "soft";
-        if (a.lo >= band + 0.5) a.verdict = "sandbagged";
-      }
-      if (auto it = felt.find(id); it != felt.end()) {
-        Result<grades::Consensus> c = grades::ConsensusOf(it->second);
-        if (c.ok()) {
-          a.felt_votes = c->count;
-          a.felt_median = grades::FormatValue(c->median, d, scale);
-        }
-      }
-      fit.routes.emplace(id, std::move(a));
+      auto it = felt.find(id);
+      fit.routes.emplace(id, MakeGrade(discipline, d, routes.at(id), problem.route_ticks[idx],
+                                       rf.difficulty[idx], rf.difficulty_sd[idx],
+                                       it == felt.end() ? nullptr : &it->second));
+    }
+    if (consistent) {
+      for (int n : problem.route_ticks) state->fitted_ticks += n;
+      state->climbers = std::move(climber_index);
+      state->routes = std::move(route_index);
+      state->felt = std::move(felt);
+      fit.state = std::move(state);
     }
   }
   std::lock_guard<std::mutex> lock(mu_);
+  ++full_fits_;
   fit.used = ++uses_;
   cache_[key] = fit;
   while (static_cast<int>(cache_.size()) > policy_.fit_cache_entries) {
@@ -281,6 +568,11 @@ Result<Logbook::Fit> Logbook::FitGym(int64_t gym_id, const std::string& discipli
     cache_.erase(oldest);
   }
   return fit;
+}
+
+uint64_t Logbook::FullFits() {
+  std::lock_guard<std::mutex> lock(mu_);
+  return full_fits_;
 }
 
 Result<AscentGrade> Logbook::Ascent(const Viewer& v, int64_t route_id) {

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -25,6 +26,10 @@
 #include "store/tick_store.h"
 
 namespace sb::app {
+
+namespace logbook_internal {
+struct FitState;  // logbook.cc
+}  // namespace logbook_internal
 
 // The logbook's limits, each with its reason.
 struct LogbookPolicy {
@@ -53,6 +58,20 @@ struct LogbookPolicy {
   // 16, wall pages of the chain refitted a gym on most requests, 15-40 s
   // each); an entry holds one grade per ticked route (~10,500 at chain scale).
   int fit_cache_entries = 48;
+  // The single-route update (docs/grades.md, "A new tick"): a tick logged
+  // while its (gym, discipline) fit is cached updates that route's grade in
+  // place (grades::RateRoute, the climbers held at the fit's abilities)
+  // instead of refitting the gym (1.7 s at chain size, issue 23). Held
+  // climbers drift from what a refit would give as ticks accumulate, so the
+  // entry is refitted in full (lazily: by the next request that reads it)
+  // once it has absorbed more than max(fit_incremental_min_ticks,
+  // fit_incremental_percent % of the ticks it was fitted on) ticks. 2% of a
+  // chain gym is ~5,000 ticks, one refit per ~5,000 ticks instead of one per
+  // tick; the error against a refit at that point is in docs/grades.md.
+  int fit_incremental_percent = 2;
+  // The floor of that budget for small gyms (a refit of a small gym takes
+  // milliseconds; its drift per tick is larger, so few ticks are absorbed).
+  int fit_incremental_min_ticks = 20;
 
   // Every field > 0; errors name the field. Pure.
   Status Validate() const;
@@ -153,6 +172,11 @@ class Logbook {
   // The logbook of the signed-in climber, or of the device cookie.
   Result<LogbookView> Mine(const Viewer& v, std::string_view participant_token);
 
+  // How many full fits (FitGym refits of a gym and discipline) this logbook
+  // has run: for tests and benchmarks of the single-route update.
+  // Thread-safe.
+  uint64_t FullFits();
+
   // After sign-in: moves the device's ticks into the climber's logbook.
   // Returns how many moved (0 without a usable cookie). kUnauthenticated
   // when not signed in.
@@ -163,6 +187,10 @@ class Logbook {
     store::TickVersion version;
     std::map<int64_t, AscentGrade> routes;
     uint64_t used = 0;
+    // What the single-route update keeps of the full fit (logbook.cc); read
+    // and changed only under mu_. Null: this entry is refitted when its
+    // version is stale, not updated.
+    std::shared_ptr<logbook_internal::FitState> state;
   };
   Result<store::RouteRecord> Visible(const Viewer& v, int64_t route_id);
   Status RequireSetter(const Viewer& v, const store::RouteRecord& route);
@@ -171,6 +199,15 @@ class Logbook {
   // gym's cached `discipline` fit has; the others stay as they are.
   Status FillAscents(int64_t gym_id, const std::string& discipline,
                      std::map<int64_t, AscentGrade>* grades);
+  // Whether a fit of the gym (either discipline) is cached.
+  bool HasCachedFit(int64_t gym_id);
+  // After Log stored `saved` (replacing `old` when set) on `route`, with the
+  // gym's tick version `before` and `after` the write: updates the cached
+  // fits of the route's gym in place when nothing else changed meanwhile
+  // (docs/grades.md, "A new tick"); otherwise leaves them to be refitted.
+  void AbsorbTick(const store::RouteRecord& route, const store::TickRecord& saved,
+                  const std::optional<store::TickRecord>& old,
+                  const store::TickVersion& before, const store::TickVersion& after);
 
   store::Store* store_;
   store::TickStore* ticks_;
@@ -179,6 +216,7 @@ class Logbook {
   std::mutex mu_;
   std::map<std::pair<int64_t, std::string>, Fit> cache_;  // (gym, discipline)
   uint64_t uses_ = 0;
+  uint64_t full_fits_ = 0;
 };
 
 // The climber key of a viewer or device: "u:ID", else "d:HASH" of a valid
