@@ -197,6 +197,9 @@ TEST_F(SyntheticGymTest, ANewTickUpdatesTheCachedFitWithoutARefit) {
 
 TEST_F(SyntheticGymTest, AfterItsDriftBudgetTheEntryIsRefittedByTheNextRead) {
   LogbookPolicy policy;
+  policy.fit_incremental_percent = 0;
+  EXPECT_NE(policy.Validate().message().find("fit_incremental_percent"), std::string::npos);
+  policy.fit_incremental_percent = 2;
   policy.fit_incremental_min_ticks = 2;  // 2% of 96 ticks is 1: the floor
   Logbook book(store_.get(), &clock_, policy);
   ASSERT_NO_FATAL_FAILURE(Populate(book));
