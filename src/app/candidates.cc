@@ -305,6 +305,7 @@ void ApplySetterPreset(chaos::VaryParams* params, SettingRequest* request, bool 
   request->constraints.keep_finish = true;
   request->constraints.alternate_hands = true;
   request->drop_inner_finishes = true;
+  request->drop_inner_starts = true;
   if (!keep_max_repeat) params->mapping.max_repeat = kSetterMaxRepeat;
 }
 

@@ -147,7 +147,8 @@ Result<std::vector<Candidate>> MakeGallery(const std::vector<chaos::InputRoute>&
 // The setter's preset (`vary --preset setter`) on top of the default
 // preset's parameters: keep-start, keep-finish and alternate-hands (hand
 // swaps where no IC alternates, the setters' own fix) and drop-inner-finishes
-// (no input's finish carried mid-route) on `request`, and the
+// (no input's finish carried mid-route) and drop-inner-starts (no inner
+// input's start move mid-route) on `request`, and the
 // paper's max-repeat 1 (no source move twice in a row) on `params` unless
 // `keep_max_repeat` (the caller gave one). Pure.
 inline constexpr int kSetterMaxRepeat = 1;
