@@ -468,7 +468,14 @@
       Object.assign(body, setterFields());
       say($('#vary-msg'), 'Generating…', true);
       const r = await api('POST', '/api/variations', body);
-      if (r.status === 201 || r.status === 200) { location.href = '/variations/' + r.data.id + (r.data.existing ? '?existing=1' : ''); return; }
+      if (r.status === 201 || r.status === 200) {
+        // Issue 22: the setter's preset chose the gallery's best; the plan page says so.
+        if (r.data.gallery) {
+          try { sessionStorage.setItem('sb-gallery-' + r.data.id, JSON.stringify(r.data.gallery)); } catch (e) { /* private mode */ }
+        }
+        location.href = '/variations/' + r.data.id + (r.data.existing ? '?existing=1' : '');
+        return;
+      }
       const err = (r.data && r.data.error) || ('error ' + r.status);
       say($('#vary-msg'), humane(err));
       // An error about a constraint: show the panel that has the field.
@@ -486,6 +493,20 @@
     p.id = 'existing';
     p.textContent = 'You made this variation before from the same routes and parameters: here it is. ' +
       'Tick "Make a new copy" on the vary page for a second one.';
+    plan.parentNode.insertBefore(p, plan);
+  }
+
+  // The setter's gallery note (issue 22): which candidate the setter's preset
+  // stored and why, from the vary form's reply (this tab only).
+  const planId = plan && (location.pathname.match(/^\/variations\/(\d+)/) || [])[1];
+  let gallery = null;
+  try { gallery = planId && JSON.parse(sessionStorage.getItem('sb-gallery-' + planId) || 'null'); } catch (e) { gallery = null; }
+  if (gallery) {
+    const p = document.createElement('p');
+    p.className = 'notice no-print';
+    p.id = 'gallery-note';
+    p.textContent = "The setter's preset: the best of " + gallery.count + ' candidates (' + gallery.kept +
+      ' kept by the filter), score ' + gallery.score + ': ' + gallery.reasons.join('; ') + '.';
     plan.parentNode.insertBefore(p, plan);
   }
 

@@ -300,11 +300,27 @@ Result<std::vector<Candidate>> MakeGallery(const std::vector<chaos::InputRoute>&
   return out;
 }
 
+int GalleryPlanCount(const GalleryOptions& options) { return 1 + 8 * options.rings; }
+
+Result<GalleryChoice> ChooseFromGallery(const std::vector<chaos::InputRoute>& inputs,
+                                        chaos::VaryParams* params,
+                                        const SettingRequest& setting,
+                                        const CandidateSlot& slot,
+                                        const GalleryOptions& options) {
+  GalleryChoice out;
+  SB_ASSIGN_OR_RETURN(out.candidates, MakeGallery(inputs, *params, setting, slot, options));
+  out.count = static_cast<int>(out.candidates.size());
+  for (const Candidate& c : out.candidates) out.kept += c.score.rejected ? 0 : 1;
+  params->var_ic = out.candidates.front().searched_from;
+  return out;
+}
+
 void ApplySetterPreset(chaos::VaryParams* params, SettingRequest* request, bool keep_max_repeat) {
   request->constraints.keep_start = true;
   request->constraints.keep_finish = true;
   request->constraints.alternate_hands = true;
   request->drop_inner_finishes = true;
+  request->drop_inner_starts = true;
   if (!keep_max_repeat) params->mapping.max_repeat = kSetterMaxRepeat;
 }
 

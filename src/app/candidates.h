@@ -144,10 +144,33 @@ Result<std::vector<Candidate>> MakeGallery(const std::vector<chaos::InputRoute>&
                                            const CandidateSlot& slot,
                                            const GalleryOptions& options);
 
+// The gallery's best, as the setter's preset uses it (`vary --preset setter`
+// and the web's "preset": "setter": one step for both). Value type.
+struct GalleryChoice {
+  std::vector<Candidate> candidates;  // ranked (RankCandidates); the first is chosen
+  int rank = 1;                       // the chosen one's rank (always the best)
+  int count = 0;                      // candidates made (duplicates dropped)
+  int kept = 0;                       // of them, kept by the filter
+};
+// The plans a gallery with `options` builds (its ICs: 1 + 8 per ring), what a
+// caller charges to a work budget before the work starts. Pure.
+int GalleryPlanCount(const GalleryOptions& options);
+// Makes the gallery (MakeGallery with `slot` and `options`) from `*params`
+// and sets params->var_ic to the IC the best candidate's search started at,
+// so app::BuildPlan with `*params` and `setting` rebuilds that candidate and
+// a stored variation with those parameters rebuilds the same. Errors:
+// MakeGallery's. Deterministic.
+Result<GalleryChoice> ChooseFromGallery(const std::vector<chaos::InputRoute>& inputs,
+                                        chaos::VaryParams* params,
+                                        const SettingRequest& setting,
+                                        const CandidateSlot& slot,
+                                        const GalleryOptions& options);
+
 // The setter's preset (`vary --preset setter`) on top of the default
 // preset's parameters: keep-start, keep-finish and alternate-hands (hand
 // swaps where no IC alternates, the setters' own fix) and drop-inner-finishes
-// (no input's finish carried mid-route) on `request`, and the
+// (no input's finish carried mid-route) and drop-inner-starts (no inner
+// input's start move mid-route) on `request`, and the
 // paper's max-repeat 1 (no source move twice in a row) on `params` unless
 // `keep_max_repeat` (the caller gave one). Pure.
 inline constexpr int kSetterMaxRepeat = 1;

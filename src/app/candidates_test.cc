@@ -218,10 +218,17 @@ TEST(GalleryTest, KeptCandidatesPassTheFilter) {
             << chaos::ConstraintName(o.constraint) << ": " << o.detail;
       }
       with_pair += pairs;
-      // Starts with an input's start, ends with an input's finish, hands kept.
+      // Starts with an input's start, ends with an input's finish, hands kept
+      // (the inputs as varied: drop-inner-starts drops Slab Dance's start and
+      // mirrors its hands after Crimp Ladder's right-hand last move).
       ASSERT_TRUE(moves.front().source && moves.back().source);
-      const Route& first = in[moves.front().source->route].route;
-      const Route& last = in[moves.back().source->route].route;
+      const auto& varied = c.plan.variation.inputs;
+      ASSERT_EQ(varied.size(), in.size());
+      EXPECT_EQ(varied[1].first_move, 1);
+      EXPECT_EQ(varied[1].route.moves.size() + 1, in[1].route.moves.size());
+      const Route& first = varied[moves.front().source->route].route;
+      const Route& last = varied[moves.back().source->route].route;
+      EXPECT_EQ(varied[moves.front().source->route].first_move, 0);
       EXPECT_EQ(moves.front().source->move, 0);
       EXPECT_EQ(moves.front().hand, first.moves.front().hand);
       EXPECT_EQ(moves.back().source->move, static_cast<int>(last.moves.size()) - 1);

@@ -8,6 +8,7 @@
 #include <tuple>
 #include <utility>
 
+#include "app/discipline_targets.h"
 #include "base/text.h"
 #include "crdl/route.h"
 #include "grades/scale.h"
@@ -568,6 +569,8 @@ Result<GymDashboard> Dashboard::Get(const Viewer& v, int64_t gym) {
   g.can_edit = g.gym.role == "head";
   SB_ASSIGN_OR_RETURN(std::vector<Wall> walls, gyms_.Walls(v, gym));
   SB_ASSIGN_OR_RETURN(g.walls, Build(v, gym, walls, &g.archive_styles, &g.circuit_words));
+  SB_ASSIGN_OR_RETURN(std::vector<DisciplineTargets> per_discipline, GymDisciplineTargets(v, gym));
+  g.disciplines = DisciplineDashboards(g.walls, per_discipline);
   return g;
 }
 

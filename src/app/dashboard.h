@@ -141,6 +141,37 @@ struct WallDashboard {
   std::vector<std::string> gap_words;
 };
 
+// Issue 22, targets per discipline (app/discipline_targets.h has the
+// arithmetic and the service's methods are in app/discipline_targets.cc).
+// The head setter's targets of one discipline: routes per band (as the gym
+// writes it) and share of moves per style, over every wall of it.
+struct DisciplineTargets {
+  std::string discipline;  // "bouldering" or "roped"
+  std::map<std::string, int> grades;
+  std::map<std::string, double> styles;
+  // The discipline is one of kTargetDisciplines ("discipline: ..."), then
+  // WallTargets::Validate (the wall targets' one validation: counts, bands
+  // of the discipline, style names, shares), errors naming the field
+  // ("grades.V99: ..."). Pure.
+  Status Validate() const;
+};
+
+// One discipline of the dashboard: the gym's routes on the walls of the
+// discipline per band against its targets, the style mix of those walls'
+// moves against the style targets, and the gaps.
+struct DisciplineDashboard {
+  std::string discipline;
+  std::string scale;   // the scale of its first wall that has one ("" = the default)
+  int walls = 0;       // walls of the discipline
+  int on_wall = 0;     // routes in state "set" on them
+  int ungraded = 0;
+  int moves = 0;
+  std::vector<BandRow> bands;    // by value; bands with a route or a target
+  std::vector<StyleRow> styles;  // styles with a share or a target, by name
+  std::vector<Gap> gaps;         // GradeGaps, then StyleGaps of the targeted styles
+  std::vector<std::string> gap_words;  // "bouldering: 3 × V4 missing", ...
+};
+
 // A gym's dashboard.
 struct GymDashboard {
   Gym gym;
@@ -150,6 +181,9 @@ struct GymDashboard {
   // (>= kMinArchiveShare) absent from a circuit's routes on the wall.
   std::vector<std::string> circuit_words;
   std::map<std::string, double> archive_styles;
+  // Issue 22: per discipline, the gym's routes on its walls against the
+  // gym's targets for it (app/discipline_targets.h).
+  std::vector<DisciplineDashboard> disciplines;
 };
 
 // A slot of a setting day: a route of `band` with `style` ("" = any) on a wall.
@@ -210,6 +244,14 @@ class Dashboard {
   // wall's BandKey). Errors: kNotFound (not a member, another gym's wall),
   // kPermission (not the head setter), kInvalidInput (Validate).
   Status SetTargets(const Viewer& v, int64_t gym, int64_t wall, const WallTargets& t);
+  // The gym's targets per discipline, one per kTargetDisciplines (members;
+  // kNotFound otherwise). In app/discipline_targets.cc.
+  Result<std::vector<DisciplineTargets>> GymDisciplineTargets(const Viewer& v, int64_t gym);
+  // Head setters only: replaces the gym's targets of `t.discipline` (bands
+  // normalised to the scale of the discipline's first wall). Errors:
+  // kNotFound (not a member), kPermission (not the head setter),
+  // kInvalidInput (DisciplineTargets::Validate). In app/discipline_targets.cc.
+  Status SetDisciplineTargets(const Viewer& v, int64_t gym, const DisciplineTargets& t);
 
  private:
   Result<std::vector<WallDashboard>> Build(const Viewer& v, int64_t gym,

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "app/app_test_util.h"
+#include "app/discipline_targets.h"
 #include "grades/scale.h"
 #include "store/gym_store.h"
 #include "store/tick_store.h"
@@ -52,6 +53,60 @@ TEST(GapArithmeticTest, MissingAndOverPerBandInOneLineOfWords) {
   EXPECT_EQ(GapWords("Cave", gaps),
             std::vector<std::string>{"wall Cave: 2 × V3 missing, 1 × V6 over"});
   EXPECT_TRUE(GradeGaps({Band("V2", 2, 3, 3)}).empty());
+}
+
+// Issue 22, targets per discipline: the walls of one discipline summed.
+TEST(GapArithmeticTest, DisciplineSumsItsWallsAgainstTheGymsTargets) {
+  auto wall = [](int64_t id, const std::string& discipline, std::vector<BandRow> bands,
+                 int moves, std::vector<StyleRow> styles) {
+    WallDashboard w;
+    w.wall.id = id;
+    w.wall.discipline = discipline;
+    w.bands = std::move(bands);
+    for (const BandRow& b : w.bands) w.on_wall += b.current;
+    w.moves = moves;
+    w.styles = std::move(styles);
+    return w;
+  };
+  std::vector<WallDashboard> walls = {
+      wall(1, "bouldering", {Band("V3", 3, 1, 5), Band("V4", 4, 2, std::nullopt)}, 30,
+           {Style("crimp", "hold", 0.5, 0, false)}),
+      wall(2, "roped", {Band("5.10", 10, 4, std::nullopt)}, 40, {}),
+      wall(3, "bouldering", {Band("V4", 4, 1, std::nullopt), Band("V5", 5, 1, std::nullopt)}, 10,
+           {Style("crimp", "hold", 0.1, 0, false)})};
+  DisciplineTargets t;
+  t.discipline = "bouldering";
+  t.grades = {{"V4", 6}, {"V2", 1}};
+  t.styles = {{"heel hook", 0.2}};
+  ASSERT_TRUE(t.Validate().ok());
+  std::vector<DisciplineDashboard> d = DisciplineDashboards(walls, {t});
+  ASSERT_EQ(d.size(), 2u);
+  EXPECT_EQ(d[0].discipline, "bouldering");
+  EXPECT_EQ(d[0].walls, 2);
+  EXPECT_EQ(d[0].on_wall, 5);
+  ASSERT_EQ(d[0].bands.size(), 4u);  // V2 (a target only), V3, V4, V5 by value
+  EXPECT_EQ(d[0].bands[0].band, "V2");
+  EXPECT_EQ(d[0].bands[0].current, 0);
+  EXPECT_EQ(d[0].bands[1].band, "V3");
+  EXPECT_FALSE(d[0].bands[1].target.has_value());  // the wall's target is not the gym's
+  EXPECT_EQ(d[0].bands[2].current, 3);
+  EXPECT_EQ(d[0].bands[2].target, 6);
+  // crimp: 15 + 1 of 40 moves.
+  ASSERT_EQ(d[0].styles.size(), 2u);
+  EXPECT_EQ(d[0].styles[0].style, "crimp");
+  EXPECT_DOUBLE_EQ(d[0].styles[0].share, 16.0 / 40);
+  EXPECT_EQ(d[0].gap_words, (std::vector<std::string>{
+                                "bouldering: 1 × V2 missing, 3 × V4 missing",
+                                "no heel hook on bouldering"}));
+  EXPECT_EQ(d[1].discipline, "roped");
+  EXPECT_EQ(d[1].on_wall, 4);
+  EXPECT_TRUE(d[1].gaps.empty());
+  // One Validate: the discipline, then the wall targets' rules.
+  t.discipline = "ice";
+  EXPECT_NE(t.Validate().message().find("discipline"), std::string::npos);
+  t.discipline = "bouldering";
+  t.grades = {{"Q7", 2}};
+  EXPECT_NE(t.Validate().message().find("grades.Q7"), std::string::npos) << t.Validate().message();
 }
 
 TEST(GapArithmeticTest, StyleGapsAgainstTheReferenceAndDominantStyles) {

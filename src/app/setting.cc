@@ -125,12 +125,35 @@ int DropInnerFinishes(std::vector<chaos::InputRoute>* inputs) {
   return dropped;
 }
 
+int DropInnerStarts(std::vector<chaos::InputRoute>* inputs) {
+  if (chaos::AreTokens(*inputs)) return 0;
+  int dropped = 0;
+  for (size_t i = 1; i < inputs->size(); ++i) {
+    chaos::InputRoute& in = (*inputs)[i];
+    if (in.route.moves.size() <= 1 || in.first_move > 0) continue;
+    in.route.moves.erase(in.route.moves.begin());
+    in.first_move = 1;
+    ++dropped;
+    // The join keeps alternating: where the previous input ends with the hand
+    // this one now starts with, its hands are mirrored (its own alternation
+    // kept; dropping one move otherwise puts one same-hand pair at the join).
+    const std::vector<Move>& prev = (*inputs)[i - 1].route.moves;
+    if (!prev.empty() && prev.back().hand == in.route.moves.front().hand) {
+      for (Move& m : in.route.moves) {
+        m.hand = m.hand == Hand::kLeft ? Hand::kRight : Hand::kLeft;
+      }
+    }
+  }
+  return dropped;
+}
+
 Result<SettingOutcome> VaryWithSetting(std::vector<chaos::InputRoute> inputs,
                                        const chaos::VaryParams& params,
                                        const SettingRequest& request,
                                        language::MoveLanguage* lang) {
   SB_RETURN_IF_ERROR(chaos::CheckInputKinds(inputs));
   if (request.drop_inner_finishes) DropInnerFinishes(&inputs);
+  if (request.drop_inner_starts) DropInnerStarts(&inputs);
   SB_RETURN_IF_ERROR(CheckRequestForInputs(request, inputs));
   std::vector<bool> is_match;
   SettingOutcome out;

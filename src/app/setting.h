@@ -89,6 +89,17 @@ Result<chaos::MoveFacts> InputFacts(const std::vector<chaos::InputRoute>& inputs
 // request asks drop_inner_finishes. Pure.
 int DropInnerFinishes(std::vector<chaos::InputRoute>* inputs);
 
+// Removes the start move (the first) of every input but the first, keeping
+// at least one move of each, and counts it in InputRoute::first_move so
+// reports keep the route file's numbering: joined routes otherwise carry an
+// inner route's start (two hands on a start hold) into the middle of the
+// variation (issue 22, the "start-mid-route" warning). Where the input before
+// ends with the hand the input now starts with, the input's hands are
+// mirrored (L <-> R), so the join alternates as the inputs do. Token sequences are
+// left alone. Returns the number of moves removed. VaryWithSetting calls it
+// when the request asks drop_inner_starts. Pure.
+int DropInnerStarts(std::vector<chaos::InputRoute>* inputs);
+
 // Varies `inputs` with the setter's request: with no constraint asked,
 // exactly chaos::Vary (with the match rule); otherwise
 // chaos::SearchVariation from params.var_ic. Warnings are computed either

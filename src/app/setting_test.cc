@@ -83,6 +83,46 @@ TEST(Setting, DropInnerFinishesLeavesNoInputsFinishMidRoute) {
   EXPECT_EQ(with->variation.moves.size(), 5u);
 }
 
+TEST(Setting, DropInnerStartsLeavesNoInnerStartAndKeepsTheJoinAlternating) {
+  auto a = ParseCrdl("name: A\n---\nR jug\nL crimp\nR sloper\n", "a.crdl");
+  auto b = ParseCrdl("name: B\n---\nL palm start\nR gaston\nL pocket\nR jug finish\n",
+                     "b.crdl");
+  auto c = ParseCrdl("name: C\n---\nL edge\n", "c.crdl");
+  ASSERT_TRUE(a.ok() && b.ok() && c.ok());
+  std::vector<chaos::InputRoute> in = {{"A", *a}, {"C", *c}, {"B", *b}};
+  EXPECT_EQ(DropInnerStarts(&in), 1);
+  EXPECT_EQ(in[0].route.moves.size(), 3u);  // the first input keeps its start
+  EXPECT_EQ(in[0].first_move, 0);
+  EXPECT_EQ(in[1].route.moves.size(), 1u);  // one move is always kept
+  ASSERT_EQ(in[2].route.moves.size(), 3u);
+  EXPECT_EQ(in[2].first_move, 1);
+  EXPECT_EQ(in[2].route.moves.front().text, "gaston");
+  // C ends with L and B now starts with R: B's hands are kept. After A (ends
+  // with R), B's "R gaston" would repeat the hand: mirrored.
+  EXPECT_EQ(in[2].route.moves.front().hand, Hand::kRight);
+  std::vector<chaos::InputRoute> ab = {{"A", *a}, {"B", *b}};
+  EXPECT_EQ(DropInnerStarts(&ab), 1);
+  EXPECT_EQ(ab[1].route.moves.front().hand, Hand::kLeft);
+  EXPECT_EQ(ab[1].route.moves.back().hand, Hand::kLeft);
+  // Asked of VaryWithSetting: B's start is gone, no start-mid-route warning,
+  // and the plan numbers B's moves as its file does.
+  SettingRequest drop;
+  drop.drop_inner_starts = true;
+  std::vector<chaos::InputRoute> ab2 = {{"A", *a}, {"B", *b}};
+  auto with = VaryWithSetting(ab2, chaos::VaryParams{}, drop);
+  ASSERT_TRUE(with.ok()) << with.status().message();
+  EXPECT_EQ(with->variation.moves.size(), 6u);
+  for (const chaos::VariedMove& m : with->variation.moves) EXPECT_NE(m.text, "palm start");
+  for (const plan::Warning& w : with->warnings.warnings) {
+    EXPECT_EQ(w.message.find("start of B"), std::string::npos) << w.message;
+  }
+  // keep-start cannot take B's new first move for a start.
+  drop.constraints.keep_start = true;
+  auto kept = VaryWithSetting(ab2, chaos::VaryParams{}, drop);
+  ASSERT_TRUE(kept.ok()) << kept.status().message();
+  EXPECT_EQ(kept->variation.moves.front().text, "jug");
+}
+
 TEST(Setting, ConstraintsRunTheSearchAndHold) {
   SettingRequest req;
   req.constraints.keep_start = true;

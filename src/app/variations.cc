@@ -255,9 +255,15 @@ Result<CreatedVariation> Variations::Create(const Viewer& v, const VariationRequ
     }
   }
   SB_RETURN_IF_ERROR(CheckRequestSearchBudget(req.setting, req.params, total_moves));
+  chaos::VaryParams params = req.params;
+  std::optional<GalleryChoice> gallery;
+  if (req.gallery) {  // the setter's preset: the IC of the gallery's best
+    SB_ASSIGN_OR_RETURN(gallery, ChooseFromGallery(inputs, &params, req.setting, *req.gallery,
+                                                   GalleryOptions{}));
+  }
   // The parameters with the setter's request: one codec (plan::ParametersJson),
   // also the key of "the same request made again".
-  const std::string params_json = plan::ParametersJson(req.params, req.setting);
+  const std::string params_json = plan::ParametersJson(params, req.setting);
   const std::string key = RequestKey(params_json, req.smooth, recs, req.is_public, req.meta);
   if (!req.duplicate) {
     // The same request made before: that variation, not a second copy.
@@ -272,6 +278,7 @@ Result<CreatedVariation> Variations::Create(const Viewer& v, const VariationRequ
         out.smoothing.requested = old->smooth;
         out.smoothing.applied = !view.plan->smoothing_model.empty();
         out.existing = true;
+        out.gallery = std::move(gallery);
         return out;
       }
     } else if (found.status().code() != Status::Code::kNotFound) {
@@ -281,8 +288,9 @@ Result<CreatedVariation> Variations::Create(const Viewer& v, const VariationRequ
   SmoothingRequest smoothing{req.smooth, SmoothingModel(options_, req.setting), 0.0,
                              kMaxRequestAStarExpansions};
   CreatedVariation out;
+  out.gallery = std::move(gallery);
   SB_ASSIGN_OR_RETURN(out.plan,
-                      BuildPlan(inputs, req.params, req.setting, smoothing, &out.smoothing));
+                      BuildPlan(inputs, params, req.setting, smoothing, &out.smoothing));
   if (!out.smoothing.status.ok()) {
     // The reason names server files: logged here, summarised for the client.
     LogError("smoothing: " + out.smoothing.status.message());

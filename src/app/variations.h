@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "app/candidates.h"
 #include "app/options.h"
 #include "app/setting.h"
 #include "app/types.h"
@@ -120,6 +121,11 @@ struct VariationRequest {
   // kNotFound / kPermission); default the viewer's only gym, else the
   // install's first. A new variation is a draft.
   std::optional<int64_t> gym;
+  // Issue 22, the setter's preset: when set, the IC is the best candidate's
+  // of the gallery for this slot (app::ChooseFromGallery with
+  // GalleryOptions{}: GalleryPlanCount plans instead of one; the caller
+  // charges them), stored in the parameters so the variation rebuilds the same.
+  std::optional<CandidateSlot> gallery;
 };
 
 struct CreatedVariation {
@@ -127,6 +133,8 @@ struct CreatedVariation {
   plan::RoutePlan plan;
   SmoothingOutcome smoothing;
   bool existing = false;  // the same request had made it before
+  // With VariationRequest::gallery: the ranked gallery the IC was chosen from.
+  std::optional<GalleryChoice> gallery;
 };
 
 // A stored variation with its plan.

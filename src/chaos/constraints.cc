@@ -12,6 +12,12 @@ namespace sb::chaos {
 
 namespace {
 
+// The route file's number offset of route `r` (InputRoute::first_move).
+int FirstMove(const std::vector<int>& first_moves, int r) {
+  return r >= 0 && r < static_cast<int>(first_moves.size()) ? first_moves[r] : 0;
+}
+
+
 std::string Num(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%g", v);
@@ -134,7 +140,10 @@ Result<ConstraintChecker> ConstraintChecker::Make(const std::vector<VariedMove>&
   }
   c.c_ = constraints;
   c.max_repeat_ = max_repeat;
-  for (const InputRoute& in : inputs) c.route_names_.push_back(in.name);
+  for (const InputRoute& in : inputs) {
+    c.route_names_.push_back(in.name);
+    c.first_moves_.push_back(in.first_move);
+  }
   c.first_.assign(n, 0);
   c.last_.assign(n, 0);
   c.crux_.assign(n, 0);
@@ -144,7 +153,8 @@ Result<ConstraintChecker> ConstraintChecker::Make(const std::vector<VariedMove>&
     c.source_.push_back(src);
     c.text_.push_back(m.text);
     c.hand_.push_back(m.hand);
-    c.first_[i] = src.move == 0;
+    // A route whose start was dropped (drop_inner_starts) has no start move.
+    c.first_[i] = src.move == 0 && FirstMove(c.first_moves_, src.route) == 0;
     int route_size = src.route < static_cast<int>(inputs.size())
                          ? static_cast<int>(inputs[src.route].route.moves.size())
                          : 0;
@@ -256,7 +266,7 @@ std::vector<ConstraintOutcome> ConstraintChecker::Report(const Variation& v) con
     std::string route = s.route < static_cast<int>(route_names_.size())
                             ? route_names_[s.route]
                             : "input " + std::to_string(s.route + 1);
-    return "\"" + text_[k] + "\" (" + unit + " " + std::to_string(s.move + 1) + " of " + route +
+    return "\"" + text_[k] + "\" (" + unit + " " + std::to_string(FirstMove(first_moves_, s.route) + s.move + 1) + " of " + route +
            ")";
   };
   for (int i = 0; i < kConstraintCount; ++i) {

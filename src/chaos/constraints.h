@@ -138,6 +138,7 @@ class ConstraintChecker {
   std::vector<int> cruxes_;
   bool cruxes_flagged_ = false;
   std::vector<std::string> route_names_;
+  std::vector<int> first_moves_;  // InputRoute::first_move per route
   std::vector<SourceRef> source_;  // per source index
   std::vector<std::string> text_;  // per source index
   bool tokens_ = false;            // token sequences: reports say "token"

@@ -77,6 +77,11 @@ struct InputRoute {
   // inputs have no match rule, and max_repeat compares their texts exactly.
   // The inputs of one variation are all of one kind (CheckInputKinds).
   bool tokens = false;
+  // Moves dropped from the route's front before varying (the setter's
+  // drop_inner_starts, app::DropInnerStarts): reports number a move as
+  // first_move + its index + 1, as in the route file, and a move of index 0
+  // is the route's start only when first_move is 0.
+  int first_move = 0;
 };
 
 // Where a varied move came from: route = position among the inputs, move =

@@ -114,17 +114,17 @@ int RunVary(const std::vector<std::string>& args) {
       return Fail(kCmd, Status::InvalidInput("--" + st.message()));
     }
     app::ApplySetterPreset(&*params, &*req, chaos.max_repeat.has_value());
-    Result<std::vector<app::Candidate>> gallery =
-        app::MakeGallery(*inputs, *params, *req, slot, app::GalleryOptions{});
+    // The best again (BuildPlan below), from the IC its search started at,
+    // with the smoothing asked.
+    Result<app::GalleryChoice> gallery =
+        app::ChooseFromGallery(*inputs, &*params, *req, slot, app::GalleryOptions{});
     if (!gallery.ok()) return Fail(kCmd, gallery.status().WithPrefix("--preset setter"));
-    // The best again, from the IC its search started at, with the smoothing asked.
-    params->var_ic = gallery->front().searched_from;
-    gallery_report = "\nSetter preset: " + std::to_string(gallery->size()) +
+    gallery_report = "\nSetter preset: " + std::to_string(gallery->count) +
                      " candidates (max-repeat 1, keep-start, keep-finish, alternate-hands; ICs "
                      "around the default), ranked by "
                      "the gallery's filter and score (docs/setting.md); the first is printed "
                      "above:\n" +
-                     app::GalleryReport(*gallery);
+                     app::GalleryReport(gallery->candidates);
   }
   Result<plan::RoutePlan> p =
       app::BuildPlan(std::move(inputs).value(), *params, *req, smoothing, &outcome);

@@ -20,6 +20,9 @@ void AddConstraintOptions(CLI::App& app, SettingOptions* o) {
   app.add_flag("--drop-inner-finishes", o->drop_inner_finishes,
                "before varying, drop the finish moves ending every input but the last, so "
                "no input's finish lands mid-route (the setter's preset) [off]");
+  app.add_flag("--drop-inner-starts", o->drop_inner_starts,
+               "before varying, drop the start move of every input but the first, so no "
+               "input's start lands mid-route (the setter's preset) [off]");
   app.add_option("--match", o->match,
                  "match moves: text (the original site's rule: the whole text is \"match\") or "
                  "grammar (the grammar reads a match: \"match on jug\", \"matched start\")")
@@ -67,6 +70,7 @@ Result<app::SettingRequest> ResolveSettingOptions(const SettingOptions& o) {
   r.constraints.keep_finish = o.keep_finish;
   r.constraints.alternate_hands = o.alternate_hands;
   r.drop_inner_finishes = o.drop_inner_finishes;
+  r.drop_inner_starts = o.drop_inner_starts;
   if (!o.crux_window.empty()) {
     auto w = chaos::ParseCruxWindow(o.crux_window);
     if (!w.ok()) return bad("--crux-window", w.status());

@@ -29,6 +29,7 @@ struct SettingOptions {
   std::string crux_window;  // "A,B"; empty = off
   bool alternate_hands = false;
   bool drop_inner_finishes = false;  // --drop-inner-finishes
+  bool drop_inner_starts = false;    // --drop-inner-starts
   std::string match = "text";
   std::optional<double> target_effect;
   std::optional<double> target_change;

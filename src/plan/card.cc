@@ -47,7 +47,8 @@ std::vector<CardRow> CardRows(const RoutePlan& plan) {
       r.from = "added by the setter";
     } else if (m.source && m.source->route >= 0 &&
                static_cast<size_t>(m.source->route) < v.inputs.size()) {
-      r.from = v.inputs[m.source->route].name + " #" + std::to_string(m.source->move + 1);
+      r.from = v.inputs[m.source->route].name + " #" +
+               std::to_string(v.inputs[m.source->route].first_move + m.source->move + 1);
     } else {
       r.from = "\xE2\x80\x94";  // —
     }

@@ -133,7 +133,8 @@ Result<std::string> RenderPdf(const RoutePlan& plan, const std::string& title,
       std::string src = "-";
       if (m.source && m.source->route >= 0 &&
           static_cast<size_t>(m.source->route) < v.inputs.size()) {
-        src = v.inputs[m.source->route].name + " #" + std::to_string(m.source->move + 1);
+        src = v.inputs[m.source->route].name + " #" +
+              std::to_string(v.inputs[m.source->route].first_move + m.source->move + 1);
       }
       Text(cr, x0 + col_w * 0.72, yy, src, col_w * 0.27 - 6);
     }

@@ -92,6 +92,7 @@ std::string ParametersJson(const VaryParams& p, const SetterOptions& o) {
     j["smooth_method"] = SmoothingMethodName(o.smooth_method);
   }
   if (o.drop_inner_finishes) j["drop_inner_finishes"] = true;
+  if (o.drop_inner_starts) j["drop_inner_starts"] = true;
   return j.dump(-1, ' ', false, json::error_handler_t::replace);
 }
 
@@ -161,6 +162,7 @@ Result<SetterOptions> SetterOptionsFromJson(std::string_view json_text) {
   SB_RETURN_IF_ERROR(GetCruxWindow(j, &c.crux_window));
   SB_RETURN_IF_ERROR(GetBool(j, "alternate_hands", &c.alternate_hands));
   SB_RETURN_IF_ERROR(GetBool(j, "drop_inner_finishes", &o.drop_inner_finishes));
+  SB_RETURN_IF_ERROR(GetBool(j, "drop_inner_starts", &o.drop_inner_starts));
   if (j.contains("match")) {
     const json& m = j["match"];
     if (!m.is_string() || (m != "text" && m != "grammar")) {
@@ -244,6 +246,7 @@ std::string ReproduceOptions(const VaryParams& p, const SetterOptions& o) {
   }
   if (c.alternate_hands) s += " --alternate-hands";
   if (o.drop_inner_finishes) s += " --drop-inner-finishes";
+  if (o.drop_inner_starts) s += " --drop-inner-starts";
   if (o.match_grammar) s += " --match grammar";
   if (c.target_effect) s += " --target-effect " + FormatNumber(*c.target_effect);
   if (c.target_change) s += " --target-change " + FormatNumber(*c.target_change);
@@ -312,7 +315,8 @@ std::string Provenance(const RoutePlan& plan, const chaos::VariedMove& m) {
   if (!m.source) return "-";
   const auto& in = plan.variation.inputs;
   std::string name = m.source->route < static_cast<int>(in.size()) ? in[m.source->route].name : "?";
-  return name + " #" + std::to_string(m.source->move + 1);
+  const int first = m.source->route < static_cast<int>(in.size()) ? in[m.source->route].first_move : 0;
+  return name + " #" + std::to_string(first + m.source->move + 1);
 }
 
 std::string MoveText(const chaos::VariedMove& m) {

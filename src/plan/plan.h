@@ -68,6 +68,11 @@ struct SetterOptions {
   // finish into the middle of the variation (issue 22). The setter's preset
   // asks it; the paper's presets do not.
   bool drop_inner_finishes = false;
+  // Before varying, drop the start move of every input but the first
+  // (app::DropInnerStarts): an inner route's start mid-route is two hands on
+  // a start hold in the middle (the "start-mid-route" warning). The setter's
+  // preset asks it; the paper's presets do not.
+  bool drop_inner_starts = false;
   // Whether the IC search runs (a constraint or target is asked for).
   bool Search() const { return constraints.Any(); }
 };
@@ -76,7 +81,7 @@ struct SetterOptions {
 // "Variation parameters"): keep_start, keep_finish, crux_window [a, b],
 // alternate_hands, match, target_effect, target_change, effect_tolerance,
 // change_tolerance, search_spacing, search_radius, search_plane,
-// smooth_method, drop_inner_finishes — only those that differ from the
+// smooth_method, drop_inner_finishes, drop_inner_starts — only those that differ from the
 // defaults, so a plain variation's parameters are exactly
 // chaos::ParamsToJson's. The one codec of
 // the fields, for the plan JSON, the stored variation and the JSON API.

@@ -69,10 +69,12 @@ TEST(PlanAnnotations, SetterFieldsRoundTripThroughTheOneCodec) {
   s.grid.plane = chaos::SearchPlane::kCube;
   s.smooth_method = SmoothingMethod::kAStar;
   s.drop_inner_finishes = true;
+  s.drop_inner_starts = true;
   std::string text = ParametersJson(chaos::VaryParams{}, s);
   json j = json::parse(text);
   EXPECT_EQ(j["keep_start"], true);
   EXPECT_EQ(j["drop_inner_finishes"], true);
+  EXPECT_EQ(j["drop_inner_starts"], true);
   EXPECT_EQ(j["crux_window"], json({0.25, 0.75}));
   EXPECT_EQ(j["match"], "grammar");
   EXPECT_EQ(j["smooth_method"], "astar");
@@ -82,7 +84,7 @@ TEST(PlanAnnotations, SetterFieldsRoundTripThroughTheOneCodec) {
   EXPECT_EQ(ParametersJson(chaos::VaryParams{}, *back), text);
   EXPECT_TRUE(ReproduceOptions(chaos::VaryParams{}, *back).find(
                   "--keep-start --keep-finish --crux-window 0.25,0.75 --alternate-hands "
-                  "--drop-inner-finishes --match grammar --target-effect 12 --target-change 3.5") != std::string::npos)
+                  "--drop-inner-finishes --drop-inner-starts --match grammar --target-effect 12 --target-change 3.5") != std::string::npos)
       << ReproduceOptions(chaos::VaryParams{}, *back);
 }
 

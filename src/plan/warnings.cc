@@ -201,7 +201,8 @@ PlanWarnings Warn(const chaos::Variation& v, const chaos::MoveFacts& facts) {
       w.message = std::string(tokens ? "the sequence ends on " : "the route ends on ") +
                   (s && idx.Valid(*s, v)
                        ? Quote(v.moves[n - 1].text) + " (" + element + " " +
-                             std::to_string(s->move + 1) + " of " + RouteName(v, s->route) + ")"
+                             std::to_string(v.inputs[s->route].first_move + s->move + 1) +
+                             " of " + RouteName(v, s->route) + ")"
                        : std::string("a blank")) +
                   ", not on the last " + element + " of an input";
       out.warnings.push_back(std::move(w));
@@ -234,7 +235,7 @@ PlanWarnings Warn(const chaos::Variation& v, const chaos::MoveFacts& facts) {
   // An input's first move after the start.
   for (int j = 1; j < n; ++j) {
     const auto& s = v.moves[j].source;
-    if (!s || !idx.Valid(*s, v) || s->move != 0) continue;
+    if (!s || !idx.Valid(*s, v) || s->move != 0 || v.inputs[s->route].first_move != 0) continue;
     Warning w{WarningKind::kStartAwayFromStart, j, j, 1, ""};
     w.message = MovesLabel(j, j, tokens) + ": " + Quote(v.moves[j].text) + " is the start of " +
                 RouteName(v, s->route) + ", away from the start";

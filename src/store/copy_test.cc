@@ -107,6 +107,8 @@ void Fill(Store& s) {
   ASSERT_TRUE(
       targets->SetWallTargets(wall, {{0, "grade", "V3", 2}, {0, "style", "crimp", 0.1 + 0.2}})
           .ok());
+  // The gym's targets per discipline (schema 12).
+  ASSERT_TRUE(targets->SetDisciplineTargets(gym, "bouldering", {{0, "", "grade", "V4", 3}}).ok());
 }
 
 // Copies through every pair of backends: SQLite -> PostgreSQL -> SQLite (and
@@ -172,6 +174,10 @@ TEST_P(CopyTest, RoundTripKeepsRowsIdsAndCounters) {
   ASSERT_TRUE(targets.ok()) << targets.status().message();
   ASSERT_EQ(targets->size(), 2u);
   EXPECT_EQ((*targets)[1].value, 0.1 + 0.2);
+  Result<std::vector<DisciplineTargetRecord>> per_discipline =
+      TargetStoreOf(s->get())->DisciplineTargets((*gyms)[0].id);
+  ASSERT_TRUE(per_discipline.ok() && per_discipline->size() == 1u);
+  EXPECT_EQ((*per_discipline)[0].name, "V4");
   EXPECT_EQ((*(*s)->RecordAttempts({"acct:bob"}, 4'000'000'000, 0))[0].count, 2);
   Result<int64_t> next = (*s)->InsertRoute(Route(std::nullopt, "New"));
   ASSERT_TRUE(next.ok());

@@ -436,6 +436,24 @@ CREATE INDEX IF NOT EXISTS ticks_gym_revision ON ticks(gym_id, revision);
 DROP INDEX IF EXISTS ticks_gym;
 )sql"},
        }},
+      // Issue 22 (schema 12): the head setter's targets per discipline, for
+      // every wall of the discipline together ("a target count per grade
+      // band per wall or discipline"); as wall_targets, keyed by gym and
+      // discipline (docs/setting.md "The dashboard").
+      {"gym targets per discipline (the setting dashboard, issue 22)",
+       {
+           {Only::kBoth, R"sql(
+CREATE TABLE discipline_targets (
+  id         {serial},
+  gym_id     {int64} NOT NULL REFERENCES gyms(id) ON DELETE CASCADE,
+  discipline TEXT NOT NULL CHECK (discipline IN ('bouldering', 'roped')),
+  kind       TEXT NOT NULL CHECK (kind IN ('grade', 'style')),
+  name       TEXT NOT NULL,
+  value      {real} NOT NULL,
+  UNIQUE (gym_id, discipline, kind, name)
+);
+)sql"},
+       }},
   };
   return kMigrations;
 }
@@ -464,7 +482,7 @@ const std::vector<std::string>& SchemaTables() {
       "walls",         "circuits",     "routes",          "variation_inputs",
       "route_sources", "feedback",     "studies",         "study_routes",  "study_responses",
       "study_answers", "study_demographics", "route_setters", "route_history",
-      "ticks",         "wall_targets"};
+      "ticks",         "wall_targets", "discipline_targets"};
   return kTables;
 }
 

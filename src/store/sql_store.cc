@@ -829,6 +829,15 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
     SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
     return targets_sql::GymTargets(*c, gym_id);
   }
+  Status SetDisciplineTargets(int64_t gym_id, const std::string& discipline,
+                              const std::vector<DisciplineTargetRecord>& targets) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return targets_sql::SetDisciplineTargets(*c, gym_id, discipline, targets);
+  }
+  Result<std::vector<DisciplineTargetRecord>> DisciplineTargets(int64_t gym_id) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return targets_sql::DisciplineTargets(*c, gym_id);
+  }
   Result<std::vector<RouteTickSum>> GymTickSums(int64_t gym_id) override {
     SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
     return targets_sql::GymTickSums(*c, gym_id);

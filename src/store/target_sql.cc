@@ -81,6 +81,63 @@ Result<std::vector<TargetRecord>> GymTargets(sql::Connection& c, int64_t gym_id)
   return Read(r);
 }
 
+Status SetDisciplineTargets(sql::Connection& c, int64_t gym_id, const std::string& discipline,
+                            const std::vector<DisciplineTargetRecord>& targets) {
+  if (discipline != "bouldering" && discipline != "roped") {
+    return Status::InvalidInput("discipline: expected \"bouldering\" or \"roped\", got \"" +
+                                discipline + "\"");
+  }
+  std::set<std::pair<std::string, std::string>> seen;
+  for (const DisciplineTargetRecord& t : targets) {
+    if (t.kind != "grade" && t.kind != "style") {
+      return Status::InvalidInput("target kind: expected \"grade\" or \"style\", got \"" + t.kind +
+                                  "\"");
+    }
+    if (!seen.insert({t.kind, t.name}).second) {
+      return Status::InvalidInput("target " + t.kind + " \"" + t.name + "\" given twice");
+    }
+  }
+  return sql::RunInTransaction(c, [&]() -> Status {
+    SB_ASSIGN_OR_RETURN(Rows g, c.Query("SELECT id FROM gyms WHERE id = ?", {gym_id}));
+    if (g.empty()) return Status::NotFound("no gym " + std::to_string(gym_id));
+    SB_ASSIGN_OR_RETURN(Rows gone, c.Query("DELETE FROM discipline_targets WHERE gym_id = ? AND "
+                                           "discipline = ? RETURNING id",
+                                           {gym_id, discipline}));
+    (void)gone;
+    for (const DisciplineTargetRecord& t : targets) {
+      Violation v;
+      Result<Rows> r = c.Query(
+          "INSERT INTO discipline_targets(gym_id, discipline, kind, name, value) "
+          "VALUES(?, ?, ?, ?, ?) RETURNING id",
+          {gym_id, discipline, t.kind, t.name, t.value}, &v);
+      if (!r.ok() && v == Violation::kForeignKey) {
+        return Status::NotFound("no gym " + std::to_string(gym_id));
+      }
+      if (!r.ok()) return r.status().WithPrefix("set discipline targets");
+    }
+    return Status::Ok();
+  });
+}
+
+Result<std::vector<DisciplineTargetRecord>> DisciplineTargets(sql::Connection& c, int64_t gym_id) {
+  SB_ASSIGN_OR_RETURN(Rows r, c.Query("SELECT gym_id, discipline, kind, name, value "
+                                      "FROM discipline_targets WHERE gym_id = ?",
+                                      {gym_id}));
+  std::vector<DisciplineTargetRecord> out;
+  out.reserve(r.size());
+  for (size_t i = 0; i < r.size(); ++i) {
+    out.push_back({r.Int(i, 0), r.Text(i, 1), r.Text(i, 2), r.Text(i, 3),
+                   r.OptDouble(i, 4).value_or(0)});
+  }
+  // Byte order in C++ (PostgreSQL's collation follows the locale).
+  std::sort(out.begin(), out.end(),
+            [](const DisciplineTargetRecord& a, const DisciplineTargetRecord& b) {
+              return std::tie(a.discipline, a.kind, a.name) <
+                     std::tie(b.discipline, b.kind, b.name);
+            });
+  return out;
+}
+
 Result<std::vector<RouteTickSum>> GymTickSums(sql::Connection& c, int64_t gym_id) {
   SB_ASSIGN_OR_RETURN(Rows r, c.Query("SELECT route_id, count(*), count(stars), "
                                       "coalesce(sum(stars), 0) FROM ticks WHERE gym_id = ? "

@@ -16,6 +16,9 @@ Status SetWallTargets(sql::Connection& c, int64_t wall_id,
                       const std::vector<TargetRecord>& targets);
 Result<std::vector<TargetRecord>> WallTargets(sql::Connection& c, int64_t wall_id);
 Result<std::vector<TargetRecord>> GymTargets(sql::Connection& c, int64_t gym_id);
+Status SetDisciplineTargets(sql::Connection& c, int64_t gym_id, const std::string& discipline,
+                            const std::vector<DisciplineTargetRecord>& targets);
+Result<std::vector<DisciplineTargetRecord>> DisciplineTargets(sql::Connection& c, int64_t gym_id);
 Result<std::vector<RouteTickSum>> GymTickSums(sql::Connection& c, int64_t gym_id);
 Result<std::vector<RouteTickSum>> StateTickSums(sql::Connection& c, int64_t gym_id,
                                                 const std::string& route_state);

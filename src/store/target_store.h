@@ -29,6 +29,18 @@ struct TargetRecord {
   bool operator==(const TargetRecord&) const = default;
 };
 
+// One target of a gym per discipline (schema 12, issue 22: "a target count
+// per grade band per wall or discipline"): as TargetRecord, for every wall of
+// `discipline` ("bouldering" or "roped") of the gym together.
+struct DisciplineTargetRecord {
+  int64_t gym_id = 0;
+  std::string discipline;
+  std::string kind;  // "grade" or "style"
+  std::string name;
+  double value = 0;
+  bool operator==(const DisciplineTargetRecord&) const = default;
+};
+
 // The climbers' ticks of one route summed (the dashboard's "ticks" and
 // "stars"): unheld ticks (state "ok"), how many gave stars, their sum.
 struct RouteTickSum {
@@ -52,6 +64,14 @@ class TargetStore {
   virtual Result<std::vector<TargetRecord>> WallTargets(int64_t wall_id) = 0;
   // The targets of every wall of `gym_id`, by wall id, kind, name.
   virtual Result<std::vector<TargetRecord>> GymTargets(int64_t gym_id) = 0;
+  // Replaces every target of `gym_id` for `discipline` by `targets` (their
+  // gym_id and discipline are ignored) in one transaction. kNotFound for an
+  // unknown gym; kInvalidInput for a discipline other than
+  // "bouldering"/"roped", a kind other than "grade"/"style" or a name twice.
+  virtual Status SetDisciplineTargets(int64_t gym_id, const std::string& discipline,
+                                      const std::vector<DisciplineTargetRecord>& targets) = 0;
+  // The gym's targets per discipline, by discipline, kind, name (byte order).
+  virtual Result<std::vector<DisciplineTargetRecord>> DisciplineTargets(int64_t gym_id) = 0;
   // The tick sums of every ticked route of `gym_id`, by route id (one
   // aggregate query: a gym has up to ~250,000 ticks).
   virtual Result<std::vector<RouteTickSum>> GymTickSums(int64_t gym_id) = 0;

@@ -85,6 +85,39 @@ TEST_P(TargetStoreTest, RefusesBadKindsDuplicatesAndUnknownWallsWithoutAChange) 
   EXPECT_TRUE(targets_->WallTargets(999999)->empty());
 }
 
+// Schema 12: the gym's targets per discipline, replaced per discipline.
+TEST_P(TargetStoreTest, DisciplineTargetsRoundTripPerDiscipline) {
+  ASSERT_TRUE(targets_
+                  ->SetDisciplineTargets(gym_, "bouldering",
+                                         {{0, "", "grade", "V4", 3},
+                                          {0, "", "style", "heel hook", 0.1 + 0.2},
+                                          {0, "", "grade", "V10", 1}})
+                  .ok());
+  ASSERT_TRUE(
+      targets_->SetDisciplineTargets(gym_, "roped", {{0, "", "grade", "5.10", 6}}).ok());
+  Result<std::vector<DisciplineTargetRecord>> t = targets_->DisciplineTargets(gym_);
+  ASSERT_TRUE(t.ok()) << t.status().message();
+  ASSERT_EQ(t->size(), 4u);
+  EXPECT_EQ((*t)[0], (DisciplineTargetRecord{gym_, "bouldering", "grade", "V10", 1}));
+  EXPECT_EQ((*t)[1], (DisciplineTargetRecord{gym_, "bouldering", "grade", "V4", 3}));
+  EXPECT_EQ((*t)[2].value, 0.1 + 0.2);  // doubles round-trip exactly
+  EXPECT_EQ((*t)[3], (DisciplineTargetRecord{gym_, "roped", "grade", "5.10", 6}));
+  // Replacing one discipline leaves the other; bad input changes nothing.
+  ASSERT_TRUE(targets_->SetDisciplineTargets(gym_, "bouldering", {}).ok());
+  EXPECT_EQ(targets_->SetDisciplineTargets(gym_, "ice", {}).code(), Status::Code::kInvalidInput);
+  EXPECT_EQ(targets_
+                ->SetDisciplineTargets(gym_, "roped",
+                                       {{0, "", "grade", "5.9", 1}, {0, "", "grade", "5.9", 2}})
+                .code(),
+            Status::Code::kInvalidInput);
+  EXPECT_EQ(targets_->SetDisciplineTargets(999999, "roped", {}).code(), Status::Code::kNotFound);
+  t = targets_->DisciplineTargets(gym_);
+  ASSERT_TRUE(t.ok());
+  ASSERT_EQ(t->size(), 1u);
+  EXPECT_EQ((*t)[0].discipline, "roped");
+  EXPECT_TRUE(targets_->DisciplineTargets(999999)->empty());
+}
+
 TEST_P(TargetStoreTest, TickSumsCountUnheldTicksAndStarsPerRoute) {
   RouteRecord r;
   r.name = "A";

@@ -146,8 +146,15 @@ void PostVariation(Exchange& x) {
   Result<plan::SetterOptions> setting = plan::SetterOptionsFromJson(x.req.body);
   if (!setting.ok()) return ApiError(x, setting.status());
   vr.setting = *setting;
+  // Issue 22: and, like `vary --preset setter`, the IC of the gallery's best
+  // (app::ChooseFromGallery), its plans charged before the work starts.
+  std::optional<app::WorkBudget::Slot> work;
   if (setter_preset) {
     app::ApplySetterPreset(&vr.params, &vr.setting, body->contains("max_repeat"));
+    vr.gallery = app::CandidateSlot{};
+    work = AdmitWork(x, app::GalleryPlanCount(app::GalleryOptions{}) *
+                            x.services.options.render_costs.day_candidate);
+    if (!work) return;
   }
   Result<app::CreatedVariation> v = x.services.variations.Create(x.caller.viewer, vr);
   if (!v.ok()) return ApiError(x, v.status());
@@ -155,12 +162,21 @@ void PostVariation(Exchange& x) {
   if (!v->smoothing.status.ok()) smoothing["reason"] = v->smoothing.status.message();
   std::string url = "/variations/" + std::to_string(v->id);
   x.res.SetHeader("Location", url);
-  ReplyJson(x.res, v->existing ? 200 : 201,
-            json{{"id", v->id},
-                 {"url", url},
-                 {"existing", v->existing},
-                 {"moves", json::parse(plan::RenderMovesJson(v->plan))},
-                 {"smoothing", smoothing}});
+  json out{{"id", v->id},
+           {"url", url},
+           {"existing", v->existing},
+           {"moves", json::parse(plan::RenderMovesJson(v->plan))},
+           {"smoothing", smoothing}};
+  if (v->gallery) {  // which candidate of the setter's gallery, and why
+    const app::CandidateScore& best = v->gallery->candidates.front().score;
+    out["gallery"] = json{{"rank", v->gallery->rank},
+                          {"score", Round3(best.score)},
+                          {"reasons", best.reasons},
+                          {"warnings", best.warnings},
+                          {"count", v->gallery->count},
+                          {"kept", v->gallery->kept}};
+  }
+  ReplyJson(x.res, v->existing ? 200 : 201, out);
 }
 
 void GetVariation(Exchange& x) {

@@ -163,5 +163,51 @@ TEST_F(DashboardApiTest, MembersSeeTheDashboardOnlyHeadSettersPutTargets) {
             std::string::npos);
 }
 
+// Issue 22: the gym's targets per discipline (PUT /api/gyms/{gym}/targets),
+// shown as the dashboard's `disciplines` beside `walls`.
+TEST_F(DashboardApiTest, DisciplineTargetsSumTheDisciplinesWalls) {
+  const int port = server_->port();
+  Client head(port), climber(port);
+  head.SignUp("head");
+  ASSERT_TRUE(head.LogIn("head"));
+  climber.SignUp("climber");
+  ASSERT_TRUE(climber.LogIn("climber"));
+  const int64_t g = head.Json("GET", "/api/gyms", "", 200)["gyms"][0]["id"];
+  const std::string gp = "/api/gyms/" + std::to_string(g);
+  ASSERT_EQ(head.Status("POST", gp + "/members", R"({"username":"climber","role":"climber"})"), 201);
+  head.Json("POST", gp + "/walls", R"({"name":"Cave"})", 201);
+  head.Json("POST", gp + "/walls", R"({"name":"Slab"})", 201);
+  for (const auto& [name, wall] : {std::pair<const char*, const char*>{"A", "Cave"}, {"B", "Slab"}}) {
+    json body{{"crdl", Crdl(name, "V4", "2026-11-01", "blue", "R small crimp\nL jug\n")},
+              {"public", true}, {"gym", g}, {"wall", wall}, {"state", "set"},
+              {"set_on", "2026-11-01"}};
+    head.Json("POST", "/api/routes", body.dump(), 201);
+  }
+  const std::string tp = gp + "/targets";
+  const std::string targets = R"({"discipline":"bouldering","grades":{"V4":5,"v2":1}})";
+  EXPECT_EQ(climber.Status("PUT", tp, targets), 403);
+  json bad = head.Json("PUT", tp, R"({"discipline":"ice","grades":{"V4":5}})", 400);
+  EXPECT_NE(bad.dump().find("discipline"), std::string::npos) << bad.dump();
+  bad = head.Json("PUT", tp, R"({"discipline":"bouldering","grades":{"Q9":5}})", 400);
+  EXPECT_NE(bad.dump().find("grades.Q9"), std::string::npos) << bad.dump();
+  json put = head.Json("PUT", tp, targets, 200);
+  EXPECT_EQ(put["grades"], json({{"V2", 1}, {"V4", 5}}));
+  json d = climber.Json("GET", gp + "/dashboard", "", 200);
+  ASSERT_TRUE(d["walls"].is_array());
+  ASSERT_EQ(d["disciplines"].size(), 1u);  // no roped wall and no roped target
+  const json& b = d["disciplines"][0];
+  EXPECT_EQ(b["discipline"], "bouldering");
+  EXPECT_EQ(b["on_wall"], 2);
+  EXPECT_EQ(b["grades"], json({{"V4", 2}}));
+  EXPECT_EQ(b["targets"], json({{"V2", 1}, {"V4", 5}}));
+  EXPECT_EQ(b["gap_words"][0], "bouldering: 1 × V2 missing, 3 × V4 missing");
+  EXPECT_EQ(b["gaps"][1], json({{"kind", "grade"}, {"name", "V4"}, {"missing", 3}, {"over", 0}}));
+  auto page = head.Send("GET", "/gyms/" + std::to_string(g) + "/dashboard");
+  ASSERT_TRUE(page);
+  EXPECT_NE(page->body.find("id=\"chart-bouldering\""), std::string::npos);
+  EXPECT_NE(page->body.find("id=\"grades-bouldering\""), std::string::npos);
+  EXPECT_NE(page->body.find("id=\"targets-bouldering\""), std::string::npos);
+}
+
 }  // namespace
 }  // namespace sb::web

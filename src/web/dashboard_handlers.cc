@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <map>
 
+#include "app/discipline_targets.h"
 #include "base/number.h"
 #include "base/text.h"
 #include "web/logbook_handlers.h"
@@ -144,18 +145,20 @@ std::string Legend() {
 
 // The target-vs-current grade chart of a wall: a bar per band (routes on
 // the wall) with the target as an outlined bar behind it.
-std::string GradeChart(const app::WallDashboard& w) {
-  if (w.bands.empty()) return "";
+// `id` names the chart ("chart-" + id), `where` the walls in its label.
+std::string BandChart(const std::vector<app::BandRow>& bands, const std::string& id,
+                      const std::string& where) {
+  if (bands.empty()) return "";
   int top = 1;
-  for (const app::BandRow& b : w.bands) top = std::max({top, b.current, b.target.value_or(0)});
+  for (const app::BandRow& b : bands) top = std::max({top, b.current, b.target.value_or(0)});
   const double bw = 36, gap = 8, h = 120, label = 18;
-  const double width = w.bands.size() * (bw + gap) + gap;
-  std::string s = "<svg class=\"grade-chart\" id=\"chart-" + Id(w.wall.id) +
+  const double width = bands.size() * (bw + gap) + gap;
+  std::string s = "<svg class=\"grade-chart\" id=\"chart-" + E(id) +
                   "\" viewBox=\"0 0 " + Fixed(width) + " " + Fixed(h + 2 * label) +
                   "\" width=\"" + Fixed(width) + "\" role=\"img\" aria-label=\"" +
-                  E("Routes per band on " + w.wall.name + " against the targets") + "\">";
-  for (size_t i = 0; i < w.bands.size(); ++i) {
-    const app::BandRow& b = w.bands[i];
+                  E("Routes per band on " + where + " against the targets") + "\">";
+  for (size_t i = 0; i < bands.size(); ++i) {
+    const app::BandRow& b = bands[i];
     const double x = gap + i * (bw + gap);
     if (b.target) {
       const double th = h * *b.target / top;
@@ -177,20 +180,29 @@ std::string GradeChart(const app::WallDashboard& w) {
   return s + "</svg>";
 }
 
-std::string GradeTable(const app::WallDashboard& w) {
-  std::string t = "<table class=\"list grade-table\" id=\"grades-" + Id(w.wall.id) +
+std::string GradeChart(const app::WallDashboard& w) {
+  return BandChart(w.bands, Id(w.wall.id), w.wall.name);
+}
+
+// The chart's data table ("grades-" + id).
+std::string BandTable(const std::vector<app::BandRow>& bands, int ungraded, const std::string& id) {
+  std::string t = "<table class=\"list grade-table\" id=\"grades-" + E(id) +
                   "\"><caption>Routes per band</caption><thead><tr><th>Band</th><th "
                   "class=\"num\">On the wall</th><th class=\"num\">Target</th></tr></thead>"
                   "<tbody>";
-  for (const app::BandRow& b : w.bands) {
+  for (const app::BandRow& b : bands) {
     t += "<tr><td>" + E(b.band) + "</td><td class=\"num\">" + std::to_string(b.current) +
          "</td><td class=\"num\">" + (b.target ? std::to_string(*b.target) : "—") + "</td></tr>";
   }
-  if (w.ungraded > 0) {
-    t += "<tr><td>ungraded</td><td class=\"num\">" + std::to_string(w.ungraded) +
+  if (ungraded > 0) {
+    t += "<tr><td>ungraded</td><td class=\"num\">" + std::to_string(ungraded) +
          "</td><td class=\"num\">—</td></tr>";
   }
   return t + "</tbody></table>";
+}
+
+std::string GradeTable(const app::WallDashboard& w) {
+  return BandTable(w.bands, w.ungraded, Id(w.wall.id));
 }
 
 std::string StyleMix(const app::WallDashboard& w) {
@@ -238,8 +250,9 @@ std::string RouteTable(const app::WallDashboard& w, const DashboardAscents& asce
   return t + "</tbody></table></div>";
 }
 
-// "V3: 2, V4: 1" for the targets form.
-std::string MapText(const app::WallDashboard& w, bool grades) {
+// "V3: 2, V4: 1" for the targets form (a wall's or a discipline's).
+template <typename Targeted>
+std::string MapText(const Targeted& w, bool grades) {
   std::string out;
   if (grades) {
     for (const app::BandRow& b : w.bands) {
@@ -292,6 +305,67 @@ std::string WallSection(const app::GymDashboard& d, const app::WallDashboard& w,
   b += StyleMix(w) + "\n" + RouteTable(w, ascents) + "\n";
   if (d.can_edit) b += TargetForm(d, w) + "\n";
   return b + "</section>\n";
+}
+
+// Issue 22: a discipline's routes on its walls against the gym's targets
+// for it, and its form (head setters).
+std::string DisciplineSection(const app::GymDashboard& d, const app::DisciplineDashboard& t) {
+  const std::string& name = t.discipline;
+  std::string b = "<section class=\"dash-discipline\" id=\"discipline-" + E(name) + "\"><h2>" +
+                  E(name) + ": every " + E(name) + " wall</h2>\n<p>" +
+                  std::to_string(t.on_wall) + " on " + std::to_string(t.walls) + " wall" +
+                  (t.walls == 1 ? "" : "s") + ".</p>\n";
+  if (!t.gap_words.empty()) {
+    b += "<ul class=\"gaps\" id=\"gaps-" + E(name) + "\">";
+    for (const std::string& g : t.gap_words) b += "<li>" + E(g) + "</li>";
+    b += "</ul>\n";
+  } else {
+    b += "<p class=\"gaps empty\" id=\"gaps-" + E(name) + "\">No gaps against a target.</p>\n";
+  }
+  b += "<div class=\"chart-pair\">" + BandChart(t.bands, name, "every " + name + " wall") +
+       BandTable(t.bands, t.ungraded, name) + "</div>\n";
+  if (d.can_edit) {
+    const std::string url = "/api/gyms/" + Id(d.gym.id) + "/targets";
+    b += "<details class=\"no-print\"><summary>Set " + E(name) + " targets</summary><form "
+         "class=\"gym-form targets-form\" id=\"targets-" + E(name) + "\" data-api=\"PUT " +
+         E(url) + "\"><input type=\"hidden\" name=\"discipline\" value=\"" + E(name) +
+         "\"><label>Routes per band <input name=\"grades\" data-map value=\"" +
+         E(MapText(t, true)) + "\" placeholder=\"" +
+         (name == "roped" ? "5.9: 4, 5.10: 6" : "V2: 6, V3: 8, V4: 6") +
+         "\"></label> <label>Share of moves per style <input name=\"styles\" data-map value=\"" +
+         E(MapText(t, false)) + "\" placeholder=\"crimp: 0.3, heel hook: 0.1\"></label><button "
+         "type=\"submit\">Save targets</button><p class=\"msg\" role=\"status\"></p></form>"
+         "</details>\n";
+  }
+  return b + "</section>\n";
+}
+
+json DisciplineJson(const app::DisciplineDashboard& t) {
+  json grades = json::object(), targets = json::object(), styles = json::object(),
+       style_targets = json::object(), gaps = json::array();
+  for (const app::BandRow& b : t.bands) {
+    if (b.current > 0) grades[b.band] = b.current;
+    if (b.target) targets[b.band] = *b.target;
+  }
+  for (const app::StyleRow& s : t.styles) {
+    if (s.share > 0) styles[s.style] = s.share;
+    if (s.targeted) style_targets[s.style] = s.reference;
+  }
+  for (const app::Gap& g : t.gaps) {
+    json j{{"kind", g.kind}, {"name", g.name}};
+    if (g.kind == "grade") {
+      j["missing"] = g.missing;
+      j["over"] = g.over;
+    } else {
+      j["share"] = g.share;
+      j["reference"] = g.reference;
+    }
+    gaps.push_back(j);
+  }
+  return json{{"discipline", t.discipline}, {"scale", t.scale},      {"walls", t.walls},
+              {"on_wall", t.on_wall},       {"ungraded", t.ungraded}, {"grades", grades},
+              {"targets", targets},         {"moves", t.moves},       {"styles", styles},
+              {"style_targets", style_targets}, {"gaps", gaps},       {"gap_words", t.gap_words}};
 }
 
 Result<int64_t> WallIdOf(const Request& req) {
@@ -413,6 +487,9 @@ std::string DashboardPage(const PageViewer& v, const app::GymDashboard& d, int64
       b += "</ul>\n";
     }
   }
+  if (!only_wall) {
+    for (const app::DisciplineDashboard& t : d.disciplines) b += DisciplineSection(d, t);
+  }
   bool any = false;
   for (const app::WallDashboard& w : d.walls) {
     if (only_wall && w.wall.id != only_wall) continue;
@@ -439,10 +516,13 @@ void GetDashboard(Exchange& x) {
   Result<DashboardAscents> ascents = AscentsOf(x, *d);
   if (!ascents.ok()) return ApiError(x, ascents.status());
   for (const app::WallDashboard& w : d->walls) walls.push_back(WallJson(w, *ascents));
+  json disciplines = json::array();
+  for (const app::DisciplineDashboard& t : d->disciplines) disciplines.push_back(DisciplineJson(t));
   ReplyJson(x.res, 200,
             json{{"gym", d->gym.id},
                  {"can_edit", d->can_edit},
                  {"walls", walls},
+                 {"disciplines", disciplines},
                  {"circuit_words", d->circuit_words},
                  {"archive_styles", d->archive_styles}});
 }
@@ -467,6 +547,36 @@ void PutWallTargets(Exchange& x) {
   Result<app::WallTargets> stored = x.services.dashboard.Targets(x.caller.viewer, *gym, *wall);
   if (!stored.ok()) return ApiError(x, stored.status());
   ReplyJson(x.res, 200, json{{"wall", *wall}, {"grades", stored->grades}, {"styles", stored->styles}});
+}
+
+void PutDisciplineTargets(Exchange& x) {
+  Result<int64_t> gym = PathId(x.req, "no such gym");
+  if (!gym.ok()) return ApiError(x, gym.status());
+  Result<json> body = BodyObject(x.req);
+  if (!body.ok()) return ApiError(x, body.status());
+  app::DisciplineTargets t;
+  if (!body->contains("discipline") || !(*body)["discipline"].is_string()) {
+    return ApiError(x, Status::InvalidInput("discipline: expected \"bouldering\" or \"roped\""));
+  }
+  t.discipline = (*body)["discipline"].get<std::string>();
+  Result<std::map<std::string, int>> grades = NumberMap<int>(*body, "grades", true);
+  if (!grades.ok()) return ApiError(x, grades.status());
+  Result<std::map<std::string, double>> styles = NumberMap<double>(*body, "styles", false);
+  if (!styles.ok()) return ApiError(x, styles.status());
+  t.grades = std::move(grades).value();
+  t.styles = std::move(styles).value();
+  if (Status s = x.services.dashboard.SetDisciplineTargets(x.caller.viewer, *gym, t); !s.ok()) {
+    return ApiError(x, s);
+  }
+  Result<std::vector<app::DisciplineTargets>> stored =
+      x.services.dashboard.GymDisciplineTargets(x.caller.viewer, *gym);
+  if (!stored.ok()) return ApiError(x, stored.status());
+  for (const app::DisciplineTargets& s : *stored) {
+    if (s.discipline != t.discipline) continue;
+    return ReplyJson(x.res, 200, json{{"gym", *gym}, {"discipline", s.discipline},
+                                      {"grades", s.grades}, {"styles", s.styles}});
+  }
+  ApiError(x, Status::Internal("targets not stored"));
 }
 
 void PageDashboard(Exchange& x) {

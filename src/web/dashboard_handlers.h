@@ -20,6 +20,8 @@ namespace sb::web {
 
 void GetDashboard(Exchange& x);    // GET /api/gyms/{id}/dashboard (members)
 void PutWallTargets(Exchange& x);  // PUT /api/gyms/{id}/walls/{wall}/targets (head setters)
+// PUT /api/gyms/{id}/targets {"discipline", "grades", "styles"} (head setters; issue 22)
+void PutDisciplineTargets(Exchange& x);
 void PageDashboard(Exchange& x);   // GET /gyms/{id}/dashboard[?wall=W] (members)
 
 // Route id -> its grade from ascents (issue 23; app::Logbook::Ascents).

@@ -73,6 +73,7 @@ const Endpoint kEndpoints[] = {
     // The setting dashboard (dashboard_handlers.cc, issue 22).
     {"GET", "/api/gyms/{id}/dashboard", GetDashboard},
     {"PUT", "/api/gyms/{id}/walls/{wall}/targets", PutWallTargets},
+    {"PUT", "/api/gyms/{id}/targets", PutDisciplineTargets},
     {"GET", "/gyms/{id}/dashboard", PageDashboard},
     // Climbers' feedback and studies (climber_handlers.cc).
     {"POST", "/api/r/{id}/feedback", PostRouteFeedback},

@@ -10,6 +10,11 @@
 #include <string>
 #include <vector>
 
+#include "app/candidates.h"
+#include "app/variations.h"
+#include "base/files.h"
+#include "crdl/route.h"
+#include "plan/plan.h"
 #include "web/api_test_util.h"
 
 namespace sb::web {
@@ -158,6 +163,7 @@ TEST_F(SettingDayApiTest, TheSetterPresetOfTheVariationApi) {
   EXPECT_TRUE(v["parameters"].value("keep_finish", false));
   EXPECT_TRUE(v["parameters"].value("alternate_hands", false));
   EXPECT_EQ(v["parameters"]["preset"], "default");
+  EXPECT_TRUE(v["parameters"].value("drop_inner_starts", false));
   // The paper's presets stay as they were, by name.
   const json plain = c.Json("POST", "/api/variations",
                             json{{"routes", {a, b}}, {"preset", "default"}}.dump(), 201);
@@ -171,6 +177,52 @@ TEST_F(SettingDayApiTest, TheSetterPresetOfTheVariationApi) {
   const std::string ids = std::to_string(a) + "," + std::to_string(b);
   EXPECT_EQ(c.Status("GET", "/api/landscape?routes=" + ids + "&preset=setter&grid=5"), 200);
   EXPECT_EQ(c.Status("GET", "/api/landscape?routes=" + ids + "&preset=wild&grid=5"), 400);
+}
+
+// Issue 22: the web's setter preset stores the gallery's best, as `vary
+// --preset setter` prints it (app::ChooseFromGallery, the one step of both),
+// and says which candidate and why. make run's demo pair: its best is not
+// the default IC (ranked last there), so storing the plain preset's plan fails.
+TEST_F(SettingDayApiTest, TheSetterPresetStoresTheGallerysBest) {
+  Client c = NewClient();
+  c.SignUp("setter2");
+  ASSERT_TRUE(c.LogIn("setter2"));
+  std::vector<chaos::InputRoute> inputs;
+  std::vector<int64_t> ids;
+  for (const char* file : {"crimp-ladder.crdl", "slab-dance.crdl"}) {
+    Result<std::string> text = ReadFile(std::string(SB_SOURCE_DIR) + "/data/examples/" + file);
+    ASSERT_TRUE(text.ok()) << file;
+    Result<Route> r = ParseCrdl(*text, file);
+    ASSERT_TRUE(r.ok()) << file;
+    inputs.push_back({r->Name(), *r});
+    ids.push_back(AddRoute(c, *text));
+  }
+  const json made =
+      c.Json("POST", "/api/variations", json{{"routes", ids}, {"preset", "setter"}}.dump(), 201);
+  ASSERT_TRUE(made.contains("gallery")) << made.dump();
+  const json& g = made["gallery"];
+  EXPECT_EQ(g["rank"], 1);
+  EXPECT_TRUE(g["warnings"].empty()) << g.dump();  // the demo shows 0 warnings
+  EXPECT_FALSE(g["reasons"].empty());
+  // The CLI's step on the same inputs.
+  auto params = chaos::ParamsFromJson(R"({"preset": "default"})");
+  ASSERT_TRUE(params.ok());
+  const chaos::State default_ic = params->var_ic;
+  app::SettingRequest req;
+  app::ApplySetterPreset(&*params, &req);
+  auto best = app::ChooseFromGallery(inputs, &*params, req, app::CandidateSlot{}, {});
+  ASSERT_TRUE(best.ok()) << best.status().message();
+  EXPECT_NE(params->var_ic, default_ic);
+  EXPECT_EQ(g["count"], best->count);
+  EXPECT_EQ(g["kept"], best->kept);
+  app::SmoothingOutcome outcome;
+  auto cli = app::BuildPlan(inputs, *params, req, app::SmoothingRequest{}, &outcome);
+  ASSERT_TRUE(cli.ok()) << cli.status().message();
+  EXPECT_EQ(made["moves"], json::parse(plan::RenderMovesJson(*cli)));
+  // Stored with that IC, so the variation rebuilds the same moves.
+  const json v = c.Json("GET", "/api/variations/" + std::to_string(made["id"].get<int64_t>()), "", 200);
+  EXPECT_EQ(v["parameters"]["var_ic"], json(params->var_ic)) << v["parameters"].dump();
+  EXPECT_EQ(v["plan"]["moves"], made["moves"]);
 }
 
 }  // namespace

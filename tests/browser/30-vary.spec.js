@@ -59,6 +59,8 @@ module.exports = async (t) => {
   check(v.data.parameters.keep_start === true && v.data.parameters.keep_finish === true && !formUrl.includes('preset='),
         'the default form varies with the setter preset (kept start and finish)');
   check((await page.textContent('h1')) === 'Three in order', 'the variation has the chosen name');
+  check(/^The setter's preset: the best of \d+ candidates .*score [\d.]+: /.test(await page.textContent('#gallery-note')),
+        "the plan page says which candidate of the setter's gallery was stored and why");
   await shot('07-plan');
   // Back: the same routes in the same order, the same IC and name.
   await page.goBack();

@@ -51,6 +51,13 @@ module.exports = async (t) => {
   const d = await api('GET', gp + '/dashboard');
   check(d.status === 200 && d.data.walls[0].targets.V6 === 1, 'the API shows the targets');
   check(!(await page.isVisible('#targets-' + cave + ' .msg.bad')), 'no form error');
+  // Targets per discipline: every bouldering wall together.
+  await page.click('#discipline-bouldering details summary');
+  await page.fill('#targets-bouldering input[name="grades"]', 'V1: 2, V3: 1');
+  await Promise.all([page.waitForNavigation(), page.click('#targets-bouldering button[type="submit"]')]);
+  const dgaps = await page.textContent('#gaps-bouldering');
+  check(dgaps.includes('bouldering: 1 × V1 missing'), 'the discipline gaps in words (' + dgaps.trim() + ')');
+  check(await page.isVisible('#chart-bouldering'), 'the discipline chart is shown');
   await shot('96-dashboard');
 
   await page.setViewportSize({ width: 390, height: 844 });
