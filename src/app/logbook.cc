@@ -181,15 +181,15 @@ Result<TickSaved> Logbook::Log(const Viewer& v, int64_t route_id,
   return out;
 }
 
-Result<Logbook::Fit> Logbook::FitGym(int64_t gym_id, const std::string& discipline) {
+Result<std::shared_ptr<const Logbook::Fit>> Logbook::FitGym(int64_t gym_id, const std::string& discipline) {
   SB_ASSIGN_OR_RETURN(store::TickVersion version, ticks_->GymTickVersion(gym_id));
   const auto key = std::make_pair(gym_id, discipline);
   {
     std::lock_guard<std::mutex> lock(mu_);
     auto it = cache_.find(key);
-    if (it != cache_.end() && it->second.version == version) {
+    if (it != cache_.end() && it->second.fit->version.ticks == version.ticks) {
       it->second.used = ++uses_;
-      return it->second;
+      return it->second.fit;
     }
   }
   SB_ASSIGN_OR_RETURN(Discipline d, grades::ParseDiscipline(discipline));
@@ -237,8 +237,8 @@ Result<Logbook::Fit> Logbook::FitGym(int64_t gym_id, const std::string& discipli
     const store::RouteRecord& r = routes.at(id);
     if (r.grade_value && r.grade_discipline == discipline) b.SetSetterGrade(idx, *r.grade_value);
   }
-  Fit fit;
-  fit.version = version;
+  auto fit = std::make_shared<Fit>();
+  fit->version = version;
   if (!route_index.empty()) {
     grades::RatingProblem problem = b.Build();
     SB_ASSIGN_OR_RETURN(grades::RatingFit rf,
@@ -268,19 +268,18 @@ Result<Logbook::Fit> Logbook::FitGym(int64_t gym_id, const std::string& discipli
           a.felt_median = grades::FormatValue(c->median, d, scale);
         }
       }
-      fit.routes.emplace(id, std::move(a));
+      fit->routes.emplace(id, std::move(a));
     }
   }
   std::lock_guard<std::mutex> lock(mu_);
-  fit.used = ++uses_;
-  cache_[key] = fit;
+  cache_[key] = CachedFit{fit, ++uses_};
   while (static_cast<int>(cache_.size()) > policy_.fit_cache_entries) {
     auto oldest = std::min_element(cache_.begin(), cache_.end(), [](const auto& a, const auto& b) {
       return a.second.used < b.second.used;
     });
     cache_.erase(oldest);
   }
-  return fit;
+  return std::shared_ptr<const Fit>(std::move(fit));
 }
 
 Result<AscentGrade> Logbook::Ascent(const Viewer& v, int64_t route_id) {
@@ -289,9 +288,9 @@ Result<AscentGrade> Logbook::Ascent(const Viewer& v, int64_t route_id) {
   AscentGrade none;
   none.discipline = DisciplineOf(route);
   if (!route.gym_id) return none;
-  SB_ASSIGN_OR_RETURN(Fit fit, FitGym(*route.gym_id, none.discipline));
-  auto it = fit.routes.find(route_id);
-  return it == fit.routes.end() ? none : it->second;
+  SB_ASSIGN_OR_RETURN(std::shared_ptr<const Fit> fit, FitGym(*route.gym_id, none.discipline));
+  auto it = fit->routes.find(route_id);
+  return it == fit->routes.end() ? none : it->second;
 }
 
 Result<std::map<int64_t, AscentGrade>> Logbook::Ascents(int64_t gym_id,
@@ -329,9 +328,9 @@ Result<std::map<int64_t, AscentGrade>> Logbook::Ascents(const Viewer& v,
 
 Status Logbook::FillAscents(int64_t gym_id, const std::string& discipline,
                             std::map<int64_t, AscentGrade>* grades) {
-  SB_ASSIGN_OR_RETURN(Fit fit, FitGym(gym_id, discipline));
+  SB_ASSIGN_OR_RETURN(std::shared_ptr<const Fit> fit, FitGym(gym_id, discipline));
   for (auto& [id, a] : *grades) {
-    if (auto it = fit.routes.find(id); it != fit.routes.end()) a = it->second;
+    if (auto it = fit->routes.find(id); it != fit->routes.end()) a = it->second;
   }
   return Status::Ok();
 }

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -162,11 +163,15 @@ class Logbook {
   struct Fit {
     store::TickVersion version;
     std::map<int64_t, AscentGrade> routes;
+  };
+  // A cached fit (shared: a cache hit copies no map) and when it was last used.
+  struct CachedFit {
+    std::shared_ptr<const Fit> fit;
     uint64_t used = 0;
   };
   Result<store::RouteRecord> Visible(const Viewer& v, int64_t route_id);
   Status RequireSetter(const Viewer& v, const store::RouteRecord& route);
-  Result<Fit> FitGym(int64_t gym_id, const std::string& discipline);
+  Result<std::shared_ptr<const Fit>> FitGym(int64_t gym_id, const std::string& discipline);
   // Replaces each grade of `grades` (route id -> grade) whose route the
   // gym's cached `discipline` fit has; the others stay as they are.
   Status FillAscents(int64_t gym_id, const std::string& discipline,
@@ -177,7 +182,7 @@ class Logbook {
   Clock* clock_;
   const LogbookPolicy policy_;
   std::mutex mu_;
-  std::map<std::pair<int64_t, std::string>, Fit> cache_;  // (gym, discipline)
+  std::map<std::pair<int64_t, std::string>, CachedFit> cache_;  // (gym, discipline)
   uint64_t uses_ = 0;
 };
 
