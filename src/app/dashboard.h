@@ -268,6 +268,25 @@ class Dashboard {
     std::vector<std::vector<std::string>> moves;
   };
 
+  // A built dashboard kept while the gym's data version (store::TickVersion
+  // .data, bumped by every write the dashboard shows) and the day stay; one
+  // per gym and viewer (what a viewer sees differs by account).
+  struct Built {
+    int64_t version = 0;
+    int64_t day = 0;
+    uint64_t used = 0;
+    std::vector<WallDashboard> walls;
+    std::map<std::string, double> archive_styles;
+    std::vector<std::string> circuit_words;
+  };
+  // Built dashboards kept (each a few KB; 20 head setters of a chain at
+  // once, with room for their setters).
+  static constexpr size_t kMaxBuilt = 64;
+  // Keeps `g`'s built parts for `key` (gym, user) at `version` and `day`,
+  // dropping the least recently used beyond kMaxBuilt. Locks mu_.
+  void Keep(std::pair<int64_t, int64_t> key, int64_t version, int64_t day,
+            const GymDashboard& g);
+
   store::Store* store_;
   store::TargetStore* targets_;
   store::TickStore* ticks_;
@@ -275,6 +294,8 @@ class Dashboard {
   Clock* clock_;
   std::mutex mu_;
   std::map<int64_t, std::shared_ptr<const RouteReading>> routes_;  // by route id
+  std::map<std::pair<int64_t, int64_t>, Built> built_;  // (gym, user)
+  uint64_t uses_ = 0;
 };
 
 }  // namespace sb::app

@@ -338,6 +338,51 @@ TEST_F(DashboardTest, WhatIsUpAndWhatIsMissingPerWall) {
   EXPECT_EQ(slots[2].band, "V6");
 }
 
+// The built dashboard is cached per gym and viewer under the gym's data
+// version: each write below must show on the next Get (never a stale page).
+TEST_F(DashboardTest, TheCacheNeverServesAPageOlderThanTheLastWrite) {
+  auto cave_of = [&]() -> WallDashboard {
+    Result<GymDashboard> d = services_->dashboard.Get(head_, gym_);
+    EXPECT_TRUE(d.ok()) << d.status().message();
+    for (const WallDashboard& w : d->walls) {
+      if (w.wall.id == cave_) return w;
+    }
+    ADD_FAILURE() << "no Cave";
+    return {};
+  };
+  EXPECT_EQ(cave_of().on_wall, 2);
+  EXPECT_EQ(cave_of().on_wall, 2);  // from the cache
+  // A route set.
+  Route(cave_, "New", "V5", "2023-11-13", "blue", {"small crimp"});
+  EXPECT_EQ(cave_of().on_wall, 3);
+  // A tick.
+  store::TickRecord t;
+  t.route_id = old_;
+  t.gym_id = gym_;
+  t.climber = "u:9";
+  t.day = "2023-11-12";
+  t.outcome = "send";
+  t.created_at = t.updated_at = "2023-11-12 10:00:00";
+  ASSERT_TRUE(store::TickStoreOf(store_.get())->PutTick(t).ok());
+  int ticks = 0;
+  for (const auto& r : cave_of().routes) ticks += r.ticks;
+  EXPECT_EQ(ticks, 1);
+  // Targets.
+  WallTargets targets;
+  targets.grades = {{"V3", 4}};
+  ASSERT_TRUE(services_->dashboard.SetTargets(head_, gym_, cave_, targets).ok());
+  WallDashboard cave = cave_of();
+  ASSERT_FALSE(cave.bands.empty());
+  EXPECT_EQ(cave.bands[0].target, 4);
+  // A route renamed (a metadata edit).
+  store::RouteRecord old = *store_->GetRoute(old_);
+  old.name = "Renamed";
+  ASSERT_TRUE(store_->UpdateRouteMetadata(old).ok());
+  bool renamed = false;
+  for (const auto& r : cave_of().routes) renamed = renamed || r.name == "Renamed";
+  EXPECT_TRUE(renamed);
+}
+
 TEST_F(DashboardTest, OnlyHeadSettersSetTargetsAndAnotherGymsIdsAreNotFound) {
   WallTargets t;
   t.grades = {{"V3", 1}};

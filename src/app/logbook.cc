@@ -419,11 +419,12 @@ Result<TickSaved> Logbook::Log(const Viewer& v, int64_t route_id,
   SB_ASSIGN_OR_RETURN(t, ticks_->PutTick(t));
   out.tick = ToView(t);
   if (before) {
-    // A new row adds 1 to the count; every write adds 1 to the revisions.
-    const store::TickVersion expected{before->count + (t.revision == 1 ? 1 : 0),
-                                      before->revisions + 1};
+    // Every tick write (a new row or an edit) moves the gym's tick version
+    // by one (store/schema.cc's triggers): one more means this write alone.
     Result<store::TickVersion> after = ticks_->GymTickVersion(*route.gym_id);
-    if (after.ok() && *after == expected) AbsorbTick(route, t, replaced, *before, *after);
+    if (after.ok() && after->ticks == before->ticks + 1) {
+      AbsorbTick(route, t, replaced, *before, *after);
+    }
   }
   return out;
 }
@@ -447,48 +448,52 @@ void Logbook::AbsorbTick(const store::RouteRecord& route, const store::TickRecor
   std::lock_guard<std::mutex> lock(mu_);
   for (auto it = cache_.lower_bound({route.gym_id.value_or(0), std::string()});
        it != cache_.end() && it->first.first == route.gym_id; ++it) {
-    Fit& fit = it->second;
+    CachedFit& entry = it->second;
     // Stale already (another change): refitted on its next read.
-    if (!(fit.version == before)) continue;
+    if (entry.version.ticks != before.ticks) continue;
     // The other discipline's ticks, or nothing counted, did not change.
     if (it->first.second != discipline || (!add && !remove)) {
-      fit.version = after;
+      entry.version = after;
       continue;
     }
-    FitState* s = fit.state.get();
+    FitState* s = entry.state.get();
     if (s == nullptr || !d.ok()) continue;
     // Drift budget spent: left stale, so the next read refits (lazily).
     const int64_t budget =
         std::max<int64_t>(policy_.fit_incremental_min_ticks,
                           s->fitted_ticks * policy_.fit_incremental_percent / 100);
     if (s->absorbed >= budget) {
-      fit.state.reset();
+      entry.state.reset();
       continue;
     }
     Result<std::optional<AscentGrade>> g = Absorb(s, route, discipline, *d, saved.climber,
                                                   remove, add);
     if (!g.ok()) {
-      fit.state.reset();  // inconsistent: refit on the next read
+      entry.state.reset();  // inconsistent: refit on the next read
       continue;
     }
+    // Readers may hold the old fit: the update goes into a copy.
+    auto updated = std::make_shared<Fit>(*entry.fit);
     if (*g) {
-      fit.routes[route.id] = std::move(**g);
+      updated->routes[route.id] = std::move(**g);
     } else {
-      fit.routes.erase(route.id);
+      updated->routes.erase(route.id);
     }
-    fit.version = after;
+    entry.fit = std::move(updated);
+    entry.version = after;
   }
 }
 
-Result<Logbook::Fit> Logbook::FitGym(int64_t gym_id, const std::string& discipline) {
+Result<std::shared_ptr<const Logbook::Fit>> Logbook::FitGym(int64_t gym_id,
+                                                            const std::string& discipline) {
   SB_ASSIGN_OR_RETURN(store::TickVersion version, ticks_->GymTickVersion(gym_id));
   const auto key = std::make_pair(gym_id, discipline);
   {
     std::lock_guard<std::mutex> lock(mu_);
     auto it = cache_.find(key);
-    if (it != cache_.end() && it->second.version == version) {
+    if (it != cache_.end() && it->second.version.ticks == version.ticks) {
       it->second.used = ++uses_;
-      return it->second;
+      return it->second.fit;
     }
   }
   SB_ASSIGN_OR_RETURN(Discipline d, grades::ParseDiscipline(discipline));
@@ -496,7 +501,7 @@ Result<Logbook::Fit> Logbook::FitGym(int64_t gym_id, const std::string& discipli
   // The ticks read are those of `version` only when it has not moved: else
   // the entry is refitted later, never updated (it may hold a newer tick).
   Result<store::TickVersion> settled = ticks_->GymTickVersion(gym_id);
-  const bool consistent = settled.ok() && *settled == version;
+  const bool consistent = settled.ok() && settled->ticks == version.ticks;
   // Routes of this discipline with ticks, dense indices in id order.
   std::map<int64_t, store::RouteRecord> routes;
   std::map<int64_t, int> route_index;
@@ -534,8 +539,8 @@ Result<Logbook::Fit> Logbook::FitGym(int64_t gym_id, const std::string& discipli
     const store::RouteRecord& r = routes.at(id);
     if (r.grade_value && r.grade_discipline == discipline) b.SetSetterGrade(idx, *r.grade_value);
   }
-  Fit fit;
-  fit.version = version;
+  auto fit = std::make_shared<Fit>();
+  std::shared_ptr<FitState> kept;
   if (!route_index.empty()) {
     auto state = std::make_shared<FitState>();
     state->params = grades::RatingParams::For(d);
@@ -545,29 +550,28 @@ Result<Logbook::Fit> Logbook::FitGym(int64_t gym_id, const std::string& discipli
     const grades::RatingFit& rf = state->fit;
     for (const auto& [id, idx] : route_index) {
       auto it = felt.find(id);
-      fit.routes.emplace(id, MakeGrade(discipline, d, routes.at(id), problem.route_ticks[idx],
-                                       rf.difficulty[idx], rf.difficulty_sd[idx],
-                                       it == felt.end() ? nullptr : &it->second));
+      fit->routes.emplace(id, MakeGrade(discipline, d, routes.at(id), problem.route_ticks[idx],
+                                        rf.difficulty[idx], rf.difficulty_sd[idx],
+                                        it == felt.end() ? nullptr : &it->second));
     }
     if (consistent) {
       for (int n : problem.route_ticks) state->fitted_ticks += n;
       state->climbers = std::move(climber_index);
       state->routes = std::move(route_index);
       state->felt = std::move(felt);
-      fit.state = std::move(state);
+      kept = std::move(state);
     }
   }
   std::lock_guard<std::mutex> lock(mu_);
   ++full_fits_;
-  fit.used = ++uses_;
-  cache_[key] = fit;
+  cache_[key] = CachedFit{version, fit, std::move(kept), ++uses_};
   while (static_cast<int>(cache_.size()) > policy_.fit_cache_entries) {
     auto oldest = std::min_element(cache_.begin(), cache_.end(), [](const auto& a, const auto& b) {
       return a.second.used < b.second.used;
     });
     cache_.erase(oldest);
   }
-  return fit;
+  return std::shared_ptr<const Fit>(std::move(fit));
 }
 
 uint64_t Logbook::FullFits() {
@@ -581,9 +585,9 @@ Result<AscentGrade> Logbook::Ascent(const Viewer& v, int64_t route_id) {
   AscentGrade none;
   none.discipline = DisciplineOf(route);
   if (!route.gym_id) return none;
-  SB_ASSIGN_OR_RETURN(Fit fit, FitGym(*route.gym_id, none.discipline));
-  auto it = fit.routes.find(route_id);
-  return it == fit.routes.end() ? none : it->second;
+  SB_ASSIGN_OR_RETURN(std::shared_ptr<const Fit> fit, FitGym(*route.gym_id, none.discipline));
+  auto it = fit->routes.find(route_id);
+  return it == fit->routes.end() ? none : it->second;
 }
 
 Result<std::map<int64_t, AscentGrade>> Logbook::Ascents(int64_t gym_id,
@@ -621,9 +625,9 @@ Result<std::map<int64_t, AscentGrade>> Logbook::Ascents(const Viewer& v,
 
 Status Logbook::FillAscents(int64_t gym_id, const std::string& discipline,
                             std::map<int64_t, AscentGrade>* grades) {
-  SB_ASSIGN_OR_RETURN(Fit fit, FitGym(gym_id, discipline));
+  SB_ASSIGN_OR_RETURN(std::shared_ptr<const Fit> fit, FitGym(gym_id, discipline));
   for (auto& [id, a] : *grades) {
-    if (auto it = fit.routes.find(id); it != fit.routes.end()) a = it->second;
+    if (auto it = fit->routes.find(id); it != fit->routes.end()) a = it->second;
   }
   return Status::Ok();
 }

@@ -184,17 +184,23 @@ class Logbook {
 
  private:
   struct Fit {
-    store::TickVersion version;
     std::map<int64_t, AscentGrade> routes;
-    uint64_t used = 0;
+  };
+  // A cached fit: shared, so a cache hit copies no map (a single-route update
+  // replaces the pointer with an updated copy), the gym's tick version it is
+  // current for, and when it was last used.
+  struct CachedFit {
+    store::TickVersion version;
+    std::shared_ptr<const Fit> fit;
     // What the single-route update keeps of the full fit (logbook.cc); read
     // and changed only under mu_. Null: this entry is refitted when its
     // version is stale, not updated.
     std::shared_ptr<logbook_internal::FitState> state;
+    uint64_t used = 0;
   };
   Result<store::RouteRecord> Visible(const Viewer& v, int64_t route_id);
   Status RequireSetter(const Viewer& v, const store::RouteRecord& route);
-  Result<Fit> FitGym(int64_t gym_id, const std::string& discipline);
+  Result<std::shared_ptr<const Fit>> FitGym(int64_t gym_id, const std::string& discipline);
   // Replaces each grade of `grades` (route id -> grade) whose route the
   // gym's cached `discipline` fit has; the others stay as they are.
   Status FillAscents(int64_t gym_id, const std::string& discipline,
@@ -214,7 +220,7 @@ class Logbook {
   Clock* clock_;
   const LogbookPolicy policy_;
   std::mutex mu_;
-  std::map<std::pair<int64_t, std::string>, Fit> cache_;  // (gym, discipline)
+  std::map<std::pair<int64_t, std::string>, CachedFit> cache_;  // (gym, discipline)
   uint64_t uses_ = 0;
   uint64_t full_fits_ = 0;
 };

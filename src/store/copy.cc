@@ -208,9 +208,23 @@ Result<DatabaseSummary> CopyDatabase(const std::string& from, const std::string&
                                     table + "); copy into an empty database");
           }
         }
+        // The gym_versions triggers (schema 13) stay off on PostgreSQL while
+        // rows are copied (each would update its gym's row once per copied
+        // row in one transaction); gym_versions is copied like any table
+        // (its trigger-made rows dropped first, on SQLite).
+        const bool pg = dst->dialect() == sql::Dialect::kPostgres;
         for (const TableSummary& t : before->tables) {
+          if (pg) SB_RETURN_IF_ERROR(dst->Exec("ALTER TABLE " + t.name + " DISABLE TRIGGER USER"));
+        }
+        for (const TableSummary& t : before->tables) {
+          if (t.name == "gym_versions") {
+            SB_RETURN_IF_ERROR(dst->Exec("DELETE FROM gym_versions"));
+          }
           SB_RETURN_IF_ERROR(CopyTable(*src, *dst, t.name));
           if (t.next_id > 0) SB_RETURN_IF_ERROR(dst->SetNextId(t.name, t.next_id));
+        }
+        for (const TableSummary& t : before->tables) {
+          if (pg) SB_RETURN_IF_ERROR(dst->Exec("ALTER TABLE " + t.name + " ENABLE TRIGGER USER"));
         }
         SB_ASSIGN_OR_RETURN(DatabaseSummary s, SummarizeConnection(*dst, to));
         for (size_t i = 0; i < s.tables.size(); ++i) {

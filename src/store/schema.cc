@@ -1,5 +1,6 @@
 #include "store/schema.h"
 
+#include <string>
 #include <string_view>
 
 namespace sb::store {
@@ -45,6 +46,83 @@ constexpr Token kTokens[] = {
     {"{now}", "strftime('%Y-%m-%d %H:%M:%S', 'now')",
      "to_char(now() AT TIME ZONE 'UTC', 'YYYY-MM-DD HH24:MI:SS')"},
 };
+
+// Schema 13 (issue 22): a per-gym data version, bumped by triggers in the
+// same transaction as every write that changes what a gym's dashboard or
+// wall pages show, so a cache keyed on it (app/dashboard.cc, the fit cache of
+// app/logbook.cc) never serves data older than the last write. `tick_version`
+// moves only on tick writes (the ascent-grade fits read ticks alone).
+struct VersionedTable {
+  const char* table;
+  const char* gym_new;  // the gym of NEW (an SQL expression)
+  const char* gym_old;  // the gym of OLD
+  bool ticks;           // also bumps tick_version
+};
+constexpr VersionedTable kVersionedTables[] = {
+    {"routes", "NEW.gym_id", "OLD.gym_id", false},
+    {"walls", "NEW.gym_id", "OLD.gym_id", false},
+    {"circuits", "NEW.gym_id", "OLD.gym_id", false},
+    {"gym_members", "NEW.gym_id", "OLD.gym_id", false},
+    {"ticks", "NEW.gym_id", "OLD.gym_id", true},
+    {"wall_targets", "(SELECT gym_id FROM walls WHERE id = NEW.wall_id)",
+     "(SELECT gym_id FROM walls WHERE id = OLD.wall_id)", false},
+    {"discipline_targets", "NEW.gym_id", "OLD.gym_id", false},
+    {"feedback", "(SELECT gym_id FROM routes WHERE id = NEW.route_id)",
+     "(SELECT gym_id FROM routes WHERE id = OLD.route_id)", false},
+    {"route_setters", "(SELECT gym_id FROM routes WHERE id = NEW.route_id)",
+     "(SELECT gym_id FROM routes WHERE id = OLD.route_id)", false},
+};
+
+// Moves the versions of the gyms `gyms` (SQL expressions) by one each: an
+// update names the new and the old row's gym, and one write moves each gym
+// once (app/logbook.cc reads "one more" as "this write alone").
+std::string Bump(const VersionedTable& t, const std::string& gyms) {
+  return std::string("UPDATE gym_versions SET data_version = data_version + 1") +
+         (t.ticks ? ", tick_version = tick_version + 1" : "") + " WHERE gym_id IN (" + gyms +
+         ");";
+}
+
+// SQLite: one trigger per table and operation.
+const char* GymVersionTriggersSqlite() {
+  static const std::string kSql = [] {
+    std::string out =
+        "CREATE TRIGGER gv_gyms AFTER INSERT ON gyms BEGIN "
+        "INSERT INTO gym_versions(gym_id) VALUES (NEW.id); END;\n";
+    for (const VersionedTable& t : kVersionedTables) {
+      const std::string n = t.table;
+      out += "CREATE TRIGGER gv_" + n + "_ins AFTER INSERT ON " + n + " BEGIN " +
+             Bump(t, t.gym_new) + " END;\n";
+      out += "CREATE TRIGGER gv_" + n + "_upd AFTER UPDATE ON " + n + " BEGIN " +
+             Bump(t, std::string(t.gym_new) + ", " + t.gym_old) + " END;\n";
+      out += "CREATE TRIGGER gv_" + n + "_del AFTER DELETE ON " + n + " BEGIN " +
+             Bump(t, t.gym_old) + " END;\n";
+    }
+    return out;
+  }();
+  return kSql.c_str();
+}
+
+// PostgreSQL: a trigger calls a function; one function per table.
+const char* GymVersionTriggersPostgres() {
+  static const std::string kSql = [] {
+    std::string out =
+        "CREATE FUNCTION gv_gyms() RETURNS trigger LANGUAGE plpgsql AS $$ BEGIN "
+        "INSERT INTO gym_versions(gym_id) VALUES (NEW.id); RETURN NULL; END $$;\n"
+        "CREATE TRIGGER gv_gyms AFTER INSERT ON gyms FOR EACH ROW EXECUTE FUNCTION gv_gyms();\n";
+    for (const VersionedTable& t : kVersionedTables) {
+      const std::string n = t.table;
+      out += "CREATE FUNCTION gv_" + n + "() RETURNS trigger LANGUAGE plpgsql AS $$ BEGIN " +
+             "IF TG_OP = 'INSERT' THEN " + Bump(t, t.gym_new) + " ELSIF TG_OP = 'DELETE' THEN " +
+             Bump(t, t.gym_old) + " ELSE " + Bump(t, std::string(t.gym_new) + ", " + t.gym_old) +
+             " END IF; " +
+             "RETURN NULL; END $$;\n";
+      out += "CREATE TRIGGER gv_" + n + " AFTER INSERT OR UPDATE OR DELETE ON " + n +
+             " FOR EACH ROW EXECUTE FUNCTION gv_" + n + "();\n";
+    }
+    return out;
+  }();
+  return kSql.c_str();
+}
 
 // The migrations, applied in order. Never edit a released entry: append a
 // new one. A step marked for one dialect exists because the two must differ
@@ -453,6 +531,21 @@ CREATE TABLE discipline_targets (
   UNIQUE (gym_id, discipline, kind, name)
 );
 )sql"},
+        }},
+      // Schema 13: the per-gym data versions (see kVersionedTables above).
+      {"per-gym data versions for the caches (issue 22)",
+       {
+           {Only::kBoth, R"sql(
+CREATE TABLE gym_versions (
+  gym_id       {int64} PRIMARY KEY REFERENCES gyms(id) ON DELETE CASCADE,
+  data_version {int64} NOT NULL DEFAULT 1,
+  tick_version {int64} NOT NULL DEFAULT 1
+);
+INSERT INTO gym_versions(gym_id) SELECT id FROM gyms;
+)sql"},
+           // Triggers differ: SQLite's have bodies, PostgreSQL's call functions.
+           {Only::kSqlite, GymVersionTriggersSqlite()},
+           {Only::kPostgres, GymVersionTriggersPostgres()},
        }},
   };
   return kMigrations;
@@ -482,7 +575,7 @@ const std::vector<std::string>& SchemaTables() {
       "walls",         "circuits",     "routes",          "variation_inputs",
       "route_sources", "feedback",     "studies",         "study_routes",  "study_responses",
       "study_answers", "study_demographics", "route_setters", "route_history",
-      "ticks",         "wall_targets", "discipline_targets"};
+      "ticks",         "wall_targets", "discipline_targets", "gym_versions"};
   return kTables;
 }
 

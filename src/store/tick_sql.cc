@@ -102,9 +102,10 @@ Result<std::vector<TickRecord>> ClimberTicks(sql::Connection& c, const std::stri
 }
 
 Result<TickVersion> GymTickVersion(sql::Connection& c, int64_t gym_id) {
-  SB_ASSIGN_OR_RETURN(Rows r, c.Query("SELECT count(*), coalesce(sum(revision), 0) FROM ticks "
+  SB_ASSIGN_OR_RETURN(Rows r, c.Query("SELECT tick_version, data_version FROM gym_versions "
                                       "WHERE gym_id = ?",
                                       {gym_id}));
+  if (r.empty()) return TickVersion{};
   return TickVersion{r.Int(0, 0), r.Int(0, 1)};
 }
 

@@ -42,10 +42,14 @@ struct TickRecord {
   int revision = 0;  // 1 on insert, +1 on every change (read only)
 };
 
-// What changes a gym's ticks have seen: a cache key for fits over them.
+// A gym's data versions (table gym_versions, schema 13; one row read):
+// cache keys. `ticks` moves on every write of the gym's ticks (the fits over
+// them); `data` on every write that changes what the gym's dashboard or wall
+// pages show (routes, walls, circuits, members, targets, feedback, setters,
+// ticks). Both only grow; 0 for a gym without a row (no such gym).
 struct TickVersion {
-  int64_t count = 0;
-  int64_t revisions = 0;
+  int64_t ticks = 0;
+  int64_t data = 0;
   bool operator==(const TickVersion&) const = default;
 };
 
@@ -68,7 +72,7 @@ class TickStore {
   virtual Result<std::vector<TickRecord>> GymTicks(int64_t gym_id) = 0;
   // A climber's ticks (every state but "discarded"), newest day first, then id.
   virtual Result<std::vector<TickRecord>> ClimberTicks(const std::string& climber) = 0;
-  // The count and summed revisions of a gym's ticks.
+  // The gym's data versions (one row; see TickVersion).
   virtual Result<TickVersion> GymTickVersion(int64_t gym_id) = 0;
   // Sets a tick's state (and updated_at); kNotFound when absent.
   virtual Status SetTickState(int64_t id, const std::string& state,
