@@ -119,6 +119,23 @@ Result<BandRow> BandOfText(const std::string& text, const std::string& disciplin
   return row;
 }
 
+Result<std::map<std::string, int>> TargetBands(const std::map<std::string, int>& grades,
+                                               const std::string& discipline,
+                                               const std::string& scale) {
+  std::map<std::string, int> bands;
+  for (const auto& [text, count] : grades) {
+    SB_ASSIGN_OR_RETURN(BandRow b, BandOfText(text, discipline, scale, "grades." + text));
+    bands[b.band] += count;
+  }
+  for (const auto& [band, count] : bands) {
+    if (count > DashboardLimits::kMaxCount) {
+      return Status::InvalidInput("grades." + band + ": expected a count from 1 to " +
+                                  std::to_string(DashboardLimits::kMaxCount));
+    }
+  }
+  return bands;
+}
+
 Status WallTargets::Validate(const std::string& discipline) const {
   if (grades.size() > DashboardLimits::kMaxBands) {
     return Status::InvalidInput("grades: at most " + std::to_string(DashboardLimits::kMaxBands) +
@@ -655,18 +672,10 @@ Status Dashboard::SetTargets(const Viewer& v, int64_t gym, int64_t wall, const W
   SB_RETURN_IF_ERROR(t.Validate(w.discipline));
   if (!targets_) return Status::Internal("the store keeps no targets");
   SB_ASSIGN_OR_RETURN(std::string scale, WallScale(v, w));
-  // Bands as the wall writes them; two spellings of one band add up.
-  std::map<std::string, int> bands;
-  for (const auto& [text, count] : t.grades) {
-    SB_ASSIGN_OR_RETURN(BandRow b, BandOfText(text, w.discipline, scale, "grades." + text));
-    bands[b.band] += count;
-  }
+  // Bands as the wall writes them.
+  SB_ASSIGN_OR_RETURN(auto bands, TargetBands(t.grades, w.discipline, scale));
   std::vector<store::TargetRecord> rows;
   for (const auto& [band, count] : bands) {
-    if (count > DashboardLimits::kMaxCount) {
-      return Status::InvalidInput("grades." + band + ": expected a count from 1 to " +
-                                  std::to_string(DashboardLimits::kMaxCount));
-    }
     rows.push_back({wall, "grade", band, static_cast<double>(count)});
   }
   for (const auto& [style, share] : t.styles) rows.push_back({wall, "style", style, share});

@@ -202,6 +202,13 @@ std::string BandKey(double value, const std::string& discipline, const std::stri
 // scale; kInvalidInput "FIELD: ..." when it is not a grade. Pure.
 Result<BandRow> BandOfText(const std::string& text, const std::string& discipline,
                            const std::string& scale, const std::string& field);
+// A target's grade counts (text -> count) by band in `discipline` and
+// `scale`, two spellings of one band added up; kInvalidInput "grades.X: ..."
+// for a text that is not a grade or a band's count over
+// DashboardLimits::kMaxCount. Pure.
+Result<std::map<std::string, int>> TargetBands(const std::map<std::string, int>& grades,
+                                               const std::string& discipline,
+                                               const std::string& scale);
 
 // Grade gaps of a wall's bands: missing = target - current where positive,
 // over = current - target where positive (bands without a target have no

@@ -144,18 +144,9 @@ Status Dashboard::SetDisciplineTargets(const Viewer& v, int64_t gym, const Disci
     SB_ASSIGN_OR_RETURN(scale, WallScale(v, w));
     if (!scale.empty()) break;
   }
-  // Two spellings of one band add up.
-  std::map<std::string, int> bands;
-  for (const auto& [text, count] : t.grades) {
-    SB_ASSIGN_OR_RETURN(BandRow b, BandOfText(text, t.discipline, scale, "grades." + text));
-    bands[b.band] += count;
-  }
+  SB_ASSIGN_OR_RETURN(auto bands, TargetBands(t.grades, t.discipline, scale));
   std::vector<store::DisciplineTargetRecord> rows;
   for (const auto& [band, count] : bands) {
-    if (count > DashboardLimits::kMaxCount) {
-      return Status::InvalidInput("grades." + band + ": expected a count from 1 to " +
-                                  std::to_string(DashboardLimits::kMaxCount));
-    }
     rows.push_back({gym, t.discipline, "grade", band, static_cast<double>(count)});
   }
   for (const auto& [style, share] : t.styles) {

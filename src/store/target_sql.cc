@@ -31,12 +31,12 @@ std::vector<TargetRecord> Read(const Rows& r) {
   return out;
 }
 
-}  // namespace
-
-Status SetWallTargets(sql::Connection& c, int64_t wall_id,
-                      const std::vector<TargetRecord>& targets) {
+// The rows of one replace (a wall's or a discipline's targets): each kind
+// "grade" or "style", each (kind, name) once.
+template <typename Record>
+Status CheckKindsAndNames(const std::vector<Record>& targets) {
   std::set<std::pair<std::string, std::string>> seen;
-  for (const TargetRecord& t : targets) {
+  for (const Record& t : targets) {
     if (t.kind != "grade" && t.kind != "style") {
       return Status::InvalidInput("target kind: expected \"grade\" or \"style\", got \"" + t.kind +
                                   "\"");
@@ -45,6 +45,14 @@ Status SetWallTargets(sql::Connection& c, int64_t wall_id,
       return Status::InvalidInput("target " + t.kind + " \"" + t.name + "\" given twice");
     }
   }
+  return Status::Ok();
+}
+
+}  // namespace
+
+Status SetWallTargets(sql::Connection& c, int64_t wall_id,
+                      const std::vector<TargetRecord>& targets) {
+  SB_RETURN_IF_ERROR(CheckKindsAndNames(targets));
   return sql::RunInTransaction(c, [&]() -> Status {
     SB_ASSIGN_OR_RETURN(Rows w, c.Query("SELECT id FROM walls WHERE id = ?", {wall_id}));
     if (w.empty()) return Status::NotFound("no wall " + std::to_string(wall_id));
@@ -87,16 +95,7 @@ Status SetDisciplineTargets(sql::Connection& c, int64_t gym_id, const std::strin
     return Status::InvalidInput("discipline: expected \"bouldering\" or \"roped\", got \"" +
                                 discipline + "\"");
   }
-  std::set<std::pair<std::string, std::string>> seen;
-  for (const DisciplineTargetRecord& t : targets) {
-    if (t.kind != "grade" && t.kind != "style") {
-      return Status::InvalidInput("target kind: expected \"grade\" or \"style\", got \"" + t.kind +
-                                  "\"");
-    }
-    if (!seen.insert({t.kind, t.name}).second) {
-      return Status::InvalidInput("target " + t.kind + " \"" + t.name + "\" given twice");
-    }
-  }
+  SB_RETURN_IF_ERROR(CheckKindsAndNames(targets));
   return sql::RunInTransaction(c, [&]() -> Status {
     SB_ASSIGN_OR_RETURN(Rows g, c.Query("SELECT id FROM gyms WHERE id = ?", {gym_id}));
     if (g.empty()) return Status::NotFound("no gym " + std::to_string(gym_id));

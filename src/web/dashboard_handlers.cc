@@ -39,18 +39,11 @@ std::string Joined(const std::vector<std::string>& parts) {
   return out;
 }
 
-json WallJson(const app::WallDashboard& w, const DashboardAscents& ascents) {
-  json grades = json::object(), targets = json::object(), styles = json::object(),
-       style_targets = json::object(), gaps = json::array(), routes = json::array();
-  for (const app::BandRow& b : w.bands) {
-    if (b.current > 0) grades[b.band] = b.current;
-    if (b.target) targets[b.band] = *b.target;
-  }
-  for (const app::StyleRow& s : w.styles) {
-    styles[s.style] = s.share;
-    if (s.targeted) style_targets[s.style] = s.reference;
-  }
-  for (const app::Gap& g : w.gaps) {
+// The gaps of a wall or a discipline: grade gaps with missing/over, style
+// gaps with share/reference.
+json GapsJson(const std::vector<app::Gap>& gaps) {
+  json out = json::array();
+  for (const app::Gap& g : gaps) {
     json j{{"kind", g.kind}, {"name", g.name}};
     if (g.kind == "grade") {
       j["missing"] = g.missing;
@@ -59,7 +52,21 @@ json WallJson(const app::WallDashboard& w, const DashboardAscents& ascents) {
       j["share"] = g.share;
       j["reference"] = g.reference;
     }
-    gaps.push_back(j);
+    out.push_back(j);
+  }
+  return out;
+}
+
+json WallJson(const app::WallDashboard& w, const DashboardAscents& ascents) {
+  json grades = json::object(), targets = json::object(), styles = json::object(),
+       style_targets = json::object(), gaps = GapsJson(w.gaps), routes = json::array();
+  for (const app::BandRow& b : w.bands) {
+    if (b.current > 0) grades[b.band] = b.current;
+    if (b.target) targets[b.band] = *b.target;
+  }
+  for (const app::StyleRow& s : w.styles) {
+    styles[s.style] = s.share;
+    if (s.targeted) style_targets[s.style] = s.reference;
   }
   for (const app::DashboardRoute& r : w.routes) {
     routes.push_back({{"id", r.id},
@@ -342,7 +349,7 @@ std::string DisciplineSection(const app::GymDashboard& d, const app::DisciplineD
 
 json DisciplineJson(const app::DisciplineDashboard& t) {
   json grades = json::object(), targets = json::object(), styles = json::object(),
-       style_targets = json::object(), gaps = json::array();
+       style_targets = json::object(), gaps = GapsJson(t.gaps);
   for (const app::BandRow& b : t.bands) {
     if (b.current > 0) grades[b.band] = b.current;
     if (b.target) targets[b.band] = *b.target;
@@ -350,17 +357,6 @@ json DisciplineJson(const app::DisciplineDashboard& t) {
   for (const app::StyleRow& s : t.styles) {
     if (s.share > 0) styles[s.style] = s.share;
     if (s.targeted) style_targets[s.style] = s.reference;
-  }
-  for (const app::Gap& g : t.gaps) {
-    json j{{"kind", g.kind}, {"name", g.name}};
-    if (g.kind == "grade") {
-      j["missing"] = g.missing;
-      j["over"] = g.over;
-    } else {
-      j["share"] = g.share;
-      j["reference"] = g.reference;
-    }
-    gaps.push_back(j);
   }
   return json{{"discipline", t.discipline}, {"scale", t.scale},      {"walls", t.walls},
               {"on_wall", t.on_wall},       {"ungraded", t.ungraded}, {"grades", grades},
