@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <optional>
 #include <set>
+#include <utility>
 
 #include "app/variations.h"
 #include "base/number.h"
@@ -59,6 +60,36 @@ Status CandidateSlot::Validate() const {
     return Status::InvalidInput("band_to: given without band");
   }
   return Status::Ok();
+}
+
+MoveChange ChangeAgainstInputs(const std::vector<chaos::VariedMove>& moves,
+                               const std::vector<chaos::InputRoute>& inputs) {
+  using Key = std::pair<Hand, std::string>;
+  std::set<Key> starts;
+  std::set<std::pair<Key, Key>> follows;
+  MoveChange out;
+  out.moves = static_cast<int>(moves.size());
+  for (const chaos::InputRoute& in : inputs) {
+    const std::vector<Move>& m = in.route.moves;
+    if (!m.empty()) starts.insert({m[0].hand, m[0].text});
+    for (size_t i = 1; i < m.size(); ++i) {
+      follows.insert({{m[i - 1].hand, m[i - 1].text}, {m[i].hand, m[i].text}});
+    }
+    if (out.same_as.empty() && m.size() == moves.size() &&
+        std::equal(m.begin(), m.end(), moves.begin(),
+                   [](const Move& a, const chaos::VariedMove& b) {
+                     return a.hand == b.hand && a.text == b.text;
+                   })) {
+      out.same_as = in.name;
+    }
+  }
+  for (size_t i = 0; i < moves.size(); ++i) {
+    const Key k{moves[i].hand, moves[i].text};
+    const bool known = i == 0 ? starts.count(k) > 0
+                              : follows.count({{moves[i - 1].hand, moves[i - 1].text}, k}) > 0;
+    out.new_moves += known ? 0 : 1;
+  }
+  return out;
 }
 
 bool RejectedByFilter(const plan::PlanWarnings& warnings, std::vector<std::string>* why,
@@ -152,6 +183,22 @@ CandidateScore CandidateScorer::Score(const plan::RoutePlan& p) {
       s.reasons.push_back(std::string("rejected: ") + chaos::ConstraintName(o.constraint) +
                           " not held (" + o.detail + ")");
     }
+  }
+
+  // Change against the inputs: one rule (ChangeAgainstInputs, kMinNewMoves).
+  const MoveChange change = ChangeAgainstInputs(p.variation.moves, p.variation.inputs);
+  s.new_moves = change.new_moves;
+  const std::string changed = std::to_string(change.new_moves) + " of " +
+                              Plural(change.moves, "move", "moves") + " new against its inputs";
+  if (!change.same_as.empty()) {
+    s.rejected = true;
+    s.reasons.push_back("rejected: same as input " + change.same_as);
+  } else if (change.new_moves < kMinNewMoves) {
+    s.rejected = true;
+    s.reasons.push_back("rejected: " + changed + " (at least " + std::to_string(kMinNewMoves) +
+                        " asked; the inputs one after the other make one)");
+  } else {
+    s.reasons.push_back(changed);
   }
 
   // Warnings.

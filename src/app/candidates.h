@@ -63,9 +63,28 @@ inline constexpr double kScoreSmooth = 20.0;
 bool RejectedByFilter(const plan::PlanWarnings& warnings, std::vector<std::string>* why,
                       bool excuse_one_hand_pair = false);
 
+// "A variation a setter could set" changes its inputs (issue 22). A move of
+// a candidate is new when it does not follow its predecessor in any input
+// (the first move: when no input starts with it); moves compare by hand and
+// text. A candidate whose moves equal one input's is rejected ("same as
+// input NAME"), and so is one with fewer than kMinNewMoves new moves: the
+// inputs one after the other (their ends dropped or kept) make one new move,
+// where the second input begins, so a candidate must change more than that.
+inline constexpr int kMinNewMoves = 2;
+
+// How much `moves` change `inputs` (the rule above). Pure.
+struct MoveChange {
+  int new_moves = 0;
+  int moves = 0;
+  std::string same_as;  // the name of an input whose moves it equals ("" = none)
+};
+MoveChange ChangeAgainstInputs(const std::vector<chaos::VariedMove>& moves,
+                               const std::vector<chaos::InputRoute>& inputs);
+
 // A candidate's score and why. Value type.
 struct CandidateScore {
-  // By RejectedByFilter, or a constraint of its search not held (but
+  // By RejectedByFilter, by too little change (kMinNewMoves), or a
+  // constraint of its search not held (but
   // alternate-hands, whose one same-hand pair the kept ends demand: a
   // reason, and that pair's same-hand warning excused by the filter).
   bool rejected = false;
@@ -75,6 +94,7 @@ struct CandidateScore {
   std::vector<std::string> warnings;  // "kind: message", as the plan shows them
   std::string estimated_band;         // the plan's estimated grade ("" = none)
   int style_moves = 0;                // moves having the slot's style
+  int new_moves = 0;                  // moves new against its inputs (MoveChange)
   double bits_per_move = 0.0;         // under the Markov model
   double input_bits_per_move = 0.0;   // the inputs' own, each route scored alone
 };

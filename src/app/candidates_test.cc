@@ -118,7 +118,10 @@ TEST_F(ScorerTest, ScoresEachPartAndSaysWhy) {
   ASSERT_TRUE(scorer.ok());
   chaos::Variation clean = FromMapping(Inputs(), {0, 1, 2, 3, 4});
   CandidateScore in = scorer->Score(PlanOf(clean, "V4"));
-  EXPECT_FALSE(in.rejected);
+  // The input itself scores in full but is no variation (CandidateChangeTest).
+  EXPECT_TRUE(in.rejected);
+  EXPECT_EQ(in.reasons[0], "rejected: same as input A");
+  in.reasons.erase(in.reasons.begin());
   EXPECT_DOUBLE_EQ(in.warnings_part, kScoreNoWarnings);
   EXPECT_DOUBLE_EQ(in.grade_part, kScoreGrade);
   EXPECT_DOUBLE_EQ(in.style_part, kScoreStyle);
@@ -135,7 +138,7 @@ TEST_F(ScorerTest, ScoresEachPartAndSaysWhy) {
   EXPECT_DOUBLE_EQ(scorer->Score(PlanOf(clean, "V5")).grade_part, kScoreGrade / 2);
   CandidateScore far = scorer->Score(PlanOf(clean, "V7"));
   EXPECT_DOUBLE_EQ(far.grade_part, 0.0);
-  EXPECT_EQ(far.reasons[1], "estimated V7 3 bands outside band V3-V4");
+  EXPECT_EQ(far.reasons[2], "estimated V7 3 bands outside band V3-V4");  // after "same as input A"
 
   // A finish first: rejected, with warnings, less smooth, no crimp lost.
   CandidateScore bad = scorer->Score(PlanOf(FromMapping(Inputs(), {4, 3, 0, 3, 4}), "V3"));
@@ -144,6 +147,60 @@ TEST_F(ScorerTest, ScoresEachPartAndSaysWhy) {
   EXPECT_FALSE(bad.warnings.empty());
   EXPECT_DOUBLE_EQ(bad.style_part, 0.0);  // no crimp in it
   EXPECT_LT(bad.score, in.score);
+}
+
+// Issue 22: "a variation a setter could set" must change its inputs. A
+// candidate equal to an input, or the inputs one after the other (one new
+// move, where the second begins), ranks with the rejected, the reason said;
+// any other says how many of its moves are new.
+TEST(CandidateChangeTest, RejectsAnInputOrAConcatenationAndSaysWhatChanged) {
+  Route b;
+  b.moves = {M(Hand::kLeft, "gaston start"), M(Hand::kRight, "pocket"),
+             M(Hand::kLeft, "heel hook"), M(Hand::kRight, "jug finish")};
+  std::vector<chaos::InputRoute> two = Inputs();
+  two.push_back({"B", b});
+  // The input itself.
+  chaos::Variation same = FromMapping(two, {0, 1, 2, 3, 4});
+  MoveChange c = ChangeAgainstInputs(same.moves, two);
+  EXPECT_EQ(c.same_as, "A");
+  EXPECT_EQ(c.new_moves, 0);
+  // A then B: B's start after A's finish is the one new move.
+  c = ChangeAgainstInputs(FromMapping(two, {0, 1, 2, 3, 4, 5, 6, 7, 8}).moves, two);
+  EXPECT_EQ(c.same_as, "");
+  EXPECT_EQ(c.new_moves, 1);
+  EXPECT_EQ(c.moves, 9);
+  // Reordered: R pinch start, R small crimp, L small crimp, L sloper, R jug
+  // finish: three moves follow another than in A.
+  c = ChangeAgainstInputs(FromMapping(two, {0, 2, 1, 3, 4}).moves, two);
+  EXPECT_EQ(c.new_moves, 3);
+  EXPECT_EQ(c.moves, 5);
+  // A start no input has is new, and so is the move after it (hands count:
+  // L pinch start is not A's R pinch start).
+  chaos::Variation other = FromMapping(two, {0, 1, 2, 3, 4});
+  other.moves[0].hand = Hand::kLeft;
+  EXPECT_EQ(ChangeAgainstInputs(other.moves, two).new_moves, 2);
+
+  auto scorer = CandidateScorer::Make(CandidateSlot{});
+  if (!scorer.ok()) GTEST_SKIP() << "grammar or model missing: " << scorer.status().message();
+  auto reasons = [](const CandidateScore& s) {
+    std::string all;
+    for (const std::string& r : s.reasons) all += r + "|";
+    return all;
+  };
+  CandidateScore s = scorer->Score(PlanOf(same, ""));
+  EXPECT_TRUE(s.rejected);
+  EXPECT_NE(reasons(s).find("rejected: same as input A|"), std::string::npos) << reasons(s);
+  s = scorer->Score(PlanOf(FromMapping(two, {0, 1, 2, 3, 5, 6, 7, 8}), ""));  // A's finish dropped
+  EXPECT_TRUE(s.rejected);
+  EXPECT_EQ(s.new_moves, 1);
+  EXPECT_NE(reasons(s).find("rejected: 1 of 8 moves new against its inputs (at least 2 asked"),
+            std::string::npos)
+      << reasons(s);
+  s = scorer->Score(PlanOf(FromMapping(two, {0, 6, 1, 2, 3, 4}), ""));
+  EXPECT_EQ(s.new_moves, 2);
+  EXPECT_NE(reasons(s).find("2 of 6 moves new against its inputs|"), std::string::npos)
+      << reasons(s);
+  EXPECT_EQ(reasons(s).find("rejected: 2 of"), std::string::npos) << reasons(s);
 }
 
 TEST(RankTest, KeptFirstThenScoreThenOrder) {

@@ -211,6 +211,8 @@ Result<store::RouteFilter> Routes::FilterOf(const Viewer& v, const RouteQuery& q
   }
   f.colour = std::string(Trim(q.circuit));
   f.is_variation = q.variations;
+  f.public_only = q.public_only;
+  f.not_gym_id = q.not_gym;
   if (q.mine) f.owner = v.user_id.value_or(-1);
   f.limit = options_.limits.default_list_rows;
   if (q.limit) {

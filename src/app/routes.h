@@ -51,6 +51,10 @@ struct RouteQuery {
   std::string circuit;
   std::optional<bool> variations;  // only variations (true) or only routes (false)
   bool mine = false;               // only the viewer's own routes
+  // Issue 22 (setting-day inputs): only public routes, none of gym `not_gym`
+  // (store::RouteFilter::public_only, not_gym_id). Not from the web's query.
+  bool public_only = false;
+  std::optional<int64_t> not_gym;
   // "newest" (default), "oldest", "name", "easiest", "hardest", "set" (set
   // date, newest first), "age" (set date, oldest first: the oldest on the wall).
   std::string sort;

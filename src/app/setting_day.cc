@@ -19,6 +19,7 @@
 #include "language/styles.h"
 #include "language/symbols.h"
 #include "plan/plan.h"
+#include "store/target_store.h"
 #include "store/tick_store.h"
 
 namespace sb::app {
@@ -256,18 +257,8 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
   if (retry_after_seconds) *retry_after_seconds = retry;
   if (!admitted.ok()) return admitted.status();
 
-  // Climbers' stars of the gym's routes.
-  std::map<int64_t, std::pair<double, int>> stars;
-  if (store::TickStore* ticks = store::TickStoreOf(store_)) {
-    Result<std::vector<store::TickRecord>> all = ticks->GymTicks(req.gym);
-    if (all.ok()) {
-      for (const store::TickRecord& t : *all) {
-        if (t.state != "ok" || !t.stars) continue;
-        stars[t.route_id].first += *t.stars;
-        stars[t.route_id].second += 1;
-      }
-    }
-  }
+  // Climbers' stars of the gym's routes (cached per tick version).
+  const std::shared_ptr<const StarMap> stars = GymStars(req.gym);
 
   // Inputs of each slot (this thread: the store and the grammar).
   SettingDayProposal out;
@@ -275,6 +266,47 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
   out.date = req.date;
   std::vector<SlotWork> work(slots.size());
   std::map<int64_t, std::optional<Route>> parsed;  // pool routes read so far
+  // The candidate rows of a band range, read once per proposal (slots of one
+  // range share them): the gym's oldest kMaxDayInputPool set or stripped
+  // routes (one query per state: each walks routes_gym_state_grade), then
+  // the oldest kMaxDayInputPool public routes of other gyms.
+  std::map<std::pair<std::string, std::string>, std::vector<store::RouteRecord>> ranges;
+  auto rows_of = [&](const std::string& from,
+                     const std::string& to) -> Result<const std::vector<store::RouteRecord>*> {
+    auto [it, fresh] = ranges.try_emplace({from, to});
+    if (!fresh) return &it->second;
+    RouteQuery q;
+    q.variations = false;
+    q.limit = kMaxDayInputPool;
+    q.sort = "oldest";
+    q.grade_from = from;
+    q.grade_to = to;
+    std::vector<store::RouteRecord> gym_rows;
+    for (const char* state : {"set", "stripped"}) {
+      RouteQuery gq = q;
+      gq.gym = req.gym;
+      gq.state = state;
+      SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> list, routes_->ListRows(v, gq));
+      for (store::RouteRecord& r : list) gym_rows.push_back(std::move(r));
+    }
+    std::stable_sort(gym_rows.begin(), gym_rows.end(),
+                     [](const store::RouteRecord& a, const store::RouteRecord& b) {
+                       return a.id < b.id;
+                     });
+    if (gym_rows.size() > static_cast<size_t>(kMaxDayInputPool)) gym_rows.resize(kMaxDayInputPool);
+    RouteQuery pq = q;
+    pq.public_only = true;
+    pq.not_gym = req.gym;
+    SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> public_rows, routes_->ListRows(v, pq));
+    std::set<int64_t> seen;
+    for (std::vector<store::RouteRecord>* list : {&gym_rows, &public_rows}) {
+      for (store::RouteRecord& r : *list) {
+        if (r.move_count < 2 || !seen.insert(r.id).second) continue;
+        it->second.push_back(std::move(r));
+      }
+    }
+    return &it->second;
+  };
   for (size_t i = 0; i < slots.size(); ++i) {
     const DaySlot& slot = slots[i];
     const Wall& w = walls.at(slot.wall);
@@ -290,29 +322,14 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
                                   "\" is not a " + w.discipline + " grade");
     }
     // The pool: the gym's routes (set or stripped) and public routes, near the band.
-    std::vector<store::RouteRecord> recs;
-    std::set<int64_t> seen;
-    for (int pass = 0; pass < 2; ++pass) {
-      RouteQuery q;
-      if (pass == 0) q.gym = req.gym;
-      q.variations = false;
-      q.limit = kMaxDayInputPool;
-      q.sort = "oldest";
-      if (band) {
-        q.grade_from = grades::BandName(d, std::max(*band - 1, grades::MinBand(d)));
-        q.grade_to = grades::BandName(d, std::min(*band + 1, grades::MaxBand(d)));
-      }
-      SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> list, routes_->ListRows(v, q));
-      for (store::RouteRecord& r : list) {
-        const bool ours = r.gym_id && *r.gym_id == req.gym;
-        if (pass == 0 && r.state != "set" && r.state != "stripped") continue;
-        if (pass == 1 && (ours || !r.is_public)) continue;
-        if (r.move_count < 2 || !seen.insert(r.id).second) continue;
-        recs.push_back(std::move(r));
-      }
+    std::string from, to;
+    if (band) {
+      from = grades::BandName(d, std::max(*band - 1, grades::MinBand(d)));
+      to = grades::BandName(d, std::min(*band + 1, grades::MaxBand(d)));
     }
+    SB_ASSIGN_OR_RETURN(const std::vector<store::RouteRecord>* recs, rows_of(from, to));
     std::vector<Pool> pool;
-    for (const store::RouteRecord& r : recs) {
+    for (const store::RouteRecord& r : *recs) {
       // Lists carry no CRDL: each route is read once per proposal.
       auto cached = parsed.find(r.id);
       if (cached == parsed.end()) {
@@ -336,9 +353,7 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
         std::optional<int> b = BandOfRecord(r, d);
         p.band_off = b ? std::abs(*b - *band) : 3;
       }
-      if (auto s = stars.find(r.id); s != stars.end()) {
-        p.stars = s->second.first / s->second.second;
-      }
+      if (auto s = stars->find(r.id); s != stars->end()) p.stars = s->second;
       p.same_wall = r.wall_id && *r.wall_id == w.id;
       p.gym = r.gym_id && *r.gym_id == req.gym;
       pool.push_back(std::move(p));
@@ -421,6 +436,33 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
   run();
   for (std::thread& t : threads) t.join();
   return out;
+}
+
+std::shared_ptr<const SettingDays::StarMap> SettingDays::GymStars(int64_t gym) {
+  auto none = std::make_shared<const StarMap>();
+  store::TickStore* ticks = store::TickStoreOf(store_);
+  store::TargetStore* sums = store::TargetStoreOf(store_);
+  if (ticks == nullptr || sums == nullptr) return none;
+  Result<store::TickVersion> version = ticks->GymTickVersion(gym);
+  if (!version.ok()) return none;
+  {
+    std::lock_guard<std::mutex> lock(stars_mu_);
+    auto it = stars_.find(gym);
+    if (it != stars_.end() && it->second.version == version->ticks) return it->second.stars;
+  }
+  // Read outside the lock; two proposals of a fresh version may both read.
+  Result<std::vector<store::RouteTickSum>> rows = sums->GymTickSums(gym);
+  if (!rows.ok()) return none;
+  auto map = std::make_shared<StarMap>();
+  for (const store::RouteTickSum& r : *rows) {
+    if (r.star_votes > 0) {
+      (*map)[r.route_id] = static_cast<double>(r.star_sum) / static_cast<double>(r.star_votes);
+    }
+  }
+  std::lock_guard<std::mutex> lock(stars_mu_);
+  if (stars_.size() >= kMaxDayStarGyms && !stars_.count(gym)) stars_.clear();
+  stars_[gym] = CachedStars{version->ticks, map};
+  return map;
 }
 
 Result<int64_t> SettingDays::Accept(const Viewer& v, const AcceptRequest& req) {

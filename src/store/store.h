@@ -168,6 +168,14 @@ struct RouteFilter {
   // case-insensitive) matches too, whatever its discipline (a "5.8" on a
   // boulder has no value on the bouldering axis; app/discipline.h).
   std::string grade_typed;
+  // Issue 22 (a setting day's public inputs): only public routes, and none of
+  // gym `not_gym_id` (routes without a gym kept). With `public_only` the list
+  // walks the public routes in id order (on SQLite the grade terms are
+  // written so its planner does not take the grade index: with it, the oldest
+  // 60 public routes of a band scanned every gym's routes of the band, 0.16 s
+  // on the 210,000-route chain, against 7 ms; PostgreSQL walks them so alone).
+  bool public_only = false;
+  std::optional<int64_t> not_gym_id;
   RouteSort sort = RouteSort::kNewest;
   int offset = 0;  // rows skipped (paging)
   int limit = 500;
