@@ -53,6 +53,14 @@ std::optional<int> BandOfRecord(const store::RouteRecord& r, grades::Discipline 
   return grades::Band(grades::ConvertAxis(*r.grade_value, *rd, d));
 }
 
+// The grade range a slot's inputs are read from: one band either side of
+// its band ("" .. "" = any).
+std::pair<std::string, std::string> RangeOf(std::optional<int> band, grades::Discipline d) {
+  if (!band) return {};
+  return {grades::BandName(d, std::max(*band - 1, grades::MinBand(d))),
+          grades::BandName(d, std::min(*band + 1, grades::MaxBand(d)))};
+}
+
 std::vector<std::string> MoveStrings(const chaos::Variation& v) {
   std::vector<std::string> out;
   for (const chaos::VariedMove& m : v.moves) {
@@ -257,9 +265,6 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
   if (retry_after_seconds) *retry_after_seconds = retry;
   if (!admitted.ok()) return admitted.status();
 
-  // Climbers' stars of the gym's routes (cached per tick version).
-  const std::shared_ptr<const StarMap> stars = GymStars(req.gym);
-
   // Inputs of each slot (this thread: the store and the grammar).
   SettingDayProposal out;
   out.gym = req.gym;
@@ -307,6 +312,32 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
     }
     return &it->second;
   };
+  // Every slot's rows first (one list per band range), then the gym's
+  // climbers' stars of exactly its routes among them, in one query (not the
+  // gym's ~250,000 ticks; public routes of other gyms rank without stars).
+  std::vector<int64_t> pool_ids;
+  for (const DaySlot& slot : slots) {
+    const grades::Discipline d = DisciplineOfWall(walls.at(slot.wall));
+    std::optional<int> band = slot.band.empty() ? std::nullopt : BandOfText(slot.band, d);
+    if (!slot.band.empty() && !band) continue;  // refused in the loop below
+    const auto [from, to] = RangeOf(band, d);
+    SB_ASSIGN_OR_RETURN(const std::vector<store::RouteRecord>* recs, rows_of(from, to));
+    for (const store::RouteRecord& r : *recs) {
+      if (r.gym_id && *r.gym_id == req.gym) pool_ids.push_back(r.id);  // its own climbers'
+    }
+  }
+  std::map<int64_t, double> stars;  // mean climbers' stars by route id
+  if (store::TargetStore* sums = store::TargetStoreOf(store_); sums && !pool_ids.empty()) {
+    Result<std::vector<store::RouteTickSum>> rows = sums->RouteTickSums(pool_ids);
+    if (rows.ok()) {
+      for (const store::RouteTickSum& r : *rows) {
+        if (r.star_votes > 0) {
+          stars[r.route_id] =
+              static_cast<double>(r.star_sum) / static_cast<double>(r.star_votes);
+        }
+      }
+    }
+  }
   for (size_t i = 0; i < slots.size(); ++i) {
     const DaySlot& slot = slots[i];
     const Wall& w = walls.at(slot.wall);
@@ -322,11 +353,7 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
                                   "\" is not a " + w.discipline + " grade");
     }
     // The pool: the gym's routes (set or stripped) and public routes, near the band.
-    std::string from, to;
-    if (band) {
-      from = grades::BandName(d, std::max(*band - 1, grades::MinBand(d)));
-      to = grades::BandName(d, std::min(*band + 1, grades::MaxBand(d)));
-    }
+    const auto [from, to] = RangeOf(band, d);
     SB_ASSIGN_OR_RETURN(const std::vector<store::RouteRecord>* recs, rows_of(from, to));
     std::vector<Pool> pool;
     for (const store::RouteRecord& r : *recs) {
@@ -353,7 +380,7 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
         std::optional<int> b = BandOfRecord(r, d);
         p.band_off = b ? std::abs(*b - *band) : 3;
       }
-      if (auto s = stars->find(r.id); s != stars->end()) p.stars = s->second;
+      if (auto s = stars.find(r.id); s != stars.end()) p.stars = s->second;
       p.same_wall = r.wall_id && *r.wall_id == w.id;
       p.gym = r.gym_id && *r.gym_id == req.gym;
       pool.push_back(std::move(p));
@@ -436,33 +463,6 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
   run();
   for (std::thread& t : threads) t.join();
   return out;
-}
-
-std::shared_ptr<const SettingDays::StarMap> SettingDays::GymStars(int64_t gym) {
-  auto none = std::make_shared<const StarMap>();
-  store::TickStore* ticks = store::TickStoreOf(store_);
-  store::TargetStore* sums = store::TargetStoreOf(store_);
-  if (ticks == nullptr || sums == nullptr) return none;
-  Result<store::TickVersion> version = ticks->GymTickVersion(gym);
-  if (!version.ok()) return none;
-  {
-    std::lock_guard<std::mutex> lock(stars_mu_);
-    auto it = stars_.find(gym);
-    if (it != stars_.end() && it->second.version == version->ticks) return it->second.stars;
-  }
-  // Read outside the lock; two proposals of a fresh version may both read.
-  Result<std::vector<store::RouteTickSum>> rows = sums->GymTickSums(gym);
-  if (!rows.ok()) return none;
-  auto map = std::make_shared<StarMap>();
-  for (const store::RouteTickSum& r : *rows) {
-    if (r.star_votes > 0) {
-      (*map)[r.route_id] = static_cast<double>(r.star_sum) / static_cast<double>(r.star_votes);
-    }
-  }
-  std::lock_guard<std::mutex> lock(stars_mu_);
-  if (stars_.size() >= kMaxDayStarGyms && !stars_.count(gym)) stars_.clear();
-  stars_[gym] = CachedStars{version->ticks, map};
-  return map;
 }
 
 Result<int64_t> SettingDays::Accept(const Viewer& v, const AcceptRequest& req) {

@@ -19,8 +19,6 @@
 #include <cstddef>
 #include <cstdint>
 #include <map>
-#include <memory>
-#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -52,16 +50,13 @@ inline constexpr size_t kMaxDayWalls = kMaxDaySlots;
 // Input routes per candidate: two routes concatenated, the paper's usual
 // variation of a pair (more inputs make longer routes than a gym problem).
 inline constexpr size_t kDayInputs = 2;
-// Routes read per slot when choosing inputs (gym and public, each): the
-// oldest this many in the band range; each is read whole (lists carry no
-// CRDL) and its moves parsed by the grammar, so the pool is bounded (20
-// slots x 2 x 60 reads at most, each route once per proposal).
+// Routes read per band range when choosing inputs (the gym's set or
+// stripped, and other gyms' public, each): the oldest this many in the
+// range; each is read whole (lists carry no CRDL) and its moves parsed by the
+// grammar, so the pool is bounded (20 slots x 2 x 60 reads at most, each
+// route and each range's lists once per proposal: slots of one range share
+// them, docs/BENCHMARKS.md "Setting-day proposal on the chain").
 inline constexpr int kMaxDayInputPool = 60;
-// Gyms whose climbers' stars (per route, from one aggregate query of the
-// gym's ~250,000 ticks on the chain, ~0.5 s) a SettingDays keeps between
-// proposals, each under the gym's tick version: more gyms than a chain's 20
-// start the cache afresh (a bound on memory, ~10,000 routes a gym).
-inline constexpr size_t kMaxDayStarGyms = 64;
 // The IC search radius of a candidate (grid steps): the CLI's default is
 // 100 (201^2 ICs); a proposal makes up to 20 x 9 plans, so each searches a
 // 21-step radius (about 1,400 ICs), keeping 20 x 6 candidates under 2 s.
@@ -191,10 +186,6 @@ class SettingDays {
 
  private:
   Status RequireSetter(const Viewer& v, int64_t gym);
-  // Mean climbers' stars per route id of the gym (routes without stars
-  // absent), read once per tick version of the gym (kMaxDayStarGyms).
-  using StarMap = std::map<int64_t, double>;
-  std::shared_ptr<const StarMap> GymStars(int64_t gym);
 
   store::Store* store_;
   const Options options_;
@@ -203,12 +194,6 @@ class SettingDays {
   Variations* variations_;
   WorkBudget* budget_;
   Dashboard* dashboard_;
-  std::mutex stars_mu_;  // guards stars_
-  struct CachedStars {
-    int64_t version = -1;
-    std::shared_ptr<const StarMap> stars;
-  };
-  std::map<int64_t, CachedStars> stars_;  // by gym id
 };
 
 }  // namespace sb::app

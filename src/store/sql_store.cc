@@ -842,6 +842,10 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
     SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
     return targets_sql::GymTickSums(*c, gym_id);
   }
+  Result<std::vector<RouteTickSum>> RouteTickSums(const std::vector<int64_t>& route_ids) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return targets_sql::RouteTickSums(*c, route_ids);
+  }
   Result<std::vector<RouteTickSum>> StateTickSums(int64_t gym_id,
                                                   const std::string& route_state) override {
     SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());

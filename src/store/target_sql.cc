@@ -150,6 +150,33 @@ Result<std::vector<RouteTickSum>> GymTickSums(sql::Connection& c, int64_t gym_id
   return out;
 }
 
+Result<std::vector<RouteTickSum>> RouteTickSums(sql::Connection& c,
+                                                const std::vector<int64_t>& route_ids) {
+  std::vector<int64_t> ids = route_ids;
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  std::vector<RouteTickSum> out;
+  for (size_t at = 0; at < ids.size(); at += kTickSumIdsPerQuery) {
+    const size_t n = std::min(kTickSumIdsPerQuery, ids.size() - at);
+    std::string marks;
+    std::vector<sql::Value> params;
+    for (size_t i = 0; i < n; ++i) {
+      marks += i ? ", ?" : "?";
+      params.push_back(ids[at + i]);
+    }
+    SB_ASSIGN_OR_RETURN(Rows r, c.Query("SELECT route_id, count(*), count(stars), "
+                                        "coalesce(sum(stars), 0) FROM ticks WHERE route_id IN (" +
+                                            marks +
+                                            ") AND state = 'ok' GROUP BY route_id "
+                                            "ORDER BY route_id",
+                                        params));
+    for (size_t i = 0; i < r.size(); ++i) {
+      out.push_back({r.Int(i, 0), r.Int(i, 1), r.Int(i, 2), r.Int(i, 3)});
+    }
+  }
+  return out;
+}
+
 Result<std::vector<RouteTickSum>> StateTickSums(sql::Connection& c, int64_t gym_id,
                                                 const std::string& route_state) {
   // From the gym's routes in the state (routes_gym_state*) to their ticks by

@@ -20,6 +20,8 @@ Status SetDisciplineTargets(sql::Connection& c, int64_t gym_id, const std::strin
                             const std::vector<DisciplineTargetRecord>& targets);
 Result<std::vector<DisciplineTargetRecord>> DisciplineTargets(sql::Connection& c, int64_t gym_id);
 Result<std::vector<RouteTickSum>> GymTickSums(sql::Connection& c, int64_t gym_id);
+Result<std::vector<RouteTickSum>> RouteTickSums(sql::Connection& c,
+                                                const std::vector<int64_t>& route_ids);
 Result<std::vector<RouteTickSum>> StateTickSums(sql::Connection& c, int64_t gym_id,
                                                 const std::string& route_state);
 

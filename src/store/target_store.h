@@ -50,6 +50,10 @@ struct RouteTickSum {
   int64_t star_sum = 0;
 };
 
+// Ids per query of TargetStore::RouteTickSums: well under SQLite's limit of
+// bound parameters (32,766) and PostgreSQL's (65,535), and a short statement.
+inline constexpr size_t kTickSumIdsPerQuery = 500;
+
 // Thread-safe like Store. Errors: kNotFound for unknown walls, kIoError for
 // storage failures.
 class TargetStore {
@@ -82,6 +86,12 @@ class TargetStore {
   // ticks, docs/BENCHMARKS.md "Dashboard and wall page, one request").
   virtual Result<std::vector<RouteTickSum>> StateTickSums(int64_t gym_id,
                                                           const std::string& route_state) = 0;
+  // As GymTickSums for the routes `route_ids` only (any gym; unknown or
+  // unticked ids absent), by route id: a setting day's input pools (issue 22),
+  // read through the ticks' route key in queries of at most
+  // kTickSumIdsPerQuery ids, not every tick of the gym.
+  virtual Result<std::vector<RouteTickSum>> RouteTickSums(
+      const std::vector<int64_t>& route_ids) = 0;
 };
 
 // The TargetStore of a store opened by store::OpenStore (both backends);

@@ -180,6 +180,26 @@ TEST_P(TargetStoreTest, TickSumsCountUnheldTicksAndStarsPerRoute) {
   EXPECT_EQ((*gone)[0].star_sum, 2);
   EXPECT_EQ(targets_->GymTickSums(gym_)->size(), 2u);
   EXPECT_TRUE(targets_->StateTickSums(gym_ + 1000, "set")->empty());
+  // By route ids (a setting day's pool): only those asked, each once, by id;
+  // unknown ids absent; more ids than one query takes.
+  Result<std::vector<RouteTickSum>> only_b = targets_->RouteTickSums({b, b, b + 1000});
+  ASSERT_TRUE(only_b.ok()) << only_b.status().message();
+  ASSERT_EQ(only_b->size(), 1u);
+  EXPECT_EQ((*only_b)[0].route_id, b);
+  EXPECT_EQ((*only_b)[0].star_sum, 2);
+  // Ids unknown (negative, so they sort first) fill the first query but one
+  // place: `a` ends it, `b` is the second query's.
+  ASSERT_LT(a, b);
+  std::vector<int64_t> many = {b, a};
+  for (size_t i = 1; i < kTickSumIdsPerQuery; ++i) many.push_back(-static_cast<int64_t>(i));
+  Result<std::vector<RouteTickSum>> both = targets_->RouteTickSums(many);
+  ASSERT_TRUE(both.ok()) << both.status().message();
+  ASSERT_EQ(both->size(), 2u);
+  EXPECT_EQ((*both)[0].route_id, a);
+  EXPECT_EQ((*both)[0].ticks, 3);
+  EXPECT_EQ((*both)[0].star_votes, 2);
+  EXPECT_EQ((*both)[1].route_id, b);
+  EXPECT_TRUE(targets_->RouteTickSums({})->empty());
 }
 
 }  // namespace
