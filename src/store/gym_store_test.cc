@@ -209,6 +209,45 @@ TEST_P(GymStoreTest, RouteFieldsSettersHistoryAndTheGymVisibilityRule) {
   EXPECT_FALSE(gyms_->FindByOriginalId(g2, 42, std::nullopt)->has_value());
 }
 
+// Issue 22 (a setting day's public inputs): public_only keeps public routes,
+// not_gym_id drops one gym's (routes without a gym stay), with a grade range
+// and the oldest first, on both backends (SQLite's grade terms are written
+// off the grade index there: the same rows).
+TEST_P(GymStoreTest, PublicOnlyAndNotGymFilterWithAGradeRange) {
+  Open();
+  const int64_t head = User("head"), other = User("other");
+  const int64_t g = *gyms_->CreateGym("One", head), g2 = *gyms_->CreateGym("Two", other);
+  auto graded = [&](int64_t owner, const std::string& name, std::optional<int64_t> gym, bool pub,
+                    double value) {
+    const int64_t id = Route(owner, name, gym, gym ? "set" : "draft", pub);
+    RouteRecord r = *store_->GetRoute(id);
+    r.grade_discipline = "bouldering";
+    r.grade_value = value;
+    EXPECT_TRUE(store_->UpdateRouteMetadata(r).ok());
+  };
+  graded(head, "Ours public", g, true, 3);
+  graded(other, "Theirs public", g2, true, 3);
+  graded(other, "Theirs private", g2, false, 3);
+  graded(other, "Theirs too hard", g2, true, 8);
+  graded(other, "No gym public", std::nullopt, true, 4);
+  RouteFilter f;
+  f.viewer = head;
+  f.sort = RouteSort::kOldest;
+  f.grade_discipline = "bouldering";
+  f.grade_min = 2;
+  f.grade_max = 5;
+  f.public_only = true;
+  EXPECT_EQ(Names(f), (std::vector<std::string>{"Ours public", "Theirs public", "No gym public"}));
+  f.not_gym_id = g;
+  EXPECT_EQ(Names(f), (std::vector<std::string>{"Theirs public", "No gym public"}));
+  EXPECT_EQ(*store_->CountRoutes(f), 2);
+  f.public_only = false;  // the head sees its own gym's only besides public ones
+  EXPECT_EQ(Names(f), (std::vector<std::string>{"Theirs public", "No gym public"}));
+  f.limit = 1;
+  f.public_only = true;
+  EXPECT_EQ(Names(f), (std::vector<std::string>{"Theirs public"}));
+}
+
 TEST_P(GymStoreTest, SearchIgnoresCaseInEveryScript) {
   Open();
   const int64_t u = User("u");
