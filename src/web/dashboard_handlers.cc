@@ -504,6 +504,16 @@ std::string DashboardPage(const PageViewer& v, const app::GymDashboard& d, int64
 void GetDashboard(Exchange& x) {
   Result<int64_t> id = PathId(x.req, "no such gym");
   if (!id.ok()) return ApiError(x, id.status());
+  // Issue 22: the JSON is kept per (gym, viewer) at the gym's data version
+  // and day (app::RenderCache); the stamp is read before the dashboard.
+  Result<std::optional<app::Stamp>> stamp = x.services.rendered.StampOf(*id);
+  if (!stamp.ok()) return ApiError(x, stamp.status());
+  const app::RenderKey key{"api_dashboard", *id, x.caller.viewer.user_id.value_or(0)};
+  if (*stamp) {
+    if (auto hit = x.services.rendered.Find(key, **stamp)) {
+      return x.res.SetBody(200, *hit, "application/json; charset=utf-8");
+    }
+  }
   Result<app::GymDashboard> d = x.services.dashboard.Get(x.caller.viewer, *id);
   if (!d.ok()) return ApiError(x, d.status());
   auto slot = AdmitWork(x, Cost(x, *d));
@@ -514,13 +524,17 @@ void GetDashboard(Exchange& x) {
   for (const app::WallDashboard& w : d->walls) walls.push_back(WallJson(w, *ascents));
   json disciplines = json::array();
   for (const app::DisciplineDashboard& t : d->disciplines) disciplines.push_back(DisciplineJson(t));
-  ReplyJson(x.res, 200,
-            json{{"gym", d->gym.id},
-                 {"can_edit", d->can_edit},
-                 {"walls", walls},
-                 {"disciplines", disciplines},
-                 {"circuit_words", d->circuit_words},
-                 {"archive_styles", d->archive_styles}});
+  json body{{"gym", d->gym.id},
+            {"can_edit", d->can_edit},
+            {"walls", walls},
+            {"disciplines", disciplines},
+            {"circuit_words", d->circuit_words},
+            {"archive_styles", d->archive_styles}};
+  if (!*stamp) return ReplyJson(x.res, 200, body);
+  // ReplyJson's text: invalid UTF-8 replaced, never a throw.
+  std::shared_ptr<const std::string> text = x.services.rendered.Keep(
+      key, **stamp, body.dump(-1, ' ', false, json::error_handler_t::replace));
+  x.res.SetBody(200, *text, "application/json; charset=utf-8");
 }
 
 void PutWallTargets(Exchange& x) {
