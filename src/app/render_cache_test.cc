@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "app/app_test_util.h"
+#include "store/gym_store.h"
 
 namespace sb::app {
 namespace {
@@ -52,11 +53,10 @@ TEST(StampedLruTest, TheByteBoundDropsOldEntriesAndRefusesOversizedOnes) {
 class RenderCacheTest : public testing::AppTest {};
 
 TEST_F(RenderCacheTest, AGymsStampMovesWithEveryWriteAndTheDay) {
-  Viewer head = User("head");  // the first account heads the install's gym
-  Result<std::vector<Gym>> gyms = services_->gyms.Mine(head);
-  ASSERT_TRUE(gyms.ok()) << gyms.status().message();
-  ASSERT_FALSE(gyms->empty());
-  const int64_t gym = gyms->front().id;
+  Viewer head = User("head");
+  Result<int64_t> created = store::GymStoreOf(store_.get())->CreateGym("Gym", head.user_id);
+  ASSERT_TRUE(created.ok()) << created.status().message();
+  const int64_t gym = *created;
   RenderCache& cache = services_->rendered;
   Result<std::optional<Stamp>> before = cache.StampOf(gym);
   ASSERT_TRUE(before.ok()) << before.status().message();

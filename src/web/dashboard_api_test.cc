@@ -253,18 +253,22 @@ TEST_F(DashboardApiTest, TheKeptDashboardAndWallPageShowEveryWriteOnTheNextGet) 
   // A rename (a metadata edit through the API).
   const std::string rp = "/api/routes/" + std::to_string(first);
   json upd{{"crdl", Crdl("Renamedling", "V3", "2026-01-01", "blue", "R small crimp\nL jug\n")},
-           {"public", true}};
+           {"public", true}, {"gym", g}, {"wall", "Cave"}, {"state", "set"},
+           {"set_on", "2026-01-01"}};
   ASSERT_EQ(head.Status("PUT", rp, upd.dump()), 200);
+  EXPECT_EQ(cave_json(climber)["on_wall"], 2);
   p = page(climber);
   EXPECT_NE(p.find("Renamedling"), std::string::npos);
   EXPECT_EQ(p.find("Firstling"), std::string::npos);
   bool renamed = false;
-  for (const json& r : cave_json(climber)["routes"]) renamed = renamed || r["name"] == "Renamedling";
+  const json after_rename = cave_json(climber);  // kept whole: the loop reads into it
+  for (const json& r : after_rename["routes"]) renamed = renamed || r["name"] == "Renamedling";
   EXPECT_TRUE(renamed);
   // A tick.
   climber.Json("POST", rp + "/ticks", R"({"outcome":"send","attempts":2})", 201);
   int ticks = 0;
-  for (const json& r : cave_json(climber)["routes"]) ticks += r["ticks"].get<int>();
+  const json after_tick = cave_json(climber);
+  for (const json& r : after_tick["routes"]) ticks += r["ticks"].get<int>();
   EXPECT_EQ(ticks, 1);
   EXPECT_NE(page(climber).find("data-ticks=\"1\""), std::string::npos);
   // Targets.
