@@ -264,6 +264,18 @@ TEST_F(DashboardApiTest, TheKeptDashboardAndWallPageShowEveryWriteOnTheNextGet) 
   const json after_rename = cave_json(climber);  // kept whole: the loop reads into it
   for (const json& r : after_rename["routes"]) renamed = renamed || r["name"] == "Renamedling";
   EXPECT_TRUE(renamed);
+  const std::string dp = "/gyms/" + std::to_string(g) + "/dashboard";
+  auto dash_page = [&](Client& c) {
+    auto r = c.Send("GET", dp);
+    EXPECT_TRUE(r && r->status == 200);
+    return r ? r->body : std::string();
+  };
+  EXPECT_NE(dash_page(climber).find("Renamedling"), std::string::npos);
+  EXPECT_NE(dash_page(climber).find("Renamedling"), std::string::npos);  // kept
+  // A rename of the gym (no data version moves): the next pages show it.
+  ASSERT_EQ(head.Status("PUT", gp, R"({"name":"Newname Gym"})"), 200);
+  EXPECT_NE(dash_page(climber).find("<h1 id=\"dashboard-title\">Newname Gym"), std::string::npos);
+  EXPECT_NE(page(climber).find("Newname Gym"), std::string::npos);
   // A tick.
   climber.Json("POST", rp + "/ticks", R"({"outcome":"send","attempts":2})", 201);
   int ticks = 0;
@@ -280,6 +292,7 @@ TEST_F(DashboardApiTest, TheKeptDashboardAndWallPageShowEveryWriteOnTheNextGet) 
   ASSERT_EQ(head.Status("PUT", rp, R"({"state":"stripped"})"), 200);
   EXPECT_EQ(cave_json(climber)["on_wall"], 1);
   EXPECT_NE(page(climber).find("id=\"wall-stripped\""), std::string::npos);
+  EXPECT_EQ(dash_page(climber).find("Renamedling"), std::string::npos);  // off the wall
 }
 
 }  // namespace
