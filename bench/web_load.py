@@ -11,6 +11,7 @@ keep-alive connections).
 
   bench/web_load.py --url http://127.0.0.1:8080 --users 20 --seconds 30
   bench/web_load.py --url ... --kinds gym,wall,api_wall --json out.json
+  bench/web_load.py --url ... --think 1    # each user reads a page for 0..2 s (random, seeded)
 
 Kinds (G = the user's gym, W = one of its walls, drawn per request):
   gym          /gyms/G                       the gym page (walls, circuits, members)
@@ -27,6 +28,8 @@ Kinds (G = the user's gym, W = one of its walls, drawn per request):
   api_dashboard /api/gyms/G/dashboard        (skipped when the server answers 404)
 Every /api/routes request asks for a page of 50 (limit=50, issue 21); the list page uses the
 server's page size.
+--think SECONDS (default 0: back to back, the harsh case): after each answer a user waits a
+random 0..2*SECONDS (uniform, seeded per user by --seed), as people reading a page do.
 A non-2xx answer counts as an error for its kind (the latency is still recorded).
 """
 import argparse
@@ -118,6 +121,8 @@ def main():
     ap.add_argument('--warmup', type=float, default=2, help='seconds not recorded')
     ap.add_argument('--seed', type=int, default=1)
     ap.add_argument('--json', help='also write the figures here')
+    ap.add_argument('--think', type=float, default=0,
+                    help='mean seconds a user waits between requests (0..2x, seeded; 0 = none)')
     a = ap.parse_args()
     u = urllib.parse.urlsplit(a.url)
     host, port = u.hostname, u.port or 80
@@ -125,6 +130,8 @@ def main():
     for k in kinds:
         if k not in KINDS:
             raise SystemExit('web_load.py: unknown kind %r (known: %s)' % (k, ', '.join(KINDS)))
+    if not 0 <= a.think <= 600:
+        raise SystemExit('web_load.py: --think must be 0..600 seconds')
     if not 1 <= a.users <= 250:
         raise SystemExit('web_load.py: --users must be 1..250')
 
@@ -154,6 +161,8 @@ def main():
         src, headers, gym, walls, setter = user
         conn = connect(host, port, src)
         rng = random.Random(a.seed * 1000 + n)
+        # A second generator, so the walls drawn are the same with and without --think.
+        think = random.Random('think-%d-%d' % (a.seed, n))
         mine = {k: [] for k in kinds}
         bad = {k: 0 for k in kinds}
         i = n  # users start at different kinds
@@ -176,6 +185,8 @@ def main():
                 mine[kind].append(ms)
                 if not 200 <= st < 300:
                     bad[kind] += 1
+            if a.think > 0:
+                time.sleep(max(0.0, min(think.uniform(0, 2 * a.think), stop - time.monotonic())))
         with lock:
             for k in kinds:
                 samples[k].extend(mine[k])
@@ -188,6 +199,8 @@ def main():
         t.join()
 
     out = {'users': a.users, 'seconds': a.seconds, 'kinds': {}}
+    if a.think > 0:
+        out['think'] = a.think
     print('%-14s %7s %6s %9s %9s %9s %9s' % ('kind', 'n', 'errors', 'p50 ms', 'p95 ms',
                                             'p99 ms', 'max ms'))
     for k in kinds:

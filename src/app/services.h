@@ -15,6 +15,7 @@
 #include "app/logbook.h"
 #include "app/maps.h"
 #include "app/options.h"
+#include "app/render_cache.h"
 #include "app/report.h"
 #include "app/routes.h"
 #include "app/setting_day.h"
@@ -49,6 +50,9 @@ struct Services {
   Reports reports;
   // Setting days (issue 22): proposals and accepting a candidate.
   SettingDays setting_days;
+  // Rendered answers kept per gym data version and day (issue 22: the API
+  // dashboard's JSON, a wall page's tables).
+  RenderCache rendered;
 };
 
 }  // namespace sb::app

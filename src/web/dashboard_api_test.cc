@@ -209,5 +209,91 @@ TEST_F(DashboardApiTest, DisciplineTargetsSumTheDisciplinesWalls) {
   EXPECT_NE(page->body.find("id=\"targets-bouldering\""), std::string::npos);
 }
 
+// Issue 22 ("Scale and speed"): the API dashboard's JSON and the wall page's
+// tables are kept per gym data version (app::RenderCache); every write shows
+// on the next GET: a route set, a rename, a tick, targets, a strip.
+TEST_F(DashboardApiTest, TheKeptDashboardAndWallPageShowEveryWriteOnTheNextGet) {
+  const int port = server_->port();
+  Client head(port), climber(port);
+  head.SignUp("head");
+  ASSERT_TRUE(head.LogIn("head"));
+  climber.SignUp("climber");
+  ASSERT_TRUE(climber.LogIn("climber"));
+  const int64_t g = head.Json("GET", "/api/gyms", "", 200)["gyms"][0]["id"];
+  const std::string gp = "/api/gyms/" + std::to_string(g);
+  ASSERT_EQ(head.Status("POST", gp + "/members", R"({"username":"climber","role":"climber"})"), 201);
+  const int64_t cave = head.Json("POST", gp + "/walls", R"({"name":"Cave"})", 201)["id"];
+  const std::string wp = "/walls/" + std::to_string(cave);
+  auto add = [&](const std::string& name) -> int64_t {
+    json body{{"crdl", Crdl(name, "V3", "2026-01-01", "blue", "R small crimp\nL jug\n")},
+              {"public", true}, {"gym", g}, {"wall", "Cave"}, {"state", "set"},
+              {"set_on", "2026-01-01"}};
+    return head.Json("POST", "/api/routes", body.dump(), 201)["id"];
+  };
+  auto cave_json = [&](Client& c) { return c.Json("GET", gp + "/dashboard", "", 200)["walls"][0]; };
+  auto page = [&](Client& c) {
+    auto r = c.Send("GET", wp);
+    EXPECT_TRUE(r && r->status == 200);
+    return r ? r->body : std::string();
+  };
+  const int64_t first = add("Firstling");
+  EXPECT_EQ(cave_json(climber)["on_wall"], 1);
+  EXPECT_EQ(cave_json(climber)["on_wall"], 1);  // kept
+  std::string p = page(climber);
+  EXPECT_NE(p.find("Firstling"), std::string::npos);
+  EXPECT_EQ(page(climber), p);  // kept: the same page, byte for byte
+  // Each viewer's own: the head setter's page has the setters' line.
+  EXPECT_NE(page(head).find("id=\"plan-here\""), std::string::npos);
+  EXPECT_EQ(p.find("id=\"plan-here\""), std::string::npos);
+
+  // A route set.
+  add("Secondling");
+  EXPECT_EQ(cave_json(climber)["on_wall"], 2);
+  EXPECT_NE(page(climber).find("Secondling"), std::string::npos);
+  // A rename (a metadata edit through the API).
+  const std::string rp = "/api/routes/" + std::to_string(first);
+  json upd{{"crdl", Crdl("Renamedling", "V3", "2026-01-01", "blue", "R small crimp\nL jug\n")},
+           {"public", true}, {"gym", g}, {"wall", "Cave"}, {"state", "set"},
+           {"set_on", "2026-01-01"}};
+  ASSERT_EQ(head.Status("PUT", rp, upd.dump()), 200);
+  EXPECT_EQ(cave_json(climber)["on_wall"], 2);
+  p = page(climber);
+  EXPECT_NE(p.find("Renamedling"), std::string::npos);
+  EXPECT_EQ(p.find("Firstling"), std::string::npos);
+  bool renamed = false;
+  const json after_rename = cave_json(climber);  // kept whole: the loop reads into it
+  for (const json& r : after_rename["routes"]) renamed = renamed || r["name"] == "Renamedling";
+  EXPECT_TRUE(renamed);
+  const std::string dp = "/gyms/" + std::to_string(g) + "/dashboard";
+  auto dash_page = [&](Client& c) {
+    auto r = c.Send("GET", dp);
+    EXPECT_TRUE(r && r->status == 200);
+    return r ? r->body : std::string();
+  };
+  EXPECT_NE(dash_page(climber).find("Renamedling"), std::string::npos);
+  EXPECT_NE(dash_page(climber).find("Renamedling"), std::string::npos);  // kept
+  // A rename of the gym (no data version moves): the next pages show it.
+  ASSERT_EQ(head.Status("PUT", gp, R"({"name":"Newname Gym"})"), 200);
+  EXPECT_NE(dash_page(climber).find("<h1 id=\"dashboard-title\">Newname Gym"), std::string::npos);
+  EXPECT_NE(page(climber).find("Newname Gym"), std::string::npos);
+  // A tick.
+  climber.Json("POST", rp + "/ticks", R"({"outcome":"send","attempts":2})", 201);
+  int ticks = 0;
+  const json after_tick = cave_json(climber);
+  for (const json& r : after_tick["routes"]) ticks += r["ticks"].get<int>();
+  EXPECT_EQ(ticks, 1);
+  EXPECT_NE(page(climber).find("data-ticks=\"1\""), std::string::npos);
+  // Targets.
+  ASSERT_EQ(head.Status("PUT", gp + "/walls/" + std::to_string(cave) + "/targets",
+                        R"({"grades":{"V3":4}})"),
+            200);
+  EXPECT_EQ(cave_json(climber)["targets"], json({{"V3", 4}}));
+  // A strip: off the wall on the next GET.
+  ASSERT_EQ(head.Status("PUT", rp, R"({"state":"stripped"})"), 200);
+  EXPECT_EQ(cave_json(climber)["on_wall"], 1);
+  EXPECT_NE(page(climber).find("id=\"wall-stripped\""), std::string::npos);
+  EXPECT_EQ(dash_page(climber).find("Renamedling"), std::string::npos);  // off the wall
+}
+
 }  // namespace
 }  // namespace sb::web

@@ -466,6 +466,11 @@ std::string WallStatus(const app::Wall& wall,
 
 std::string DashboardPage(const PageViewer& v, const app::GymDashboard& d, int64_t only_wall,
                           const DashboardAscents& ascents) {
+  return PageLayout(v, d.gym.name + " dashboard", DashboardBody(d, only_wall, ascents));
+}
+
+std::string DashboardBody(const app::GymDashboard& d, int64_t only_wall,
+                          const DashboardAscents& ascents) {
   const std::string gid = Id(d.gym.id);
   std::string b = "<p class=\"no-print\"><a href=\"/gyms/" + gid + "\">" + E(d.gym.name) +
                   "</a></p>\n<h1 id=\"dashboard-title\">" + E(d.gym.name) +
@@ -498,12 +503,22 @@ std::string DashboardPage(const PageViewer& v, const app::GymDashboard& d, int64
        "flex-wrap:wrap;gap:1em}.grade-chart{max-width:100%;height:auto}tr.due td{font-weight:"
        "bold}.dash-wall{break-inside:avoid}@media print{.no-print{display:none}}</style>\n";
   b += "<script src=\"/static/gyms.js\" defer></script>\n";
-  return PageLayout(v, d.gym.name + " dashboard", b);
+  return b;
 }
 
 void GetDashboard(Exchange& x) {
   Result<int64_t> id = PathId(x.req, "no such gym");
   if (!id.ok()) return ApiError(x, id.status());
+  // Issue 22: the JSON is kept per (gym, viewer) at the gym's data version
+  // and day (app::RenderCache); the stamp is read before the dashboard.
+  Result<std::optional<app::Stamp>> stamp = x.services.rendered.StampOf(*id);
+  if (!stamp.ok()) return ApiError(x, stamp.status());
+  const app::RenderKey key{"api_dashboard", *id, x.caller.viewer.user_id.value_or(0)};
+  if (*stamp) {
+    if (auto hit = x.services.rendered.Find(key, **stamp)) {
+      return x.res.SetBody(200, *hit, "application/json; charset=utf-8");
+    }
+  }
   Result<app::GymDashboard> d = x.services.dashboard.Get(x.caller.viewer, *id);
   if (!d.ok()) return ApiError(x, d.status());
   auto slot = AdmitWork(x, Cost(x, *d));
@@ -514,13 +529,17 @@ void GetDashboard(Exchange& x) {
   for (const app::WallDashboard& w : d->walls) walls.push_back(WallJson(w, *ascents));
   json disciplines = json::array();
   for (const app::DisciplineDashboard& t : d->disciplines) disciplines.push_back(DisciplineJson(t));
-  ReplyJson(x.res, 200,
-            json{{"gym", d->gym.id},
-                 {"can_edit", d->can_edit},
-                 {"walls", walls},
-                 {"disciplines", disciplines},
-                 {"circuit_words", d->circuit_words},
-                 {"archive_styles", d->archive_styles}});
+  json body{{"gym", d->gym.id},
+            {"can_edit", d->can_edit},
+            {"walls", walls},
+            {"disciplines", disciplines},
+            {"circuit_words", d->circuit_words},
+            {"archive_styles", d->archive_styles}};
+  if (!*stamp) return ReplyJson(x.res, 200, body);
+  // ReplyJson's text: invalid UTF-8 replaced, never a throw.
+  std::shared_ptr<const std::string> text = x.services.rendered.Keep(
+      key, **stamp, body.dump(-1, ' ', false, json::error_handler_t::replace));
+  x.res.SetBody(200, *text, "application/json; charset=utf-8");
 }
 
 void PutWallTargets(Exchange& x) {
@@ -578,16 +597,35 @@ void PutDisciplineTargets(Exchange& x) {
 void PageDashboard(Exchange& x) {
   Result<int64_t> id = PathId(x.req, "No such gym.");
   if (!id.ok()) return PageError(x, id.status());
+  int64_t only = 0;
+  if (std::optional<std::string> w = x.req.Query("wall")) only = ParseId(*w).value_or(0);
+  // Issue 22: the page's body is kept per (gym, viewer, wall shown, gym
+  // name) at the gym's data version and day (app::RenderCache); the gym is
+  // read each time (a rename moves no version), the stamp before the
+  // dashboard.
+  Result<app::Gym> gym = x.services.gyms.Get(x.caller.viewer, *id);
+  if (!gym.ok()) return PageError(x, gym.status());
+  Result<std::optional<app::Stamp>> stamp = x.services.rendered.StampOf(*id);
+  if (!stamp.ok()) return PageError(x, stamp.status());
+  const app::RenderKey key{"dashboard " + std::to_string(only) + " " + gym->name, *id,
+                           x.caller.viewer.user_id.value_or(0)};
+  x.res.SetHeader("Cache-Control", "no-store");
+  const std::string title = gym->name + " dashboard";
+  if (*stamp) {
+    if (auto hit = x.services.rendered.Find(key, **stamp)) {
+      return x.res.SetBody(200, PageLayout(x.caller.page(), title, *hit),
+                           "text/html; charset=utf-8");
+    }
+  }
   Result<app::GymDashboard> d = x.services.dashboard.Get(x.caller.viewer, *id);
   if (!d.ok()) return PageError(x, d.status());
   auto slot = AdmitWork(x, Cost(x, *d));
   if (!slot) return;
-  int64_t only = 0;
-  if (std::optional<std::string> w = x.req.Query("wall")) only = ParseId(*w).value_or(0);
-  x.res.SetHeader("Cache-Control", "no-store");
   Result<DashboardAscents> ascents = AscentsOf(x, *d);
   if (!ascents.ok()) return PageError(x, ascents.status());
-  x.res.SetBody(200, DashboardPage(x.caller.page(), *d, only, *ascents),
+  std::string body = DashboardBody(*d, only, *ascents);
+  if (*stamp) body = *x.services.rendered.Keep(key, **stamp, std::move(body));
+  x.res.SetBody(200, PageLayout(x.caller.page(), title, body),
                 "text/html; charset=utf-8");
 }
 

@@ -32,6 +32,10 @@ using DashboardAscents = std::map<int64_t, app::AscentGrade>;
 // route row shows its grade from `ascents` (an empty cell when absent). Pure.
 std::string DashboardPage(const PageViewer& v, const app::GymDashboard& d, int64_t only_wall,
                           const DashboardAscents& ascents = {});
+// The page's body, inside the layout (what DashboardPage wraps; issue 22:
+// kept by app::RenderCache). Pure.
+std::string DashboardBody(const app::GymDashboard& d, int64_t only_wall,
+                          const DashboardAscents& ascents = {});
 // The floor plan as SVG: walls on their plan rectangles, filled by the age
 // of what is on them, each a link to /walls/{id}; "" when no wall has a
 // rectangle. Pure.

@@ -44,6 +44,17 @@ void PageWall(Exchange& x) {
   if (!wall.ok()) return PageError(x, wall.status());
   Result<app::Gym> gym = x.services.gyms.Get(x.caller.viewer, wall->gym_id);
   if (!gym.ok()) return PageError(x, gym.status());
+  // Issue 22: the route tables are kept per (wall, viewer) at the gym's data
+  // version and day (app::RenderCache); the stamp is read before the routes.
+  // The wall and gym above are read each time (a gym's rename moves no version).
+  Result<std::optional<app::Stamp>> stamp = x.services.rendered.StampOf(wall->gym_id);
+  if (!stamp.ok()) return PageError(x, stamp.status());
+  const app::RenderKey key{"wall", wall->id, x.caller.viewer.user_id.value_or(0)};
+  if (*stamp) {
+    if (auto hit = x.services.rendered.Find(key, **stamp)) {
+      return Html(x, WallPage(x.caller.page(), *gym, *wall, *hit));
+    }
+  }
   app::RouteQuery q;
   q.gym = wall->gym_id;
   q.wall = std::to_string(wall->id);
@@ -61,8 +72,14 @@ void PageWall(Exchange& x) {
   }
   std::vector<std::pair<std::string, std::string>> dates;  // (state, set date) for the status line
   for (const auto& r : routes->routes) dates.emplace_back(r.state, r.set_on);
-  Html(x, WallPage(x.caller.page(), *gym, *wall, routes->routes, &ascent,
-                   WallStatus(*wall, dates, app::SystemClock().Now())));
+  std::string tables = WallRoutesHtml(*gym, *wall, routes->routes, &ascent,
+                                      WallStatus(*wall, dates, app::SystemClock().Now()));
+  // A page without its ascent grades (the fit failed) is not kept.
+  if (*stamp && ascents.ok()) {
+    return Html(x, WallPage(x.caller.page(), *gym, *wall,
+                            *x.services.rendered.Keep(key, **stamp, std::move(tables))));
+  }
+  Html(x, WallPage(x.caller.page(), *gym, *wall, tables));
 }
 
 std::string GymBlock(Exchange& x, const app::RouteView& r) {

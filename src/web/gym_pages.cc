@@ -145,16 +145,11 @@ std::string GradeNoteHtml(const app::RouteView& r) {
   return note.empty() ? "" : " <span class=\"grade-note\">(" + E(note) + ")</span>";
 }
 
-std::string WallPage(const PageViewer& v, const app::Gym& gym, const app::Wall& wall,
-                     const std::vector<app::RouteView>& routes,
-                     const std::map<int64_t, std::string>* ascent_cells, const std::string& status) {
-  std::string b = "<p><a href=\"/gyms/" + std::to_string(gym.id) + "\">" + E(gym.name) +
-                  "</a></p>\n<h1 id=\"wall-title\">" + E(wall.name) + "</h1>\n<p>" +
-                  E(wall.discipline) + ", " + FormatDouble(wall.angle) + "°" +
-                  (wall.reset_weeks ? ", reset every " + std::to_string(*wall.reset_weeks) +
-                                          " weeks"
-                                    : std::string()) +
-                  "</p>\n" + status + "<p><a id=\"wall-report\" href=\"/gyms/" + std::to_string(gym.id) +
+std::string WallRoutesHtml(const app::Gym& gym, const app::Wall& wall,
+                           const std::vector<app::RouteView>& routes,
+                           const std::map<int64_t, std::string>* ascent_cells,
+                           const std::string& status) {
+  std::string b = status + "<p><a id=\"wall-report\" href=\"/gyms/" + std::to_string(gym.id) +
                   "/report?wall=" + std::to_string(wall.id) + "\">What climbers said</a></p>\n";
   for (const char* state : {"set", "planned", "draft", "stripped"}) {
     std::string rows;
@@ -176,6 +171,24 @@ std::string WallPage(const PageViewer& v, const app::Gym& gym, const app::Wall& 
          "</tr></thead><tbody>\n" + rows + "</tbody></table></div>\n";
   }
   if (routes.empty()) b += "<p class=\"empty\">Nothing on this wall yet.</p>\n";
+  return b;
+}
+
+std::string WallPage(const PageViewer& v, const app::Gym& gym, const app::Wall& wall,
+                     const std::vector<app::RouteView>& routes,
+                     const std::map<int64_t, std::string>* ascent_cells, const std::string& status) {
+  return WallPage(v, gym, wall, WallRoutesHtml(gym, wall, routes, ascent_cells, status));
+}
+
+std::string WallPage(const PageViewer& v, const app::Gym& gym, const app::Wall& wall,
+                     const std::string& routes_html) {
+  std::string b = "<p><a href=\"/gyms/" + std::to_string(gym.id) + "\">" + E(gym.name) +
+                  "</a></p>\n<h1 id=\"wall-title\">" + E(wall.name) + "</h1>\n<p>" +
+                  E(wall.discipline) + ", " + FormatDouble(wall.angle) + "°" +
+                  (wall.reset_weeks ? ", reset every " + std::to_string(*wall.reset_weeks) +
+                                          " weeks"
+                                    : std::string()) +
+                  "</p>\n" + routes_html;
   if (app::CanSet(gym.role)) {
     b += "<p><a href=\"/routes/new\" id=\"plan-here\">New route</a> — then set its wall to "
          "<strong>" + E(wall.name) + "</strong> on its page.</p>\n";

@@ -33,6 +33,17 @@ std::string WallPage(const PageViewer& v, const app::Gym& gym, const app::Wall& 
                      const std::vector<app::RouteView>& routes,
                      const std::map<int64_t, std::string>* ascent_cells = nullptr,
                      const std::string& status = "");
+// The part of "/walls/{id}" made from the wall's routes (issue 22: kept by
+// app::RenderCache per gym data version, day and viewer): `status`, the
+// report link and the route tables, as WallPage above shows them. Pure.
+std::string WallRoutesHtml(const app::Gym& gym, const app::Wall& wall,
+                           const std::vector<app::RouteView>& routes,
+                           const std::map<int64_t, std::string>* ascent_cells,
+                           const std::string& status);
+// "/walls/{id}" around `routes_html` (WallRoutesHtml): the gym link, the
+// title and the wall's line above, the setters' line below. Pure.
+std::string WallPage(const PageViewer& v, const app::Gym& gym, const app::Wall& wall,
+                     const std::string& routes_html);
 // The block a route page shows for a route of a gym: state, wall, setters,
 // set / strip dates and history; with `can_set`, a form to change them.
 std::string RouteGymBlock(const app::RouteView& r, const std::vector<app::HistoryEntry>& history,
