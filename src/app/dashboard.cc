@@ -594,43 +594,25 @@ Result<GymDashboard> Dashboard::Get(const Viewer& v, int64_t gym) {
   }
   const int64_t day = clock_->Now() / 86400;  // ages in days are shown
   const auto key = std::make_pair(gym, v.user_id.value_or(0));
-  bool hit = false;
-  if (version) {
-    std::lock_guard<std::mutex> lock(mu_);
-    auto it = built_.find(key);
-    if (it != built_.end() && it->second.version == *version && it->second.day == day) {
-      hit = true;
-      it->second.used = ++uses_;
-      g.walls = it->second.walls;
-      g.archive_styles = it->second.archive_styles;
-      g.circuit_words = it->second.circuit_words;
-    }
-  }
-  if (!hit) {
+  std::shared_ptr<const Built> kept;
+  if (version) kept = built_.Find(key, Stamp{*version, day});
+  if (kept) {
+    g.walls = kept->walls;
+    g.archive_styles = kept->archive_styles;
+    g.circuit_words = kept->circuit_words;
+  } else {
     SB_ASSIGN_OR_RETURN(g.walls, Build(v, gym, walls, &g.archive_styles, &g.circuit_words));
-    if (version) Keep(key, *version, day, g);
+    if (version) {
+      built_.Keep(key, Stamp{*version, day},
+                  std::make_shared<const Built>(
+                      Built{g.walls, g.archive_styles, g.circuit_words}),
+                  1);
+    }
   }
   // The discipline sums are cheap (the walls' rows summed): made each time.
   SB_ASSIGN_OR_RETURN(std::vector<DisciplineTargets> per_discipline, GymDisciplineTargets(v, gym));
   g.disciplines = DisciplineDashboards(g.walls, per_discipline);
   return g;
-}
-
-// Keeps `g`'s built parts for (gym, viewer) at `version` and `day`, dropping
-// the least recently used beyond kMaxBuilt.
-void Dashboard::Keep(std::pair<int64_t, int64_t> key, int64_t version, int64_t day,
-                     const GymDashboard& g) {
-  Built b{version, day, 0, g.walls, g.archive_styles, g.circuit_words};
-  std::lock_guard<std::mutex> lock(mu_);
-  b.used = ++uses_;
-  built_[key] = std::move(b);
-  while (built_.size() > kMaxBuilt) {
-    auto oldest = built_.begin();
-    for (auto it = built_.begin(); it != built_.end(); ++it) {
-      if (it->second.used < oldest->second.used) oldest = it;
-    }
-    built_.erase(oldest);
-  }
 }
 
 Result<WallDashboard> Dashboard::GetWall(const Viewer& v, int64_t wall) {

@@ -26,6 +26,7 @@
 #include "app/clock.h"
 #include "app/gyms.h"
 #include "app/options.h"
+#include "app/render_cache.h"
 #include "base/status.h"
 #include "store/store.h"
 
@@ -279,9 +280,6 @@ class Dashboard {
   // .data, bumped by every write the dashboard shows) and the day stay; one
   // per gym and viewer (what a viewer sees differs by account).
   struct Built {
-    int64_t version = 0;
-    int64_t day = 0;
-    uint64_t used = 0;
     std::vector<WallDashboard> walls;
     std::map<std::string, double> archive_styles;
     std::vector<std::string> circuit_words;
@@ -289,10 +287,6 @@ class Dashboard {
   // Built dashboards kept (each a few KB; 20 head setters of a chain at
   // once, with room for their setters).
   static constexpr size_t kMaxBuilt = 64;
-  // Keeps `g`'s built parts for `key` (gym, user) at `version` and `day`,
-  // dropping the least recently used beyond kMaxBuilt. Locks mu_.
-  void Keep(std::pair<int64_t, int64_t> key, int64_t version, int64_t day,
-            const GymDashboard& g);
 
   store::Store* store_;
   store::TargetStore* targets_;
@@ -301,8 +295,9 @@ class Dashboard {
   Clock* clock_;
   std::mutex mu_;
   std::map<int64_t, std::shared_ptr<const RouteReading>> routes_;  // by route id
-  std::map<std::pair<int64_t, int64_t>, Built> built_;  // (gym, user)
-  uint64_t uses_ = 0;
+  // By (gym, user), at the gym's data version and the day; bounded by
+  // count only (kMaxBuilt), so each entry is told 1 byte.
+  StampedLru<std::pair<int64_t, int64_t>, Built> built_{kMaxBuilt, kMaxBuilt};
 };
 
 }  // namespace sb::app
