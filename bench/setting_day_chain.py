@@ -9,7 +9,12 @@ times, one request at a time; prints each request's status, wall time, slots and
 candidates. With OUT, the last reply's JSON is written there (compare two builds' with
 cmp: the proposal is deterministic). Python stdlib only.
 
-  bench/setting_day_chain.py PORT [RUNS] [OUT] [GYM]
+  bench/setting_day_chain.py PORT [RUNS] [OUT] [GYM] [write]
+
+With `write` (fifth argument; OUT may be `-` for none), each run is preceded by a write to the
+gym (`PUT /api/gyms/G/walls/W/targets` on its first wall, a different count each time), so every
+proposal is the first after a write: the dashboard model is built again (its cache keys on the
+gym's data version); the PUT's time is not counted.
 """
 import http.client
 import json
@@ -18,8 +23,9 @@ import time
 
 port = int(sys.argv[1])
 runs = int(sys.argv[2]) if len(sys.argv) > 2 else 1
-out = sys.argv[3] if len(sys.argv) > 3 else None
+out = sys.argv[3] if len(sys.argv) > 3 and sys.argv[3] != '-' else None
 gym = int(sys.argv[4]) if len(sys.argv) > 4 else 1
+write = len(sys.argv) > 5 and sys.argv[5] == 'write'
 
 
 def conn():
@@ -38,7 +44,21 @@ c = conn()
 c.request('GET', '/api/gyms/%d/walls' % gym, headers=h)
 walls = [w['id'] for w in json.loads(c.getresponse().read())['walls']]
 body = json.dumps({'date': '2026-11-27', 'walls': walls, 'candidates': 6})
+band = None
+if write:
+    c = conn()
+    c.request('GET', '/api/gyms/%d/dashboard' % gym, headers=h)
+    first = json.loads(c.getresponse().read())['walls'][0]
+    band = sorted(first['grades'])[0]
 for i in range(runs):
+    if write:
+        c = conn()
+        c.request('PUT', '/api/gyms/%d/walls/%d/targets' % (gym, walls[0]),
+                  body=json.dumps({'grades': {band: 10 + i}}), headers=h)
+        r = c.getresponse()
+        r.read()
+        if r.status != 200:
+            print('write', i + 1, r.status, flush=True)
     t = time.time()
     c = conn()
     c.request('POST', '/api/gyms/%d/setting-days' % gym, body=body, headers=h)
