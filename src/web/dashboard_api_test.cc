@@ -16,7 +16,24 @@ namespace {
 using nlohmann::json;
 using testing::Client;
 
-class DashboardApiTest : public testing::ApiFixture {};
+class DashboardApiTest : public testing::ApiFixture {
+ protected:
+  // Signs up and logs in "head" (the first account: head of the install's
+  // gym) and "climber", makes the climber a member of that gym and returns
+  // the gym's id; 0 (with a failure) when logging in fails.
+  int64_t HeadAndClimber(Client& head, Client& climber) {
+    head.SignUp("head");
+    climber.SignUp("climber");
+    if (!head.LogIn("head") || !climber.LogIn("climber")) {
+      ADD_FAILURE() << "log in failed";
+      return 0;
+    }
+    const int64_t g = head.Json("GET", "/api/gyms", "", 200)["gyms"][0]["id"];
+    const std::string gp = "/api/gyms/" + std::to_string(g);
+    EXPECT_EQ(head.Status("POST", gp + "/members", R"({"username":"climber","role":"climber"})"), 201);
+    return g;
+  }
+};
 
 std::string Crdl(const std::string& name, const std::string& grade, const std::string& date,
                  const std::string& colour, const std::string& moves) {
@@ -168,13 +185,9 @@ TEST_F(DashboardApiTest, MembersSeeTheDashboardOnlyHeadSettersPutTargets) {
 TEST_F(DashboardApiTest, DisciplineTargetsSumTheDisciplinesWalls) {
   const int port = server_->port();
   Client head(port), climber(port);
-  head.SignUp("head");
-  ASSERT_TRUE(head.LogIn("head"));
-  climber.SignUp("climber");
-  ASSERT_TRUE(climber.LogIn("climber"));
-  const int64_t g = head.Json("GET", "/api/gyms", "", 200)["gyms"][0]["id"];
+  const int64_t g = HeadAndClimber(head, climber);
+  ASSERT_GT(g, 0);
   const std::string gp = "/api/gyms/" + std::to_string(g);
-  ASSERT_EQ(head.Status("POST", gp + "/members", R"({"username":"climber","role":"climber"})"), 201);
   head.Json("POST", gp + "/walls", R"({"name":"Cave"})", 201);
   head.Json("POST", gp + "/walls", R"({"name":"Slab"})", 201);
   for (const auto& [name, wall] : {std::pair<const char*, const char*>{"A", "Cave"}, {"B", "Slab"}}) {
@@ -215,13 +228,9 @@ TEST_F(DashboardApiTest, DisciplineTargetsSumTheDisciplinesWalls) {
 TEST_F(DashboardApiTest, TheKeptDashboardAndWallPageShowEveryWriteOnTheNextGet) {
   const int port = server_->port();
   Client head(port), climber(port);
-  head.SignUp("head");
-  ASSERT_TRUE(head.LogIn("head"));
-  climber.SignUp("climber");
-  ASSERT_TRUE(climber.LogIn("climber"));
-  const int64_t g = head.Json("GET", "/api/gyms", "", 200)["gyms"][0]["id"];
+  const int64_t g = HeadAndClimber(head, climber);
+  ASSERT_GT(g, 0);
   const std::string gp = "/api/gyms/" + std::to_string(g);
-  ASSERT_EQ(head.Status("POST", gp + "/members", R"({"username":"climber","role":"climber"})"), 201);
   const int64_t cave = head.Json("POST", gp + "/walls", R"({"name":"Cave"})", 201)["id"];
   const std::string wp = "/walls/" + std::to_string(cave);
   auto add = [&](const std::string& name) -> int64_t {
