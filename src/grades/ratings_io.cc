@@ -69,9 +69,11 @@ int IndexOf(std::unordered_map<std::string, int>* index, std::vector<std::string
 
 Result<RatingsInput> ReadRatingsInput(std::string_view ticks_csv, std::string_view ticks_name,
                                       std::optional<std::string_view> routes_csv,
-                                      std::string_view routes_name) {
+                                      std::string_view routes_name,
+                                      const RatingsReadOptions& options) {
   RatingsInput in;
   RatingProblemBuilder b;
+  b.SetModel(options.model);
   std::unordered_map<std::string, int> route_index, climber_index;
   std::optional<Discipline> discipline;
   std::optional<Scale> first_scale;
@@ -134,6 +136,27 @@ Result<RatingsInput> ReadRatingsInput(std::string_view ticks_csv, std::string_vi
       auto cols,
       Columns(t, ticks_name, {"climber", "route", "date", "outcome", "attempts", "felt_grade"}));
   const size_t width = t.rows[0].size();
+  // Exact duplicates: rows by the hash of their trimmed fields, compared in
+  // full on a match.
+  std::unordered_multimap<uint64_t, size_t> seen_rows;
+  auto row_hash = [](const CsvRow& row) {
+    uint64_t h = 1469598103934665603ull;
+    for (const std::string& f : row) {
+      for (char ch : Trim(f)) h = (h ^ uint8_t(ch)) * 1099511628211ull;
+      h = (h ^ 0x1fu) * 1099511628211ull;  // field separator
+    }
+    return h;
+  };
+  auto same_row = [](const CsvRow& x, const CsvRow& y) {
+    if (x.size() != y.size()) return false;
+    for (size_t i = 0; i < x.size(); ++i) {
+      if (Trim(x[i]) != Trim(y[i])) return false;
+    }
+    return true;
+  };
+  auto note = [&](int line, const std::string& text) {
+    in.notes.push_back(Status::InvalidInputAt({std::string(ticks_name), line, 0}, text));
+  };
   // Without a setter's grade the first felt grade read decides the discipline.
   if (!discipline) {
     for (size_t i = 1; i < t.rows.size() && !discipline; ++i) {
@@ -182,9 +205,15 @@ Result<RatingsInput> ReadRatingsInput(std::string_view ticks_csv, std::string_vi
         attempts = n;
       }
     }
+    // A session with no try: no games (noted); the names are still read.
+    const bool zero_tries = s.ok() && attempts && *attempts == 0;
+    if (zero_tries && *outcome != TickOutcome::kAttempt) {
+      s = Status::InvalidInput(std::string("attempts: a ") + TickOutcomeName(*outcome) +
+                               " takes at least one try, got 0");
+    }
     Games games;
-    if (s.ok()) {
-      auto g = TickGames(*outcome, attempts);
+    if (s.ok() && !zero_tries) {
+      auto g = TickGamesFor(options.model, *outcome, attempts);
       if (g.ok()) {
         games = *g;
       } else {
@@ -204,9 +233,32 @@ Result<RatingsInput> ReadRatingsInput(std::string_view ticks_csv, std::string_vi
       bad(ticks_name, line, s);
       continue;
     }
+    const uint64_t h = row_hash(row);
+    bool duplicate = false;
+    for (auto [it, end] = seen_rows.equal_range(h); it != end; ++it) {
+      if (same_row(t.rows[it->second], row)) {
+        ++in.duplicate_rows;
+        note(line, "duplicate of line " + std::to_string(t.lines[it->second]) +
+                       (options.dedupe ? " (counted once: --dedupe)"
+                                       : " (counted again; --dedupe counts it once)"));
+        duplicate = true;
+        break;
+      }
+    }
+    if (!duplicate) seen_rows.emplace(h, i);
+    if (duplicate && options.dedupe) continue;
     const int r = IndexOf(&route_index, &in.routes, route);
     const int c = IndexOf(&climber_index, &in.climbers, climber);
+    if (zero_tries) {
+      ++in.zero_try_rows;
+      note(line, "attempts: 0 tries: a session with no try (no games)");
+      continue;
+    }
     b.AddTick(c, r, games, felt);
+    if (attempts)
+      b.AddSessionTries(*attempts);
+    else if (*outcome == TickOutcome::kFlash)
+      b.AddSessionTries(1);
     if (size_t(r) >= in.felt.size()) in.felt.resize(size_t(r) + 1);
     if (felt) in.felt[size_t(r)].push_back(*felt);
   }
