@@ -93,6 +93,8 @@ std::variant<int, Fitted> LoadAndFit(const FitArgs& a) {
       *ticks, a.ticks, routes ? std::optional<std::string_view>(*routes) : std::nullopt, a.routes,
       ro);
   if (!in.ok()) return Fail(kCmd, in.status());
+  // The ticks are in the problem now: the file's text goes before the fit.
+  std::string().swap(*ticks);
   for (size_t i = 0; i < in->bad_rows.size() && i < kMaxReportedRows; ++i) {
     std::fprintf(stderr, "%s%s\n", in->bad_rows[i].message().c_str(),
                  a.skip_bad ? " (skipped)" : "");

@@ -146,6 +146,8 @@ struct RatingProblem {
 // are the caller's (dense, from 0). Not thread-safe.
 class RatingProblemBuilder {
  public:
+  // Room for n ticks (no reallocation up to them).
+  void Reserve(size_t n) { entries_.reserve(n); }
   // Makes sure climbers 0..n-1 / routes 0..n-1 exist (with no ticks).
   void EnsureClimbers(int n);
   void EnsureRoutes(int n);

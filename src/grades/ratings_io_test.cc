@@ -217,5 +217,28 @@ TEST(RatingsIo, SessionModelGamesPerTick) {
   EXPECT_DOUBLE_EQ(in->problem.session_tries, 10.0 / 3);  // 1, 5, 4 (the empty count unknown)
 }
 
+// The streaming reader reads what the project's CSV reader reads: quoted
+// names with commas, escaped quotes and line breaks, CRLF, a last row
+// without a line end; rows keep their first physical line.
+TEST(RatingsIo, QuotedFieldsCrlfAndLines) {
+  const std::string ticks =
+      "climber,route,date,outcome,attempts,felt_grade\r\n"
+      "\"ann, the second\",\"The \"\"Roof\"\"\",2026-03-01,flash,,\r\n"
+      "bob,\"Two\nLines\",2026-03-01,send,3,\r\n"
+      "bob,r3,2026-03-01,onsight,,\r\n"  // line 5: after the two-line field
+      "cat,r3,2026-03-02,attempt,2,V3";
+  RatingsInput in = Read(ticks);
+  EXPECT_EQ(in.climbers, (std::vector<std::string>{"ann, the second", "bob", "cat"}));
+  EXPECT_EQ(in.routes, (std::vector<std::string>{"The \"Roof\"", "Two\nLines", "r3"}));
+  ASSERT_EQ(Messages(in),
+            std::vector<std::string>{
+                "TICKS.csv:5: outcome: expected flash, send or attempt, got 'onsight'"});
+  EXPECT_EQ(in.problem.felt_count[2], 1);
+  auto quote = ReadRatingsInput(std::string(kHeader) + "ann,r1,2026-03-01,flash,,\nbob,r\"1,x\n",
+                                "T.csv", std::nullopt);
+  ASSERT_FALSE(quote.ok());
+  EXPECT_EQ(quote.status().message(), "T.csv:3:6: quote inside an unquoted field");
+}
+
 }  // namespace
 }  // namespace sb::grades
