@@ -62,6 +62,7 @@ Status CheckFormat(const std::string& format) {
 struct FitArgs {
   std::string ticks, routes, format = "text", intervals = "auto", out, model = "tries";
   bool skip_bad = false, dedupe = false;
+  int threads = 1;  // 0: the machine's cores
 };
 
 // The input read and fitted (shared by fit and predict).
@@ -124,6 +125,7 @@ std::variant<int, Fitted> LoadAndFit(const FitArgs& a) {
   out.params = grades::RatingParams::For(in->discipline);
   grades::RatingFitOptions opt;
   opt.intervals = *method;
+  opt.threads = a.threads;
   auto fit = grades::FitRatings(in->problem, out.params, opt);
   if (!fit.ok()) return Fail(kCmd, fit.status());
   out.in = std::move(in).value();
@@ -537,6 +539,10 @@ int RunRatings(const std::vector<std::string>& args) {
       ->capture_default_str();
   fit->add_option("-o,--out", fa.out, "write the result here instead of stdout");
   fit->add_flag("--dedupe", fa.dedupe, "count an exact duplicate row of TICKS.csv once");
+  fit->add_option("--threads", fa.threads,
+                  "threads of the fit (0: every core; the result is the same for any)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 256));
   fit->add_option("--model", fa.model, "tries (every try a game) or session (first try + session)")
       ->capture_default_str();
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <thread>
 #include <utility>
 
 namespace sb::grades {
@@ -60,11 +61,54 @@ double PriorMean(const RatingProblem& p) {
   return fn > 0 ? felt / fn : 0;
 }
 
+// Problems below this many pairs run on one thread (threads cost more than
+// they save).
+constexpr size_t kMinPairsPerThread = 20000;
+
+// Runs fn(begin, end) over [0, n) split into `threads` contiguous parts, the
+// first on the calling thread. Each part must write only its own outputs.
+template <typename Fn>
+void ParallelFor(size_t n, int threads, const Fn& fn) {
+  if (threads <= 1 || n < 2) {
+    fn(size_t{0}, n);
+    return;
+  }
+  const size_t t = std::min(size_t(threads), n);
+  std::vector<std::thread> pool;
+  pool.reserve(t - 1);
+  for (size_t k = 1; k < t; ++k) {
+    pool.emplace_back([&fn, n, t, k] { fn(n * k / t, n * (k + 1) / t); });
+  }
+  fn(size_t{0}, n / t);
+  for (std::thread& th : pool) th.join();
+}
+
 // The fit's working state: x = [abilities (C), difficulties (R)].
+//
+// The per-pair passes run on threads without changing a bit: every sum of a
+// route's or a climber's terms is made by one thread in pair order, the
+// order of the single-threaded loop (a route's pairs are contiguous; a
+// climber's come from an index built in pair order), so the results are the
+// same for any thread count.
 class Solver {
  public:
-  Solver(const RatingProblem& p, const RatingParams& k, double m, double b = 0)
+  Solver(const RatingProblem& p, const RatingParams& k, double m, double b = 0, int threads = 1)
       : p_(p), k_(k), m_(m), b_(b), c_(size_t(p.num_climbers)), r_(size_t(p.num_routes())) {
+    threads_ = p.pairs.size() < kMinPairsPerThread ? 1 : std::max(1, threads);
+    if (threads_ > 1) {
+      route_start_.assign(r_ + 1, 0);
+      for (const RatingPair& q : p.pairs) ++route_start_[size_t(q.route) + 1];
+      for (size_t r = 0; r < r_; ++r) route_start_[r + 1] += route_start_[r];
+      climber_start_.assign(c_ + 1, 0);
+      for (const RatingPair& q : p.pairs) ++climber_start_[size_t(q.climber) + 1];
+      for (size_t c = 0; c < c_; ++c) climber_start_[c + 1] += climber_start_[c];
+      climber_pairs_.resize(p.pairs.size());
+      std::vector<size_t> fill(climber_start_.begin(), climber_start_.end() - 1);
+      for (size_t i = 0; i < p.pairs.size(); ++i) {
+        climber_pairs_[fill[size_t(p.pairs[i].climber)]++] = uint32_t(i);
+      }
+      dz_.resize(p.pairs.size());
+    }
     prior_mean_.resize(r_);
     prior_prec_.resize(r_);
     for (size_t r = 0; r < r_; ++r) {
@@ -122,6 +166,38 @@ class Solver {
           (d - prior_mean_[r]) / (sd * sd) + pf * (p_.felt_count[r] * d - p_.felt_sum[r]);
       diag_[c_ + r] = prior_prec_[r];
     }
+    if (threads_ > 1) {
+      // Routes (their pairs contiguous): each pair's terms, the route's sums.
+      ParallelFor(r_, threads_, [&](size_t lo, size_t hi) {
+        for (size_t r = lo; r < hi; ++r) {
+          const size_t d = c_ + r;
+          for (size_t i = route_start_[r]; i < route_start_[r + 1]; ++i) {
+            const RatingPair& q = p_.pairs[i];
+            const size_t a = size_t(q.climber);
+            const double pr = Sigmoid(kk * (x[a] - x[d]));
+            const double n = double(q.wins) + double(q.losses);
+            double dz = kk * (n * pr - q.wins);
+            double h = kk * kk * n * pr * (1 - pr);
+            if (q.session_wins | q.session_losses) SessionTerms(q, x[a] - x[d], &dz, &h);
+            dz_[i] = dz;
+            h_[i] = h;
+            (*g)[d] -= dz;
+            diag_[d] += h;
+          }
+        }
+      });
+      // Climbers: their pairs' terms in pair order.
+      ParallelFor(c_, threads_, [&](size_t lo, size_t hi) {
+        for (size_t c = lo; c < hi; ++c) {
+          for (size_t u = climber_start_[c]; u < climber_start_[c + 1]; ++u) {
+            const uint32_t i = climber_pairs_[u];
+            (*g)[c] += dz_[i];
+            diag_[c] += h_[i];
+          }
+        }
+      });
+      return;
+    }
     for (size_t i = 0; i < p_.pairs.size(); ++i) {
       const RatingPair& q = p_.pairs[i];
       const size_t a = size_t(q.climber), d = c_ + size_t(q.route);
@@ -140,6 +216,29 @@ class Solver {
 
   // y = H v.
   void Multiply(const std::vector<double>& v, std::vector<double>* y) const {
+    if (threads_ > 1) {
+      ParallelFor(r_, threads_, [&](size_t lo, size_t hi) {
+        for (size_t r = lo; r < hi; ++r) {
+          const size_t d = c_ + r;
+          double yd = diag_[d] * v[d];
+          for (size_t i = route_start_[r]; i < route_start_[r + 1]; ++i) {
+            yd -= h_[i] * v[size_t(p_.pairs[i].climber)];
+          }
+          (*y)[d] = yd;
+        }
+      });
+      ParallelFor(c_, threads_, [&](size_t lo, size_t hi) {
+        for (size_t c = lo; c < hi; ++c) {
+          double yc = diag_[c] * v[c];
+          for (size_t u = climber_start_[c]; u < climber_start_[c + 1]; ++u) {
+            const uint32_t i = climber_pairs_[u];
+            yc -= h_[i] * v[c_ + size_t(p_.pairs[i].route)];
+          }
+          (*y)[c] = yc;
+        }
+      });
+      return;
+    }
     for (size_t i = 0; i < c_ + r_; ++i) (*y)[i] = diag_[i] * v[i];
     for (size_t i = 0; i < p_.pairs.size(); ++i) {
       const RatingPair& q = p_.pairs[i];
@@ -223,7 +322,44 @@ class Solver {
               (d - prior_mean_[r]) / (sd * sd) + pf * (p_.felt_count[r] * d - p_.felt_sum[r]);
           h[c_ + r] = prior_prec_[r];
         }
+        if (threads_ > 1) {
+          // One pass per side: a route's pairs are contiguous; a climber's
+          // come from the index, in pair order (the loop below's order).
+          auto term = [&](size_t i, double* dz, double* w) {
+            const RatingPair& q = p_.pairs[i];
+            const size_t a = size_t(q.climber), d = c_ + size_t(q.route);
+            const double pr = Sigmoid(kk * ((*x)[a] - (*x)[d]));
+            const double n = double(q.wins) + double(q.losses);
+            *dz = kk * (n * pr - q.wins);
+            *w = kk * kk * n * pr * (1 - pr);
+            if (q.session_wins | q.session_losses) SessionTerms(q, (*x)[a] - (*x)[d], dz, w);
+          };
+          if (side == 0) {
+            ParallelFor(c_, threads_, [&](size_t clo, size_t chi) {
+              for (size_t c = clo; c < chi; ++c) {
+                for (size_t u = climber_start_[c]; u < climber_start_[c + 1]; ++u) {
+                  double dz = 0, w = 0;
+                  term(climber_pairs_[u], &dz, &w);
+                  g[c] += dz;
+                  h[c] += w;
+                }
+              }
+            });
+          } else {
+            ParallelFor(r_, threads_, [&](size_t rlo, size_t rhi) {
+              for (size_t r = rlo; r < rhi; ++r) {
+                for (size_t i = route_start_[r]; i < route_start_[r + 1]; ++i) {
+                  double dz = 0, w = 0;
+                  term(i, &dz, &w);
+                  g[c_ + r] += -dz;
+                  h[c_ + r] += w;
+                }
+              }
+            });
+          }
+        }
         for (const RatingPair& q : p_.pairs) {
+          if (threads_ > 1) break;
           const size_t a = size_t(q.climber), d = c_ + size_t(q.route);
           const double pr = Sigmoid(kk * ((*x)[a] - (*x)[d]));
           const double n = double(q.wins) + double(q.losses);
@@ -277,6 +413,12 @@ class Solver {
   const double m_;
   double b_;
   const size_t c_, r_;
+  int threads_ = 1;
+  // With threads: each route's first pair (r_ + 1), each climber's pairs in
+  // pair order (CSR), the pairs' gradient terms.
+  std::vector<size_t> route_start_, climber_start_;
+  std::vector<uint32_t> climber_pairs_;
+  std::vector<double> dz_;
   std::vector<double> prior_mean_, prior_prec_;
   std::vector<double> h_, diag_;
 };
@@ -625,8 +767,11 @@ Result<RatingFit> FitRatings(const RatingProblem& problem, const RatingParams& p
   const bool session = problem.model == RatingModel::kSession;
   const bool estimate_offset = session && !options.session_offset;
   const double m = fit.prior_mean;
+  const int threads = options.threads > 0 ? options.threads
+                                          : int(std::max(1u, std::thread::hardware_concurrency()));
   Solver solver(problem, params, m,
-                session ? options.session_offset.value_or(kSessionOffsetPriorMean) : 0.0);
+                session ? options.session_offset.value_or(kSessionOffsetPriorMean) : 0.0,
+                problem.pairs.size() < size_t(UINT32_MAX) ? threads : 1);
   std::vector<double> x(c_n + r_n);
   const RatingFit* warm = options.warm_start;
   for (size_t c = 0; c < c_n; ++c) x[c] = m;

@@ -13,7 +13,8 @@
 //
 // Everything is on the numeric axis of the discipline (scale.h): V units for
 // bouldering, YDS units for roped. Deterministic: the same problem and
-// parameters give bit-identical fits (single-threaded, fixed loop order).
+// parameters give bit-identical fits, whatever the number of threads (each
+// sum over pairs is made by one thread in a fixed order).
 #ifndef SB_GRADES_RATINGS_H_
 #define SB_GRADES_RATINGS_H_
 
@@ -211,6 +212,12 @@ struct RatingFitOptions {
   // estimated with the abilities and difficulties (joint MAP, prior
   // N(kSessionOffsetPriorMean, kSessionOffsetPriorSd^2)). Ignored by kTries.
   std::optional<double> session_offset = std::nullopt;
+  // Threads of the per-pair passes (0: the machine's cores). The fit is
+  // bit-identical for every value (each sum is made by one thread in a fixed
+  // order); problems under 20,000 pairs run on one. One by default: on the
+  // shared 2-core machine threads cost more CPU than they saved
+  // (docs/BENCHMARKS.md).
+  int threads = 1;
 };
 
 // The session offset's prior: a session of a few tries is likelier sent than

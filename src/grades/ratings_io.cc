@@ -382,7 +382,7 @@ Result<RatingsInput> ReadRatingsInput(std::string_view ticks_csv, std::string_vi
   const size_t expected_rows =
       size_t(std::count(ticks_csv.begin() + long(body), ticks_csv.end(), '\n')) + 1;
   b.Reserve(expected_rows);
-  RowSet seen(expected_rows);
+  std::optional<RowSet> seen(std::in_place, expected_rows);  // freed before Build()
   auto row_hash = [](const std::vector<std::string_view>& r) {
     uint64_t h = 1469598103934665603ull;
     for (std::string_view f : r) h = (Fnv(Trim(f), h) ^ 0x1fu) * 1099511628211ull;  // separator
@@ -455,7 +455,7 @@ Result<RatingsInput> ReadRatingsInput(std::string_view ticks_csv, std::string_vi
       bad(ticks_name, line, s);
       continue;
     }
-    const int first = seen.FindOrInsert(row_hash(row), row_offset, line, [&](size_t off, int l) {
+    const int first = seen->FindOrInsert(row_hash(row), row_offset, line, [&](size_t off, int l) {
       CsvStream again(ticks_csv, ticks_name, off, l);
       int unused = 0;
       auto ok = again.Next(&earlier, &unused);
@@ -500,6 +500,7 @@ Result<RatingsInput> ReadRatingsInput(std::string_view ticks_csv, std::string_vi
   in.setter_grade.resize(size_t(n_routes));
   in.route_scale.resize(size_t(n_routes));
   in.felt.resize(size_t(n_routes));
+  seen.reset();
   in.problem = b.Build();
   return in;
 }
