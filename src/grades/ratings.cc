@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <string>
 #include <thread>
 #include <utility>
@@ -712,7 +713,10 @@ RatingProblem RatingProblemBuilder::Build() {
   std::vector<size_t> start(r_n + 1, 0);
   for (const Entry& e : entries_) ++start[size_t(e.key >> 32) + 1];
   for (size_t r = 0; r < r_n; ++r) start[r + 1] += start[r];
-  std::vector<Entry> sorted(entries_.size());
+  // Uninitialised (every slot is written below): no pass of zeros over
+  // millions of entries.
+  std::unique_ptr<Entry[]> sorted(new Entry[entries_.size()]);
+  const size_t n_entries = entries_.size();
   {
     std::vector<size_t> fill(start.begin(), start.end() - 1);
     for (const Entry& e : entries_) sorted[fill[size_t(e.key >> 32)]++] = e;
@@ -720,12 +724,13 @@ RatingProblem RatingProblemBuilder::Build() {
   entries_.clear();
   entries_.shrink_to_fit();
   for (size_t r = 0; r < r_n; ++r) {
-    std::sort(sorted.begin() + long(start[r]), sorted.begin() + long(start[r + 1]),
+    std::sort(sorted.get() + start[r], sorted.get() + start[r + 1],
               [](const Entry& a, const Entry& b) { return a.key < b.key; });
   }
   p_.pairs.clear();
-  p_.pairs.reserve(sorted.size());
-  for (const Entry& e : sorted) {
+  p_.pairs.reserve(n_entries);
+  for (size_t k = 0; k < n_entries; ++k) {
+    const Entry& e = sorted[k];
     if (!p_.pairs.empty()) {
       RatingPair& last = p_.pairs.back();
       if (((uint64_t(uint32_t(last.route)) << 32) | uint32_t(last.climber)) == e.key) {

@@ -218,47 +218,51 @@ class RowSet {
   explicit RowSet(size_t expected) {
     size_t cap = 16;
     while (cap < expected + expected / 2) cap *= 2;
-    hash_.assign(cap, 0);
-    offset_.assign(cap, 0);
-    line_.assign(cap, 0);
+    slots_.assign(cap, Slot{});
   }
   // The line of an earlier row with the same hash for which same(offset,
   // line) holds; 0 after inserting the row.
   template <typename Same>
   int FindOrInsert(uint64_t h, size_t offset, int line, Same same) {
     if (h == 0) h = 1;  // 0 marks an empty slot
-    size_t mask = hash_.size() - 1;
-    for (size_t s = size_t(h) & mask;; s = (s + 1) & mask) {
-      if (hash_[s] == 0) {
-        hash_[s] = h;
-        offset_[s] = offset;
-        line_[s] = line;
-        if (++size_ * 3 > hash_.size() * 2) Grow();
+    const size_t mask = slots_.size() - 1;
+    for (size_t s = Spread(h) & mask;; s = (s + 1) & mask) {
+      Slot& slot = slots_[s];
+      if (slot.hash == 0) {
+        slot = {h, offset, line};
+        if (++size_ * 3 > slots_.size() * 2) Grow();
         return 0;
       }
-      if (hash_[s] == h && same(offset_[s], line_[s])) return line_[s];
+      if (slot.hash == h && same(slot.offset, slot.line)) return slot.line;
     }
   }
 
  private:
-  void Grow() {
-    std::vector<uint64_t> h(hash_.size() * 2, 0), o(hash_.size() * 2, 0);
-    std::vector<int32_t> l(hash_.size() * 2, 0);
-    const size_t mask = h.size() - 1;
-    for (size_t i = 0; i < hash_.size(); ++i) {
-      if (hash_[i] == 0) continue;
-      size_t s = size_t(hash_[i]) & mask;
-      while (h[s] != 0) s = (s + 1) & mask;
-      h[s] = hash_[i];
-      o[s] = offset_[i];
-      l[s] = line_[i];
-    }
-    hash_.swap(h);
-    offset_.swap(o);
-    line_.swap(l);
+  // One slot, one cache line's third: a probe touches one place.
+  struct Slot {
+    uint64_t hash = 0;
+    uint64_t offset = 0;
+    int32_t line = 0;
+  };
+  // The high bits folded into the low ones the mask keeps (murmur3's finaliser).
+  static size_t Spread(uint64_t h) {
+    h ^= h >> 33;
+    h *= 0xff51afd7ed558ccdull;
+    h ^= h >> 33;
+    return size_t(h);
   }
-  std::vector<uint64_t> hash_, offset_;
-  std::vector<int32_t> line_;
+  void Grow() {
+    std::vector<Slot> old(slots_.size() * 2, Slot{});
+    old.swap(slots_);
+    const size_t mask = slots_.size() - 1;
+    for (const Slot& o : old) {
+      if (o.hash == 0) continue;
+      size_t s = Spread(o.hash) & mask;
+      while (slots_[s].hash != 0) s = (s + 1) & mask;
+      slots_[s] = o;
+    }
+  }
+  std::vector<Slot> slots_;
   size_t size_ = 0;
 };
 
