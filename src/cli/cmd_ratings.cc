@@ -3,14 +3,21 @@
 //
 //   strangebeta ratings fit --ticks TICKS.csv [--routes ROUTES.csv] [--format text|json]
 //                           [--skip-bad] [--intervals auto|exact|approximate] [-o FILE]
+//   strangebeta ratings predict --ticks TICKS.csv [--routes ROUTES.csv] --pairs PAIRS.csv
+//                               [--format csv|json] [--fit FIT.json] [--model tries|session]
+//   strangebeta ratings eval-real --ascents ascents.csv [--format text|json]
 //   strangebeta ratings synth --climbers N --routes M --ticks-per-route K --seed S --out DIR
 //   strangebeta ratings eval [--climbers N] [--routes M] [--ticks-per-route 20,5,2] [--seed S]
 //                            [--format text|json] [--intervals ...]
 #include <cstdio>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
+#include <unordered_map>
+#include <variant>
 #include <vector>
 
+#include "base/csv.h"
 #include "base/files.h"
 #include "base/number.h"
 #include "base/text.h"
@@ -18,6 +25,7 @@
 #include "cli/commands.h"
 #include "grades/ratings.h"
 #include "grades/ratings_io.h"
+#include "grades/ratings_real.h"
 #include "grades/ratings_synth.h"
 #include "grades/scale.h"
 
@@ -52,14 +60,25 @@ Status CheckFormat(const std::string& format) {
 }
 
 struct FitArgs {
-  std::string ticks, routes, format = "text", intervals = "auto", out;
-  bool skip_bad = false;
+  std::string ticks, routes, format = "text", intervals = "auto", out, model = "tries";
+  bool skip_bad = false, dedupe = false;
+  int threads = 1;  // 0: the machine's cores
 };
 
-int Fit(const FitArgs& a) {
-  if (Status s = CheckFormat(a.format); !s.ok()) return Fail(kCmd, s);
+// The input read and fitted (shared by fit and predict).
+struct Fitted {
+  grades::RatingsInput in;
+  grades::RatingParams params;
+  grades::RatingFit fit;
+};
+
+// Reads TICKS.csv (and ROUTES.csv), reports bad rows and notes on stderr,
+// fits. Returns the exit code on failure (2), or the fit.
+std::variant<int, Fitted> LoadAndFit(const FitArgs& a) {
   auto method = ParseIntervals(a.intervals);
   if (!method.ok()) return Fail(kCmd, method.status());
+  auto model = grades::ParseRatingModel(a.model, "--model");
+  if (!model.ok()) return Fail(kCmd, model.status());
   auto ticks = ReadFile(a.ticks);
   if (!ticks.ok()) return Fail(kCmd, ticks.status());
   std::optional<std::string> routes;
@@ -68,9 +87,15 @@ int Fit(const FitArgs& a) {
     if (!r.ok()) return Fail(kCmd, r.status());
     routes = std::move(r).value();
   }
+  grades::RatingsReadOptions ro;
+  ro.dedupe = a.dedupe;
+  ro.model = *model;
   auto in = grades::ReadRatingsInput(
-      *ticks, a.ticks, routes ? std::optional<std::string_view>(*routes) : std::nullopt, a.routes);
+      *ticks, a.ticks, routes ? std::optional<std::string_view>(*routes) : std::nullopt, a.routes,
+      ro);
   if (!in.ok()) return Fail(kCmd, in.status());
+  // The ticks are in the problem now: the file's text goes before the fit.
+  std::string().swap(*ticks);
   for (size_t i = 0; i < in->bad_rows.size() && i < kMaxReportedRows; ++i) {
     std::fprintf(stderr, "%s%s\n", in->bad_rows[i].message().c_str(),
                  a.skip_bad ? " (skipped)" : "");
@@ -85,19 +110,57 @@ int Fit(const FitArgs& a) {
                  in->bad_rows.size());
     return 2;
   }
-  const grades::RatingParams params = grades::RatingParams::For(in->discipline);
+  for (size_t i = 0; i < in->notes.size() && i < kMaxReportedRows; ++i) {
+    std::fprintf(stderr, "note: %s\n", in->notes[i].message().c_str());
+  }
+  if (in->notes.size() > kMaxReportedRows) {
+    std::fprintf(stderr, "note: ... and %zu more notes\n", in->notes.size() - kMaxReportedRows);
+  }
+  if (in->duplicate_rows > 0 || in->zero_try_rows > 0) {
+    std::fprintf(stderr, "note: %d exact duplicate row(s) (%s), %d row(s) of 0 tries (no games)\n",
+                 in->duplicate_rows, a.dedupe ? "counted once" : "counted again; --dedupe",
+                 in->zero_try_rows);
+  }
+  Fitted out;
+  out.params = grades::RatingParams::For(in->discipline);
   grades::RatingFitOptions opt;
   opt.intervals = *method;
-  auto fit = grades::FitRatings(in->problem, params, opt);
+  opt.threads = a.threads;
+  auto fit = grades::FitRatings(in->problem, out.params, opt);
   if (!fit.ok()) return Fail(kCmd, fit.status());
+  out.in = std::move(in).value();
+  out.fit = std::move(fit).value();
+  return out;
+}
 
+// The settings that let a saved fit predict: "discipline", "scale",
+// "model", "k", the priors, the session offset and length, "drift".
+std::string ModelJson(const grades::RatingsInput& in, const grades::RatingParams& k,
+                      const grades::RatingFit& fit) {
+  return std::string("\"discipline\":") + JsonString(grades::DisciplineName(in.discipline)) +
+         ",\"scale\":" + JsonString(grades::ScaleName(in.scale)) +
+         ",\"model\":" + JsonString(grades::RatingModelName(fit.model)) +
+         ",\"k\":" + Fmt(k.logit_per_unit) + ",\"prior_mean\":" + Fmt(fit.prior_mean) +
+         ",\"climber_sd\":" + Fmt(k.climber_sd) + ",\"setter_sd\":" + Fmt(k.setter_sd) +
+         ",\"open_route_sd\":" + Fmt(k.open_route_sd) + ",\"felt_sd\":" + Fmt(k.felt_sd) +
+         ",\"session_offset\":" + Fmt(fit.session_offset) +
+         ",\"session_tries\":" + Fmt(fit.session_tries) + ",\"drift\":false";
+}
+
+int Fit(const FitArgs& a) {
+  if (Status s = CheckFormat(a.format); !s.ok()) return Fail(kCmd, s);
+  auto loaded = LoadAndFit(a);
+  if (std::holds_alternative<int>(loaded)) return std::get<int>(loaded);
+  Fitted& f = std::get<Fitted>(loaded);
+  const grades::RatingsInput* in = &f.in;
+  const grades::RatingFit* fit = &f.fit;
   const grades::Discipline d = in->discipline;
   auto grade_of = [&](size_t r, double v) {
     return grades::FormatValue(v, d, in->route_scale[r].value_or(in->scale));
   };
   std::string o;
   if (a.format == "json") {
-    o = "{\"routes\":[";
+    o = "{" + ModelJson(*in, f.params, *fit) + ",\"routes\":[";
     for (size_t r = 0; r < in->routes.size(); ++r) {
       const double v = fit->difficulty[r], sd = fit->difficulty_sd[r];
       o += std::string(r ? "," : "") + "{\"route\":" + JsonString(in->routes[r]) +
@@ -152,6 +215,165 @@ int Fit(const FitArgs& a) {
   return WriteOutput(kCmd, a.out, o);
 }
 
+struct PredictArgs {
+  FitArgs fit;
+  std::string pairs, fit_json, format = "csv", out;
+};
+
+// What a prediction needs from a fit, by name.
+struct Predictor {
+  grades::RatingParams params;
+  grades::RatingModel model = grades::RatingModel::kTries;
+  double prior_mean = 0, session_offset = 0, session_tries = 0;
+  std::unordered_map<std::string, double> ability, difficulty;
+};
+
+Result<Predictor> PredictorFromJson(const std::string& path) {
+  SB_ASSIGN_OR_RETURN(std::string text, ReadFile(path));
+  const auto j = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (j.is_discarded() || !j.is_object()) {
+    return Status::InvalidInput(path +
+                                ": not JSON (expected the output of ratings fit --format json)");
+  }
+  Predictor p;
+  auto number = [&](const char* key, double* out) -> Status {
+    if (!j.contains(key) || !j[key].is_number()) {
+      return Status::InvalidInput(
+          path + ": " + key + ": missing or not a number (a fit from ratings fit --format json)");
+    }
+    *out = j[key].get<double>();
+    return Status::Ok();
+  };
+  SB_RETURN_IF_ERROR(number("k", &p.params.logit_per_unit));
+  SB_RETURN_IF_ERROR(number("climber_sd", &p.params.climber_sd));
+  SB_RETURN_IF_ERROR(number("setter_sd", &p.params.setter_sd));
+  SB_RETURN_IF_ERROR(number("open_route_sd", &p.params.open_route_sd));
+  SB_RETURN_IF_ERROR(number("felt_sd", &p.params.felt_sd));
+  SB_RETURN_IF_ERROR(number("prior_mean", &p.prior_mean));
+  SB_RETURN_IF_ERROR(number("session_offset", &p.session_offset));
+  SB_RETURN_IF_ERROR(number("session_tries", &p.session_tries));
+  if (Status s = p.params.Validate(); !s.ok())
+    return Status::InvalidInput(path + ": " + s.message());
+  if (!j.contains("model") || !j["model"].is_string()) {
+    return Status::InvalidInput(path + ": model: missing (expected tries or session)");
+  }
+  SB_ASSIGN_OR_RETURN(p.model,
+                      grades::ParseRatingModel(j["model"].get<std::string>(), path + ": model"));
+  auto list = [&](const char* key, const char* name, const char* value,
+                  std::unordered_map<std::string, double>* out) -> Status {
+    if (!j.contains(key) || !j[key].is_array()) {
+      return Status::InvalidInput(path + ": " + key + ": missing or not a list");
+    }
+    for (size_t i = 0; i < j[key].size(); ++i) {
+      const auto& e = j[key][i];
+      if (!e.is_object() || !e.contains(name) || !e[name].is_string() || !e.contains(value) ||
+          !e[value].is_number()) {
+        return Status::InvalidInput(path + ": " + key + "[" + std::to_string(i) + "]: expected " +
+                                    name + " and " + value);
+      }
+      out->emplace(e[name].get<std::string>(), e[value].get<double>());
+    }
+    return Status::Ok();
+  };
+  SB_RETURN_IF_ERROR(list("routes", "route", "value", &p.difficulty));
+  SB_RETURN_IF_ERROR(list("climbers", "climber", "ability", &p.ability));
+  return p;
+}
+
+int Predict(const PredictArgs& a) {
+  if (a.format != "csv" && a.format != "json") {
+    return Fail(kCmd,
+                Status::InvalidInput("--format: expected csv or json, got '" + a.format + "'"));
+  }
+  if (a.fit_json.empty() && a.fit.ticks.empty()) {
+    return Fail(kCmd, Status::InvalidInput("--ticks: required (or a saved fit: --fit FIT.json)"));
+  }
+  auto pairs_text = ReadFile(a.pairs);
+  if (!pairs_text.ok()) return Fail(kCmd, pairs_text.status());
+  auto pairs = ParseCsv(*pairs_text, a.pairs);
+  if (!pairs.ok()) return Fail(kCmd, pairs.status());
+  // Column positions of climber and route.
+  size_t ci = SIZE_MAX, ri = SIZE_MAX;
+  if (!pairs->rows.empty()) {
+    for (size_t i = 0; i < pairs->rows[0].size(); ++i) {
+      if (Trim(pairs->rows[0][i]) == "climber") ci = i;
+      if (Trim(pairs->rows[0][i]) == "route") ri = i;
+    }
+  }
+  if (ci == SIZE_MAX || ri == SIZE_MAX) {
+    return Fail(kCmd, Status::InvalidInputAt({a.pairs, 1, 0},
+                                             std::string("missing column '") +
+                                                 (ci == SIZE_MAX ? "climber" : "route") + "'"));
+  }
+  Predictor p;
+  if (!a.fit_json.empty()) {
+    auto loaded = PredictorFromJson(a.fit_json);
+    if (!loaded.ok()) return Fail(kCmd, loaded.status());
+    p = std::move(loaded).value();
+    if (!a.fit.routes.empty()) {
+      // Routes of ROUTES.csv not in the fit start from their setter's grade.
+      auto text = ReadFile(a.fit.routes);
+      if (!text.ok()) return Fail(kCmd, text.status());
+      auto in = grades::ReadRatingsInput("climber,route,date,outcome,attempts,felt_grade\n",
+                                         "(no ticks)", *text, a.fit.routes);
+      if (!in.ok()) return Fail(kCmd, in.status());
+      for (size_t r = 0; r < in->routes.size(); ++r) {
+        if (in->problem.setter[r]) p.difficulty.emplace(in->routes[r], *in->problem.setter[r]);
+      }
+    }
+  } else {
+    auto loaded = LoadAndFit(a.fit);
+    if (std::holds_alternative<int>(loaded)) return std::get<int>(loaded);
+    Fitted& f = std::get<Fitted>(loaded);
+    p.params = f.params;
+    p.model = f.fit.model;
+    p.prior_mean = f.fit.prior_mean;
+    p.session_offset = f.fit.session_offset;
+    p.session_tries = f.fit.session_tries;
+    for (size_t r = 0; r < f.in.routes.size(); ++r)
+      p.difficulty.emplace(f.in.routes[r], f.fit.difficulty[r]);
+    for (size_t c = 0; c < f.in.climbers.size(); ++c)
+      p.ability.emplace(f.in.climbers[c], f.fit.ability[c]);
+  }
+  std::string o = a.format == "csv" ? "climber,route,p_flash,p_send\n"
+                                    : "{\"model\":" + JsonString(grades::RatingModelName(p.model)) +
+                                          ",\"pairs\":[";
+  size_t n = 0;
+  for (size_t i = 1; i < pairs->rows.size(); ++i) {
+    const CsvRow& row = pairs->rows[i];
+    if (row.size() == 1 && Trim(row[0]).empty()) continue;
+    if (row.size() != pairs->rows[0].size()) {
+      return Fail(kCmd, Status::InvalidInputAt({a.pairs, pairs->lines[i], 0},
+                                               "expected " + std::to_string(pairs->rows[0].size()) +
+                                                   " fields, got " + std::to_string(row.size())));
+    }
+    const std::string climber(Trim(row[ci])), route(Trim(row[ri]));
+    if (climber.empty() || route.empty()) {
+      return Fail(kCmd, Status::InvalidInputAt(
+                            {a.pairs, pairs->lines[i], 0},
+                            std::string(climber.empty() ? "climber" : "route") + ": empty"));
+    }
+    const auto ai = p.ability.find(climber);
+    const auto di = p.difficulty.find(route);
+    const double ability = ai != p.ability.end() ? ai->second : p.prior_mean;
+    const double difficulty = di != p.difficulty.end() ? di->second : p.prior_mean;
+    const grades::SendChances s = grades::PredictSend(p.params, p.model, p.session_offset,
+                                                      p.session_tries, ability, difficulty);
+    if (a.format == "csv") {
+      o += FormatCsvRow({climber, route, Fmt(s.p_flash), Fmt(s.p_send)});
+    } else {
+      o += std::string(n ? "," : "") + "{\"climber\":" + JsonString(climber) +
+           ",\"route\":" + JsonString(route) + ",\"p_flash\":" + Fmt(s.p_flash) +
+           ",\"p_send\":" + Fmt(s.p_send) +
+           ",\"climber_seen\":" + (ai != p.ability.end() ? "true" : "false") +
+           ",\"route_seen\":" + (di != p.difficulty.end() ? "true" : "false") + "}";
+    }
+    ++n;
+  }
+  if (a.format == "json") o += "]}\n";
+  return WriteOutput(kCmd, a.out, o);
+}
+
 int Synth(const grades::SynthGymParams& sp, const std::string& out) {
   auto gym = grades::MakeSynthGym(sp);
   if (!gym.ok()) return Fail(kCmd, gym.status());
@@ -171,8 +393,10 @@ int Synth(const grades::SynthGymParams& sp, const std::string& out) {
 }
 
 int Eval(grades::SynthGymParams sp, const std::string& ticks_list, const std::string& format,
-         const std::string& intervals) {
+         const std::string& intervals, const std::string& model_name) {
   if (Status s = CheckFormat(format); !s.ok()) return Fail(kCmd, s);
+  auto model = grades::ParseRatingModel(model_name, "--model");
+  if (!model.ok()) return Fail(kCmd, model.status());
   auto method = ParseIntervals(intervals);
   if (!method.ok()) return Fail(kCmd, method.status());
   std::vector<int> ks;
@@ -206,7 +430,7 @@ int Eval(grades::SynthGymParams sp, const std::string& ticks_list, const std::st
     sp.ticks_per_route = ks[i];
     auto gym = grades::MakeSynthGym(sp);
     if (!gym.ok()) return Fail(kCmd, gym.status());
-    auto ev = grades::EvaluateSynthGym(*gym, params, opt);
+    auto ev = grades::EvaluateSynthGym(*gym, params, opt, *model);
     if (!ev.ok()) return Fail(kCmd, ev.status());
     // How much lower the fit's error is than the felt grades' median, on the
     // routes that have felt grades.
@@ -242,6 +466,57 @@ int Eval(grades::SynthGymParams sp, const std::string& ticks_list, const std::st
   return WriteOutput(kCmd, "-", o);
 }
 
+int EvalReal(const std::string& path, const std::string& format) {
+  if (Status s = CheckFormat(format); !s.ok()) return Fail(kCmd, s);
+  auto csv = ReadFile(path);
+  if (!csv.ok()) return Fail(kCmd, csv.status());
+  std::string o;
+  if (format == "text") {
+    o = path + ": fit on one part, predict the other (docs/grades.md, \"Real outcomes\")\n";
+    char line[256];
+    std::snprintf(line, sizeof line, "%-8s %-8s %6s %6s %8s %9s %9s %9s %7s\n", "split", "model",
+                  "fit", "scored", "top-rate", "top-auc", "top-ll", "flash-auc", "b");
+    o += line;
+  } else {
+    o = "{\"results\":[";
+  }
+  bool first = true;
+  for (grades::AscentSplit split :
+       {grades::AscentSplit::kHeldout, grades::AscentSplit::kTemporal}) {
+    for (grades::RatingModel model : {grades::RatingModel::kTries, grades::RatingModel::kSession}) {
+      auto ev = grades::EvaluateAscents(*csv, path, split, model);
+      if (!ev.ok()) return Fail(kCmd, ev.status());
+      if (format == "text") {
+        char line[256];
+        std::snprintf(line, sizeof line, "%-8s %-8s %6d %6d %8.3f %9.4f %9.4f %9.4f %7.3f\n",
+                      grades::AscentSplitName(split), grades::RatingModelName(model), ev->fit_rows,
+                      ev->scored_rows, ev->top_rate, ev->top_auc, ev->top_log_loss, ev->flash_auc,
+                      ev->session_offset);
+        o += line;
+      } else {
+        o += std::string(first ? "" : ",") +
+             "{\"split\":" + JsonString(grades::AscentSplitName(split)) +
+             ",\"model\":" + JsonString(grades::RatingModelName(model)) +
+             ",\"fit_rows\":" + std::to_string(ev->fit_rows) +
+             ",\"scored_rows\":" + std::to_string(ev->scored_rows) +
+             ",\"top_rate\":" + Fmt(ev->top_rate) + ",\"top_auc\":" + Fmt(ev->top_auc) +
+             ",\"top_log_loss\":" + Fmt(ev->top_log_loss) + ",\"flash_auc\":" + Fmt(ev->flash_auc) +
+             ",\"flash_log_loss\":" + Fmt(ev->flash_log_loss) +
+             ",\"session_offset\":" + Fmt(ev->session_offset) + "}";
+      }
+      first = false;
+    }
+  }
+  if (format == "text") {
+    o +=
+        "\ntop-auc, top-ll: AUC and log-loss of p_send for a top; flash-auc: AUC of p_flash for a\n"
+        "top on the first try; b: the session model's offset (logit of a session over one try).\n";
+  } else {
+    o += "]}\n";
+  }
+  return WriteOutput(kCmd, "-", o);
+}
+
 }  // namespace
 
 int RunRatings(const std::vector<std::string>& args) {
@@ -263,6 +538,28 @@ int RunRatings(const std::vector<std::string>& args) {
   fit->add_option("--intervals", fa.intervals, "auto, exact (up to 1200 routes) or approximate")
       ->capture_default_str();
   fit->add_option("-o,--out", fa.out, "write the result here instead of stdout");
+  fit->add_flag("--dedupe", fa.dedupe, "count an exact duplicate row of TICKS.csv once");
+  fit->add_option("--threads", fa.threads,
+                  "threads of the fit (0: every core; the result is the same for any)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 256));
+  fit->add_option("--model", fa.model, "tries (every try a game) or session (first try + session)")
+      ->capture_default_str();
+
+  CLI::App* predict = app.add_subcommand(
+      "predict", "Each climber,route pair's chance to flash and to send in one session.");
+  PredictArgs pa;
+  predict->add_option("--ticks", pa.fit.ticks, "TICKS.csv to fit (or --fit)");
+  predict->add_option("--routes", pa.fit.routes, "ROUTES.csv: route,grade (the setters' grades)");
+  predict->add_option("--pairs", pa.pairs, "PAIRS.csv: climber,route")->required();
+  predict->add_option("--fit", pa.fit_json,
+                      "a saved fit (ratings fit --format json) instead of --ticks");
+  predict->add_option("--format", pa.format, "csv or json")->capture_default_str();
+  predict->add_option("--model", pa.fit.model, "tries or session (when fitting)")
+      ->capture_default_str();
+  predict->add_flag("--dedupe", pa.fit.dedupe, "count an exact duplicate row of TICKS.csv once");
+  predict->add_flag("--skip-bad", pa.fit.skip_bad, "report bad rows and fit without them");
+  predict->add_option("-o,--out", pa.out, "write the result here instead of stdout");
 
   grades::SynthGymParams sp;
   CLI::App* synth = app.add_subcommand(
@@ -278,7 +575,8 @@ int RunRatings(const std::vector<std::string>& args) {
   grades::SynthGymParams ep;
   CLI::App* eval = app.add_subcommand(
       "eval", "Fit synthetic gyms and compare with their truth (the issue's goal figures).");
-  std::string eval_ticks = "20,5,2", eval_format = "text", eval_intervals = "auto";
+  std::string eval_ticks = "20,5,2", eval_format = "text", eval_intervals = "auto",
+              eval_model = "tries";
   eval->add_option("--climbers", ep.climbers, "climbers")->capture_default_str();
   eval->add_option("--routes", ep.routes, "routes")->capture_default_str();
   eval->add_option("--ticks-per-route", eval_ticks, "ticks per route, comma-separated")
@@ -288,10 +586,26 @@ int RunRatings(const std::vector<std::string>& args) {
   eval->add_option("--intervals", eval_intervals, "auto, exact or approximate")
       ->capture_default_str();
 
+  eval->add_option("--model", eval_model, "tries or session")->capture_default_str();
+
+  CLI::App* eval_real = app.add_subcommand(
+      "eval-real",
+      "Fit real results on one part and predict the other (both models, both splits).");
+  std::string real_ascents, real_format = "text";
+  eval_real
+      ->add_option("--ascents", real_ascents, "ascents.csv of ../shared/data/ifsc-boulder-2025-26")
+      ->required();
+  eval_real->add_option("--format", real_format, "text or json")->capture_default_str();
+
   if (int rc = ParseArgs(app, args); rc >= 0) return rc;
   if (fit->parsed()) return Fit(fa);
+  if (predict->parsed()) {
+    pa.fit.intervals = "approximate";  // predictions use the values only
+    return Predict(pa);
+  }
   if (synth->parsed()) return Synth(sp, synth_out);
-  return Eval(ep, eval_ticks, eval_format, eval_intervals);
+  if (eval_real->parsed()) return EvalReal(real_ascents, real_format);
+  return Eval(ep, eval_ticks, eval_format, eval_intervals, eval_model);
 }
 
 }  // namespace sb::cli

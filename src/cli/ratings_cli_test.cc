@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -61,7 +62,20 @@ TEST_F(RatingsCli, JsonShape) {
       0)
       << err_;
   const auto j = nlohmann::json::parse(out_);
-  ASSERT_EQ(j.size(), 2u);
+  ASSERT_EQ(j.size(), 14u);
+  // What a saved fit needs to predict (ratings predict --fit).
+  EXPECT_EQ(j["discipline"], "bouldering");
+  EXPECT_EQ(j["scale"], "v");
+  EXPECT_EQ(j["model"], "tries");
+  EXPECT_DOUBLE_EQ(j["k"].get<double>(), std::log(3.0));
+  EXPECT_DOUBLE_EQ(j["prior_mean"].get<double>(), (4.0 + 4.25 + 1.0) / 3);  // V4, 6B+, V1
+  EXPECT_DOUBLE_EQ(j["climber_sd"].get<double>(), 3.0);
+  EXPECT_DOUBLE_EQ(j["setter_sd"].get<double>(), 1.0);
+  EXPECT_DOUBLE_EQ(j["open_route_sd"].get<double>(), 3.0);
+  EXPECT_DOUBLE_EQ(j["felt_sd"].get<double>(), 1.5);
+  EXPECT_DOUBLE_EQ(j["session_offset"].get<double>(), 0.0);
+  EXPECT_DOUBLE_EQ(j["session_tries"].get<double>(), (1 + 4 + 3 + 2) / 4.0);
+  EXPECT_EQ(j["drift"], false);
   ASSERT_EQ(j["routes"].size(), 3u);
   ASSERT_EQ(j["climbers"].size(), 3u);
   const auto& r0 = j["routes"][0];
@@ -165,6 +179,98 @@ TEST_F(RatingsCli, EvalPrintsTheFigures) {
   EXPECT_EQ(j["results"][0]["ticks_per_route"], 8);
   EXPECT_GT(j["results"][0]["spearman"].get<double>(), j["results"][1]["spearman"].get<double>());
   EXPECT_EQ(Ratings({"eval", "--ticks-per-route", "20,x"}), 2);
+}
+
+TEST_F(RatingsCli, DuplicatesAndZeroTriesAreNoted) {
+  WriteGym("cat,Crimp Line,2026-03-02,send,3,V5\ndan,New Slab,2026-03-05,attempt,0,\n");
+  ASSERT_EQ(
+      Ratings({"fit", "--ticks", P("TICKS.csv"), "--routes", P("ROUTES.csv"), "--format", "json"}),
+      0)
+      << err_;
+  EXPECT_NE(err_.find("note: " + P("TICKS.csv") +
+                      ":7: duplicate of line 5 (counted again; --dedupe counts it once)"),
+            std::string::npos)
+      << err_;
+  EXPECT_NE(err_.find("note: " + P("TICKS.csv") +
+                      ":8: attempts: 0 tries: a session with no try (no games)"),
+            std::string::npos)
+      << err_;
+  EXPECT_NE(err_.find("note: 1 exact duplicate row(s) (counted again; --dedupe), 1 row(s) of 0 "
+                      "tries (no games)"),
+            std::string::npos)
+      << err_;
+  auto j = nlohmann::json::parse(out_);
+  EXPECT_EQ(j["routes"][0]["n"], 4);  // Crimp Line: the duplicate counted
+  ASSERT_EQ(j["climbers"].size(), 4u);
+  EXPECT_EQ(j["climbers"][3]["climber"], "dan");
+  EXPECT_EQ(j["climbers"][3]["n"], 0);
+  ASSERT_EQ(Ratings({"fit", "--ticks", P("TICKS.csv"), "--routes", P("ROUTES.csv"), "--format",
+                     "json", "--dedupe"}),
+            0)
+      << err_;
+  EXPECT_NE(err_.find(":7: duplicate of line 5 (counted once: --dedupe)"), std::string::npos)
+      << err_;
+  j = nlohmann::json::parse(out_);
+  EXPECT_EQ(j["routes"][0]["n"], 3);
+}
+
+TEST_F(RatingsCli, PredictFromTicksOrASavedFit) {
+  WriteGym();
+  Write("PAIRS.csv", "climber,route\nann,Crimp Line\ncat,Blue Roof\nzed,New Slab\nann,Nowhere\n");
+  for (const std::string model : {"tries", "session"}) {
+    SCOPED_TRACE(model);
+    ASSERT_EQ(Ratings({"predict", "--ticks", P("TICKS.csv"), "--routes", P("ROUTES.csv"), "--pairs",
+                       P("PAIRS.csv"), "--model", model}),
+              0)
+        << err_;
+    const std::string csv = out_;
+    EXPECT_EQ(csv.rfind("climber,route,p_flash,p_send\nann,Crimp Line,", 0), 0u) << csv;
+    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5);
+    // The same from the saved fit.
+    ASSERT_EQ(Ratings({"fit", "--ticks", P("TICKS.csv"), "--routes", P("ROUTES.csv"), "--format",
+                       "json", "--model", model, "-o", P("FIT.json")}),
+              0)
+        << err_;
+    ASSERT_EQ(Ratings({"predict", "--fit", P("FIT.json"), "--routes", P("ROUTES.csv"), "--pairs",
+                       P("PAIRS.csv")}),
+              0)
+        << err_;
+    EXPECT_EQ(out_, csv);
+    ASSERT_EQ(
+        Ratings({"predict", "--fit", P("FIT.json"), "--pairs", P("PAIRS.csv"), "--format", "json"}),
+        0)
+        << err_;
+    const auto j = nlohmann::json::parse(out_);
+    EXPECT_EQ(j["model"], model);
+    ASSERT_EQ(j["pairs"].size(), 4u);
+    for (const auto& p : j["pairs"]) {
+      EXPECT_GT(p["p_flash"].get<double>(), 0.0);
+      EXPECT_LE(p["p_flash"].get<double>(), p["p_send"].get<double>());
+      EXPECT_LT(p["p_send"].get<double>(), 1.0);
+    }
+    EXPECT_EQ(j["pairs"][2]["climber_seen"], false);  // zed: at the prior
+    EXPECT_EQ(j["pairs"][3]["route_seen"], false);    // Nowhere: at the prior
+    // ann at a route of the prior mean's difficulty vs zed (the prior) at New Slab (V1).
+    const auto fit = nlohmann::json::parse(*ReadFile(P("FIT.json")));
+    const double k = fit["k"].get<double>();
+    const double a = fit["climbers"][0]["ability"].get<double>();
+    EXPECT_NEAR(j["pairs"][3]["p_flash"].get<double>(),
+                1 / (1 + std::exp(-k * (a - fit["prior_mean"].get<double>()))), 1e-15);
+  }
+  // Errors name the file and field.
+  Write("NOPAIRS.csv", "climber,wall\nann,x\n");
+  EXPECT_EQ(Ratings({"predict", "--ticks", P("TICKS.csv"), "--pairs", P("NOPAIRS.csv")}), 2);
+  EXPECT_NE(err_.find(P("NOPAIRS.csv") + ":1: missing column 'route'"), std::string::npos) << err_;
+  Write("EMPTY.csv", "climber,route\nann,\n");
+  EXPECT_EQ(Ratings({"predict", "--ticks", P("TICKS.csv"), "--pairs", P("EMPTY.csv")}), 2);
+  EXPECT_NE(err_.find(P("EMPTY.csv") + ":2: route: empty"), std::string::npos) << err_;
+  EXPECT_EQ(Ratings({"predict", "--pairs", P("PAIRS.csv")}), 2);
+  EXPECT_NE(err_.find("--ticks: required"), std::string::npos) << err_;
+  Write("BADFIT.json", "{\"routes\":[]}");
+  EXPECT_EQ(Ratings({"predict", "--fit", P("BADFIT.json"), "--pairs", P("PAIRS.csv")}), 2);
+  EXPECT_NE(err_.find(P("BADFIT.json") + ": k: missing"), std::string::npos) << err_;
+  EXPECT_EQ(Ratings({"fit", "--ticks", P("TICKS.csv"), "--model", "whr"}), 2);
+  EXPECT_NE(err_.find("--model: expected tries or session, got 'whr'"), std::string::npos);
 }
 
 }  // namespace

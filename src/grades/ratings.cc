@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <string>
+#include <thread>
 #include <utility>
 
 namespace sb::grades {
@@ -21,6 +23,8 @@ constexpr double kMaxForcing = 1e-2;
 constexpr double kMaxCoordinateStep = 2.0;
 // Coordinate passes before Newton when there is no warm start.
 constexpr int kCoordinateRounds = 4;
+// Alternations of the session offset with the other values before giving up.
+constexpr int kMaxOffsetRounds = 200;
 
 // log(1 + exp(x)) without overflow or loss of precision.
 double Softplus(double x) { return x > 0 ? x + std::log1p(std::exp(-x)) : std::log1p(std::exp(x)); }
@@ -58,11 +62,54 @@ double PriorMean(const RatingProblem& p) {
   return fn > 0 ? felt / fn : 0;
 }
 
+// Problems below this many pairs run on one thread (threads cost more than
+// they save).
+constexpr size_t kMinPairsPerThread = 20000;
+
+// Runs fn(begin, end) over [0, n) split into `threads` contiguous parts, the
+// first on the calling thread. Each part must write only its own outputs.
+template <typename Fn>
+void ParallelFor(size_t n, int threads, const Fn& fn) {
+  if (threads <= 1 || n < 2) {
+    fn(size_t{0}, n);
+    return;
+  }
+  const size_t t = std::min(size_t(threads), n);
+  std::vector<std::thread> pool;
+  pool.reserve(t - 1);
+  for (size_t k = 1; k < t; ++k) {
+    pool.emplace_back([&fn, n, t, k] { fn(n * k / t, n * (k + 1) / t); });
+  }
+  fn(size_t{0}, n / t);
+  for (std::thread& th : pool) th.join();
+}
+
 // The fit's working state: x = [abilities (C), difficulties (R)].
+//
+// The per-pair passes run on threads without changing a bit: every sum of a
+// route's or a climber's terms is made by one thread in pair order, the
+// order of the single-threaded loop (a route's pairs are contiguous; a
+// climber's come from an index built in pair order), so the results are the
+// same for any thread count.
 class Solver {
  public:
-  Solver(const RatingProblem& p, const RatingParams& k, double m)
-      : p_(p), k_(k), m_(m), c_(size_t(p.num_climbers)), r_(size_t(p.num_routes())) {
+  Solver(const RatingProblem& p, const RatingParams& k, double m, double b = 0, int threads = 1)
+      : p_(p), k_(k), m_(m), b_(b), c_(size_t(p.num_climbers)), r_(size_t(p.num_routes())) {
+    threads_ = p.pairs.size() < kMinPairsPerThread ? 1 : std::max(1, threads);
+    if (threads_ > 1) {
+      route_start_.assign(r_ + 1, 0);
+      for (const RatingPair& q : p.pairs) ++route_start_[size_t(q.route) + 1];
+      for (size_t r = 0; r < r_; ++r) route_start_[r + 1] += route_start_[r];
+      climber_start_.assign(c_ + 1, 0);
+      for (const RatingPair& q : p.pairs) ++climber_start_[size_t(q.climber) + 1];
+      for (size_t c = 0; c < c_; ++c) climber_start_[c + 1] += climber_start_[c];
+      climber_pairs_.resize(p.pairs.size());
+      std::vector<size_t> fill(climber_start_.begin(), climber_start_.end() - 1);
+      for (size_t i = 0; i < p.pairs.size(); ++i) {
+        climber_pairs_[fill[size_t(p.pairs[i].climber)]++] = uint32_t(i);
+      }
+      dz_.resize(p.pairs.size());
+    }
     prior_mean_.resize(r_);
     prior_prec_.resize(r_);
     for (size_t r = 0; r < r_; ++r) {
@@ -85,6 +132,10 @@ class Solver {
       const double z = kk * (x[size_t(q.climber)] - x[c_ + size_t(q.route)]);
       if (q.wins) f += q.wins * Softplus(-z);
       if (q.losses) f += q.losses * Softplus(z);
+      if (q.session_wins | q.session_losses) {
+        if (q.session_wins) f += q.session_wins * Softplus(-(z + b_));
+        if (q.session_losses) f += q.session_losses * Softplus(z + b_);
+      }
     }
     for (size_t c = 0; c < c_; ++c) f += 0.5 * pa * (x[c] - m_) * (x[c] - m_);
     for (size_t r = 0; r < r_; ++r) {
@@ -116,15 +167,48 @@ class Solver {
           (d - prior_mean_[r]) / (sd * sd) + pf * (p_.felt_count[r] * d - p_.felt_sum[r]);
       diag_[c_ + r] = prior_prec_[r];
     }
+    if (threads_ > 1) {
+      // Routes (their pairs contiguous): each pair's terms, the route's sums.
+      ParallelFor(r_, threads_, [&](size_t lo, size_t hi) {
+        for (size_t r = lo; r < hi; ++r) {
+          const size_t d = c_ + r;
+          for (size_t i = route_start_[r]; i < route_start_[r + 1]; ++i) {
+            const RatingPair& q = p_.pairs[i];
+            const size_t a = size_t(q.climber);
+            const double pr = Sigmoid(kk * (x[a] - x[d]));
+            const double n = double(q.wins) + double(q.losses);
+            double dz = kk * (n * pr - q.wins);
+            double h = kk * kk * n * pr * (1 - pr);
+            if (q.session_wins | q.session_losses) SessionTerms(q, x[a] - x[d], &dz, &h);
+            dz_[i] = dz;
+            h_[i] = h;
+            (*g)[d] -= dz;
+            diag_[d] += h;
+          }
+        }
+      });
+      // Climbers: their pairs' terms in pair order.
+      ParallelFor(c_, threads_, [&](size_t lo, size_t hi) {
+        for (size_t c = lo; c < hi; ++c) {
+          for (size_t u = climber_start_[c]; u < climber_start_[c + 1]; ++u) {
+            const uint32_t i = climber_pairs_[u];
+            (*g)[c] += dz_[i];
+            diag_[c] += h_[i];
+          }
+        }
+      });
+      return;
+    }
     for (size_t i = 0; i < p_.pairs.size(); ++i) {
       const RatingPair& q = p_.pairs[i];
       const size_t a = size_t(q.climber), d = c_ + size_t(q.route);
       const double pr = Sigmoid(kk * (x[a] - x[d]));
       const double n = double(q.wins) + double(q.losses);
-      const double dz = kk * (n * pr - q.wins);
+      double dz = kk * (n * pr - q.wins);
+      double h = kk * kk * n * pr * (1 - pr);
+      if (q.session_wins | q.session_losses) SessionTerms(q, x[a] - x[d], &dz, &h);
       (*g)[a] += dz;
       (*g)[d] -= dz;
-      const double h = kk * kk * n * pr * (1 - pr);
       h_[i] = h;
       diag_[a] += h;
       diag_[d] += h;
@@ -133,6 +217,29 @@ class Solver {
 
   // y = H v.
   void Multiply(const std::vector<double>& v, std::vector<double>* y) const {
+    if (threads_ > 1) {
+      ParallelFor(r_, threads_, [&](size_t lo, size_t hi) {
+        for (size_t r = lo; r < hi; ++r) {
+          const size_t d = c_ + r;
+          double yd = diag_[d] * v[d];
+          for (size_t i = route_start_[r]; i < route_start_[r + 1]; ++i) {
+            yd -= h_[i] * v[size_t(p_.pairs[i].climber)];
+          }
+          (*y)[d] = yd;
+        }
+      });
+      ParallelFor(c_, threads_, [&](size_t lo, size_t hi) {
+        for (size_t c = lo; c < hi; ++c) {
+          double yc = diag_[c] * v[c];
+          for (size_t u = climber_start_[c]; u < climber_start_[c + 1]; ++u) {
+            const uint32_t i = climber_pairs_[u];
+            yc -= h_[i] * v[c_ + size_t(p_.pairs[i].route)];
+          }
+          (*y)[c] = yc;
+        }
+      });
+      return;
+    }
     for (size_t i = 0; i < c_ + r_; ++i) (*y)[i] = diag_[i] * v[i];
     for (size_t i = 0; i < p_.pairs.size(); ++i) {
       const RatingPair& q = p_.pairs[i];
@@ -216,12 +323,50 @@ class Solver {
               (d - prior_mean_[r]) / (sd * sd) + pf * (p_.felt_count[r] * d - p_.felt_sum[r]);
           h[c_ + r] = prior_prec_[r];
         }
+        if (threads_ > 1) {
+          // One pass per side: a route's pairs are contiguous; a climber's
+          // come from the index, in pair order (the loop below's order).
+          auto term = [&](size_t i, double* dz, double* w) {
+            const RatingPair& q = p_.pairs[i];
+            const size_t a = size_t(q.climber), d = c_ + size_t(q.route);
+            const double pr = Sigmoid(kk * ((*x)[a] - (*x)[d]));
+            const double n = double(q.wins) + double(q.losses);
+            *dz = kk * (n * pr - q.wins);
+            *w = kk * kk * n * pr * (1 - pr);
+            if (q.session_wins | q.session_losses) SessionTerms(q, (*x)[a] - (*x)[d], dz, w);
+          };
+          if (side == 0) {
+            ParallelFor(c_, threads_, [&](size_t clo, size_t chi) {
+              for (size_t c = clo; c < chi; ++c) {
+                for (size_t u = climber_start_[c]; u < climber_start_[c + 1]; ++u) {
+                  double dz = 0, w = 0;
+                  term(climber_pairs_[u], &dz, &w);
+                  g[c] += dz;
+                  h[c] += w;
+                }
+              }
+            });
+          } else {
+            ParallelFor(r_, threads_, [&](size_t rlo, size_t rhi) {
+              for (size_t r = rlo; r < rhi; ++r) {
+                for (size_t i = route_start_[r]; i < route_start_[r + 1]; ++i) {
+                  double dz = 0, w = 0;
+                  term(i, &dz, &w);
+                  g[c_ + r] += -dz;
+                  h[c_ + r] += w;
+                }
+              }
+            });
+          }
+        }
         for (const RatingPair& q : p_.pairs) {
+          if (threads_ > 1) break;
           const size_t a = size_t(q.climber), d = c_ + size_t(q.route);
           const double pr = Sigmoid(kk * ((*x)[a] - (*x)[d]));
           const double n = double(q.wins) + double(q.losses);
-          const double dz = kk * (n * pr - q.wins);
-          const double w = kk * kk * n * pr * (1 - pr);
+          double dz = kk * (n * pr - q.wins);
+          double w = kk * kk * n * pr * (1 - pr);
+          if (q.session_wins | q.session_losses) SessionTerms(q, (*x)[a] - (*x)[d], &dz, &w);
           const size_t i = side == 0 ? a : d;
           g[i] += side == 0 ? dz : -dz;
           h[i] += w;
@@ -233,6 +378,33 @@ class Solver {
     }
   }
 
+  // The session games' gradient (per unit of a - d) and Fisher information
+  // added to dz and h.
+  void SessionTerms(const RatingPair& q, double diff, double* dz, double* h) const {
+    const double kk = k_.logit_per_unit;
+    const double ps = Sigmoid(kk * diff + b_);
+    const double ns = double(q.session_wins) + double(q.session_losses);
+    *dz += kk * (ns * ps - q.session_wins);
+    *h += kk * kk * ns * ps * (1 - ps);
+  }
+
+  // The session offset's gradient and second derivative of the games (its
+  // prior not included) at x.
+  void OffsetDerivatives(const std::vector<double>& x, double* g, double* h) const {
+    const double kk = k_.logit_per_unit;
+    *g = 0;
+    *h = 0;
+    for (const RatingPair& q : p_.pairs) {
+      if (!(q.session_wins | q.session_losses)) continue;
+      const double ps = Sigmoid(kk * (x[size_t(q.climber)] - x[c_ + size_t(q.route)]) + b_);
+      const double ns = double(q.session_wins) + double(q.session_losses);
+      *g += ns * ps - q.session_wins;
+      *h += ns * ps * (1 - ps);
+    }
+  }
+  void set_offset(double b) { b_ = b; }
+  double offset() const { return b_; }
+
   const std::vector<double>& h() const { return h_; }
   const std::vector<double>& diag() const { return diag_; }
 
@@ -240,7 +412,14 @@ class Solver {
   const RatingProblem& p_;
   const RatingParams& k_;
   const double m_;
+  double b_;
   const size_t c_, r_;
+  int threads_ = 1;
+  // With threads: each route's first pair (r_ + 1), each climber's pairs in
+  // pair order (CSR), the pairs' gradient terms.
+  std::vector<size_t> route_start_, climber_start_;
+  std::vector<uint32_t> climber_pairs_;
+  std::vector<double> dz_;
   std::vector<double> prior_mean_, prior_prec_;
   std::vector<double> h_, diag_;
 };
@@ -363,6 +542,46 @@ Result<TickOutcome> ParseTickOutcome(std::string_view text, std::string_view fie
                               std::string(text) + "'");
 }
 
+const char* RatingModelName(RatingModel m) {
+  return m == RatingModel::kSession ? "session" : "tries";
+}
+
+Result<RatingModel> ParseRatingModel(std::string_view text, std::string_view field) {
+  if (text == "tries") return RatingModel::kTries;
+  if (text == "session") return RatingModel::kSession;
+  return Status::InvalidInput(std::string(field) + ": expected tries or session, got '" +
+                              std::string(text) + "'");
+}
+
+Result<Games> TickGamesFor(RatingModel model, TickOutcome outcome, std::optional<int> attempts) {
+  SB_ASSIGN_OR_RETURN(Games g, TickGames(outcome, attempts));
+  if (model == RatingModel::kTries) return g;
+  switch (outcome) {
+    case TickOutcome::kFlash:
+      return Games{1, 0, 1, 0};
+    case TickOutcome::kSend:
+      return Games{0, 1, 1, 0};
+    case TickOutcome::kAttempt:
+      return Games{0, 1, 0, 1};
+  }
+  return Status::Internal("ratings: unknown outcome");
+}
+
+SendChances PredictSend(const RatingParams& params, RatingModel model, double session_offset,
+                        double session_tries, double ability, double difficulty) {
+  const double z = params.logit_per_unit * (ability - difficulty);
+  SendChances out;
+  out.p_flash = Sigmoid(z);
+  if (model == RatingModel::kSession) {
+    out.p_send = Sigmoid(z + session_offset);
+  } else {
+    // 1 - (1 - p)^T with 1 - p = s(-z), in logs for tails.
+    const double t = std::max(1.0, session_tries);
+    out.p_send = -std::expm1(-t * Softplus(z));
+  }
+  return out;
+}
+
 Result<Games> TickGames(TickOutcome outcome, std::optional<int> attempts) {
   if (attempts && (*attempts < 1 || *attempts > kMaxTickAttempts)) {
     return Status::InvalidInput("attempts: expected 1 to " + std::to_string(kMaxTickAttempts) +
@@ -433,7 +652,8 @@ Status RatingProblem::Validate() const {
     if (q.climber < 0 || q.climber >= num_climbers || q.route < 0 || size_t(q.route) >= r_n) {
       return Status::InvalidInput("ratings: pair " + std::to_string(i) + ": index out of range");
     }
-    if (q.wins < 0 || q.losses < 0 || q.wins + q.losses == 0) {
+    if (q.wins < 0 || q.losses < 0 || q.session_wins < 0 || q.session_losses < 0 ||
+        q.wins + q.losses + q.session_wins + q.session_losses == 0) {
       return Status::InvalidInput("ratings: pair " + std::to_string(i) + ": no games");
     }
     if (i > 0 &&
@@ -470,8 +690,8 @@ void RatingProblemBuilder::AddTick(int climber, int route, Games games,
                                    std::optional<double> felt) {
   EnsureClimbers(climber + 1);
   EnsureRoutes(route + 1);
-  entries_.push_back(
-      {(uint64_t(uint32_t(route)) << 32) | uint32_t(climber), games.wins, games.losses});
+  entries_.push_back({(uint64_t(uint32_t(route)) << 32) | uint32_t(climber), games.wins,
+                      games.losses, games.session_wins, games.session_losses});
   ++p_.climber_ticks[size_t(climber)];
   ++p_.route_ticks[size_t(route)];
   if (felt) {
@@ -493,7 +713,10 @@ RatingProblem RatingProblemBuilder::Build() {
   std::vector<size_t> start(r_n + 1, 0);
   for (const Entry& e : entries_) ++start[size_t(e.key >> 32) + 1];
   for (size_t r = 0; r < r_n; ++r) start[r + 1] += start[r];
-  std::vector<Entry> sorted(entries_.size());
+  // Uninitialised (every slot is written below): no pass of zeros over
+  // millions of entries.
+  std::unique_ptr<Entry[]> sorted(new Entry[entries_.size()]);
+  const size_t n_entries = entries_.size();
   {
     std::vector<size_t> fill(start.begin(), start.end() - 1);
     for (const Entry& e : entries_) sorted[fill[size_t(e.key >> 32)]++] = e;
@@ -501,25 +724,32 @@ RatingProblem RatingProblemBuilder::Build() {
   entries_.clear();
   entries_.shrink_to_fit();
   for (size_t r = 0; r < r_n; ++r) {
-    std::sort(sorted.begin() + long(start[r]), sorted.begin() + long(start[r + 1]),
+    std::sort(sorted.get() + start[r], sorted.get() + start[r + 1],
               [](const Entry& a, const Entry& b) { return a.key < b.key; });
   }
   p_.pairs.clear();
-  p_.pairs.reserve(sorted.size());
-  for (const Entry& e : sorted) {
+  p_.pairs.reserve(n_entries);
+  for (size_t k = 0; k < n_entries; ++k) {
+    const Entry& e = sorted[k];
     if (!p_.pairs.empty()) {
       RatingPair& last = p_.pairs.back();
       if (((uint64_t(uint32_t(last.route)) << 32) | uint32_t(last.climber)) == e.key) {
         last.wins += e.wins;
         last.losses += e.losses;
+        last.session_wins += e.session_wins;
+        last.session_losses += e.session_losses;
         continue;
       }
     }
-    p_.pairs.push_back({int32_t(e.key & 0xffffffffu), int32_t(e.key >> 32), e.wins, e.losses});
+    p_.pairs.push_back({int32_t(e.key & 0xffffffffu), int32_t(e.key >> 32), e.wins, e.losses,
+                        e.session_wins, e.session_losses});
   }
   p_.pairs.shrink_to_fit();
+  p_.session_tries = tries_n_ > 0 ? tries_sum_ / double(tries_n_) : 0.0;
   RatingProblem out = std::move(p_);
   p_ = RatingProblem();
+  tries_sum_ = 0;
+  tries_n_ = 0;
   return out;
 }
 
@@ -537,8 +767,16 @@ Result<RatingFit> FitRatings(const RatingProblem& problem, const RatingParams& p
   }
   RatingFit fit;
   fit.prior_mean = PriorMean(problem);
+  fit.model = problem.model;
+  fit.session_tries = problem.session_tries;
+  const bool session = problem.model == RatingModel::kSession;
+  const bool estimate_offset = session && !options.session_offset;
   const double m = fit.prior_mean;
-  Solver solver(problem, params, m);
+  const int threads = options.threads > 0 ? options.threads
+                                          : int(std::max(1u, std::thread::hardware_concurrency()));
+  Solver solver(problem, params, m,
+                session ? options.session_offset.value_or(kSessionOffsetPriorMean) : 0.0,
+                problem.pairs.size() < size_t(UINT32_MAX) ? threads : 1);
   std::vector<double> x(c_n + r_n);
   const RatingFit* warm = options.warm_start;
   for (size_t c = 0; c < c_n; ++c) x[c] = m;
@@ -555,41 +793,59 @@ Result<RatingFit> FitRatings(const RatingProblem& problem, const RatingParams& p
     solver.CoordinatePasses(&x, kCoordinateRounds);
   }
   std::vector<double> g, step, trial(x.size());
-  double f = solver.Objective(x);
   bool converged = false;
-  for (int it = 0; it <= options.max_newton_iterations; ++it) {
-    solver.GradientAndHessian(x, &g);
-    double gmax = 0;
-    for (double v : g) gmax = std::max(gmax, std::abs(v));
-    fit.gradient_max = gmax;
-    if (gmax <= options.gradient_tolerance) {
-      converged = true;
-      break;
+  // The session model's offset b: blocks alternate (Newton on the abilities
+  // and difficulties with b held, then one Newton step on b with them held)
+  // until b's gradient is below the tolerance too; the objective is jointly
+  // convex, so this reaches the joint optimum.
+  for (int round = 0; round < kMaxOffsetRounds; ++round) {
+    double f = solver.Objective(x);
+    converged = false;
+    for (int it = 0; it <= options.max_newton_iterations; ++it) {
+      solver.GradientAndHessian(x, &g);
+      double gmax = 0;
+      for (double v : g) gmax = std::max(gmax, std::abs(v));
+      fit.gradient_max = gmax;
+      if (gmax <= options.gradient_tolerance) {
+        converged = true;
+        break;
+      }
+      if (it == options.max_newton_iterations) break;
+      ++fit.newton_iterations;
+      // Forcing term: loose steps far from the optimum, exact ones near it
+      // (superlinear convergence of inexact Newton, Eisenstat & Walker).
+      const double eta = std::min(kMaxForcing, std::sqrt(gmax));
+      fit.cg_iterations += solver.SolveNewtonStep(g, eta, &step);
+      double slope = 0;
+      for (size_t i = 0; i < x.size(); ++i) slope += g[i] * step[i];
+      // Backtracking (Armijo); the relative slack absorbs rounding once the
+      // decrease is below the objective's last digits.
+      // Once the predicted decrease is below the objective's rounding, the
+      // objective cannot judge a step: take the full Newton step (quadratic
+      // convergence region).
+      const bool judge = -slope > 1e-10 * (1 + std::abs(f));
+      double t = 1;
+      double f_new = f;
+      for (int half = 0; half < 60; ++half, t *= 0.5) {
+        for (size_t i = 0; i < x.size(); ++i) trial[i] = x[i] + t * step[i];
+        f_new = solver.Objective(trial);
+        if (!judge || f_new <= f + 1e-4 * t * slope) break;
+      }
+      x.swap(trial);
+      f = f_new;
     }
-    if (it == options.max_newton_iterations) break;
-    ++fit.newton_iterations;
-    // Forcing term: loose steps far from the optimum, exact ones near it
-    // (superlinear convergence of inexact Newton, Eisenstat & Walker).
-    const double eta = std::min(kMaxForcing, std::sqrt(gmax));
-    fit.cg_iterations += solver.SolveNewtonStep(g, eta, &step);
-    double slope = 0;
-    for (size_t i = 0; i < x.size(); ++i) slope += g[i] * step[i];
-    // Backtracking (Armijo); the relative slack absorbs rounding once the
-    // decrease is below the objective's last digits.
-    // Once the predicted decrease is below the objective's rounding, the
-    // objective cannot judge a step: take the full Newton step (quadratic
-    // convergence region).
-    const bool judge = -slope > 1e-10 * (1 + std::abs(f));
-    double t = 1;
-    double f_new = f;
-    for (int half = 0; half < 60; ++half, t *= 0.5) {
-      for (size_t i = 0; i < x.size(); ++i) trial[i] = x[i] + t * step[i];
-      f_new = solver.Objective(trial);
-      if (!judge || f_new <= f + 1e-4 * t * slope) break;
-    }
-    x.swap(trial);
-    f = f_new;
+    if (!converged || !estimate_offset) break;
+    double gb = 0, hb = 0;
+    solver.OffsetDerivatives(x, &gb, &hb);
+    const double pb = 1 / (kSessionOffsetPriorSd * kSessionOffsetPriorSd);
+    gb += pb * (solver.offset() - kSessionOffsetPriorMean);
+    hb += pb;
+    if (std::abs(gb) <= options.gradient_tolerance) break;
+    converged = false;
+    solver.set_offset(solver.offset() -
+                      std::clamp(gb / hb, -kMaxCoordinateStep, kMaxCoordinateStep));
   }
+  fit.session_offset = session ? solver.offset() : 0.0;
   if (!converged) {
     return Status::Internal("ratings: Newton did not converge (largest gradient " +
                             Num(fit.gradient_max) + ")");
@@ -635,16 +891,20 @@ void AddTickTo(RouteEvidence* e, int climber, Games games, std::optional<double>
     if (q.climber == climber) {
       q.wins += games.wins;
       q.losses += games.losses;
+      q.session_wins += games.session_wins;
+      q.session_losses += games.session_losses;
       return;
     }
   }
-  e->pairs.push_back({climber, 0, games.wins, games.losses});
+  e->pairs.push_back(
+      {climber, 0, games.wins, games.losses, games.session_wins, games.session_losses});
 }
 
 Result<RouteRating> RateRoute(const RouteEvidence& e, const RatingFit& fit,
                               const RatingParams& params) {
   SB_RETURN_IF_ERROR(params.Validate());
   const double kk = params.logit_per_unit;
+  const double b = fit.session_offset;
   const double pp = 1 / (e.prior_sd * e.prior_sd);
   const double pf = 1 / (params.felt_sd * params.felt_sd);
   auto ability = [&](int c) {
@@ -659,6 +919,9 @@ Result<RouteRating> RateRoute(const RouteEvidence& e, const RatingFit& fit,
     for (const RatingPair& q : e.pairs) {
       const double z = kk * (ability(q.climber) - d);
       f += q.wins * Softplus(-z) + q.losses * Softplus(z);
+      if (q.session_wins | q.session_losses) {
+        f += q.session_wins * Softplus(-(z + b)) + q.session_losses * Softplus(z + b);
+      }
     }
     return f;
   };
@@ -673,6 +936,12 @@ Result<RouteRating> RateRoute(const RouteEvidence& e, const RatingFit& fit,
       const double n = double(q.wins) + double(q.losses);
       g -= kk * (n * pr - q.wins);
       h += kk * kk * n * pr * (1 - pr);
+      if (q.session_wins | q.session_losses) {
+        const double ps = Sigmoid(kk * (ability(q.climber) - d) + b);
+        const double ns = double(q.session_wins) + double(q.session_losses);
+        g -= kk * (ns * ps - q.session_wins);
+        h += kk * kk * ns * ps * (1 - ps);
+      }
     }
     if (std::abs(g) <= 1e-12 * (1 + std::abs(d) * h)) break;
     ++out.newton_iterations;
@@ -690,7 +959,12 @@ Result<RouteRating> RateRoute(const RouteEvidence& e, const RatingFit& fit,
   for (const RatingPair& q : e.pairs) {
     const double pr = Sigmoid(kk * (ability(q.climber) - d));
     const double n = double(q.wins) + double(q.losses);
-    const double h = kk * kk * n * pr * (1 - pr);
+    double h = kk * kk * n * pr * (1 - pr);
+    if (q.session_wins | q.session_losses) {
+      const double ps = Sigmoid(kk * (ability(q.climber) - d) + b);
+      const double ns = double(q.session_wins) + double(q.session_losses);
+      h += kk * kk * ns * ps * (1 - ps);
+    }
     const double sd = ability_sd(q.climber);
     if (h > 0) prec += 1 / (1 / h + sd * sd);
   }

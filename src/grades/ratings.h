@@ -13,7 +13,8 @@
 //
 // Everything is on the numeric axis of the discipline (scale.h): V units for
 // bouldering, YDS units for roped. Deterministic: the same problem and
-// parameters give bit-identical fits (single-threaded, fixed loop order).
+// parameters give bit-identical fits, whatever the number of threads (each
+// sum over pairs is made by one thread in a fixed order).
 #ifndef SB_GRADES_RATINGS_H_
 #define SB_GRADES_RATINGS_H_
 
@@ -45,17 +46,40 @@ inline constexpr int kMaxTickAttempts = 500;
 // took at least two tries, and two is the least informative such claim.
 inline constexpr int kSendDefaultAttempts = 2;
 
-// The games one tick stands for, climber against route.
+// The games one tick stands for, climber against route: per-try games at
+// P = s(k (a - d)) and, in the session model, session games at
+// P = s(k (a - d) + b) (b: RatingFit::session_offset).
 struct Games {
   int wins = 0;
   int losses = 0;
+  int session_wins = 0;
+  int session_losses = 0;
 };
+
+// How ticks become games (docs/grades.md, "A model of the session").
+enum class RatingModel {
+  // Every try is a game (TickGames): the gyms' model, the default.
+  kTries = 0,
+  // Two games per tick: its first try (won by a flash) at s(k (a - d)), and
+  // the session (won by a send, whatever the tries) at s(k (a - d) + b).
+  kSession = 1,
+};
+// "tries", "session". Never fails.
+const char* RatingModelName(RatingModel m);
+// Parses RatingModelName() output. Errors: kInvalidInput "FIELD: expected
+// tries or session, got 'TEXT'".
+Result<RatingModel> ParseRatingModel(std::string_view text, std::string_view field = "model");
 
 // A tick as games: flash = 1 win (attempts empty or 1); send after n tries =
 // n - 1 losses then 1 win (n empty: kSendDefaultAttempts; n = 1 is a flash);
 // attempt = n losses (n empty: 1). Errors: kInvalidInput naming "attempts"
 // for n < 1, n > kMaxTickAttempts, or a flash with n != 1. Pure.
 Result<Games> TickGames(TickOutcome outcome, std::optional<int> attempts);
+// A tick as games under `model`: kTries is TickGames; kSession is a flash =
+// first try won + session won, a send = first try lost + session won, an
+// attempt = first try lost + session lost (attempts checked as TickGames
+// does). Pure.
+Result<Games> TickGamesFor(RatingModel model, TickOutcome outcome, std::optional<int> attempts);
 
 // The model's parameters, all on the discipline's axis (grade units).
 struct RatingParams {
@@ -89,12 +113,20 @@ struct RatingPair {
   int32_t route = 0;
   int32_t wins = 0;
   int32_t losses = 0;
+  int32_t session_wins = 0;  // the session model's session games (else 0)
+  int32_t session_losses = 0;
 };
 
 // The data of a fit, indexed 0..num_climbers-1 and 0..num_routes()-1.
 // Build one with RatingProblemBuilder.
 struct RatingProblem {
   int num_climbers = 0;
+  // The games' model (kTries: no session games).
+  RatingModel model = RatingModel::kTries;
+  // Mean tries of a session in the ticks with a known count (a flash 1, a
+  // send after n tries n, an attempt of n tries n; 0 without any): a
+  // session's length for the tries model's p_send.
+  double session_tries = 0;
   // One entry per pair with at least one game, sorted by (route, climber).
   std::vector<RatingPair> pairs;
   // Per route: the setter's grade (nullopt: none), the sum and count of its
@@ -115,6 +147,8 @@ struct RatingProblem {
 // are the caller's (dense, from 0). Not thread-safe.
 class RatingProblemBuilder {
  public:
+  // Room for n ticks (no reallocation up to them).
+  void Reserve(size_t n) { entries_.reserve(n); }
   // Makes sure climbers 0..n-1 / routes 0..n-1 exist (with no ticks).
   void EnsureClimbers(int n);
   void EnsureRoutes(int n);
@@ -123,16 +157,24 @@ class RatingProblemBuilder {
   void AddTick(int climber, int route, Games games, std::optional<double> felt = std::nullopt);
   // The setter's grade of `route` (a value on the axis); the last call wins.
   void SetSetterGrade(int route, double value);
+  void SetModel(RatingModel m) { p_.model = m; }
+  // Counts one session of `tries` tries (known counts only) in session_tries.
+  void AddSessionTries(int tries) {
+    tries_sum_ += tries;
+    ++tries_n_;
+  }
   // The problem (pairs sorted by route then climber); the builder is left empty.
   RatingProblem Build();
 
  private:
   struct Entry {
     uint64_t key;  // route << 32 | climber
-    int32_t wins, losses;
+    int32_t wins, losses, session_wins, session_losses;
   };
   std::vector<Entry> entries_;
   RatingProblem p_;
+  double tries_sum_ = 0;
+  int64_t tries_n_ = 0;
 };
 
 // Routes up to this many get exact marginal variances (the dense Schur
@@ -166,7 +208,22 @@ struct RatingFitOptions {
   // from their priors; a fit with more climbers or routes than the problem
   // is ignored. Not owned; may be null.
   const RatingFit* warm_start = nullptr;
+  // The session model's offset b (logit) held at this value; without, b is
+  // estimated with the abilities and difficulties (joint MAP, prior
+  // N(kSessionOffsetPriorMean, kSessionOffsetPriorSd^2)). Ignored by kTries.
+  std::optional<double> session_offset = std::nullopt;
+  // Threads of the per-pair passes (0: the machine's cores). The fit is
+  // bit-identical for every value (each sum is made by one thread in a fixed
+  // order); problems under 20,000 pairs run on one. One by default: on the
+  // shared 2-core machine threads cost more CPU than they saved
+  // (docs/BENCHMARKS.md).
+  int threads = 1;
 };
+
+// The session offset's prior: a session of a few tries is likelier sent than
+// one try (5 tries at p = 1/2: 97%, logit 3.4, one try logit 0), weakly.
+inline constexpr double kSessionOffsetPriorMean = 2.0;
+inline constexpr double kSessionOffsetPriorSd = 2.0;
 
 // A fit: per route and per climber the posterior mode and the Laplace
 // standard deviation, on the axis.
@@ -174,6 +231,9 @@ struct RatingFit {
   std::vector<double> difficulty, difficulty_sd;
   std::vector<double> ability, ability_sd;
   double prior_mean = 0;  // the climbers' and open routes' prior mean
+  RatingModel model = RatingModel::kTries;
+  double session_offset = 0;  // b of the session model (0 for kTries)
+  double session_tries = 0;   // RatingProblem::session_tries
   bool exact_intervals = false;
   int newton_iterations = 0;
   int cg_iterations = 0;
@@ -193,6 +253,16 @@ struct RatingFit {
 // kInternal when Newton does not converge. Pure; thread-safe.
 Result<RatingFit> FitRatings(const RatingProblem& problem, const RatingParams& params,
                              const RatingFitOptions& options = {});
+
+// A climber's chances on a route, from ability a and difficulty d: p_flash =
+// s(k (a - d)); p_send, a send in one session: the session model's s(k (a -
+// d) + b), the tries model's 1 - (1 - p_flash)^session_tries (one session as
+// long as the fit's mean; at least one try). Pure.
+struct SendChances {
+  double p_flash = 0, p_send = 0;
+};
+SendChances PredictSend(const RatingParams& params, RatingModel model, double session_offset,
+                        double session_tries, double ability, double difficulty);
 
 // Everything the single-route update needs about one route.
 struct RouteEvidence {

@@ -44,13 +44,31 @@ struct RatingsInput {
   // Every refused row, located "file:line: field: reason", in file order
   // (ROUTES.csv first). Refused rows are not in `problem`.
   std::vector<Status> bad_rows;
+  // Rows read but worth a word, located like bad_rows, in file order: exact
+  // duplicates of an earlier row of TICKS.csv ("duplicate of line N";
+  // counted again, or once with ReadOptions::dedupe) and sessions with no
+  // try (outcome attempt, attempts 0: no games; the climber and route are
+  // known, with no tick).
+  std::vector<Status> notes;
+  // Exact duplicate rows of TICKS.csv (every field equal after trimming
+  // blanks to an earlier row's) and rows of 0 tries.
+  int duplicate_rows = 0;
+  int zero_try_rows = 0;
+};
+
+struct RatingsReadOptions {
+  // Count an exact duplicate row once (drop it); without, it counts again.
+  bool dedupe = false;
+  // How ticks become games (ratings.h, TickGamesFor).
+  RatingModel model = RatingModel::kTries;
 };
 
 // Reads TICKS.csv (header with the columns climber, route, date, outcome,
 // attempts, felt_grade in any order; other columns ignored) and, when
 // given, ROUTES.csv (columns route, grade). Per row: names non-empty and at
 // most kMaxRatingNameChars; date YYYY-MM-DD; outcome flash|send|attempt;
-// attempts empty or 1..kMaxTickAttempts (TickGames); grades read by
+// attempts empty or 1..kMaxTickAttempts (TickGames), or 0 with outcome
+// attempt (a session with no try: noted, no games); grades read by
 // ParseGrade in the fit's discipline (a grade of the other discipline is
 // refused); a route listed twice in ROUTES.csv is refused. Row errors are
 // collected in bad_rows (the caller decides whether to fit without them);
@@ -58,7 +76,8 @@ struct RatingsInput {
 // CSV syntax, "file:1: missing column 'X'", an empty file. Pure; thread-safe.
 Result<RatingsInput> ReadRatingsInput(std::string_view ticks_csv, std::string_view ticks_name,
                                       std::optional<std::string_view> routes_csv,
-                                      std::string_view routes_name = "ROUTES.csv");
+                                      std::string_view routes_name = "ROUTES.csv",
+                                      const RatingsReadOptions& options = {});
 
 }  // namespace sb::grades
 

@@ -127,5 +127,118 @@ TEST(RatingsIo, DisciplineFromFeltGradesOrDefault) {
   EXPECT_EQ(moved.problem.felt_count[0], 1);
 }
 
+TEST(RatingsIo, ExactDuplicatesAreNotedAndCountedOnceWithDedupe) {
+  const std::string ticks = std::string(kHeader) +
+                            "ann,r1,2026-03-01,send,3,V4\n"     // 2
+                            "ann,r1,2026-03-01,send,3,V4\n"     // 3 duplicate of 2
+                            " ann , r1,2026-03-01,send,3,V4\n"  // 4 same after trimming
+                            "ann,r1,2026-03-02,send,3,V4\n"     // 5 another day: not one
+                            "bob,r1,2026-03-01,flash,,\n"       // 6
+                            "bob,r1,2026-03-01,flash,,\n";      // 7 duplicate of 6
+  RatingsInput in = Read(ticks);
+  EXPECT_TRUE(in.bad_rows.empty());
+  EXPECT_EQ(in.duplicate_rows, 3);
+  ASSERT_EQ(in.notes.size(), 3u);
+  EXPECT_EQ(in.notes[0].message(),
+            "TICKS.csv:3: duplicate of line 2 (counted again; --dedupe counts it once)");
+  EXPECT_EQ(in.notes[1].message().rfind("TICKS.csv:4: duplicate of line 2", 0), 0u);
+  EXPECT_EQ(in.notes[2].message().rfind("TICKS.csv:7: duplicate of line 6", 0), 0u);
+  // Counted again: four sends of three tries by ann, two flashes by bob.
+  ASSERT_EQ(in.problem.pairs.size(), 2u);
+  EXPECT_EQ(in.problem.pairs[0].wins, 4);
+  EXPECT_EQ(in.problem.pairs[0].losses, 8);
+  EXPECT_EQ(in.problem.route_ticks[0], 6);
+  EXPECT_EQ(in.problem.felt_count[0], 4);
+
+  RatingsReadOptions once;
+  once.dedupe = true;
+  auto deduped = ReadRatingsInput(ticks, "TICKS.csv", std::nullopt, "ROUTES.csv", once);
+  ASSERT_TRUE(deduped.ok());
+  EXPECT_EQ(deduped->duplicate_rows, 3);
+  EXPECT_EQ(deduped->notes[0].message(),
+            "TICKS.csv:3: duplicate of line 2 (counted once: --dedupe)");
+  ASSERT_EQ(deduped->problem.pairs.size(), 2u);
+  EXPECT_EQ(deduped->problem.pairs[0].wins, 2);
+  EXPECT_EQ(deduped->problem.pairs[0].losses, 4);
+  EXPECT_EQ(deduped->problem.pairs[1].wins, 1);
+  EXPECT_EQ(deduped->problem.route_ticks[0], 3);
+  EXPECT_EQ(deduped->problem.felt_count[0], 2);
+}
+
+TEST(RatingsIo, ZeroTriesIsASessionWithoutATry) {
+  const std::string ticks = std::string(kHeader) +
+                            "ann,r1,2026-03-01,attempt,0,\n"  // 2 noted, no games
+                            "bob,r2,2026-03-01,attempt,0,\n"  // 3 bob and r2 known, no tick
+                            "ann,r1,2026-03-02,send,2,\n"     // 4
+                            "cat,r1,2026-03-02,send,0,\n"     // 5 a send takes a try: bad
+                            "cat,r1,2026-03-02,flash,0,\n";   // 6 bad
+  RatingsInput in = Read(ticks);
+  const std::vector<std::string> m = Messages(in);
+  ASSERT_EQ(m.size(), 2u);
+  EXPECT_EQ(m[0], "TICKS.csv:5: attempts: a send takes at least one try, got 0");
+  EXPECT_EQ(m[1], "TICKS.csv:6: attempts: a flash takes at least one try, got 0");
+  EXPECT_EQ(in.zero_try_rows, 2);
+  ASSERT_EQ(in.notes.size(), 2u);
+  EXPECT_EQ(in.notes[0].message(),
+            "TICKS.csv:2: attempts: 0 tries: a session with no try (no games)");
+  EXPECT_EQ(in.climbers, (std::vector<std::string>{"ann", "bob"}));
+  EXPECT_EQ(in.routes, (std::vector<std::string>{"r1", "r2"}));
+  ASSERT_TRUE(in.problem.Validate().ok());
+  ASSERT_EQ(in.problem.pairs.size(), 1u);  // ann's send only
+  EXPECT_EQ(in.problem.pairs[0].wins, 1);
+  EXPECT_EQ(in.problem.pairs[0].losses, 1);
+  EXPECT_EQ(in.problem.route_ticks[0], 1);
+  EXPECT_EQ(in.problem.route_ticks[1], 0);
+  EXPECT_EQ(in.problem.climber_ticks[1], 0);
+  EXPECT_DOUBLE_EQ(in.problem.session_tries, 2.0);
+  // The fit runs: bob and r2 at their priors.
+  auto fit = FitRatings(in.problem, RatingParams::For(in.discipline));
+  ASSERT_TRUE(fit.ok()) << fit.status().message();
+  EXPECT_DOUBLE_EQ(fit->ability[1], fit->prior_mean);
+}
+
+TEST(RatingsIo, SessionModelGamesPerTick) {
+  const std::string ticks = std::string(kHeader) +
+                            "ann,r1,2026-03-01,flash,,\n"
+                            "ann,r1,2026-03-02,send,5,\n"
+                            "ann,r1,2026-03-03,attempt,4,\n"
+                            "ann,r1,2026-03-04,attempt,,\n";
+  RatingsReadOptions o;
+  o.model = RatingModel::kSession;
+  auto in = ReadRatingsInput(ticks, "TICKS.csv", std::nullopt, "ROUTES.csv", o);
+  ASSERT_TRUE(in.ok());
+  ASSERT_EQ(in->problem.pairs.size(), 1u);
+  const RatingPair& q = in->problem.pairs[0];
+  EXPECT_EQ(in->problem.model, RatingModel::kSession);
+  EXPECT_EQ(q.wins, 1);  // first tries: one flash, three misses
+  EXPECT_EQ(q.losses, 3);
+  EXPECT_EQ(q.session_wins, 2);  // sessions: two sent, two not
+  EXPECT_EQ(q.session_losses, 2);
+  EXPECT_DOUBLE_EQ(in->problem.session_tries, 10.0 / 3);  // 1, 5, 4 (the empty count unknown)
+}
+
+// The streaming reader reads what the project's CSV reader reads: quoted
+// names with commas, escaped quotes and line breaks, CRLF, a last row
+// without a line end; rows keep their first physical line.
+TEST(RatingsIo, QuotedFieldsCrlfAndLines) {
+  const std::string ticks =
+      "climber,route,date,outcome,attempts,felt_grade\r\n"
+      "\"ann, the second\",\"The \"\"Roof\"\"\",2026-03-01,flash,,\r\n"
+      "bob,\"Two\nLines\",2026-03-01,send,3,\r\n"
+      "bob,r3,2026-03-01,onsight,,\r\n"  // line 5: after the two-line field
+      "cat,r3,2026-03-02,attempt,2,V3";
+  RatingsInput in = Read(ticks);
+  EXPECT_EQ(in.climbers, (std::vector<std::string>{"ann, the second", "bob", "cat"}));
+  EXPECT_EQ(in.routes, (std::vector<std::string>{"The \"Roof\"", "Two\nLines", "r3"}));
+  ASSERT_EQ(Messages(in),
+            std::vector<std::string>{
+                "TICKS.csv:5: outcome: expected flash, send or attempt, got 'onsight'"});
+  EXPECT_EQ(in.problem.felt_count[2], 1);
+  auto quote = ReadRatingsInput(std::string(kHeader) + "ann,r1,2026-03-01,flash,,\nbob,r\"1,x\n",
+                                "T.csv", std::nullopt);
+  ASSERT_FALSE(quote.ok());
+  EXPECT_EQ(quote.status().message(), "T.csv:3:6: quote inside an unquoted field");
+}
+
 }  // namespace
 }  // namespace sb::grades

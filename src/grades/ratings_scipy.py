@@ -6,9 +6,12 @@ Usage: /usr/bin/python3 ratings_scipy.py IN.json OUT.json
 IN.json: {"cases": [{"params": {"logit_per_unit", "climber_sd", "setter_sd",
 "open_route_sd", "felt_sd"}, "climbers": C, "routes": R, "setter": [value or
 null per route], "ticks": [[climber, route, "flash"|"send"|"attempt",
-attempts or null, felt value or null], ...]}, ...]}
+attempts or null, felt value or null], ...], optional "model": "tries" |
+"session", optional "pairs": [[climber, route], ...] (an index past the
+climbers or routes is one not seen: at the prior)}, ...]}
 OUT.json: {"cases": [{"difficulty": [...], "difficulty_sd": [...],
-"ability": [...], "ability_sd": [...], "prior_mean": m, "success": bool}]}
+"ability": [...], "ability_sd": [...], "prior_mean": m, "success": bool,
+"session_offset": b, "p_flash": [...], "p_send": [...]}]}
 
 An independent re-implementation of the model of docs/grades.md ("Grades
 from ascents") on numpy/scipy, sharing no code with the C++ module: every
@@ -18,6 +21,16 @@ negative log posterior is minimised by scipy.optimize.minimize
 (trust-exact, with its gradient and Hessian written out from the formula),
 and the standard deviations are the square roots of the diagonal of the
 inverse Hessian (numpy.linalg.inv).
+
+The session model (docs/grades.md, "A model of the session") is written out
+here the same way: each tick is a first-try game (won by a flash) at
+s(k (a - d)) and a session game (won by any send) at s(k (a - d) + b), the
+offset b one more unknown with prior N(2, 2^2), minimised jointly with the
+rest; the standard deviations are those of the abilities and difficulties
+with b held at its optimum (the inverse of their block of the Hessian).
+Predictions: p_flash = s(k (a - d)); p_send = s(k (a - d) + b) (session) or
+1 - (1 - p_flash)^T (tries; T the mean tries of the ticks with a known
+count, a flash one try).
 Exit code 3 when scipy is missing (the test then skips with a message).
 """
 import json
@@ -42,6 +55,8 @@ def games(outcome, attempts):
 
 
 def fit(case):
+    if case.get("model") == "session":
+        return fit_session(case)
     k = case["params"]
     s = k["logit_per_unit"]
     C, R = case["climbers"], case["routes"]
@@ -114,9 +129,125 @@ def fit(case):
     x = res.x
     cov = np.linalg.inv(hess(x))
     sds = np.sqrt(np.diag(cov))
-    return {"difficulty": x[C:].tolist(), "difficulty_sd": sds[C:].tolist(),
+    out = {"difficulty": x[C:].tolist(), "difficulty_sd": sds[C:].tolist(),
+           "ability": x[:C].tolist(), "ability_sd": sds[:C].tolist(), "prior_mean": m,
+           "session_offset": 0.0, "success": bool(np.max(np.abs(grad(x))) < 1e-8)}
+    tries = []
+    for _, _, outcome, attempts, _ in case["ticks"]:
+        if attempts is not None:
+            tries.append(attempts)
+        elif outcome == "flash":
+            tries.append(1)
+    T = max(1.0, float(np.mean(tries))) if tries else 1.0
+    pf = predict(case, x[:C], x[C:], m, s)
+    out["p_flash"] = pf.tolist()
+    out["p_send"] = (1 - (1 - pf) ** T).tolist()
+    return out
+
+
+def predict(case, a, d, m, s, offset=0.0):
+    """s(k (a - d) + offset) per pair; unseen climbers and routes at m."""
+    res = []
+    for c, r in case.get("pairs", []):
+        ac = a[c] if c < len(a) else m
+        dr = d[r] if r < len(d) else m
+        res.append(expit(s * (ac - dr) + offset))
+    return np.array(res, dtype=float)
+
+
+def polish(x, grad, hess):
+    """Plain Newton steps from the minimiser's answer until the gradient is
+    below 1e-11 (trust-exact can stop short on the flat session games)."""
+    for _ in range(50):
+        g = grad(x)
+        if np.max(np.abs(g)) < 1e-11:
+            break
+        x = x - np.linalg.solve(hess(x), g)
+    return x
+
+
+def fit_session(case):
+    """The session model: a first-try game and a session game per tick."""
+    k = case["params"]
+    s = k["logit_per_unit"]
+    C, R = case["climbers"], case["routes"]
+    setter = case["setter"]
+    graded = [g for g in setter if g is not None]
+    felt_all = [t[4] for t in case["ticks"] if t[4] is not None]
+    m = float(np.mean(graded)) if graded else (float(np.mean(felt_all)) if felt_all else 0.0)
+    mu = np.array([m if g is None else g for g in setter], dtype=float)
+    sd = np.array([k["open_route_sd"] if g is None else k["setter_sd"] for g in setter])
+    gc, gr, gw, gs, fr, fv = [], [], [], [], [], []
+    for c, r, outcome, attempts, felt in case["ticks"]:
+        # first try: won only by a flash; session: won by a flash or a send
+        gc += [c, c]
+        gr += [r, r]
+        gw += [1.0 if outcome == "flash" else 0.0, 0.0 if outcome == "attempt" else 1.0]
+        gs += [0.0, 1.0]
+        if felt is not None:
+            fr.append(r)
+            fv.append(felt)
+    gc, gr = np.array(gc, dtype=int), np.array(gr, dtype=int)
+    gw, gs = np.array(gw), np.array(gs)
+    fr, fv = np.array(fr, dtype=int), np.array(fv, dtype=float)
+    pa = 1.0 / k["climber_sd"] ** 2
+    pf = 1.0 / k["felt_sd"] ** 2
+    b0, pb = 2.0, 1.0 / 2.0 ** 2
+    n = C + R  # x = [a, d, b]
+
+    def z_of(x):
+        return s * (x[:C][gc] - x[C:n][gr]) + gs * x[n]
+
+    def f(x):
+        a, d, b = x[:C], x[C:n], x[n]
+        z = z_of(x)
+        nll = -np.sum(gw * log_expit(z) + (1 - gw) * log_expit(-z))
+        nll += 0.5 * pa * np.sum((a - m) ** 2) + 0.5 * np.sum(((d - mu) / sd) ** 2)
+        nll += 0.5 * pf * np.sum((fv - d[fr]) ** 2) + 0.5 * pb * (b - b0) ** 2
+        return nll
+
+    def grad(x):
+        a, d, b = x[:C], x[C:n], x[n]
+        e = expit(z_of(x)) - gw
+        g = np.zeros(n + 1)
+        np.add.at(g, gc, s * e)
+        np.add.at(g, C + gr, -s * e)
+        g[n] = np.sum(gs * e) + pb * (b - b0)
+        g[:C] += pa * (a - m)
+        g[C:n] += (d - mu) / sd ** 2
+        np.add.at(g, C + fr, pf * (d[fr] - fv))
+        return g
+
+    def hess(x):
+        p = expit(z_of(x))
+        w = p * (1 - p)
+        H = np.zeros((n + 1, n + 1))
+        np.add.at(H, (gc, gc), s * s * w)
+        np.add.at(H, (C + gr, C + gr), s * s * w)
+        np.add.at(H, (gc, C + gr), -s * s * w)
+        np.add.at(H, (C + gr, gc), -s * s * w)
+        np.add.at(H, (gc, np.full(len(gc), n)), s * gs * w)
+        np.add.at(H, (np.full(len(gc), n), gc), s * gs * w)
+        np.add.at(H, (C + gr, np.full(len(gr), n)), -s * gs * w)
+        np.add.at(H, (np.full(len(gr), n), C + gr), -s * gs * w)
+        H[n, n] = np.sum(gs * w) + pb
+        H[np.arange(C), np.arange(C)] += pa
+        H[C + np.arange(R), C + np.arange(R)] += 1 / sd ** 2
+        np.add.at(H, (C + fr, C + fr), pf)
+        return H
+
+    x0 = np.concatenate([np.full(C, m), mu, [b0]])
+    res = optimize.minimize(f, x0, jac=grad, hess=hess, method="trust-exact",
+                            options={"gtol": 1e-8, "maxiter": 1000})
+    x = polish(res.x, grad, hess)
+    cov = np.linalg.inv(hess(x)[:n, :n])
+    sds = np.sqrt(np.diag(cov))
+    b = float(x[n])
+    return {"difficulty": x[C:n].tolist(), "difficulty_sd": sds[C:].tolist(),
             "ability": x[:C].tolist(), "ability_sd": sds[:C].tolist(), "prior_mean": m,
-            "success": bool(np.max(np.abs(grad(x))) < 1e-8)}
+            "session_offset": b, "success": bool(np.max(np.abs(grad(x))) < 1e-8),
+            "p_flash": predict(case, x[:C], x[C:n], m, s).tolist(),
+            "p_send": predict(case, x[:C], x[C:n], m, s, b).tolist()}
 
 
 def main():

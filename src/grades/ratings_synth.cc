@@ -199,24 +199,30 @@ std::string SynthTruthCsv(const SynthGym& gym) {
   return out;
 }
 
-RatingProblem SynthProblem(const SynthGym& gym) {
+RatingProblem SynthProblem(const SynthGym& gym, RatingModel model) {
   RatingProblemBuilder b;
+  b.SetModel(model);
   b.EnsureClimbers(int(gym.true_ability.size()));
   b.EnsureRoutes(int(gym.true_difficulty.size()));
   for (size_t r = 0; r < gym.setter_grade.size(); ++r) {
     b.SetSetterGrade(int(r), gym.setter_grade[r]);
   }
   for (const SynthTick& t : gym.ticks) {
-    auto games = TickGames(t.outcome, t.attempts);  // generated within range: always ok
+    auto games = TickGamesFor(model, t.outcome, t.attempts);  // within range: always ok
     b.AddTick(t.climber, t.route, games.ok() ? *games : Games{},
               t.felt ? std::optional<double>(*t.felt) : std::nullopt);
+    if (t.attempts) {
+      b.AddSessionTries(*t.attempts);
+    } else if (t.outcome == TickOutcome::kFlash) {
+      b.AddSessionTries(1);
+    }
   }
   return b.Build();
 }
 
 Result<RatingEvaluation> EvaluateSynthGym(const SynthGym& gym, const RatingParams& params,
-                                          const RatingFitOptions& options) {
-  const RatingProblem problem = SynthProblem(gym);
+                                          const RatingFitOptions& options, RatingModel model) {
+  const RatingProblem problem = SynthProblem(gym, model);
   SB_ASSIGN_OR_RETURN(RatingFit fit, FitRatings(problem, params, options));
   RatingEvaluation ev;
   const size_t n = gym.true_difficulty.size();

@@ -77,7 +77,7 @@ std::string SynthRoutesCsv(const SynthGym& gym);
 std::string SynthTruthCsv(const SynthGym& gym);
 
 // The gym as a rating problem (the same games and felt grades TICKS.csv holds).
-RatingProblem SynthProblem(const SynthGym& gym);
+RatingProblem SynthProblem(const SynthGym& gym, RatingModel model = RatingModel::kTries);
 
 // A fit against the truth.
 struct RatingEvaluation {
@@ -96,7 +96,8 @@ struct RatingEvaluation {
 
 // Fits `gym` with `params` and compares with its truth. Errors: from FitRatings.
 Result<RatingEvaluation> EvaluateSynthGym(const SynthGym& gym, const RatingParams& params,
-                                          const RatingFitOptions& options = {});
+                                          const RatingFitOptions& options = {},
+                                          RatingModel model = RatingModel::kTries);
 
 // Spearman's rank correlation (average ranks for ties; NaN when either side
 // is constant or the sizes differ / are below 2). Pure.

@@ -340,5 +340,34 @@ TEST(RatingsSynth, GoalFiguresAtTwentyTicksPerRoute) {
   EXPECT_LT(ev->mae, ev->setter_mae);
 }
 
+// The per-pair passes on threads change no bit: the same fit (values, sds,
+// the session offset, the iteration counts) on 1, 2 and 3 threads, for
+// both models, on a problem above the one-thread size.
+TEST(Ratings, ThreadsChangeNoBit) {
+  const SynthGym gym = SmallGym(300, 1100, 20, 5);  // 22,000 ticks
+  for (RatingModel model : {RatingModel::kTries, RatingModel::kSession}) {
+    SCOPED_TRACE(RatingModelName(model));
+    const RatingProblem p = SynthProblem(gym, model);
+    RatingFitOptions one;
+    one.threads = 1;
+    one.intervals = IntervalMethod::kApproximate;
+    auto base = FitRatings(p, kV, one);
+    ASSERT_TRUE(base.ok()) << base.status().message();
+    for (int t : {2, 3}) {
+      RatingFitOptions o = one;
+      o.threads = t;
+      auto f = FitRatings(p, kV, o);
+      ASSERT_TRUE(f.ok()) << f.status().message();
+      EXPECT_EQ(f->difficulty, base->difficulty) << t;
+      EXPECT_EQ(f->ability, base->ability) << t;
+      EXPECT_EQ(f->difficulty_sd, base->difficulty_sd) << t;
+      EXPECT_EQ(f->ability_sd, base->ability_sd) << t;
+      EXPECT_EQ(f->session_offset, base->session_offset) << t;
+      EXPECT_EQ(f->newton_iterations, base->newton_iterations) << t;
+      EXPECT_EQ(f->cg_iterations, base->cg_iterations) << t;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace sb::grades

@@ -1,0 +1,189 @@
+#include "grades/ratings_real.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <string>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+#include "base/csv.h"
+#include "base/number.h"
+#include "base/text.h"
+
+namespace sb::grades {
+
+namespace {
+
+struct AscentRow {
+  std::string event, route, athlete;
+  bool top = false;
+  std::optional<int> tries;
+  bool heldout = false;
+};
+
+}  // namespace
+
+const char* AscentSplitName(AscentSplit s) {
+  return s == AscentSplit::kTemporal ? "temporal" : "heldout";
+}
+
+Result<AscentSplit> ParseAscentSplit(std::string_view text, std::string_view field) {
+  if (text == "heldout") return AscentSplit::kHeldout;
+  if (text == "temporal") return AscentSplit::kTemporal;
+  return Status::InvalidInput(std::string(field) + ": expected heldout or temporal, got '" +
+                              std::string(text) + "'");
+}
+
+double RocAuc(std::span<const double> score, std::span<const int> label) {
+  const size_t n = score.size();
+  if (n != label.size()) return std::numeric_limits<double>::quiet_NaN();
+  std::vector<size_t> order(n);
+  std::iota(order.begin(), order.end(), size_t{0});
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t a, size_t b) { return score[a] < score[b]; });
+  double rank_sum = 0;
+  size_t pos = 0;
+  for (size_t i = 0; i < n;) {
+    size_t j = i;
+    while (j < n && score[order[j]] == score[order[i]]) ++j;
+    const double avg = (double(i + 1) + double(j)) / 2;  // ranks i+1..j
+    for (size_t t = i; t < j; ++t) {
+      if (label[order[t]]) {
+        rank_sum += avg;
+        ++pos;
+      }
+    }
+    i = j;
+  }
+  const size_t neg = n - pos;
+  if (pos == 0 || neg == 0) return std::numeric_limits<double>::quiet_NaN();
+  return (rank_sum - double(pos) * double(pos + 1) / 2) / (double(pos) * double(neg));
+}
+
+double LogLoss(std::span<const double> p, std::span<const int> label) {
+  if (p.empty() || p.size() != label.size()) return std::numeric_limits<double>::quiet_NaN();
+  double s = 0;
+  for (size_t i = 0; i < p.size(); ++i) {
+    const double q = std::clamp(p[i], 1e-15, 1 - 1e-15);
+    s -= label[i] ? std::log(q) : std::log1p(-q);
+  }
+  return s / double(p.size());
+}
+
+Result<AscentEvaluation> EvaluateAscents(std::string_view csv, std::string_view name,
+                                         AscentSplit split, RatingModel model) {
+  SB_ASSIGN_OR_RETURN(CsvTable t, ParseCsv(csv, name));
+  if (t.rows.empty()) {
+    return Status::InvalidInputAt({std::string(name), 1, 0}, "empty file (expected a header)");
+  }
+  const char* names[] = {"event_id", "route_id", "athlete_id", "top", "top_tries", "heldout"};
+  size_t col[6];
+  for (size_t k = 0; k < 6; ++k) {
+    col[k] = t.rows[0].size();
+    for (size_t i = 0; i < t.rows[0].size(); ++i) {
+      if (Trim(t.rows[0][i]) == names[k]) col[k] = i;
+    }
+    if (col[k] == t.rows[0].size()) {
+      return Status::InvalidInputAt({std::string(name), t.lines[0], 0},
+                                    std::string("missing column '") + names[k] + "'");
+    }
+  }
+  std::vector<AscentRow> rows;
+  rows.reserve(t.rows.size());
+  for (size_t i = 1; i < t.rows.size(); ++i) {
+    const CsvRow& r = t.rows[i];
+    if (r.size() == 1 && Trim(r[0]).empty()) continue;
+    auto bad = [&](const std::string& why) {
+      return Status::InvalidInputAt({std::string(name), t.lines[i], 0}, why);
+    };
+    if (r.size() != t.rows[0].size()) {
+      return bad("expected " + std::to_string(t.rows[0].size()) + " fields, got " +
+                 std::to_string(r.size()));
+    }
+    AscentRow a;
+    a.event = std::string(Trim(r[col[0]]));
+    a.route = std::string(Trim(r[col[1]]));
+    a.athlete = std::string(Trim(r[col[2]]));
+    if (a.route.empty() || a.athlete.empty()) {
+      return bad(a.route.empty() ? "route_id: empty" : "athlete_id: empty");
+    }
+    const std::string_view top = Trim(r[col[3]]), tries = Trim(r[col[4]]), held = Trim(r[col[5]]);
+    if (top != "0" && top != "1")
+      return bad("top: expected 0 or 1, got '" + std::string(top) + "'");
+    if (held != "0" && held != "1") {
+      return bad("heldout: expected 0 or 1, got '" + std::string(held) + "'");
+    }
+    a.top = top == "1";
+    a.heldout = held == "1";
+    if (!tries.empty()) {
+      int n = 0;
+      if (!ParseInt(tries, &n) || n < 0 || n > kMaxTickAttempts || (a.top && n < 1)) {
+        return bad("top_tries: expected 0 to " + std::to_string(kMaxTickAttempts) +
+                   " (1 or more with a top), got '" + std::string(tries) + "'");
+      }
+      a.tries = n;
+    }
+    rows.push_back(std::move(a));
+  }
+  auto in_fit = [&](const AscentRow& a) {
+    return split == AscentSplit::kHeldout ? !a.heldout : a.event != kTemporalEvent;
+  };
+  std::unordered_map<std::string, int> climber, route;
+  RatingProblemBuilder b;
+  b.SetModel(model);
+  AscentEvaluation ev;
+  for (const AscentRow& a : rows) {
+    if (!in_fit(a)) continue;
+    ++ev.fit_rows;
+    const int c = climber.emplace(a.athlete, int(climber.size())).first->second;
+    const int r = route.emplace(a.route, int(route.size())).first->second;
+    b.EnsureClimbers(c + 1);
+    b.EnsureRoutes(r + 1);
+    if (a.tries && *a.tries == 0) continue;  // a session with no try: no games
+    const TickOutcome o = !a.top                       ? TickOutcome::kAttempt
+                          : (a.tries && *a.tries == 1) ? TickOutcome::kFlash
+                                                       : TickOutcome::kSend;
+    SB_ASSIGN_OR_RETURN(Games g, TickGamesFor(model, o, a.tries));
+    b.AddTick(c, r, g);
+    if (a.tries) b.AddSessionTries(*a.tries);
+  }
+  ev.fit_climbers = int(climber.size());
+  ev.fit_routes = int(route.size());
+  const RatingParams params = RatingParams::For(Discipline::kBouldering);
+  RatingFitOptions opt;
+  opt.intervals = IntervalMethod::kApproximate;  // predictions use the values only
+  SB_ASSIGN_OR_RETURN(RatingFit fit, FitRatings(b.Build(), params, opt));
+  ev.session_offset = fit.session_offset;
+  ev.newton_iterations = fit.newton_iterations;
+  std::vector<double> p_send, p_flash;
+  std::vector<int> top, flash;
+  for (const AscentRow& a : rows) {
+    if (in_fit(a)) continue;
+    auto ci = climber.find(a.athlete);
+    if (split == AscentSplit::kTemporal && ci == climber.end()) continue;  // unseen athletes
+    auto ri = route.find(a.route);
+    const double ability = ci != climber.end() ? fit.ability[size_t(ci->second)] : fit.prior_mean;
+    const double difficulty =
+        ri != route.end() ? fit.difficulty[size_t(ri->second)] : fit.prior_mean;
+    const SendChances s =
+        PredictSend(params, fit.model, fit.session_offset, fit.session_tries, ability, difficulty);
+    p_send.push_back(s.p_send);
+    p_flash.push_back(s.p_flash);
+    top.push_back(a.top ? 1 : 0);
+    flash.push_back(a.top && a.tries && *a.tries == 1 ? 1 : 0);
+  }
+  ev.scored_rows = int(top.size());
+  if (ev.scored_rows > 0) {
+    ev.top_rate = double(std::accumulate(top.begin(), top.end(), 0)) / ev.scored_rows;
+  }
+  ev.top_auc = RocAuc(p_send, top);
+  ev.top_log_loss = LogLoss(p_send, top);
+  ev.flash_auc = RocAuc(p_flash, flash);
+  ev.flash_log_loss = LogLoss(p_flash, flash);
+  return ev;
+}
+
+}  // namespace sb::grades
