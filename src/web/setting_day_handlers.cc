@@ -57,8 +57,22 @@ Result<app::SettingDayRequest> DayRequestOf(const json& body, int64_t gym) {
       }
       slot.band = s.value("band", "");
       slot.style = s.value("style", "");
+      if (s.contains("novelty")) {
+        if (!s["novelty"].is_string()) {
+          return Status::InvalidInput(f + ".novelty: expected close, mix or new");
+        }
+        Result<app::Novelty> n = app::ParseNovelty(s["novelty"].get<std::string>());
+        if (!n.ok()) return n.status().WithPrefix(f);
+        slot.novelty = *n;
+      }
       r.slots.push_back(std::move(slot));
     }
+  }
+  if (body.contains("novelty")) {
+    if (!body["novelty"].is_string()) {
+      return Status::InvalidInput("novelty: expected close, mix or new");
+    }
+    SB_ASSIGN_OR_RETURN(r.novelty, app::ParseNovelty(body["novelty"].get<std::string>()));
   }
   if (body.contains("candidates")) {
     if (!body["candidates"].is_number_integer()) {
@@ -72,16 +86,20 @@ Result<app::SettingDayRequest> DayRequestOf(const json& body, int64_t gym) {
 
 json CandidateJson(const app::DayCandidate& c) {
   json params = json::parse(c.params_json, nullptr, false);
-  return json{{"id", c.id},
+  json out{{"id", c.id},
               {"moves", c.moves},
               {"score", c.score.score},
               {"rejected", c.score.rejected},
               {"reasons", c.score.reasons},
               {"warnings", c.score.warnings},
               {"estimated_band", c.score.estimated_band},
+              {"new_moves", c.score.new_moves},
+              {"novelty", app::NoveltyName(c.score.novelty)},
               {"params", params},
               {"inputs", c.inputs},
               {"input_names", c.input_names}};
+  if (c.accepted_route) out["accepted_route"] = c.accepted_route;
+  return out;
 }
 
 json ProposalJson(const app::SettingDayProposal& p) {
@@ -90,8 +108,10 @@ json ProposalJson(const app::SettingDayProposal& p) {
     json cands = json::array();
     for (const app::DayCandidate& c : s.candidates) cands.push_back(CandidateJson(c));
     json j{{"wall", s.slot.wall},  {"wall_name", s.wall_name}, {"band", s.slot.band},
-           {"style", s.slot.style}, {"candidates", cands}};
+           {"style", s.slot.style}, {"novelty", app::NoveltyName(s.novelty)},
+           {"candidates", cands}};
     if (!s.note.empty()) j["note"] = s.note;
+    if (s.accepted_route) j["accepted_route"] = s.accepted_route;
     slots.push_back(std::move(j));
   }
   return json{{"gym", p.gym}, {"date", p.date}, {"slots", slots}};
@@ -234,7 +254,15 @@ void PageSettingDay(Exchange& x) {
          std::to_string(w.id) + "\"" + (on ? " checked" : "") + "> " + E(w.name) + "</label>\n";
   }
   if (walls->empty()) b += "<p class=\"empty\">This gym has no walls yet.</p>\n";
-  b += "</fieldset><label>Candidates per slot <input type=\"number\" name=\"k\" min=\"1\" max=\"" +
+  std::string novelty = x.req.Query("novelty").value_or("mix");
+  b += "</fieldset><label>Novelty <select name=\"novelty\" id=\"day-novelty\">";
+  for (app::Novelty n : {app::Novelty::kClose, app::Novelty::kMix, app::Novelty::kNew}) {
+    b += "<option value=\"" + std::string(app::NoveltyName(n)) + "\"" +
+         (novelty == app::NoveltyName(n) ? " selected" : "") + ">" + app::NoveltyWords(n) +
+         "</option>";
+  }
+  b += "</select></label>\n<label>Candidates per slot <input type=\"number\" name=\"k\" "
+       "min=\"1\" max=\"" +
        std::to_string(app::kMaxDayCandidates) + "\" value=\"" + std::to_string(k) +
        "\"></label>\n<button type=\"submit\" id=\"day-propose\">Propose</button></form>\n";
 
@@ -244,8 +272,12 @@ void PageSettingDay(Exchange& x) {
     r.date = date;
     r.walls = chosen;
     r.candidates = k;
+    Result<app::Novelty> level = app::ParseNovelty(novelty);
+    if (level.ok()) r.novelty = *level;
     int retry = 0;
-    Result<app::SettingDayProposal> p = x.services.setting_days.Propose(x.caller.viewer, r, &retry);
+    Result<app::SettingDayProposal> p =
+        level.ok() ? x.services.setting_days.Propose(x.caller.viewer, r, &retry)
+                   : Result<app::SettingDayProposal>(level.status());
     if (!p.ok()) {
       b += "<p class=\"msg bad\" role=\"alert\">" + E(p.status().message()) + "</p>\n";
     } else {
@@ -259,43 +291,111 @@ void PageSettingDay(Exchange& x) {
       int slot_no = 0;
       for (const app::DaySlotProposal& s : p->slots) {
         ++slot_no;
-        b += "<section class=\"day-slot\" id=\"slot-" + std::to_string(slot_no) + "\"><h2>" +
-             E(s.wall_name) + ": " + E(s.slot.band.empty() ? "any grade" : s.slot.band) + " · " +
-             E(s.slot.style.empty() ? "any style" : s.slot.style) + "</h2>\n";
+        // Issue 33: one compact card per slot: the best candidate, the others
+        // a click away, the rejected apart (no Accept), an accepted slot filled.
+        b += "<section class=\"day-slot\" id=\"slot-" + std::to_string(slot_no) + "\"" +
+             (s.accepted_route ? " data-accepted=\"" + std::to_string(s.accepted_route) + "\""
+                               : std::string()) +
+             "><h2>" + E(s.wall_name) + ": " +
+             E(s.slot.band.empty() ? "any grade" : s.slot.band) + " · " +
+             E(s.slot.style.empty() ? "any style" : s.slot.style) + " · " +
+             E(app::NoveltyWords(s.novelty)) + "</h2>\n";
         if (!s.note.empty()) b += "<p class=\"note\">" + E(s.note) + "</p>\n";
-        int rank = 0;
+        if (s.accepted_route) {
+          const std::string id = std::to_string(s.accepted_route);
+          b += "<p class=\"day-accepted\">Accepted: <a href=\"/routes/" + id + "\">route " + id +
+               "</a> · <a href=\"/variations/" + id + ".pdf\">card</a> · <a href=\"/routes/" + id +
+               "/tag.pdf\">tag</a></p>\n";
+        }
+        std::vector<const app::DayCandidate*> kept, rejected;
         for (const app::DayCandidate& c : s.candidates) {
-          ++rank;
-          json accept{{"date", date},
-                      {"wall", s.slot.wall},
-                      {"candidate", CandidateJson(c)}};
-          b += "<article class=\"day-candidate\" data-id=\"" + E(c.id) + "\"><h3>" +
-               std::to_string(rank) + ". score " + Fixed1(c.score.score) + " / 100" +
-               (c.score.rejected ? " <span class=\"bad\">(rejected)</span>" : "") +
-               (c.score.estimated_band.empty() ? "" : " · estimated " + E(c.score.estimated_band)) +
-               "</h3>\n<p class=\"inputs\">From: ";
+          (c.score.rejected ? rejected : kept).push_back(&c);
+        }
+        auto card = [&](const app::DayCandidate& c, int rank, bool offer) {
+          std::string h = "<article class=\"day-candidate" +
+                           std::string(c.score.rejected ? " rejected" : "") +
+                           (c.accepted_route ? " accepted" : "") + "\" data-id=\"" + E(c.id) +
+                           "\"><h3>" + std::to_string(rank) + ". score " + Fixed1(c.score.score) +
+                           " / 100" +
+                           (c.score.rejected ? " <span class=\"bad\">(rejected)</span>" : "") +
+                           (c.score.estimated_band.empty()
+                                ? ""
+                                : " · estimated " + E(c.score.estimated_band)) +
+                           " · " + std::to_string(c.score.new_moves) + " of " +
+                           std::to_string(c.moves.size()) + " moves new</h3>\n";
+          // Why, in a setter's words (the technical reasons in the fold).
+          std::string why;
+          for (const std::string& r : c.score.reasons) {
+            if (r.find("bits") != std::string::npos || r.rfind("novelty ", 0) == 0) continue;
+            why += (why.empty() ? "" : "; ") + r;
+          }
+          h += "<p class=\"why\">" + std::string(rank == 1 && !c.score.rejected
+                                                       ? "Why it ranks first: "
+                                                       : "Why: ") +
+               E(why) + "</p>\n<p class=\"inputs\">From: ";
           for (size_t i = 0; i < c.inputs.size(); ++i) {
-            b += (i ? ", " : "") + std::string("<a href=\"/routes/") + std::to_string(c.inputs[i]) +
-                 "\">" + E(c.input_names[i]) + "</a>";
+            h += (i ? ", " : "") + std::string("<a href=\"/routes/") +
+                 std::to_string(c.inputs[i]) + "\">" + E(c.input_names[i]) + "</a>";
           }
-          b += "</p>\n<ol class=\"moves\">";
-          for (const std::string& m : c.moves) b += "<li>" + E(m) + "</li>";
-          b += "</ol>\n<details><summary>Why it ranks here</summary><ul class=\"reasons\">";
-          for (const std::string& r2 : c.score.reasons) b += "<li>" + E(r2) + "</li>";
-          b += "</ul>";
+          h += "</p>\n<ol class=\"moves\">";
+          for (const std::string& m : c.moves) h += "<li>" + E(m) + "</li>";
+          h += "</ol>\n<details class=\"no-print\"><summary>Details</summary><ul "
+               "class=\"reasons\">";
+          for (const std::string& r2 : c.score.reasons) h += "<li>" + E(r2) + "</li>";
+          h += "</ul>";
           if (!c.score.warnings.empty()) {
-            b += "<p>Warnings:</p><ul class=\"warnings\">";
-            for (const std::string& w : c.score.warnings) b += "<li>" + E(w) + "</li>";
-            b += "</ul>";
+            h += "<p>Warnings:</p><ul class=\"warnings\">";
+            for (const std::string& w : c.score.warnings) h += "<li>" + E(w) + "</li>";
+            h += "</ul>";
           }
-          b += "</details>\n<form class=\"day-accept no-print\" data-accept=\"" +
-               E(accept.dump()) + "\" data-url=\"/api/gyms/" + g +
-               "/setting-days/accept\"><label>Setter <select name=\"setter\">" + setters +
-               "</select></label> <button type=\"submit\">Accept</button><p class=\"msg\" "
-               "role=\"status\"></p></form></article>\n";
+          h += "</details>\n";
+          if (c.accepted_route) {
+            h += "<p class=\"msg\">Accepted as <a href=\"/routes/" +
+                 std::to_string(c.accepted_route) + "\">route " +
+                 std::to_string(c.accepted_route) + "</a></p>\n";
+          } else if (offer) {
+            json accept{{"date", date}, {"wall", s.slot.wall}, {"candidate", CandidateJson(c)}};
+            h += "<form class=\"day-accept no-print\" data-accept=\"" + E(accept.dump()) +
+                 "\" data-url=\"/api/gyms/" + g +
+                 "/setting-days/accept\"><label>Setter <select name=\"setter\">" + setters +
+                 "</select></label> <button type=\"submit\">Accept</button><p class=\"msg\" "
+                 "role=\"status\"></p></form>";
+          }
+          return h + "</article>\n";
+        };
+        const bool filled = s.accepted_route != 0;
+        int rank = 0;
+        std::string others;
+        for (const app::DayCandidate* c : kept) {
+          ++rank;
+          if (!filled && rank == 1) {
+            b += card(*c, rank, true);
+          } else if (filled && c->accepted_route) {
+            b += card(*c, rank, false);
+          } else {
+            others += card(*c, rank, !filled);
+          }
+        }
+        if (!others.empty()) {
+          b += "<details class=\"day-others no-print\"><summary>" +
+               std::string(filled ? "The slot's other candidates" : "Other candidates") +
+               "</summary>\n" + others + "</details>\n";
+        }
+        if (!rejected.empty()) {
+          b += "<details class=\"day-rejected no-print\"><summary>Rejected (" +
+               std::to_string(rejected.size()) +
+               "): not offered, see why</summary>\n";
+          for (const app::DayCandidate* c : rejected) b += card(*c, ++rank, false);
+          b += "</details>\n";
+        }
+        if (kept.empty() && !filled) {
+          b += "<p class=\"msg bad\">No candidate to offer for this slot" +
+               std::string(s.note.empty() ? "." : ": see the note above.") + "</p>\n";
         }
         b += "</section>\n";
       }
+      b += "<p class=\"no-print\"><button type=\"button\" onclick=\"window.print()\" "
+           "id=\"day-print\">Print the day</button></p>\n";
     }
   }
   b += "<script src=\"/static/setting_day.js\" defer></script>\n";
