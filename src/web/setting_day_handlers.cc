@@ -3,7 +3,9 @@
 
 #include <climits>
 
+#include "app/clock.h"
 #include "app/setting_day.h"
+#include "base/date.h"
 #include "base/number.h"
 #include "base/text.h"
 
@@ -266,12 +268,40 @@ void PageSettingDay(Exchange& x) {
        std::to_string(app::kMaxDayCandidates) + "\" value=\"" + std::to_string(k) +
        "\"></label>\n<button type=\"submit\" id=\"day-propose\">Propose</button></form>\n";
 
-  if (!date.empty() && !chosen.empty()) {
+  // Issue 33: a setting day is planned for today or later.
+  const std::string today = UtcDateText(app::SystemClock().Now());
+  const bool past = !date.empty() && IsIsoDate(date) && date < today;
+  if (past) {
+    b += "<p class=\"msg bad\" role=\"alert\" id=\"day-past\">" + E(date) +
+         " is in the past (today is " + E(today) +
+         "): choose today or a later date to plan a setting day; its sheet stays at <a "
+         "href=\"/gyms/" + g + "/setting-day/sheet?date=" + E(date) + "\">the day's sheet</a>.</p>\n";
+  }
+  if (!date.empty() && !chosen.empty() && !past) {
     app::SettingDayRequest r;
     r.gym = *gid;
     r.date = date;
     r.walls = chosen;
     r.candidates = k;
+    // Issue 33: the slots as edited on the page (sw, sb, ss: wall, band and
+    // style, repeated in slot order); none = the proposed ones.
+    {
+      std::vector<std::string> sw, sb, ss;
+      for (auto [key, out] : {std::pair<const char*, std::vector<std::string>*>{"sw", &sw},
+                              {"sb", &sb}, {"ss", &ss}}) {
+        auto [lo, hi] = x.req.query.equal_range(key);
+        for (auto it = lo; it != hi; ++it) out->push_back(it->second);
+      }
+      for (size_t i = 0; i < sw.size() && i < app::kMaxDaySlots; ++i) {
+        std::optional<int64_t> wall = ParseId(sw[i]);
+        if (!wall) continue;
+        app::DaySlot slot;
+        slot.wall = *wall;
+        slot.band = i < sb.size() ? std::string(Trim(sb[i])) : "";
+        slot.style = i < ss.size() ? std::string(Trim(ss[i])) : "";
+        r.slots.push_back(std::move(slot));
+      }
+    }
     Result<app::Novelty> level = app::ParseNovelty(novelty);
     if (level.ok()) r.novelty = *level;
     int retry = 0;
@@ -394,6 +424,37 @@ void PageSettingDay(Exchange& x) {
         }
         b += "</section>\n";
       }
+      // The slots, editable: band and style per slot, proposed again.
+      b += "<form method=\"get\" id=\"day-slots\" class=\"no-print\"><h2>Change the "
+           "slots</h2><input type=\"hidden\" name=\"date\" value=\"" + E(date) + "\">";
+      for (int64_t w : chosen) {
+        b += "<input type=\"hidden\" name=\"walls\" value=\"" + std::to_string(w) + "\">";
+      }
+      b += "<input type=\"hidden\" name=\"k\" value=\"" + std::to_string(k) +
+           "\"><input type=\"hidden\" name=\"novelty\" value=\"" + E(novelty) + "\">\n";
+      int n_slot = 0;
+      for (const app::DaySlotProposal& s : p->slots) {
+        ++n_slot;
+        const std::string no = std::to_string(n_slot);
+        b += "<fieldset class=\"slot-edit\"><legend>Slot " + no + ": " + E(s.wall_name) +
+             "</legend><input type=\"hidden\" name=\"sw\" value=\"" +
+             std::to_string(s.slot.wall) + "\"><label>Band <input name=\"sb\" id=\"slot-band-" +
+             no + "\" size=\"6\" value=\"" + E(s.slot.band) +
+             "\"></label> <label>Style <select name=\"ss\" id=\"slot-style-" + no +
+             "\"><option value=\"\">any style</option>";
+        std::vector<std::string> styles = app::kDefaultSlotStyles;
+        if (!s.slot.style.empty() &&
+            std::find(styles.begin(), styles.end(), s.slot.style) == styles.end()) {
+          styles.push_back(s.slot.style);
+        }
+        for (const std::string& st : styles) {
+          b += "<option" + std::string(st == s.slot.style ? " selected" : "") + ">" + E(st) +
+               "</option>";
+        }
+        b += "</select></label></fieldset>\n";
+      }
+      b += "<button type=\"submit\" id=\"day-slots-propose\">Propose these slots</button>"
+           "</form>\n";
       b += "<p class=\"no-print\"><button type=\"button\" onclick=\"window.print()\" "
            "id=\"day-print\">Print the day</button></p>\n";
     }
