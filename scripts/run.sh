@@ -5,9 +5,10 @@ set -euo pipefail
 build=${1:-build}
 cd "$(dirname "$0")/.."
 # A variation of two bundled examples first (skipped when they are absent):
-# the setter's preset, a variation a setter could set (docs/setting.md).
+# the setter's preset, a variation a setter could set, at the `mix` novelty
+# level (a third to two thirds of its moves new; docs/setting.md).
 if [[ -f data/examples/crimp-ladder.crdl && -f data/examples/slab-dance.crdl ]]; then
-  "$build/strangebeta" vary --preset setter data/examples/crimp-ladder.crdl data/examples/slab-dance.crdl || true
+  "$build/strangebeta" vary --preset setter --novelty mix data/examples/crimp-ladder.crdl data/examples/slab-dance.crdl || true
 fi
 
 # Then the web app on the embedded default database (seeded with the bundled

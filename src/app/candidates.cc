@@ -1,6 +1,7 @@
 #include "app/candidates.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -45,6 +46,12 @@ std::optional<int> BandOf(const std::string& text, grades::Discipline d,
   return grades::Band(grades::Difficulty(*g, d));
 }
 
+// The levels' IC centres (NoveltyCentre).
+constexpr double kCloseFactor = 1.0 / 3.0;
+constexpr double kCloseStep = 0.5;  // of the ring step: the close level's rings are tighter
+constexpr double kNewFactor = 3.0;
+constexpr int kNewSkip = 100;
+
 std::string Plural(int n, const char* one, const char* many) {
   return std::to_string(n) + " " + (n == 1 ? one : many);
 }
@@ -64,32 +71,52 @@ Status CandidateSlot::Validate() const {
 
 MoveChange ChangeAgainstInputs(const std::vector<chaos::VariedMove>& moves,
                                const std::vector<chaos::InputRoute>& inputs) {
-  using Key = std::pair<Hand, std::string>;
-  std::set<Key> starts;
-  std::set<std::pair<Key, Key>> follows;
-  MoveChange out;
-  out.moves = static_cast<int>(moves.size());
-  for (const chaos::InputRoute& in : inputs) {
-    const std::vector<Move>& m = in.route.moves;
-    if (!m.empty()) starts.insert({m[0].hand, m[0].text});
-    for (size_t i = 1; i < m.size(); ++i) {
-      follows.insert({{m[i - 1].hand, m[i - 1].text}, {m[i].hand, m[i].text}});
-    }
-    if (out.same_as.empty() && m.size() == moves.size() &&
-        std::equal(m.begin(), m.end(), moves.begin(),
-                   [](const Move& a, const chaos::VariedMove& b) {
-                     return a.hand == b.hand && a.text == b.text;
-                   })) {
-      out.same_as = in.name;
-    }
+  return plan::NewMoveCount(moves, inputs);
+}
+
+const char* NoveltyName(Novelty n) {
+  switch (n) {
+    case Novelty::kClose: return "close";
+    case Novelty::kMix: return "mix";
+    case Novelty::kNew: return "new";
   }
-  for (size_t i = 0; i < moves.size(); ++i) {
-    const Key k{moves[i].hand, moves[i].text};
-    const bool known = i == 0 ? starts.count(k) > 0
-                              : follows.count({{moves[i - 1].hand, moves[i - 1].text}, k}) > 0;
-    out.new_moves += known ? 0 : 1;
+  return "mix";
+}
+
+const char* NoveltyWords(Novelty n) {
+  switch (n) {
+    case Novelty::kClose: return "close to its inputs";
+    case Novelty::kMix: return "a mix of its inputs and new moves";
+    case Novelty::kNew: return "mostly new";
   }
-  return out;
+  return "";
+}
+
+Result<Novelty> ParseNovelty(std::string_view text) {
+  std::string t(text);
+  for (char& c : t) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  for (Novelty n : {Novelty::kClose, Novelty::kMix, Novelty::kNew}) {
+    if (t == NoveltyName(n)) return n;
+  }
+  return Status::InvalidInput("novelty: \"" + std::string(text) +
+                              "\" is not a level (close, mix or new)");
+}
+
+Novelty NoveltyOf(int new_moves, int moves) {
+  if (moves <= 0 || 3 * new_moves < moves) return Novelty::kClose;
+  if (3 * new_moves <= 2 * moves) return Novelty::kMix;
+  return Novelty::kNew;
+}
+
+chaos::VaryParams NoveltyCentre(const chaos::VaryParams& params, Novelty n) {
+  chaos::VaryParams p = params;
+  for (int k = 0; k < 3; ++k) {
+    const double d = params.var_ic[k] - params.ref_ic[k];
+    if (n == Novelty::kClose) p.var_ic[k] = params.ref_ic[k] + d * kCloseFactor;
+    if (n == Novelty::kNew) p.var_ic[k] = params.ref_ic[k] + d * kNewFactor;
+  }
+  if (n == Novelty::kNew) p.skip = std::max(params.skip, kNewSkip);
+  return p;
 }
 
 bool RejectedByFilter(const plan::PlanWarnings& warnings, std::vector<std::string>* why,
@@ -188,6 +215,8 @@ CandidateScore CandidateScorer::Score(const plan::RoutePlan& p) {
   // Change against the inputs: one rule (ChangeAgainstInputs, kMinNewMoves).
   const MoveChange change = ChangeAgainstInputs(p.variation.moves, p.variation.inputs);
   s.new_moves = change.new_moves;
+  s.moves = change.moves;
+  s.novelty = NoveltyOf(change.new_moves, change.moves);
   const std::string changed = std::to_string(change.new_moves) + " of " +
                               Plural(change.moves, "move", "moves") + " new against its inputs";
   if (!change.same_as.empty()) {
@@ -199,6 +228,8 @@ CandidateScore CandidateScorer::Score(const plan::RoutePlan& p) {
                         " asked; the inputs one after the other make one)");
   } else {
     s.reasons.push_back(changed);
+    s.reasons.push_back(std::string("novelty ") + NoveltyName(s.novelty) + ": " +
+                        NoveltyWords(s.novelty));
   }
 
   // Warnings.
@@ -292,6 +323,9 @@ CandidateScore CandidateScorer::Score(const plan::RoutePlan& p) {
 void RankCandidates(std::vector<Candidate>* c) {
   std::stable_sort(c->begin(), c->end(), [](const Candidate& a, const Candidate& b) {
     if (a.score.rejected != b.score.rejected) return !a.score.rejected;
+    if (a.score.in_novelty != b.score.in_novelty) return a.score.in_novelty;
+    const bool aw = a.score.warnings.empty(), bw = b.score.warnings.empty();
+    if (aw != bw) return aw;
     if (a.score.score != b.score.score) return a.score.score > b.score.score;
     return a.index < b.index;
   });
@@ -301,7 +335,9 @@ Result<std::vector<Candidate>> MakeGallery(const std::vector<chaos::InputRoute>&
                                            const chaos::VaryParams& params,
                                            const SettingRequest& setting,
                                            const CandidateSlot& slot,
-                                           const GalleryOptions& options) {
+                                           const GalleryOptions& options,
+                                           std::string* note) {
+  if (note) note->clear();
   if (options.rings < 0 || options.rings > kMaxGalleryRings) {
     return Status::InvalidInput("rings: between 0 and " + std::to_string(kMaxGalleryRings));
   }
@@ -309,41 +345,89 @@ Result<std::vector<Candidate>> MakeGallery(const std::vector<chaos::InputRoute>&
     return Status::InvalidInput("ring_step: a positive number");
   }
   SB_ASSIGN_OR_RETURN(CandidateScorer scorer, CandidateScorer::Make(slot, options.model));
-  std::vector<chaos::State> ics = {params.var_ic};
   static constexpr int kDirs[8][2] = {{1, 0}, {1, 1}, {0, 1}, {-1, 1},
                                       {-1, 0}, {-1, -1}, {0, -1}, {1, -1}};
-  for (int r = 1; r <= options.rings; ++r) {
-    for (const auto& d : kDirs) {
-      chaos::State ic = params.var_ic;
-      ic[0] += d[0] * r * options.ring_step;
-      ic[1] += d[1] * r * options.ring_step;
-      ics.push_back(ic);
-    }
-  }
   std::vector<Candidate> out;
-  std::set<chaos::State> used;
+  std::set<std::pair<chaos::State, int>> used;
   Status first_error;
   SmoothingRequest no_smoothing;
-  for (size_t i = 0; i < ics.size(); ++i) {
-    chaos::VaryParams p = params;
-    p.var_ic = ics[i];
-    SmoothingOutcome outcome;
-    Result<plan::RoutePlan> plan = BuildPlan(inputs, p, setting, no_smoothing, &outcome);
-    if (!plan.ok()) {
-      if (first_error.ok()) first_error = plan.status();
-      continue;
+  int index = 0;
+  // The level asked first, then the others, nearest first (mix before the
+  // far end), only while no kept candidate is in the level asked.
+  std::vector<Novelty> order = {options.novelty};
+  if (options.novelty == Novelty::kMix) order.insert(order.end(), {Novelty::kClose, Novelty::kNew});
+  if (options.novelty == Novelty::kClose) order.insert(order.end(), {Novelty::kMix, Novelty::kNew});
+  if (options.novelty == Novelty::kNew) order.insert(order.end(), {Novelty::kMix, Novelty::kClose});
+  auto met = [&] {
+    return std::any_of(out.begin(), out.end(), [&](const Candidate& c) {
+      return !c.score.rejected && c.score.novelty == options.novelty;
+    });
+  };
+  for (size_t level = 0; level < order.size() && (level == 0 || !met()); ++level) {
+    const chaos::VaryParams centre = NoveltyCentre(params, order[level]);
+    std::vector<chaos::State> ics = {centre.var_ic};
+    const double step =
+        options.ring_step * (order[level] == Novelty::kClose ? kCloseStep : 1.0);
+    for (int r = 1; r <= options.rings; ++r) {
+      for (const auto& d : kDirs) {
+        chaos::State ic = centre.var_ic;
+        ic[0] += d[0] * r * step;
+        ic[1] += d[1] * r * step;
+        ics.push_back(ic);
+      }
     }
-    const chaos::State at = plan->search ? plan->search->used_ic : ics[i];
-    if (!used.insert(at).second) continue;
-    Candidate c;
-    c.score = scorer.Score(*plan);
-    c.plan = std::move(plan).value();
-    c.searched_from = ics[i];
-    c.index = static_cast<int>(i);
-    out.push_back(std::move(c));
+    for (size_t i = 0; i < ics.size(); ++i, ++index) {
+      chaos::VaryParams p = centre;
+      p.var_ic = ics[i];
+      SmoothingOutcome outcome;
+      Result<plan::RoutePlan> plan = BuildPlan(inputs, p, setting, no_smoothing, &outcome);
+      if (!plan.ok()) {
+        if (first_error.ok()) first_error = plan.status();
+        continue;
+      }
+      const chaos::State at = plan->search ? plan->search->used_ic : ics[i];
+      if (!used.insert({at, p.skip}).second) continue;
+      Candidate c;
+      c.score = scorer.Score(*plan);
+      c.score.in_novelty = c.score.novelty == options.novelty;
+      c.plan = std::move(plan).value();
+      c.searched_from = ics[i];
+      c.skip = p.skip;
+      c.index = index;
+      out.push_back(std::move(c));
+    }
   }
   if (out.empty()) return first_error;
   RankCandidates(&out);
+  const Candidate& best = out.front();
+  if (note && (!met() || !best.score.warnings.empty())) {
+    // Why the level asked is not met without a warning, in words a setter
+    // can act on.
+    int in_level = 0;
+    std::string rejected_why;
+    for (const Candidate& c : out) {
+      if (c.score.novelty != options.novelty) continue;
+      ++in_level;
+      for (const std::string& r : c.score.reasons) {
+        if (rejected_why.empty() && r.rfind("rejected:", 0) == 0) rejected_why = r.substr(10);
+      }
+    }
+    const std::string level = std::string(NoveltyWords(options.novelty)) + " (novelty " +
+                              NoveltyName(options.novelty) + ")";
+    if (met()) {
+      *note = "every candidate " + level + " carries a warning (" + best.score.warnings.front() +
+              "): check it at the wall, or try another novelty or other inputs";
+    } else {
+      *note = "no candidate " + level + " passes the filter: " +
+              (in_level == 0 ? "none of the " + std::to_string(out.size()) +
+                                   " candidates made lands there with these inputs"
+                             : std::to_string(in_level) + " land there but are rejected (" +
+                                   rejected_why + ")") +
+              "; the best shown is " + NoveltyWords(best.score.novelty) + " (" +
+              std::to_string(best.score.new_moves) + " of " + std::to_string(best.score.moves) +
+              " moves new): try novelty " + NoveltyName(best.score.novelty) + " or other inputs";
+    }
+  }
   return out;
 }
 
@@ -355,10 +439,12 @@ Result<GalleryChoice> ChooseFromGallery(const std::vector<chaos::InputRoute>& in
                                         const CandidateSlot& slot,
                                         const GalleryOptions& options) {
   GalleryChoice out;
-  SB_ASSIGN_OR_RETURN(out.candidates, MakeGallery(inputs, *params, setting, slot, options));
+  SB_ASSIGN_OR_RETURN(out.candidates,
+                      MakeGallery(inputs, *params, setting, slot, options, &out.note));
   out.count = static_cast<int>(out.candidates.size());
   for (const Candidate& c : out.candidates) out.kept += c.score.rejected ? 0 : 1;
   params->var_ic = out.candidates.front().searched_from;
+  params->skip = out.candidates.front().skip;
   return out;
 }
 

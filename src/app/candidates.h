@@ -15,6 +15,7 @@
 #define SB_APP_CANDIDATES_H_
 
 #include <memory>
+#include <string_view>
 #include <string>
 #include <vector>
 
@@ -72,14 +73,27 @@ bool RejectedByFilter(const plan::PlanWarnings& warnings, std::vector<std::strin
 // where the second input begins, so a candidate must change more than that.
 inline constexpr int kMinNewMoves = 2;
 
-// How much `moves` change `inputs` (the rule above). Pure.
-struct MoveChange {
-  int new_moves = 0;
-  int moves = 0;
-  std::string same_as;  // the name of an input whose moves it equals ("" = none)
-};
+// How much `moves` change `inputs` (the rule above; plan::NewMoveCount, the
+// one change count plans, galleries and setting days show). Pure.
+using MoveChange = plan::MoveChange;
 MoveChange ChangeAgainstInputs(const std::vector<chaos::VariedMove>& moves,
                                const std::vector<chaos::InputRoute>& inputs);
+
+// Novelty the setter chooses (issue 33), the paper's effect/change picker in
+// three words: the share of a candidate's moves new against its inputs
+// (ChangeAgainstInputs) is below a third at `close`, a third to two thirds
+// at `mix` (the default), above two thirds at `new`.
+enum class Novelty { kClose, kMix, kNew };
+// "close", "mix", "new".
+const char* NoveltyName(Novelty n);
+// A setter's words: "close to its inputs", "a mix of its inputs and new
+// moves", "mostly new".
+const char* NoveltyWords(Novelty n);
+// Reads a level name (case-blind); kInvalidInput "novelty: ..." naming the
+// three otherwise. Pure.
+Result<Novelty> ParseNovelty(std::string_view text);
+// The level a share of new_moves of moves falls in (no moves: close). Pure.
+Novelty NoveltyOf(int new_moves, int moves);
 
 // A candidate's score and why. Value type.
 struct CandidateScore {
@@ -95,6 +109,11 @@ struct CandidateScore {
   std::string estimated_band;         // the plan's estimated grade ("" = none)
   int style_moves = 0;                // moves having the slot's style
   int new_moves = 0;                  // moves new against its inputs (MoveChange)
+  int moves = 0;                      // its moves
+  Novelty novelty = Novelty::kClose;  // the level its share of new moves falls in
+  // The level asked of the gallery (GalleryOptions::novelty), set by
+  // MakeGallery: whether this candidate is in it (ranked first when kept).
+  bool in_novelty = true;
   double bits_per_move = 0.0;         // under the Markov model
   double input_bits_per_move = 0.0;   // the inputs' own, each route scored alone
 };
@@ -133,22 +152,38 @@ struct Candidate {
   plan::RoutePlan plan;
   CandidateScore score;
   chaos::State searched_from{};  // the IC its search started at
+  int skip = 0;                  // the transient it was made with (its level's)
   int index = 0;                 // its place in the order the ICs were tried
 };
 
-// Orders candidates: kept before rejected, then higher score, then lower
-// index. Stable and deterministic.
+// Orders candidates: kept before rejected, then those in the novelty level
+// asked (CandidateScore::in_novelty), then those without any warning, then
+// higher score (smoothness, the slot's grade and style), then lower index.
+// Stable and deterministic.
 void RankCandidates(std::vector<Candidate>* candidates);
 
 // How a gallery is made.
 struct GalleryOptions {
-  // Candidate ICs: params.var_ic, then the 8 points of each ring at
-  // `ring_step`, 2·`ring_step`, ... (x-y plane, ring by ring, each ring from
-  // +x counter-clockwise), `rings` rings.
+  // Candidate ICs: the level's centre (NoveltyCentre of params.var_ic), then
+  // the 8 points of each ring at `ring_step`, 2·`ring_step`, ... (half
+  // that at `close`; x-y plane, ring by ring, each ring from +x
+  // counter-clockwise), `rings` rings.
   int rings = 1;
   double ring_step = 1.0;
   std::string model = "default";  // for the smoothness part
+  // The level asked: its ICs are tried first; when none of their candidates
+  // is kept in the level, the other levels' ICs are tried too (nearest level
+  // first) and the note says so.
+  Novelty novelty = Novelty::kMix;
 };
+// Where a level's ICs are centred, the way the paper's picker moves away
+// from the reference IC for more change: `mix` is the IC asked (the default
+// preset's, 3 units from the reference), `close` the point a third of the way
+// from the reference to it (a variation trajectory near the reference maps
+// most moves onto themselves), `new` the IC asked pushed away from the
+// reference to three times the distance, with a transient (skip) of 100
+// steps (the "more" preset's) so the trajectories decorrelate. Pure.
+chaos::VaryParams NoveltyCentre(const chaos::VaryParams& params, Novelty n);
 // At most this many rings: 1 + 8·rings plans are built, each with its own
 // IC search (about 0.1 s each on the project's 2-core machine).
 inline constexpr int kMaxGalleryRings = 4;
@@ -158,11 +193,14 @@ inline constexpr int kMaxGalleryRings = 4;
 // starts), scores the rest for `slot` and ranks them (RankCandidates).
 // Errors: bad options (kInvalidInput), the scorer's, and when no candidate
 // could be made, the first candidate's error. Deterministic.
+// `*note` (optional) says, in words, when the level asked could not be met
+// and why ("" otherwise).
 Result<std::vector<Candidate>> MakeGallery(const std::vector<chaos::InputRoute>& inputs,
                                            const chaos::VaryParams& params,
                                            const SettingRequest& setting,
                                            const CandidateSlot& slot,
-                                           const GalleryOptions& options);
+                                           const GalleryOptions& options,
+                                           std::string* note = nullptr);
 
 // The gallery's best, as the setter's preset uses it (`vary --preset setter`
 // and the web's "preset": "setter": one step for both). Value type.
@@ -171,12 +209,14 @@ struct GalleryChoice {
   int rank = 1;                       // the chosen one's rank (always the best)
   int count = 0;                      // candidates made (duplicates dropped)
   int kept = 0;                       // of them, kept by the filter
+  std::string note;                   // MakeGallery's (the level not met, why)
 };
 // The plans a gallery with `options` builds (its ICs: 1 + 8 per ring), what a
 // caller charges to a work budget before the work starts. Pure.
 int GalleryPlanCount(const GalleryOptions& options);
 // Makes the gallery (MakeGallery with `slot` and `options`) from `*params`
-// and sets params->var_ic to the IC the best candidate's search started at,
+// and sets params->var_ic (and skip) to the IC the best candidate's search
+// started at,
 // so app::BuildPlan with `*params` and `setting` rebuilds that candidate and
 // a stored variation with those parameters rebuilds the same. Errors:
 // MakeGallery's. Deterministic.

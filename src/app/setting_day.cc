@@ -86,7 +86,40 @@ struct SlotWork {
   std::vector<chaos::InputRoute> inputs;
   std::vector<int64_t> ids;
   std::vector<std::string> names;
+  std::vector<DayCandidate> all;  // every distinct candidate of its gallery, ranked
 };
+
+// A candidate's identity for "accepted already": its parameters and inputs.
+using CandidateKey = std::pair<std::string, std::vector<int64_t>>;
+struct AcceptedRoute {
+  int64_t id = 0;
+  std::optional<int64_t> wall;
+  std::string name, wall_name;
+};
+
+// The planned routes of the gym's day made from a candidate (variations
+// with parameters and inputs), by their candidate key.
+Result<std::map<CandidateKey, AcceptedRoute>> AcceptedOf(Routes* routes, store::Store* store,
+                                                        const Viewer& v, int64_t gym,
+                                                        const std::string& date,
+                                                        int limit) {
+  RouteQuery q;
+  q.gym = gym;
+  q.state = "planned";
+  q.limit = limit;
+  SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> list, routes->ListRows(v, q));
+  std::map<CandidateKey, AcceptedRoute> out;
+  for (const store::RouteRecord& r : list) {
+    if (r.planned_on != date || !r.is_variation) continue;
+    Result<store::RouteRecord> full = store->GetRoute(r.id);
+    if (!full.ok()) continue;
+    CandidateKey k;
+    k.first = full->params_json;
+    for (const store::VariationInput& in : full->inputs) k.second.push_back(in.route_id.value_or(0));
+    out.emplace(std::move(k), AcceptedRoute{r.id, r.wall_id, r.name, r.wall_name});
+  }
+  return out;
+}
 
 }  // namespace
 
@@ -170,7 +203,7 @@ std::vector<DaySlot> DefaultSlots(
       }
       if (share < least) least = share, style = s;
     }
-    out.push_back(DaySlot{w.id, grades::BandName(d, best), style});
+    out.push_back(DaySlot{w.id, grades::BandName(d, best), style, std::nullopt});
   }
   return out;
 }
@@ -230,7 +263,7 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
     // The gaps of the dashboard once the walls' due routes are stripped.
     SB_ASSIGN_OR_RETURN(GymDashboard g, dashboard_->Get(v, req.gym));
     for (const SettingSlot& s : ProposeSlots(g.walls, req.walls, static_cast<int>(kMaxDaySlots))) {
-      if (walls.count(s.wall_id)) slots.push_back(DaySlot{s.wall_id, s.band, s.style});
+      if (walls.count(s.wall_id)) slots.push_back(DaySlot{s.wall_id, s.band, s.style, std::nullopt});
     }
   }
   std::vector<Wall> unslotted;
@@ -425,9 +458,13 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
       CandidateSlot cs;
       cs.band = work[i].slot.band;
       cs.style = work[i].slot.style;
+      GalleryOptions go;
+      go.novelty = work[i].slot.novelty.value_or(req.novelty);
+      std::string level_note;
       Result<std::vector<Candidate>> gallery =
-          MakeGallery(work[i].inputs, params, setting, cs, GalleryOptions{});
+          MakeGallery(work[i].inputs, params, setting, cs, go, &level_note);
       DaySlotProposal& sp = out.slots[i];
+      sp.novelty = go.novelty;
       if (!gallery.ok()) {
         sp.note = "no candidate: " + gallery.status().message();
         continue;
@@ -436,25 +473,21 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
       // setter: the first (best ranked) is shown, the others skipped.
       std::set<std::vector<std::string>> shown;
       for (const Candidate& c : *gallery) {
-        if (static_cast<int>(sp.candidates.size()) >= req.candidates) break;
         std::vector<std::string> moves = MoveStrings(c.plan.variation);
         if (!shown.insert(moves).second) continue;
         DayCandidate dc;
         chaos::VaryParams p = params;
         p.var_ic = c.searched_from;
+        p.skip = c.skip;
         dc.params_json = plan::ParametersJson(p, setting);
         dc.moves = std::move(moves);
         dc.score = c.score;
         dc.inputs = work[i].ids;
         dc.input_names = work[i].names;
         dc.id = CandidateId(dc.params_json, dc.inputs, dc.moves);
-        sp.candidates.push_back(std::move(dc));
+        work[i].all.push_back(std::move(dc));
       }
-      if (static_cast<int>(sp.candidates.size()) < req.candidates) {
-        sp.note = std::to_string(sp.candidates.size()) +
-                  " distinct candidates near the preset's IC (the others repeat the moves of one "
-                  "shown or found none keeping start and finish)";
-      }
+      sp.note = level_note;
     }
   };
   std::vector<std::thread> threads;
@@ -462,6 +495,38 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
   for (int t = 1; t < n; ++t) threads.emplace_back(run);
   run();
   for (std::thread& t : threads) t.join();
+
+  // Issue 33: one candidate is offered in one slot only (slot order: the
+  // first slot that has it keeps it), the day's accepted ones marked, and an
+  // accepted candidate fills its slot.
+  SB_ASSIGN_OR_RETURN(auto accepted, AcceptedOf(routes_, store_, v, req.gym, req.date,
+                                                options_.limits.max_tag_sheet_routes));
+  std::set<std::string> offered_ids;
+  std::set<std::vector<std::string>> offered_moves;
+  std::set<int64_t> filled;  // accepted routes already given to a slot
+  for (size_t i = 0; i < work.size(); ++i) {
+    DaySlotProposal& sp = out.slots[i];
+    for (DayCandidate& dc : work[i].all) {
+      if (static_cast<int>(sp.candidates.size()) >= req.candidates) break;
+      if (offered_ids.count(dc.id) || offered_moves.count(dc.moves)) continue;
+      offered_ids.insert(dc.id);
+      offered_moves.insert(dc.moves);
+      if (auto a = accepted.find({dc.params_json, dc.inputs});
+          a != accepted.end() && a->second.wall == sp.slot.wall && !filled.count(a->second.id) &&
+          sp.accepted_route == 0) {
+        dc.accepted_route = a->second.id;
+        sp.accepted_route = a->second.id;
+        filled.insert(a->second.id);
+      }
+      sp.candidates.push_back(std::move(dc));
+    }
+    if (sp.note.empty() && !work[i].inputs.empty() &&
+        static_cast<int>(sp.candidates.size()) < req.candidates) {
+      sp.note = "only " + std::to_string(sp.candidates.size()) +
+                " different routes from these inputs (the others repeat one shown here or in an "
+                "earlier slot, or could not keep the inputs' start and finish)";
+    }
+  }
   return out;
 }
 
@@ -494,6 +559,18 @@ Result<int64_t> SettingDays::Accept(const Viewer& v, const AcceptRequest& req) {
     inputs.push_back({r.name, std::move(route).value()});
   }
   SB_RETURN_IF_ERROR(CheckRequestSearchBudget(*setting, *params, total));
+  // Issue 33: a candidate accepted twice is said, not planned twice.
+  {
+    SB_ASSIGN_OR_RETURN(auto accepted, AcceptedOf(routes_, store_, v, req.gym, req.date,
+                                                  options_.limits.max_tag_sheet_routes));
+    auto a = accepted.find({plan::ParametersJson(*params, *setting), req.inputs});
+    if (a != accepted.end()) {
+      return Status::Conflict("candidate: already accepted on " + req.date + " as \"" +
+                              a->second.name + "\" (route " + std::to_string(a->second.id) +
+                              (a->second.wall_name.empty() ? "" : ", " + a->second.wall_name) +
+                              "); choose another candidate for this slot");
+    }
+  }
   SB_ASSIGN_OR_RETURN(plan::RoutePlan plan, BuildPlan(inputs, *params, *setting, {}, nullptr));
   const std::vector<std::string> moves = MoveStrings(plan.variation);
   if (req.moves && *req.moves != moves) {

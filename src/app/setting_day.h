@@ -70,6 +70,9 @@ struct DaySlot {
   int64_t wall = 0;
   std::string band;
   std::string style;
+  // Issue 33: how new its candidates are (GalleryOptions::novelty); unset =
+  // the request's.
+  std::optional<Novelty> novelty;
 };
 
 // What a proposal asks for.
@@ -79,6 +82,7 @@ struct SettingDayRequest {
   std::vector<int64_t> walls;   // the walls to reset (at least one)
   std::vector<DaySlot> slots;   // empty: the dashboard's ProposeSlots, else DefaultSlots
   int candidates = kDefaultDayCandidates;
+  Novelty novelty = Novelty::kMix;  // issue 33: every slot's unless it says
   // kInvalidInput naming the field: date, walls (none, too many), slots (too
   // many; a slot's wall not among `walls`; an unknown style), candidates.
   Status Validate() const;
@@ -93,6 +97,8 @@ struct DayCandidate {
   std::string params_json;         // plan::ParametersJson: re-derives the moves
   std::vector<int64_t> inputs;     // input route ids, in order
   std::vector<std::string> input_names;
+  // Issue 33: the planned route it became on this day ("accepted"), 0 = none.
+  int64_t accepted_route = 0;
 };
 
 struct DaySlotProposal {
@@ -101,6 +107,10 @@ struct DaySlotProposal {
   std::string discipline;          // the wall's
   std::vector<DayCandidate> candidates;  // ranked, best first (kept before rejected)
   std::string note;                // why there are none or fewer ("" = none)
+  Novelty novelty = Novelty::kMix; // the level its gallery was asked
+  // Issue 33: the planned route of this day accepted from this slot's
+  // gallery (0 = none yet): the slot is filled.
+  int64_t accepted_route = 0;
 };
 
 struct SettingDayProposal {
@@ -177,7 +187,9 @@ class SettingDays {
   // state planned, planned on `date`, the setter assigned. Returns its id.
   // Errors: as Propose for roles; kInvalidInput naming the field (date,
   // params, inputs, setter not a member, wall); kConflict "moves: ..." when
-  // re-deriving gives other moves than those posted (or another id).
+  // re-deriving gives other moves than those posted (or another id);
+  // kConflict "candidate: already accepted ..." when a planned route of the
+  // gym's day was made from the same parameters and inputs (issue 33).
   Result<int64_t> Accept(const Viewer& v, const AcceptRequest& req);
 
   // The gym's planned routes of `date` (all dates when ""), by wall and name,

@@ -5,6 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <set>
+#include <tuple>
+
 #include "app/app_test_util.h"
 
 namespace sb::app {
@@ -141,8 +144,13 @@ TEST_F(SettingDayTest, AProposalRanksKeptCandidatesFirstAndIsDeterministic) {
       seen_rejected = true;
     }
   }
+  // Within a group (kept or not, in the novelty level asked or not, with or
+  // without warnings: issue 33's order) by score.
+  auto group = [](const CandidateScore& c) {
+    return std::make_tuple(c.rejected, !c.in_novelty, !c.warnings.empty());
+  };
   for (size_t i = 1; i < s.candidates.size(); ++i) {
-    if (s.candidates[i].score.rejected == s.candidates[i - 1].score.rejected) {
+    if (group(s.candidates[i].score) == group(s.candidates[i - 1].score)) {
       EXPECT_LE(s.candidates[i].score.score, s.candidates[i - 1].score.score);
     }
   }
@@ -230,6 +238,45 @@ TEST_F(SettingDayTest, AcceptingMakesAPlannedRouteAndChecksTheMoves) {
   EXPECT_EQ((*day)[0].id, *id);
   EXPECT_EQ((*day)[0].wall_name, "Cave");
   EXPECT_EQ(services_->setting_days.Planned(head_, gym_, "2026-12-02")->size(), 0u);
+
+  // Issue 33: accepted twice is said (409), whoever the setter, and the
+  // reload shows the slot filled by it.
+  a.setter = "head";
+  Result<int64_t> again = services_->setting_days.Accept(setter, a);
+  ASSERT_EQ(again.status().code(), Status::Code::kConflict);
+  EXPECT_NE(again.status().message().find("already accepted"), std::string::npos)
+      << again.status().message();
+  Result<SettingDayProposal> reload = services_->setting_days.Propose(setter, Request(1));
+  ASSERT_TRUE(reload.ok()) << reload.status().message();
+  EXPECT_EQ(reload->slots[0].accepted_route, *id);
+  EXPECT_EQ(reload->slots[0].candidates[0].accepted_route, *id);
+  // Another day: not accepted there.
+  SettingDayRequest other_day = Request(1);
+  other_day.date = "2026-12-02";
+  Result<SettingDayProposal> other = services_->setting_days.Propose(setter, other_day);
+  ASSERT_TRUE(other.ok());
+  EXPECT_EQ(other->slots[0].accepted_route, 0);
+}
+
+// Issue 33: slots alike on one day (same wall, band and style: the same
+// inputs' galleries) never offer one candidate twice.
+TEST_F(SettingDayTest, NoCandidateIsOfferedInTwoSlots) {
+  SettingDayRequest r = Request(3);
+  r.slots = {{wall_, "V4", "crimp"}, {wall_, "V4", "crimp"}, {wall_, "V4", "crimp"}};
+  Result<SettingDayProposal> p = services_->setting_days.Propose(head_, r);
+  ASSERT_TRUE(p.ok()) << p.status().message();
+  std::set<std::string> ids;
+  std::set<std::vector<std::string>> moves;
+  int offered = 0;
+  for (const DaySlotProposal& s : p->slots) {
+    for (const DayCandidate& c : s.candidates) {
+      ++offered;
+      EXPECT_TRUE(ids.insert(c.id).second) << "candidate " << c.id << " in two slots";
+      EXPECT_TRUE(moves.insert(c.moves).second) << "the same moves in two slots";
+    }
+    if (static_cast<int>(s.candidates.size()) < r.candidates) EXPECT_NE(s.note, "");
+  }
+  EXPECT_GT(offered, 3);
 }
 
 }  // namespace

@@ -258,8 +258,9 @@ Result<CreatedVariation> Variations::Create(const Viewer& v, const VariationRequ
   chaos::VaryParams params = req.params;
   std::optional<GalleryChoice> gallery;
   if (req.gallery) {  // the setter's preset: the IC of the gallery's best
-    SB_ASSIGN_OR_RETURN(gallery, ChooseFromGallery(inputs, &params, req.setting, *req.gallery,
-                                                   GalleryOptions{}));
+    GalleryOptions go;
+    go.novelty = req.novelty;
+    SB_ASSIGN_OR_RETURN(gallery, ChooseFromGallery(inputs, &params, req.setting, *req.gallery, go));
   }
   // The parameters with the setter's request: one codec (plan::ParametersJson),
   // also the key of "the same request made again".

@@ -126,6 +126,8 @@ struct VariationRequest {
   // GalleryOptions{}: GalleryPlanCount plans instead of one; the caller
   // charges them), stored in the parameters so the variation rebuilds the same.
   std::optional<CandidateSlot> gallery;
+  // Issue 33: the gallery's novelty level (GalleryOptions::novelty).
+  Novelty novelty = Novelty::kMix;
 };
 
 struct CreatedVariation {

@@ -53,8 +53,8 @@ int RunVary(const std::vector<std::string>& args) {
       "--tokens varies sequences that are not routes, one token a line (docs/dance.md).\n"
       "--preset setter: the default preset's parameters with --max-repeat 1, --keep-start,\n"
       "--keep-finish and --alternate-hands; variations from 9 ICs around the variation IC,\n"
-      "filtered and ranked as a setting day's gallery (--band, --style: the slot); prints\n"
-      "the best, then the ranking.",
+      "filtered and ranked as a setting day's gallery (--band, --style: the slot;\n"
+      "--novelty close|mix|new: how much changes); prints the best, then the ranking.",
       "strangebeta vary"};
   std::vector<std::string> files, token_files;
   std::string format = "text", out;
@@ -63,6 +63,7 @@ int RunVary(const std::vector<std::string>& args) {
   app::SmoothingRequest smoothing;
   std::string smooth;
   app::CandidateSlot slot;
+  std::string novelty;
   app.add_option("routes", files, "CRDL route files ('-' = stdin)");
   app.add_option("--tokens", token_files,
                  "a token sequence file (one token a line; docs/formats.md), repeatable; "
@@ -82,6 +83,9 @@ int RunVary(const std::vector<std::string>& args) {
                  "with --preset setter: the band's upper end (a range --band..--band-to)");
   app.add_option("--style", slot.style,
                  "with --preset setter: the slot's style (crimp, heel hook, ...; docs/setting.md)");
+  app.add_option("--novelty", novelty,
+                 "with --preset setter: how much of the inputs changes: close (under a third of "
+                 "the moves new), mix (a third to two thirds) or new (over two thirds) [mix]");
   app.add_option("--format", format, "text, markdown, json or svg")->capture_default_str();
   app.add_option("-o,--output", out, "write to FILE instead of standard output");
   if (int rc = ParseArgs(app, args); rc >= 0) return rc;
@@ -90,8 +94,16 @@ int RunVary(const std::vector<std::string>& args) {
   // gallery of candidates.
   const bool setter_preset = ToLower(chaos.preset) == "setter";
   if (setter_preset) chaos.preset = "default";
-  if (!setter_preset && (!slot.band.empty() || !slot.band_to.empty() || !slot.style.empty())) {
-    return Fail(kCmd, Status::InvalidInput("--band, --band-to and --style need --preset setter"));
+  if (!setter_preset && (!slot.band.empty() || !slot.band_to.empty() || !slot.style.empty() ||
+                         !novelty.empty())) {
+    return Fail(kCmd, Status::InvalidInput(
+                          "--band, --band-to, --style and --novelty need --preset setter"));
+  }
+  app::GalleryOptions gallery_options;
+  if (!novelty.empty()) {
+    Result<app::Novelty> level = app::ParseNovelty(novelty);
+    if (!level.ok()) return Fail(kCmd, Status::InvalidInput("--" + level.status().message()));
+    gallery_options.novelty = *level;
   }
   Result<chaos::VaryParams> params = ResolveChaosOptions(chaos);
   if (!params.ok()) return Fail(kCmd, params.status());
@@ -117,13 +129,15 @@ int RunVary(const std::vector<std::string>& args) {
     // The best again (BuildPlan below), from the IC its search started at,
     // with the smoothing asked.
     Result<app::GalleryChoice> gallery =
-        app::ChooseFromGallery(*inputs, &*params, *req, slot, app::GalleryOptions{});
+        app::ChooseFromGallery(*inputs, &*params, *req, slot, gallery_options);
     if (!gallery.ok()) return Fail(kCmd, gallery.status().WithPrefix("--preset setter"));
     gallery_report = "\nSetter preset: " + std::to_string(gallery->count) +
-                     " candidates (max-repeat 1, keep-start, keep-finish, alternate-hands; ICs "
-                     "around the default), ranked by "
-                     "the gallery's filter and score (docs/setting.md); the first is printed "
-                     "above:\n" +
+                     " candidates (max-repeat 1, keep-start, keep-finish, alternate-hands; "
+                     "novelty " + app::NoveltyName(gallery_options.novelty) + ": " +
+                     app::NoveltyWords(gallery_options.novelty) +
+                     "), ranked by the gallery's filter, the novelty asked and the score "
+                     "(docs/setting.md); the first is printed above:\n" +
+                     (gallery->note.empty() ? "" : "Note: " + gallery->note + "\n") +
                      app::GalleryReport(gallery->candidates);
   }
   Result<plan::RoutePlan> p =

@@ -341,10 +341,9 @@ std::string Pad(const std::string& s, size_t w) {
   return n >= w ? s : s + std::string(w - n, ' ');
 }
 
-int ChangedCount(const RoutePlan& plan) {
-  int c = 0;
-  for (const auto& m : plan.variation.moves) c += m.changed;
-  return c;
+// The one change count (issue 33): moves new against the inputs.
+int NewCount(const RoutePlan& plan) {
+  return NewMoveCount(plan.variation.moves, plan.variation.inputs).new_moves;
 }
 
 std::string InputsLine(const RoutePlan& plan) {
@@ -469,7 +468,7 @@ std::string RenderText(const RoutePlan& plan) {
   out += std::string(words.title) + "\n";
   out += "Variation of " + InputsLine(plan) + "\n";
   out += std::to_string(moves.size()) + " " + words.units + ", " +
-         std::to_string(ChangedCount(plan)) + " changed\n";
+         std::to_string(NewCount(plan)) + " new against the inputs\n";
   for (const std::string& l : AnnotationLines(plan)) out += l + "\n";
   out += "\n";
   out += tokens ? "  pos  " + Pad(words.what, w) : "  #  hand  " + Pad(words.what, w);
@@ -535,7 +534,7 @@ std::string RenderMarkdown(const RoutePlan& plan) {
   const bool estimates = HasEstimates(plan);
   std::string out = std::string("# ") + words.md_title + "\n\n";
   out += "Variation of " + MdEscape(InputsLine(plan)) + ": " + std::to_string(moves.size()) + " " +
-         words.units + ", " + std::to_string(ChangedCount(plan)) + " changed.\n\n";
+         words.units + ", " + std::to_string(NewCount(plan)) + " new against the inputs.\n\n";
   if (plan.grades) out += MdEscape(GradeLine(*plan.grades)) + ".\n\n";
   if (plan.search) {
     out += "## IC search\n\n" + MdEscape(SearchLine(*plan.search)) + ".\n\n";
@@ -751,7 +750,7 @@ void AppendSummary(std::string* out, const RoutePlan& plan) {
     return;
   }
   const ChangeSummary& c = plan.warnings->summary;
-  *out += "{\"moves\": " + std::to_string(c.moves) + ", \"changed\": " + std::to_string(c.changed) +
+  *out += "{\"moves\": " + std::to_string(c.moves) + ", \"new_moves\": " + std::to_string(c.new_moves) + ", \"changed\": " + std::to_string(c.changed) +
           ", \"text_changed\": " + std::to_string(c.text_changed) +
           ", \"displacement\": " + std::to_string(c.displacement) +
           ", \"change\": " + JsonNumber(c.change) + ", \"farthest\": " + std::to_string(c.farthest) +

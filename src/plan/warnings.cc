@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <set>
+#include <utility>
 
 #include "chaos/tokens.h"
 #include "language/parser.h"
@@ -260,6 +262,7 @@ PlanWarnings Warn(const chaos::Variation& v, const chaos::MoveFacts& facts) {
 
   ChangeSummary& c = out.summary;
   c.moves = n;
+  c.new_moves = NewMoveCount(v.moves, v.inputs).new_moves;
   for (int j = 0; j < n; ++j) {
     c.changed += v.moves[j].changed;
     const auto& s = v.moves[j].source;
@@ -274,12 +277,43 @@ PlanWarnings Warn(const chaos::Variation& v, const chaos::MoveFacts& facts) {
   chaos::MappingChange mc =
       chaos::MeasureChange(v.mapping.data(), static_cast<int>(v.mapping.size()));
   c.change = mc.change();
-  char buf[320];
+  char buf[400];
   std::snprintf(buf, sizeof buf,
-                "changed %d of %d %ss (paper's measure); %d differ in text from the input at "
+                "%d of %d %ss new against the inputs; source position moved for %d (paper's "
+                "measure); %d differ in text from the input at "
                 "their position; %ss travelled %.2f positions on average (change), at most %d",
-                c.changed, c.moves, unit, c.text_changed, element, c.change, c.farthest);
+                c.new_moves, c.moves, unit, c.changed, c.text_changed, element, c.change, c.farthest);
   c.message = buf;
+  return out;
+}
+
+MoveChange NewMoveCount(const std::vector<chaos::VariedMove>& moves,
+                        const std::vector<chaos::InputRoute>& inputs) {
+  using Key = std::pair<Hand, std::string>;
+  std::set<Key> starts;
+  std::set<std::pair<Key, Key>> follows;
+  MoveChange out;
+  out.moves = static_cast<int>(moves.size());
+  for (const chaos::InputRoute& in : inputs) {
+    const std::vector<Move>& m = in.route.moves;
+    if (!m.empty()) starts.insert({m[0].hand, m[0].text});
+    for (size_t i = 1; i < m.size(); ++i) {
+      follows.insert({{m[i - 1].hand, m[i - 1].text}, {m[i].hand, m[i].text}});
+    }
+    if (out.same_as.empty() && m.size() == moves.size() &&
+        std::equal(m.begin(), m.end(), moves.begin(),
+                   [](const Move& a, const chaos::VariedMove& b) {
+                     return a.hand == b.hand && a.text == b.text;
+                   })) {
+      out.same_as = in.name;
+    }
+  }
+  for (size_t i = 0; i < moves.size(); ++i) {
+    const Key k{moves[i].hand, moves[i].text};
+    const bool known = i == 0 ? starts.count(k) > 0
+                              : follows.count({{moves[i - 1].hand, moves[i - 1].text}, k}) > 0;
+    out.new_moves += known ? 0 : 1;
+  }
   return out;
 }
 

@@ -34,12 +34,28 @@ struct Warning {
   std::string message;  // one line, moves numbered from 1
 };
 
+// How much a variation changes its inputs, the one count every plan,
+// gallery and setting day shows (issue 33): a move is new when it does not
+// follow its predecessor in any input (the first move: when no input starts
+// with it); moves compare by hand and text. `same_as` names an input whose
+// moves the variation equals ("" = none). Pure.
+struct MoveChange {
+  int new_moves = 0;
+  int moves = 0;
+  std::string same_as;
+};
+MoveChange NewMoveCount(const std::vector<chaos::VariedMove>& moves,
+                        const std::vector<chaos::InputRoute>& inputs);
+
 // How much actually changed. "changed" is the paper's (source index !=
 // position); text_changed counts positions whose move text differs from the
 // input's move at that position (case and punctuation ignored); change is the
 // landscape's (mean |k(j) - j| over changed moves).
 struct ChangeSummary {
   int moves = 0;
+  // Moves new against the inputs (NewMoveCount): THE change count a setter
+  // reads everywhere (plan header, summary, gallery ranking, novelty).
+  int new_moves = 0;
   int changed = 0;
   int text_changed = 0;
   long displacement = 0;  // sum |k(j) - j|

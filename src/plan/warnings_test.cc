@@ -86,9 +86,14 @@ TEST(WarningsTest, FlagsWhatASetterWouldFindAtTheWall) {
   EXPECT_EQ(c.displacement, 11);
   EXPECT_DOUBLE_EQ(c.change, 11.0 / 6.0);
   EXPECT_EQ(c.farthest, 3);
+  // Issue 33: the one change count (NewMoveCount) leads the summary.
+  EXPECT_EQ(c.new_moves, NewMoveCount(v.moves, v.inputs).new_moves);
+  EXPECT_GT(c.new_moves, 0);
   EXPECT_EQ(c.message,
-            "changed 6 of 6 moves (paper's measure); 5 differ in text from the input at their "
-            "position; moves travelled 1.83 positions on average (change), at most 3");
+            std::to_string(c.new_moves) +
+                " of 6 moves new against the inputs; source position moved for 6 (paper's "
+                "measure); 5 differ in text from the input at their "
+                "position; moves travelled 1.83 positions on average (change), at most 3");
 }
 
 TEST(WarningsTest, TheInputsThemselvesWarnOnlyWhereTheyJoin) {

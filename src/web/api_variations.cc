@@ -149,6 +149,17 @@ void PostVariation(Exchange& x) {
   // Issue 22: and, like `vary --preset setter`, the IC of the gallery's best
   // (app::ChooseFromGallery), its plans charged before the work starts.
   std::optional<app::WorkBudget::Slot> work;
+  if (body->contains("novelty")) {  // issue 33: close, mix (default), new
+    if (!setter_preset) {
+      return ApiError(x, Status::InvalidInput("novelty: needs \"preset\": \"setter\""));
+    }
+    if (!(*body)["novelty"].is_string()) {
+      return ApiError(x, Status::InvalidInput("novelty: expected close, mix or new"));
+    }
+    Result<app::Novelty> level = app::ParseNovelty((*body)["novelty"].get<std::string>());
+    if (!level.ok()) return ApiError(x, level.status());
+    vr.novelty = *level;
+  }
   if (setter_preset) {
     app::ApplySetterPreset(&vr.params, &vr.setting, body->contains("max_repeat"));
     vr.gallery = app::CandidateSlot{};
@@ -174,7 +185,12 @@ void PostVariation(Exchange& x) {
                           {"reasons", best.reasons},
                           {"warnings", best.warnings},
                           {"count", v->gallery->count},
-                          {"kept", v->gallery->kept}};
+                          {"kept", v->gallery->kept},
+                          {"novelty", app::NoveltyName(vr.novelty)},
+                          {"novelty_reached", app::NoveltyName(best.novelty)},
+                          {"new_moves", best.new_moves},
+                          {"moves", best.moves}};
+    if (!v->gallery->note.empty()) out["gallery"]["note"] = v->gallery->note;
   }
   ReplyJson(x.res, v->existing ? 200 : 201, out);
 }

@@ -118,6 +118,13 @@ TEST_F(SettingDayApiTest, ProposeAcceptAndTheRoles) {
   EXPECT_EQ(route["wall_id"], cave);
   EXPECT_EQ(route["move_list"].size(), cand["moves"].size());
   EXPECT_EQ(route["setters"], json::array({"sam"}));
+  // Issue 33: accepted twice is 409 with a message; the proposal of the day
+  // shows the slot filled by it.
+  const json twice = setter.Json("POST", gp + "/setting-days/accept", accept.dump(), 409);
+  EXPECT_NE(twice["error"].get<std::string>().find("already accepted"), std::string::npos)
+      << twice.dump();
+  const json again = head.Json("POST", gp + "/setting-days", ask.dump(), 200);
+  EXPECT_EQ(again["slots"][0]["accepted_route"], id) << again["slots"][0].dump();
   // Its card and tag, and the day's sheet lists it.
   auto tag = head.Send("GET", "/routes/" + std::to_string(id) + "/tag.pdf");
   ASSERT_TRUE(tag);
@@ -223,6 +230,28 @@ TEST_F(SettingDayApiTest, TheSetterPresetStoresTheGallerysBest) {
   const json v = c.Json("GET", "/api/variations/" + std::to_string(made["id"].get<int64_t>()), "", 200);
   EXPECT_EQ(v["parameters"]["var_ic"], json(params->var_ic)) << v["parameters"].dump();
   EXPECT_EQ(v["plan"]["moves"], made["moves"]);
+  EXPECT_EQ(g["novelty"], "mix");  // the default level
+
+  // Issue 33: "novelty" new: the best's share of moves new above two thirds
+  // (the demo pair reaches it with no warning), stored so it rebuilds.
+  const json fresh = c.Json(
+      "POST", "/api/variations",
+      json{{"routes", ids}, {"preset", "setter"}, {"novelty", "new"}}.dump(), 201);
+  const json& n = fresh["gallery"];
+  EXPECT_EQ(n["novelty"], "new");
+  EXPECT_EQ(n["novelty_reached"], "new") << n.dump();
+  EXPECT_GT(3 * n["new_moves"].get<int>(), 2 * n["moves"].get<int>()) << n.dump();
+  EXPECT_TRUE(n["warnings"].empty()) << n.dump();
+  const json nv =
+      c.Json("GET", "/api/variations/" + std::to_string(fresh["id"].get<int64_t>()), "", 200);
+  EXPECT_EQ(nv["plan"]["moves"], fresh["moves"]);
+  // Bad levels, and a level without the setter preset: 400 naming the field.
+  for (const json& body : {json{{"routes", ids}, {"preset", "setter"}, {"novelty", "wild"}},
+                           json{{"routes", ids}, {"preset", "setter"}, {"novelty", 3}},
+                           json{{"routes", ids}, {"novelty", "new"}}}) {
+    const json e = c.Json("POST", "/api/variations", body.dump(), 400);
+    EXPECT_EQ(e["error"].get<std::string>().rfind("novelty:", 0), 0u) << e.dump();
+  }
 }
 
 }  // namespace

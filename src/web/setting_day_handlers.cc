@@ -3,7 +3,9 @@
 
 #include <climits>
 
+#include "app/clock.h"
 #include "app/setting_day.h"
+#include "base/date.h"
 #include "base/number.h"
 #include "base/text.h"
 
@@ -57,8 +59,22 @@ Result<app::SettingDayRequest> DayRequestOf(const json& body, int64_t gym) {
       }
       slot.band = s.value("band", "");
       slot.style = s.value("style", "");
+      if (s.contains("novelty")) {
+        if (!s["novelty"].is_string()) {
+          return Status::InvalidInput(f + ".novelty: expected close, mix or new");
+        }
+        Result<app::Novelty> n = app::ParseNovelty(s["novelty"].get<std::string>());
+        if (!n.ok()) return n.status().WithPrefix(f);
+        slot.novelty = *n;
+      }
       r.slots.push_back(std::move(slot));
     }
+  }
+  if (body.contains("novelty")) {
+    if (!body["novelty"].is_string()) {
+      return Status::InvalidInput("novelty: expected close, mix or new");
+    }
+    SB_ASSIGN_OR_RETURN(r.novelty, app::ParseNovelty(body["novelty"].get<std::string>()));
   }
   if (body.contains("candidates")) {
     if (!body["candidates"].is_number_integer()) {
@@ -72,16 +88,20 @@ Result<app::SettingDayRequest> DayRequestOf(const json& body, int64_t gym) {
 
 json CandidateJson(const app::DayCandidate& c) {
   json params = json::parse(c.params_json, nullptr, false);
-  return json{{"id", c.id},
+  json out{{"id", c.id},
               {"moves", c.moves},
               {"score", c.score.score},
               {"rejected", c.score.rejected},
               {"reasons", c.score.reasons},
               {"warnings", c.score.warnings},
               {"estimated_band", c.score.estimated_band},
+              {"new_moves", c.score.new_moves},
+              {"novelty", app::NoveltyName(c.score.novelty)},
               {"params", params},
               {"inputs", c.inputs},
               {"input_names", c.input_names}};
+  if (c.accepted_route) out["accepted_route"] = c.accepted_route;
+  return out;
 }
 
 json ProposalJson(const app::SettingDayProposal& p) {
@@ -90,8 +110,10 @@ json ProposalJson(const app::SettingDayProposal& p) {
     json cands = json::array();
     for (const app::DayCandidate& c : s.candidates) cands.push_back(CandidateJson(c));
     json j{{"wall", s.slot.wall},  {"wall_name", s.wall_name}, {"band", s.slot.band},
-           {"style", s.slot.style}, {"candidates", cands}};
+           {"style", s.slot.style}, {"novelty", app::NoveltyName(s.novelty)},
+           {"candidates", cands}};
     if (!s.note.empty()) j["note"] = s.note;
+    if (s.accepted_route) j["accepted_route"] = s.accepted_route;
     slots.push_back(std::move(j));
   }
   return json{{"gym", p.gym}, {"date", p.date}, {"slots", slots}};
@@ -234,18 +256,58 @@ void PageSettingDay(Exchange& x) {
          std::to_string(w.id) + "\"" + (on ? " checked" : "") + "> " + E(w.name) + "</label>\n";
   }
   if (walls->empty()) b += "<p class=\"empty\">This gym has no walls yet.</p>\n";
-  b += "</fieldset><label>Candidates per slot <input type=\"number\" name=\"k\" min=\"1\" max=\"" +
+  std::string novelty = x.req.Query("novelty").value_or("mix");
+  b += "</fieldset><label>Novelty <select name=\"novelty\" id=\"day-novelty\">";
+  for (app::Novelty n : {app::Novelty::kClose, app::Novelty::kMix, app::Novelty::kNew}) {
+    b += "<option value=\"" + std::string(app::NoveltyName(n)) + "\"" +
+         (novelty == app::NoveltyName(n) ? " selected" : "") + ">" + app::NoveltyWords(n) +
+         "</option>";
+  }
+  b += "</select></label>\n<label>Candidates per slot <input type=\"number\" name=\"k\" "
+       "min=\"1\" max=\"" +
        std::to_string(app::kMaxDayCandidates) + "\" value=\"" + std::to_string(k) +
        "\"></label>\n<button type=\"submit\" id=\"day-propose\">Propose</button></form>\n";
 
-  if (!date.empty() && !chosen.empty()) {
+  // Issue 33: a setting day is planned for today or later.
+  const std::string today = UtcDateText(app::SystemClock().Now());
+  const bool past = !date.empty() && IsIsoDate(date) && date < today;
+  if (past) {
+    b += "<p class=\"msg bad\" role=\"alert\" id=\"day-past\">" + E(date) +
+         " is in the past (today is " + E(today) +
+         "): choose today or a later date to plan a setting day; its sheet stays at <a "
+         "href=\"/gyms/" + g + "/setting-day/sheet?date=" + E(date) + "\">the day's sheet</a>.</p>\n";
+  }
+  if (!date.empty() && !chosen.empty() && !past) {
     app::SettingDayRequest r;
     r.gym = *gid;
     r.date = date;
     r.walls = chosen;
     r.candidates = k;
+    // Issue 33: the slots as edited on the page (sw, sb, ss: wall, band and
+    // style, repeated in slot order); none = the proposed ones.
+    {
+      std::vector<std::string> sw, sb, ss;
+      for (auto [key, out] : {std::pair<const char*, std::vector<std::string>*>{"sw", &sw},
+                              {"sb", &sb}, {"ss", &ss}}) {
+        auto [lo, hi] = x.req.query.equal_range(key);
+        for (auto it = lo; it != hi; ++it) out->push_back(it->second);
+      }
+      for (size_t i = 0; i < sw.size() && i < app::kMaxDaySlots; ++i) {
+        std::optional<int64_t> wall = ParseId(sw[i]);
+        if (!wall) continue;
+        app::DaySlot slot;
+        slot.wall = *wall;
+        slot.band = i < sb.size() ? std::string(Trim(sb[i])) : "";
+        slot.style = i < ss.size() ? std::string(Trim(ss[i])) : "";
+        r.slots.push_back(std::move(slot));
+      }
+    }
+    Result<app::Novelty> level = app::ParseNovelty(novelty);
+    if (level.ok()) r.novelty = *level;
     int retry = 0;
-    Result<app::SettingDayProposal> p = x.services.setting_days.Propose(x.caller.viewer, r, &retry);
+    Result<app::SettingDayProposal> p =
+        level.ok() ? x.services.setting_days.Propose(x.caller.viewer, r, &retry)
+                   : Result<app::SettingDayProposal>(level.status());
     if (!p.ok()) {
       b += "<p class=\"msg bad\" role=\"alert\">" + E(p.status().message()) + "</p>\n";
     } else {
@@ -259,43 +321,142 @@ void PageSettingDay(Exchange& x) {
       int slot_no = 0;
       for (const app::DaySlotProposal& s : p->slots) {
         ++slot_no;
-        b += "<section class=\"day-slot\" id=\"slot-" + std::to_string(slot_no) + "\"><h2>" +
-             E(s.wall_name) + ": " + E(s.slot.band.empty() ? "any grade" : s.slot.band) + " · " +
-             E(s.slot.style.empty() ? "any style" : s.slot.style) + "</h2>\n";
+        // Issue 33: one compact card per slot: the best candidate, the others
+        // a click away, the rejected apart (no Accept), an accepted slot filled.
+        b += "<section class=\"day-slot\" id=\"slot-" + std::to_string(slot_no) + "\"" +
+             (s.accepted_route ? " data-accepted=\"" + std::to_string(s.accepted_route) + "\""
+                               : std::string()) +
+             "><h2>" + E(s.wall_name) + ": " +
+             E(s.slot.band.empty() ? "any grade" : s.slot.band) + " · " +
+             E(s.slot.style.empty() ? "any style" : s.slot.style) + " · " +
+             E(app::NoveltyWords(s.novelty)) + "</h2>\n";
         if (!s.note.empty()) b += "<p class=\"note\">" + E(s.note) + "</p>\n";
-        int rank = 0;
+        if (s.accepted_route) {
+          const std::string id = std::to_string(s.accepted_route);
+          b += "<p class=\"day-accepted\">Accepted: <a href=\"/routes/" + id + "\">route " + id +
+               "</a> · <a href=\"/variations/" + id + ".pdf\">card</a> · <a href=\"/routes/" + id +
+               "/tag.pdf\">tag</a></p>\n";
+        }
+        std::vector<const app::DayCandidate*> kept, rejected;
         for (const app::DayCandidate& c : s.candidates) {
-          ++rank;
-          json accept{{"date", date},
-                      {"wall", s.slot.wall},
-                      {"candidate", CandidateJson(c)}};
-          b += "<article class=\"day-candidate\" data-id=\"" + E(c.id) + "\"><h3>" +
-               std::to_string(rank) + ". score " + Fixed1(c.score.score) + " / 100" +
-               (c.score.rejected ? " <span class=\"bad\">(rejected)</span>" : "") +
-               (c.score.estimated_band.empty() ? "" : " · estimated " + E(c.score.estimated_band)) +
-               "</h3>\n<p class=\"inputs\">From: ";
+          (c.score.rejected ? rejected : kept).push_back(&c);
+        }
+        auto card = [&](const app::DayCandidate& c, int rank, bool offer) {
+          std::string h = "<article class=\"day-candidate" +
+                           std::string(c.score.rejected ? " rejected" : "") +
+                           (c.accepted_route ? " accepted" : "") + "\" data-id=\"" + E(c.id) +
+                           "\"><h3>" + std::to_string(rank) + ". score " + Fixed1(c.score.score) +
+                           " / 100" +
+                           (c.score.rejected ? " <span class=\"bad\">(rejected)</span>" : "") +
+                           (c.score.estimated_band.empty()
+                                ? ""
+                                : " · estimated " + E(c.score.estimated_band)) +
+                           " · " + std::to_string(c.score.new_moves) + " of " +
+                           std::to_string(c.moves.size()) + " moves new</h3>\n";
+          // Why, in a setter's words (the technical reasons in the fold).
+          std::string why;
+          for (const std::string& r : c.score.reasons) {
+            if (r.find("bits") != std::string::npos || r.rfind("novelty ", 0) == 0) continue;
+            why += (why.empty() ? "" : "; ") + r;
+          }
+          h += "<p class=\"why\">" + std::string(rank == 1 && !c.score.rejected
+                                                       ? "Why it ranks first: "
+                                                       : "Why: ") +
+               E(why) + "</p>\n<p class=\"inputs\">From: ";
           for (size_t i = 0; i < c.inputs.size(); ++i) {
-            b += (i ? ", " : "") + std::string("<a href=\"/routes/") + std::to_string(c.inputs[i]) +
-                 "\">" + E(c.input_names[i]) + "</a>";
+            h += (i ? ", " : "") + std::string("<a href=\"/routes/") +
+                 std::to_string(c.inputs[i]) + "\">" + E(c.input_names[i]) + "</a>";
           }
-          b += "</p>\n<ol class=\"moves\">";
-          for (const std::string& m : c.moves) b += "<li>" + E(m) + "</li>";
-          b += "</ol>\n<details><summary>Why it ranks here</summary><ul class=\"reasons\">";
-          for (const std::string& r2 : c.score.reasons) b += "<li>" + E(r2) + "</li>";
-          b += "</ul>";
+          h += "</p>\n<ol class=\"moves\">";
+          for (const std::string& m : c.moves) h += "<li>" + E(m) + "</li>";
+          h += "</ol>\n<details class=\"no-print\"><summary>Details</summary><ul "
+               "class=\"reasons\">";
+          for (const std::string& r2 : c.score.reasons) h += "<li>" + E(r2) + "</li>";
+          h += "</ul>";
           if (!c.score.warnings.empty()) {
-            b += "<p>Warnings:</p><ul class=\"warnings\">";
-            for (const std::string& w : c.score.warnings) b += "<li>" + E(w) + "</li>";
-            b += "</ul>";
+            h += "<p>Warnings:</p><ul class=\"warnings\">";
+            for (const std::string& w : c.score.warnings) h += "<li>" + E(w) + "</li>";
+            h += "</ul>";
           }
-          b += "</details>\n<form class=\"day-accept no-print\" data-accept=\"" +
-               E(accept.dump()) + "\" data-url=\"/api/gyms/" + g +
-               "/setting-days/accept\"><label>Setter <select name=\"setter\">" + setters +
-               "</select></label> <button type=\"submit\">Accept</button><p class=\"msg\" "
-               "role=\"status\"></p></form></article>\n";
+          h += "</details>\n";
+          if (c.accepted_route) {
+            h += "<p class=\"msg\">Accepted as <a href=\"/routes/" +
+                 std::to_string(c.accepted_route) + "\">route " +
+                 std::to_string(c.accepted_route) + "</a></p>\n";
+          } else if (offer) {
+            json accept{{"date", date}, {"wall", s.slot.wall}, {"candidate", CandidateJson(c)}};
+            h += "<form class=\"day-accept no-print\" data-accept=\"" + E(accept.dump()) +
+                 "\" data-url=\"/api/gyms/" + g +
+                 "/setting-days/accept\"><label>Setter <select name=\"setter\">" + setters +
+                 "</select></label> <button type=\"submit\">Accept</button><p class=\"msg\" "
+                 "role=\"status\"></p></form>";
+          }
+          return h + "</article>\n";
+        };
+        const bool filled = s.accepted_route != 0;
+        int rank = 0;
+        std::string others;
+        for (const app::DayCandidate* c : kept) {
+          ++rank;
+          if (!filled && rank == 1) {
+            b += card(*c, rank, true);
+          } else if (filled && c->accepted_route) {
+            b += card(*c, rank, false);
+          } else {
+            others += card(*c, rank, !filled);
+          }
+        }
+        if (!others.empty()) {
+          b += "<details class=\"day-others no-print\"><summary>" +
+               std::string(filled ? "The slot's other candidates" : "Other candidates") +
+               "</summary>\n" + others + "</details>\n";
+        }
+        if (!rejected.empty()) {
+          b += "<details class=\"day-rejected no-print\"><summary>Rejected (" +
+               std::to_string(rejected.size()) +
+               "): not offered, see why</summary>\n";
+          for (const app::DayCandidate* c : rejected) b += card(*c, ++rank, false);
+          b += "</details>\n";
+        }
+        if (kept.empty() && !filled) {
+          b += "<p class=\"msg bad\">No candidate to offer for this slot" +
+               std::string(s.note.empty() ? "." : ": see the note above.") + "</p>\n";
         }
         b += "</section>\n";
       }
+      // The slots, editable: band and style per slot, proposed again.
+      b += "<form method=\"get\" id=\"day-slots\" class=\"no-print\"><h2>Change the "
+           "slots</h2><input type=\"hidden\" name=\"date\" value=\"" + E(date) + "\">";
+      for (int64_t w : chosen) {
+        b += "<input type=\"hidden\" name=\"walls\" value=\"" + std::to_string(w) + "\">";
+      }
+      b += "<input type=\"hidden\" name=\"k\" value=\"" + std::to_string(k) +
+           "\"><input type=\"hidden\" name=\"novelty\" value=\"" + E(novelty) + "\">\n";
+      int n_slot = 0;
+      for (const app::DaySlotProposal& s : p->slots) {
+        ++n_slot;
+        const std::string no = std::to_string(n_slot);
+        b += "<fieldset class=\"slot-edit\"><legend>Slot " + no + ": " + E(s.wall_name) +
+             "</legend><input type=\"hidden\" name=\"sw\" value=\"" +
+             std::to_string(s.slot.wall) + "\"><label>Band <input name=\"sb\" id=\"slot-band-" +
+             no + "\" size=\"6\" value=\"" + E(s.slot.band) +
+             "\"></label> <label>Style <select name=\"ss\" id=\"slot-style-" + no +
+             "\"><option value=\"\">any style</option>";
+        std::vector<std::string> styles = app::kDefaultSlotStyles;
+        if (!s.slot.style.empty() &&
+            std::find(styles.begin(), styles.end(), s.slot.style) == styles.end()) {
+          styles.push_back(s.slot.style);
+        }
+        for (const std::string& st : styles) {
+          b += "<option" + std::string(st == s.slot.style ? " selected" : "") + ">" + E(st) +
+               "</option>";
+        }
+        b += "</select></label></fieldset>\n";
+      }
+      b += "<button type=\"submit\" id=\"day-slots-propose\">Propose these slots</button>"
+           "</form>\n";
+      b += "<p class=\"no-print\"><button type=\"button\" onclick=\"window.print()\" "
+           "id=\"day-print\">Print the day</button></p>\n";
     }
   }
   b += "<script src=\"/static/setting_day.js\" defer></script>\n";

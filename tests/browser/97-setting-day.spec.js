@@ -42,13 +42,36 @@ module.exports = async (t) => {
   check((await page.$$('.day-candidate ul.reasons li')).length >= 4, 'and why it ranks there');
   await shot('97-setting-day');
 
-  await page.click('.day-candidate form.day-accept button[type="submit"]');
+  // Issue 33: the slot's band and style edited on the page, proposed again.
+  await page.fill('#slot-band-1', 'V3');
+  await page.selectOption('#slot-style-1', 'sloper');
+  await Promise.all([page.waitForURL(/sb=V3/), page.click('#day-slots-propose')]);
+  const h2 = await page.textContent('#slot-1 h2');
+  check(h2.includes('V3') && h2.includes('sloper'), 'the slot is the one edited (' + h2.trim() + ')');
+  check(!(await page.$('.day-rejected .day-accept')), 'rejected candidates have no Accept button');
+  const slotsUrl = page.url();
+
+  // Accept one per slot (one wall, one slot here).
+  await page.click('#slot-1 .day-candidate form.day-accept button[type="submit"]');
   await page.waitForSelector('.day-candidate .accepted-tag');
   const tagHref = await page.getAttribute('.day-candidate .accepted-tag', 'href');
   const id = Number(tagHref.match(/\/routes\/(\d+)\/tag\.pdf/)[1]);
   const route = (await api('GET', '/api/routes/' + id)).data;
   check(route.state === 'planned' && route.set_on === '2026-12-01' && route.wall_id === wall,
         'the accepted candidate is a planned route on the wall (' + route.state + ')');
+  // Reloaded: the slot shows it accepted, its other candidates folded;
+  // accepting it again is refused with a message.
+  await page.goto(slotsUrl);
+  check(await page.getAttribute('#slot-1', 'data-accepted') === String(id),
+        'after a reload the slot is filled by the accepted route');
+  check((await page.textContent('#slot-1 .day-accepted')).includes('route ' + id), 'and says which');
+  check(!(await page.$('#slot-1 > .day-candidate form.day-accept')), 'its other candidates are folded');
+  // Print the day: the forms are not printed.
+  await page.emulateMedia({ media: 'print' });
+  check(!(await page.isVisible('#day-slots')), 'the printed day leaves the forms out');
+  await shot('97-setting-day-print');
+  await page.emulateMedia({ media: 'screen' });
+  check(await page.isVisible('#day-print'), 'a Print the day button');
   const tagRes = await page.request.get(base + tagHref);
   const tagFile = path.join(out, '97-setting-day-tag.pdf');
   fs.writeFileSync(tagFile, await tagRes.body());
