@@ -53,13 +53,14 @@
     for (const el of form.elements) {
       if (!el.name || el.type === 'hidden' || el.name.indexOf('.') > 0) continue;
       if (!(el.name in cur)) continue;
-      const v = cur[el.name];
+      // The form's wall is the wall row's name (the JSON's "wall" is the text's own line).
+      const v = el.name === 'wall' && 'wall_name' in cur ? cur.wall_name : cur[el.name];
       const text = Array.isArray(v) ? v.join(', ')
         : (v !== null && typeof v === 'object') ? Object.entries(v).map(([k, x]) => k + ': ' + x).join(', ')
         : (v === null || v === '' ? '—' : v);
       parts.push(el.name + ': ' + text);
     }
-    for (const name of ['state', 'set_on', 'strip_on', 'wall_name']) {
+    for (const name of ['state', 'set_on', 'strip_on']) {
       if (name in cur && !parts.some((p) => p.startsWith(name + ':'))) {
         parts.push(name + ': ' + (cur[name] === '' ? '—' : cur[name]));
       }
