@@ -152,9 +152,31 @@
     $('#save').addEventListener('click', async () => {
       const id = editor.dataset.routeId;
       const body = { crdl: ta.value, public: $('#public').value === '1' };
+      if (id && editor.dataset.revision) body.revision = Number(editor.dataset.revision);
       const r = id ? await api('PUT', '/api/routes/' + id, body) : await api('POST', '/api/routes', body);
       if (r.status === 200 || r.status === 201) {
         location.href = '/routes/' + (id || r.data.id);
+      } else if (r.status === 409 && r.data && r.data.current) {
+        // Issue 31: someone saved first. Show theirs; keep ours; saving again applies ours.
+        const cur = r.data.current;
+        editor.dataset.revision = cur.revision;
+        let box = $('#conflict');
+        if (!box) {
+          box = document.createElement('div');
+          box.id = 'conflict';
+          box.className = 'conflict';
+          $('#save-msg').after(box);
+        }
+        box.textContent = '';
+        const p = document.createElement('p');
+        p.textContent = 'Someone else saved this route first (now revision ' + cur.revision +
+          ', state ' + cur.state + '). Their text is below; yours is still in the editor: ' +
+          'Save again to apply yours over theirs.';
+        const pre = document.createElement('pre');
+        pre.id = 'conflict-current';
+        pre.textContent = cur.crdl;
+        box.append(p, pre);
+        say($('#save-msg'), 'not saved: changed meanwhile');
       } else {
         say($('#save-msg'), humane((r.data && r.data.error) || ('error ' + r.status)));
       }

@@ -20,19 +20,6 @@
     return { status: res.status, data };
   }
 
-  // "V3: 2, V4: 1" -> {"V3": 2, "V4": 1} (data-map fields; the dashboard's targets).
-  function mapOf(text) {
-    const out = {};
-    for (const part of text.split(',')) {
-      const i = part.lastIndexOf(':');
-      if (i < 0) continue;
-      const key = part.slice(0, i).trim();
-      const n = Number(part.slice(i + 1).trim());
-      if (key) out[key] = Number.isNaN(n) ? part.slice(i + 1).trim() : n;
-    }
-    return out;
-  }
-
   function fieldsOf(form) {
     const body = {};
     for (const el of form.elements) {
@@ -43,15 +30,53 @@
       if (el.type === 'number' && v !== '') v = Number(v);
       else if (el.dataset.list !== undefined) v = v === '' ? [] : v.split(',').map((s) => s.trim()).filter(Boolean);
       else if (el.dataset.int !== undefined && v !== '') v = Number(v);
-      else if (el.dataset.map !== undefined) v = mapOf(v);
-      body[el.name] = v;
+      // data-map fields ("V3: 2, V4: 1") go as typed: the server reads them and names
+      // a part it cannot read (issue 31), instead of the page dropping it.
+      const dot = el.name.indexOf('.');
+      if (dot > 0) {  // "plan.x": a field of an object (the wall's floor-plan rectangle)
+        const outer = el.name.slice(0, dot);
+        if (typeof body[outer] !== 'object' || body[outer] === null) body[outer] = {};
+        body[outer][el.name.slice(dot + 1)] = v;
+      } else {
+        body[el.name] = v;
+      }
     }
     return body;
+  }
+
+  // Issue 31: a stale save (409 with the record as stored now): say what it is now,
+  // keep what the user typed, and move the form to the current revision so saving
+  // again applies theirs over it.
+  function showConflict(form, msg, data) {
+    const cur = data.current || {};
+    const parts = [];
+    for (const el of form.elements) {
+      if (!el.name || el.type === 'hidden' || el.name.indexOf('.') > 0) continue;
+      if (!(el.name in cur)) continue;
+      // The form's wall is the wall row's name (the JSON's "wall" is the text's own line).
+      const v = el.name === 'wall' && 'wall_name' in cur ? cur.wall_name : cur[el.name];
+      const text = Array.isArray(v) ? v.join(', ')
+        : (v !== null && typeof v === 'object') ? Object.entries(v).map(([k, x]) => k + ': ' + x).join(', ')
+        : (v === null || v === '' ? '—' : v);
+      parts.push(el.name + ': ' + text);
+    }
+    for (const name of ['state', 'set_on', 'strip_on']) {
+      if (name in cur && !parts.some((p) => p.startsWith(name + ':'))) {
+        parts.push(name + ': ' + (cur[name] === '' ? '—' : cur[name]));
+      }
+    }
+    const rev = form.querySelector('input[name="revision"]');
+    if (rev && cur.revision !== undefined) rev.value = cur.revision;
+    msg.textContent = 'Someone else saved this first (now revision ' + cur.revision + '). ' +
+      'It is now: ' + parts.join('; ') + '. Your changes are still here: save again to apply ' +
+      'yours over theirs, or reload to take theirs.';
+    msg.classList.add('bad', 'conflict');
   }
 
   for (const form of document.querySelectorAll('form[data-api]')) {
     form.addEventListener('submit', async (ev) => {
       ev.preventDefault();
+      if (form.dataset.confirm && !window.confirm(form.dataset.confirm)) return;
       const [method, url] = form.dataset.api.split(' ');
       const button = form.querySelector('button[type="submit"]');
       if (button) button.disabled = true;
@@ -64,7 +89,9 @@
         else location.reload();
         return;
       }
-      if (msg) {
+      if (msg && r.status === 409 && r.data && r.data.current) {
+        showConflict(form, msg, r.data);
+      } else if (msg) {
         msg.textContent = (r.data && r.data.error) || ('Failed (' + r.status + ')');
         msg.classList.add('bad');
       }

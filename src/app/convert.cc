@@ -105,6 +105,7 @@ RouteView ToView(const store::RouteRecord& r) {
   v.strip_on = r.strip_on;
   v.original_id = r.original_id;
   v.setters = ToViews(r.setters);
+  v.revision = r.revision;
   return v;
 }
 
@@ -142,6 +143,7 @@ store::RouteRecord ToRecord(const RouteView& v) {
   r.strip_on = v.strip_on;
   r.original_id = v.original_id;
   r.setters = ToRecords(v.setters);
+  r.revision = v.revision;
   return r;
 }
 
@@ -328,6 +330,8 @@ Wall ToView(const store::WallRecord& r) {
   w.plan_y = r.plan_y;
   w.plan_w = r.plan_w;
   w.plan_h = r.plan_h;
+  w.revision = r.revision;
+  w.targets_revision = r.targets_revision;
   return w;
 }
 
@@ -344,6 +348,7 @@ store::WallRecord ToRecord(const Wall& w) {
   r.plan_y = w.plan_y;
   r.plan_w = w.plan_w;
   r.plan_h = w.plan_h;
+  r.revision = w.revision;
   return r;
 }
 

@@ -636,6 +636,7 @@ Result<WallTargets> Dashboard::Targets(const Viewer& v, int64_t gym, int64_t wal
   SB_ASSIGN_OR_RETURN(Wall w, gyms_.GetWall(v, wall));
   if (w.gym_id != gym) return Status::NotFound("no wall " + std::to_string(wall));
   WallTargets t;
+  t.revision = w.targets_revision;
   if (!targets_) return t;
   SB_ASSIGN_OR_RETURN(std::vector<store::TargetRecord> rows, targets_->WallTargets(wall));
   for (const store::TargetRecord& r : rows) {
@@ -661,7 +662,7 @@ Status Dashboard::SetTargets(const Viewer& v, int64_t gym, int64_t wall, const W
     rows.push_back({wall, "grade", band, static_cast<double>(count)});
   }
   for (const auto& [style, share] : t.styles) rows.push_back({wall, "style", style, share});
-  return targets_->SetWallTargets(wall, rows);
+  return targets_->SetWallTargets(wall, rows, t.revision);
 }
 
 }  // namespace sb::app

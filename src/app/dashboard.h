@@ -74,6 +74,9 @@ struct DashboardLimits {
 struct WallTargets {
   std::map<std::string, int> grades;
   std::map<std::string, double> styles;
+  // Issue 31: the revision read (Targets) or written over (SetTargets: > 0
+  // is checked, kConflict when stale; 0 writes as before).
+  int64_t revision = 0;
   // Counts in 1..kMaxCount (0 is "no target": drop it), at most kMaxBands
   // bands, each a grade of `discipline` ("bouldering"/"roped"); shares in
   // [kMinShare, kMaxShare], at most kMaxStyles, each a style name

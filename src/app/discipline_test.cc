@@ -182,7 +182,11 @@ TEST_F(DisciplineTest, AWallsNewDisciplineReachesItsRoutesAtOnce) {
   RouteQuery q;
   q.grade = "5.8";
   EXPECT_EQ(Ids(q), (std::vector<int64_t>{cave8}));
-  // A rename keeps the discipline and the routes as they are.
+  // A rename keeps the discipline and the routes as they are. (Issue 31: the
+  // wall read before the first edit is a stale revision; the current one saves.)
+  w.name = "Big cave";
+  EXPECT_EQ(gyms.EditWall(head_, w).code(), Code::kConflict);
+  w = *gyms.GetWall(head_, wall_);
   w.name = "Big cave";
   ASSERT_TRUE(gyms.EditWall(head_, w).ok());
   EXPECT_EQ(r.Get(head_, cave8)->grade_value, 8.0);

@@ -38,6 +38,69 @@ bool IsRouteState(const std::string& s) {
   return s == "draft" || s == "planned" || s == "set" || s == "stripped";
 }
 
+std::optional<RouteState> RouteStateOf(const std::string& name) {
+  if (name == "draft") return RouteState::kDraft;
+  if (name == "planned") return RouteState::kPlanned;
+  if (name == "set") return RouteState::kSet;
+  if (name == "stripped") return RouteState::kStripped;
+  return std::nullopt;
+}
+
+const char* NameOf(RouteState s) {
+  switch (s) {
+    case RouteState::kDraft: return "draft";
+    case RouteState::kPlanned: return "planned";
+    case RouteState::kSet: return "set";
+    case RouteState::kStripped: return "stripped";
+  }
+  return "draft";
+}
+
+Status CheckTransition(RouteState from, RouteState to) {
+  using S = RouteState;
+  const bool ok = (from == S::kDraft && (to == S::kPlanned || to == S::kSet)) ||
+                  (from == S::kPlanned && (to == S::kSet || to == S::kDraft)) ||
+                  (from == S::kSet && to == S::kStripped);
+  if (ok) return Status::Ok();
+  if (from == to) return Status::Conflict(std::string("state: the route is ") + NameOf(to) + " already");
+  return Status::Conflict(std::string("state: a ") + NameOf(from) + " route cannot become " +
+                          NameOf(to) + " (plan → set → strip)");
+}
+
+namespace {
+
+// "circuit red (V0–V2)" for the history.
+std::string CircuitText(const Circuit& c) {
+  std::string out = "circuit " + c.colour;
+  if (!c.grade_from.empty() || !c.grade_to.empty()) {
+    out += " (" + c.grade_from + "–" + c.grade_to + ")";
+  }
+  return out;
+}
+
+// A circuit's fields checked and trimmed; kInvalidInput naming the field.
+Result<store::CircuitRecord> CircuitRow(const Circuit& c) {
+  SB_RETURN_IF_ERROR(CheckName("colour", c.colour, GymLimits::kMaxColourBytes));
+  for (const auto& [field, g] : {std::pair<const char*, const std::string*>{"grade_from", &c.grade_from},
+                                 {"grade_to", &c.grade_to}}) {
+    if (Trim(*g).empty()) continue;
+    Result<grades::Grade> parsed = grades::ParseGrade(std::string(Trim(*g)), {}, field);
+    if (!parsed.ok()) {
+      return Status::InvalidInput(std::string(field) + ": '" + *g + "' is not a grade");
+    }
+  }
+  store::CircuitRecord r;
+  r.id = c.id;
+  r.gym_id = c.gym_id;
+  r.colour = std::string(Trim(c.colour));
+  r.grade_from = std::string(Trim(c.grade_from));
+  r.grade_to = std::string(Trim(c.grade_to));
+  r.revision = c.revision;
+  return r;
+}
+
+}  // namespace
+
 Status ValidateWall(const Wall& w) {
   SB_RETURN_IF_ERROR(CheckName("name", w.name, GymLimits::kMaxNameBytes));
   if (w.discipline != "bouldering" && w.discipline != "roped") {
@@ -100,10 +163,63 @@ Result<int64_t> Gyms::Create(const Viewer& v, const std::string& name) {
   return gyms_->CreateGym(std::string(Trim(name)), *v.user_id);
 }
 
-Status Gyms::Rename(const Viewer& v, int64_t gym, const std::string& name) {
+Status Gyms::Rename(const Viewer& v, int64_t gym, const std::string& name, int64_t revision) {
   SB_RETURN_IF_ERROR(RequireHead(v, gym));
   SB_RETURN_IF_ERROR(CheckName("name", name, GymLimits::kMaxNameBytes));
-  return gyms_->RenameGym(gym, std::string(Trim(name)));
+  SB_ASSIGN_OR_RETURN(store::GymRecord before, gyms_->GetGym(gym));
+  if (revision > 0 && revision != before.revision) {
+    return Status::Conflict("revision: the gym was changed meanwhile (now revision " +
+                            std::to_string(before.revision) + ")");
+  }
+  const std::string to(Trim(name));
+  SB_RETURN_IF_ERROR(gyms_->RenameGym(gym, to, before.revision));
+  if (to == before.name) return Status::Ok();
+  return Record(v, gym, "renamed: " + before.name + " -> " + to);
+}
+
+Status Gyms::Record(const Viewer& v, int64_t gym, const std::string& what) {
+  return gyms_->AddGymHistory(gym, v.user_id, what);
+}
+
+Result<store::MemberRecord> Gyms::FindMember(int64_t gym, const std::string& username) {
+  SB_ASSIGN_OR_RETURN(std::vector<store::MemberRecord> all, gyms_->ListMembers(gym));
+  const std::string key = ToLower(Trim(username));
+  for (const store::MemberRecord& m : all) {
+    if (ToLower(m.username) == key) return m;
+  }
+  return Status::NotFound("username: '" + username + "' is no member of this gym");
+}
+
+Status Gyms::SetRole(const Viewer& v, int64_t gym, const std::string& username,
+                     const std::string& role) {
+  SB_RETURN_IF_ERROR(RequireHead(v, gym));
+  if (!IsRole(role)) return Status::InvalidInput("role: expected head, setter or climber");
+  SB_ASSIGN_OR_RETURN(store::MemberRecord m, FindMember(gym, username));
+  if (m.user_id == *v.user_id && role != "head") {
+    return Status::InvalidInput("role: a head setter cannot demote themselves");
+  }
+  if (m.role == role) return Status::Ok();
+  SB_RETURN_IF_ERROR(gyms_->PutMember(gym, m.user_id, role));
+  return Record(v, gym, "member " + m.username + ": " + m.role + " -> " + role);
+}
+
+Status Gyms::RemoveMember(const Viewer& v, int64_t gym, const std::string& username) {
+  SB_RETURN_IF_ERROR(RequireHead(v, gym));
+  SB_ASSIGN_OR_RETURN(store::MemberRecord m, FindMember(gym, username));
+  if (m.user_id == *v.user_id) {
+    return Status::InvalidInput("username: a head setter cannot remove themselves");
+  }
+  SB_RETURN_IF_ERROR(gyms_->RemoveMember(gym, m.user_id));
+  return Record(v, gym, "member " + m.username + " (" + m.role + ") removed");
+}
+
+Result<std::vector<GymHistoryEntry>> Gyms::GymHistory(const Viewer& v, int64_t gym) {
+  SB_ASSIGN_OR_RETURN(std::string role, MemberRole(v, gym));
+  if (!CanSet(role)) return Status::Permission("only the gym's setters see its history");
+  SB_ASSIGN_OR_RETURN(std::vector<store::GymHistoryRecord> all, gyms_->ListGymHistory(gym));
+  std::vector<GymHistoryEntry> out;
+  for (const store::GymHistoryRecord& h : all) out.push_back({h.username, h.at, h.what});
+  return out;
 }
 
 Result<std::vector<Gym>> Gyms::Mine(const Viewer& v) {
@@ -155,10 +271,29 @@ Result<std::optional<int64_t>> Gyms::DefaultGym(const Viewer& v) {
   return std::optional<int64_t>(all[0].id);
 }
 
+Result<std::optional<int64_t>> Gyms::WriteGym(const Viewer& v, std::optional<int64_t> asked,
+                                              bool personal, const std::string& what) {
+  if (!v.logged_in()) return Status::Unauthenticated("log in first");
+  if (asked) {
+    SB_ASSIGN_OR_RETURN(std::string role, RoleIn(v, *asked));
+    if (role.empty()) return NoGym(*asked);
+    if (!CanSet(role)) return Status::Permission("only the gym's setters may " + what);
+    return asked;
+  }
+  if (personal || !gyms_) return std::optional<int64_t>();
+  SB_ASSIGN_OR_RETURN(std::vector<store::GymRecord> mine, gyms_->GymsOf(*v.user_id));
+  if (mine.size() >= 2) {
+    return Status::InvalidInput("gym: you are a member of " + std::to_string(mine.size()) +
+                                " gyms; name the gym (its id), or null for a personal route");
+  }
+  if (mine.size() == 1 && CanSet(mine[0].role)) return std::optional<int64_t>(mine[0].id);
+  return std::optional<int64_t>();  // a personal route: no gym's lists
+}
+
 Result<Gym> Gyms::Get(const Viewer& v, int64_t gym) {
   SB_ASSIGN_OR_RETURN(std::string role, MemberRole(v, gym));
   SB_ASSIGN_OR_RETURN(store::GymRecord g, gyms_->GetGym(gym));
-  return Gym{g.id, g.name, role};
+  return Gym{g.id, g.name, role, g.revision};
 }
 
 Status Gyms::AddMember(const Viewer& v, int64_t gym, const std::string& username,
@@ -176,7 +311,8 @@ Status Gyms::AddMember(const Viewer& v, int64_t gym, const std::string& username
   if (u->id == *v.user_id && role != "head") {
     return Status::InvalidInput("role: a head setter cannot demote themselves");
   }
-  return gyms_->PutMember(gym, u->id, role);
+  SB_RETURN_IF_ERROR(gyms_->PutMember(gym, u->id, role));
+  return Record(v, gym, "member " + u->username + " added (" + role + ")");
 }
 
 Result<std::vector<Member>> Gyms::Members(const Viewer& v, int64_t gym) {
@@ -191,7 +327,9 @@ Result<std::vector<Member>> Gyms::Members(const Viewer& v, int64_t gym) {
 Result<int64_t> Gyms::AddWall(const Viewer& v, const Wall& w) {
   SB_RETURN_IF_ERROR(RequireHead(v, w.gym_id));
   SB_RETURN_IF_ERROR(ValidateWall(w));
-  return gyms_->InsertWall(ToRecord(w));
+  SB_ASSIGN_OR_RETURN(int64_t id, gyms_->InsertWall(ToRecord(w)));
+  SB_RETURN_IF_ERROR(Record(v, w.gym_id, "wall " + std::string(Trim(w.name)) + " added"));
+  return id;
 }
 
 Status Gyms::EditWall(const Viewer& v, const Wall& w) {
@@ -201,12 +339,25 @@ Status Gyms::EditWall(const Viewer& v, const Wall& w) {
   Wall edited = w;
   edited.gym_id = stored.gym_id;
   SB_RETURN_IF_ERROR(ValidateWall(edited));
-  if (edited.discipline == stored.discipline) return gyms_->UpdateWall(ToRecord(edited));
+  if (edited.revision > 0 && edited.revision != stored.revision) {
+    return Status::Conflict("revision: the wall was changed meanwhile (now revision " +
+                            std::to_string(stored.revision) + ")");
+  }
+  // The revision read is the one written over (a writer in between: kConflict).
+  edited.revision = stored.revision;
+  const std::string what =
+      "wall " + stored.name + " edited" +
+      (std::string(Trim(edited.name)) != stored.name ? " (now " + std::string(Trim(edited.name)) + ")"
+                                                     : std::string());
+  if (edited.discipline == stored.discipline) {
+    SB_RETURN_IF_ERROR(gyms_->UpdateWall(ToRecord(edited)));
+    return Record(v, stored.gym_id, what);
+  }
   // A new discipline reaches the wall's routes in the same transaction: each
   // route's stored discipline and grade value by the rule of
   // app/discipline.h (a head setter's "discipline:" line still wins).
   const std::string discipline = edited.discipline;
-  return gyms_->UpdateWall(ToRecord(edited), [&discipline](store::RouteAxis* a) {
+  SB_RETURN_IF_ERROR(gyms_->UpdateWall(ToRecord(edited), [&discipline](store::RouteAxis* a) {
     Result<Route> r = ParseCrdl(a->crdl, "route " + std::to_string(a->route_id));
     if (!r.ok()) return false;  // stored text always parses; nothing to derive otherwise
     RouteDiscipline d = DisciplineOfRoute(*r, discipline);
@@ -214,7 +365,16 @@ Status Gyms::EditWall(const Viewer& v, const Wall& w) {
     a->grade_discipline = d.discipline;
     a->grade_value = d.grade_value;
     return true;
-  });
+  }));
+  return Record(v, stored.gym_id, what + "; discipline: " + discipline);
+}
+
+Status Gyms::DeleteWall(const Viewer& v, int64_t gym, int64_t wall) {
+  SB_RETURN_IF_ERROR(RequireHead(v, gym));
+  Result<store::WallRecord> w = gyms_->GetWall(wall);
+  if (!w.ok() || w->gym_id != gym) return NoWall(std::to_string(wall));
+  SB_RETURN_IF_ERROR(gyms_->DeleteWall(wall));
+  return Record(v, gym, "wall " + w->name + " removed");
 }
 
 Result<std::vector<Wall>> Gyms::Walls(const Viewer& v, int64_t gym) {
@@ -256,19 +416,42 @@ Result<Wall> Gyms::ResolveWall(int64_t gym, const std::string& id_or_name) {
 
 Result<int64_t> Gyms::AddCircuit(const Viewer& v, const Circuit& c) {
   SB_RETURN_IF_ERROR(RequireHead(v, c.gym_id));
-  SB_RETURN_IF_ERROR(CheckName("colour", c.colour, GymLimits::kMaxColourBytes));
-  for (const auto& [field, g] : {std::pair<const char*, const std::string*>{"grade_from", &c.grade_from},
-                                 {"grade_to", &c.grade_to}}) {
-    if (g->empty()) continue;
-    Result<grades::Grade> parsed = grades::ParseGrade(*g, {}, field);
-    if (!parsed.ok()) return Status::InvalidInput(std::string(field) + ": not a grade");
+  SB_ASSIGN_OR_RETURN(store::CircuitRecord r, CircuitRow(c));
+  SB_ASSIGN_OR_RETURN(int64_t id, gyms_->InsertCircuit(r));
+  Circuit added = c;
+  added.colour = r.colour;
+  SB_RETURN_IF_ERROR(Record(v, c.gym_id, CircuitText(added) + " added"));
+  return id;
+}
+
+Result<Circuit> Gyms::FindCircuit(int64_t gym, int64_t circuit) {
+  SB_ASSIGN_OR_RETURN(std::vector<store::CircuitRecord> all, gyms_->ListCircuits(gym));
+  for (const store::CircuitRecord& r : all) {
+    if (r.id == circuit) return Circuit{r.id, r.gym_id, r.colour, r.grade_from, r.grade_to, r.revision};
   }
-  store::CircuitRecord r;
-  r.gym_id = c.gym_id;
-  r.colour = std::string(Trim(c.colour));
-  r.grade_from = std::string(Trim(c.grade_from));
-  r.grade_to = std::string(Trim(c.grade_to));
-  return gyms_->InsertCircuit(r);
+  return Status::NotFound("no circuit " + std::to_string(circuit));
+}
+
+Status Gyms::EditCircuit(const Viewer& v, const Circuit& c) {
+  SB_RETURN_IF_ERROR(RequireHead(v, c.gym_id));
+  SB_ASSIGN_OR_RETURN(Circuit stored, FindCircuit(c.gym_id, c.id));
+  if (c.revision > 0 && c.revision != stored.revision) {
+    return Status::Conflict("revision: the circuit was changed meanwhile (now revision " +
+                            std::to_string(stored.revision) + ")");
+  }
+  Circuit edited = c;
+  edited.revision = stored.revision;
+  SB_ASSIGN_OR_RETURN(store::CircuitRecord r, CircuitRow(edited));
+  SB_RETURN_IF_ERROR(gyms_->UpdateCircuit(r));
+  edited.colour = r.colour;
+  return Record(v, c.gym_id, CircuitText(stored) + " edited: now " + CircuitText(edited));
+}
+
+Status Gyms::DeleteCircuit(const Viewer& v, int64_t gym, int64_t circuit) {
+  SB_RETURN_IF_ERROR(RequireHead(v, gym));
+  SB_ASSIGN_OR_RETURN(Circuit stored, FindCircuit(gym, circuit));
+  SB_RETURN_IF_ERROR(gyms_->DeleteCircuit(circuit));
+  return Record(v, gym, CircuitText(stored) + " removed");
 }
 
 Result<std::vector<Circuit>> Gyms::Circuits(const Viewer& v, int64_t gym) {
@@ -277,7 +460,7 @@ Result<std::vector<Circuit>> Gyms::Circuits(const Viewer& v, int64_t gym) {
   SB_ASSIGN_OR_RETURN(std::vector<store::CircuitRecord> all, gyms_->ListCircuits(gym));
   std::vector<Circuit> out;
   for (const store::CircuitRecord& r : all) {
-    out.push_back({r.id, r.gym_id, r.colour, r.grade_from, r.grade_to});
+    out.push_back({r.id, r.gym_id, r.colour, r.grade_from, r.grade_to, r.revision});
   }
   return out;
 }

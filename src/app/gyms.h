@@ -33,6 +33,7 @@ struct Gym {
   int64_t id = 0;
   std::string name;
   std::string role;
+  int64_t revision = 0;  // issue 31: one more on every rename
 };
 
 struct Member {
@@ -51,6 +52,10 @@ struct Wall {
   int position = 0;                       // the gym's order of walls
   std::optional<int> reset_weeks;
   std::optional<int> plan_x, plan_y, plan_w, plan_h;
+  // Issue 31: one more on every edit. An edit with revision > 0 is refused
+  // (kConflict) unless it is the stored one.
+  int64_t revision = 0;
+  int64_t targets_revision = 0;  // read only: the revision of its targets
 };
 
 // A circuit: a tape colour with an optional grade range.
@@ -59,6 +64,14 @@ struct Circuit {
   int64_t gym_id = 0;
   std::string colour;
   std::string grade_from, grade_to;
+  int64_t revision = 0;  // as Wall::revision
+};
+
+// One change of a gym's set-up (issue 31): who, when, what.
+struct GymHistoryEntry {
+  std::string who;
+  std::string at;
+  std::string what;
 };
 
 // One change of a route: who, when ("YYYY-MM-DD HH:MM:SS" UTC), what.
@@ -89,6 +102,17 @@ struct GymLimits {
 // The roles and route states by name.
 bool IsRole(const std::string& role);
 bool IsRouteState(const std::string& state);  // draft, planned, set, stripped
+
+// Issue 31: the route states and the one rule of their changes (plan → set
+// → strip). The names are those of IsRouteState.
+enum class RouteState { kDraft, kPlanned, kSet, kStripped };
+std::optional<RouteState> RouteStateOf(const std::string& name);
+const char* NameOf(RouteState s);
+// Whether a route may change from `from` to `to` by a state change: draft →
+// planned or set; planned → set or back to draft; set → stripped. Nothing
+// leaves the archive (stripped), and no state changes to itself.
+// kConflict "state: ..." otherwise.
+Status CheckTransition(RouteState from, RouteState to);
 // Whether `role` may create and edit a gym's routes (head or setter).
 inline bool CanSet(const std::string& role) { return role == "head" || role == "setter"; }
 
@@ -111,8 +135,10 @@ class Gyms {
   // kUnauthenticated; kInvalidInput "name: ..."; kResourceExhausted beyond
   // kMaxGymsPerAccount.
   Result<int64_t> Create(const Viewer& v, const std::string& name);
-  // Head setters only: renames the gym. Errors as AddMember, kInvalidInput "name: ...".
-  Status Rename(const Viewer& v, int64_t gym, const std::string& name);
+  // Head setters only: renames the gym. Errors as AddMember, kInvalidInput
+  // "name: ..."; kConflict when `revision` > 0 is not the stored one.
+  // Recorded in the gym's history.
+  Status Rename(const Viewer& v, int64_t gym, const std::string& name, int64_t revision = 0);
   // The viewer's gyms with their role (none when not logged in).
   Result<std::vector<Gym>> Mine(const Viewer& v);
   // A gym the viewer is a member of; kNotFound "no gym N" otherwise.
@@ -120,8 +146,20 @@ class Gyms {
   // The viewer's role in `gym` ("" when not a member or not logged in).
   Result<std::string> RoleIn(const Viewer& v, int64_t gym);
   // The gym a request without one means: the viewer's only gym, else the
-  // install's first; nullopt when there is no gym.
+  // install's first; nullopt when there is no gym. (Reads only: a write
+  // names its gym through WriteGym.)
   Result<std::optional<int64_t>> DefaultGym(const Viewer& v);
+  // The gym a route write (create, import, variation) goes to (issue 31:
+  // every write names its gym; never the install's first gym by default).
+  // `asked` given: that gym, when the viewer is its setter or head setter
+  // (kNotFound "no gym N" for a non-member, kPermission for a climber).
+  // `asked` absent: no gym (a personal route) for an account in no gym or
+  // only a climber of one gym; the gym itself for its one setter or head
+  // setter; kInvalidInput "gym: ..." for a member of two or more gyms.
+  // `personal` (the request's "gym": null): no gym, whatever the memberships.
+  // `what` ends the permission message ("add routes to it").
+  Result<std::optional<int64_t>> WriteGym(const Viewer& v, std::optional<int64_t> asked,
+                                          bool personal, const std::string& what);
 
   // Head setters only: adds `username` to the gym as `role` (or changes
   // their role). Errors: kNotFound (not a member, or no such user),
@@ -130,13 +168,27 @@ class Gyms {
                    const std::string& role);
   // Members only (kNotFound otherwise).
   Result<std::vector<Member>> Members(const Viewer& v, int64_t gym);
+  // Head setters only (issue 31): changes a member's role (kNotFound when
+  // `username` is no member) or removes them; a head setter neither demotes
+  // nor removes themselves (kInvalidInput). Takes effect on the next request
+  // (roles are read per request). Recorded in the gym's history.
+  Status SetRole(const Viewer& v, int64_t gym, const std::string& username,
+                 const std::string& role);
+  Status RemoveMember(const Viewer& v, int64_t gym, const std::string& username);
+  // Setters and head setters: the gym's history, oldest first.
+  Result<std::vector<GymHistoryEntry>> GymHistory(const Viewer& v, int64_t gym);
 
   // Head setters only: a new wall (gym_id = `w.gym_id`) or an edit of one
   // (every field of `w` replaces the stored one). Errors: kNotFound for
   // another gym's ids, kPermission, kInvalidInput (ValidateWall), kConflict
   // for a name the gym has.
+  // EditWall: kConflict when w.revision > 0 is not the stored revision.
+  // DeleteWall: kConflict "N routes are on the wall" while routes not
+  // stripped are on it (stripped ones keep its name). Each is recorded in
+  // the gym's history.
   Result<int64_t> AddWall(const Viewer& v, const Wall& w);
   Status EditWall(const Viewer& v, const Wall& w);
+  Status DeleteWall(const Viewer& v, int64_t gym, int64_t wall);
   // Members only.
   Result<std::vector<Wall>> Walls(const Viewer& v, int64_t gym);
   Result<Wall> GetWall(const Viewer& v, int64_t wall);
@@ -148,6 +200,10 @@ class Gyms {
   // Head setters only: a new circuit. Errors as AddWall; grade_from /
   // grade_to must be grades (any scale) when given.
   Result<int64_t> AddCircuit(const Viewer& v, const Circuit& c);
+  // Head setters only (issue 31): replaces circuit c.id of c.gym_id
+  // (kNotFound for another gym's; kConflict as EditWall) or removes it.
+  Status EditCircuit(const Viewer& v, const Circuit& c);
+  Status DeleteCircuit(const Viewer& v, int64_t gym, int64_t circuit);
   // Members only.
   Result<std::vector<Circuit>> Circuits(const Viewer& v, int64_t gym);
 
@@ -161,6 +217,12 @@ class Gyms {
   // The viewer's role, kNotFound "no gym N" when not a member.
   Result<std::string> MemberRole(const Viewer& v, int64_t gym);
   Status RequireHead(const Viewer& v, int64_t gym);
+  // A member of `gym` by user name (kNotFound "username: ..." otherwise).
+  Result<store::MemberRecord> FindMember(int64_t gym, const std::string& username);
+  // A circuit of `gym` (kNotFound "no circuit N" otherwise).
+  Result<Circuit> FindCircuit(int64_t gym, int64_t circuit);
+  // Appends `what` by the viewer to the gym's history.
+  Status Record(const Viewer& v, int64_t gym, const std::string& what);
 
   store::Store* store_;
   store::GymStore* gyms_;

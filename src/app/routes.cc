@@ -404,6 +404,41 @@ std::vector<std::string> HeaderSetters(std::string_view crdl) {
   return out;
 }
 
+// Issue 31: the text and the fields never disagree. The CRDL header's date
+// ("date:" or "set:"), "strip:" and "state:" lines are rewritten to the
+// record's fields where they differ ("set:" / "strip:" added when the text
+// has none and the field is not empty; "state:" only where the text has one).
+void SyncHeader(store::RouteRecord* rec) {
+  Result<Route> r = ParseCrdl(rec->crdl, "route.crdl");
+  if (!r.ok()) return;
+  bool changed = false;
+  auto put = [&](std::initializer_list<const char*> keys, const char* add,
+                 const std::string& value) {
+    for (auto it = r->header.begin(); it != r->header.end(); ++it) {
+      const std::string k = ToLower(it->key);
+      for (const char* key : keys) {
+        if (k != key) continue;
+        if (std::string(Trim(it->value)) == value) return;
+        changed = true;
+        if (value.empty() && add) {
+          r->header.erase(it);
+        } else {
+          it->value = value;
+        }
+        return;
+      }
+    }
+    if (add && !value.empty()) {
+      r->SetMeta(add, value);
+      changed = true;
+    }
+  };
+  put({"date", "set"}, "set", rec->set_on);
+  put({"strip"}, "strip", rec->strip_on);
+  put({"state"}, nullptr, rec->state);
+  if (changed) rec->crdl = PrintCrdl(*r);
+}
+
 std::string Joined(const std::vector<store::RouteSetter>& setters) {
   std::string out;
   for (const store::RouteSetter& s : setters) out += (out.empty() ? "" : ", ") + s.name;
@@ -453,9 +488,12 @@ Status Routes::ApplyGymFields(const Viewer& v, const GymFields& g, store::RouteR
     if (*g.state != rec->state) {
       changes->push_back("state: " + rec->state + " -> " + *g.state);
       rec->state = *g.state;
-      // The day it happened, unless the request gives it.
-      if (rec->state == "set" && !g.set_on) rec->set_on = Today();
-      if (rec->state == "stripped" && !g.strip_on) rec->strip_on = Today();
+      // The day it happened, unless the request or the route has it
+      // (issue 31: a typed date is kept; only an empty one becomes today).
+      if (rec->state == "set" && !g.set_on && rec->set_on.empty()) rec->set_on = Today();
+      if (rec->state == "stripped" && !g.strip_on && rec->strip_on.empty()) {
+        rec->strip_on = Today();
+      }
     }
     if (rec->state == "planned") rec->planned_on = rec->set_on;
   }
@@ -496,14 +534,8 @@ Result<int64_t> Routes::Create(const Viewer& v, std::string_view crdl, bool is_p
   GymFields g = WithHeaderFields(crdl, request);
   rec.is_public = is_public;
   rec.owner_id = v.user_id;
-  if (g.gym) {
-    SB_ASSIGN_OR_RETURN(std::string role, gyms_.RoleIn(v, *g.gym));
-    if (role.empty()) return Status::NotFound("no gym " + std::to_string(*g.gym));
-    if (!CanSet(role)) return Status::Permission("only the gym's setters may add routes to it");
-    rec.gym_id = g.gym;
-  } else {
-    SB_ASSIGN_OR_RETURN(rec.gym_id, gyms_.DefaultGym(v));
-  }
+  SB_ASSIGN_OR_RETURN(rec.gym_id, gyms_.WriteGym(v, g.gym, g.personal, "add routes to it"));
+  if (!rec.gym_id) g = request;  // a personal route: the header's state lines are text only
   rec.state = "draft";
   std::vector<std::string> changes;
   std::optional<std::vector<store::RouteSetter>> setters;
@@ -518,6 +550,7 @@ Result<int64_t> Routes::Create(const Viewer& v, std::string_view crdl, bool is_p
     // The CRDL's "setter:" lines name the setters (free text, as before).
     for (const std::string& name : HeaderSetters(crdl)) rec.setters.push_back({std::nullopt, name});
   }
+  if (rec.gym_id) SyncHeader(&rec);
   SB_RETURN_IF_ERROR(ApplyWallDiscipline(&rec));
   SB_ASSIGN_OR_RETURN(int64_t id, store_->InsertRoute(rec));
   if (store::GymStore* gs = store::GymStoreOf(store_); gs && rec.gym_id) {
@@ -535,6 +568,10 @@ Result<std::vector<HistoryEntry>> Routes::History(const Viewer& v, int64_t id) {
 
 Status Routes::Update(const Viewer& v, int64_t id, const RouteEdit& edit) {
   SB_ASSIGN_OR_RETURN(store::RouteRecord r, GetOwnedRow(v, id));
+  if (edit.revision && *edit.revision != r.revision) {
+    return Status::Conflict("revision: the route was changed meanwhile (now revision " +
+                            std::to_string(r.revision) + ")");
+  }
   const bool was_public = r.is_public;
   std::vector<std::string> changes;
   if (edit.crdl) {
@@ -570,6 +607,7 @@ Status Routes::Update(const Viewer& v, int64_t id, const RouteEdit& edit) {
   if (g.strip_on && *g.strip_on == r.strip_on && !edit.gym.strip_on) g.strip_on.reset();
   SB_RETURN_IF_ERROR(ApplyGymFields(v, g, &r, &changes, &setters));
   if (edit.discipline) SB_RETURN_IF_ERROR(SetDiscipline(v, *edit.discipline, &r, &changes));
+  if (r.gym_id) SyncHeader(&r);
   SB_RETURN_IF_ERROR(ApplyWallDiscipline(&r));
   SB_RETURN_IF_ERROR(store_->UpdateRoute(r));
   plans_->Forget(id);
@@ -584,6 +622,59 @@ Status Routes::Update(const Viewer& v, int64_t id, const RouteEdit& edit) {
   }
   if (was_public && !r.is_public) SB_RETURN_IF_ERROR(HideOwnVariationsOf(v, id));
   return Status::Ok();
+}
+
+Status Routes::ChangeState(const Viewer& v, int64_t id, const StateChange& change) {
+  std::optional<RouteState> to = RouteStateOf(ToLower(Trim(change.state)));
+  if (!to) return Status::InvalidInput("state: expected draft, planned, set or stripped");
+  SB_ASSIGN_OR_RETURN(store::RouteRecord r, GetOwnedRow(v, id));
+  if (!r.gym_id) return Status::InvalidInput("state: this route belongs to no gym");
+  std::optional<RouteState> from = RouteStateOf(r.state);
+  SB_RETURN_IF_ERROR(CheckTransition(from.value_or(RouteState::kDraft), *to));
+  if (change.on) SB_RETURN_IF_ERROR(CheckDate("on", *change.on));
+  RouteEdit edit;
+  edit.revision = change.revision;
+  edit.gym.state = NameOf(*to);
+  if (change.on && !change.on->empty()) {
+    if (*to == RouteState::kStripped) {
+      edit.gym.strip_on = *change.on;
+    } else {
+      edit.gym.set_on = *change.on;
+    }
+  }
+  return Update(v, id, edit);
+}
+
+Result<std::vector<int64_t>> Routes::ChangeWallState(const Viewer& v, int64_t gym, int64_t wall,
+                                                     const WallStateChange& change) {
+  if (!v.logged_in()) return Status::Unauthenticated("log in first");
+  SB_ASSIGN_OR_RETURN(std::string role, gyms_.RoleIn(v, gym));
+  if (role.empty()) return Status::NotFound("no gym " + std::to_string(gym));
+  if (!CanSet(role)) return Status::Permission("only the gym's setters may change its routes");
+  SB_ASSIGN_OR_RETURN(Wall w, gyms_.ResolveWall(gym, std::to_string(wall)));
+  std::optional<RouteState> from = RouteStateOf(ToLower(Trim(change.from)));
+  if (!from) return Status::InvalidInput("from: expected draft, planned, set or stripped");
+  std::optional<RouteState> to = RouteStateOf(ToLower(Trim(change.to)));
+  if (!to) return Status::InvalidInput("to: expected draft, planned, set or stripped");
+  SB_RETURN_IF_ERROR(CheckTransition(*from, *to));
+  if (change.on) SB_RETURN_IF_ERROR(CheckDate("on", *change.on));
+  if (change.day) SB_RETURN_IF_ERROR(CheckDate("day", *change.day));
+  store::RouteFilter f;
+  f.viewer = v.user_id;
+  f.gym_id = gym;
+  f.wall_id = w.id;
+  f.state = NameOf(*from);
+  f.limit = options_.limits.max_list_rows;
+  SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> rows, store_->ListRoutes(f));
+  std::vector<int64_t> changed;
+  for (const store::RouteRecord& r : rows) {
+    if (change.day && !change.day->empty() && r.set_on != *change.day) continue;
+    if (r.state == "draft" && !IsOwner(r, v)) continue;  // a draft stays its owner's
+    StateChange one{NameOf(*to), change.on, std::nullopt};
+    SB_RETURN_IF_ERROR(ChangeState(v, r.id, one));
+    changed.push_back(r.id);
+  }
+  return changed;
 }
 
 // The owner's public variations made from a route they just made private
@@ -637,20 +728,14 @@ struct Imported {
 
 Result<ImportSummary> Routes::ImportCsv(const Viewer& v, std::string_view routes_csv,
                                         std::string_view moves_csv,
-                                        std::optional<int64_t> gym) {
+                                        std::optional<int64_t> gym, bool personal) {
   if (!v.logged_in()) return Status::Unauthenticated("log in first");
   // The gym the routes go to (issue 21), and whether the importer may put
   // them on its walls (else they come in as drafts).
+  SB_ASSIGN_OR_RETURN(gym, gyms_.WriteGym(v, gym, personal, "import routes to it"));
   std::string role;
   if (gym) {
     SB_ASSIGN_OR_RETURN(role, gyms_.RoleIn(v, *gym));
-    if (role.empty()) return Status::NotFound("no gym " + std::to_string(*gym));
-    if (!CanSet(role)) return Status::Permission("only the gym's setters may import routes to it");
-  } else {
-    SB_ASSIGN_OR_RETURN(gym, gyms_.DefaultGym(v));
-    if (gym) {
-      SB_ASSIGN_OR_RETURN(role, gyms_.RoleIn(v, *gym));
-    }
   }
   store::GymStore* gs = store::GymStoreOf(store_);
   SB_ASSIGN_OR_RETURN(SiteExport ex,

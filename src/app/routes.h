@@ -73,6 +73,7 @@ struct RoutePage {
 // A route's gym fields as a request gives them (unset fields stay; issue 21).
 struct GymFields {
   std::optional<int64_t> gym;         // only at creation: the route's gym
+  bool personal = false;              // only at creation: "gym": null, no gym (issue 31)
   std::optional<std::string> wall;    // a wall id or name of the gym; "" = none
   std::optional<std::string> state;   // draft, planned, set, stripped
   std::optional<std::vector<std::string>> setters;  // user names (or names)
@@ -91,6 +92,27 @@ struct RouteEdit {
   // Head setters of the route's gym; the owner for a gym-less route (or one
   // in a gym the owner is no member of).
   std::optional<std::string> discipline;
+  // Issue 31: the revision the edit was made on; kConflict unless it is the
+  // stored one (nullopt: no check, today's behaviour for scripts).
+  std::optional<int64_t> revision;
+};
+
+// A change of state (issue 31, POST /api/routes/{id}/state): `state` by
+// app::CheckTransition; `on` the day it happens (ISO date; default: the
+// route's date as typed, today when it has none).
+struct StateChange {
+  std::string state;
+  std::optional<std::string> on;
+  std::optional<int64_t> revision;  // as RouteEdit::revision
+};
+
+// Several routes of one wall at once (POST /api/gyms/{gym}/walls/{wall}/state):
+// every route of the wall in state `from` (and, when given, planned for or
+// set on `day`) changes to `to`.
+struct WallStateChange {
+  std::string from, to;
+  std::optional<std::string> on;
+  std::optional<std::string> day;
 };
 
 struct ImportSummary {
@@ -163,9 +185,10 @@ class Routes {
   // Stores a new route owned by the viewer; returns its id. Errors:
   // kUnauthenticated, kInvalidInput located at route.crdl:line:col.
   Result<int64_t> Create(const Viewer& v, std::string_view crdl, bool is_public);
-  // The same with gym fields (issue 21): the route goes to `g.gym` (default:
-  // the viewer's only gym, else the install's first), in state draft unless
-  // `g.state` says. Setting any gym field needs the setter or head role in
+  // The same with gym fields (issue 21): the route goes to the gym
+  // Gyms::WriteGym names (issue 31: `g.gym`, else the viewer's one gym where
+  // they set, else no gym; kInvalidInput "gym: ..." for a member of several
+  // gyms), in state draft unless `g.state` says. Setting any gym field needs the setter or head role in
   // the gym. Errors as Create, and kNotFound for another gym's (or wall's)
   // id, kPermission for a member without the role, kInvalidInput naming the
   // field. A history row records the creation.
@@ -173,8 +196,20 @@ class Routes {
                          const GymFields& g);
   // A route's history (who, when, what), oldest first; errors as Get.
   Result<std::vector<HistoryEntry>> History(const Viewer& v, int64_t id);
-  // Errors as GetOwned, and as Create for new CRDL.
+  // Errors as GetOwned, and as Create for new CRDL; kConflict "revision:
+  // ..." for a stale edit.revision (or a writer in between: the stored
+  // revision is checked and bumped in the one UPDATE).
   Status Update(const Viewer& v, int64_t id, const RouteEdit& edit);
+  // Issue 31: a route's state change (setters and head setters of its gym;
+  // errors as Update, kInvalidInput "state: ..."/"on: ...", kConflict
+  // "state: ..." for a change CheckTransition refuses). A history row.
+  Status ChangeState(const Viewer& v, int64_t id, const StateChange& change);
+  // Every route of wall `wall` (of `gym`) matching `change`; returns the
+  // ids changed (each with a history row). Head setters and setters of the
+  // gym; kNotFound for another gym's wall; kConflict when CheckTransition
+  // refuses from → to.
+  Result<std::vector<int64_t>> ChangeWallState(const Viewer& v, int64_t gym, int64_t wall,
+                                               const WallStateChange& change);
   // Deletes a route (variations made from it keep their input snapshots).
   // The route's discipline by the rule of app/discipline.h, with where it
   // comes from ("bouldering (from its wall)") and its grade note. Errors:
@@ -191,15 +226,16 @@ class Routes {
   // skipped and reported. Errors: kUnauthenticated; kInvalidInput located at
   // the file and line ("routes.csv:12: rx: not a finite number").
   // Issue 21: the routes go to `gym` (kNotFound unless a member;
-  // kPermission unless a setter), default the viewer's only gym or the
-  // install's first; each keeps the original site's id, and a route of the
+  // kPermission unless a setter), default as Gyms::WriteGym (`personal`:
+  // no gym); each keeps the original site's id, and a route of the
   // file already imported to the gym is skipped (reported) — importing twice
   // duplicates nothing; a variation's input from a former import is linked.
   // The header's "state:" applies when the importer is the gym's setter,
   // else routes come in as drafts.
   Result<ImportSummary> ImportCsv(const Viewer& v, std::string_view routes_csv,
                                   std::string_view moves_csv,
-                                  std::optional<int64_t> gym = std::nullopt);
+                                  std::optional<int64_t> gym = std::nullopt,
+                                  bool personal = false);
   // The visible routes (only the viewer's own with `mine`) in the same
   // format; ids are the database's.
   Result<CsvFiles> ExportCsv(const Viewer& v, bool mine);

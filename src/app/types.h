@@ -93,6 +93,7 @@ struct RouteView {
   std::string strip_on;
   std::optional<int64_t> original_id;  // the original site's id of an import
   std::vector<RouteSetter> setters;    // in order
+  int64_t revision = 0;                // one more on every change (issue 31)
 };
 
 // An account. `password_hash` is only filled inside the app's services

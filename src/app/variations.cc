@@ -245,14 +245,7 @@ Result<CreatedVariation> Variations::Create(const Viewer& v, const VariationRequ
   std::optional<int64_t> gym_id;  // issue 21: checked before any costly work
   {
     Gyms gyms(store_, options_);
-    if (req.gym) {
-      SB_ASSIGN_OR_RETURN(std::string role, gyms.RoleIn(v, *req.gym));
-      if (role.empty()) return Status::NotFound("no gym " + std::to_string(*req.gym));
-      if (!CanSet(role)) return Status::Permission("only the gym's setters may add routes to it");
-      gym_id = req.gym;
-    } else {
-      SB_ASSIGN_OR_RETURN(gym_id, gyms.DefaultGym(v));
-    }
+    SB_ASSIGN_OR_RETURN(gym_id, gyms.WriteGym(v, req.gym, false, "add routes to it"));
   }
   SB_RETURN_IF_ERROR(CheckRequestSearchBudget(req.setting, req.params, total_moves));
   chaos::VaryParams params = req.params;

@@ -118,8 +118,8 @@ struct VariationRequest {
   // request (else that one is returned, `existing` set).
   bool duplicate = false;
   // Issue 21: the gym it belongs to (the viewer must be its setter: else
-  // kNotFound / kPermission); default the viewer's only gym, else the
-  // install's first. A new variation is a draft.
+  // kNotFound / kPermission); default as Gyms::WriteGym (issue 31: a member
+  // of several gyms names it). A new variation is a draft.
   std::optional<int64_t> gym;
   // Issue 22, the setter's preset: when set, the IC is the best candidate's
   // of the gallery for this slot (app::ChooseFromGallery with

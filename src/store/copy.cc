@@ -73,11 +73,16 @@ std::vector<size_t> ColumnsByName(const Rows& r) {
 const std::vector<std::string>& AddedColumns(const std::string& table) {
   static const std::vector<std::string> kRoutes = {
       "gym_id",      "wall_id", "state", "planned_on", "strip_on", "original_id",
-      "search_text", "search_version"};
+      "search_text", "search_version", "revision"};
   static const std::vector<std::string> kStudies = {"gym_id"};
+  // Schema 14 (issue 31): the revisions.
+  static const std::vector<std::string> kRevision = {"revision"};
+  static const std::vector<std::string> kRevisions = {"revision", "targets_revision"};
   static const std::vector<std::string> kNone;
   if (table == "routes") return kRoutes;
   if (table == "studies") return kStudies;
+  if (table == "gyms" || table == "walls") return kRevisions;
+  if (table == "circuits") return kRevision;
   return kNone;
 }
 

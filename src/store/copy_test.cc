@@ -107,6 +107,8 @@ void Fill(Store& s) {
   ASSERT_TRUE(
       targets->SetWallTargets(wall, {{0, "grade", "V3", 2}, {0, "style", "crimp", 0.1 + 0.2}})
           .ok());
+  // The gym's history (schema 14).
+  ASSERT_TRUE(GymStoreOf(&s)->AddGymHistory(gym, std::nullopt, "wall Cave added").ok());
   // The gym's targets per discipline (schema 12).
   ASSERT_TRUE(targets->SetDisciplineTargets(gym, "bouldering", {{0, "", "grade", "V4", 3}}).ok());
 }

@@ -26,6 +26,7 @@ struct GymRecord {
   std::string name;
   std::string created_at;  // "YYYY-MM-DD HH:MM:SS" UTC
   std::string role;
+  int64_t revision = 0;  // schema 14 (issue 31): one more on every rename
 };
 
 // A member of a gym: "head" (head setter), "setter" or "climber".
@@ -47,6 +48,11 @@ struct WallRecord {
   int position = 0;
   std::optional<int> reset_weeks;
   std::optional<int> plan_x, plan_y, plan_w, plan_h;
+  // Schema 14 (issue 31): one more on every UpdateWall; UpdateWall with
+  // revision > 0 writes only over that stored revision (kConflict else).
+  int64_t revision = 0;
+  // Read only: the revision of the wall's targets (TargetStore::SetWallTargets).
+  int64_t targets_revision = 0;
 };
 
 // A circuit: one of the gym's tape colours, with an optional grade range.
@@ -56,6 +62,18 @@ struct CircuitRecord {
   std::string colour;
   std::string grade_from;  // "" = open
   std::string grade_to;
+  int64_t revision = 0;  // schema 14: as WallRecord::revision
+};
+
+// One change of a gym's set-up (walls, circuits, members, its name) by a
+// head setter (schema 14, issue 31).
+struct GymHistoryRecord {
+  int64_t id = 0;
+  int64_t gym_id = 0;
+  std::optional<int64_t> user_id;
+  std::string username;  // read only: "" once the account is deleted
+  std::string at;        // "YYYY-MM-DD HH:MM:SS" UTC
+  std::string what;
 };
 
 // One change of a route: who (nullopt once the account is deleted), when and what.
@@ -92,8 +110,9 @@ class GymStore {
   // its id. kNotFound when the user does not exist. `head` = nullopt creates
   // a gym without members (the install's first gym).
   virtual Result<int64_t> CreateGym(const std::string& name, std::optional<int64_t> head) = 0;
-  // Renames a gym; kNotFound when absent.
-  virtual Status RenameGym(int64_t id, const std::string& name) = 0;
+  // Renames a gym; kNotFound when absent; with `revision` > 0, kConflict
+  // unless that is the stored revision (checked and bumped in one UPDATE).
+  virtual Status RenameGym(int64_t id, const std::string& name, int64_t revision = 0) = 0;
   virtual Result<GymRecord> GetGym(int64_t id) = 0;
   // Every gym in id order (role "").
   virtual Result<std::vector<GymRecord>> ListGyms() = 0;
@@ -105,6 +124,8 @@ class GymStore {
   virtual Status PutMember(int64_t gym_id, int64_t user_id, const std::string& role) = 0;
   // A gym's members, by user id.
   virtual Result<std::vector<MemberRecord>> ListMembers(int64_t gym_id) = 0;
+  // Removes a member (issue 31); kNotFound when `user_id` is no member.
+  virtual Status RemoveMember(int64_t gym_id, int64_t user_id) = 0;
 
   // Walls. InsertWall ignores `id` and returns the new one; kConflict when
   // the gym has a wall of that name. UpdateWall replaces every field but
@@ -118,11 +139,26 @@ class GymStore {
   virtual Result<WallRecord> GetWall(int64_t id) = 0;
   // A gym's walls by position, then id.
   virtual Result<std::vector<WallRecord>> ListWalls(int64_t gym_id) = 0;
+  // Removes a wall (issue 31), in one transaction: kConflict "N routes are
+  // on it" while routes not stripped have its wall_id; the stripped ones
+  // keep the wall's name as their free-text wall. kNotFound when absent.
+  virtual Status DeleteWall(int64_t id) = 0;
 
   // Circuits. kConflict when the gym has a circuit of that colour.
   virtual Result<int64_t> InsertCircuit(const CircuitRecord& circuit) = 0;
   // A gym's circuits by id.
   virtual Result<std::vector<CircuitRecord>> ListCircuits(int64_t gym_id) = 0;
+  // Replaces a circuit's colour and range (issue 31); kNotFound, kConflict
+  // for a taken colour or (revision > 0) a revision not the stored one.
+  virtual Status UpdateCircuit(const CircuitRecord& circuit) = 0;
+  // Removes a circuit; kNotFound when absent. Routes keep their colour.
+  virtual Status DeleteCircuit(int64_t id) = 0;
+
+  // The gym's history (issue 31): appends one row (at = now); lists them,
+  // oldest first.
+  virtual Status AddGymHistory(int64_t gym_id, std::optional<int64_t> user_id,
+                               const std::string& what) = 0;
+  virtual Result<std::vector<GymHistoryRecord>> ListGymHistory(int64_t gym_id) = 0;
 
   // Replaces a route's setters and appends one history row `what` by
   // `user_id` (when `what` is not empty), in one transaction; kNotFound for

@@ -547,6 +547,31 @@ INSERT INTO gym_versions(gym_id) SELECT id FROM gyms;
            {Only::kSqlite, GymVersionTriggersSqlite()},
            {Only::kPostgres, GymVersionTriggersPostgres()},
        }},
+      // Schema 14 (issue 31, "no edit is lost"): a revision on every
+      // editable record (routes, gyms, walls, circuits, and the targets of a
+      // wall and of a gym's disciplines), 1 for every existing row, one more
+      // on every write (checked and bumped in the UPDATE's WHERE, so two
+      // writers of one revision cannot both win); the gym's history of what
+      // its head setters changed (walls, circuits, members, its name).
+      {"revisions of editable records; the gym's history (issue 31)",
+       {
+           {Only::kBoth, R"sql(
+ALTER TABLE routes ADD COLUMN revision {int64} NOT NULL DEFAULT 1;
+ALTER TABLE gyms ADD COLUMN revision {int64} NOT NULL DEFAULT 1;
+ALTER TABLE gyms ADD COLUMN targets_revision {int64} NOT NULL DEFAULT 1;
+ALTER TABLE walls ADD COLUMN revision {int64} NOT NULL DEFAULT 1;
+ALTER TABLE walls ADD COLUMN targets_revision {int64} NOT NULL DEFAULT 1;
+ALTER TABLE circuits ADD COLUMN revision {int64} NOT NULL DEFAULT 1;
+CREATE TABLE gym_history (
+  id      {serial},
+  gym_id  {int64} NOT NULL REFERENCES gyms(id) ON DELETE CASCADE,
+  user_id {int64} REFERENCES users(id) ON DELETE SET NULL,
+  at      TEXT NOT NULL,
+  what    TEXT NOT NULL
+);
+CREATE INDEX gym_history_gym ON gym_history(gym_id, id);
+)sql"},
+       }},
   };
   return kMigrations;
 }
@@ -575,7 +600,7 @@ const std::vector<std::string>& SchemaTables() {
       "walls",         "circuits",     "routes",          "variation_inputs",
       "route_sources", "feedback",     "studies",         "study_routes",  "study_responses",
       "study_answers", "study_demographics", "route_setters", "route_history",
-      "ticks",         "wall_targets", "discipline_targets", "gym_versions"};
+      "ticks",         "wall_targets", "discipline_targets", "gym_versions", "gym_history"};
   return kTables;
 }
 

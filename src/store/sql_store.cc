@@ -48,7 +48,7 @@ std::string SelectRoutes(bool full) {
          ", r.smooth, r.created_at, r.updated_at, r.move_count, r.colour, r.wall, r.set_on, "
          "r.grade_discipline, r.grade_value, r.meta_version, r.request_key, "
          "r.gym_id, r.wall_id, coalesce(w.name, ''), r.state, r.planned_on, r.strip_on, "
-         "r.original_id "
+         "r.original_id, r.revision "
          "FROM routes r LEFT JOIN users u ON u.id = r.owner_id "
          "LEFT JOIN walls w ON w.id = r.wall_id";
 }
@@ -94,6 +94,7 @@ RouteRecord ReadRoute(const Rows& s, size_t i) {
   r.planned_on = s.Text(i, 26);
   r.strip_on = s.Text(i, 27);
   r.original_id = s.OptInt(i, 28);
+  r.revision = s.Int(i, 29);
   return r;
 }
 
@@ -353,22 +354,32 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
 
   Status UpdateRoute(const RouteRecord& route) override {
     SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    std::vector<Value> params = {
+        route.crdl, route.name, route.grade, route.setter, int64_t{route.is_public},
+        int64_t{route.move_count}, NowText(), route.colour, route.wall, route.set_on,
+        route.grade_discipline, sql::Nullable(route.grade_value), int64_t{route.meta_version},
+        route.request_key, sql::Nullable(route.gym_id), sql::Nullable(route.wall_id),
+        route.state, route.planned_on, route.strip_on, sql::Nullable(route.original_id),
+        SearchText(route.name, route.crdl), int64_t{kSearchVersion}, route.id};
+    // Issue 31: the revision is checked and bumped in the one statement.
+    if (route.revision > 0) params.push_back(route.revision);
     SB_ASSIGN_OR_RETURN(
         Rows r,
-        c->Query("UPDATE routes SET crdl = ?, name = ?, grade = ?, setter = ?, is_public = ?, "
-                 "move_count = ?, updated_at = ?, colour = ?, wall = ?, set_on = ?, "
-                 "grade_discipline = ?, grade_value = ?, meta_version = ?, request_key = ?, "
-                 "gym_id = ?, wall_id = ?, state = ?, planned_on = ?, strip_on = ?, "
-                 "original_id = ?, search_text = ?, search_version = ? "
-                 "WHERE id = ? RETURNING id",
-                 {route.crdl, route.name, route.grade, route.setter, int64_t{route.is_public},
-                  int64_t{route.move_count}, NowText(), route.colour, route.wall, route.set_on,
-                  route.grade_discipline, sql::Nullable(route.grade_value),
-                  int64_t{route.meta_version}, route.request_key, sql::Nullable(route.gym_id),
-                  sql::Nullable(route.wall_id), route.state, route.planned_on, route.strip_on,
-                  sql::Nullable(route.original_id), SearchText(route.name, route.crdl),
-                  int64_t{kSearchVersion}, route.id}));
-    if (r.empty()) return Status::NotFound("no route " + std::to_string(route.id));
+        c->Query(std::string("UPDATE routes SET crdl = ?, name = ?, grade = ?, setter = ?, "
+                             "is_public = ?, move_count = ?, updated_at = ?, colour = ?, "
+                             "wall = ?, set_on = ?, grade_discipline = ?, grade_value = ?, "
+                             "meta_version = ?, request_key = ?, gym_id = ?, wall_id = ?, "
+                             "state = ?, planned_on = ?, strip_on = ?, original_id = ?, "
+                             "search_text = ?, search_version = ?, revision = revision + 1 "
+                             "WHERE id = ?") +
+                     (route.revision > 0 ? " AND revision = ?" : "") + " RETURNING id",
+                 params));
+    if (r.empty()) {
+      SB_ASSIGN_OR_RETURN(Rows e, c->Query("SELECT revision FROM routes WHERE id = ?", {route.id}));
+      if (e.empty()) return Status::NotFound("no route " + std::to_string(route.id));
+      return Status::Conflict("revision: the route was changed meanwhile (now revision " +
+                              std::to_string(e.Int(0, 0)) + ")");
+    }
     return Status::Ok();
   }
 
@@ -817,9 +828,10 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
 
   // -- wall targets (TargetStore, store/target_sql.cc) -----------------------
 
-  Status SetWallTargets(int64_t wall_id, const std::vector<TargetRecord>& targets) override {
+  Status SetWallTargets(int64_t wall_id, const std::vector<TargetRecord>& targets,
+                        int64_t revision) override {
     SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
-    return targets_sql::SetWallTargets(*c, wall_id, targets);
+    return targets_sql::SetWallTargets(*c, wall_id, targets, revision);
   }
   Result<std::vector<TargetRecord>> WallTargets(int64_t wall_id) override {
     SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
@@ -875,17 +887,32 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
     });
   }
 
-  Status RenameGym(int64_t id, const std::string& name) override {
+  Status RenameGym(int64_t id, const std::string& name, int64_t revision) override {
     SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
-    SB_ASSIGN_OR_RETURN(Rows r, c->Query("UPDATE gyms SET name = ? WHERE id = ? RETURNING id",
-                                         {name, id}));
-    if (r.empty()) return Status::NotFound("no gym " + std::to_string(id));
+    std::vector<Value> params = {name, id};
+    if (revision > 0) params.push_back(revision);
+    SB_ASSIGN_OR_RETURN(
+        Rows r, c->Query(std::string("UPDATE gyms SET name = ?, revision = revision + 1 "
+                                     "WHERE id = ?") +
+                             (revision > 0 ? " AND revision = ?" : "") + " RETURNING id",
+                         params));
+    if (r.empty()) return Stale(*c, "gyms", id, "gym");
     return Status::Ok();
+  }
+
+  // After an UPDATE ... WHERE id = ? AND revision = ? wrote nothing:
+  // kNotFound "no <what> N" when the row is gone, else kConflict.
+  static Status Stale(sql::Connection& c, const std::string& table, int64_t id,
+                      const std::string& what) {
+    SB_ASSIGN_OR_RETURN(Rows e, c.Query("SELECT revision FROM " + table + " WHERE id = ?", {id}));
+    if (e.empty()) return Status::NotFound("no " + what + " " + std::to_string(id));
+    return Status::Conflict("revision: the " + what + " was changed meanwhile (now revision " +
+                            std::to_string(e.Int(0, 0)) + ")");
   }
 
   Result<GymRecord> GetGym(int64_t id) override {
     SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
-    SB_ASSIGN_OR_RETURN(Rows r, c->Query("SELECT id, name, created_at, '' FROM gyms WHERE id = ?",
+    SB_ASSIGN_OR_RETURN(Rows r, c->Query("SELECT id, name, created_at, '', revision FROM gyms WHERE id = ?",
                                          {id}));
     if (r.empty()) return Status::NotFound("no gym " + std::to_string(id));
     return ReadGyms(r)[0];
@@ -893,7 +920,7 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
 
   Result<std::vector<GymRecord>> ListGyms() override {
     SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
-    SB_ASSIGN_OR_RETURN(Rows r, c->Query("SELECT id, name, created_at, '' FROM gyms ORDER BY id",
+    SB_ASSIGN_OR_RETURN(Rows r, c->Query("SELECT id, name, created_at, '', revision FROM gyms ORDER BY id",
                                          {}));
     return ReadGyms(r);
   }
@@ -901,7 +928,7 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
   Result<std::vector<GymRecord>> GymsOf(int64_t user_id) override {
     SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
     SB_ASSIGN_OR_RETURN(
-        Rows r, c->Query("SELECT g.id, g.name, g.created_at, m.role FROM gyms g "
+        Rows r, c->Query("SELECT g.id, g.name, g.created_at, m.role, g.revision FROM gyms g "
                          "JOIN gym_members m ON m.gym_id = g.id WHERE m.user_id = ? ORDER BY g.id",
                          {user_id}));
     return ReadGyms(r);
@@ -984,18 +1011,107 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
   static Status UpdateWallRow(sql::Connection& c, const WallRecord& w) {
     Violation v;
     Result<Rows> r = c.Query(
-        "UPDATE walls SET name = ?, discipline = ?, angle = ?, position = ?, reset_weeks = ?, "
-        "plan_x = ?, plan_y = ?, plan_w = ?, plan_h = ? WHERE id = ? RETURNING id",
-        {w.name, w.discipline, w.angle, int64_t{w.position}, sql::Nullable(w.reset_weeks),
-         sql::Nullable(w.plan_x), sql::Nullable(w.plan_y), sql::Nullable(w.plan_w),
-         sql::Nullable(w.plan_h), w.id},
+        std::string("UPDATE walls SET name = ?, discipline = ?, angle = ?, position = ?, "
+                    "reset_weeks = ?, plan_x = ?, plan_y = ?, plan_w = ?, plan_h = ?, "
+                    "revision = revision + 1 WHERE id = ?") +
+            (w.revision > 0 ? " AND revision = ?" : "") + " RETURNING id",
+        w.revision > 0
+            ? std::vector<Value>{w.name, w.discipline, w.angle, int64_t{w.position},
+                                 sql::Nullable(w.reset_weeks), sql::Nullable(w.plan_x),
+                                 sql::Nullable(w.plan_y), sql::Nullable(w.plan_w),
+                                 sql::Nullable(w.plan_h), w.id, w.revision}
+            : std::vector<Value>{w.name, w.discipline, w.angle, int64_t{w.position},
+                                 sql::Nullable(w.reset_weeks), sql::Nullable(w.plan_x),
+                                 sql::Nullable(w.plan_y), sql::Nullable(w.plan_w),
+                                 sql::Nullable(w.plan_h), w.id},
         &v);
     if (!r.ok() && v == Violation::kUnique) {
       return Status::Conflict("the gym has a wall named '" + w.name + "'");
     }
     if (!r.ok()) return r.status().WithPrefix("update wall");
-    if (r->empty()) return Status::NotFound("no wall " + std::to_string(w.id));
+    if (r->empty()) return Stale(c, "walls", w.id, "wall");
     return Status::Ok();
+  }
+
+  Status DeleteWall(int64_t id) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return sql::RunInTransaction(*c, [&]() -> Status {
+      SB_ASSIGN_OR_RETURN(Rows w, c->Query("SELECT name FROM walls WHERE id = ?", {id}));
+      if (w.empty()) return Status::NotFound("no wall " + std::to_string(id));
+      SB_ASSIGN_OR_RETURN(Rows n, c->Query("SELECT count(*) FROM routes WHERE wall_id = ? AND "
+                                           "state <> 'stripped'",
+                                           {id}));
+      if (n.Int(0, 0) > 0) {
+        return Status::Conflict(std::to_string(n.Int(0, 0)) +
+                                (n.Int(0, 0) == 1 ? " route is" : " routes are") +
+                                " on the wall; strip or move them first");
+      }
+      // The archive keeps the wall's name as the routes' free-text wall.
+      SB_RETURN_IF_ERROR(c->Query("UPDATE routes SET wall = ? WHERE wall_id = ? AND wall = ''",
+                                  {w.Text(0, 0), id})
+                             .status());
+      SB_RETURN_IF_ERROR(c->Query("DELETE FROM walls WHERE id = ?", {id}).status());
+      return Status::Ok();
+    });
+  }
+
+  Status RemoveMember(int64_t gym_id, int64_t user_id) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(Rows r, c->Query("DELETE FROM gym_members WHERE gym_id = ? AND "
+                                         "user_id = ? RETURNING user_id",
+                                         {gym_id, user_id}));
+    if (r.empty()) return Status::NotFound("no member " + std::to_string(user_id));
+    return Status::Ok();
+  }
+
+  Status UpdateCircuit(const CircuitRecord& ci) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    Violation v;
+    std::vector<Value> params = {ci.colour, ci.grade_from, ci.grade_to, ci.id};
+    if (ci.revision > 0) params.push_back(ci.revision);
+    Result<Rows> r = c->Query(
+        std::string("UPDATE circuits SET colour = ?, grade_from = ?, grade_to = ?, "
+                    "revision = revision + 1 WHERE id = ?") +
+            (ci.revision > 0 ? " AND revision = ?" : "") + " RETURNING id",
+        params, &v);
+    if (!r.ok() && v == Violation::kUnique) {
+      return Status::Conflict("the gym has a circuit '" + ci.colour + "'");
+    }
+    if (!r.ok()) return r.status().WithPrefix("update circuit");
+    if (r->empty()) return Stale(*c, "circuits", ci.id, "circuit");
+    return Status::Ok();
+  }
+
+  Status DeleteCircuit(int64_t id) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(Rows r,
+                        c->Query("DELETE FROM circuits WHERE id = ? RETURNING id", {id}));
+    if (r.empty()) return Status::NotFound("no circuit " + std::to_string(id));
+    return Status::Ok();
+  }
+
+  Status AddGymHistory(int64_t gym_id, std::optional<int64_t> user_id,
+                       const std::string& what) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return c
+        ->Query("INSERT INTO gym_history(gym_id, user_id, at, what) VALUES(?, ?, ?, ?)",
+                {gym_id, sql::Nullable(user_id), NowText(), what})
+        .status();
+  }
+
+  Result<std::vector<GymHistoryRecord>> ListGymHistory(int64_t gym_id) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(
+        Rows r, c->Query("SELECT h.id, h.gym_id, h.user_id, coalesce(u.username, ''), h.at, "
+                         "h.what FROM gym_history h LEFT JOIN users u ON u.id = h.user_id "
+                         "WHERE h.gym_id = ? ORDER BY h.id",
+                         {gym_id}));
+    std::vector<GymHistoryRecord> out;
+    for (size_t i = 0; i < r.size(); ++i) {
+      out.push_back({r.Int(i, 0), r.Int(i, 1), r.OptInt(i, 2), r.Text(i, 3), r.Text(i, 4),
+                     r.Text(i, 5)});
+    }
+    return out;
   }
 
   Result<WallRecord> GetWall(int64_t id) override {
@@ -1032,12 +1148,13 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
 
   Result<std::vector<CircuitRecord>> ListCircuits(int64_t gym_id) override {
     SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
-    SB_ASSIGN_OR_RETURN(Rows r, c->Query("SELECT id, gym_id, colour, grade_from, grade_to "
-                                         "FROM circuits WHERE gym_id = ? ORDER BY id",
+    SB_ASSIGN_OR_RETURN(Rows r, c->Query("SELECT id, gym_id, colour, grade_from, grade_to, "
+                                         "revision FROM circuits WHERE gym_id = ? ORDER BY id",
                                          {gym_id}));
     std::vector<CircuitRecord> out;
     for (size_t i = 0; i < r.size(); ++i) {
-      out.push_back({r.Int(i, 0), r.Int(i, 1), r.Text(i, 2), r.Text(i, 3), r.Text(i, 4)});
+      out.push_back({r.Int(i, 0), r.Int(i, 1), r.Text(i, 2), r.Text(i, 3), r.Text(i, 4),
+                     r.Int(i, 5)});
     }
     return out;
   }
@@ -1091,14 +1208,14 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
   static std::vector<GymRecord> ReadGyms(const Rows& r) {
     std::vector<GymRecord> out;
     for (size_t i = 0; i < r.size(); ++i) {
-      out.push_back({r.Int(i, 0), r.Text(i, 1), r.Text(i, 2), r.Text(i, 3)});
+      out.push_back({r.Int(i, 0), r.Text(i, 1), r.Text(i, 2), r.Text(i, 3), r.Int(i, 4)});
     }
     return out;
   }
 
   static constexpr const char* kWallSelect =
       "SELECT id, gym_id, name, discipline, angle, position, reset_weeks, plan_x, plan_y, "
-      "plan_w, plan_h FROM walls";
+      "plan_w, plan_h, revision, targets_revision FROM walls";
 
   static std::vector<WallRecord> ReadWalls(const Rows& r) {
     std::vector<WallRecord> out;
@@ -1119,6 +1236,8 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
       w.plan_y = opt(i, 8);
       w.plan_w = opt(i, 9);
       w.plan_h = opt(i, 10);
+      w.revision = r.Int(i, 11);
+      w.targets_revision = r.Int(i, 12);
       out.push_back(std::move(w));
     }
     return out;

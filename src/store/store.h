@@ -126,6 +126,11 @@ struct RouteRecord {
   // The setters in order (GetRoute fills them; written by GymStore::
   // SetRouteSetters).
   std::vector<RouteSetter> setters;
+  // Schema 14 (issue 31): the row's revision, 1 when inserted, one more on
+  // every UpdateRoute. UpdateRoute with revision > 0 writes only when the
+  // stored revision is that one (kConflict otherwise): two writers who read
+  // the same revision cannot both win.
+  int64_t revision = 0;
 };
 
 // The orders a route list can have.

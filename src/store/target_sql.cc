@@ -51,11 +51,23 @@ Status CheckKindsAndNames(const std::vector<Record>& targets) {
 }  // namespace
 
 Status SetWallTargets(sql::Connection& c, int64_t wall_id,
-                      const std::vector<TargetRecord>& targets) {
+                      const std::vector<TargetRecord>& targets, int64_t revision) {
   SB_RETURN_IF_ERROR(CheckKindsAndNames(targets));
   return sql::RunInTransaction(c, [&]() -> Status {
-    SB_ASSIGN_OR_RETURN(Rows w, c.Query("SELECT id FROM walls WHERE id = ?", {wall_id}));
-    if (w.empty()) return Status::NotFound("no wall " + std::to_string(wall_id));
+    // Issue 31: the targets' revision, checked and bumped in one UPDATE.
+    SB_ASSIGN_OR_RETURN(
+        Rows w, c.Query(std::string("UPDATE walls SET targets_revision = targets_revision + 1 "
+                                    "WHERE id = ?") +
+                            (revision > 0 ? " AND targets_revision = ?" : "") + " RETURNING id",
+                        revision > 0 ? std::vector<sql::Value>{wall_id, revision}
+                                     : std::vector<sql::Value>{wall_id}));
+    if (w.empty()) {
+      SB_ASSIGN_OR_RETURN(Rows e, c.Query("SELECT targets_revision FROM walls WHERE id = ?",
+                                          {wall_id}));
+      if (e.empty()) return Status::NotFound("no wall " + std::to_string(wall_id));
+      return Status::Conflict("revision: the wall's targets were changed meanwhile (now "
+                              "revision " + std::to_string(e.Int(0, 0)) + ")");
+    }
     SB_ASSIGN_OR_RETURN(Rows gone, c.Query("DELETE FROM wall_targets WHERE wall_id = ? "
                                            "RETURNING id",
                                            {wall_id}));

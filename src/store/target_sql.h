@@ -13,7 +13,7 @@ namespace sb::store::targets_sql {
 
 // As the TargetStore methods of the same names, on connection `c`.
 Status SetWallTargets(sql::Connection& c, int64_t wall_id,
-                      const std::vector<TargetRecord>& targets);
+                      const std::vector<TargetRecord>& targets, int64_t revision);
 Result<std::vector<TargetRecord>> WallTargets(sql::Connection& c, int64_t wall_id);
 Result<std::vector<TargetRecord>> GymTargets(sql::Connection& c, int64_t gym_id);
 Status SetDisciplineTargets(sql::Connection& c, int64_t gym_id, const std::string& discipline,

@@ -63,7 +63,10 @@ class TargetStore {
   // Replaces every target of `wall_id` by `targets` (their wall_id is
   // ignored) in one transaction. kNotFound for an unknown wall;
   // kInvalidInput for a kind other than "grade"/"style" or a name twice.
-  virtual Status SetWallTargets(int64_t wall_id, const std::vector<TargetRecord>& targets) = 0;
+  // Issue 31: moves the wall's targets_revision by one in the same
+  // transaction; with `revision` > 0, kConflict unless that is the stored one.
+  virtual Status SetWallTargets(int64_t wall_id, const std::vector<TargetRecord>& targets,
+                                int64_t revision = 0) = 0;
   // A wall's targets by kind then name (none for an unknown wall).
   virtual Result<std::vector<TargetRecord>> WallTargets(int64_t wall_id) = 0;
   // The targets of every wall of `gym_id`, by wall id, kind, name.

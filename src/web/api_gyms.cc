@@ -19,7 +19,8 @@ json WallJson(const app::Wall& w) {
          {"discipline", w.discipline},
          {"angle", w.angle},
          {"position", w.position},
-         {"reset_weeks", w.reset_weeks ? json(*w.reset_weeks) : json()}};
+         {"reset_weeks", w.reset_weeks ? json(*w.reset_weeks) : json()},
+         {"revision", w.revision}};
   j["plan"] = w.plan_x ? json{{"x", *w.plan_x}, {"y", *w.plan_y}, {"w", *w.plan_w},
                               {"h", *w.plan_h}}
                        : json();
@@ -30,7 +31,8 @@ json CircuitJson(const app::Circuit& c) {
   return json{{"id", c.id},
               {"colour", c.colour},
               {"grade_from", c.grade_from},
-              {"grade_to", c.grade_to}};
+              {"grade_to", c.grade_to},
+              {"revision", c.revision}};
 }
 
 // An optional whole number field; kInvalidInput naming it otherwise.
@@ -81,6 +83,43 @@ Status ReadWall(const json& body, app::Wall* w) {
 
 Result<int64_t> GymId(const Request& req) { return PathId(req, kNoGym); }
 
+// The path's {wall} / {circuit} / {username}.
+Result<int64_t> SubId(const Request& req, const char* name, const char* missing) {
+  std::optional<int64_t> id = ParseId(req.PathParam(name));
+  if (!id) return Status::NotFound(missing);
+  return *id;
+}
+
+// The gym's JSON as GET /api/gyms/{gym} answers (null when unreadable).
+json GymJson(Exchange& x, int64_t id) {
+  Result<app::Gym> g = x.services.gyms.Get(x.caller.viewer, id);
+  if (!g.ok()) return json();
+  Result<std::vector<app::Wall>> walls = x.services.gyms.Walls(x.caller.viewer, id);
+  Result<std::vector<app::Circuit>> circuits = x.services.gyms.Circuits(x.caller.viewer, id);
+  if (!walls.ok() || !circuits.ok()) return json();
+  json w = json::array(), c = json::array();
+  for (const app::Wall& wall : *walls) w.push_back(WallJson(wall));
+  for (const app::Circuit& ci : *circuits) c.push_back(CircuitJson(ci));
+  return json{{"id", g->id},       {"name", g->name},   {"role", g->role},
+              {"revision", g->revision}, {"walls", w}, {"circuits", c}};
+}
+
+// A wall of gym `gym` the caller may see (kNotFound otherwise).
+Result<app::Wall> WallOf(Exchange& x, int64_t gym, int64_t wall) {
+  SB_ASSIGN_OR_RETURN(app::Wall w, x.services.gyms.GetWall(x.caller.viewer, wall));
+  if (w.gym_id != gym) return Status::NotFound("no wall " + std::to_string(wall));
+  return w;
+}
+
+// A circuit of gym `gym` the caller may see (kNotFound otherwise).
+Result<app::Circuit> CircuitOf(Exchange& x, int64_t gym, int64_t circuit) {
+  SB_ASSIGN_OR_RETURN(std::vector<app::Circuit> all, x.services.gyms.Circuits(x.caller.viewer, gym));
+  for (const app::Circuit& c : all) {
+    if (c.id == circuit) return c;
+  }
+  return Status::NotFound("no circuit " + std::to_string(circuit));
+}
+
 }  // namespace
 
 Result<app::GymFields> GymFieldsOf(const json& body) {
@@ -90,6 +129,8 @@ Result<app::GymFields> GymFieldsOf(const json& body) {
       return Status::InvalidInput("gym: expected a gym id");
     }
     g.gym = body["gym"].get<int64_t>();
+  } else if (body.contains("gym")) {
+    g.personal = true;  // "gym": null: a personal route (issue 31)
   }
   if (body.contains("wall")) {
     const json& w = body["wall"];
@@ -152,18 +193,12 @@ void ListGyms(Exchange& x) {
 void GetGym(Exchange& x) {
   Result<int64_t> id = GymId(x.req);
   if (!id.ok()) return ApiError(x, id.status());
-  Result<app::Gym> g = x.services.gyms.Get(x.caller.viewer, *id);
-  if (!g.ok()) return ApiError(x, g.status());
-  Result<std::vector<app::Wall>> walls = x.services.gyms.Walls(x.caller.viewer, *id);
-  if (!walls.ok()) return ApiError(x, walls.status());
-  Result<std::vector<app::Circuit>> circuits = x.services.gyms.Circuits(x.caller.viewer, *id);
-  if (!circuits.ok()) return ApiError(x, circuits.status());
-  json w = json::array(), c = json::array();
-  for (const app::Wall& wall : *walls) w.push_back(WallJson(wall));
-  for (const app::Circuit& ci : *circuits) c.push_back(CircuitJson(ci));
-  ReplyJson(x.res, 200,
-            json{{"id", g->id}, {"name", g->name}, {"role", g->role}, {"walls", w},
-                 {"circuits", c}});
+  if (Result<app::Gym> g = x.services.gyms.Get(x.caller.viewer, *id); !g.ok()) {
+    return ApiError(x, g.status());
+  }
+  json j = GymJson(x, *id);
+  if (j.is_null()) return ApiError(x, Status::Internal("gym " + std::to_string(*id)));
+  ReplyJson(x.res, 200, j);
 }
 
 void PutGym(Exchange& x) {
@@ -173,10 +208,14 @@ void PutGym(Exchange& x) {
   if (!body.ok()) return ApiError(x, body.status());
   Result<std::string> name = StringField(*body, "name");
   if (!name.ok()) return ApiError(x, name.status());
-  if (Status s = x.services.gyms.Rename(x.caller.viewer, *id, *name); !s.ok()) {
-    return ApiError(x, s);
+  Result<std::optional<int64_t>> revision = RevisionField(*body);
+  if (!revision.ok()) return ApiError(x, revision.status());
+  if (Status s = x.services.gyms.Rename(x.caller.viewer, *id, *name, revision->value_or(0));
+      !s.ok()) {
+    return ApiConflict(x, s, GymJson(x, *id));
   }
-  ReplyJson(x.res, 200, json{{"id", *id}, {"name", *name}});
+  json j = GymJson(x, *id);
+  ReplyJson(x.res, 200, j.is_null() ? json{{"id", *id}, {"name", *name}} : j);
 }
 
 void PostMember(Exchange& x) {
@@ -227,19 +266,62 @@ void PostWall(Exchange& x) {
 void PutWall(Exchange& x) {
   Result<int64_t> gym = GymId(x.req);
   if (!gym.ok()) return ApiError(x, gym.status());
-  std::optional<int64_t> wall_id = ParseId(x.req.PathParam("wall"));
-  if (!wall_id) return ApiError(x, Status::NotFound("no such wall"));
-  Result<app::Wall> w = x.services.gyms.GetWall(x.caller.viewer, *wall_id);
+  Result<int64_t> wall_id = SubId(x.req, "wall", "no such wall");
+  if (!wall_id.ok()) return ApiError(x, wall_id.status());
+  Result<app::Wall> w = WallOf(x, *gym, *wall_id);
   if (!w.ok()) return ApiError(x, w.status());
-  if (w->gym_id != *gym) return ApiError(x, Status::NotFound("no wall " + std::to_string(*wall_id)));
   Result<json> body = BodyObject(x.req);
   if (!body.ok()) return ApiError(x, body.status());
   app::Wall edited = *w;
   if (Status s = ReadWall(*body, &edited); !s.ok()) return ApiError(x, s);
+  Result<std::optional<int64_t>> revision = RevisionField(*body);
+  if (!revision.ok()) return ApiError(x, revision.status());
+  edited.revision = revision->value_or(0);
   if (Status s = x.services.gyms.EditWall(x.caller.viewer, edited); !s.ok()) {
+    Result<app::Wall> now = WallOf(x, *gym, *wall_id);
+    return ApiConflict(x, s, now.ok() ? WallJson(*now) : json());
+  }
+  Result<app::Wall> now = WallOf(x, *gym, *wall_id);
+  ReplyJson(x.res, 200, WallJson(now.ok() ? *now : edited));
+}
+
+void DeleteWall(Exchange& x) {
+  Result<int64_t> gym = GymId(x.req);
+  if (!gym.ok()) return ApiError(x, gym.status());
+  Result<int64_t> wall_id = SubId(x.req, "wall", "no such wall");
+  if (!wall_id.ok()) return ApiError(x, wall_id.status());
+  if (Result<app::Wall> w = WallOf(x, *gym, *wall_id); !w.ok()) return ApiError(x, w.status());
+  if (Status s = x.services.gyms.DeleteWall(x.caller.viewer, *gym, *wall_id); !s.ok()) {
     return ApiError(x, s);
   }
-  ReplyJson(x.res, 200, WallJson(edited));
+  x.res.status = 204;
+}
+
+void PostWallState(Exchange& x) {
+  Result<int64_t> gym = GymId(x.req);
+  if (!gym.ok()) return ApiError(x, gym.status());
+  Result<int64_t> wall_id = SubId(x.req, "wall", "no such wall");
+  if (!wall_id.ok()) return ApiError(x, wall_id.status());
+  Result<json> body = BodyObject(x.req);
+  if (!body.ok()) return ApiError(x, body.status());
+  app::WallStateChange change;
+  Result<std::string> from = StringField(*body, "from");
+  if (!from.ok()) return ApiError(x, from.status());
+  Result<std::string> to = StringField(*body, "to");
+  if (!to.ok()) return ApiError(x, to.status());
+  change.from = *from;
+  change.to = *to;
+  for (auto [field, out] : {std::pair<const char*, std::optional<std::string>*>{"on", &change.on},
+                            {"day", &change.day}}) {
+    if (!body->contains(field) || (*body)[field].is_null()) continue;
+    Result<std::string> v = StringField(*body, field);
+    if (!v.ok()) return ApiError(x, v.status());
+    *out = *v;
+  }
+  Result<std::vector<int64_t>> changed =
+      x.services.routes.ChangeWallState(x.caller.viewer, *gym, *wall_id, change);
+  if (!changed.ok()) return ApiError(x, changed.status());
+  ReplyJson(x.res, 200, json{{"changed", *changed}, {"count", changed->size()}});
 }
 
 void ListWalls(Exchange& x) {
@@ -272,6 +354,86 @@ void PostCircuit(Exchange& x) {
   Result<int64_t> circuit = x.services.gyms.AddCircuit(x.caller.viewer, c);
   if (!circuit.ok()) return ApiError(x, circuit.status());
   ReplyJson(x.res, 201, json{{"id", *circuit}});
+}
+
+void PutCircuit(Exchange& x) {
+  Result<int64_t> gym = GymId(x.req);
+  if (!gym.ok()) return ApiError(x, gym.status());
+  Result<int64_t> circuit = SubId(x.req, "circuit", "no such circuit");
+  if (!circuit.ok()) return ApiError(x, circuit.status());
+  Result<app::Circuit> c = CircuitOf(x, *gym, *circuit);
+  if (!c.ok()) return ApiError(x, c.status());
+  Result<json> body = BodyObject(x.req);
+  if (!body.ok()) return ApiError(x, body.status());
+  app::Circuit edited = *c;
+  for (auto [field, out] : {std::pair<const char*, std::string*>{"colour", &edited.colour},
+                            {"grade_from", &edited.grade_from},
+                            {"grade_to", &edited.grade_to}}) {
+    if (!body->contains(field)) continue;
+    if ((*body)[field].is_null()) {
+      *out = "";
+      continue;
+    }
+    Result<std::string> v = StringField(*body, field);
+    if (!v.ok()) return ApiError(x, v.status());
+    *out = *v;
+  }
+  Result<std::optional<int64_t>> revision = RevisionField(*body);
+  if (!revision.ok()) return ApiError(x, revision.status());
+  edited.revision = revision->value_or(0);
+  if (Status s = x.services.gyms.EditCircuit(x.caller.viewer, edited); !s.ok()) {
+    Result<app::Circuit> now = CircuitOf(x, *gym, *circuit);
+    return ApiConflict(x, s, now.ok() ? CircuitJson(*now) : json());
+  }
+  Result<app::Circuit> now = CircuitOf(x, *gym, *circuit);
+  ReplyJson(x.res, 200, CircuitJson(now.ok() ? *now : edited));
+}
+
+void DeleteCircuit(Exchange& x) {
+  Result<int64_t> gym = GymId(x.req);
+  if (!gym.ok()) return ApiError(x, gym.status());
+  Result<int64_t> circuit = SubId(x.req, "circuit", "no such circuit");
+  if (!circuit.ok()) return ApiError(x, circuit.status());
+  if (Status s = x.services.gyms.DeleteCircuit(x.caller.viewer, *gym, *circuit); !s.ok()) {
+    return ApiError(x, s);
+  }
+  x.res.status = 204;
+}
+
+void PutMember(Exchange& x) {
+  Result<int64_t> id = GymId(x.req);
+  if (!id.ok()) return ApiError(x, id.status());
+  Result<json> body = BodyObject(x.req);
+  if (!body.ok()) return ApiError(x, body.status());
+  Result<std::string> role = StringField(*body, "role");
+  if (!role.ok()) return ApiError(x, role.status());
+  const std::string user = x.req.PathParam("username");
+  if (Status s = x.services.gyms.SetRole(x.caller.viewer, *id, user, *role); !s.ok()) {
+    return ApiError(x, s);
+  }
+  ReplyJson(x.res, 200, json{{"username", user}, {"role", *role}});
+}
+
+void DeleteMember(Exchange& x) {
+  Result<int64_t> id = GymId(x.req);
+  if (!id.ok()) return ApiError(x, id.status());
+  if (Status s = x.services.gyms.RemoveMember(x.caller.viewer, *id, x.req.PathParam("username"));
+      !s.ok()) {
+    return ApiError(x, s);
+  }
+  x.res.status = 204;
+}
+
+void GetGymHistory(Exchange& x) {
+  Result<int64_t> id = GymId(x.req);
+  if (!id.ok()) return ApiError(x, id.status());
+  Result<std::vector<app::GymHistoryEntry>> h = x.services.gyms.GymHistory(x.caller.viewer, *id);
+  if (!h.ok()) return ApiError(x, h.status());
+  json arr = json::array();
+  for (const app::GymHistoryEntry& e : *h) {
+    arr.push_back({{"who", e.who}, {"at", e.at}, {"what", e.what}});
+  }
+  ReplyJson(x.res, 200, json{{"history", arr}});
 }
 
 void ListCircuits(Exchange& x) {

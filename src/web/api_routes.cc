@@ -10,6 +10,29 @@ using nlohmann::json;
 
 namespace {
 const char kNoRoute[] = "no such route";
+
+// A refused route write: a conflict with the route as stored now (issue 31).
+void RouteConflict(Exchange& x, int64_t id, const Status& s) {
+  json current;
+  if (s.code() == Status::Code::kConflict) {
+    if (Result<app::RouteView> r = x.services.routes.Get(x.caller.viewer, id); r.ok()) {
+      current = RouteJson(*r);
+    }
+  }
+  ApiConflict(x, s, current);
+}
+
+// {"id", "state", "set_on", "strip_on", "revision"} of a route just written.
+json RevisionReply(Exchange& x, int64_t id) {
+  json out{{"id", id}};
+  if (Result<app::RouteView> r = x.services.routes.Get(x.caller.viewer, id); r.ok()) {
+    out["revision"] = r->revision;
+    out["state"] = r->state;
+    out["set_on"] = r->set_on;
+    out["strip_on"] = r->strip_on;
+  }
+  return out;
+}
 }  // namespace
 
 double ListCost(Exchange& x, std::optional<int> limit) {
@@ -100,6 +123,9 @@ void PutRoute(Exchange& x) {
   Result<app::GymFields> gym = GymFieldsOf(*body);
   if (!gym.ok()) return ApiError(x, gym.status());
   edit.gym = *gym;
+  Result<std::optional<int64_t>> revision = RevisionField(*body);
+  if (!revision.ok()) return ApiError(x, revision.status());
+  edit.revision = *revision;
   if (body->contains("discipline")) {
     if ((*body)["discipline"].is_null()) {
       edit.discipline = "";
@@ -110,9 +136,32 @@ void PutRoute(Exchange& x) {
     }
   }
   if (Status s = x.services.routes.Update(x.caller.viewer, *id, edit); !s.ok()) {
-    return ApiError(x, s);
+    return RouteConflict(x, *id, s);
   }
-  ReplyJson(x.res, 200, json{{"id", *id}});
+  ReplyJson(x.res, 200, RevisionReply(x, *id));
+}
+
+void PostRouteState(Exchange& x) {
+  Result<int64_t> id = PathId(x.req, kNoRoute);
+  if (!id.ok()) return ApiError(x, id.status());
+  Result<json> body = BodyObject(x.req);
+  if (!body.ok()) return ApiError(x, body.status());
+  app::StateChange change;
+  Result<std::string> state = StringField(*body, "state");
+  if (!state.ok()) return ApiError(x, state.status());
+  change.state = *state;
+  if (body->contains("on") && !(*body)["on"].is_null()) {
+    Result<std::string> on = StringField(*body, "on");
+    if (!on.ok()) return ApiError(x, on.status());
+    change.on = *on;
+  }
+  Result<std::optional<int64_t>> revision = RevisionField(*body);
+  if (!revision.ok()) return ApiError(x, revision.status());
+  change.revision = *revision;
+  if (Status s = x.services.routes.ChangeState(x.caller.viewer, *id, change); !s.ok()) {
+    return RouteConflict(x, *id, s);
+  }
+  ReplyJson(x.res, 200, RevisionReply(x, *id));
 }
 
 void DeleteRoute(Exchange& x) {
@@ -175,7 +224,7 @@ void PostImportCsv(Exchange& x) {
   Result<app::GymFields> gym = GymFieldsOf(*body);
   if (!gym.ok()) return ApiError(x, gym.status());
   Result<app::ImportSummary> im =
-      x.services.routes.ImportCsv(x.caller.viewer, *routes, *moves, gym->gym);
+      x.services.routes.ImportCsv(x.caller.viewer, *routes, *moves, gym->gym, gym->personal);
   if (!im.ok()) return ApiError(x, im.status());
   json ids = json::object();
   for (const auto& [legacy, id] : im->ids) ids[std::to_string(legacy)] = id;

@@ -149,10 +149,24 @@ json RouteSummaryJson(const app::RouteView& r) {
               {"state", r.state},
               {"set_on", r.set_on},
               {"strip_on", r.strip_on},
+              {"revision", r.revision},  // issue 31
               // The route's discipline by the one rule (app/discipline.h) and
               // "grade in another discipline's scale" or "".
               {"discipline", r.grade_discipline},
               {"grade_note", app::GradeNote(r.grade, r.grade_discipline)}};
+}
+
+Result<std::optional<int64_t>> RevisionField(const json& body) {
+  if (!body.contains("revision") || body["revision"].is_null()) return std::optional<int64_t>();
+  if (!body["revision"].is_number_integer() || body["revision"].get<int64_t>() < 1) {
+    return Status::InvalidInput("revision: expected the record's revision (a whole number >= 1)");
+  }
+  return std::optional<int64_t>(body["revision"].get<int64_t>());
+}
+
+void ApiConflict(Exchange& x, const Status& s, const json& current) {
+  if (s.code() != Status::Code::kConflict || current.is_null()) return ApiError(x, s);
+  ReplyJson(x.res, 409, json{{"error", s.message()}, {"current", current}});
 }
 
 json RouteJson(const app::RouteView& r) {

@@ -97,6 +97,7 @@ json WallJson(const app::WallDashboard& w, const DashboardAscents& ascents) {
               {"grades", grades},
               {"ungraded", w.ungraded},
               {"targets", targets},
+              {"targets_revision", w.wall.targets_revision},  // issue 31
               {"moves", w.moves},
               {"styles", styles},
               {"style_targets", style_targets},
@@ -281,7 +282,8 @@ std::string TargetForm(const app::GymDashboard& d, const app::WallDashboard& w) 
   const std::string url = "/api/gyms/" + Id(d.gym.id) + "/walls/" + Id(w.wall.id) + "/targets";
   return "<details class=\"no-print\"><summary>Set targets</summary><form class=\"gym-form "
          "targets-form\" id=\"targets-" + Id(w.wall.id) + "\" data-api=\"PUT " + E(url) +
-         "\"><label>Routes per band <input name=\"grades\" data-map value=\"" +
+         "\"><input type=\"hidden\" name=\"revision\" data-int value=\"" +
+         std::to_string(w.wall.targets_revision) + "\"><label>Routes per band <input name=\"grades\" data-map value=\"" +
          E(MapText(w, true)) + "\" placeholder=\"V2: 3, V3: 4, V4: 3\"></label> <label>Share "
          "of moves per style <input name=\"styles\" data-map value=\"" + E(MapText(w, false)) +
          "\" placeholder=\"crimp: 0.3, heel hook: 0.1\"></label><button type=\"submit\">Save "
@@ -370,12 +372,54 @@ Result<int64_t> WallIdOf(const Request& req) {
   return *id;
 }
 
-// {"NAME": number, ...} as a map; kInvalidInput naming `field` otherwise.
+// The text a page's targets field holds ("V3: 2, V4: 1") as a JSON object;
+// issue 31: a part that does not read (a typo "V3 2") is refused naming the
+// field and the part, never dropped (dropping it deleted the stored target).
+Result<json> MapFromText(const std::string& field, const std::string& text) {
+  json out = json::object();
+  size_t n = 0;
+  for (size_t start = 0; start <= text.size();) {
+    size_t end = text.find(',', start);
+    if (end == std::string::npos) end = text.size();
+    const std::string part(Trim(std::string_view(text).substr(start, end - start)));
+    start = end + 1;
+    ++n;
+    if (part.empty()) {
+      if (end == text.size()) break;
+      continue;
+    }
+    const size_t colon = part.rfind(':');
+    const std::string where = field + ": part " + std::to_string(n) + " '" + part + "'";
+    if (colon == std::string::npos) {
+      return Status::InvalidInput(where + ": expected NAME: NUMBER (e.g. \"V3: 2\")");
+    }
+    const std::string key(Trim(std::string_view(part).substr(0, colon)));
+    const std::string value(Trim(std::string_view(part).substr(colon + 1)));
+    double d = 0;
+    if (key.empty() || !ParseDouble(value, &d)) {
+      return Status::InvalidInput(where + ": expected NAME: NUMBER (e.g. \"V3: 2\")");
+    }
+    int64_t i = 0;
+    if (ParseInt(value, &i)) {
+      out[key] = i;
+    } else {
+      out[key] = d;
+    }
+  }
+  return out;
+}
+
+// {"NAME": number, ...} (or its text, MapFromText) as a map; kInvalidInput
+// naming `field` otherwise.
 template <typename T>
 Result<std::map<std::string, T>> NumberMap(const json& body, const char* field, bool whole) {
   std::map<std::string, T> out;
   if (!body.contains(field) || body[field].is_null()) return out;
-  const json& m = body[field];
+  json parsed;
+  if (body[field].is_string()) {
+    SB_ASSIGN_OR_RETURN(parsed, MapFromText(field, body[field].get<std::string>()));
+  }
+  const json& m = body[field].is_string() ? parsed : body[field];
   if (!m.is_object()) {
     return Status::InvalidInput(std::string(field) + ": expected an object of numbers");
   }
@@ -556,12 +600,21 @@ void PutWallTargets(Exchange& x) {
   if (!styles.ok()) return ApiError(x, styles.status());
   t.grades = std::move(grades).value();
   t.styles = std::move(styles).value();
+  Result<std::optional<int64_t>> revision = RevisionField(*body);
+  if (!revision.ok()) return ApiError(x, revision.status());
+  t.revision = revision->value_or(0);
+  auto stored_json = [&]() -> json {
+    Result<app::WallTargets> stored = x.services.dashboard.Targets(x.caller.viewer, *gym, *wall);
+    if (!stored.ok()) return json();
+    return json{{"wall", *wall}, {"grades", stored->grades}, {"styles", stored->styles},
+                {"revision", stored->revision}};
+  };
   if (Status s = x.services.dashboard.SetTargets(x.caller.viewer, *gym, *wall, t); !s.ok()) {
-    return ApiError(x, s);
+    return ApiConflict(x, s, stored_json());
   }
-  Result<app::WallTargets> stored = x.services.dashboard.Targets(x.caller.viewer, *gym, *wall);
-  if (!stored.ok()) return ApiError(x, stored.status());
-  ReplyJson(x.res, 200, json{{"wall", *wall}, {"grades", stored->grades}, {"styles", stored->styles}});
+  json stored = stored_json();
+  if (stored.is_null()) return ApiError(x, Status::Internal("targets not read back"));
+  ReplyJson(x.res, 200, stored);
 }
 
 void PutDisciplineTargets(Exchange& x) {

@@ -1,5 +1,7 @@
 // Gym pages (issue 21): /gyms, /gyms/{id}, /walls/{id}, and the gym block of
 // a route page. Each asks app::Gyms / app::Routes and renders (gym_pages.h).
+#include "app/clock.h"
+#include "base/date.h"
 #include "web/dashboard_handlers.h"
 #include "web/gym_pages.h"
 #include "web/handlers.h"
@@ -8,6 +10,9 @@
 namespace sb::web {
 
 namespace {
+
+// Today's date (UTC), what the wall page's "set all planned routes of today" means.
+std::string Today() { return UtcDateText(app::SystemClock().Now()); }
 
 void Html(Exchange& x, const std::string& html) {
   x.res.SetHeader("Cache-Control", "no-store");
@@ -34,7 +39,13 @@ void PageGym(Exchange& x) {
   if (!circuits.ok()) return PageError(x, circuits.status());
   Result<std::vector<app::Member>> members = x.services.gyms.Members(x.caller.viewer, *id);
   if (!members.ok()) return PageError(x, members.status());
-  Html(x, GymPage(x.caller.page(), *gym, *walls, *circuits, *members));
+  std::vector<app::GymHistoryEntry> history;  // setters' (issue 31)
+  if (app::CanSet(gym->role)) {
+    Result<std::vector<app::GymHistoryEntry>> h = x.services.gyms.GymHistory(x.caller.viewer, *id);
+    if (!h.ok()) return PageError(x, h.status());
+    history = std::move(h).value();
+  }
+  Html(x, GymPage(x.caller.page(), *gym, *walls, *circuits, *members, history));
 }
 
 void PageWall(Exchange& x) {
@@ -52,7 +63,7 @@ void PageWall(Exchange& x) {
   const app::RenderKey key{"wall", wall->id, x.caller.viewer.user_id.value_or(0)};
   if (*stamp) {
     if (auto hit = x.services.rendered.Find(key, **stamp)) {
-      return Html(x, WallPage(x.caller.page(), *gym, *wall, *hit));
+      return Html(x, WallPage(x.caller.page(), *gym, *wall, *hit, Today()));
     }
   }
   app::RouteQuery q;
@@ -77,9 +88,9 @@ void PageWall(Exchange& x) {
   // A page without its ascent grades (the fit failed) is not kept.
   if (*stamp && ascents.ok()) {
     return Html(x, WallPage(x.caller.page(), *gym, *wall,
-                            *x.services.rendered.Keep(key, **stamp, std::move(tables))));
+                            *x.services.rendered.Keep(key, **stamp, std::move(tables)), Today()));
   }
-  Html(x, WallPage(x.caller.page(), *gym, *wall, tables));
+  Html(x, WallPage(x.caller.page(), *gym, *wall, tables, Today()));
 }
 
 std::string GymBlock(Exchange& x, const app::RouteView& r) {

@@ -1,5 +1,7 @@
 #include "web/gym_pages.h"
 
+#include <tuple>
+
 #include "app/discipline.h"
 #include "base/number.h"
 #include "base/text.h"
@@ -21,6 +23,29 @@ std::string ApiForm(const std::string& id, const std::string& method, const std:
          "<button type=\"submit\">" + E(submit) + "</button><p class=\"msg\" role=\"status\"></p>"
          "</form>\n";
 }
+
+// The hidden revision field of an edit form (issue 31).
+std::string RevisionField(int64_t revision) {
+  return "<input type=\"hidden\" name=\"revision\" data-int value=\"" +
+         std::to_string(revision) + "\">";
+}
+
+// A one-button form (remove, state change) sent as JSON by gyms.js.
+std::string ButtonForm(const std::string& id, const std::string& method, const std::string& url,
+                       const std::string& hidden, const std::string& submit,
+                       const std::string& confirm = "") {
+  return "<form class=\"gym-form inline-form no-print\" id=\"" + E(id) + "\" data-api=\"" +
+         E(method) + " " + E(url) + "\"" +
+         (confirm.empty() ? "" : " data-confirm=\"" + E(confirm) + "\"") + ">" + hidden +
+         "<button type=\"submit\">" + E(submit) + "</button><span class=\"msg\" "
+         "role=\"status\"></span></form>";
+}
+
+std::string Hidden(const std::string& name, const std::string& value) {
+  return "<input type=\"hidden\" name=\"" + E(name) + "\" value=\"" + E(value) + "\">";
+}
+
+std::string OptInt(const std::optional<int>& v) { return v ? std::to_string(*v) : ""; }
 
 std::string StateName(const std::string& s) {
   if (s == "set") return "on the wall";
@@ -54,7 +79,8 @@ std::string GymsPage(const PageViewer& v, const std::vector<app::Gym>& gyms) {
 
 std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<app::Wall>& walls,
                     const std::vector<app::Circuit>& circuits,
-                    const std::vector<app::Member>& members) {
+                    const std::vector<app::Member>& members,
+                    const std::vector<app::GymHistoryEntry>& history) {
   const std::string gid = std::to_string(gym.id);
   const bool head = gym.role == "head";
   std::string b = "<h1 id=\"gym-title\">" + E(gym.name) + "</h1>\n<p>You are <strong>" +
@@ -85,6 +111,39 @@ std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<
     b += "</tbody></table></div>\n";
   }
   if (head) {
+    for (const app::Wall& w : walls) {
+      const std::string wid = std::to_string(w.id);
+      const std::string url = "/api/gyms/" + gid + "/walls/" + wid;
+      auto disc = [&](const char* d) {
+        return "<option value=\"" + std::string(d) + "\"" + (w.discipline == d ? " selected" : "") +
+               ">" + d + "</option>";
+      };
+      auto num = [](const std::string& name, const std::string& value, const char* extra) {
+        return "<input type=\"number\" name=\"" + name + "\" value=\"" + value + "\" " + extra +
+               ">";
+      };
+      b += "<details class=\"wall-edit no-print\" id=\"wall-edit-" + wid + "\"><summary>Edit " +
+           E(w.name) + "</summary>" +
+           ApiForm("wall-form-" + wid, "PUT", url,
+                   RevisionField(w.revision) + "<label>Name <input name=\"name\" required "
+                   "maxlength=\"100\" value=\"" + E(w.name) + "\"></label><label>Discipline "
+                   "<select name=\"discipline\">" + disc("bouldering") + disc("roped") +
+                   "</select></label><label>Angle " +
+                   num("angle", FormatDouble(w.angle), "min=\"-90\" max=\"90\" step=\"any\"") +
+                   "</label><label>Reset every " +
+                   num("reset_weeks", OptInt(w.reset_weeks), "data-optional min=\"1\" max=\"104\"") +
+                   " weeks</label><label>Order " + num("position", std::to_string(w.position), "") +
+                   "</label><fieldset class=\"plan\"><legend>Floor plan (cells)</legend><label>x " +
+                   num("plan.x", OptInt(w.plan_x), "data-optional min=\"0\"") + "</label><label>y " +
+                   num("plan.y", OptInt(w.plan_y), "data-optional min=\"0\"") + "</label><label>w " +
+                   num("plan.w", OptInt(w.plan_w), "data-optional min=\"1\"") + "</label><label>h " +
+                   num("plan.h", OptInt(w.plan_h), "data-optional min=\"1\"") +
+                   "</label></fieldset>",
+                   "Save wall") +
+           ButtonForm("wall-remove-" + wid, "DELETE", url, "", "Remove wall",
+                      "Remove the wall " + w.name + "?") +
+           "</details>\n";
+    }
     b += ApiForm("new-wall", "POST", "/api/gyms/" + gid + "/walls",
                  "<label>Name <input name=\"name\" id=\"wall-name\" required maxlength=\"100\">"
                  "</label><label>Discipline <select name=\"discipline\" id=\"wall-discipline\">"
@@ -114,6 +173,22 @@ std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<
     b += "</ul>\n";
   }
   if (head) {
+    for (const app::Circuit& c : circuits) {
+      const std::string cid = std::to_string(c.id);
+      const std::string url = "/api/gyms/" + gid + "/circuits/" + cid;
+      b += "<details class=\"circuit-edit no-print\" id=\"circuit-edit-" + cid +
+           "\"><summary>Edit " + E(c.colour) + "</summary>" +
+           ApiForm("circuit-form-" + cid, "PUT", url,
+                   RevisionField(c.revision) + "<label>Colour <input name=\"colour\" required "
+                   "maxlength=\"40\" value=\"" + E(c.colour) + "\"></label><label>From <input "
+                   "name=\"grade_from\" size=\"5\" value=\"" + E(c.grade_from) + "\"></label>"
+                   "<label>To <input name=\"grade_to\" size=\"5\" value=\"" + E(c.grade_to) +
+                   "\"></label>",
+                   "Save circuit") +
+           ButtonForm("circuit-remove-" + cid, "DELETE", url, "", "Remove circuit",
+                      "Remove the circuit " + c.colour + "?") +
+           "</details>\n";
+    }
     b += ApiForm("new-circuit", "POST", "/api/gyms/" + gid + "/circuits",
                  "<label>Colour <input name=\"colour\" id=\"circuit-colour\" required "
                  "maxlength=\"40\"></label><label>From <input name=\"grade_from\" "
@@ -123,7 +198,24 @@ std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<
   }
   b += "<h2>Team</h2>\n<ul id=\"member-list\">";
   for (const app::Member& m : members) {
-    b += "<li>" + E(m.username) + " <span class=\"tag\">" + E(m.role) + "</span></li>";
+    b += "<li>" + E(m.username) + " <span class=\"tag\">" + E(m.role) + "</span>";
+    if (head && m.username != v.username) {
+      const std::string url = "/api/gyms/" + gid + "/members/" + m.username;
+      auto opt = [&](const char* r, const char* label) {
+        return "<option value=\"" + std::string(r) + "\"" + (m.role == r ? " selected" : "") +
+               ">" + label + "</option>";
+      };
+      b += " " +
+           ButtonForm("member-role-" + m.username, "PUT", url,
+                      "<select name=\"role\" aria-label=\"Role of " + E(m.username) + "\">" +
+                          opt("setter", "setter") + opt("head", "head setter") +
+                          opt("climber", "climber") + "</select>",
+                      "Change role") +
+           " " +
+           ButtonForm("member-remove-" + m.username, "DELETE", url, "", "Remove",
+                      "Remove " + m.username + " from the team?");
+    }
+    b += "</li>";
   }
   b += "</ul>\n";
   if (head) {
@@ -135,6 +227,19 @@ std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<
                  "Add to the team");
     b += "<p class=\"hint\">A new setter signs up first; then add them here by their user "
          "name.</p>\n";
+    b += "<h2>Gym</h2>\n" +
+         ApiForm("gym-rename", "PUT", "/api/gyms/" + gid,
+                 RevisionField(gym.revision) + "<label>Name <input name=\"name\" id=\"gym-rename-name\" "
+                 "required maxlength=\"100\" value=\"" + E(gym.name) + "\"></label>",
+                 "Rename gym");
+  }
+  if (!history.empty()) {
+    b += "<h2>History</h2>\n<ol class=\"history\" id=\"gym-history\">";
+    for (const app::GymHistoryEntry& h : history) {
+      b += "<li><time>" + E(h.at) + "</time> " + E(h.who.empty() ? "someone" : h.who) + ": " +
+           E(h.what) + "</li>";
+    }
+    b += "</ol>\n";
   }
   return PageLayout(v, gym.name, b + Script());
 }
@@ -181,7 +286,7 @@ std::string WallPage(const PageViewer& v, const app::Gym& gym, const app::Wall& 
 }
 
 std::string WallPage(const PageViewer& v, const app::Gym& gym, const app::Wall& wall,
-                     const std::string& routes_html) {
+                     const std::string& routes_html, const std::string& today) {
   std::string b = "<p><a href=\"/gyms/" + std::to_string(gym.id) + "\">" + E(gym.name) +
                   "</a></p>\n<h1 id=\"wall-title\">" + E(wall.name) + "</h1>\n<p>" +
                   E(wall.discipline) + ", " + FormatDouble(wall.angle) + "°" +
@@ -192,6 +297,18 @@ std::string WallPage(const PageViewer& v, const app::Gym& gym, const app::Wall& 
   if (app::CanSet(gym.role)) {
     b += "<p><a href=\"/routes/new\" id=\"plan-here\">New route</a> — then set its wall to "
          "<strong>" + E(wall.name) + "</strong> on its page.</p>\n";
+    if (!today.empty()) {
+      const std::string url = "/api/gyms/" + std::to_string(gym.id) + "/walls/" +
+                              std::to_string(wall.id) + "/state";
+      b += "<p class=\"wall-actions no-print\">" +
+           ButtonForm("wall-set-today", "POST", url,
+                      Hidden("from", "planned") + Hidden("to", "set") + Hidden("day", today),
+                      "Set all planned routes of today (" + today + ")") +
+           " " +
+           ButtonForm("wall-strip", "POST", url, Hidden("from", "set") + Hidden("to", "stripped"),
+                      "Strip this wall", "Strip every route on " + wall.name + "?") +
+           "</p>\n";
+    }
   }
   return PageLayout(v, wall.name, b + Script());
 }
@@ -220,7 +337,24 @@ std::string RouteGymBlock(const app::RouteView& r, const std::vector<app::Histor
       return "<option value=\"" + std::string(s) + "\"" + (r.state == s ? " selected" : "") + ">" +
              E(StateName(s)) + "</option>";
     };
+    // Issue 31: the buttons of the cycle (plan → set → strip), by the one
+    // rule of app::CheckTransition; each carries the revision shown.
+    std::string buttons;
+    const std::optional<app::RouteState> from = app::RouteStateOf(r.state);
+    for (auto [to, label, id] : {std::tuple{app::RouteState::kPlanned, "Plan", "route-plan"},
+                                 std::tuple{app::RouteState::kSet, "Set on the wall", "route-set"},
+                                 std::tuple{app::RouteState::kStripped, "Strip", "route-strip"}}) {
+      if (!from || !app::CheckTransition(*from, to).ok()) continue;
+      buttons += ButtonForm(id, "POST", url + "/state",
+                            Hidden("state", app::NameOf(to)) + RevisionField(r.revision) +
+                                "<label>on <input type=\"date\" name=\"on\" data-optional "
+                                "value=\"" + E(to == app::RouteState::kPlanned ? r.set_on : "") +
+                                "\"></label>",
+                            label) + " ";
+    }
+    if (!buttons.empty()) b += "<p class=\"state-buttons\" id=\"route-state-buttons\">" + buttons + "</p>\n";
     b += ApiForm("route-gym-form", "PUT", url,
+                 RevisionField(r.revision) +
                  "<label>State <select name=\"state\" id=\"route-state-select\">" + opt("draft") +
                      opt("planned") + opt("set") + opt("stripped") +
                      "</select></label><label>Wall <input name=\"wall\" id=\"route-wall-input\" "

@@ -19,10 +19,13 @@ namespace sb::web {
 // "/gyms": the viewer's gyms and a form to create one.
 std::string GymsPage(const PageViewer& v, const std::vector<app::Gym>& gyms);
 // "/gyms/{id}": walls (linking their pages), circuits, members; the head
-// setter's forms to add each.
+// setter's forms to add each, and (issue 31) to rename the gym, edit and
+// remove walls and circuits, change members' roles and remove them; the
+// gym's `history` (shown when not empty).
 std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<app::Wall>& walls,
                     const std::vector<app::Circuit>& circuits,
-                    const std::vector<app::Member>& members);
+                    const std::vector<app::Member>& members,
+                    const std::vector<app::GymHistoryEntry>& history = {});
 // "/walls/{id}": the wall's routes grouped by state (on the wall, planned,
 // drafts, stripped), a form to plan a route on it for setters. With
 // `ascent_cells` (route id -> a <td>, logbook_handlers.h AscentCell) each
@@ -41,11 +44,15 @@ std::string WallRoutesHtml(const app::Gym& gym, const app::Wall& wall,
                            const std::map<int64_t, std::string>* ascent_cells,
                            const std::string& status);
 // "/walls/{id}" around `routes_html` (WallRoutesHtml): the gym link, the
-// title and the wall's line above, the setters' line below. Pure.
+// title and the wall's line above, the setters' line below and (issue 31,
+// setters, `today` given) the buttons "set all planned routes of today" and
+// "strip this wall". Pure.
 std::string WallPage(const PageViewer& v, const app::Gym& gym, const app::Wall& wall,
-                     const std::string& routes_html);
+                     const std::string& routes_html, const std::string& today = "");
 // The block a route page shows for a route of a gym: state, wall, setters,
-// set / strip dates and history; with `can_set`, a form to change them.
+// set / strip dates and history; with `can_set`, a form to change them
+// (carrying the route's revision, issue 31) and the plan / set / strip
+// buttons its state allows (an empty date keeps the route's, or is today).
 std::string RouteGymBlock(const app::RouteView& r, const std::vector<app::HistoryEntry>& history,
                           bool can_set);
 

@@ -86,6 +86,12 @@ Result<app::RouteQuery> RouteQueryOf(const Request& req);
 // when nothing is left) and `ext` (".pdf").
 std::string AttachmentHeader(const std::string& name, const std::string& ext);
 nlohmann::json RouteSummaryJson(const app::RouteView& r);
+// Issue 31: the body's "revision" (nullopt when absent or null);
+// kInvalidInput "revision: ..." when not a whole number >= 1.
+Result<std::optional<int64_t>> RevisionField(const nlohmann::json& body);
+// A kConflict `s` as 409 {"error", "current": current} (the record as
+// stored now); any other status (or a null `current`) as ApiError.
+void ApiConflict(Exchange& x, const Status& s, const nlohmann::json& current);
 nlohmann::json RouteJson(const app::RouteView& r);
 
 // ---- handlers -----------------------------------------------------------
@@ -118,6 +124,15 @@ void ListWalls(Exchange& x);
 void PostCircuit(Exchange& x);
 void ListCircuits(Exchange& x);
 void GetRouteHistory(Exchange& x);
+// Issue 31: edit and remove; state changes; the gym's history.
+void DeleteWall(Exchange& x);
+void PutCircuit(Exchange& x);
+void DeleteCircuit(Exchange& x);
+void PutMember(Exchange& x);
+void DeleteMember(Exchange& x);
+void GetGymHistory(Exchange& x);
+void PostWallState(Exchange& x);
+void PostRouteState(Exchange& x);
 // The gym fields of a route request body (gym, wall, state, setters,
 // set_on, strip_on); kInvalidInput naming a field of the wrong type.
 Result<app::GymFields> GymFieldsOf(const nlohmann::json& body);

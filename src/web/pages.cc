@@ -260,8 +260,10 @@ std::string EditorPage(const PageViewer& v, const std::optional<app::RouteView>&
   b += "<p class=\"hint no-print\">CRDL: header lines (<code>name: …</code>, <code>grade: "
        "…</code>, free description), a line <code>---</code>, then one move per line starting "
        "with L or R. Each move shows how the grammar reads it.</p>\n";
+  // Issue 31: the revision the text was read at; a save over a newer one is refused.
   b += "<div class=\"editor\" id=\"editor\" data-route-id=\"" +
-       (route ? std::to_string(route->id) : std::string()) + "\">\n";
+       (route ? std::to_string(route->id) : std::string()) + "\" data-revision=\"" +
+       (route ? std::to_string(route->revision) : std::string()) + "\">\n";
   b += "<div class=\"pane\"><textarea id=\"crdl\" spellcheck=\"false\" rows=\"22\" "
        "placeholder=\"" + E(kNewRouteTemplate) + "\">" + E(route ? route->crdl : std::string()) +
        "</textarea>\n";
