@@ -181,9 +181,9 @@ TEST_F(GymApiTest, ADraftStaysItsOwnersAndNonMembersKeepTodaysRules) {
   // Neither sees the other's private draft; the head setter cannot edit it.
   EXPECT_EQ(head.Status("GET", "/api/routes/" + std::to_string(own)), 404);
   EXPECT_EQ(visitor.Status("GET", "/api/routes/" + std::to_string(draft)), 404);
-  // A non-member cannot put a route on the wall.
+  // A non-member's route is personal (issue 31: no gym) and cannot go on a wall.
   EXPECT_EQ(visitor.Status("PUT", "/api/routes/" + std::to_string(own), R"({"state":"set"})"),
-            403);
+            400);
   EXPECT_EQ(visitor.Status("PUT", "/api/routes/" + std::to_string(own), R"({"public":true})"),
             200);
   EXPECT_EQ(head.Status("PUT", "/api/routes/" + std::to_string(own), R"({"public":false})"), 403);
