@@ -78,7 +78,10 @@ std::string RouteRows(const std::vector<app::RouteView>& routes) {
         r.is_variation ? "/variations/" + std::to_string(r.id) : "/routes/" + std::to_string(r.id);
     h += "<tr><td><a href=\"" + url + "\">" + E(r.name) + "</a>";
     if (r.is_variation) h += " <span class=\"tag\">variation</span>";
-    if (!r.is_public) h += " <span class=\"tag private\">private</span>";
+    if (!r.is_public) {  // issue 31: a gym's unpublished route is its members'
+      h += r.gym_id ? " <span class=\"tag private\">gym only</span>"
+                    : " <span class=\"tag private\">private</span>";
+    }
     if (r.state == "planned" || r.state == "stripped") {
       h += " <span class=\"tag state\">" + E(r.state) + "</span>";
     }
