@@ -75,7 +75,9 @@
       ev.preventDefault();
       const r = await login($('#username').value, $('#password').value);
       if (r.status !== 200) return say($('#form-msg'), (r.data && r.data.error) || 'Log-in failed');
-      location.href = '/';
+      // Back to the page that sent here (issue 31: a gym page), on this site only.
+      const next = new URLSearchParams(location.search).get('next') || '';
+      location.href = /^\/[A-Za-z0-9/_.-]*$/.test(next) && !next.startsWith('//') ? next : '/';
     });
   }
   const logout = $('#logout');
@@ -179,6 +181,20 @@
         say($('#save-msg'), 'not saved: changed meanwhile');
       } else {
         say($('#save-msg'), humane((r.data && r.data.error) || ('error ' + r.status)));
+      }
+    });
+  }
+
+  // Issue 31: a gym route's "Shared library" box on its page (PUT {"library"}).
+  const lib = $('#route-library');
+  if (lib) {
+    lib.addEventListener('change', async () => {
+      const r = await api('PUT', '/api/routes/' + lib.dataset.id, { library: lib.checked });
+      if (r.status === 200) {
+        location.reload();
+      } else {
+        lib.checked = !lib.checked;
+        say($('#library-msg'), humane((r.data && r.data.error) || ('error ' + r.status)));
       }
     });
   }

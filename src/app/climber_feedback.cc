@@ -96,11 +96,12 @@ ClimberFeedback::ClimberFeedback(store::Store* store, const Options& options, Cl
 
 Result<studies::Instrument> ClimberFeedback::Instrument() const { return instrument_; }
 
-Result<store::RouteRecord> ClimberFeedback::Visible(const Viewer& v, int64_t route_id) {
+Result<store::RouteRecord> ClimberFeedback::Visible(const Viewer& v, int64_t route_id,
+                                               store::Reach reach) {
   Status none = Status::NotFound("no route " + std::to_string(route_id));
   Result<store::RouteRecord> r = routes_->GetRoute(route_id);
   if (!r.ok()) return r.status().code() == Status::Code::kNotFound ? none : r.status();
-  if (!IsVisible(*r, v)) return none;
+  if (!IsVisible(*r, v, reach)) return none;
   return r;
 }
 
@@ -146,7 +147,7 @@ Result<GradeSummary> ClimberFeedback::Summarise(const store::RouteRecord& route,
 Result<FeedbackPage> ClimberFeedback::Page(const Viewer& v, int64_t route_id,
                                            std::string_view participant_token) {
   SB_ASSIGN_OR_RETURN(studies::Instrument instrument, instrument_);
-  SB_ASSIGN_OR_RETURN(store::RouteRecord route, Visible(v, route_id));
+  SB_ASSIGN_OR_RETURN(store::RouteRecord route, Visible(v, route_id, store::Reach::kOnTheWall));
   FeedbackPage page;
   page.instrument = std::move(instrument);
   if (std::optional<std::string> hash = ParticipantHash(participant_token)) {
@@ -167,7 +168,7 @@ Result<FeedbackSaved> ClimberFeedback::Submit(const Viewer& v, int64_t route_id,
                                               const FeedbackInput& input,
                                               int* retry_after_seconds) {
   SB_ASSIGN_OR_RETURN(studies::Instrument instrument, instrument_);
-  SB_ASSIGN_OR_RETURN(store::RouteRecord route, Visible(v, route_id));
+  SB_ASSIGN_OR_RETURN(store::RouteRecord route, Visible(v, route_id, store::Reach::kOnTheWall));
   SB_RETURN_IF_ERROR(CheckAnswers(input.answers, instrument, "answers"));
   SB_RETURN_IF_ERROR(CheckFreeText(input.comment, kMaxCommentBytes, "comment"));
   FeedbackSaved out;

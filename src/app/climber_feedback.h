@@ -22,6 +22,7 @@
 #include "grades/consensus.h"
 #include "grades/scale.h"
 #include "store/store.h"
+#include "store/visibility.h"
 #include "studies/instrument.h"
 
 namespace sb::app {
@@ -155,7 +156,10 @@ class ClimberFeedback {
   Result<DriftReport> Drift(const Viewer& v);
 
  private:
-  Result<store::RouteRecord> Visible(const Viewer& v, int64_t route_id);
+  // The route when the viewer sees it (`reach` kOnTheWall: the climbers'
+  // page /r/{id}, where a route on the wall is shown to anyone).
+  Result<store::RouteRecord> Visible(const Viewer& v, int64_t route_id,
+                                     store::Reach reach = store::Reach::kListed);
   Result<GradeSummary> Summarise(const store::RouteRecord& route,
                                  const std::vector<store::FeedbackRecord>& feedback,
                                  bool owner);

@@ -307,11 +307,12 @@ std::optional<std::string> ClimberKey(const Viewer& v, std::string_view particip
 Logbook::Logbook(store::Store* store, Clock* clock, LogbookPolicy policy)
     : store_(store), ticks_(store::TickStoreOf(store)), clock_(clock), policy_(policy) {}
 
-Result<store::RouteRecord> Logbook::Visible(const Viewer& v, int64_t route_id) {
+Result<store::RouteRecord> Logbook::Visible(const Viewer& v, int64_t route_id,
+                                               store::Reach reach) {
   Status none = Status::NotFound("no route " + std::to_string(route_id));
   Result<store::RouteRecord> r = store_->GetRoute(route_id);
   if (!r.ok()) return r.status().code() == Status::Code::kNotFound ? none : r.status();
-  if (!IsVisible(*r, v)) return none;
+  if (!IsVisible(*r, v, reach)) return none;
   return r;
 }
 
@@ -333,7 +334,7 @@ Result<TickSaved> Logbook::Log(const Viewer& v, int64_t route_id,
                                int* retry_after_seconds) {
   if (ticks_ == nullptr) return Status::Internal("this store keeps no ticks");
   SB_RETURN_IF_ERROR(policy_.Validate());
-  SB_ASSIGN_OR_RETURN(store::RouteRecord route, Visible(v, route_id));
+  SB_ASSIGN_OR_RETURN(store::RouteRecord route, Visible(v, route_id, store::Reach::kOnTheWall));
   if (!route.gym_id) return Status::InvalidInput("route: not in a gym, so it has no logbook");
   SB_ASSIGN_OR_RETURN(grades::TickOutcome outcome,
                       grades::ParseTickOutcome(Trim(input.outcome), "outcome"));
@@ -581,7 +582,7 @@ uint64_t Logbook::FullFits() {
 
 Result<AscentGrade> Logbook::Ascent(const Viewer& v, int64_t route_id) {
   if (ticks_ == nullptr) return Status::Internal("this store keeps no ticks");
-  SB_ASSIGN_OR_RETURN(store::RouteRecord route, Visible(v, route_id));
+  SB_ASSIGN_OR_RETURN(store::RouteRecord route, Visible(v, route_id, store::Reach::kOnTheWall));
   AscentGrade none;
   none.discipline = DisciplineOf(route);
   if (!route.gym_id) return none;

@@ -23,6 +23,7 @@
 #include "app/types.h"
 #include "base/status.h"
 #include "store/store.h"
+#include "store/visibility.h"
 #include "store/tick_store.h"
 
 namespace sb::app {
@@ -198,7 +199,10 @@ class Logbook {
     std::shared_ptr<logbook_internal::FitState> state;
     uint64_t used = 0;
   };
-  Result<store::RouteRecord> Visible(const Viewer& v, int64_t route_id);
+  // The route when the viewer sees it (`reach` kOnTheWall: the climbers'
+  // page /r/{id}, where a route on the wall is shown to anyone).
+  Result<store::RouteRecord> Visible(const Viewer& v, int64_t route_id,
+                                     store::Reach reach = store::Reach::kListed);
   Status RequireSetter(const Viewer& v, const store::RouteRecord& route);
   Result<std::shared_ptr<const Fit>> FitGym(int64_t gym_id, const std::string& discipline);
   // Replaces each grade of `grades` (route id -> grade) whose route the

@@ -22,26 +22,34 @@ namespace sb::app {
 
 namespace {
 
-// The gym rule of the visibility rule (store's MemberSees is the same in SQL).
-bool MemberSees(std::optional<int64_t> gym, const std::string& state, const Viewer& v) {
-  if (!gym || state == "draft" || state.empty()) return false;
+// The viewer's role in `gym` ("" for none or no gym).
+std::string_view RoleIn(std::optional<int64_t> gym, const Viewer& v) {
+  if (!gym) return {};
   for (const GymRole& g : v.gyms) {
-    if (g.gym_id != *gym) continue;
-    return g.role != "climber" || state == "set" || state == "stripped";
+    if (g.gym_id == *gym) return g.role;
   }
-  return false;
+  return {};
 }
 
 }  // namespace
 
-bool IsVisible(const store::RouteRecord& r, const Viewer& v) {
-  if (!r.is_public && !IsOwner(r, v) && !MemberSees(r.gym_id, r.state, v)) return false;
+// The rule itself is store::Sees (store/visibility.h), the one place it is
+// written; the store's route lists apply its SQL form.
+bool IsVisible(const store::RouteRecord& r, const Viewer& v, store::Reach reach) {
+  if (!store::Sees({r.is_public, r.owner_id, r.gym_id, r.state}, v.user_id, RoleIn(r.gym_id, v),
+                   reach)) {
+    return false;
+  }
   for (const store::SourceRoute& s : r.sources) {
-    bool owns = v.user_id && s.owner_id && *s.owner_id == *v.user_id;
-    if (!s.is_public && !owns && !MemberSees(s.gym_id, s.state, v)) return false;
+    if (!store::Sees({s.is_public, s.owner_id, s.gym_id, s.state}, v.user_id,
+                     RoleIn(s.gym_id, v))) {
+      return false;
+    }
   }
   return true;
 }
+
+bool DefaultInLibrary(std::optional<int64_t> gym) { return !gym; }
 
 bool HasPrivateSource(const store::RouteRecord& r, bool self) {
   if (self && !r.is_public) return true;
@@ -342,16 +350,26 @@ Result<store::RouteRecord> Routes::GetRow(const Viewer& viewer, int64_t id) {
 Result<store::RouteRecord> Routes::GetOwnedRow(const Viewer& v, int64_t id) {
   if (!v.logged_in()) return Status::Unauthenticated("log in first");
   SB_ASSIGN_OR_RETURN(store::RouteRecord r, GetRow(v, id));
-  if (IsOwner(r, v)) return r;
+  SB_RETURN_IF_ERROR(CheckChange(v, r));
+  return r;
+}
+
+Status Routes::CheckChange(const Viewer& v, const store::RouteRecord& r) {
+  if (IsOwner(r, v)) return Status::Ok();
   if (r.gym_id && r.state != "draft") {  // a draft stays its owner's
     SB_ASSIGN_OR_RETURN(std::string role, gyms_.RoleIn(v, *r.gym_id));
-    if (CanSet(role)) return r;
+    if (CanSet(role)) return Status::Ok();
     if (!role.empty()) return Status::Permission("only the gym's setters may change its routes");
   }
   return Status::Permission("only the route's owner may change it");
 }
 
-Result<int64_t> Routes::Create(const Viewer& v, std::string_view crdl, bool is_public) {
+bool Routes::CanChange(const Viewer& v, const RouteView& r) {
+  return v.logged_in() && CheckChange(v, ToRecord(r)).ok();
+}
+
+Result<int64_t> Routes::Create(const Viewer& v, std::string_view crdl,
+                               std::optional<bool> is_public) {
   return Create(v, crdl, is_public, GymFields{});
 }
 
@@ -526,16 +544,23 @@ Status Routes::ApplyGymFields(const Viewer& v, const GymFields& g, store::RouteR
   return Status::Ok();
 }
 
-Result<int64_t> Routes::Create(const Viewer& v, std::string_view crdl, bool is_public,
-                               const GymFields& request) {
+Result<int64_t> Routes::Create(const Viewer& v, std::string_view crdl,
+                               std::optional<bool> is_public, const GymFields& request) {
   if (!v.logged_in()) return Status::Unauthenticated("log in first");
   store::RouteRecord rec;
   SB_RETURN_IF_ERROR(FillFromCrdl(crdl, options_.limits.route, &rec));
   GymFields g = WithHeaderFields(crdl, request);
-  rec.is_public = is_public;
   rec.owner_id = v.user_id;
   SB_ASSIGN_OR_RETURN(rec.gym_id, gyms_.WriteGym(v, g.gym, g.personal, "add routes to it"));
   if (!rec.gym_id) g = request;  // a personal route: the header's state lines are text only
+  // Issue 31: a route filed in a gym the creator sets for is the gym's,
+  // unpublished unless asked; a personal route keeps the old default.
+  std::optional<int64_t> gym_of_setter;
+  if (rec.gym_id) {
+    SB_ASSIGN_OR_RETURN(std::string role, gyms_.RoleIn(v, *rec.gym_id));
+    if (CanSet(role)) gym_of_setter = rec.gym_id;
+  }
+  rec.is_public = is_public.value_or(DefaultInLibrary(gym_of_setter));
   rec.state = "draft";
   std::vector<std::string> changes;
   std::optional<std::vector<store::RouteSetter>> setters;
@@ -594,7 +619,12 @@ Status Routes::Update(const Viewer& v, int64_t id, const RouteEdit& edit) {
       return Status::InvalidInput(kPrivateSourceMessage);
     }
     if (*edit.is_public != r.is_public) {
-      changes.push_back(*edit.is_public ? "made public" : "made private");
+      if (r.gym_id) {
+        changes.push_back(*edit.is_public ? "published to the shared library"
+                                          : "taken out of the shared library");
+      } else {
+        changes.push_back(*edit.is_public ? "made public" : "made private");
+      }
     }
     r.is_public = *edit.is_public;
   }
@@ -748,6 +778,7 @@ Result<ImportSummary> Routes::ImportCsv(const Viewer& v, std::string_view routes
                                 " routes per import");
   }
   ImportSummary out;
+  int unpublished = 0;  // public in the file, kept out of the library
   std::vector<Imported> batch;
   std::map<int, int> position;  // file route_id -> position in the batch
   std::map<int, int64_t> earlier;  // file route_id -> the route a former import made
@@ -787,7 +818,11 @@ Result<ImportSummary> Routes::ImportCsv(const Viewer& v, std::string_view routes
     rec.owner_id = v.user_id;
     FillMetadata(sr.route, &rec, sr.route.Name());
     rec.crdl = std::move(crdl);
-    rec.is_public = sr.is_public;
+    // A gym's routes enter the shared library one by one (issue 31): an
+    // import into a gym comes in unpublished, whatever the file says.
+    const bool gyms_route = gym && CanSet(role);  // as DefaultInLibrary
+    rec.is_public = sr.is_public && !gyms_route;
+    if (sr.is_public && gyms_route) ++unpublished;
     rec.is_variation = sr.is_variation;
     rec.created_at = sr.created_at;
     rec.gym_id = gym;
@@ -866,6 +901,11 @@ Result<ImportSummary> Routes::ImportCsv(const Viewer& v, std::string_view routes
     }
     position[sr.id] = static_cast<int>(batch.size());
     batch.push_back(std::move(im));
+  }
+  if (unpublished > 0) {
+    out.skipped.push_back(std::string(kRoutesFile) + ": " + std::to_string(unpublished) +
+                          " routes marked public came in unpublished: a gym's routes enter "
+                          "the shared library one by one (the route page's \"library\" box)");
   }
   if (ex.orphan_moves > 0) {
     out.skipped.push_back(std::string(kMovesFile) + ": " + std::to_string(ex.orphan_moves) +

@@ -17,6 +17,7 @@
 #include "base/status.h"
 #include "crdl/route.h"
 #include "store/store.h"
+#include "store/visibility.h"
 
 namespace sb::app {
 
@@ -125,14 +126,23 @@ struct CsvFiles {
   std::string moves_csv;
 };
 
-// The visibility rule: a route is visible when it is public or the viewer's
-// own, and — for a variation — so is every route it was made from (its
-// `sources`, transitively): a private route's moves never reach anyone else
-// through a variation. store::RouteFilter applies the same rule in the
-// database for lists.
-// Issue 21: a gym's members also see its routes that are not drafts
-// (climbers: only those set or stripped), by Viewer::gyms.
-bool IsVisible(const store::RouteRecord& r, const Viewer& v);
+// The visibility rule (issue 31; store/visibility.h, docs/web.md "Who sees
+// a route"): the viewer sees a route in the shared library (`is_public`:
+// a personal route made public, a gym route its gym published), their own,
+// and a route of a gym they are a member of when their role sees its state
+// (head setters and setters: every state; climbers: set and stripped); with
+// Reach::kOnTheWall (the climbers' page /r/{id}) also a gym route that is
+// set. A variation only when every route it was made from (its `sources`,
+// transitively) is seen too: a route's moves never reach anyone else through
+// a variation. Needs Viewer::gyms filled. store::RouteFilter applies the same
+// rule in the database for lists.
+bool IsVisible(const store::RouteRecord& r, const Viewer& v,
+               store::Reach reach = store::Reach::kListed);
+// Whether a new route is in the shared library when its request does not
+// say: a personal route is, a gym's route is not (its gym publishes it
+// explicitly, route by route). `gym`: the route's gym when its creator is
+// a setter or head setter of it, else nullopt (a personal route). Pure.
+bool DefaultInLibrary(std::optional<int64_t> gym);
 // Whether any source of a variation (or the route itself when `self`) is
 // private: such a variation must stay private.
 bool HasPrivateSource(const store::RouteRecord& r, bool self);
@@ -176,15 +186,20 @@ class Routes {
   // draft (issue 21: setters edit the gym's routes together; a draft stays
   // its owner's).
   Result<RouteView> GetOwned(const Viewer& v, int64_t id);
+  // Whether the viewer may change `r` (GetOwned's rule, for pages: the
+  // "Edit" link is shown exactly when an edit would be accepted). False on
+  // a lookup error.
+  bool CanChange(const Viewer& v, const RouteView& r);
   // The same as the store's rows, for the app's other services (web and CLI
   // use the views above).
   Result<std::vector<store::RouteRecord>> ListRows(const Viewer& v, const RouteQuery& q);
   Result<store::RouteRecord> GetRow(const Viewer& v, int64_t id);
   Result<store::RouteRecord> GetOwnedRow(const Viewer& v, int64_t id);
 
-  // Stores a new route owned by the viewer; returns its id. Errors:
-  // kUnauthenticated, kInvalidInput located at route.crdl:line:col.
-  Result<int64_t> Create(const Viewer& v, std::string_view crdl, bool is_public);
+  // Stores a new route owned by the viewer; returns its id. `is_public`
+  // unset: DefaultInLibrary of its gym. Errors: kUnauthenticated,
+  // kInvalidInput located at route.crdl:line:col.
+  Result<int64_t> Create(const Viewer& v, std::string_view crdl, std::optional<bool> is_public);
   // The same with gym fields (issue 21): the route goes to the gym
   // Gyms::WriteGym names (issue 31: `g.gym`, else the viewer's one gym where
   // they set, else no gym; kInvalidInput "gym: ..." for a member of several
@@ -192,7 +207,7 @@ class Routes {
   // the gym. Errors as Create, and kNotFound for another gym's (or wall's)
   // id, kPermission for a member without the role, kInvalidInput naming the
   // field. A history row records the creation.
-  Result<int64_t> Create(const Viewer& v, std::string_view crdl, bool is_public,
+  Result<int64_t> Create(const Viewer& v, std::string_view crdl, std::optional<bool> is_public,
                          const GymFields& g);
   // A route's history (who, when, what), oldest first; errors as Get.
   Result<std::vector<HistoryEntry>> History(const Viewer& v, int64_t id);
@@ -231,7 +246,8 @@ class Routes {
   // file already imported to the gym is skipped (reported) — importing twice
   // duplicates nothing; a variation's input from a former import is linked.
   // The header's "state:" applies when the importer is the gym's setter,
-  // else routes come in as drafts.
+  // else routes come in as drafts. Routes imported into a gym come in
+  // unpublished (issue 31; reported once when the file marks some public).
   Result<ImportSummary> ImportCsv(const Viewer& v, std::string_view routes_csv,
                                   std::string_view moves_csv,
                                   std::optional<int64_t> gym = std::nullopt,
@@ -258,6 +274,9 @@ class Routes {
                        std::vector<std::string>* changes);
 
   Status HideOwnVariationsOf(const Viewer& v, int64_t id);
+  // The editing rule: the owner; a head setter or setter of the route's gym
+  // unless it is a draft. kPermission otherwise.
+  Status CheckChange(const Viewer& v, const store::RouteRecord& r);
   // `v` with its gym roles loaded (when logged in and not loaded yet).
   Result<Viewer> WithGyms(const Viewer& v);
   // Applies the gym fields of a request to `rec` (its gym already set),

@@ -23,7 +23,12 @@ plan::TagInfo TagInfoOf(const RouteView& r, const std::string& url) {
     }
   }
   if (t.setters.empty() && !r.owner_name.empty()) t.setters.push_back(r.owner_name);
-  t.set_on = r.set_on.empty() ? r.created_at.substr(0, 10) : r.set_on;
+  t.planned = r.state == "planned";
+  if (t.planned) {  // the planned date, never the day it was added
+    t.set_on = r.set_on.empty() ? r.planned_on : r.set_on;
+  } else {
+    t.set_on = r.set_on.empty() ? r.created_at.substr(0, 10) : r.set_on;
+  }
   t.url = url;
   return t;
 }

@@ -169,14 +169,14 @@ Route VariationRoute(const VariationMetadata& meta, const std::vector<int64_t>& 
 }
 
 Result<bool> VariationVisibility(const std::vector<store::RouteRecord>& inputs,
-                                 std::optional<bool> asked) {
+                                 std::optional<bool> asked, std::optional<int64_t> gym) {
   bool private_source = std::any_of(inputs.begin(), inputs.end(), [](const store::RouteRecord& r) {
     return HasPrivateSource(r, /*self=*/true);
   });
   if (asked.value_or(false) && private_source) {
     return Status::InvalidInput(kPrivateSourceMessage);
   }
-  return asked.value_or(!private_source);
+  return asked.value_or(!private_source && DefaultInLibrary(gym));
 }
 
 std::string RequestKey(const std::string& params_json, bool smooth,

@@ -61,10 +61,15 @@ Route VariationRoute(const VariationMetadata& meta, const std::vector<int64_t>& 
                      const chaos::Variation& variation);
 
 // The visibility a new variation gets: `asked`, or by default private when
-// any input (or anything an input was made from) is private, else public.
+// any input (or anything an input was made from) is private or when it
+// goes to a gym its maker sets for (`gym`, as DefaultInLibrary: a gym's
+// routes enter the shared library only when it publishes them, issue 31),
+// else public.
 // Errors: kInvalidInput kPrivateSourceMessage when public is asked over a
 // private source.
-Result<bool> VariationVisibility(const std::vector<store::RouteRecord>& inputs, std::optional<bool> asked);
+Result<bool> VariationVisibility(const std::vector<store::RouteRecord>& inputs,
+                                 std::optional<bool> asked,
+                                 std::optional<int64_t> gym = std::nullopt);
 
 // The digest of everything the setter asked for: the stored parameters,
 // smoothing flag, per input the route id and CRDL, and the visibility and

@@ -241,12 +241,17 @@ Result<CreatedVariation> Variations::Create(const Viewer& v, const VariationRequ
     inputs.push_back({r.name, std::move(route).value()});
     recs.push_back(std::move(r));
   }
-  SB_ASSIGN_OR_RETURN(bool is_public, VariationVisibility(recs, req.is_public));
   std::optional<int64_t> gym_id;  // issue 21: checked before any costly work
+  std::optional<int64_t> gym_of_setter;  // issue 31: gym_id when the viewer sets for it
   {
     Gyms gyms(store_, options_);
     SB_ASSIGN_OR_RETURN(gym_id, gyms.WriteGym(v, req.gym, false, "add routes to it"));
+    if (gym_id) {
+      SB_ASSIGN_OR_RETURN(std::string role, gyms.RoleIn(v, *gym_id));
+      if (CanSet(role)) gym_of_setter = gym_id;
+    }
   }
+  SB_ASSIGN_OR_RETURN(bool is_public, VariationVisibility(recs, req.is_public, gym_of_setter));
   SB_RETURN_IF_ERROR(CheckRequestSearchBudget(req.setting, req.params, total_moves));
   chaos::VaryParams params = req.params;
   std::optional<GalleryChoice> gallery;

@@ -86,8 +86,10 @@ std::vector<std::string> TagLines(const TagInfo& info) {
     if (s.empty()) continue;
     setters += (setters.empty() ? "" : ", ") + s;
   }
-  if (!setters.empty()) out.push_back("Set by " + setters);
-  if (!info.set_on.empty()) out.push_back("Set on " + info.set_on);
+  if (!setters.empty()) out.push_back((info.planned ? "To be set by " : "Set by ") + setters);
+  if (!info.set_on.empty()) {
+    out.push_back((info.planned ? "Planned for " : "Set on ") + info.set_on);
+  }
   return out;
 }
 

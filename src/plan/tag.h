@@ -27,6 +27,9 @@ struct TagInfo {
   std::string wall;
   std::vector<std::string> setters;
   std::string set_on;  // the set date as typed (ISO "2026-11-26" by convention)
+  // Issue 31: a planned route (not on the wall yet): `set_on` is the date it
+  // is planned for, and the tag says so ("Planned for ...", "To be set by").
+  bool planned = false;
   // The QR code's link (the route's climbers' page, `BASE/r/{id}`); "" for
   // none. At most kMaxQrBytes (plan/qr.h), else the tag has no code.
   std::string url;

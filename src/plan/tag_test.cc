@@ -86,6 +86,16 @@ TEST(TagTest, LinesNameWallSettersAndDateWhenSet) {
   EXPECT_TRUE(TagLines(TagInfo{}).empty());
 }
 
+// Issue 31: a planned route's tag says when it is planned for, not "set on".
+TEST(TagTest, APlannedRouteIsPlannedForItsDate) {
+  TagInfo t = Sample();
+  t.planned = true;
+  const std::vector<std::string> lines = TagLines(t);
+  ASSERT_EQ(lines.size(), 3u);
+  EXPECT_EQ(lines[1], "To be set by Carol, Dan");
+  EXPECT_EQ(lines[2], "Planned for 2026-11-26");
+}
+
 TEST(TagTest, UrlShrinksToOneLineNeverBelowTheMinimum) {
   EXPECT_EQ(TagUrlFontPt("http://a/r/1", 200), kTagUrlMaxPt);
   const std::string long_url = "https://climbing-gym.example.org/" + std::string(60, 'x') + "/r/1";

@@ -16,6 +16,7 @@
 #include "store/sql.h"
 #include "store/store.h"
 #include "store/store_test_util.h"
+#include "store/visibility.h"
 
 namespace sb::store {
 namespace {
@@ -165,8 +166,8 @@ TEST_P(GymStoreTest, RouteFieldsSettersHistoryAndTheGymVisibilityRule) {
   EXPECT_EQ(got.setters[1].name, "Guest Setter");
 
   RouteFilter f;
-  f.viewer = setter;  // a setter sees the gym's routes but the head's draft
-  EXPECT_EQ(Names(f), (std::vector<std::string>{"Set one", "Planned one"}));
+  f.viewer = setter;  // a setter sees every route of the gym, the head's draft too (issue 31)
+  EXPECT_EQ(Names(f), (std::vector<std::string>{"Head's draft", "Set one", "Planned one"}));
   f.viewer = climber;  // a climber only what is on the wall (or stripped)
   EXPECT_EQ(Names(f), (std::vector<std::string>{"Set one"}));
   f.viewer = other;  // another gym sees none of it
@@ -376,11 +377,141 @@ INSERT INTO studies(owner_id, name, instrument_json, created_at, updated_at)
   f.viewer = 1;
   f.text = "NAME: E";
   ASSERT_EQ(store_->ListRoutes(f)->size(), 1u);
-  // Members see the gym's non-draft routes: the second user sees the first's
-  // private routes A and B (set), not the first's private variation E (draft).
+  // Setters see every route of their gym (issue 31): the second user sees
+  // the first's private routes A and B (set) and private variation E (draft).
   f.text.clear();
   f.viewer = 2;
-  EXPECT_EQ(*store_->CountRoutes(f), 4);
+  EXPECT_EQ(*store_->CountRoutes(f), 5);
+}
+
+// Issue 31, schema 15: a version-13 database's public drafts and planned
+// routes of a gym's setters leave the shared library; routes set or stripped,
+// personal routes and routes of owners who are no setter of the gym keep
+// their flag; nothing else changes.
+TEST_P(GymStoreTest, AVersionThirteenDatabaseUnpublishesTheGymsDraftsAndPlans) {
+  auto connect = [&]() {
+    return GetParam() == Backend::kSqlite ? sql::OpenSqlite(db_.locator())
+                                          : sql::OpenPostgres(db_.locator(), sql::PgSettings());
+  };
+  const std::string kRoutes =
+      "SELECT id, owner_id, name, crdl, gym_id, state, set_on, is_variation FROM routes "
+      "ORDER BY id";
+  std::vector<std::vector<std::optional<std::string>>> before;
+  {
+    Result<std::unique_ptr<sql::Connection>> c = connect();
+    ASSERT_TRUE(c.ok()) << c.status().message();
+    ASSERT_TRUE(sql::Migrate(**c, 13).ok());
+    ASSERT_EQ(*(*c)->SchemaVersion(), 13);
+    ASSERT_TRUE((*c)->Exec(R"sql(
+INSERT INTO users(username, password_hash, created_at) VALUES
+  ('head', 'h', 'x'), ('setter', 'h', 'x'), ('climber', 'h', 'x'), ('nobody', 'h', 'x'),
+  ('other', 'h', 'x');
+INSERT INTO gyms(name, created_at) VALUES ('A', 'x');
+INSERT INTO gym_members(gym_id, user_id, role) VALUES (1, 1, 'head'), (1, 2, 'setter'),
+  (1, 3, 'climber');
+INSERT INTO routes(owner_id, name, crdl, is_public, gym_id, state, created_at, updated_at) VALUES
+  (1, 'head draft', 'name: a', 1, 1, 'draft', 'x', 'x'),
+  (2, 'setter plan', 'name: b', 1, 1, 'planned', 'x', 'x'),
+  (2, 'set', 'name: c', 1, 1, 'set', 'x', 'x'),
+  (1, 'stripped', 'name: d', 1, 1, 'stripped', 'x', 'x'),
+  (3, 'climber draft', 'name: e', 1, 1, 'draft', 'x', 'x'),
+  (4, 'non-member draft', 'name: f', 1, 1, 'draft', 'x', 'x'),
+  (NULL, 'orphan draft', 'name: g', 1, 1, 'planned', 'x', 'x'),
+  (1, 'private draft', 'name: h', 0, 1, 'draft', 'x', 'x'),
+  (1, 'personal', 'name: i', 1, NULL, 'draft', 'x', 'x'),
+  (2, 'private set', 'name: j', 0, 1, 'set', 'x', 'x');
+)sql")
+                    .ok());
+    before = RowsOf(**c, kRoutes);
+  }
+  Open();
+  EXPECT_EQ(store_->SchemaVersion(), kSchemaVersion);
+  Result<std::unique_ptr<sql::Connection>> c = connect();
+  ASSERT_TRUE(c.ok());
+  EXPECT_EQ(RowsOf(**c, kRoutes), before);  // nothing but the flag moved
+  std::vector<std::vector<std::optional<std::string>>> flags =
+      RowsOf(**c, "SELECT name, is_public FROM routes ORDER BY id");
+  std::map<std::string, std::string> pub;
+  for (const auto& row : flags) pub[*row[0]] = *row[1];
+  EXPECT_EQ(pub["head draft"], "0");
+  EXPECT_EQ(pub["setter plan"], "0");
+  EXPECT_EQ(pub["set"], "1");
+  EXPECT_EQ(pub["stripped"], "1");
+  EXPECT_EQ(pub["climber draft"], "1");
+  EXPECT_EQ(pub["non-member draft"], "1");
+  EXPECT_EQ(pub["orphan draft"], "0");
+  EXPECT_EQ(pub["private draft"], "0");
+  EXPECT_EQ(pub["personal"], "1");
+  EXPECT_EQ(pub["private set"], "0");
+  // What each account sees now.
+  RouteFilter f;
+  f.sort = RouteSort::kOldest;
+  f.viewer = 5;  // in no gym
+  EXPECT_EQ(Names(f), (std::vector<std::string>{"set", "stripped", "climber draft",
+                                                "non-member draft", "personal"}));
+  f.viewer = std::nullopt;  // logged out: the same
+  EXPECT_EQ(Names(f), (std::vector<std::string>{"set", "stripped", "climber draft",
+                                                "non-member draft", "personal"}));
+  f.viewer = 3;  // the gym's climber
+  EXPECT_EQ(Names(f), (std::vector<std::string>{"set", "stripped", "climber draft",
+                                                "non-member draft", "personal",
+                                                "private set"}));
+  f.viewer = 2;  // the gym's setter: every route of the gym
+  EXPECT_EQ(Names(f).size(), 10u);
+}
+
+// The one rule (store/visibility.h) in C++ and in SQL agrees, on both
+// backends, for every role, state, owner and library flag.
+TEST_P(GymStoreTest, TheVisibilityRuleIsTheSameInSqlAndInCpp) {
+  Open();
+  const int64_t head = User("h"), setter = User("s"), climber = User("c"), nobody = User("n");
+  const int64_t gym = *gyms_->CreateGym("A", head);
+  ASSERT_TRUE(gyms_->PutMember(gym, setter, "setter").ok());
+  ASSERT_TRUE(gyms_->PutMember(gym, climber, "climber").ok());
+  struct Row {
+    int64_t id;
+    RouteRecord rec;
+  };
+  std::vector<Row> rows;
+  for (std::optional<int64_t> g : {std::optional<int64_t>(gym), std::optional<int64_t>()}) {
+    for (const char* state : {"draft", "planned", "set", "stripped"}) {
+      for (bool pub : {false, true}) {
+        for (int64_t owner : {head, climber, nobody}) {
+          std::string name = std::string(state) + (pub ? "+lib" : "") + "/" +
+                             std::to_string(owner) + (g ? "" : "/personal");
+          int64_t id = Route(owner, name, g, state, pub);
+          rows.push_back({id, *store_->GetRoute(id)});
+        }
+      }
+    }
+  }
+  const std::pair<std::optional<int64_t>, std::string> viewers[] = {
+      {head, "head"}, {setter, "setter"}, {climber, "climber"}, {nobody, ""}, {std::nullopt, ""}};
+  for (const auto& [viewer, role] : viewers) {
+    RouteFilter f;
+    f.viewer = viewer;
+    f.sort = RouteSort::kOldest;
+    f.limit = 1000;
+    std::vector<std::string> expected;
+    for (const Row& r : rows) {
+      if (Sees({r.rec.is_public, r.rec.owner_id, r.rec.gym_id, r.rec.state}, viewer,
+               r.rec.gym_id ? role : "")) {
+        expected.push_back(r.rec.name);
+      }
+    }
+    EXPECT_EQ(Names(f), expected) << "viewer " << viewer.value_or(-1);
+  }
+  // The rule's table itself.
+  EXPECT_TRUE(MemberSees("setter", "draft"));
+  EXPECT_TRUE(MemberSees("head", "planned"));
+  EXPECT_FALSE(MemberSees("climber", "planned"));
+  EXPECT_TRUE(MemberSees("climber", "stripped"));
+  EXPECT_FALSE(MemberSees("", "set"));
+  // The climbers' page of a route on the wall: anyone; not a plan.
+  EXPECT_TRUE(Sees({false, head, gym, "set"}, std::nullopt, "", Reach::kOnTheWall));
+  EXPECT_FALSE(Sees({false, head, gym, "planned"}, std::nullopt, "", Reach::kOnTheWall));
+  EXPECT_FALSE(Sees({false, head, std::nullopt, "set"}, std::nullopt, "", Reach::kOnTheWall));
+  EXPECT_FALSE(Sees({false, head, gym, "set"}, std::nullopt, ""));
 }
 
 }  // namespace

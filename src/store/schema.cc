@@ -572,6 +572,27 @@ CREATE TABLE gym_history (
 CREATE INDEX gym_history_gym ON gym_history(gym_id, id);
 )sql"},
        }},
+      // Schema 15, issue 31 (visibility follows the gym, store/visibility.h): a gym's
+      // routes are seen by its members, and by everyone else only once the
+      // gym publishes them to the shared library (routes.is_public, off by
+      // default for gym routes). Until now every route was public unless
+      // made private, so a gym's drafts and planned routes were public by
+      // default: those of its setters and head setters (or of no owner) are
+      // taken out of the library. Routes set or stripped keep their flag (they
+      // were on the wall, their tags in the gym), and so do routes whose owner
+      // is no setter of their gym (a personal route filed in the install's
+      // first gym by the old default: its owner's own choice). docs/deploy.md
+      // "Upgrading to schema 15".
+      {"a gym's unpublished drafts and plans leave the shared library (issue 31)",
+       {
+           {Only::kBoth, R"sql(
+UPDATE routes SET is_public = 0
+  WHERE is_public = 1 AND gym_id IS NOT NULL AND state IN ('draft', 'planned')
+    AND (owner_id IS NULL OR EXISTS (SELECT 1 FROM gym_members m
+         WHERE m.gym_id = routes.gym_id AND m.user_id = routes.owner_id
+           AND m.role IN ('head', 'setter')));
+)sql"},
+       }},
   };
   return kMigrations;
 }

@@ -24,6 +24,7 @@
 #include "store/target_store.h"
 #include "store/tick_sql.h"
 #include "store/tick_store.h"
+#include "store/visibility.h"
 
 namespace sb::store {
 
@@ -1299,16 +1300,6 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
     }
   }
 
-  // The gym rule of the visibility rule, for the routes aliased `t` and the
-  // viewer as one parameter: the viewer is a member of the route's gym and
-  // the route is not a draft (climbers see only routes set or stripped).
-  // app::IsVisible applies the same rule over a RouteRecord.
-  static std::string MemberSees(const std::string& t) {
-    return "(" + t + ".state <> 'draft' AND EXISTS (SELECT 1 FROM gym_members m WHERE "
-           "m.gym_id = " + t + ".gym_id AND m.user_id = ? AND (m.role <> 'climber' OR " + t +
-           ".state IN ('set', 'stripped'))))";
-  }
-
   // Case-insensitive substring test of `hay` against one parameter:
   // instr() in SQLite, strpos() in PostgreSQL.
   std::string Contains(const std::string& hay) const {
@@ -1321,18 +1312,17 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
   // first (with a plain JOIN and no ANALYZE statistics it scanned every
   // private route per listed row: seconds per page at 200,000 routes, issue
   // 22, docs/BENCHMARKS.md "A chain at scale"); PostgreSQL reads it as JOIN.
-  // The visibility rule: the row is public or the viewer's, and so is every
-  // route it was made from (app::IsVisible is the same rule over a
-  // RouteRecord).
+  // The visibility rule (store/visibility.h, the one place it is written):
+  // the viewer sees the row, and every route it was made from.
   std::string FilterWhere(const RouteFilter& f, std::vector<Value>* params) const {
     const int64_t viewer = f.viewer.value_or(-1);
-    std::string w =
-        " WHERE (r.is_public = 1 OR r.owner_id = ? OR " + MemberSees("r") +
-        ") AND (r.is_variation = 0 OR NOT EXISTS (SELECT 1 FROM "
-        "route_sources s CROSS JOIN routes src WHERE src.id = s.route_id AND "
-        "s.variation_id = r.id AND src.is_public = 0 AND (src.owner_id IS NULL OR src.owner_id <> ?) AND NOT " +
-        MemberSees("src") + "))";
-    params->insert(params->end(), {viewer, viewer, viewer, viewer});
+    int route_params = 0, source_params = 0;
+    std::string w = " WHERE " + SeesSql("r", &route_params) +
+                    " AND (r.is_variation = 0 OR NOT EXISTS (SELECT 1 FROM "
+                    "route_sources s CROSS JOIN routes src WHERE src.id = s.route_id AND "
+                    "s.variation_id = r.id AND NOT " +
+                    SeesSql("src", &source_params) + "))";
+    params->insert(params->end(), static_cast<size_t>(route_params + source_params), viewer);
     if (f.gym_id) {
       w += " AND r.gym_id = ?";
       params->push_back(*f.gym_id);

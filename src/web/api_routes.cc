@@ -90,7 +90,7 @@ void PostRoute(Exchange& x) {
   if (!body.ok()) return ApiError(x, body.status());
   Result<std::string> crdl = StringField(*body, "crdl");
   if (!crdl.ok()) return ApiError(x, crdl.status());
-  Result<bool> pub = BoolField(*body, "public", true);
+  Result<std::optional<bool>> pub = LibraryField(*body);
   if (!pub.ok()) return ApiError(x, pub.status());
   Result<app::GymFields> gym = GymFieldsOf(*body);
   if (!gym.ok()) return ApiError(x, gym.status());
@@ -115,11 +115,9 @@ void PutRoute(Exchange& x) {
     if (!crdl.ok()) return ApiError(x, crdl.status());
     edit.crdl = *crdl;
   }
-  if (body->contains("public")) {
-    Result<bool> pub = BoolField(*body, "public", true);
-    if (!pub.ok()) return ApiError(x, pub.status());
-    edit.is_public = *pub;
-  }
+  Result<std::optional<bool>> pub = LibraryField(*body);
+  if (!pub.ok()) return ApiError(x, pub.status());
+  edit.is_public = *pub;
   Result<app::GymFields> gym = GymFieldsOf(*body);
   if (!gym.ok()) return ApiError(x, gym.status());
   edit.gym = *gym;

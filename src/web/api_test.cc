@@ -49,7 +49,18 @@ const char kRoute2[] =
 using testing::Client;
 using testing::Running;
 
-class ApiTest : public testing::ApiFixture {};
+// The install's first account heads its first gym, whose routes are the
+// gym's (unpublished by default, issue 31); these tests are of personal
+// routes, so that account is taken first by someone else.
+class ApiTest : public testing::ApiFixture {
+ protected:
+  void SetUp() override {
+    testing::ApiFixture::SetUp();
+    if (!server_) return;
+    Client founder = NewClient();
+    founder.SignUp("founder");
+  }
+};
 
 TEST_F(ApiTest, SignUpRules) {
   Client c = NewClient();

@@ -34,6 +34,7 @@ PageViewer Caller::page() const {
   p.user_id = viewer.user_id.value_or(0);
   p.username = viewer.username;
   p.csrf = csrf;
+  for (const app::GymRole& g : viewer.gyms) p.setter = p.setter || app::CanSet(g.role);
   return p;
 }
 
@@ -63,6 +64,19 @@ Result<bool> BoolField(const json& body, const char* field, bool fallback) {
     return Status::InvalidInput(std::string(field) + ": expected true or false");
   }
   return body[field].get<bool>();
+}
+
+Result<std::optional<bool>> LibraryField(const json& body) {
+  std::optional<bool> out;
+  for (const char* field : {"library", "public"}) {
+    if (!body.contains(field)) continue;
+    SB_ASSIGN_OR_RETURN(bool b, BoolField(body, field, false));
+    if (out && *out != b) {
+      return Status::InvalidInput("public: disagrees with \"library\" (give one of them)");
+    }
+    out = b;
+  }
+  return out;
 }
 
 std::optional<int64_t> ParseId(const std::string& s) {
@@ -135,6 +149,9 @@ json RouteSummaryJson(const app::RouteView& r) {
               {"setter", r.setter},
               {"owner", r.owner_name},
               {"public", r.is_public},
+              // Issue 31: in the shared library (the same flag as "public";
+              // the name a gym's route is published by).
+              {"library", r.is_public},
               {"is_variation", r.is_variation},
               {"moves", r.move_count},
               {"colour", r.colour},

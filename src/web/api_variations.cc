@@ -112,11 +112,9 @@ void PostVariation(Exchange& x) {
   Result<bool> smooth = BoolField(*body, "smooth", false);
   if (!smooth.ok()) return ApiError(x, smooth.status());
   vr.smooth = *smooth;
-  if (body->contains("public")) {
-    Result<bool> pub = BoolField(*body, "public", false);
-    if (!pub.ok()) return ApiError(x, pub.status());
-    vr.is_public = *pub;
-  }
+  Result<std::optional<bool>> pub = LibraryField(*body);
+  if (!pub.ok()) return ApiError(x, pub.status());
+  vr.is_public = *pub;
   Result<bool> dup = BoolField(*body, "duplicate", false);
   if (!dup.ok()) return ApiError(x, dup.status());
   vr.duplicate = *dup;

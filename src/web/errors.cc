@@ -1,4 +1,6 @@
 // The one mapping from sb::Status to HTTP statuses and error bodies.
+#include <cctype>
+
 #include "base/log.h"
 #include "web/handlers.h"
 
@@ -29,6 +31,23 @@ std::string ClientMessage(Exchange& x, const Status& s) {
   return "internal error";
 }
 
+// Issue 31: a gym's pages ("/gyms", "/gyms/...", "/walls/..."), whose
+// refusals to a logged-out visitor send them to log in and back instead.
+// Only plain paths (letters, digits, / - _ .), so the path is its own URL.
+bool LogInFirst(const Exchange& x, int status) {
+  if (x.caller.viewer.logged_in() || x.req.method != "GET") return false;
+  if (status != 401 && status != 404) return false;
+  const std::string& p = x.req.path;
+  if (p != "/gyms" && p.rfind("/gyms/", 0) != 0 && p.rfind("/walls/", 0) != 0) return false;
+  for (char c : p) {
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '/' && c != '-' && c != '_' &&
+        c != '.') {
+      return false;
+    }
+  }
+  return true;
+}
+
 }  // namespace
 
 void ApiError(Exchange& x, const Status& s) {
@@ -43,6 +62,12 @@ void ApiError(Exchange& x, const Status& s) {
 
 void PageError(Exchange& x, const Status& s) {
   int status = HttpStatusOf(s);
+  if (LogInFirst(x, status)) {
+    x.res.status = 302;
+    x.res.SetHeader("Location", "/login?next=" + x.req.path);
+    x.res.SetHeader("Cache-Control", "no-store");
+    return;
+  }
   x.res.SetBody(status, ErrorPage(x.caller.page(), status, ClientMessage(x, s)),
                 "text/html; charset=utf-8");
 }

@@ -47,6 +47,12 @@ std::string Hidden(const std::string& name, const std::string& value) {
 
 std::string OptInt(const std::optional<int>& v) { return v ? std::to_string(*v) : ""; }
 
+
+// The wall's tag sheet: its planned and set routes (GET /api/gyms/{gym}/tags.pdf).
+std::string WallTagsUrl(const app::Gym& gym, int64_t wall) {
+  return "/api/gyms/" + std::to_string(gym.id) + "/tags.pdf?wall=" + std::to_string(wall);
+}
+
 std::string StateName(const std::string& s) {
   if (s == "set") return "on the wall";
   if (s == "stripped") return "stripped (archive)";
@@ -98,15 +104,20 @@ std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<
   } else {
     b += "<div class=\"table-wrap\"><table class=\"list\" id=\"wall-list\"><thead><tr><th>Wall"
          "</th><th>Discipline</th><th class=\"num\">Angle</th><th class=\"num\">Reset</th>"
-         "<th>Climbers</th></tr>"
-         "</thead><tbody>\n";
+         "<th>Climbers</th>" + std::string(app::CanSet(gym.role) ? "<th>Tags</th>" : "") +
+         "</tr></thead><tbody>\n";
     for (const app::Wall& w : walls) {
       b += "<tr><td><a href=\"/walls/" + std::to_string(w.id) + "\">" + E(w.name) + "</a></td><td>" +
            E(w.discipline) + "</td><td class=\"num\">" + FormatDouble(w.angle) +
            "°</td><td class=\"num\">" +
            (w.reset_weeks ? std::to_string(*w.reset_weeks) + " weeks" : std::string("—")) +
            "</td><td><a class=\"wall-report\" href=\"/gyms/" + gid + "/report?wall=" +
-           std::to_string(w.id) + "\">report</a></td></tr>\n";
+           std::to_string(w.id) + "\">report</a></td>";
+      if (app::CanSet(gym.role)) {  // issue 31: the wall's tag sheet (planned and set routes)
+        b += "<td><a class=\"wall-tags\" href=\"" + WallTagsUrl(gym, w.id) +
+             "\">tag sheet</a></td>";
+      }
+      b += "</tr>\n";
     }
     b += "</tbody></table></div>\n";
   }
@@ -295,6 +306,9 @@ std::string WallPage(const PageViewer& v, const app::Gym& gym, const app::Wall& 
                                     : std::string()) +
                   "</p>\n" + routes_html;
   if (app::CanSet(gym.role)) {
+    b += "<p class=\"no-print\"><a class=\"button\" id=\"wall-tags\" href=\"" +
+         WallTagsUrl(gym, wall.id) + "\">Print this wall's tags</a> (its planned routes and "
+         "those on the wall, 8 a page)</p>\n";
     b += "<p><a href=\"/routes/new\" id=\"plan-here\">New route</a> — then set its wall to "
          "<strong>" + E(wall.name) + "</strong> on its page.</p>\n";
     if (!today.empty()) {

@@ -73,6 +73,10 @@ Result<nlohmann::json> BodyObject(const Request& req);
 Result<std::string> StringField(const nlohmann::json& body, const char* field);
 // `fallback` when absent; kInvalidInput when not a boolean.
 Result<bool> BoolField(const nlohmann::json& body, const char* field, bool fallback);
+// A route's shared-library flag (issue 31): "library" or its older name
+// "public" (both given: they must agree); nullopt when neither is given.
+// kInvalidInput naming the field when not a boolean or when they disagree.
+Result<std::optional<bool>> LibraryField(const nlohmann::json& body);
 // A path or query id: a positive decimal; nullopt otherwise.
 std::optional<int64_t> ParseId(const std::string& s);
 // The path parameter "id"; kNotFound `missing` when it is not an id.

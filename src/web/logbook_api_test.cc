@@ -107,10 +107,10 @@ TEST_F(LogbookApiTest, TicksEditsBurstsReviewMergeAndGymIsolation) {
   }
   ASSERT_EQ(held.size(), 2u);
   EXPECT_EQ(climber.Status("GET", rp + "/ticks"), 403);
-  EXPECT_EQ(rival.Status("GET", rp + "/ticks"), 403);  // another gym's setter
+  EXPECT_EQ(rival.Status("GET", rp + "/ticks"), 404);  // another gym's setter (issue 31: unseen)
   EXPECT_EQ(ann.Status("GET", rp + "/ticks"), 401);
   const std::string accept = rp + "/ticks/" + std::to_string(held[0]) + "/accept";
-  EXPECT_EQ(rival.Status("POST", accept, "{}"), 403);
+  EXPECT_EQ(rival.Status("POST", accept, "{}"), 404);
   EXPECT_EQ(climber.Status("POST", accept, "{}"), 403);
   EXPECT_EQ(setter.Json("POST", accept, "{}", 200)["state"], "ok");
   EXPECT_EQ(head.Json("POST", rp + "/ticks/" + std::to_string(held[1]) + "/discard", "{}",

@@ -91,7 +91,8 @@ void PageRoute(Exchange& x) {
   if (Result<app::RouteDiscipline> d = x.services.routes.DisciplineOf(*r); d.ok()) {
     discipline = d->Describe();
   }
-  Html(x, WithBlock(RoutePage(x.caller.page(), *r, app::IsOwner(*r, x.caller.viewer), readings,
+  Html(x, WithBlock(RoutePage(x.caller.page(), *r, x.services.routes.CanChange(x.caller.viewer, *r),
+                              readings,
                               discipline),
                     GymBlock(x, *r) + ConsensusBlock(x, *r)));
 }
@@ -194,7 +195,8 @@ void PagePlan(Exchange& x) {
   if (!a) return;
   const app::PlanView* p = &a->view;
   Html(x, WithBlock(PlanPage(x.caller.page(), p->record, *p->plan, p->smoothing_note,
-                             CardInfoOf(x, p->record)),
+                             CardInfoOf(x, p->record),
+                             x.services.routes.CanChange(x.caller.viewer, p->record)),
                     ConsensusBlock(x, p->record)));
 }
 

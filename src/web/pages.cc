@@ -47,14 +47,17 @@ std::string Layout(const PageViewer& v, const std::string& title, const std::str
   h += "<body class=\"" + E(page_class) + "\">\n<header class=\"top no-print\">\n";
   h += "<a class=\"brand\" href=\"/\">Strange Beta</a>\n<nav>\n";
   h += "<a href=\"/\">Routes</a>\n";
-  if (v.logged_in) h += "<a href=\"/routes/new\" id=\"nav-new\">New route</a>\n";
-  h += "<a href=\"/vary\" id=\"nav-vary\">Vary</a>\n";
+  // Issue 31: the setters' tools only for setters (the pages stay reachable).
+  const bool setter = v.logged_in && v.setter;
+  if (setter) h += "<a href=\"/routes/new\" id=\"nav-new\">New route</a>\n";
+  if (setter) h += "<a href=\"/vary\" id=\"nav-vary\">Vary</a>\n";
   if (v.logged_in) h += "<a href=\"/gyms\" id=\"nav-gyms\">Gyms</a>\n";
-  if (v.logged_in) {  // issue 23: the climbers' side of a setter's work
+  if (setter) {  // issue 23: the climbers' side of a setter's work
     h += "<a href=\"/studies\" id=\"nav-studies\">Studies</a>\n<a href=\"/drift\" "
          "id=\"nav-drift\">Drift</a>\n";
   }
-  h += "<a href=\"/import\">Import/export</a>\n</nav>\n<div class=\"who\">";
+  if (setter) h += "<a href=\"/import\" id=\"nav-import\">Import/export</a>\n";
+  h += "</nav>\n<div class=\"who\">";
   if (v.logged_in) {
     h += "<span id=\"whoami\">" + E(v.username) +
          "</span> <button type=\"button\" id=\"logout\" class=\"link\">Log out</button>";
@@ -75,7 +78,10 @@ std::string RouteRows(const std::vector<app::RouteView>& routes) {
         r.is_variation ? "/variations/" + std::to_string(r.id) : "/routes/" + std::to_string(r.id);
     h += "<tr><td><a href=\"" + url + "\">" + E(r.name) + "</a>";
     if (r.is_variation) h += " <span class=\"tag\">variation</span>";
-    if (!r.is_public) h += " <span class=\"tag private\">private</span>";
+    if (!r.is_public) {  // issue 31: a gym's unpublished route is its members'
+      h += r.gym_id ? " <span class=\"tag private\">gym only</span>"
+                    : " <span class=\"tag private\">private</span>";
+    }
     if (r.state == "planned" || r.state == "stripped") {
       h += " <span class=\"tag state\">" + E(r.state) + "</span>";
     }
@@ -268,10 +274,13 @@ std::string EditorPage(const PageViewer& v, const std::optional<app::RouteView>&
        "placeholder=\"" + E(kNewRouteTemplate) + "\">" + E(route ? route->crdl : std::string()) +
        "</textarea>\n";
   // Variations of private routes are private by default (and cannot be public).
-  const bool pub = route ? route->is_public : true;
+  // Issue 31: a setter's new route goes to their gym, unpublished by default.
+  const bool pub = route ? route->is_public : !v.setter;
+  const bool gym = route ? route->gym_id.has_value() : v.setter;
   b += "<label class=\"inline\">Who can see it <select id=\"public\"><option value=\"1\"" +
-       std::string(pub ? " selected" : "") + ">public: everyone</option><option value=\"0\"" +
-       std::string(pub ? "" : " selected") + ">private: only me</option></select></label>\n";
+       std::string(pub ? " selected" : "") + ">public: everyone (the shared library)</option>"
+       "<option value=\"0\"" + std::string(pub ? "" : " selected") + ">" +
+       (gym ? "the gym only: its members" : "private: only me") + "</option></select></label>\n";
   b += "<button type=\"button\" id=\"save\">Save route</button> <span class=\"msg\" "
        "id=\"save-msg\" role=\"alert\"></span></div>\n";
   b += "<div class=\"pane\"><h2>How it reads</h2><ol class=\"feedback\" id=\"feedback\"></ol>"
@@ -295,8 +304,21 @@ std::string RoutePage(const PageViewer& v, const app::RouteView& r, bool can_cha
   if (!r.setter.empty()) b += "set by " + E(r.setter) + " · ";
   b += "added by " + E(r.owner_name.empty() ? "nobody" : r.owner_name) + " on " +
        E(r.created_at.substr(0, 10));
-  b += r.is_public ? "" : " · <span class=\"tag private\">private</span>";
+  if (r.gym_id) {  // issue 31: a gym's route is its members' until published
+    b += r.is_public
+             ? " · <span class=\"tag library\" id=\"library-tag\">in the shared library</span>"
+             : " · <span class=\"tag private\" id=\"library-tag\">gym only</span>";
+  } else {
+    b += r.is_public ? "" : " · <span class=\"tag private\">private</span>";
+  }
   b += "</p>\n";
+  if (r.gym_id && can_change) {
+    b += "<p class=\"no-print library-box\"><label><input type=\"checkbox\" id=\"route-library\" "
+         "data-id=\"" + std::to_string(r.id) + "\"" + (r.is_public ? " checked" : "") +
+         "> Shared library: everyone may see, search and vary this route (otherwise only the "
+         "gym's members, and anyone at its QR code while it is on the wall)</label> "
+         "<span class=\"msg\" id=\"library-msg\" role=\"alert\"></span></p>\n";
+  }
   Result<Route> parsed = ParseCrdl(r.crdl, "route " + std::to_string(r.id));
   if (parsed.ok()) {
     b += Description(*parsed) + Meta(*parsed) + MovesTable(*parsed, readings);
@@ -309,10 +331,11 @@ std::string RoutePage(const PageViewer& v, const app::RouteView& r, bool can_cha
        ".crdl\" download>Download CRDL</a> <a class=\"button\" id=\"tag-link\" href=\"/routes/" +
        id + "/tag\">Tag</a>";
   if (can_change) {
-    b += " <a class=\"button\" href=\"/routes/" + id +
-         "/edit\" id=\"edit\">Edit</a>"
-         " <button type=\"button\" class=\"danger\" id=\"delete-route\" data-id=\"" +
-         id + "\">Delete</button>";
+    b += " <a class=\"button\" href=\"/routes/" + id + "/edit\" id=\"edit\">Edit</a>";
+  }
+  if (v.logged_in && r.owner_id && *r.owner_id == v.user_id) {  // deleting stays the owner's here
+    b += " <button type=\"button\" class=\"danger\" id=\"delete-route\" data-id=\"" + id +
+         "\">Delete</button>";
   }
   b += "</p>\n";
   return Layout(v, r.name, b);
@@ -464,7 +487,8 @@ std::string VaryPage(const PageViewer& v, const std::vector<app::RouteView>& cho
 }
 
 std::string PlanPage(const PageViewer& v, const app::RouteView& rec, const plan::RoutePlan& plan,
-                     const std::string& smoothing_note, const plan::CardInfo& card) {
+                     const std::string& smoothing_note, const plan::CardInfo& card,
+                     bool can_change) {
   const chaos::Variation& var = plan.variation;
   std::string id = std::to_string(rec.id);
   const std::vector<plan::CardRow> rows = plan::CardRows(plan);
@@ -582,7 +606,7 @@ std::string PlanPage(const PageViewer& v, const app::RouteView& rec, const plan:
        "href=\"/variations/" + id + ".svg\">SVG</a> <a href=\"/api/variations/" + id +
        "\">JSON</a> <a class=\"button\" href=\"/vary?routes=" + id + "\">Vary this variation</a>"
        " <a class=\"button\" id=\"tag-link\" href=\"/routes/" + id + "/tag\">Tag</a>";
-  if (v.logged_in && rec.owner_id && *rec.owner_id == v.user_id) {
+  if (can_change) {
     b += " <a class=\"button\" id=\"edit\" href=\"/routes/" + id + "/edit\">Edit moves and "
          "details</a>";
   }

@@ -22,6 +22,10 @@ struct PageViewer {
   int64_t user_id = 0;
   std::string username;
   std::string csrf;
+  // A head setter or setter of some gym (issue 31): the setters' navigation
+  // (New route, Vary, Studies, Drift, Import) is theirs; climbers, accounts in
+  // no gym and visitors do not see it.
+  bool setter = false;
 };
 
 // "/": one page of the route list (server-side search, filters, sort and
@@ -50,8 +54,10 @@ std::string VaryPage(const PageViewer& v, const std::vector<app::RouteView>& cho
 // explains missing smoothing ("" when none is needed).
 // The page is the route card when printed (plan/card.h: same rows, marks,
 // legend and parameters as the server PDF and SVG; `card.url` for the QR).
+// `can_change`: the viewer may edit it (app::Routes::CanChange): "Edit".
 std::string PlanPage(const PageViewer& v, const app::RouteView& record, const plan::RoutePlan& plan,
-                     const std::string& smoothing_note, const plan::CardInfo& card);
+                     const std::string& smoothing_note, const plan::CardInfo& card,
+                     bool can_change = false);
 // "/import": CRDL and CSV import, CSV export links.
 std::string ImportPage(const PageViewer& v);
 // The page frame every page shares (head, navigation, footer) around
