@@ -48,7 +48,7 @@ urls=()
 start() {
   local log=$1
   shift
-  "$build/strangebeta" serve --port 0 --db "$db" --seed-examples "$root/data/examples" "$@" \
+  "$build/strangebeta" serve --demo --port 0 --db "$db" --seed-examples "$root/data/examples" "$@" \
     >"$log" 2>&1 &
   pids+=($!)
   local url=""

@@ -12,8 +12,9 @@ if [[ -f data/examples/crimp-ladder.crdl && -f data/examples/slab-dance.crdl ]];
 fi
 
 # Then the web app on the embedded default database (seeded with the bundled
-# examples and the demo account when fresh). SB_PORT overrides the port.
+# examples and the demo account when fresh: --demo, its password is published).
+# SB_PORT overrides the port.
 mkdir -p var
 seed=()
 [[ -d data/examples ]] && seed=(--seed-examples data/examples)
-exec "$build/strangebeta" serve --port "${SB_PORT:-8080}" --db var/strangebeta.db "${seed[@]}"
+exec "$build/strangebeta" serve --demo --port "${SB_PORT:-8080}" --db var/strangebeta.db "${seed[@]}"

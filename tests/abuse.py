@@ -51,12 +51,13 @@ def check(cond, what):
 
 
 class Server:
-    def __init__(self, build, source, tmp):
-        self.log = open(os.path.join(tmp, 'serve.log'), 'w+')
+    def __init__(self, build, source, tmp, demo=True, name='abuse', extra=()):
+        self.log = open(os.path.join(tmp, name + '.log'), 'w+')
         self.proc = subprocess.Popen(
             [os.path.join(build, 'strangebeta'), 'serve', '--port', '0', '--db',
-             os.path.join(tmp, 'abuse.db'), '--seed-examples',
-             os.path.join(source, 'data', 'examples')],
+             os.path.join(tmp, name + '.db'), '--seed-examples',
+             os.path.join(source, 'data', 'examples')] + (['--demo'] if demo else []) +
+            list(extra),
             stdout=self.log, stderr=subprocess.STDOUT)
         self.port = None
         for _ in range(300):
@@ -626,11 +627,48 @@ def host_header(port):
                  'localhost:%d' % port, '[::1]:%d' % port):
         st, _, _ = request(port, 'GET', '/api/routes?limit=1', headers={'Host': host})
         res[host.split(':')[0] if not host.startswith('[') else '[::1]'] = st
+    # Issue 34: the authority is parsed strictly (no userinfo, a real port).
+    strict = {}
+    for host in ('localhost:80@evil.example', 'localhost:99999', 'localhost:8x',
+                 'localhost:', '[::1]x', 'local host'):
+        strict[host], _, _ = request(port, 'GET', '/api/routes?limit=1', headers={'Host': host})
+    check(all(v == 421 for v in strict.values()), 'Host authority parsed strictly: %s' % strict)
     st, _, _ = request(port, 'POST', '/api/feedback', json.dumps({'crdl': 'x'}).encode(),
                        {'Host': 'evil.example', 'Content-Type': 'application/json'})
     check(res['evil.example'] == 421 and res['rebind.attacker.test'] == 421 and st == 421 and
           res['127.0.0.1'] == 200 and res['localhost'] == 200 and res['[::1]'] == 200,
           'Host header: %s, POST from evil.example %s' % (res, st))
+
+
+def first_start(build, source, tmp):
+    """Issue 34: a fresh install without --demo has no known password: the demo log-in
+    fails, the one-time password printed for 'admin' works; --log escapes control bytes."""
+    server = Server(build, source, tmp, demo=False, name='first', extra=['--log'])
+    try:
+        port = server.port
+        body = json.dumps({'username': 'demo', 'password': 'strangebeta-demo'}).encode()
+        demo, _, _ = request(port, 'POST', '/api/sessions', body,
+                             {'Content-Type': 'application/json'})
+        server.log.seek(0)
+        m = re.search(r'first account: user admin, password ([0-9a-f]{24})', server.log.read())
+        admin = None
+        if m:
+            body = json.dumps({'username': 'admin', 'password': m.group(1)}).encode()
+            admin, _, _ = request(port, 'POST', '/api/sessions', body,
+                                  {'Content-Type': 'application/json'}, source='127.0.0.3')
+        check(demo == 401 and m is not None and admin == 200,
+              'first start without --demo: demo log-in %s, one-time password printed %s, '
+              'admin log-in %s' % (demo, m is not None, admin))
+        request(port, 'GET', '/x%0aGET%20/forged%20200')
+        time.sleep(0.2)
+        server.log.seek(0)
+        lines = server.log.read().splitlines()
+        check(not any(l.startswith('GET /forged') or 'strangebeta: GET /forged' in l
+                      for l in lines) and any('/x\\x0aGET\\x20/forged\\x20200 404' in l
+                                              for l in lines),
+              '--log escapes a decoded newline: %s' % [l for l in lines if 'forged' in l])
+    finally:
+        server.stop()
 
 
 def repeated_variation(port, auth):
@@ -710,6 +748,7 @@ def main():
         check(peak < MAX_PEAK_RSS_KB, 'server peak memory %d MiB (< %d MiB)' %
               (peak // 1024, MAX_PEAK_RSS_KB // 1024))
         check(rc == 0, 'server stopped cleanly on SIGTERM (exit %s)' % rc)
+        first_start(build, source, tmp)
         print('abuse: worst normal-request latency %.3f s' % worst)
         print('abuse: per attack (normal requests from 127.0.0.1 during it, worst latency):')
         for name, n, w in FIGURES:

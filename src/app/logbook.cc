@@ -4,6 +4,7 @@
 #include <climits>
 #include <cstdint>
 #include <cmath>
+#include <cstdio>
 #include <ctime>
 #include <memory>
 #include <optional>
@@ -15,6 +16,7 @@
 #include "app/discipline.h"
 #include "app/routes.h"
 #include "base/date.h"
+#include "base/log.h"
 #include "base/text.h"
 #include "grades/consensus.h"
 #include "grades/ratings.h"
@@ -30,6 +32,18 @@ using grades::Discipline;
 
 // "YYYY-MM-DD HH:MM:SS" (UTC) of unix seconds.
 std::string TimeText(int64_t t) { return UtcTimeText(t); }
+
+// Unix seconds of "YYYY-MM-DD HH:MM:SS" (UTC), or `fallback` when unreadable.
+int64_t ParseUtcTimeOr(const std::string& text, int64_t fallback) {
+  std::tm tm{};
+  if (std::sscanf(text.c_str(), "%d-%d-%d %d:%d:%d", &tm.tm_year, &tm.tm_mon, &tm.tm_mday,
+                  &tm.tm_hour, &tm.tm_min, &tm.tm_sec) != 6) {
+    return fallback;
+  }
+  tm.tm_year -= 1900;
+  tm.tm_mon -= 1;
+  return static_cast<int64_t>(timegm(&tm));
+}
 
 bool IsSend(const std::string& outcome) { return outcome == "flash" || outcome == "send"; }
 
@@ -101,13 +115,25 @@ struct Counted {
 
 // The contribution of `t` to a fit of discipline `d`: none unless its state
 // is "ok" and its outcome and attempts are readable (as FitGym counts them).
-std::optional<Counted> CountedOf(const store::TickRecord& t, Discipline d) {
+// A new identity's tick (`young`, issue 34) counts as one game and without
+// its felt grade.
+std::optional<Counted> CountedOf(const store::TickRecord& t, Discipline d, bool young = false) {
   if (t.state != "ok") return std::nullopt;
   Result<grades::TickOutcome> o = grades::ParseTickOutcome(t.outcome);
   if (!o.ok()) return std::nullopt;
   Result<grades::Games> g = grades::TickGames(*o, t.attempts);
   if (!g.ok()) return std::nullopt;
+  if (young) {
+    const bool sent = g->wins > 0;
+    return Counted{grades::Games{sent ? 1 : 0, sent ? 0 : 1}, std::nullopt};
+  }
   return Counted{*g, FeltOn(t, d)};
+}
+
+// The climber a tick counts as in a fit: itself, or for a new identity the
+// route's pool of new identities.
+std::string FitClimber(const std::string& climber, int64_t route, bool young) {
+  return young ? "new:" + std::to_string(route) : climber;
 }
 
 }  // namespace
@@ -288,9 +314,17 @@ Status LogbookPolicy::Validate() const {
       {"burst_new_identities", burst_new_identities},
       {"fit_cache_entries", fit_cache_entries},
       {"fit_incremental_percent", fit_incremental_percent},
-      {"fit_incremental_min_ticks", fit_incremental_min_ticks}};
+      {"fit_incremental_min_ticks", fit_incremental_min_ticks},
+      {"fit_background_min_ticks", fit_background_min_ticks},
+      {"fit_anonymous_min_ticks", fit_anonymous_min_ticks},
+      {"fit_keep_min_ticks", fit_keep_min_ticks},
+      {"history_routes", history_routes},
+      {"history_age_seconds", history_age_seconds},
+      {"rush_new_identities", rush_new_identities},
+      {"rush_window_seconds", rush_window_seconds}};
   for (const auto& [name, value] : fields) {
-    if (value <= 0) {
+    // history_routes = 0: every identity is established (the rule is off).
+    if (value <= 0 && !(value == 0 && std::string_view(name) == "history_routes")) {
       return Status::InvalidInput(std::string("logbook.") + name + ": must be > 0, got " +
                                   std::to_string(value));
     }
@@ -306,6 +340,22 @@ std::optional<std::string> ClimberKey(const Viewer& v, std::string_view particip
 
 Logbook::Logbook(store::Store* store, Clock* clock, LogbookPolicy policy)
     : store_(store), ticks_(store::TickStoreOf(store)), clock_(clock), policy_(policy) {}
+
+Logbook::~Logbook() {
+  {
+    std::lock_guard<std::mutex> lock(mu_);
+    stopping_ = true;
+  }
+  work_cv_.notify_all();
+  if (worker_.joinable()) worker_.join();
+}
+
+std::mutex& Logbook::TickLock(int64_t gym_id) {
+  std::lock_guard<std::mutex> lock(locks_mu_);
+  std::unique_ptr<std::mutex>& m = tick_locks_[gym_id];
+  if (!m) m = std::make_unique<std::mutex>();
+  return *m;
+}
 
 Result<store::RouteRecord> Logbook::Visible(const Viewer& v, int64_t route_id,
                                                store::Reach reach) {
@@ -385,7 +435,10 @@ Result<TickSaved> Logbook::Log(const Viewer& v, int64_t route_id,
 
   SB_RETURN_IF_ERROR(Throttle(store_, clock_, policy_.window_seconds,
                               {{"tick-addr:" + v.address, policy_.ticks_per_address},
-                               {"tick-route:" + std::to_string(route_id), policy_.ticks_per_route},
+                               // Per route and address (issue 34): one address
+                               // exhausts only its own share of a route.
+                               {"tick-route:" + std::to_string(route_id) + ":" + v.address,
+                                policy_.ticks_per_route},
                                {"tick-climber:" + t.climber, policy_.ticks_per_climber}},
                               "ticks", retry_after_seconds));
 
@@ -409,48 +462,111 @@ Result<TickSaved> Logbook::Log(const Viewer& v, int64_t route_id,
                                    return ticks_->NewIdentitiesSince(route_id, t.origin, from);
                                  }));
   if (burst_held) t.state = "held";
+  // Issue 34: a new identity at this gym (no aged ticks on other routes)
+  // counts as the route's pool of new identities, and is held when many
+  // others already ticked the route in the rush window (from any address).
+  const bool young = !Established(mine, *route.gym_id, route_id, now);
+  if (young && !out.edited && t.state != "held") {
+    SB_ASSIGN_OR_RETURN(int others, NewIdentitiesOnRoute(route_id, *route.gym_id, t.climber, now));
+    if (others >= policy_.rush_new_identities) t.state = "held";
+  }
   out.held = t.state == "held";
-  // The single-route update (AbsorbTick) when a fit of the gym is cached: the
-  // gym's tick version before and after the write tells whether this tick
-  // was the only change.
-  std::optional<store::TickVersion> before;
-  if (HasCachedFit(*route.gym_id)) {
-    if (Result<store::TickVersion> b = ticks_->GymTickVersion(*route.gym_id); b.ok()) before = *b;
-  }
-  SB_ASSIGN_OR_RETURN(t, ticks_->PutTick(t));
+  // The write and the single-route update under the gym's tick lock (issue
+  // 34): ticks of one gym are applied one at a time, so each updates the
+  // cached fit whatever the concurrency.
+  SB_ASSIGN_OR_RETURN(t, WriteTick(route, replaced, young, [&] { return ticks_->PutTick(t); }));
   out.tick = ToView(t);
-  if (before) {
-    // Every tick write (a new row or an edit) moves the gym's tick version
-    // by one (store/schema.cc's triggers): one more means this write alone.
-    Result<store::TickVersion> after = ticks_->GymTickVersion(*route.gym_id);
-    if (after.ok() && after->ticks == before->ticks + 1) {
-      AbsorbTick(route, t, replaced, *before, *after);
-    }
-  }
   return out;
 }
 
-bool Logbook::HasCachedFit(int64_t gym_id) {
-  std::lock_guard<std::mutex> lock(mu_);
-  auto it = cache_.lower_bound({gym_id, std::string()});
-  return it != cache_.end() && it->first.first == gym_id;
+bool Logbook::Established(const std::vector<store::TickRecord>& climber_ticks, int64_t gym,
+                          int64_t route, int64_t at) const {
+  const std::string aged = TimeText(at - policy_.history_age_seconds);
+  std::set<int64_t> others;
+  for (const store::TickRecord& m : climber_ticks) {
+    if (m.gym_id == gym && m.route_id != route && m.state == "ok" && m.created_at <= aged) {
+      others.insert(m.route_id);
+    }
+  }
+  return static_cast<int>(others.size()) >= policy_.history_routes;
+}
+
+Result<int> Logbook::NewIdentitiesOnRoute(int64_t route, int64_t gym, const std::string& except,
+                                          int64_t at, std::optional<int64_t> before_id) {
+  // At most this many recent identities are looked up (a route's day); a
+  // flood beyond it is held by the count already reached.
+  constexpr int kMaxLookups = 200;
+  const std::string since = TimeText(at - policy_.rush_window_seconds);
+  const std::string until = TimeText(at);
+  SB_ASSIGN_OR_RETURN(std::vector<store::TickRecord> recent, ticks_->RouteTicks(route));
+  std::set<std::string> seen;
+  int young = 0, lookups = 0;
+  // Newest first: a rush is recent.
+  std::sort(recent.begin(), recent.end(),
+            [](const store::TickRecord& a, const store::TickRecord& b) {
+              return a.created_at > b.created_at;
+            });
+  for (const store::TickRecord& r : recent) {
+    if (r.created_at < since || r.created_at > until || r.climber == except) continue;
+    if (before_id && r.id >= *before_id) continue;
+    if (!seen.insert(r.climber).second) continue;
+    if (++lookups > kMaxLookups) return policy_.rush_new_identities;
+    SB_ASSIGN_OR_RETURN(std::vector<store::TickRecord> theirs, ticks_->ClimberTicks(r.climber));
+    // Their standing when they ticked (ticks since do not clear them).
+    if (!Established(theirs, gym, route, ParseUtcTimeOr(r.created_at, at))) ++young;
+    if (young >= policy_.rush_new_identities) break;
+  }
+  return young;
+}
+
+Result<store::TickRecord> Logbook::WriteTick(
+    const store::RouteRecord& route, const std::optional<store::TickRecord>& old, bool young,
+    const std::function<Result<store::TickRecord>()>& write) {
+  const int64_t gym = route.gym_id.value_or(0);
+  std::lock_guard<std::mutex> tick_lock(TickLock(gym));
+  bool tracked = false;
+  {
+    std::lock_guard<std::mutex> lock(mu_);
+    auto it = cache_.lower_bound({gym, std::string()});
+    tracked = it != cache_.end() && it->first.first == gym;
+    auto f = flights_.lower_bound({gym, std::string()});
+    tracked = tracked || (f != flights_.end() && f->first.first == gym);
+  }
+  std::optional<store::TickVersion> before;
+  if (tracked) {
+    if (Result<store::TickVersion> b = ticks_->GymTickVersion(gym); b.ok()) before = *b;
+  }
+  SB_ASSIGN_OR_RETURN(store::TickRecord saved, write());
+  if (before) {
+    Result<store::TickVersion> after = ticks_->GymTickVersion(gym);
+    if (after.ok()) AbsorbTick(route, saved, old, *before, *after, young);
+  }
+  return saved;
 }
 
 void Logbook::AbsorbTick(const store::RouteRecord& route, const store::TickRecord& saved,
                          const std::optional<store::TickRecord>& old,
-                         const store::TickVersion& before, const store::TickVersion& after) {
+                         const store::TickVersion& before, const store::TickVersion& after,
+                         bool young) {
   const std::string discipline = DisciplineOf(route);
   Result<Discipline> d = grades::ParseDiscipline(discipline);
   std::optional<Counted> add, remove;
   if (d.ok()) {
-    add = CountedOf(saved, *d);
-    if (old) remove = CountedOf(*old, *d);
+    add = CountedOf(saved, *d, young);
+    if (old) remove = CountedOf(*old, *d, young);
   }
+  const int64_t gym = route.gym_id.value_or(0);
   std::lock_guard<std::mutex> lock(mu_);
-  for (auto it = cache_.lower_bound({route.gym_id.value_or(0), std::string()});
-       it != cache_.end() && it->first.first == route.gym_id; ++it) {
+  // A refit under way read the ticks before this one: it replays it.
+  for (auto f = flights_.lower_bound({gym, std::string()});
+       f != flights_.end() && f->first.first == gym; ++f) {
+    if (f->second->recording) f->second->replay.push_back({route, saved, old, after, young});
+  }
+  for (auto it = cache_.lower_bound({gym, std::string()});
+       it != cache_.end() && it->first.first == gym; ++it) {
     CachedFit& entry = it->second;
-    // Stale already (another change): refitted on its next read.
+    // Stale already (a change not made here: a merge, another process):
+    // refitted as its next read decides.
     if (entry.version.ticks != before.ticks) continue;
     // The other discipline's ticks, or nothing counted, did not change.
     if (it->first.second != discipline || (!add && !remove)) {
@@ -459,18 +575,16 @@ void Logbook::AbsorbTick(const store::RouteRecord& route, const store::TickRecor
     }
     FitState* s = entry.state.get();
     if (s == nullptr || !d.ok()) continue;
-    // Drift budget spent: left stale, so the next read refits (lazily).
+    // Drift budget spent: refitted in the background; the updates go on
+    // meanwhile, so readers never wait for it.
     const int64_t budget =
         std::max<int64_t>(policy_.fit_incremental_min_ticks,
                           s->fitted_ticks * policy_.fit_incremental_percent / 100);
-    if (s->absorbed >= budget) {
-      entry.state.reset();
-      continue;
-    }
-    Result<std::optional<AscentGrade>> g = Absorb(s, route, discipline, *d, saved.climber,
-                                                  remove, add);
+    if (s->absorbed >= budget) ScheduleLocked(it->first);
+    Result<std::optional<AscentGrade>> g =
+        Absorb(s, route, discipline, *d, FitClimber(saved.climber, route.id, young), remove, add);
     if (!g.ok()) {
-      entry.state.reset();  // inconsistent: refit on the next read
+      entry.state.reset();  // inconsistent: refitted as its next read decides
       continue;
     }
     // Readers may hold the old fit: the update goes into a copy.
@@ -485,24 +599,83 @@ void Logbook::AbsorbTick(const store::RouteRecord& route, const store::TickRecor
   }
 }
 
-Result<std::shared_ptr<const Logbook::Fit>> Logbook::FitGym(int64_t gym_id,
-                                                            const std::string& discipline) {
+void Logbook::ScheduleLocked(const Key& key) {
+  if (flights_.count(key) || stopping_) return;
+  flights_[key] = std::make_shared<Flight>();
+  queue_.push_back(key);
+  if (!worker_.joinable()) worker_ = std::thread([this] { Worker(); });
+  work_cv_.notify_one();
+}
+
+void Logbook::Worker() {
+  std::unique_lock<std::mutex> lock(mu_);
+  for (;;) {
+    work_cv_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
+    if (stopping_) {
+      // Queued refits are dropped; waiters (none wait on queued ones but
+      // WaitForRefits) are woken.
+      for (const Key& k : queue_) {
+        if (auto f = flights_.find(k); f != flights_.end()) {
+          f->second->done = true;
+          flights_.erase(f);
+        }
+      }
+      queue_.clear();
+      flight_cv_.notify_all();
+      return;
+    }
+    Key key = queue_.front();
+    queue_.pop_front();
+    auto f = flights_.find(key);
+    if (f == flights_.end()) continue;
+    std::shared_ptr<Flight> flight = f->second;
+    lock.unlock();
+    RunFlight(key, flight);
+    lock.lock();
+  }
+}
+
+void Logbook::WaitForRefits() {
+  std::unique_lock<std::mutex> lock(mu_);
+  flight_cv_.wait(lock, [this] { return flights_.empty(); });
+}
+
+size_t Logbook::CachedFits() {
+  std::lock_guard<std::mutex> lock(mu_);
+  return cache_.size();
+}
+
+void Logbook::RunFlight(const Key& key, const std::shared_ptr<Flight>& flight) {
+  Status st = DoFlight(key, flight.get());
+  if (!st.ok()) LogError("ascent grades of gym " + std::to_string(key.first) + ": " + st.message());
+  std::lock_guard<std::mutex> lock(mu_);
+  flight->status = st;
+  flight->done = true;
+  if (auto f = flights_.find(key); f != flights_.end() && f->second == flight) flights_.erase(f);
+  flight_cv_.notify_all();
+}
+
+Status Logbook::DoFlight(const Key& key, Flight* flight) {
+  const int64_t gym_id = key.first;
+  const std::string& discipline = key.second;
+  SB_ASSIGN_OR_RETURN(Discipline d, grades::ParseDiscipline(discipline));
+  // The ticks and their version read under the gym's tick lock (a tick waits
+  // for the read, never for the fit); ticks written after it are recorded
+  // for the replay below.
+  std::mutex& tick_lock = TickLock(gym_id);
+  std::unique_lock<std::mutex> tlock(tick_lock);
   SB_ASSIGN_OR_RETURN(store::TickVersion version, ticks_->GymTickVersion(gym_id));
-  const auto key = std::make_pair(gym_id, discipline);
+  SB_ASSIGN_OR_RETURN(std::vector<store::TickRecord> all, ticks_->GymTicks(gym_id));
   {
     std::lock_guard<std::mutex> lock(mu_);
-    auto it = cache_.find(key);
-    if (it != cache_.end() && it->second.version.ticks == version.ticks) {
-      it->second.used = ++uses_;
-      return it->second.fit;
-    }
+    flight->recording = true;
   }
-  SB_ASSIGN_OR_RETURN(Discipline d, grades::ParseDiscipline(discipline));
-  SB_ASSIGN_OR_RETURN(std::vector<store::TickRecord> all, ticks_->GymTicks(gym_id));
-  // The ticks read are those of `version` only when it has not moved: else
-  // the entry is refitted later, never updated (it may hold a newer tick).
-  Result<store::TickVersion> settled = ticks_->GymTickVersion(gym_id);
-  const bool consistent = settled.ok() && settled->ticks == version.ticks;
+  tlock.unlock();
+  bool kept_class = false;
+  if (store::GymStore* gyms = store::GymStoreOf(store_)) {
+    Result<std::vector<store::MemberRecord>> members = gyms->ListMembers(gym_id);
+    kept_class = members.ok() && !members->empty();
+  }
   // Routes of this discipline with ticks, dense indices in id order.
   std::map<int64_t, store::RouteRecord> routes;
   std::map<int64_t, int> route_index;
@@ -525,15 +698,30 @@ Result<std::shared_ptr<const Logbook::Fit>> Logbook::FitGym(int64_t gym_id,
   grades::RatingProblemBuilder b;
   b.EnsureRoutes(static_cast<int>(route_index.size()));
   std::map<int64_t, std::vector<double>> felt;
+  // Issue 34: each identity's aged routes (counted ticks at least
+  // history_age_seconds old, any discipline); with fewer than history_routes
+  // besides a route, its tick there counts as the route's pool of new
+  // identities (CountedOf's one game, no felt grade).
+  const std::string aged = TimeText(clock_->Now() - policy_.history_age_seconds);
+  std::map<std::string, std::set<int64_t>> aged_routes;
+  for (const store::TickRecord& t : all) {
+    if (t.state == "ok" && t.created_at <= aged) aged_routes[t.climber].insert(t.route_id);
+  }
+  auto young = [&](const store::TickRecord& t) {
+    auto it = aged_routes.find(t.climber);
+    const size_t others =
+        it == aged_routes.end() ? 0 : it->second.size() - it->second.count(t.route_id);
+    return static_cast<int>(others) < policy_.history_routes;
+  };
   for (const store::TickRecord* t : used) {
-    auto [c, inserted] = climber_index.emplace(t->climber, static_cast<int>(climber_index.size()));
+    const bool is_young = young(*t);
+    std::optional<Counted> counted = CountedOf(*t, d, is_young);
+    if (!counted) continue;
+    auto [c, inserted] = climber_index.emplace(FitClimber(t->climber, t->route_id, is_young),
+                                               static_cast<int>(climber_index.size()));
     (void)inserted;
-    SB_ASSIGN_OR_RETURN(grades::TickOutcome o, grades::ParseTickOutcome(t->outcome));
-    Result<grades::Games> g = grades::TickGames(o, t->attempts);
-    if (!g.ok()) continue;
-    const std::optional<double> f = FeltOn(*t, d);
-    if (f) felt[t->route_id].push_back(*f);
-    b.AddTick(c->second, route_index.at(t->route_id), *g, f);
+    if (counted->felt) felt[t->route_id].push_back(*counted->felt);
+    b.AddTick(c->second, route_index.at(t->route_id), counted->games, counted->felt);
   }
   b.EnsureClimbers(static_cast<int>(climber_index.size()));
   for (const auto& [id, idx] : route_index) {
@@ -541,9 +729,10 @@ Result<std::shared_ptr<const Logbook::Fit>> Logbook::FitGym(int64_t gym_id,
     if (r.grade_value && r.grade_discipline == discipline) b.SetSetterGrade(idx, *r.grade_value);
   }
   auto fit = std::make_shared<Fit>();
-  std::shared_ptr<FitState> kept;
+  std::shared_ptr<FitState> state;
+  int64_t fitted_ticks = 0;
   if (!route_index.empty()) {
-    auto state = std::make_shared<FitState>();
+    state = std::make_shared<FitState>();
     state->params = grades::RatingParams::For(d);
     state->problem = b.Build();
     const grades::RatingProblem& problem = state->problem;
@@ -555,24 +744,122 @@ Result<std::shared_ptr<const Logbook::Fit>> Logbook::FitGym(int64_t gym_id,
                                         rf.difficulty[idx], rf.difficulty_sd[idx],
                                         it == felt.end() ? nullptr : &it->second));
     }
-    if (consistent) {
-      for (int n : problem.route_ticks) state->fitted_ticks += n;
-      state->climbers = std::move(climber_index);
-      state->routes = std::move(route_index);
-      state->felt = std::move(felt);
-      kept = std::move(state);
+    for (int n : problem.route_ticks) state->fitted_ticks += n;
+    fitted_ticks = state->fitted_ticks;
+    state->climbers = std::move(climber_index);
+    state->routes = std::move(route_index);
+    state->felt = std::move(felt);
+  }
+  // Publish under the tick lock: the ticks written during the fit are
+  // replayed into it first, so it is current for the latest of them.
+  tlock.lock();
+  std::lock_guard<std::mutex> lock(mu_);
+  flight->recording = false;
+  for (const Replay& r : flight->replay) {
+    version = r.after;
+    if (DisciplineOf(r.route) != discipline) continue;
+    std::optional<Counted> add = CountedOf(r.saved, d, r.young), remove;
+    if (r.old) remove = CountedOf(*r.old, d, r.young);
+    if (!add && !remove) continue;
+    if (state == nullptr) {  // nothing fitted to update: refitted later
+      version.ticks = -1;
+      break;
+    }
+    Result<std::optional<AscentGrade>> g =
+        Absorb(state.get(), r.route, discipline, d, FitClimber(r.saved.climber, r.route.id, r.young),
+               remove, add);
+    if (!g.ok()) {
+      state.reset();
+      version.ticks = -1;  // stale: refitted as its next read decides
+      break;
+    }
+    if (*g) {
+      fit->routes[r.route.id] = std::move(**g);
+    } else {
+      fit->routes.erase(r.route.id);
     }
   }
-  std::lock_guard<std::mutex> lock(mu_);
+  flight->replay.clear();
+  if (state) state->absorbed = 0;
   ++full_fits_;
-  cache_[key] = CachedFit{version, fit, std::move(kept), ++uses_};
-  while (static_cast<int>(cache_.size()) > policy_.fit_cache_entries) {
-    auto oldest = std::min_element(cache_.begin(), cache_.end(), [](const auto& a, const auto& b) {
-      return a.second.used < b.second.used;
-    });
-    cache_.erase(oldest);
+  if (!flight->keep) {
+    flight->result = std::move(fit);
+    return Status::Ok();
   }
-  return std::shared_ptr<const Fit>(std::move(fit));
+  CachedFit entry{version, fit, std::move(state), ++uses_};
+  entry.fitted_ticks = fitted_ticks;
+  entry.kept = kept_class && fitted_ticks >= policy_.fit_keep_min_ticks;
+  cache_[key] = std::move(entry);
+  // Over the budget: the least recently used entry goes, those of throw-away
+  // gyms (no members, few ticks) before any kept one.
+  while (static_cast<int>(cache_.size()) > policy_.fit_cache_entries) {
+    auto victim = std::min_element(cache_.begin(), cache_.end(), [](const auto& a, const auto& b) {
+      return std::pair(a.second.kept, a.second.used) < std::pair(b.second.kept, b.second.used);
+    });
+    if (victim->first == key) break;  // never the one just made
+    cache_.erase(victim);
+  }
+  return Status::Ok();
+}
+
+Result<Logbook::FitRead> Logbook::FitGym(int64_t gym_id, const std::string& discipline,
+                                         bool anonymous) {
+  SB_ASSIGN_OR_RETURN(store::TickVersion version, ticks_->GymTickVersion(gym_id));
+  const Key key(gym_id, discipline);
+  std::unique_lock<std::mutex> lock(mu_);
+  for (;;) {
+    auto it = cache_.find(key);
+    if (it != cache_.end()) {
+      CachedFit& e = it->second;
+      e.used = ++uses_;
+      if (e.version.ticks == version.ticks) {
+        e.stale_since = 0;
+        return FitRead{e.fit, 0};
+      }
+      // A big gym's stale entry: shown with its age while the refit runs
+      // in the background.
+      if (e.fitted_ticks >= policy_.fit_background_min_ticks && e.fit) {
+        const int64_t now = clock_->Now();
+        if (e.stale_since == 0) e.stale_since = now;
+        ScheduleLocked(key);
+        return FitRead{e.fit, std::max<int64_t>(1, now - e.stale_since)};
+      }
+    } else if (anonymous) {
+      // No fit of a gym without members for an anonymous reader; a tiny
+      // gym's fit is made but not kept (it would evict a real gym's).
+      lock.unlock();
+      store::GymStore* gyms = store::GymStoreOf(store_);
+      Result<std::vector<store::MemberRecord>> members =
+          gyms ? gyms->ListMembers(gym_id)
+               : Result<std::vector<store::MemberRecord>>(std::vector<store::MemberRecord>{});
+      if (!members.ok() || members->empty()) return FitRead{std::make_shared<Fit>(), 0};
+      if (version.ticks < policy_.fit_anonymous_min_ticks) {
+        Flight uncached;
+        uncached.keep = false;
+        SB_RETURN_IF_ERROR(DoFlight(key, &uncached));
+        return FitRead{uncached.result ? uncached.result : std::make_shared<Fit>(), 0};
+      }
+      lock.lock();
+      if (cache_.count(key)) continue;  // made meanwhile
+    }
+    // A fit the reader waits for: one flight at a time per key.
+    if (auto f = flights_.find(key); f != flights_.end()) {
+      std::shared_ptr<Flight> flight = f->second;
+      flight_cv_.wait(lock, [&] { return flight->done || stopping_; });
+      if (!flight->status.ok()) return flight->status;
+      if (stopping_) return Status::Internal("the logbook is stopping");
+      if (auto c = cache_.find(key); c != cache_.end()) return FitRead{c->second.fit, 0};
+      continue;
+    }
+    auto flight = std::make_shared<Flight>();
+    flights_[key] = flight;
+    lock.unlock();
+    RunFlight(key, flight);
+    lock.lock();
+    if (!flight->status.ok()) return flight->status;
+    if (auto c = cache_.find(key); c != cache_.end()) return FitRead{c->second.fit, 0};
+    return Status::Internal("ascent grades: the fit was not kept");
+  }
 }
 
 uint64_t Logbook::FullFits() {
@@ -586,9 +873,12 @@ Result<AscentGrade> Logbook::Ascent(const Viewer& v, int64_t route_id) {
   AscentGrade none;
   none.discipline = DisciplineOf(route);
   if (!route.gym_id) return none;
-  SB_ASSIGN_OR_RETURN(std::shared_ptr<const Fit> fit, FitGym(*route.gym_id, none.discipline));
-  auto it = fit->routes.find(route_id);
-  return it == fit->routes.end() ? none : it->second;
+  SB_ASSIGN_OR_RETURN(FitRead read, FitGym(*route.gym_id, none.discipline, !v.logged_in()));
+  auto it = read.fit->routes.find(route_id);
+  if (it == read.fit->routes.end()) return none;
+  AscentGrade a = it->second;
+  a.age_seconds = read.age_seconds;
+  return a;
 }
 
 Result<std::map<int64_t, AscentGrade>> Logbook::Ascents(int64_t gym_id,
@@ -598,14 +888,14 @@ Result<std::map<int64_t, AscentGrade>> Logbook::Ascents(int64_t gym_id,
   for (int64_t id : route_ids) out[id];
   if (out.empty()) return out;
   for (Discipline d : {Discipline::kBouldering, Discipline::kRoped}) {
-    SB_RETURN_IF_ERROR(FillAscents(gym_id, grades::DisciplineName(d), &out));
+    SB_RETURN_IF_ERROR(FillAscents(gym_id, grades::DisciplineName(d), false, &out));
   }
   return out;
 }
 
 Result<std::map<int64_t, AscentGrade>> Logbook::Ascents(const Viewer& v,
                                                        const std::vector<RouteView>& routes) {
-  (void)v;  // the routes come from a listing already filtered for `v`
+  // The routes come from a listing already filtered for `v`.
   if (ticks_ == nullptr) return Status::Internal("this store keeps no ticks");
   // Each route starts as its discipline's empty grade; then one cached fit per
   // (gym, discipline) the list has fills the ticked ones.
@@ -618,27 +908,63 @@ Result<std::map<int64_t, AscentGrade>> Logbook::Ascents(const Viewer& v,
     if (route.gym_id) groups[{*route.gym_id, none.discipline}][route.id] = none;
   }
   for (auto& [key, group] : groups) {
-    SB_RETURN_IF_ERROR(FillAscents(key.first, key.second, &group));
+    SB_RETURN_IF_ERROR(FillAscents(key.first, key.second, !v.logged_in(), &group));
     for (auto& [id, a] : group) out[id] = std::move(a);
   }
   return out;
 }
 
-Status Logbook::FillAscents(int64_t gym_id, const std::string& discipline,
+Status Logbook::FillAscents(int64_t gym_id, const std::string& discipline, bool anonymous,
                             std::map<int64_t, AscentGrade>* grades) {
-  SB_ASSIGN_OR_RETURN(std::shared_ptr<const Fit> fit, FitGym(gym_id, discipline));
+  SB_ASSIGN_OR_RETURN(FitRead read, FitGym(gym_id, discipline, anonymous));
   for (auto& [id, a] : *grades) {
-    if (auto it = fit->routes.find(id); it != fit->routes.end()) a = it->second;
+    if (auto it = read.fit->routes.find(id); it != read.fit->routes.end()) {
+      a = it->second;
+      a.age_seconds = read.age_seconds;
+    }
   }
   return Status::Ok();
 }
 
-Result<std::vector<Tick>> Logbook::ForSetters(const Viewer& v, int64_t route_id) {
+Result<std::vector<Tick>> Logbook::ForSetters(const Viewer& v, int64_t route_id,
+                                              std::map<int64_t, std::string>* held_reasons) {
   if (ticks_ == nullptr) return Status::Internal("this store keeps no ticks");
   if (!v.logged_in()) return Status::Unauthenticated("log in first");
   SB_ASSIGN_OR_RETURN(store::RouteRecord route, Visible(v, route_id));
   SB_RETURN_IF_ERROR(RequireSetter(v, route));
   SB_ASSIGN_OR_RETURN(std::vector<store::TickRecord> ticks, ticks_->RouteTicks(route_id));
+  if (held_reasons != nullptr && route.gym_id) {
+    // Why each held tick was held, worked out again as Log decided it: the
+    // rush rule (new identities on the route from anywhere), else the burst
+    // rule (new identities from one address), else an edit of a held tick.
+    constexpr int kMaxExplained = 100;
+    int explained = 0;
+    for (const store::TickRecord& t : ticks) {
+      if (t.state != "held") continue;
+      if (++explained > kMaxExplained) {
+        (*held_reasons)[t.id] = "held (reason not worked out: too many held ticks)";
+        continue;
+      }
+      const int64_t at = ParseUtcTimeOr(t.created_at, clock_->Now());
+      SB_ASSIGN_OR_RETURN(std::vector<store::TickRecord> theirs, ticks_->ClimberTicks(t.climber));
+      bool rush = false;
+      int others = 0;
+      if (!Established(theirs, *route.gym_id, route_id, at)) {
+        SB_ASSIGN_OR_RETURN(others,
+                            NewIdentitiesOnRoute(route_id, *route.gym_id, t.climber, at, t.id));
+        rush = others >= policy_.rush_new_identities;
+      }
+      (*held_reasons)[t.id] =
+          rush ? "rush: a new identity at this gym (ticks on fewer than " +
+                     std::to_string(policy_.history_routes) +
+                     " other routes a day old) after " + std::to_string(others) +
+                     " other new identities ticked this route within " +
+                     std::to_string(policy_.rush_window_seconds / 3600) + " h"
+               : "burst: one of more than " + std::to_string(policy_.burst_new_identities) +
+                     " new identities ticking this route from one address within " +
+                     std::to_string(policy_.burst_window_seconds / 60) + " min";
+    }
+  }
   return ToViews(ticks);
 }
 
@@ -652,7 +978,17 @@ Status Logbook::Decide(const Viewer& v, int64_t route_id, int64_t tick_id, bool 
     return Status::NotFound("no tick " + std::to_string(tick_id) + " on route " +
                             std::to_string(route_id));
   }
-  return ticks_->SetTickState(tick_id, accept ? "ok" : "discarded", TimeText(clock_->Now()));
+  // Under the gym's tick lock like a new tick: the cached fit takes the
+  // accepted tick in (or the discarded one out) at once.
+  store::TickRecord changed = *t;
+  changed.state = accept ? "ok" : "discarded";
+  SB_ASSIGN_OR_RETURN(std::vector<store::TickRecord> theirs, ticks_->ClimberTicks(t->climber));
+  const bool young = !Established(theirs, *route.gym_id, route_id, clock_->Now());
+  Result<store::TickRecord> done = WriteTick(route, *t, young, [&]() -> Result<store::TickRecord> {
+    SB_RETURN_IF_ERROR(ticks_->SetTickState(tick_id, changed.state, TimeText(clock_->Now())));
+    return changed;
+  });
+  return done.ok() ? Status::Ok() : done.status();
 }
 
 Result<LogbookView> Logbook::Mine(const Viewer& v, std::string_view participant_token) {

@@ -6,13 +6,17 @@
 #ifndef SB_APP_LOGBOOK_H_
 #define SB_APP_LOGBOOK_H_
 
+#include <condition_variable>
 #include <cstdint>
+#include <deque>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -40,8 +44,10 @@ struct LogbookPolicy {
   // climber behind one address, so this is generous; it bounds what one
   // machine stuffs by clearing its cookie.
   int ticks_per_address = 600;
-  // Ticks per route per window: a busy route gets a few dozen climbers an
-  // hour; hundreds is a script.
+  // Ticks per route per address per window (issue 34: per address, not
+  // shared, so one address exhausts only its own): a busy route gets a few
+  // dozen climbers an hour, all behind the gym's wifi at worst; hundreds from
+  // one address is a script.
   int ticks_per_route = 200;
   // Ticks per climber (device or account) per window: a hard session logs
   // some 30 routes and edits a few.
@@ -73,6 +79,35 @@ struct LogbookPolicy {
   // The floor of that budget for small gyms (a refit of a small gym takes
   // milliseconds; its drift per tick is larger, so few ticks are absorbed).
   int fit_incremental_min_ticks = 20;
+  // Refits (issue 34): a stale entry of a gym fitted on at least this many
+  // ticks is refitted in the background (one refit per gym and discipline at
+  // a time), readers meanwhile get the last good fit with its age; a smaller
+  // gym's refit (milliseconds) is done by the reader, still one at a time.
+  int fit_background_min_ticks = 5000;
+  // An anonymous request fits no gym without members, and a gym with fewer
+  // than this many tick writes only without caching it (a throw-away gym
+  // cannot make anonymous readers fill the cache); signed-in readers always
+  // get a cached fit.
+  int fit_anonymous_min_ticks = 5;
+  // Cache entries of gyms with members fitted on at least this many ticks are
+  // kept over others when the cache is full (least recently used first within
+  // each class), so readers of throw-away gyms cannot flush a real gym's fit.
+  int fit_keep_min_ticks = 50;
+  // Earned influence (issue 34; docs/grades.md, "Ticks no one can push"): an
+  // identity (account or device) is established at a gym for a route when it
+  // has counted ("ok") ticks on at least `history_routes` other routes of the
+  // gym, each at least `history_age_seconds` old. The ticks of identities
+  // that are not ("new") count in the fit as one pooled climber per route,
+  // each tick as one game (a send a win, an attempt a loss), with no felt
+  // grade: many new identities weigh about as much as one climber's tick.
+  int history_routes = 3;
+  int history_age_seconds = 86400;
+  // The rush rule: a new identity's tick on a route is held for its setters
+  // when `rush_new_identities` other new identities (from any address)
+  // already ticked it within `rush_window_seconds`. Ageing devices on other
+  // routes does not help within history_age_seconds.
+  int rush_new_identities = 5;
+  int rush_window_seconds = 86400;
 
   // Every field > 0; errors name the field. Pure.
   Status Validate() const;
@@ -108,6 +143,9 @@ struct AscentGrade {
   // The felt-grade consensus of the unheld ticks: median and count.
   int felt_votes = 0;
   std::string felt_median;
+  // Seconds since the gym's ticks moved past the fit shown (0: current);
+  // set while a background refit is under way (issue 34).
+  int64_t age_seconds = 0;
 };
 
 // One route of the logbook's "not tried yet" list.
@@ -164,8 +202,10 @@ class Logbook {
 
   // Setters of the route's gym (head, setter) and the route's owner only:
   // every tick of the route (kPermission otherwise, kUnauthenticated when
-  // not signed in).
-  Result<std::vector<Tick>> ForSetters(const Viewer& v, int64_t route_id);
+  // not signed in). With `held_reasons`, why each held tick was held (tick
+  // id -> a sentence naming the rule), worked out again from the ticks.
+  Result<std::vector<Tick>> ForSetters(const Viewer& v, int64_t route_id,
+                                       std::map<int64_t, std::string>* held_reasons = nullptr);
   // Setters: accepts (state "ok") or discards a tick of the route.
   // kNotFound for a tick of another route.
   Status Decide(const Viewer& v, int64_t route_id, int64_t tick_id, bool accept);
@@ -177,6 +217,15 @@ class Logbook {
   // has run: for tests and benchmarks of the single-route update.
   // Thread-safe.
   uint64_t FullFits();
+  // Blocks until no refit is queued or under way (tests, benchmarks).
+  // Thread-safe.
+  void WaitForRefits();
+  // How many fits are cached (tests). Thread-safe.
+  size_t CachedFits();
+
+  ~Logbook();
+  Logbook(const Logbook&) = delete;
+  Logbook& operator=(const Logbook&) = delete;
 
   // After sign-in: moves the device's ticks into the climber's logbook.
   // Returns how many moved (0 without a usable cookie). kUnauthenticated
@@ -187,6 +236,7 @@ class Logbook {
   struct Fit {
     std::map<int64_t, AscentGrade> routes;
   };
+  using Key = std::pair<int64_t, std::string>;  // (gym, discipline)
   // A cached fit: shared, so a cache hit copies no map (a single-route update
   // replaces the pointer with an updated copy), the gym's tick version it is
   // current for, and when it was last used.
@@ -198,35 +248,98 @@ class Logbook {
     // version is stale, not updated.
     std::shared_ptr<logbook_internal::FitState> state;
     uint64_t used = 0;
+    int64_t fitted_ticks = 0;  // ticks the full fit counted
+    bool kept = false;         // a gym with members and fit_keep_min_ticks
+    int64_t stale_since = 0;   // clock time a reader first saw it stale; 0 = not
+  };
+  // A tick written while a refit of its gym was under way: replayed into the
+  // refit's state before the refit is published (so it is current at once).
+  struct Replay {
+    store::RouteRecord route;
+    store::TickRecord saved;
+    std::optional<store::TickRecord> old;
+    store::TickVersion after;
+    bool young = false;  // counted as a new identity's (pooled, one game)
+  };
+  // One refit of a key (single flight): readers that must wait wait on it.
+  struct Flight {
+    bool recording = false;  // ticks written from now on go to `replay`
+    bool done = false;
+    Status status = Status::Ok();
+    std::vector<Replay> replay;
+    bool keep = true;                     // false: not cached, the fit left in `result`
+    std::shared_ptr<const Fit> result;  // the fit when !keep
+  };
+  // What a reader gets: the fit and its age.
+  struct FitRead {
+    std::shared_ptr<const Fit> fit;
+    int64_t age_seconds = 0;
   };
   // The route when the viewer sees it (`reach` kOnTheWall: the climbers'
   // page /r/{id}, where a route on the wall is shown to anyone).
   Result<store::RouteRecord> Visible(const Viewer& v, int64_t route_id,
                                      store::Reach reach = store::Reach::kListed);
   Status RequireSetter(const Viewer& v, const store::RouteRecord& route);
-  Result<std::shared_ptr<const Fit>> FitGym(int64_t gym_id, const std::string& discipline);
+  // The cached fit of the key, refitted as the policy says (inline, single
+  // flight, or in the background with the stale one returned). With
+  // `anonymous` a gym without members gets an empty fit and is not fitted,
+  // and one with fewer than fit_anonymous_min_ticks tick writes is fitted
+  // (microseconds) but not cached, so it evicts nothing.
+  Result<FitRead> FitGym(int64_t gym_id, const std::string& discipline, bool anonymous);
+  // Runs the flight of `key`: reads the ticks under the gym's tick lock, fits
+  // off it, replays the ticks written meanwhile and publishes. Marks the
+  // flight done (waking waiters).
+  void RunFlight(const Key& key, const std::shared_ptr<Flight>& flight);
+  Status DoFlight(const Key& key, Flight* flight);
+  // Queues a background refit of `key` unless one is under way. Under mu_.
+  void ScheduleLocked(const Key& key);
+  void Worker();
+  // The mutex serialising tick writes of a gym (and the refits' reads).
+  std::mutex& TickLock(int64_t gym_id);
   // Replaces each grade of `grades` (route id -> grade) whose route the
   // gym's cached `discipline` fit has; the others stay as they are.
-  Status FillAscents(int64_t gym_id, const std::string& discipline,
+  Status FillAscents(int64_t gym_id, const std::string& discipline, bool anonymous,
                      std::map<int64_t, AscentGrade>* grades);
-  // Whether a fit of the gym (either discipline) is cached.
-  bool HasCachedFit(int64_t gym_id);
-  // After Log stored `saved` (replacing `old` when set) on `route`, with the
-  // gym's tick version `before` and `after` the write: updates the cached
-  // fits of the route's gym in place when nothing else changed meanwhile
-  // (docs/grades.md, "A new tick"); otherwise leaves them to be refitted.
+  // After a tick write under the gym's tick lock (`saved`, replacing `old`
+  // when set, on `route`; the gym's tick version `before` and `after` it):
+  // updates the cached fits of the route's gym in place when they were
+  // current before it (docs/grades.md, "A new tick"), and records it for a
+  // refit under way. Caller holds TickLock(gym), not mu_.
   void AbsorbTick(const store::RouteRecord& route, const store::TickRecord& saved,
                   const std::optional<store::TickRecord>& old,
-                  const store::TickVersion& before, const store::TickVersion& after);
+                  const store::TickVersion& before, const store::TickVersion& after, bool young);
+  // The tick write of Log and Decide under the gym's tick lock: `write`
+  // stores it; the fit is updated after (`young`: the climber is new at the
+  // gym for this route).
+  Result<store::TickRecord> WriteTick(const store::RouteRecord& route,
+                                      const std::optional<store::TickRecord>& old, bool young,
+                                      const std::function<Result<store::TickRecord>()>& write);
+  // Whether `climber_ticks` (one identity's) make it established at `gym`
+  // for `route` at unix time `at` (see LogbookPolicy::history_routes).
+  bool Established(const std::vector<store::TickRecord>& climber_ticks, int64_t gym,
+                   int64_t route, int64_t at) const;
+  // How many other new identities ticked `route` in the rush window ending
+  // at `at` (only ticks of id below `before_id` when set; stops counting at
+  // rush_new_identities).
+  Result<int> NewIdentitiesOnRoute(int64_t route, int64_t gym, const std::string& except,
+                                   int64_t at, std::optional<int64_t> before_id = std::nullopt);
 
   store::Store* store_;
   store::TickStore* ticks_;
   Clock* clock_;
   const LogbookPolicy policy_;
   std::mutex mu_;
-  std::map<std::pair<int64_t, std::string>, CachedFit> cache_;  // (gym, discipline)
+  std::condition_variable flight_cv_;  // a flight finished
+  std::condition_variable work_cv_;    // a refit was queued (or stopping_)
+  std::map<Key, CachedFit> cache_;
+  std::map<Key, std::shared_ptr<Flight>> flights_;  // refits under way or queued
+  std::deque<Key> queue_;                           // background refits to run
+  bool stopping_ = false;
+  std::thread worker_;  // started with the first background refit
   uint64_t uses_ = 0;
   uint64_t full_fits_ = 0;
+  std::mutex locks_mu_;
+  std::map<int64_t, std::unique_ptr<std::mutex>> tick_locks_;  // per gym
 };
 
 // The climber key of a viewer or device: "u:ID", else "d:HASH" of a valid

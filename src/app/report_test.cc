@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -68,7 +69,15 @@ class ReportTest : public LogbookFixture {
     in.felt_grade = felt;
     in.comment = comment;
     std::string& token = tokens_[i];
-    Result<TickSaved> t = services_->logbook.Log(v, route, token, in);
+    // Issue 34's rush rule would hold the fifth new device on a route: these
+    // climbers are logged without the standing rules (the report counts
+    // unheld ticks; what it computes is tested here, not who may tick).
+    if (!book_) {
+      LogbookPolicy p;
+      p.history_routes = 0;
+      book_ = std::make_unique<Logbook>(store_.get(), &clock_, p);
+    }
+    Result<TickSaved> t = book_->Log(v, route, token, in);
     ASSERT_TRUE(t.ok()) << t.status().message();
     if (t->participant.is_new) token = t->participant.token;
   }
@@ -76,6 +85,7 @@ class ReportTest : public LogbookFixture {
   Viewer climber_, outsider_;
   int64_t wall_ = 0, other_wall_ = 0;
   std::map<int, std::string> tokens_;
+  std::unique_ptr<Logbook> book_;
 };
 
 TEST_F(ReportTest, VariationsAgainstHandSetRoutesOfTheSameBandsMatchScipy) {

@@ -24,6 +24,17 @@ Result<int64_t> EnsureDemoAccount(store::Store* store, bool fast_hash) {
   return store->CreateUser(kDemoUser, hash);
 }
 
+Result<int64_t> CreateFirstAccount(store::Store* store, std::string* password, bool fast_hash) {
+  Result<store::User> u = store->FindUserByName(kFirstUser);
+  if (u.ok()) return Status::Conflict(std::string("the account ") + kFirstUser + " exists");
+  if (u.status().code() != Status::Code::kNotFound) return u.status();
+  std::string chosen = store::RandomToken().substr(0, 24);
+  SB_ASSIGN_OR_RETURN(std::string hash, store::HashPassword(chosen, fast_hash));
+  SB_ASSIGN_OR_RETURN(int64_t id, store->CreateUser(kFirstUser, hash));
+  *password = std::move(chosen);
+  return id;
+}
+
 namespace {
 
 // A wall's angle guessed from its name (degrees from vertical, overhang > 0).

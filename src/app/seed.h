@@ -1,5 +1,6 @@
-// First-run content for a fresh database: the demo account and the bundled
-// example routes (`strangebeta serve`).
+// First-run content for a fresh database: the first account (the demo one
+// with its published password under `serve --demo`, else one with a random
+// password shown once) and the bundled example routes (`strangebeta serve`).
 #ifndef SB_APP_SEED_H_
 #define SB_APP_SEED_H_
 
@@ -20,6 +21,17 @@ inline constexpr char kDemoPassword[] = "strangebeta-demo";
 // its user id. `fast_hash` uses the cheapest argon2id cost (tests).
 // Errors from the store.
 Result<int64_t> EnsureDemoAccount(store::Store* store, bool fast_hash = false);
+
+// The first account of a non-demo install (issue 34): no published password
+// may head a real gym.
+inline constexpr char kFirstUser[] = "admin";
+
+// Creates kFirstUser with a fresh random password (24 hex digits from the
+// system's random source), written to `*password` for the caller to show once;
+// it is stored only hashed. Returns its user id. kConflict when the name is
+// taken; other errors from the store.
+Result<int64_t> CreateFirstAccount(store::Store* store, std::string* password,
+                                   bool fast_hash = false);
 
 // Imports every *.crdl file of `dir` (sorted by name) as a public route owned
 // by `owner`, in one transaction. Files that do not parse are skipped and

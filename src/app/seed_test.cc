@@ -32,6 +32,23 @@ TEST_F(AppTest, DemoAccountAndExamples) {
   EXPECT_FALSE(DefaultExamplesDir().empty());
 }
 
+// Issue 34: a non-demo install's first account has no published password:
+// a fresh random one, shown once, that logs in; the demo password does not.
+TEST_F(AppTest, FirstAccountHasAOneTimeRandomPassword) {
+  std::string password;
+  Result<int64_t> first = CreateFirstAccount(store_.get(), &password, true);
+  ASSERT_TRUE(first.ok()) << first.status().message();
+  EXPECT_EQ(password.size(), 24u);
+  EXPECT_NE(password, kDemoPassword);
+  EXPECT_TRUE(services_->accounts.LogIn(kFirstUser, password, "1.2.3.4").ok());
+  EXPECT_FALSE(services_->accounts.LogIn(kFirstUser, kDemoPassword, "1.2.3.5").ok());
+  EXPECT_FALSE(store_->FindUserByName(kDemoUser).ok());
+  std::string again;
+  EXPECT_EQ(CreateFirstAccount(store_.get(), &again, true).status().code(),
+            Status::Code::kConflict);
+  EXPECT_TRUE(again.empty());
+}
+
 // make run's demo: a gym whose head setter is the demo account, two circuits,
 // a wall row per distinct `wall:` text, every example on the wall.
 TEST_F(AppTest, DemoGymHoldsTheExamplesOnItsWalls) {

@@ -239,9 +239,9 @@ Result<store::StudyRecord> StudyService::OwnedRow(const Viewer& v, int64_t id) {
   if (!v.logged_in()) return Status::Unauthenticated("log in first");
   Result<store::StudyRecord> st = studies_->GetStudy(id);
   if (!st.ok()) return st.status().code() == Status::Code::kNotFound ? NoStudy(id) : st.status();
-  if (st->owner_id != *v.user_id) {
-    return Status::Permission("only the study's owner sees and changes it");
-  }
+  // Another's study answers as one that does not exist (issue 34): a 403 would
+  // tell a stranger which ids are studies.
+  if (st->owner_id != *v.user_id) return NoStudy(id);
   return st;
 }
 

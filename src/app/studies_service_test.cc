@@ -187,7 +187,8 @@ TEST_F(StudyServiceTest, OnlyTheOwnerChangesAndSeesResults) {
   Viewer other = User("other");
   StudySpec rename;
   rename.name = "Renamed";
-  EXPECT_EQ(st().Update(other, id, rename).code(), Status::Code::kPermission);
+  // Issue 34: another's study is not found, like one that does not exist.
+  EXPECT_EQ(st().Update(other, id, rename).code(), Status::Code::kNotFound);
   EXPECT_EQ(st().Update(Climber(), id, rename).code(), Status::Code::kUnauthenticated);
   for (const Viewer& v : {other, Climber()}) {
     EXPECT_FALSE(st().Results(v, id, {}).ok());
@@ -195,7 +196,9 @@ TEST_F(StudyServiceTest, OnlyTheOwnerChangesAndSeesResults) {
     EXPECT_FALSE(st().InstrumentJson(v, id).ok());
     EXPECT_FALSE(st().DemographicsCsv(v, id).ok());
   }
-  EXPECT_EQ(st().Results(other, id, {}).status().code(), Status::Code::kPermission);
+  EXPECT_EQ(st().Results(other, id, {}).status().code(), Status::Code::kNotFound);
+  EXPECT_EQ(st().Results(other, id, {}).status().message(),
+            st().Results(other, id + 9, {}).status().message().substr(0, 9) + std::to_string(id));
   EXPECT_EQ(st().Results(owner_, id + 9, {}).status().code(), Status::Code::kNotFound);
   // Before any response the definition may change; after, only name and open.
   StudySpec more = Spec({routes_[0], routes_[1], routes_[2]}, "brc");
@@ -366,7 +369,7 @@ TEST_F(StudyServiceTest, BurstOfNewIdentitiesIsHeldForTheOwner) {
   // Only the owner decides; a response of another study is not found.
   Viewer other = User("other");
   EXPECT_EQ(st().DecideResponse(other, id, r->held[0].id, true).code(),
-            Status::Code::kPermission);
+            Status::Code::kNotFound);
   EXPECT_EQ(st().DecideResponse(owner_, earlier, r->held[0].id, true).code(),
             Status::Code::kNotFound);
   ASSERT_TRUE(st().DecideResponse(owner_, id, r->held[0].id, true).ok());

@@ -41,6 +41,11 @@ int RunServe(const std::vector<std::string>& args) {
                  "directory of *.crdl routes to seed a fresh database with "
                  "(default: the bundled data/examples)");
   app.add_flag("--no-seed", no_seed, "do not seed a fresh database");
+  bool demo_install = false;
+  app.add_flag("--demo", demo_install,
+               "seed a fresh database with the demo account (password published: "
+               "strangebeta-demo) as head of the first gym; without it the first account "
+               "is 'admin' with a random password printed once (make run passes --demo)");
   app.add_option("--static", static_dir, "directory of the web assets (default: bundled web/)");
   app.add_option("--threads", threads,
                  "worker threads running requests (default 4 x cores, at least 8); open "
@@ -86,12 +91,15 @@ int RunServe(const std::vector<std::string>& args) {
   if (!st.ok()) return Fail("serve", st.status());
   app::Database* store = st->get();
 
-  // A fresh database gets the demo account and the example routes.
+  // A fresh database gets its first account (the demo one under --demo, else
+  // "admin" with a one-time random password) and the example routes.
   Result<int64_t> users = store->CountUsers();
   if (!users.ok()) return Fail("serve", users.status());
   bool fresh = *users == 0;
+  std::string first_password;
   if (fresh && !no_seed) {
-    Result<int64_t> demo = app::EnsureDemoAccount(store);
+    Result<int64_t> demo = demo_install ? app::EnsureDemoAccount(store)
+                                        : app::CreateFirstAccount(store, &first_password);
     if (!demo.ok()) return Fail("serve", demo.status());
     std::string dir = seed_dir.empty() ? app::DefaultExamplesDir() : seed_dir;
     std::vector<std::string> skipped;
@@ -133,8 +141,12 @@ int RunServe(const std::vector<std::string>& args) {
   std::string shown = host == "0.0.0.0" ? "127.0.0.1" : host;
   std::printf("strangebeta web app on http://%s:%d/ (database %s)\n", shown.c_str(), *bound,
               app::DatabaseDisplayName(db).c_str());
-  if (store->FindUserByName(app::kDemoUser).ok()) {
+  if (demo_install && store->FindUserByName(app::kDemoUser).ok()) {
     std::printf("demo account: user %s, password %s\n", app::kDemoUser, app::kDemoPassword);
+  } else if (!first_password.empty()) {
+    std::printf("first account: user %s, password %s (shown this once; head setter of the "
+                "first gym)\n",
+                app::kFirstUser, first_password.c_str());
   }
   std::printf("press Ctrl-C to stop\n");
   std::fflush(stdout);

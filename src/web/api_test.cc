@@ -845,10 +845,13 @@ TEST_F(ApiTest, StudiesAreAnsweredOnceAndReadOnlyByTheirOwner) {
   ASSERT_TRUE(other.LogIn("other"));
   for (const char* p : {"", "/responses.csv", "/analysis.json", "/instrument.json", "/boxplot.svg",
                         "/demographics.csv", "/edit"}) {
-    EXPECT_EQ(other.Status("GET", "/studies/" + sid + p), 403) << p;
+    // Issue 34: another's study answers as a missing one (404, not 403).
+    EXPECT_EQ(other.Status("GET", "/studies/" + sid + p), 404) << p;
+    EXPECT_EQ(other.Status("GET", "/studies/987654" + std::string(p)), 404) << p;
     EXPECT_EQ(NewClient().Status("GET", "/studies/" + sid + p), 401) << p;
   }
-  EXPECT_EQ(other.Status("PUT", "/api/studies/" + sid, json{{"open", false}}.dump()), 403);
+  EXPECT_EQ(other.Status("PUT", "/api/studies/" + sid, json{{"open", false}}.dump()), 404);
+  EXPECT_EQ(other.Status("PUT", "/api/studies/987654", json{{"open", false}}.dump()), 404);
   auto csv = setter.Send("GET", "/studies/" + sid + "/responses.csv");
   ASSERT_TRUE(csv);
   EXPECT_EQ(csv->body,
@@ -864,7 +867,7 @@ TEST_F(ApiTest, StudiesAreAnsweredOnceAndReadOnlyByTheirOwner) {
     json saved = NewClient().Json("POST", "/api/s/" + sid + "/responses", body, 201);
     EXPECT_EQ(saved["held"], i == 4) << i;
   }
-  EXPECT_EQ(other.Status("GET", "/api/studies/" + sid + "/held"), 403);
+  EXPECT_EQ(other.Status("GET", "/api/studies/" + sid + "/held"), 404);
   EXPECT_EQ(NewClient().Status("GET", "/api/studies/" + sid + "/held", "", false), 401);
   json held = setter.Json("GET", "/api/studies/" + sid + "/held", "", 200);
   ASSERT_EQ(held["held"].size(), 1u) << held.dump();
@@ -879,7 +882,7 @@ TEST_F(ApiTest, StudiesAreAnsweredOnceAndReadOnlyByTheirOwner) {
   ASSERT_TRUE(csv_held);
   EXPECT_EQ(csv_held->body.find("p6,"), std::string::npos);  // held: not exported
   EXPECT_NE(csv_held->body.find("p5,"), std::string::npos);
-  EXPECT_EQ(other.Status("POST", decide + "/accept", "{}"), 403);
+  EXPECT_EQ(other.Status("POST", decide + "/accept", "{}"), 404);  // issue 34: as missing
   EXPECT_EQ(setter.Json("POST", decide + "/accept", "{}", 200)["state"], "ok");
   EXPECT_TRUE(setter.Json("GET", "/api/studies/" + sid + "/held", "", 200)["held"].empty());
   auto csv_accepted = setter.Send("GET", "/studies/" + sid + "/responses.csv");

@@ -71,6 +71,8 @@ json AscentJson(const app::AscentGrade& a) {
     j["verdict"] = a.verdict;
     j["felt_votes"] = a.felt_votes;
     j["felt_median"] = a.felt_median;
+    // The fit shown is this old while a refit runs (issue 34).
+    if (a.age_seconds > 0) j["age_seconds"] = a.age_seconds;
   }
   return j;
 }
@@ -98,25 +100,31 @@ std::string AscentHtml(const app::AscentGrade& a) {
   return "<p class=\"ascent no-print\" id=\"ascent-grade\" data-ticks=\"" +
          std::to_string(a.ticks) + "\" data-value=\"" + Fixed(a.value) + "\" data-lo=\"" +
          Fixed(a.lo) + "\" data-hi=\"" + Fixed(a.hi) + "\">Ascent grade " + AscentText(a, true) +
+         (a.age_seconds > 0 ? " <small class=\"ascent-age\">(as of " +
+                                  std::to_string(a.age_seconds) + " s ago; updating)</small>"
+                            : std::string()) +
          "</p>\n";
 }
 
 // The held ticks of a route with accept/discard, for its setters.
-std::string HeldHtml(int64_t route_id, const std::vector<app::Tick>& ticks) {
+std::string HeldHtml(int64_t route_id, const std::vector<app::Tick>& ticks,
+                     const std::map<int64_t, std::string>& reasons) {
   std::string b;
   int held = 0;
   for (const app::Tick& t : ticks) held += t.state == "held";
   if (held == 0) return b;
   b += "<section id=\"held-ticks\" class=\"no-print\" data-route=\"" + Id(route_id) +
        "\"><h2>Held ticks (" + std::to_string(held) +
-       ")</h2>\n<p class=\"msg\">A burst of new identities from one address: these count "
-       "nowhere until you accept them.</p>\n<ul>\n";
+       ")</h2>\n<p class=\"msg\">Many new identities on this route (a burst from one "
+       "address, or a rush from many): these count nowhere until you accept them.</p>\n<ul>\n";
   for (const app::Tick& t : ticks) {
     if (t.state != "held") continue;
     b += "<li class=\"held-tick\" data-tick=\"" + Id(t.id) + "\">" + E(t.day) + " " +
          E(t.outcome) + (t.attempts ? " (" + std::to_string(*t.attempts) + " tries)" : "") +
          (t.felt_grade.empty() ? "" : ", felt " + E(t.felt_grade)) +
          (t.comment.empty() ? "" : ": " + E(t.comment)) +
+         (reasons.count(t.id) ? " <small class=\"held-reason\">" + E(reasons.at(t.id)) + "</small>"
+                              : std::string()) +
          " <button type=\"button\" class=\"tick-accept\">Accept</button> <button "
          "type=\"button\" class=\"tick-discard\">Discard</button></li>\n";
   }
@@ -173,10 +181,16 @@ void PostTick(Exchange& x) {
 void GetRouteTicks(Exchange& x) {
   Result<int64_t> id = PathId(x.req, "no such route");
   if (!id.ok()) return ApiError(x, id.status());
-  Result<std::vector<app::Tick>> ticks = x.services.logbook.ForSetters(x.caller.viewer, *id);
+  std::map<int64_t, std::string> reasons;
+  Result<std::vector<app::Tick>> ticks =
+      x.services.logbook.ForSetters(x.caller.viewer, *id, &reasons);
   if (!ticks.ok()) return ApiError(x, ticks.status());
   json arr = json::array();
-  for (const app::Tick& t : *ticks) arr.push_back(TickJson(t));
+  for (const app::Tick& t : *ticks) {
+    json j = TickJson(t);
+    if (auto r = reasons.find(t.id); r != reasons.end()) j["held_reason"] = r->second;
+    arr.push_back(std::move(j));
+  }
   ReplyJson(x.res, 200, json{{"route", *id}, {"ticks", arr}});
 }
 
@@ -280,8 +294,10 @@ std::string AscentBlock(Exchange& x, const app::RouteView& route) {
   }
   std::string b = "<script src=\"/static/logbook.js\" defer></script>\n" + AscentHtml(*a);
   if (x.caller.viewer.logged_in()) {
-    Result<std::vector<app::Tick>> ticks = x.services.logbook.ForSetters(x.caller.viewer, route.id);
-    if (ticks.ok()) b += HeldHtml(route.id, *ticks);
+    std::map<int64_t, std::string> reasons;
+    Result<std::vector<app::Tick>> ticks =
+        x.services.logbook.ForSetters(x.caller.viewer, route.id, &reasons);
+    if (ticks.ok()) b += HeldHtml(route.id, *ticks, reasons);
   }
   return b;
 }

@@ -157,17 +157,53 @@ void SecurityHeaders(Response* res) {
   res->SetHeader("Referrer-Policy", "same-origin");
 }
 
-// "Name:port" -> "name"; "[::1]:80" -> "::1"; lower case, no trailing dot.
+// The host of an authority ("Name:port" -> "name"; "[::1]:80" -> "::1"; lower
+// case, no trailing dot), or "" when it is not a strict host[:port] (issue
+// 34): a reg-name of letters, digits, '-', '.' and '_', an IPv6 literal in
+// brackets, an optional port of 1 to 5 digits up to 65535; no userinfo ('@'),
+// no spaces, nothing else.
 std::string HostName(std::string_view h) {
   std::string s = ToLower(Trim(h));
+  std::string name, port;
+  bool has_port = false;
   if (!s.empty() && s[0] == '[') {
     size_t e = s.find(']');
-    s = e == std::string::npos ? s.substr(1) : s.substr(1, e - 1);
-  } else if (size_t c = s.find(':'); c != std::string::npos && s.find(':', c + 1) == std::string::npos) {
-    s = s.substr(0, c);
+    if (e == std::string::npos || e == 1) return "";
+    name = s.substr(1, e - 1);
+    for (char c : name) {
+      if (!((c >= '0' && c <= '9') || (c >= 'a' && c <= 'f') || c == ':' || c == '.')) return "";
+    }
+    std::string rest = s.substr(e + 1);
+    if (!rest.empty()) {
+      if (rest[0] != ':') return "";
+      has_port = true;
+      port = rest.substr(1);
+    }
+  } else {
+    size_t c = s.find(':');
+    name = s.substr(0, c);
+    if (c != std::string::npos) {
+      has_port = true;
+      port = s.substr(c + 1);
+    }
+    for (char ch : name) {
+      if (!((ch >= 'a' && ch <= 'z') || (ch >= '0' && ch <= '9') || ch == '-' || ch == '.' ||
+            ch == '_')) {
+        return "";
+      }
+    }
   }
-  while (!s.empty() && s.back() == '.') s.pop_back();
-  return s;
+  if (has_port) {
+    if (port.empty() || port.size() > 5) return "";
+    long value = 0;
+    for (char ch : port) {
+      if (ch < '0' || ch > '9') return "";
+      value = value * 10 + (ch - '0');
+    }
+    if (value > 65535) return "";
+  }
+  while (!name.empty() && name.back() == '.') name.pop_back();
+  return name;
 }
 
 bool IsLoopbackName(const std::string& h) {
@@ -196,9 +232,27 @@ std::string HostOfUrl(const std::string& url) {
   return HostName(rest);
 }
 
+std::string LogSafe(std::string_view text) {
+  static constexpr char kHex[] = "0123456789abcdef";
+  std::string out;
+  out.reserve(text.size());
+  for (char ch : text) {
+    unsigned char c = static_cast<unsigned char>(ch);
+    if (c <= 0x20 || c == 0x7f || c == '\\') {
+      out += "\\x";
+      out += kHex[c >> 4];
+      out += kHex[c & 15];
+    } else {
+      out += ch;
+    }
+  }
+  return out;
+}
+
 bool HostAllowed(const std::string& host_header, const std::vector<std::string>& allowed) {
   if (Trim(host_header).empty()) return true;
   std::string h = HostName(host_header);
+  if (h.empty()) return false;  // not a strict host[:port]
   if (IsLoopbackName(h)) return true;
   return std::find(allowed.begin(), allowed.end(), h) != allowed.end();
 }
@@ -350,7 +404,7 @@ struct Server::Impl {
   void Finish(const Request& req, Response* res) {
     SecurityHeaders(res);
     if (options.access_log) {
-      LogInfo(req.method + " " + req.path + " " + std::to_string(res->status));
+      LogInfo(LogSafe(req.method) + " " + LogSafe(req.path) + " " + std::to_string(res->status));
     }
   }
 };

@@ -17,6 +17,7 @@
 #include <cstddef>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "app/database.h"
@@ -60,8 +61,16 @@ struct ServerOptions {
 
 // Whether `host_header` ("name", "name:port", "[v6]:port") names a host in
 // `allowed` (lower-case names without port) or a loopback one. An empty
-// header (HTTP/1.0) is allowed: there is no name to rebind. Pure.
+// header (HTTP/1.0) is allowed: there is no name to rebind. The authority is
+// parsed strictly: userinfo ("localhost:80@evil.example"), a bad or
+// out-of-range port, or any character outside a host name or a bracketed
+// IPv6 address is refused. Pure.
 bool HostAllowed(const std::string& host_header, const std::vector<std::string>& allowed);
+
+// `text` for one field of a log line: bytes up to and including space, DEL
+// and backslash written as \xNN, so a request's decoded path cannot end a
+// line or forge fields. Pure.
+std::string LogSafe(std::string_view text);
 
 // The host of a URL ("https://Gym.example.org:8443/x" -> "gym.example.org");
 // "" when none. Pure.

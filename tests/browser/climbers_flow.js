@@ -326,7 +326,7 @@ async function signUp(ctx, name) {
     const other = await signUp(otherCtx, 'other' + (Date.now() % 100000));
     for (const p of ['', '/responses.csv', '/analysis.json', '/instrument.json', '/boxplot.svg']) {
       const r = await otherCtx.request.get(`${base}/studies/${studyId}${p}`);
-      check(r.status() === 403, `another user gets 403 for /studies/{id}${p}`);
+      check(r.status() === 404, `another user gets 404 for /studies/{id}${p}`);
     }
     const anon = await browser.newContext();
     const r401 = await anon.request.get(`${base}/studies/${studyId}/responses.csv`);
@@ -334,7 +334,7 @@ async function signUp(ctx, name) {
     const other403 = await otherCtx.request.get(`${base}/r/${ids[0]}/responses`);
     check(other403.status() === 403, "another user cannot read a route's answers");
     const put = await api(other, 'PUT', `/api/studies/${studyId}`, { open: false });
-    check(put.status === 403, 'another user cannot close the study');
+    check(put.status === 404, 'another user cannot close the study');
 
     // Close it: the page says so and responses are refused.
     await setter.goto(base + `/studies/${studyId}/edit`);
