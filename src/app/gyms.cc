@@ -9,6 +9,7 @@
 #include "base/text.h"
 #include "crdl/route.h"
 #include "grades/scale.h"
+#include "plan/colour.h"
 
 namespace sb::app {
 
@@ -184,7 +185,7 @@ Result<std::vector<Member>> Gyms::Members(const Viewer& v, int64_t gym) {
   (void)role;
   SB_ASSIGN_OR_RETURN(std::vector<store::MemberRecord> all, gyms_->ListMembers(gym));
   std::vector<Member> out;
-  for (const store::MemberRecord& m : all) out.push_back({m.user_id, m.username, m.role});
+  for (const store::MemberRecord& m : all) out.push_back({m.user_id, m.username, m.role, m.display_name});
   return out;
 }
 
@@ -257,6 +258,7 @@ Result<Wall> Gyms::ResolveWall(int64_t gym, const std::string& id_or_name) {
 Result<int64_t> Gyms::AddCircuit(const Viewer& v, const Circuit& c) {
   SB_RETURN_IF_ERROR(RequireHead(v, c.gym_id));
   SB_RETURN_IF_ERROR(CheckName("colour", c.colour, GymLimits::kMaxColourBytes));
+  SB_RETURN_IF_ERROR(plan::CheckColour("colour", c.colour));  // issue 32
   for (const auto& [field, g] : {std::pair<const char*, const std::string*>{"grade_from", &c.grade_from},
                                  {"grade_to", &c.grade_to}}) {
     if (g->empty()) continue;
