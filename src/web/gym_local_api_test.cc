@@ -52,7 +52,7 @@ TEST_F(GymLocalApiTest, ARouteWithoutMovesIsARoute) {
   const std::string rp = "/api/routes/" + std::to_string(plain);
 
   json r = head.Json("GET", rp, "", 200);
-  EXPECT_EQ(r["move_count"], 0);
+  EXPECT_EQ(r["moves"], 0);
   EXPECT_TRUE(r["move_list"].empty());
   EXPECT_EQ(r["styles"], json({"overhang", "kids"}));
   // The styles can be changed alone (the CRDL's header line).
@@ -339,7 +339,9 @@ TEST_F(GymLocalApiTest, AGymsOwnScaleReadsGradesAndTargets) {
     if (w["id"] == empty_roped) {
       EXPECT_EQ(w["targets"], json({{"VI+", 2}, {"VII", 3}, {"VIII-", 2}})) << w.dump();
     }
-    if (w["id"] == turm) EXPECT_EQ(w["grades"], json({{"VII", 1}})) << w.dump();
+    if (w["id"] == turm) {
+      EXPECT_EQ(w["grades"], json({{"VII", 1}})) << w.dump();
+    }
   }
 }
 
