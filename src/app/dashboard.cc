@@ -9,6 +9,8 @@
 #include <utility>
 
 #include "app/discipline_targets.h"
+#include "app/routes.h"
+#include "app/scales.h"
 #include "base/text.h"
 #include "crdl/route.h"
 #include "grades/scale.h"
@@ -74,7 +76,8 @@ std::string KindOf(const std::string& style) {
   const auto& holds = language::HoldStyleNames();
   if (std::find(holds.begin(), holds.end(), style) != holds.end()) return "hold";
   if (style == language::kUnparsedStyle) return "unparsed";
-  return "movement";
+  if (language::IsStyleName(style)) return "movement";
+  return "given";  // issue 32: a gym's own style tag (overhang, slab, kids)
 }
 
 // The documented order of styles (holds, movements, unparsed).
@@ -316,14 +319,25 @@ Result<std::vector<store::RouteRecord>> GymRoutes(store::Store* store, const Vie
   return store->ListRoutes(f);
 }
 
-// The most common scale of the routes' grades read in `d` (the default on none).
-std::string ScaleOfRoutes(const std::vector<const store::RouteRecord*>& routes, Discipline d) {
+// The most common scale of the routes' grades read in `d`; on none, that of
+// `fallback` (issue 32: the targets' own texts, so "VI+: 2, VII: 3" on an
+// empty roped wall stays UIAA rather than becoming YDS bands that merge);
+// the default on neither.
+std::string ScaleOfRoutes(const std::vector<const store::RouteRecord*>& routes, Discipline d,
+                          const std::vector<std::string>& fallback = {}) {
   std::map<int, int> votes;
   for (const store::RouteRecord* r : routes) {
     if (r->grade.empty()) continue;
     Result<grades::Grade> g = grades::ParseGrade(r->grade, {d, std::nullopt});
     if (!g.ok() || g->discipline() != d) continue;
     ++votes[static_cast<int>(g->scale)];
+  }
+  if (votes.empty()) {
+    for (const std::string& text : fallback) {
+      Result<grades::Grade> g = grades::ParseGrade(text, {d, std::nullopt});
+      if (!g.ok() || g->discipline() != d) continue;
+      ++votes[static_cast<int>(g->scale)];
+    }
   }
   Scale best = grades::DefaultScale(d);
   int most = 0;
@@ -399,10 +413,19 @@ Result<std::vector<WallDashboard>> Dashboard::Build(const Viewer& v, int64_t gym
     for (const store::RouteSetter& st : full->setters) reading->setters.push_back(st.name);
     if (Result<Route> parsed = ParseCrdl(full->crdl, "route"); parsed.ok()) {
       language::MoveLanguage* lang = ThreadLanguage();
+      // Issue 32: the styles given directly count beside the grammar's
+      // reading: on every move of the route, or as one move's worth for a
+      // route without moves; a route with neither has no style to count.
+      const std::vector<std::string> given = GivenStyles(*parsed);
       for (const Move& m : parsed->moves) {
-        reading->moves.push_back(lang ? language::ReadStyle(*lang, m.text).All()
-                                      : std::vector<std::string>{language::kUnparsedStyle});
+        std::vector<std::string> all = lang ? language::ReadStyle(*lang, m.text).All()
+                                            : std::vector<std::string>{language::kUnparsedStyle};
+        for (const std::string& g : given) {
+          if (std::find(all.begin(), all.end(), g) == all.end()) all.push_back(g);
+        }
+        reading->moves.push_back(std::move(all));
       }
+      if (parsed->moves.empty() && !given.empty()) reading->moves.push_back(given);
     }
     readings[id] = reading;
     std::lock_guard<std::mutex> lock(mu_);
@@ -442,7 +465,28 @@ Result<std::vector<WallDashboard>> Dashboard::Build(const Viewer& v, int64_t gym
     for (const store::RouteRecord& r : set) {
       if (r.wall_id && *r.wall_id == wall.id) on.push_back(&r);
     }
-    w.scale = ScaleOfRoutes(on, d);
+    // Issue 32: the wall's own scale when it has one (a built-in one or
+    // the gym's), else the routes' (or the targets') most common.
+    WallGradeScale ws;
+    if (Result<WallGradeScale> loaded = LoadWallScale(store_, gym, wall.id); loaded.ok()) {
+      ws = std::move(loaded).value();
+    }
+    std::vector<std::string> target_texts;
+    for (const store::TargetRecord& t : targets) {
+      if (t.wall_id == wall.id && t.kind == "grade") target_texts.push_back(t.name);
+    }
+    w.scale = ws.builtin  ? std::string(grades::ScaleName(*ws.builtin))
+              : ws.custom ? ws.name
+                          : ScaleOfRoutes(on, d, target_texts);
+    // A band of a gym scale: its label, valued at the label's middle.
+    auto custom_band = [&](const std::string& text) -> std::optional<BandRow> {
+      std::optional<size_t> i = ws.custom->Find(text);
+      if (!i) return std::nullopt;
+      BandRow row;
+      row.band = ws.custom->labels[*i].label;
+      row.value = ws.custom->labels[*i].value();
+      return row;
+    };
     w.on_wall = static_cast<int>(on.size());
     std::map<std::string, BandRow> bands;
     int votes = 0, stars = 0;
@@ -466,13 +510,15 @@ Result<std::vector<WallDashboard>> Dashboard::Build(const Viewer& v, int64_t gym
       }
       w.ticks += dr.ticks;
       if (std::optional<double> value = ValueOn(*r, d)) {
-        const std::string key = BandKey(*value, wall.discipline, w.scale);
+        const std::string key =
+            ws.custom ? ws.custom->Format(*value) : BandKey(*value, wall.discipline, w.scale);
         dr.band = key;
         BandRow& b = bands[key];
         if (b.band.empty()) {
           b.band = key;
           b.value = w.scale == grades::ScaleName(grades::DefaultScale(d)) ? grades::Band(*value)
                                                                           : *value;
+          if (ws.custom) b.value = custom_band(key)->value;
         }
         ++b.current;
       } else {
@@ -499,7 +545,12 @@ Result<std::vector<WallDashboard>> Dashboard::Build(const Viewer& v, int64_t gym
         style_targets[t.name] = t.value;
         continue;
       }
-      Result<BandRow> b = BandOfText(t.name, wall.discipline, w.scale, "target");
+      Result<BandRow> b = Status::InvalidInput("target");
+      if (ws.custom) {
+        if (std::optional<BandRow> row = custom_band(t.name)) b = *row;
+      } else {
+        b = BandOfText(t.name, wall.discipline, w.scale, "target");
+      }
       if (!b.ok()) continue;  // a target typed in a scale the wall no longer uses
       BandRow& row = bands[b->band];
       if (row.band.empty()) row = *b;
@@ -623,13 +674,16 @@ Result<WallDashboard> Dashboard::GetWall(const Viewer& v, int64_t wall) {
   return one.at(0);
 }
 
-Result<std::string> Dashboard::WallScale(const Viewer& v, const Wall& w) {
+Result<std::string> Dashboard::WallScale(const Viewer& v, const Wall& w,
+                                         const std::vector<std::string>& fallback) {
+  SB_ASSIGN_OR_RETURN(WallGradeScale ws, LoadWallScale(store_, w.gym_id, w.id));
+  if (ws.builtin) return std::string(grades::ScaleName(*ws.builtin));
   SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> set, GymRoutes(store_, v, w.gym_id, "set"));
   std::vector<const store::RouteRecord*> on;
   for (const store::RouteRecord& r : set) {
     if (r.wall_id && *r.wall_id == w.id) on.push_back(&r);
   }
-  return ScaleOfRoutes(on, DisciplineOf(w.discipline));
+  return ScaleOfRoutes(on, DisciplineOf(w.discipline), fallback);
 }
 
 Result<WallTargets> Dashboard::Targets(const Viewer& v, int64_t gym, int64_t wall) {
@@ -654,9 +708,24 @@ Status Dashboard::SetTargets(const Viewer& v, int64_t gym, int64_t wall, const W
   if (g.role != "head") return Status::Permission("only the gym's head setters may set targets");
   SB_RETURN_IF_ERROR(t.Validate(w.discipline));
   if (!targets_) return Status::Internal("the store keeps no targets");
-  SB_ASSIGN_OR_RETURN(std::string scale, WallScale(v, w));
-  // Bands as the wall writes them.
-  SB_ASSIGN_OR_RETURN(auto bands, TargetBands(t.grades, w.discipline, scale));
+  // Bands as the wall writes them: in its own scale when it has one (issue
+  // 32: refused otherwise, naming the scale), else in its routes' (or, on a
+  // wall without graded routes, the targets' own).
+  SB_ASSIGN_OR_RETURN(WallGradeScale ws, LoadWallScale(store_, gym, wall));
+  std::map<std::string, int> bands;
+  if (ws.any()) {
+    for (const auto& [text, count] : t.grades) {
+      SB_ASSIGN_OR_RETURN(double value, ws.Read(text, "grades." + text));
+      const std::string band = ws.custom ? ws.custom->Format(value)
+                                         : BandKey(value, w.discipline, grades::ScaleName(*ws.builtin));
+      bands[band] += count;
+    }
+  } else {
+    std::vector<std::string> texts;
+    for (const auto& [text, count] : t.grades) texts.push_back(text);
+    SB_ASSIGN_OR_RETURN(std::string scale, WallScale(v, w, texts));
+    SB_ASSIGN_OR_RETURN(bands, TargetBands(t.grades, w.discipline, scale));
+  }
   std::vector<store::TargetRecord> rows;
   for (const auto& [band, count] : bands) {
     rows.push_back({wall, "grade", band, static_cast<double>(count)});

@@ -111,7 +111,7 @@ struct BandRow {
 // gym's archive (set and stripped routes).
 struct StyleRow {
   std::string style;
-  std::string kind;  // "hold", "movement" or "unparsed"
+  std::string kind;  // "hold", "movement", "unparsed" or "given" (a style tag given directly, issue 32)
   double share = 0;
   double reference = 0;
   bool targeted = false;  // reference is a target the head setter set
@@ -269,7 +269,10 @@ class Dashboard {
                                            const std::vector<Wall>& walls,
                                            std::map<std::string, double>* archive,
                                            std::vector<std::string>* circuit_words);
-  Result<std::string> WallScale(const Viewer& v, const Wall& w);
+  // The scale a wall's bands are written in: its own built-in scale (issue
+  // 32), else its routes' most common, else `fallback`'s (target texts).
+  Result<std::string> WallScale(const Viewer& v, const Wall& w,
+                                const std::vector<std::string>& fallback = {});
 
   // A route's style reading (per move, its styles or {"unparsed"}) and its
   // setters' names, as of `updated_at`.

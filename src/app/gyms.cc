@@ -9,6 +9,7 @@
 #include "base/text.h"
 #include "crdl/route.h"
 #include "grades/scale.h"
+#include "plan/colour.h"
 
 namespace sb::app {
 
@@ -81,6 +82,7 @@ std::string CircuitText(const Circuit& c) {
 // A circuit's fields checked and trimmed; kInvalidInput naming the field.
 Result<store::CircuitRecord> CircuitRow(const Circuit& c) {
   SB_RETURN_IF_ERROR(CheckName("colour", c.colour, GymLimits::kMaxColourBytes));
+  SB_RETURN_IF_ERROR(plan::CheckColour("colour", c.colour));  // issue 32
   for (const auto& [field, g] : {std::pair<const char*, const std::string*>{"grade_from", &c.grade_from},
                                  {"grade_to", &c.grade_to}}) {
     if (Trim(*g).empty()) continue;
@@ -320,7 +322,7 @@ Result<std::vector<Member>> Gyms::Members(const Viewer& v, int64_t gym) {
   (void)role;
   SB_ASSIGN_OR_RETURN(std::vector<store::MemberRecord> all, gyms_->ListMembers(gym));
   std::vector<Member> out;
-  for (const store::MemberRecord& m : all) out.push_back({m.user_id, m.username, m.role});
+  for (const store::MemberRecord& m : all) out.push_back({m.user_id, m.username, m.role, m.display_name});
   return out;
 }
 

@@ -40,6 +40,7 @@ struct Member {
   int64_t user_id = 0;
   std::string username;
   std::string role;
+  std::string display_name;  // issue 32: "" when not set (the user name is shown)
 };
 
 // A wall (or sector). The floor-plan rectangle is all set or all unset.

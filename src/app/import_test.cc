@@ -36,8 +36,15 @@ TEST_F(AppTest, ImportsRoutesMovesAndVariationParameters) {
   Viewer alice = User("alice"), anon;
   Result<ImportSummary> im = services_->routes.ImportCsv(alice, kRoutes, kMoves);
   ASSERT_TRUE(im.ok()) << im.status().message();
-  ASSERT_EQ(im->ids.size(), 3u);
-  EXPECT_EQ(im->skipped.size(), 2u);  // route 75 has no moves; route 99 unknown
+  // Issue 32: route 75 has no moves and is imported all the same; the moves
+  // of route 99 (not in the file) are reported.
+  ASSERT_EQ(im->ids.size(), 4u);
+  EXPECT_EQ(im->skipped.size(), 1u);
+  EXPECT_EQ(im->ids[3].first, 75);
+  Result<RouteView> empty = services_->routes.Get(alice, im->ids[3].second);
+  ASSERT_TRUE(empty.ok()) << empty.status().message();
+  EXPECT_EQ(empty->name, "Empty");
+  EXPECT_EQ(empty->move_count, 0);
   EXPECT_EQ(im->ids[0].first, 72);
   Result<RouteView> base = services_->routes.Get(anon, im->ids[0].second);
   ASSERT_TRUE(base.ok());
@@ -81,7 +88,8 @@ TEST_F(AppTest, ExportReimportsToTheSameRoutes) {
   ASSERT_TRUE(again.ok()) << again.status().message();
   ASSERT_EQ(again->ids.size(), im->ids.size());
   for (size_t i = 0; i < im->ids.size(); ++i) {
-    Result<RouteView> x = services_->routes.Get(bob, im->ids[i].second);
+    // Alice's own (route 75 is private), Bob's import of them.
+    Result<RouteView> x = services_->routes.Get(alice, im->ids[i].second);
     Result<RouteView> y = services_->routes.Get(bob, again->ids[i].second);
     ASSERT_TRUE(x.ok() && y.ok());
     EXPECT_EQ(*ParseCrdl(x->crdl, "x"), *ParseCrdl(y->crdl, "y")) << i;

@@ -8,6 +8,7 @@
 #include "app/convert.h"
 #include "app/discipline.h"
 #include "app/limits.h"
+#include "app/scales.h"
 #include "app/variations.h"
 #include "base/date.h"
 #include "base/number.h"
@@ -17,6 +18,7 @@
 #include "chaos/variation.h"
 #include "crdl/route.h"
 #include "crdl/site_csv.h"
+#include "plan/colour.h"
 
 namespace sb::app {
 
@@ -87,6 +89,58 @@ void ApplyDiscipline(const Route& route, std::string_view wall_discipline,
   rec->grade_value = d.grade_value;
 }
 
+std::vector<std::string> GivenStyles(const Route& route) {
+  std::optional<std::string> line = route.Meta("styles");
+  if (!line) line = route.Meta("style");
+  std::vector<std::string> out;
+  if (!line) return out;
+  for (std::string_view part : Split(*line, ',')) {
+    std::string s = ToLower(Trim(part));
+    if (s.empty() || std::find(out.begin(), out.end(), s) != out.end()) continue;
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+Result<std::string> WithGivenStyles(std::string_view crdl, const std::vector<std::string>& styles) {
+  SB_ASSIGN_OR_RETURN(Route r, ParseCrdl(crdl, "route.crdl"));
+  if (styles.size() > static_cast<size_t>(kMaxRouteStyles)) {
+    return Status::InvalidInput("styles: at most " + std::to_string(kMaxRouteStyles) +
+                                " per route");
+  }
+  std::vector<std::string> clean;
+  for (const std::string& raw : styles) {
+    std::string s = ToLower(Trim(raw));
+    bool ok = !s.empty() && s.size() <= kMaxStyleBytes && FindInvalidUtf8(s) == std::string::npos;
+    for (size_t i = 0; ok && i < s.size(); ++i) {
+      const unsigned char c = static_cast<unsigned char>(s[i]);
+      if (c >= 0x80) {
+        // C1 controls (U+0080..U+009F are 0xC2 0x80..0x9F) are no letters.
+        if (c == 0xC2 && i + 1 < s.size() && static_cast<unsigned char>(s[i + 1]) < 0xA0) ok = false;
+        continue;
+      }
+      ok = std::isalnum(c) || c == ' ' || c == '-' || c == '\'';
+    }
+    if (!ok) {
+      return Status::InvalidInput("styles: \"" + raw +
+                                  "\" is not a style (1-40 letters, digits, spaces, '-' or '\'')");
+    }
+    if (std::find(clean.begin(), clean.end(), s) == clean.end()) clean.push_back(std::move(s));
+  }
+  std::vector<HeaderLine> header;
+  for (HeaderLine& h : r.header) {
+    if (EqualsIgnoreCase(h.key, "styles") || EqualsIgnoreCase(h.key, "style")) continue;
+    header.push_back(std::move(h));
+  }
+  r.header = std::move(header);
+  if (!clean.empty()) {
+    std::string line;
+    for (const std::string& s : clean) line += (line.empty() ? "" : ", ") + s;
+    r.SetMeta("styles", line);
+  }
+  return PrintCrdl(r);
+}
+
 bool IsOwner(const store::RouteRecord& r, const Viewer& v) {
   return v.user_id && r.owner_id && *r.owner_id == *v.user_id;
 }
@@ -104,6 +158,7 @@ Status FillFromCrdl(std::string_view crdl, const RouteLimits& limits, store::Rou
   SB_ASSIGN_OR_RETURN(Route r, ParseCrdl(crdl, "route.crdl"));
   SB_RETURN_IF_ERROR(CheckRouteLimits(r, limits, "route.crdl"));
   FillMetadata(r, rec);
+  SB_RETURN_IF_ERROR(plan::CheckColour("colour", rec->colour));  // issue 32
   rec->crdl = std::string(crdl);
   return Status::Ok();
 }
@@ -264,7 +319,7 @@ Result<int> Routes::RefreshMetadata() {
     Result<Route> r = ParseCrdl(rec.crdl, "route " + std::to_string(rec.id));
     if (!r.ok()) continue;  // stored text always parses; nothing to derive otherwise
     FillMetadata(*r, &rec, rec.name);
-    SB_RETURN_IF_ERROR(ApplyWallDiscipline(&rec));
+    SB_RETURN_IF_ERROR(ApplyWallDiscipline(&rec, /*strict=*/false));
     SB_RETURN_IF_ERROR(store_->UpdateRouteMetadata(rec));
     ++changed;
   }
@@ -285,10 +340,20 @@ Result<RouteDiscipline> Routes::DisciplineOf(const store::RouteRecord& rec) {
   return DisciplineOfRoute(r, wall);
 }
 
-Status Routes::ApplyWallDiscipline(store::RouteRecord* rec) {
+Status Routes::ApplyWallDiscipline(store::RouteRecord* rec, bool strict) {
   SB_ASSIGN_OR_RETURN(RouteDiscipline d, DisciplineOf(*rec));
   rec->grade_discipline = d.discipline;
   rec->grade_value = d.grade_value;
+  if (rec->wall_id && rec->gym_id && !Trim(rec->grade).empty()) {
+    SB_ASSIGN_OR_RETURN(WallGradeScale scale, LoadWallScale(store_, *rec->gym_id, *rec->wall_id));
+    std::optional<grades::Discipline> sd = scale.discipline();
+    if (sd && (d.discipline.empty() || d.discipline == grades::DisciplineName(*sd))) {
+      Result<double> value = scale.Read(rec->grade);
+      if (!value.ok() && strict) return value.status();
+      rec->grade_discipline = grades::DisciplineName(*sd);
+      rec->grade_value = value.ok() ? std::optional<double>(*value) : std::nullopt;
+    }
+  }
   return Status::Ok();
 }
 
@@ -771,8 +836,10 @@ Result<ImportSummary> Routes::ImportCsv(const Viewer& v, std::string_view routes
   SB_ASSIGN_OR_RETURN(SiteExport ex,
                       ParseSiteExport(routes_csv, kRoutesFile, moves_csv, kMovesFile));
   const Limits& lim = options_.limits;
-  size_t with_moves = std::count_if(ex.routes.begin(), ex.routes.end(),
-                                    [](const SiteRoute& r) { return !r.route.moves.empty(); });
+  // Issue 32: a route without moves is imported (a gym's list); a variation
+  // without moves has nothing to show and is skipped.
+  auto kept = [](const SiteRoute& r) { return !r.is_variation || !r.route.moves.empty(); };
+  size_t with_moves = std::count_if(ex.routes.begin(), ex.routes.end(), kept);
   if (with_moves > lim.max_import_routes) {
     return Status::InvalidInput("at most " + std::to_string(lim.max_import_routes) +
                                 " routes per import");
@@ -785,8 +852,8 @@ Result<ImportSummary> Routes::ImportCsv(const Viewer& v, std::string_view routes
   for (const SiteRoute& sr : ex.routes) {
     SourceLocation at{kRoutesFile, sr.line, 0};
     std::string where = std::string(kRoutesFile) + ": route " + std::to_string(sr.id) + ": ";
-    if (sr.route.moves.empty()) {
-      out.skipped.push_back(where + "no moves");
+    if (!kept(sr)) {
+      out.skipped.push_back(where + "a variation without moves");
       continue;
     }
     // Exactly what the API would accept as a route; checked before the
@@ -799,6 +866,13 @@ Result<ImportSummary> Routes::ImportCsv(const Viewer& v, std::string_view routes
     }
     if (Status s = CheckRouteLimits(*check, lim.route); !s.ok()) {
       return Status::InvalidInputAt(at, "route " + std::to_string(sr.id) + ": " + s.message());
+    }
+    {
+      std::optional<std::string> c = check->Meta("colour");
+      if (!c) c = check->Meta("color");
+      if (Status s = plan::CheckColour("colour", c.value_or("")); !s.ok()) {
+        return Status::InvalidInputAt(at, "route " + std::to_string(sr.id) + ": " + s.message());
+      }
     }
     if (gym && gs) {
       // Recognised by the original site's id: importing twice duplicates nothing.
@@ -838,6 +912,10 @@ Result<ImportSummary> Routes::ImportCsv(const Viewer& v, std::string_view routes
       if (Result<Wall> w = gyms_.ResolveWall(*rec.gym_id, rec.wall); w.ok()) {
         rec.wall_id = w->id;
         ApplyDiscipline(sr.route, w->discipline, &rec);
+        // Issue 32: the wall's scale reads the grade (refused otherwise).
+        if (Status s = ApplyWallDiscipline(&rec); !s.ok()) {
+          return Status::InvalidInputAt(at, "route " + std::to_string(sr.id) + ": " + s.message());
+        }
       }
     }
     for (const HeaderLine& h : sr.route.header) {

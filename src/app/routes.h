@@ -158,6 +158,23 @@ void FillMetadata(const Route& route, store::RouteRecord* rec,
 // app/discipline.h, for a route on a wall of `wall_discipline` ("" none). Pure.
 void ApplyDiscipline(const Route& route, std::string_view wall_discipline,
                      store::RouteRecord* rec);
+// Issue 32: a route's style given directly (a gym's own tags such as
+// "overhang", "slab", "crimp", "kids"), kept in the CRDL header line
+// "styles: overhang, crimp" (alias "style:"). They count in the dashboard's
+// style mix beside what the grammar reads from the moves.
+inline constexpr int kMaxRouteStyles = 12;
+inline constexpr size_t kMaxStyleBytes = 40;
+// The route's given styles: the header's "styles:" (or "style:") line split
+// at commas, trimmed, lower case, distinct, in order. Pure.
+std::vector<std::string> GivenStyles(const Route& route);
+// `crdl` with its "styles:" line set to `styles` (removed when empty). Each
+// style is 1-40 bytes of letters (any script), digits, spaces, '-' or '\'',
+// at most kMaxRouteStyles. Errors: kInvalidInput naming "styles" (a bad
+// style, too many), or the CRDL's own located error.
+Result<std::string> WithGivenStyles(std::string_view crdl, const std::vector<std::string>& styles);
+// What a route without moves says where a feature needs them.
+inline constexpr char kNoMovesMessage[] = "no moves recorded: add them to vary this route";
+
 // Why a variation of a private route cannot be made public.
 inline constexpr char kPrivateSourceMessage[] =
     "public: a variation of a private route stays private (make the route public first)";
@@ -263,8 +280,11 @@ class Routes {
 
  private:
   // Re-reads the record's discipline with its wall's (rec->wall_id). Errors:
-  // the wall's lookup, an unparsable stored CRDL.
-  Status ApplyWallDiscipline(store::RouteRecord* rec);
+  // the wall's lookup, an unparsable stored CRDL. Issue 32: on a wall with
+  // a scale (app/scales.h) the grade is read in it; `strict`: a grade it
+  // does not read is refused (kInvalidInput naming the scale), else kept
+  // without a value.
+  Status ApplyWallDiscipline(store::RouteRecord* rec, bool strict = true);
   // The role rule of a route's discipline: head setters of its gym, the
   // owner of a gym-less route (or of one in a gym they are no member of).
   // Errors: kPermission.

@@ -19,7 +19,9 @@ Services::Services(Database* store, const Options& opts, Clock* clock)
       dashboard(store, opts, clock),
       reports(store, &gyms, &logbook),
       setting_days(store, opts, &routes, &gyms, &variations, &renders, &dashboard),
-      rendered(store, clock) {
+      rendered(store, clock),
+      profiles(store, opts),
+      scales(store, &gyms) {
   // An install starts with one gym (issue 21), named at its first start.
   if (Status g = gyms.EnsureFirstGym(opts.first_gym_name); !g.ok()) {
     LogError("first gym: " + g.message());

@@ -15,9 +15,11 @@
 #include "app/logbook.h"
 #include "app/maps.h"
 #include "app/options.h"
+#include "app/profiles.h"
 #include "app/render_cache.h"
 #include "app/report.h"
 #include "app/routes.h"
+#include "app/scales.h"
 #include "app/setting_day.h"
 #include "app/studies_service.h"
 #include "app/types.h"
@@ -53,6 +55,10 @@ struct Services {
   // Rendered answers kept per gym data version and day (issue 22: the API
   // dashboard's JSON, a wall page's tables).
   RenderCache rendered;
+  // Display names, languages and the account page (issue 32).
+  Profiles profiles;
+  // A gym's own grade scales and a wall's scale (issue 32).
+  Scales scales;
 };
 
 }  // namespace sb::app

@@ -555,6 +555,10 @@ Result<int64_t> SettingDays::Accept(const Viewer& v, const AcceptRequest& req) {
     SB_ASSIGN_OR_RETURN(store::RouteRecord r, routes_->GetRow(v, id));
     Result<Route> route = ParseCrdl(r.crdl, r.name);
     if (!route.ok()) return route.status().WithPrefix("route " + std::to_string(id));
+    if (route->moves.empty()) {  // issue 32
+      return Status::InvalidInput("inputs: route " + std::to_string(id) + " (" + r.name +
+                                  "): " + kNoMovesMessage);
+    }
     total += static_cast<int>(route->moves.size());
     inputs.push_back({r.name, std::move(route).value()});
   }

@@ -233,6 +233,10 @@ Result<CreatedVariation> Variations::Create(const Viewer& v, const VariationRequ
     SB_ASSIGN_OR_RETURN(store::RouteRecord r, routes.GetRow(v, id));
     Result<Route> route = ParseCrdl(r.crdl, r.name);
     if (!route.ok()) return route.status().WithPrefix("route " + std::to_string(id));
+    if (route->moves.empty()) {  // issue 32: said, not failed on later
+      return Status::InvalidInput("routes: route " + std::to_string(id) + " (" + r.name +
+                                  "): " + kNoMovesMessage);
+    }
     total_moves += static_cast<int>(route->moves.size());
     if (total_moves > lim.max_vary_moves) {
       return Status::InvalidInput("routes: at most " + std::to_string(lim.max_vary_moves) +

@@ -96,9 +96,6 @@ Result<Route> ParseCrdl(std::string_view text, std::string_view filename) {
     return Status::InvalidInputAt(at(lines.empty() ? 1 : lines.size(), 1),
                                   "missing \"---\" line between the header and the moves");
   }
-  if (route.moves.empty()) {
-    return Status::InvalidInputAt(at(sep + 1, 1), "route has no moves after \"---\"");
-  }
   // Trailing blank description lines carry no information; dropping them makes
   // PrintCrdl ∘ ParseCrdl stable.
   while (!route.header.empty() && route.header.back().key.empty() &&

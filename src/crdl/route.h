@@ -60,7 +60,9 @@ struct HeaderLine {
 // A parsed route. Value type; thread-compatible.
 struct Route {
   std::vector<HeaderLine> header;  // in file order
-  std::vector<Move> moves;         // never empty for a parsed route
+  // Empty for a route whose moves are not recorded (issue 32: a gym's list
+  // has names, grades and colours; what needs moves says so).
+  std::vector<Move> moves;
 
   // The value of the first metadata line with this key (ASCII case-insensitive),
   // or nullopt.
@@ -86,7 +88,8 @@ inline constexpr size_t kMaxCrdlBytes = size_t{64} << 20;
 // "filename:line:col: reason", one line). Input must be well-formed UTF-8
 // (no surrogates, overlong forms or code points above U+10FFFF) without NUL
 // bytes and at most kMaxCrdlBytes; byte-order marks at the start and CRLF
-// line ends are accepted. Pure; thread-safe.
+// line ends are accepted. The move section may be empty (a route without
+// moves recorded; issue 32). Pure; thread-safe.
 Result<Route> ParseCrdl(std::string_view text, std::string_view filename);
 
 // Reads and parses a CRDL file ("-" = stdin), reading at most kMaxCrdlBytes.

@@ -9,74 +9,10 @@
 #include <cmath>
 #include <map>
 
+#include "plan/colour.h"
 #include "plan/qr.h"
 
 namespace sb::plan {
-
-namespace {
-
-// Tape colours gyms name, as printed swatches.
-const std::map<std::string, Rgb>& Colours() {
-  static const auto* colours = new std::map<std::string, Rgb>{
-      {"black", {0.05, 0.05, 0.05}},  {"white", {1, 1, 1}},
-      {"grey", {0.55, 0.55, 0.55}},   {"gray", {0.55, 0.55, 0.55}},
-      {"red", {0.85, 0.1, 0.1}},      {"orange", {1.0, 0.55, 0.0}},
-      {"yellow", {1.0, 0.87, 0.0}},   {"green", {0.1, 0.6, 0.2}},
-      {"lime", {0.6, 0.85, 0.1}},     {"teal", {0.0, 0.55, 0.55}},
-      {"cyan", {0.0, 0.75, 0.9}},     {"turquoise", {0.25, 0.85, 0.8}},
-      {"blue", {0.1, 0.3, 0.85}},     {"navy", {0.05, 0.1, 0.45}},
-      {"purple", {0.5, 0.15, 0.65}},  {"violet", {0.55, 0.3, 0.85}},
-      {"magenta", {0.9, 0.1, 0.6}},   {"pink", {1.0, 0.55, 0.75}},
-      {"brown", {0.5, 0.3, 0.12}},    {"beige", {0.9, 0.85, 0.7}},
-      {"gold", {0.85, 0.68, 0.15}},   {"silver", {0.75, 0.75, 0.78}},
-  };
-  return *colours;
-}
-
-int HexDigit(char c) {
-  if (c >= '0' && c <= '9') return c - '0';
-  c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-  return -1;
-}
-
-std::optional<Rgb> HexColour(const std::string& s) {
-  if (s.size() != 4 && s.size() != 7) return std::nullopt;
-  const bool short_form = s.size() == 4;
-  double v[3];
-  for (int i = 0; i < 3; ++i) {
-    int hi = HexDigit(s[1 + (short_form ? i : 2 * i)]);
-    int lo = HexDigit(s[short_form ? 1 + i : 2 + 2 * i]);
-    if (hi < 0 || lo < 0) return std::nullopt;
-    v[i] = (short_form ? hi * 17 : hi * 16 + lo) / 255.0;
-  }
-  return Rgb{v[0], v[1], v[2]};
-}
-
-}  // namespace
-
-std::optional<Rgb> ColourSwatch(const std::string& colour) {
-  std::string s;
-  for (char c : colour) s += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.pop_back();
-  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.erase(0, 1);
-  if (!s.empty() && s[0] == '#') return HexColour(s);
-  std::optional<Rgb> found;
-  std::string word;
-  auto take = [&] {
-    if (auto it = Colours().find(word); it != Colours().end()) found = it->second;
-    word.clear();
-  };
-  for (char c : s) {
-    if (std::isalpha(static_cast<unsigned char>(c))) {
-      word += c;
-    } else {
-      take();
-    }
-  }
-  take();
-  return found;
-}
 
 std::vector<std::string> TagLines(const TagInfo& info) {
   std::vector<std::string> out;
@@ -210,8 +146,8 @@ void DrawQr(cairo_t* cr, const QrCode& q, double x, double y, double size) {
   cairo_fill(cr);
 }
 
-// A swatch `box`: the colour filled and outlined (white and unknown colours
-// stay visible in black-and-white printing: an empty outlined box).
+// A swatch `box`: the colour filled and outlined (white stays visible in
+// black-and-white printing; an unknown colour is drawn as no box at all).
 void DrawSwatch(cairo_t* cr, const std::optional<Rgb>& rgb, Box b) {
   if (rgb) {
     cairo_set_source_rgb(cr, rgb->r, rgb->g, rgb->b);
@@ -276,12 +212,15 @@ void DrawTag(cairo_t* cr, const TagInfo& tag, Box c) {
     y += grade.height();
   }
   if (!tag.colour.empty()) {
-    const double sw = kColourPt;
-    Text colour(cr, tag.colour, kColourPt, true, col_w - sw - 5);
-    clear_url(sw + 5 + colour.width(), std::max(colour.height(), sw + 3));
-    DrawSwatch(cr, rgb, {x0, y + 2.5, sw, sw});
+    // Issue 32: the name beside its swatch; a colour no table knows (an old
+    // route's) is printed as its name only, never beside an empty box.
+    const double sw = rgb ? kColourPt : 0;
+    const double gap = rgb ? 5 : 0;
+    Text colour(cr, ColourLabel(tag.colour), kColourPt, true, col_w - sw - gap);
+    clear_url(sw + gap + colour.width(), std::max(colour.height(), sw + 3));
+    if (rgb) DrawSwatch(cr, rgb, {x0, y + 2.5, sw, sw});
     cairo_set_source_rgb(cr, 0, 0, 0);
-    colour.Draw(cr, x0 + sw + 5, y);
+    colour.Draw(cr, x0 + sw + gap, y);
     y += std::max(colour.height(), sw + 3) + 2;
   }
   // Wall, setters, date: below the code they may use the tag's width.

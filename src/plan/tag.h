@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "base/status.h"
+#include "plan/colour.h"
 #include "plan/pdf.h"
 
 namespace sb::plan {
@@ -46,15 +47,7 @@ inline constexpr int kTagRows = 4;
 inline constexpr double kTagUrlMaxPt = 7.0;
 inline constexpr double kTagUrlMinPt = 3.0;
 
-// A colour swatch: RGB in [0, 1].
-struct Rgb {
-  double r = 0, g = 0, b = 0;
-};
-// The swatch of a colour name as gyms write it: "blue", "Light Blue",
-// "grey"/"gray", "#36c"/"#3366cc", or a phrase whose last known colour word
-// counts ("blue tape"). nullopt for anything else (the tag then prints the
-// name beside an empty box). Pure.
-std::optional<Rgb> ColourSwatch(const std::string& colour);
+// The colour swatches (ColourSwatch, ColourLabel) are plan/colour.h's.
 
 // The tag's text lines, in order: "Wall: the cave", "Set by Carol, Dan",
 // "Set on 2026-11-26" (each only when its field is set). Pure.

@@ -128,6 +128,25 @@ TEST(TagTest, PdfHasEveryFieldAndTheQrDecodesToTheRoutePage) {
   }
 }
 
+// Issue 32: German and French colour names and hex codes print as their
+// names on the tag (a hex code with its nearest name), read back with
+// pdftotext; the swatch is the colour's (one fill of the strip's colour).
+TEST(TagTest, ColourNamesInThreeLanguagesPrintOnTheTag) {
+  const struct {
+    const char* colour;
+    const char* printed;
+  } cases[] = {{"gelb", "gelb"}, {"jaune", "jaune"}, {"Türkis", "Türkis"}, {"#ffdd00", "yellow (#ffdd00)"}};
+  for (const auto& c : cases) {
+    TagInfo tag = Sample();
+    tag.colour = c.colour;
+    Result<std::string> pdf = RenderTagPdf(tag, Paper::kA4);
+    ASSERT_TRUE(pdf.ok()) << pdf.status().message();
+    if (!Have("pdftotext")) GTEST_SKIP() << "poppler-utils missing";
+    const std::string text = Output("pdftotext " + Write(*pdf, "tag_colour.pdf") + " -");
+    EXPECT_TRUE(Has(text, c.printed)) << c.colour << " in:\n" << text;
+  }
+}
+
 TEST(TagTest, ALongUrlStaysOnOneLineAndStillDecodes) {
   TagInfo tag = Sample();
   tag.name = "A rather long route name that needs two lines on the tag";

@@ -35,6 +35,7 @@ struct MemberRecord {
   int64_t user_id = 0;
   std::string username;
   std::string role;
+  std::string display_name;  // issue 32: "" when not set
 };
 
 // A wall (or sector) of a gym. `position` orders a gym's walls; the floor

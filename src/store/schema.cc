@@ -593,6 +593,32 @@ UPDATE routes SET is_public = 0
            AND m.role IN ('head', 'setter')));
 )sql"},
        }},
+      // Schema 16 (issue 32): an account's display name (any letters and
+      // spaces, shown for the member; the log-in name stays) and language
+      // ("" = chosen by the browser). store/profile_store.h.
+      {"account display names and languages (issue 32)",
+       {
+           {Only::kBoth, R"sql(
+ALTER TABLE users ADD COLUMN display_name TEXT NOT NULL DEFAULT '';
+ALTER TABLE users ADD COLUMN language TEXT NOT NULL DEFAULT '';
+)sql"},
+       }},
+      // Schema 17 (issue 32): a gym's own grade scales (labels bounding
+      // ranges of the difficulty axis, grades/gym_scale.h) and the scale a
+      // wall's grades are read in ("" = as before). store/scale_store.h.
+      {"gym grade scales and a wall's scale (issue 32)",
+       {
+           {Only::kBoth, R"sql(
+CREATE TABLE gym_scales (
+  id          {serial},
+  gym_id      {int64} NOT NULL REFERENCES gyms(id) ON DELETE CASCADE,
+  name        TEXT NOT NULL,
+  labels TEXT NOT NULL,
+  UNIQUE (gym_id, name)
+);
+ALTER TABLE walls ADD COLUMN scale TEXT NOT NULL DEFAULT '';
+)sql"},
+       }},
   };
   return kMigrations;
 }
@@ -621,7 +647,8 @@ const std::vector<std::string>& SchemaTables() {
       "walls",         "circuits",     "routes",          "variation_inputs",
       "route_sources", "feedback",     "studies",         "study_routes",  "study_responses",
       "study_answers", "study_demographics", "route_setters", "route_history",
-      "ticks",         "wall_targets", "discipline_targets", "gym_versions", "gym_history"};
+      "ticks",         "wall_targets", "discipline_targets", "gym_versions", "gym_history",
+      "gym_scales"};
   return kTables;
 }
 

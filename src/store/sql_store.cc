@@ -16,6 +16,8 @@
 #include "store/bulk_store.h"
 #include "store/gym_store.h"
 #include "store/open.h"
+#include "store/profile_store.h"
+#include "store/scale_store.h"
 #include "store/schema.h"
 #include "store/sql.h"
 #include "store/sql_rows.h"
@@ -178,7 +180,7 @@ VariationInput ReadInput(const Rows& s, size_t i, size_t first) {
 }
 
 class SqlStore final : public Store, public GymStore, public TickStore, public TargetStore,
-                       public BulkStore {
+                       public BulkStore, public ProfileStore, public ScaleStore {
  public:
   explicit SqlStore(std::unique_ptr<sql::Pool> pool)
       : pool_(std::move(pool)), pg_(pool_->dialect() == sql::Dialect::kPostgres) {}
@@ -238,6 +240,107 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
     SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
     SB_ASSIGN_OR_RETURN(Rows r, c->Query("SELECT count(*) FROM users", {}));
     return r.Int(0, 0);
+  }
+
+  // -- profiles (issue 32) ----------------------------------------------------
+
+  Result<ProfileRecord> GetProfile(int64_t user_id) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(
+        Rows r, c->Query("SELECT id, username, display_name, language FROM users WHERE id = ?",
+                         {user_id}));
+    if (r.empty()) return Status::NotFound("no user " + std::to_string(user_id));
+    return ProfileRecord{r.Int(0, 0), r.Text(0, 1), r.Text(0, 2), r.Text(0, 3)};
+  }
+
+  Status SetProfile(int64_t user_id, const std::string& display_name,
+                    const std::string& language) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(Rows r, c->Query("UPDATE users SET display_name = ?, language = ? "
+                                         "WHERE id = ? RETURNING id",
+                                         {display_name, language, user_id}));
+    if (r.empty()) return Status::NotFound("no user " + std::to_string(user_id));
+    return Status::Ok();
+  }
+
+  Status SetPassword(int64_t user_id, const std::string& password_hash,
+                     const std::string& keep_session) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return sql::RunInTransaction(*c, [&]() -> Status {
+      SB_ASSIGN_OR_RETURN(Rows r, c->Query("UPDATE users SET password_hash = ? WHERE id = ? "
+                                           "RETURNING id",
+                                           {password_hash, user_id}));
+      if (r.empty()) return Status::NotFound("no user " + std::to_string(user_id));
+      SB_ASSIGN_OR_RETURN(Rows d, c->Query("DELETE FROM sessions WHERE user_id = ? AND "
+                                           "id_hash <> ?",
+                                           {user_id, keep_session}));
+      (void)d;
+      return Status::Ok();
+    });
+  }
+
+  Status DeleteAccount(int64_t user_id, const std::string& anon_key) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return sql::RunInTransaction(*c, [&]() -> Status {
+      // The ticks stay for the grades, no longer the account's.
+      SB_ASSIGN_OR_RETURN(Rows t, c->Query("UPDATE ticks SET user_id = NULL, climber = ?, "
+                                           "comment = '', revision = revision + 1 "
+                                           "WHERE user_id = ? RETURNING id",
+                                           {anon_key, user_id}));
+      (void)t;
+      SB_ASSIGN_OR_RETURN(Rows r, c->Query("DELETE FROM users WHERE id = ? RETURNING id",
+                                           {user_id}));
+      if (r.empty()) return Status::NotFound("no user " + std::to_string(user_id));
+      return Status::Ok();
+    });
+  }
+
+  // -- gym scales (issue 32) ------------------------------------------------
+
+  Result<int64_t> InsertScale(const ScaleRecord& s) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return sql::InTransaction<int64_t>(*c, [&]() -> Result<int64_t> {
+      SB_ASSIGN_OR_RETURN(Rows same, c->Query("SELECT id FROM gym_scales WHERE gym_id = ? AND "
+                                              "lower(name) = lower(?)",
+                                              {s.gym_id, s.name}));
+      if (!same.empty()) return Status::Conflict("name: the gym has a scale \"" + s.name + "\"");
+      Violation v;
+      Result<Rows> r = c->Query("INSERT INTO gym_scales(gym_id, name, labels) "
+                                "VALUES(?, ?, ?) RETURNING id",
+                                {s.gym_id, s.name, s.labels}, &v);
+      if (!r.ok() && v == Violation::kUnique) {
+        return Status::Conflict("name: the gym has a scale \"" + s.name + "\"");
+      }
+      if (!r.ok()) return r.status().WithPrefix("insert scale");
+      return r->Int(0, 0);
+    });
+  }
+
+  Result<std::vector<ScaleRecord>> ListScales(int64_t gym_id) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(Rows r, c->Query("SELECT id, gym_id, name, labels FROM gym_scales "
+                                         "WHERE gym_id = ? ORDER BY id",
+                                         {gym_id}));
+    std::vector<ScaleRecord> out;
+    for (size_t i = 0; i < r.size(); ++i) {
+      out.push_back({r.Int(i, 0), r.Int(i, 1), r.Text(i, 2), r.Text(i, 3)});
+    }
+    return out;
+  }
+
+  Result<std::string> WallScale(int64_t wall_id) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(Rows r, c->Query("SELECT scale FROM walls WHERE id = ?", {wall_id}));
+    if (r.empty()) return Status::NotFound("no wall " + std::to_string(wall_id));
+    return r.Text(0, 0);
+  }
+
+  Status SetWallScale(int64_t wall_id, const std::string& scale) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(Rows r, c->Query("UPDATE walls SET scale = ? WHERE id = ? RETURNING id",
+                                         {scale, wall_id}));
+    if (r.empty()) return Status::NotFound("no wall " + std::to_string(wall_id));
+    return Status::Ok();
   }
 
   // -- sessions -------------------------------------------------------------
@@ -953,12 +1056,13 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
   Result<std::vector<MemberRecord>> ListMembers(int64_t gym_id) override {
     SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
     SB_ASSIGN_OR_RETURN(
-        Rows r, c->Query("SELECT m.gym_id, m.user_id, u.username, m.role FROM gym_members m "
-                         "JOIN users u ON u.id = m.user_id WHERE m.gym_id = ? ORDER BY m.user_id",
+        Rows r, c->Query("SELECT m.gym_id, m.user_id, u.username, m.role, u.display_name "
+                         "FROM gym_members m JOIN users u ON u.id = m.user_id "
+                         "WHERE m.gym_id = ? ORDER BY m.user_id",
                          {gym_id}));
     std::vector<MemberRecord> out;
     for (size_t i = 0; i < r.size(); ++i) {
-      out.push_back({r.Int(i, 0), r.Int(i, 1), r.Text(i, 2), r.Text(i, 3)});
+      out.push_back({r.Int(i, 0), r.Int(i, 1), r.Text(i, 2), r.Text(i, 3), r.Text(i, 4)});
     }
     return out;
   }
@@ -1568,6 +1672,8 @@ TickStore* TickStoreOf(Store* store) { return dynamic_cast<TickStore*>(store); }
 
 TargetStore* TargetStoreOf(Store* store) { return dynamic_cast<TargetStore*>(store); }
 BulkStore* BulkStoreOf(Store* store) { return dynamic_cast<BulkStore*>(store); }
+ProfileStore* ProfileStoreOf(Store* store) { return dynamic_cast<ProfileStore*>(store); }
+ScaleStore* ScaleStoreOf(Store* store) { return dynamic_cast<ScaleStore*>(store); }
 
 bool IsDatabaseUrl(std::string_view db) {
   size_t colon = db.find(':');

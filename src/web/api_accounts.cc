@@ -2,6 +2,7 @@
 #include <algorithm>
 
 #include "base/log.h"
+#include "base/text.h"
 #include "web/handlers.h"
 #include "web/logbook_handlers.h"
 
@@ -36,6 +37,26 @@ void Busy(Exchange& x, const Status& s, int retry_after) {
 void PostUsers(Exchange& x) {
   std::string user, pass;
   if (Status s = Credentials(x.req, &user, &pass); !s.ok()) return ApiError(x, s);
+  // Issue 32: "display_name" and "language", checked before the account is made.
+  std::optional<std::string> display_name, language;
+  {
+    Result<json> body = BodyObject(x.req);
+    if (!body.ok()) return ApiError(x, body.status());
+    for (auto [field, out] : {std::pair<const char*, std::optional<std::string>*>{
+                                  "display_name", &display_name},
+                              {"language", &language}}) {
+      if (!body->contains(field) || (*body)[field].is_null()) continue;
+      Result<std::string> v = StringField(*body, field);
+      if (!v.ok()) return ApiError(x, v.status());
+      *out = std::string(Trim(*v));
+    }
+    if (display_name && !display_name->empty()) {
+      if (Status s = app::CheckDisplayName(*display_name); !s.ok()) return ApiError(x, s);
+    }
+    if (language && !language->empty() && !app::IsLanguage(*language)) {
+      return ApiError(x, Status::InvalidInput("language: one of en, de, fr"));
+    }
+  }
   bool busy = false;
   Result<app::User> u = x.services.accounts.SignUp(user, pass, x.caller.viewer.address, &busy);
   if (!u.ok()) {
@@ -44,7 +65,13 @@ void PostUsers(Exchange& x) {
   }
   // The install's first gym's first account is its head setter (issue 21).
   if (Status g = x.services.gyms.Welcome(u->id); !g.ok()) LogError("welcome: " + g.message());
-  ReplyJson(x.res, 201, json{{"id", u->id}, {"username", u->username}});
+  if (Status p = x.services.profiles.Init(u->id, display_name, language); !p.ok()) {
+    LogError("profile: " + p.message());
+  }
+  ReplyJson(x.res, 201, json{{"id", u->id},
+                             {"username", u->username},
+                             {"display_name", display_name.value_or("")},
+                             {"language", language.value_or("")}});
 }
 
 void PostSessions(Exchange& x) {

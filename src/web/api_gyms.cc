@@ -27,6 +27,12 @@ json WallJson(const app::Wall& w) {
   return j;
 }
 
+// A wall's scale name ("" for none or on a lookup error; issue 32).
+std::string ScaleNameOf(Exchange& x, int64_t wall) {
+  Result<std::string> s = x.services.scales.WallScaleName(x.caller.viewer, wall);
+  return s.ok() ? *s : std::string();
+}
+
 json CircuitJson(const app::Circuit& c) {
   return json{{"id", c.id},
               {"colour", c.colour},
@@ -244,7 +250,10 @@ void ListMembers(Exchange& x) {
   if (!m.ok()) return ApiError(x, m.status());
   json arr = json::array();
   for (const app::Member& mem : *m) {
-    arr.push_back({{"id", mem.user_id}, {"username", mem.username}, {"role", mem.role}});
+    arr.push_back({{"id", mem.user_id},
+                   {"username", mem.username},
+                   {"role", mem.role},
+                   {"display_name", mem.display_name.empty() ? mem.username : mem.display_name}});
   }
   ReplyJson(x.res, 200, json{{"members", arr}});
 }
@@ -258,8 +267,22 @@ void PostWall(Exchange& x) {
   w.gym_id = *id;
   if (!body->contains("name")) return ApiError(x, Status::InvalidInput("name: expected a string"));
   if (Status s = ReadWall(*body, &w); !s.ok()) return ApiError(x, s);
+  // Issue 32: "scale", checked before the wall is made.
+  std::optional<std::string> scale;
+  if (body->contains("scale") && !(*body)["scale"].is_null()) {
+    Result<std::string> text = StringField(*body, "scale");
+    if (!text.ok()) return ApiError(x, text.status());
+    Result<std::string> resolved = x.services.scales.Resolve(*id, w.discipline, *text);
+    if (!resolved.ok()) return ApiError(x, resolved.status());
+    scale = *resolved;
+  }
   Result<int64_t> wall = x.services.gyms.AddWall(x.caller.viewer, w);
   if (!wall.ok()) return ApiError(x, wall.status());
+  if (scale) {
+    if (Status s = x.services.scales.SetWallScale(x.caller.viewer, *id, *wall, *scale); !s.ok()) {
+      return ApiError(x, s);
+    }
+  }
   ReplyJson(x.res, 201, json{{"id", *wall}});
 }
 
@@ -277,12 +300,32 @@ void PutWall(Exchange& x) {
   Result<std::optional<int64_t>> revision = RevisionField(*body);
   if (!revision.ok()) return ApiError(x, revision.status());
   edited.revision = revision->value_or(0);
+  std::optional<std::string> scale;  // issue 32: checked before anything is written
+  if (body->contains("scale")) {
+    std::string text;
+    if (!(*body)["scale"].is_null()) {
+      Result<std::string> t = StringField(*body, "scale");
+      if (!t.ok()) return ApiError(x, t.status());
+      text = *t;
+    }
+    Result<std::string> resolved = x.services.scales.Resolve(*gym, edited.discipline, text);
+    if (!resolved.ok()) return ApiError(x, resolved.status());
+    scale = *resolved;
+  }
   if (Status s = x.services.gyms.EditWall(x.caller.viewer, edited); !s.ok()) {
     Result<app::Wall> now = WallOf(x, *gym, *wall_id);
     return ApiConflict(x, s, now.ok() ? WallJson(*now) : json());
   }
+  if (scale) {
+    if (Status s = x.services.scales.SetWallScale(x.caller.viewer, *gym, *wall_id, *scale);
+        !s.ok()) {
+      return ApiError(x, s);
+    }
+  }
   Result<app::Wall> now = WallOf(x, *gym, *wall_id);
-  ReplyJson(x.res, 200, WallJson(now.ok() ? *now : edited));
+  json out = WallJson(now.ok() ? *now : edited);
+  out["scale"] = ScaleNameOf(x, *wall_id);
+  ReplyJson(x.res, 200, out);
 }
 
 void DeleteWall(Exchange& x) {
@@ -330,7 +373,11 @@ void ListWalls(Exchange& x) {
   Result<std::vector<app::Wall>> walls = x.services.gyms.Walls(x.caller.viewer, *id);
   if (!walls.ok()) return ApiError(x, walls.status());
   json arr = json::array();
-  for (const app::Wall& w : *walls) arr.push_back(WallJson(w));
+  for (const app::Wall& w : *walls) {
+    json j = WallJson(w);
+    j["scale"] = ScaleNameOf(x, w.id);
+    arr.push_back(std::move(j));
+  }
   ReplyJson(x.res, 200, json{{"walls", arr}});
 }
 

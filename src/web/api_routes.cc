@@ -2,6 +2,7 @@
 #include <algorithm>
 
 #include "app/feedback.h"
+#include "base/text.h"
 #include "web/handlers.h"
 
 namespace sb::web {
@@ -85,10 +86,33 @@ void GetRouteCrdl(Exchange& x) {
   x.res.SetBody(200, r->crdl, "text/plain; charset=utf-8");
 }
 
+// Issue 32: "styles" (an array of style tags, or one comma-separated text)
+// written into `crdl`'s header; absent: `crdl` as it is.
+Result<std::string> WithStylesOf(const json& body, std::string crdl) {
+  if (!body.contains("styles")) return crdl;
+  const json& s = body["styles"];
+  std::vector<std::string> styles;
+  if (s.is_string()) {
+    for (std::string_view part : Split(s.get<std::string>(), ',')) {
+      if (!Trim(part).empty()) styles.emplace_back(Trim(part));
+    }
+  } else if (s.is_array()) {
+    for (const json& t : s) {
+      if (!t.is_string()) return Status::InvalidInput("styles: expected an array of style names");
+      styles.push_back(t.get<std::string>());
+    }
+  } else if (!s.is_null()) {
+    return Status::InvalidInput("styles: expected an array of style names");
+  }
+  return app::WithGivenStyles(crdl, styles);
+}
+
 void PostRoute(Exchange& x) {
   Result<json> body = BodyObject(x.req);
   if (!body.ok()) return ApiError(x, body.status());
   Result<std::string> crdl = StringField(*body, "crdl");
+  if (!crdl.ok()) return ApiError(x, crdl.status());
+  crdl = WithStylesOf(*body, *crdl);
   if (!crdl.ok()) return ApiError(x, crdl.status());
   Result<std::optional<bool>> pub = LibraryField(*body);
   if (!pub.ok()) return ApiError(x, pub.status());
@@ -114,6 +138,17 @@ void PutRoute(Exchange& x) {
     Result<std::string> crdl = StringField(*body, "crdl");
     if (!crdl.ok()) return ApiError(x, crdl.status());
     edit.crdl = *crdl;
+  }
+  if (body->contains("styles")) {
+    std::string base = edit.crdl.value_or("");
+    if (!edit.crdl) {
+      Result<app::RouteView> r = x.services.routes.GetOwned(x.caller.viewer, *id);
+      if (!r.ok()) return ApiError(x, r.status());
+      base = r->crdl;
+    }
+    Result<std::string> styled = WithStylesOf(*body, base);
+    if (!styled.ok()) return ApiError(x, styled.status());
+    edit.crdl = *styled;
   }
   Result<std::optional<bool>> pub = LibraryField(*body);
   if (!pub.ok()) return ApiError(x, pub.status());

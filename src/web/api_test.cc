@@ -321,7 +321,8 @@ TEST_F(ApiTest, BadCrdlNamesLineAndReason) {
   EXPECT_FALSE(j["reason"].get<std::string>().empty());
   EXPECT_NE(j["error"].get<std::string>().find(":4:"), std::string::npos);
   EXPECT_EQ(c.Status("POST", "/api/routes", R"({"crdl":"no separator"})"), 400);
-  EXPECT_EQ(c.Status("POST", "/api/routes", R"({"crdl":"---\n"})"), 400);
+  // Issue 32: a route without moves is a route (nothing to refuse here).
+  EXPECT_EQ(c.Status("POST", "/api/routes", R"({"crdl":"---\n"})"), 201);
   EXPECT_EQ(c.Status("POST", "/api/routes", R"({"crdl":5})"), 400);
   EXPECT_EQ(c.Status("POST", "/api/routes", R"({"crdl":"name: a\n---\nR b\n","public":"yes"})"),
             400);

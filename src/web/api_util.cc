@@ -197,6 +197,8 @@ json RouteJson(const app::RouteView& r) {
     }
   }
   j["move_list"] = moves;
+  // Issue 32: the styles given directly (the "styles:" header line).
+  j["styles"] = parsed.ok() ? json(app::GivenStyles(*parsed)) : json::array();
   json setters = json::array();
   for (const app::RouteSetter& s : r.setters) setters.push_back(s.name);
   j["setters"] = setters;

@@ -247,7 +247,7 @@ std::string RouteTable(const app::WallDashboard& w, const DashboardAscents& asce
   for (const app::DashboardRoute& r : w.routes) {
     t += "<tr" + std::string(r.due ? " class=\"due\"" : "") + "><td><a href=\"/routes/" +
          Id(r.id) + "\">" + E(r.name) + "</a>" + (r.due ? " <span class=\"tag\">due</span>" : "") +
-         "</td><td>" + E(r.grade) + "</td><td>" + E(r.colour) + "</td><td>" +
+         "</td><td>" + E(r.grade) + "</td><td>" + ColourHtml(r.colour) + "</td><td>" +
          E(Joined(r.setters)) + "</td><td class=\"num\">" +
          (r.age_days ? std::to_string(*r.age_days) : "—") + "</td><td class=\"num\">" +
          std::to_string(r.ticks) + "</td><td class=\"num\">" +

@@ -5,6 +5,7 @@
 #include "app/discipline.h"
 #include "base/number.h"
 #include "base/text.h"
+#include "web/pages.h"
 
 namespace sb::web {
 
@@ -174,7 +175,7 @@ std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<
   } else {
     b += "<ul id=\"circuit-list\">";
     for (const app::Circuit& c : circuits) {
-      b += "<li><a href=\"/?gym=" + gid + "&amp;circuit=" + E(c.colour) + "\">" + E(c.colour) +
+      b += "<li><a href=\"/?gym=" + gid + "&amp;circuit=" + E(c.colour) + "\">" + ColourHtml(c.colour) +
            "</a>";
       if (!c.grade_from.empty() || !c.grade_to.empty()) {
         b += " = " + E(c.grade_from) + "–" + E(c.grade_to);
@@ -209,7 +210,10 @@ std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<
   }
   b += "<h2>Team</h2>\n<ul id=\"member-list\">";
   for (const app::Member& m : members) {
-    b += "<li>" + E(m.username) + " <span class=\"tag\">" + E(m.role) + "</span>";
+    // Issue 32: a member by display name (the log-in name beside it).
+    b += "<li>" + (m.display_name.empty() ? E(m.username)
+                                          : E(m.display_name) + " <small>(" + E(m.username) + ")</small>") +
+         " <span class=\"tag\">" + E(m.role) + "</span>";
     if (head && m.username != v.username) {
       const std::string url = "/api/gyms/" + gid + "/members/" + m.username;
       auto opt = [&](const char* r, const char* label) {
@@ -272,7 +276,7 @@ std::string WallRoutesHtml(const app::Gym& gym, const app::Wall& wall,
     for (const app::RouteView& r : routes) {
       if (r.state != state) continue;
       rows += "<tr><td><a href=\"/routes/" + std::to_string(r.id) + "\">" + E(r.name) +
-              "</a></td><td>" + E(r.grade) + GradeNoteHtml(r) + "</td><td>" + E(r.colour) + "</td><td>" +
+              "</a></td><td>" + E(r.grade) + GradeNoteHtml(r) + "</td><td>" + ColourHtml(r.colour) + "</td><td>" +
               E(r.state == "stripped" ? r.strip_on : r.set_on) + "</td>";
       if (ascent_cells) {
         auto it = ascent_cells->find(r.id);

@@ -104,6 +104,16 @@ void PostUsers(Exchange& x);
 void PostSessions(Exchange& x);
 void DeleteSessions(Exchange& x);
 void GetSession(Exchange& x);
+// account_handlers.cc (issue 32)
+void GetAccount(Exchange& x);
+void PutAccount(Exchange& x);
+void DeleteAccount(Exchange& x);
+void GetAccountTicksCsv(Exchange& x);
+void GetAccountRoutesTar(Exchange& x);
+void PageAccount(Exchange& x);
+// scale_handlers.cc (issue 32)
+void PostGymScale(Exchange& x);
+void ListGymScales(Exchange& x);
 // api_routes.cc
 void ListRoutes(Exchange& x);
 void GetRoute(Exchange& x);

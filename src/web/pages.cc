@@ -1,17 +1,31 @@
 #include "web/pages.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <set>
 
 #include "app/discipline.h"
+#include "app/routes.h"
 #include "base/text.h"
+#include "plan/colour.h"
 #include "plan/qr.h"
 #include "crdl/route.h"
 #include "base/number.h"
 
 namespace sb::web {
+
+std::string ColourHtml(const std::string& colour) {
+  if (Trim(colour).empty()) return "";
+  std::optional<plan::Rgb> c = plan::ColourSwatch(colour);
+  const std::string label = XmlEscape(plan::ColourLabel(colour));
+  if (!c) return "<span class=\"colour\">" + label + "</span>";
+  auto b = [](double v) { return std::to_string(static_cast<int>(std::lround(v * 255))); };
+  return "<span class=\"colour\"><span class=\"swatch\" style=\"background:rgb(" + b(c->r) + "," +
+         b(c->g) + "," + b(c->b) + ")\"></span>" + label + "</span>";
+}
+
 
 namespace {
 
@@ -59,8 +73,8 @@ std::string Layout(const PageViewer& v, const std::string& title, const std::str
   if (setter) h += "<a href=\"/import\" id=\"nav-import\">Import/export</a>\n";
   h += "</nav>\n<div class=\"who\">";
   if (v.logged_in) {
-    h += "<span id=\"whoami\">" + E(v.username) +
-         "</span> <button type=\"button\" id=\"logout\" class=\"link\">Log out</button>";
+    h += "<a id=\"whoami\" href=\"/account\">" + E(v.username) +
+         "</a> <button type=\"button\" id=\"logout\" class=\"link\">Log out</button>";
   } else {
     h += "<a href=\"/login\" id=\"nav-login\">Log in</a> <a href=\"/signup\" "
          "id=\"nav-signup\">Sign up</a>";
@@ -93,6 +107,7 @@ std::string RouteRows(const std::vector<app::RouteView>& routes) {
 }
 
 std::string MovesTable(const Route& route, const std::vector<std::string>& readings) {
+  if (route.moves.empty()) return "";  // issue 32: said by the route page's note
   bool show = !readings.empty();
   std::string h = "<table class=\"moves\"><thead><tr><th>#</th><th>Hand</th><th>Move</th>" +
                   std::string(show ? "<th>How it reads</th>" : "") +
@@ -126,7 +141,9 @@ std::string Meta(const Route& route) {
   std::string h;
   for (const HeaderLine& l : route.header) {
     if (l.key.empty() || ToLower(l.key) == "name") continue;
-    h += "<dt>" + E(l.key) + "</dt><dd>" + E(l.value) + "</dd>";
+    const std::string key = ToLower(l.key);
+    h += "<dt>" + E(l.key) + "</dt><dd>" +
+         (key == "colour" || key == "color" ? ColourHtml(l.value) : E(l.value)) + "</dd>";
   }
   return h.empty() ? "" : "<dl class=\"meta\">" + h + "</dl>\n";
 }
@@ -326,8 +343,17 @@ std::string RoutePage(const PageViewer& v, const app::RouteView& r, bool can_cha
     b += "<p class=\"error\">" + E(parsed.status().message()) + "</p><pre>" + E(r.crdl) + "</pre>";
   }
   std::string id = std::to_string(r.id);
-  b += "<p class=\"actions no-print\"><a class=\"button\" id=\"vary-this\" href=\"/vary?routes=" +
-       id + "\">Vary this route</a> <a href=\"/api/routes/" + id +
+  // Issue 32: a route without moves is a route all the same; what needs
+  // moves says so here instead of failing later.
+  const bool no_moves = parsed.ok() && parsed->moves.empty();
+  if (no_moves) {
+    b += "<p class=\"note\" id=\"no-moves\">" + E(app::kNoMovesMessage) + "</p>\n";
+  }
+  b += "<p class=\"actions no-print\">" +
+       std::string(no_moves ? ""
+                            : "<a class=\"button\" id=\"vary-this\" href=\"/vary?routes=" + id +
+                                  "\">Vary this route</a> ") +
+       "<a href=\"/api/routes/" + id +
        ".crdl\" download>Download CRDL</a> <a class=\"button\" id=\"tag-link\" href=\"/routes/" +
        id + "/tag\">Tag</a>";
   if (can_change) {

@@ -65,6 +65,10 @@ std::string ImportPage(const PageViewer& v);
 // files (climber_pages.cc).
 std::string PageLayout(const PageViewer& v, const std::string& title, const std::string& body,
                        const std::string& page_class = "");
+// A colour as pages show it (issue 32): a swatch and its name
+// (plan::ColourLabel), escaped; a colour no table knows is its name only
+// (no empty box); "" for "".
+std::string ColourHtml(const std::string& colour);
 // An error page for `status` with a message (escaped).
 std::string ErrorPage(const PageViewer& v, int status, const std::string& message);
 

@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "base/text.h"
+#include "plan/colour.h"
 #include "plan/qr.h"
 
 namespace sb::web {
@@ -30,8 +31,10 @@ std::string TagPage(const PageViewer& v, int64_t id, const plan::TagInfo& tag) {
   if (!tag.name.empty()) b += "<h1 class=\"tag-name\">" + E(tag.name) + "</h1>\n";
   if (!tag.grade.empty()) b += "<p class=\"tag-grade\">" + E(tag.grade) + "</p>\n";
   if (!tag.colour.empty()) {
-    b += "<p class=\"tag-colour\"><span class=\"swatch\"" + fill + "></span>" + E(tag.colour) +
-         "</p>\n";
+    // Issue 32: a swatch only for a colour the table knows, and its name.
+    b += "<p class=\"tag-colour\">" +
+         (colour.empty() ? std::string() : "<span class=\"swatch\"" + fill + "></span>") +
+         E(plan::ColourLabel(tag.colour)) + "</p>\n";
   }
   for (const std::string& line : plan::TagLines(tag)) {
     b += "<p class=\"tag-line\">" + E(line) + "</p>\n";

@@ -1,0 +1,142 @@
+// Issue 32: the account (GET/PUT/DELETE /api/account, one's own data as
+// files) and its page /account. docs/web.md ("The account page").
+#include "base/text.h"
+#include "web/handlers.h"
+#include "web/pages.h"
+
+namespace sb::web {
+
+using nlohmann::json;
+
+namespace {
+
+std::string E(std::string_view s) { return XmlEscape(s); }
+
+json ProfileJson(const app::Profile& p) {
+  return json{{"id", p.user_id},
+              {"username", p.username},
+              {"display_name", p.display_name},
+              {"shown_name", p.shown()},
+              {"language", p.language}};
+}
+
+// An optional string field: absent -> nullopt; null -> "".
+Result<std::optional<std::string>> OptionalString(const json& body, const char* field) {
+  if (!body.contains(field)) return std::optional<std::string>();
+  if (body[field].is_null()) return std::optional<std::string>(std::string());
+  SB_ASSIGN_OR_RETURN(std::string v, StringField(body, field));
+  return std::optional<std::string>(std::string(Trim(v)));
+}
+
+}  // namespace
+
+void GetAccount(Exchange& x) {
+  Result<app::Profile> p = x.services.profiles.Get(x.caller.viewer);
+  if (!p.ok()) return ApiError(x, p.status());
+  ReplyJson(x.res, 200, ProfileJson(*p));
+}
+
+void PutAccount(Exchange& x) {
+  if (!x.caller.viewer.logged_in()) return ApiError(x, Status::Unauthenticated("log in first"));
+  Result<json> body = BodyObject(x.req);
+  if (!body.ok()) return ApiError(x, body.status());
+  app::AccountEdit edit;
+  for (auto [field, out] : {std::pair<const char*, std::optional<std::string>*>{
+                                "display_name", &edit.display_name},
+                            {"language", &edit.language}}) {
+    Result<std::optional<std::string>> v = OptionalString(*body, field);
+    if (!v.ok()) return ApiError(x, v.status());
+    *out = *v;
+  }
+  if (body->contains("password")) {
+    Result<std::string> pw = StringField(*body, "password");
+    if (!pw.ok()) return ApiError(x, pw.status());
+    edit.password = *pw;
+    Result<std::string> cur = StringField(*body, "current_password");
+    if (!cur.ok()) return ApiError(x, cur.status());
+    edit.current_password = *cur;
+  }
+  if (Status s = x.services.profiles.Update(x.caller.viewer, edit, x.caller.session_token);
+      !s.ok()) {
+    return ApiError(x, s);
+  }
+  Result<app::Profile> p = x.services.profiles.Get(x.caller.viewer);
+  if (!p.ok()) return ApiError(x, p.status());
+  ReplyJson(x.res, 200, ProfileJson(*p));
+}
+
+void DeleteAccount(Exchange& x) {
+  if (!x.caller.viewer.logged_in()) return ApiError(x, Status::Unauthenticated("log in first"));
+  Result<json> body = BodyObject(x.req);
+  if (!body.ok()) return ApiError(x, body.status());
+  Result<std::string> pw = StringField(*body, "password");
+  if (!pw.ok()) return ApiError(x, pw.status());
+  if (Status s = x.services.profiles.Delete(x.caller.viewer, *pw); !s.ok()) return ApiError(x, s);
+  x.res.SetHeader("Set-Cookie", std::string(kSessionCookie) +
+                                    "=; Path=/; HttpOnly; SameSite=Lax; Max-Age=0");
+  x.res.status = 204;
+}
+
+void GetAccountTicksCsv(Exchange& x) {
+  Result<std::string> csv = x.services.profiles.TicksCsv(x.caller.viewer, x.services.logbook);
+  if (!csv.ok()) return ApiError(x, csv.status());
+  x.res.SetHeader("Content-Disposition", "attachment; filename=\"ticks.csv\"");
+  x.res.SetBody(200, *csv, "text/csv; charset=utf-8");
+}
+
+void GetAccountRoutesTar(Exchange& x) {
+  Result<std::string> tar = x.services.profiles.RoutesTar(x.caller.viewer);
+  if (!tar.ok()) return ApiError(x, tar.status());
+  x.res.SetHeader("Content-Disposition", "attachment; filename=\"routes.tar\"");
+  x.res.SetBody(200, *tar, "application/x-tar");
+}
+
+void PageAccount(Exchange& x) {
+  Result<app::Profile> p = x.services.profiles.Get(x.caller.viewer);
+  if (!p.ok()) return PageError(x, p.status());
+  auto lang = [&](const char* code, const char* name) {
+    return std::string("<option value=\"") + code + "\"" +
+           (p->language == code ? " selected" : "") + ">" + name + "</option>";
+  };
+  auto form = [](const std::string& id, const std::string& api, const std::string& fields,
+                 const std::string& submit, const std::string& next = "") {
+    return "<form class=\"gym-form\" id=\"" + id + "\" data-api=\"" + api + "\"" +
+           (next.empty() ? "" : " data-next=\"" + next + "\"") + ">" + fields +
+           "<button type=\"submit\">" + submit +
+           "</button><p class=\"msg\" role=\"status\"></p></form>\n";
+  };
+  std::string b = "<h1>Your account</h1>\n";
+  b += "<p>Log-in name: <strong id=\"account-username\">" + E(p->username) +
+       "</strong> (it stays as it is).</p>\n";
+  b += "<h2>Name and language</h2>\n";
+  b += form("account-profile", "PUT /api/account",
+            "<label>Display name <input name=\"display_name\" id=\"display-name\" maxlength=\"80\" "
+            "value=\"" + E(p->display_name) + "\" placeholder=\"" + E(p->username) +
+                "\"></label> <label>Language <select name=\"language\" id=\"language\">" +
+                lang("", "the browser's") + lang("en", "English") + lang("de", "Deutsch") +
+                lang("fr", "Français") + "</select></label> ",
+            "Save");
+  b += "<h2>Password</h2>\n<p>Changing it ends your other sessions (other browsers and "
+       "phones log in again).</p>\n";
+  b += form("account-password", "PUT /api/account",
+            "<label>Current password <input type=\"password\" name=\"current_password\" "
+            "id=\"current-password\" autocomplete=\"current-password\" required></label> "
+            "<label>New password <input type=\"password\" name=\"password\" id=\"new-password\" "
+            "autocomplete=\"new-password\" minlength=\"8\" required></label> ",
+            "Change password");
+  b += "<h2>Your data</h2>\n<ul id=\"account-data\"><li><a href=\"/api/account/ticks.csv\" "
+       "id=\"download-ticks\" download>Logbook and ticks (CSV)</a></li><li><a "
+       "href=\"/api/account/routes.tar\" id=\"download-routes\" download>Your routes (CRDL files, "
+       "tar)</a></li></ul>\n";
+  b += "<h2>Delete the account</h2>\n<p>Your routes stay in their gyms without your name; your "
+       "ticks stay, anonymous, so the ascent grades do not change; your sessions, memberships "
+       "and studies are deleted.</p>\n";
+  b += form("account-delete", "DELETE /api/account",
+            "<label>Password <input type=\"password\" name=\"password\" id=\"delete-password\" "
+            "autocomplete=\"current-password\" required></label> ",
+            "Delete my account", "/");
+  b += "<script src=\"/static/gyms.js\" defer></script>\n";
+  x.res.SetBody(200, PageLayout(x.caller.page(), "Account", b), "text/html; charset=utf-8");
+}
+
+}  // namespace sb::web

@@ -1,0 +1,57 @@
+// Issue 32: a gym's own grade scales, POST/GET /api/gyms/{gym}/scales
+// (docs/web.md, "A gym's own grade scale"). A wall's "scale" is read and
+// written with the wall (api_gyms.cc).
+#include "web/handlers.h"
+
+namespace sb::web {
+
+using nlohmann::json;
+
+void PostGymScale(Exchange& x) {
+  Result<int64_t> gym = PathId(x.req, "no such gym");
+  if (!gym.ok()) return ApiError(x, gym.status());
+  Result<json> body = BodyObject(x.req);
+  if (!body.ok()) return ApiError(x, body.status());
+  Result<std::string> name = StringField(*body, "name");
+  if (!name.ok()) return ApiError(x, name.status());
+  if (!body->contains("labels") || !(*body)["labels"].is_array()) {
+    return ApiError(x, Status::InvalidInput("labels: expected an array of {\"label\",\"from\",\"to\"}"));
+  }
+  std::vector<grades::LabelSpec> labels;
+  const json& arr = (*body)["labels"];
+  for (size_t i = 0; i < arr.size(); ++i) {
+    const std::string at = "labels[" + std::to_string(i) + "]";
+    if (!arr[i].is_object()) return ApiError(x, Status::InvalidInput(at + ": expected an object"));
+    grades::LabelSpec l;
+    for (auto [field, out] : {std::pair<const char*, std::string*>{"label", &l.label},
+                              {"from", &l.from},
+                              {"to", &l.to}}) {
+      Result<std::string> v = StringField(arr[i], field);
+      if (!v.ok()) return ApiError(x, v.status().WithPrefix(at));
+      *out = *v;
+    }
+    labels.push_back(std::move(l));
+  }
+  Result<int64_t> id = x.services.scales.Add(x.caller.viewer, *gym, *name, labels);
+  if (!id.ok()) return ApiError(x, id.status());
+  ReplyJson(x.res, 201, json{{"id", *id}});
+}
+
+void ListGymScales(Exchange& x) {
+  Result<int64_t> gym = PathId(x.req, "no such gym");
+  if (!gym.ok()) return ApiError(x, gym.status());
+  Result<std::vector<app::GymScaleView>> all = x.services.scales.List(x.caller.viewer, *gym);
+  if (!all.ok()) return ApiError(x, all.status());
+  json arr = json::array();
+  for (const app::GymScaleView& s : *all) {
+    json labels = json::array();
+    for (const grades::LabelSpec& l : s.labels) {
+      labels.push_back({{"label", l.label}, {"from", l.from}, {"to", l.to}});
+    }
+    arr.push_back({{"id", s.id}, {"name", s.name}, {"discipline", s.discipline}, {"labels", labels}});
+  }
+  json builtin = json::array({"V", "Font", "YDS", "French", "UIAA"});
+  ReplyJson(x.res, 200, json{{"scales", arr}, {"builtin", builtin}});
+}
+
+}  // namespace sb::web
