@@ -514,13 +514,15 @@ def big_route(port, auth, moves=1000):
     """The largest route the limits allow, and a variation of it; returns their ids."""
     crdl = 'name: Longest\n---\n' + ''.join('%s move %d crimp to jug\n' % ('RL'[i % 2], i)
                                              for i in range(moves))
-    st, _, body = request(port, 'POST', '/api/routes', json.dumps({'crdl': crdl}).encode(), auth,
-                          timeout=30)
+    # In the shared library (issue 31: a gym's routes are unpublished by default), so
+    # anonymous floods reach them.
+    st, _, body = request(port, 'POST', '/api/routes',
+                          json.dumps({'crdl': crdl, 'library': True}).encode(), auth, timeout=30)
     check(st == 201, 'a %d-move route (the limit) is accepted: %s' % (moves, st))
     rid = json.loads(body)['id']
     st, _, body = request(port, 'POST', '/api/variations',
-                          json.dumps({'routes': [rid], 'name': 'Long variation'}).encode(), auth,
-                          timeout=60)
+                          json.dumps({'routes': [rid], 'name': 'Long variation',
+                                      'library': True}).encode(), auth, timeout=60)
     check(st in (200, 201), 'a variation of it: %s %s' % (st, body[:80]))
     return rid, json.loads(body)['id']
 
@@ -674,9 +676,11 @@ def first_start(build, source, tmp):
 def repeated_variation(port, auth):
     """A public variation named PubVar after a private one named PubInputPrivVar of the same
     route is a new variation, not the private one."""
-    st, _, body = request(port, 'GET', '/api/routes?limit=1&variations=0',
-                          headers={'Cookie': auth['Cookie']})
-    rid = json.loads(body)['routes'][0]['id']
+    # A route in the shared library (issue 31), so a public variation of it may be.
+    st, _, body = request(port, 'POST', '/api/routes', json.dumps(
+        {'crdl': 'name: Repeated input\n---\nR jug\nL crimp\nR sloper\nL pinch\n',
+         'library': True}).encode(), auth)
+    rid = json.loads(body)['id']
     def make(name, pub):
         st, _, body = request(port, 'POST', '/api/variations', json.dumps(
             {'routes': [rid], 'name': name, 'public': pub}).encode(), auth, timeout=30)

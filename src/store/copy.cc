@@ -78,10 +78,15 @@ const std::vector<std::string>& AddedColumns(const std::string& table) {
   // Schema 14 (issue 31): the revisions.
   static const std::vector<std::string> kRevision = {"revision"};
   static const std::vector<std::string> kRevisions = {"revision", "targets_revision"};
+  // Schema 16 and 17 (issue 32): the account's profile; the wall's scale.
+  static const std::vector<std::string> kUsers = {"display_name", "language"};
+  static const std::vector<std::string> kWalls = {"revision", "targets_revision", "scale"};
   static const std::vector<std::string> kNone;
   if (table == "routes") return kRoutes;
   if (table == "studies") return kStudies;
-  if (table == "gyms" || table == "walls") return kRevisions;
+  if (table == "users") return kUsers;
+  if (table == "walls") return kWalls;
+  if (table == "gyms") return kRevisions;
   if (table == "circuits") return kRevision;
   return kNone;
 }

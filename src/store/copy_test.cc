@@ -1,5 +1,6 @@
 #include "store/copy.h"
 #include "store/gym_store.h"
+#include "store/scale_store.h"
 #include "store/target_store.h"
 #include "store/tick_store.h"
 
@@ -109,6 +110,12 @@ void Fill(Store& s) {
           .ok());
   // The gym's history (schema 14).
   ASSERT_TRUE(GymStoreOf(&s)->AddGymHistory(gym, std::nullopt, "wall Cave added").ok());
+  // A gym's own grade scale (schema 17).
+  ScaleRecord scale;
+  scale.gym_id = gym;
+  scale.name = "Hall";
+  scale.labels = "1\tV0\tV2\n2\tV2\tV4";
+  ASSERT_TRUE(ScaleStoreOf(&s)->InsertScale(scale).ok());
   // The gym's targets per discipline (schema 12).
   ASSERT_TRUE(targets->SetDisciplineTargets(gym, "bouldering", {{0, "", "grade", "V4", 3}}).ok());
 }

@@ -284,7 +284,8 @@ TEST_P(GymStoreTest, AVersionFiveDatabaseWithFreeTextWallsMigratesLosingNothing)
       "SELECT id, owner_id, name, grade, setter, crdl, move_count, is_public, is_variation, "
       "params_json, plan_json, created_at, updated_at, smooth, colour, wall, set_on, "
       "grade_discipline, grade_value, meta_version, request_key FROM routes ORDER BY id";
-  const std::string kOldUsers = "SELECT * FROM users ORDER BY id";
+  const std::string kOldUsers =
+      "SELECT id, username, password_hash, created_at FROM users ORDER BY id";
   const std::string kOldStudies =
       "SELECT id, owner_id, name, instrument_json, created_at FROM studies ORDER BY id";
   std::vector<std::vector<std::optional<std::string>>> routes, users, studies;
