@@ -93,7 +93,8 @@ Result<std::string> WithStylesOf(const json& body, std::string crdl) {
   const json& s = body["styles"];
   std::vector<std::string> styles;
   if (s.is_string()) {
-    for (std::string_view part : Split(s.get<std::string>(), ',')) {
+    const std::string text = s.get<std::string>();  // outlives the views Split returns
+    for (std::string_view part : Split(text, ',')) {
       if (!Trim(part).empty()) styles.emplace_back(Trim(part));
     }
   } else if (s.is_array()) {

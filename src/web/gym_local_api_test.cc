@@ -284,7 +284,8 @@ TEST_F(GymLocalApiTest, AGymsOwnScaleReadsGradesAndTargets) {
                                  R"({"name":"Turm","discipline":"roped","scale":"UIAA"})", 201)["id"];
   const int64_t empty_roped =
       head.Json("POST", gp + "/walls", R"({"name":"Leer","discipline":"roped"})", 201)["id"];
-  for (const json& w : head.Json("GET", gp + "/walls", "", 200)["walls"]) {
+  const json listed = head.Json("GET", gp + "/walls", "", 200);
+  for (const json& w : listed["walls"]) {
     if (w["id"] == sektor) EXPECT_EQ(w["scale"], "Halle 1-6");
     if (w["id"] == turm) EXPECT_EQ(w["scale"], "UIAA");
     if (w["id"] == empty_roped) EXPECT_EQ(w["scale"], "");
