@@ -9,6 +9,7 @@
 //   strangebeta ratings synth --climbers N --routes M --ticks-per-route K --seed S --out DIR
 //   strangebeta ratings eval [--climbers N] [--routes M] [--ticks-per-route 20,5,2] [--seed S]
 //                            [--format text|json] [--intervals ...]
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -18,12 +19,14 @@
 #include <vector>
 
 #include "base/csv.h"
+#include "base/date.h"
 #include "base/files.h"
 #include "base/number.h"
 #include "base/text.h"
 #include "cli/cli_util.h"
 #include "cli/commands.h"
 #include "grades/ratings.h"
+#include "grades/ratings_drift.h"
 #include "grades/ratings_io.h"
 #include "grades/ratings_real.h"
 #include "grades/ratings_synth.h"
@@ -63,6 +66,9 @@ struct FitArgs {
   std::string ticks, routes, format = "text", intervals = "auto", out, model = "tries";
   bool skip_bad = false, dedupe = false;
   int threads = 1;  // 0: the machine's cores
+  // Abilities that drift (ratings_drift.h): on, off, auto (on past a season).
+  std::string drift = "auto", interval_shape = "symmetric";
+  double drift_sd = 0;  // w (grades per sqrt(year)); 0: estimated
 };
 
 // The input read and fitted (shared by fit and predict).
@@ -70,6 +76,11 @@ struct Fitted {
   grades::RatingsInput in;
   grades::RatingParams params;
   grades::RatingFit fit;
+  grades::DriftMode drift_mode = grades::DriftMode::kOff;
+  bool drift = false;  // a drifting fit (then `dfit` and `first_day`, `last_day`)
+  grades::DriftFit dfit;
+  int first_day = 0, last_day = 0;
+  std::vector<grades::Interval> skewed;  // --interval-shape skewed: per route
 };
 
 // Reads TICKS.csv (and ROUTES.csv), reports bad rows and notes on stderr,
@@ -79,6 +90,15 @@ std::variant<int, Fitted> LoadAndFit(const FitArgs& a) {
   if (!method.ok()) return Fail(kCmd, method.status());
   auto model = grades::ParseRatingModel(a.model, "--model");
   if (!model.ok()) return Fail(kCmd, model.status());
+  auto drift_mode = grades::ParseDriftMode(a.drift, "--drift");
+  if (!drift_mode.ok()) return Fail(kCmd, drift_mode.status());
+  if (a.interval_shape != "symmetric" && a.interval_shape != "skewed") {
+    return Fail(kCmd, Status::InvalidInput("--interval-shape: expected symmetric or skewed, got '" +
+                                           a.interval_shape + "'"));
+  }
+  if (!(a.drift_sd >= 0) || !std::isfinite(a.drift_sd)) {
+    return Fail(kCmd, Status::InvalidInput("--drift-sd: expected a number >= 0 (0: estimated)"));
+  }
   auto ticks = ReadFile(a.ticks);
   if (!ticks.ok()) return Fail(kCmd, ticks.status());
   std::optional<std::string> routes;
@@ -90,6 +110,7 @@ std::variant<int, Fitted> LoadAndFit(const FitArgs& a) {
   grades::RatingsReadOptions ro;
   ro.dedupe = a.dedupe;
   ro.model = *model;
+  ro.keep_dates = *drift_mode != grades::DriftMode::kOff;
   auto in = grades::ReadRatingsInput(
       *ticks, a.ticks, routes ? std::optional<std::string_view>(*routes) : std::nullopt, a.routes,
       ro);
@@ -126,17 +147,62 @@ std::variant<int, Fitted> LoadAndFit(const FitArgs& a) {
   grades::RatingFitOptions opt;
   opt.intervals = *method;
   opt.threads = a.threads;
-  auto fit = grades::FitRatings(in->problem, out.params, opt);
-  if (!fit.ok()) return Fail(kCmd, fit.status());
+  out.drift_mode = *drift_mode;
+  out.first_day = in->first_day;
+  out.last_day = in->last_day;
+  std::vector<grades::RatingPair> pairs;
+  std::vector<double> ability_of_pair;
+  if (grades::DriftApplies(*drift_mode, in->first_day, in->last_day)) {
+    auto dp = grades::BuildDriftProblem(in->problem, in->dated);
+    if (!dp.ok()) return Fail(kCmd, dp.status());
+    grades::DriftOptions dopt;
+    if (a.drift_sd > 0) dopt.sd = a.drift_sd;
+    auto dfit = grades::FitDriftRatings(*dp, out.params, dopt, opt);
+    if (!dfit.ok()) return Fail(kCmd, dfit.status());
+    out.drift = true;
+    out.fit = dfit->fit;
+    out.dfit = std::move(dfit).value();
+    if (a.interval_shape == "skewed") {
+      pairs = dp->pairs;
+      for (const auto& q : pairs) ability_of_pair.push_back(out.dfit.node_value[size_t(q.climber)]);
+    }
+  } else {
+    auto fit = grades::FitRatings(in->problem, out.params, opt);
+    if (!fit.ok()) return Fail(kCmd, fit.status());
+    out.fit = std::move(fit).value();
+    if (a.interval_shape == "skewed") {
+      pairs = in->problem.pairs;
+      for (const auto& q : pairs) ability_of_pair.push_back(out.fit.ability[size_t(q.climber)]);
+    }
+  }
+  in->dated.clear();
+  in->dated.shrink_to_fit();
+  if (a.interval_shape == "skewed") {
+    out.skewed =
+        grades::SkewedRouteIntervals(in->problem, pairs, ability_of_pair, out.params, out.fit);
+  }
   out.in = std::move(in).value();
-  out.fit = std::move(fit).value();
   return out;
 }
 
 // The settings that let a saved fit predict: "discipline", "scale",
 // "model", "k", the priors, the session offset and length, "drift".
+std::string DateOfDay(int day) { return UtcDateText(int64_t(day) * 86400); }
+
 std::string ModelJson(const grades::RatingsInput& in, const grades::RatingParams& k,
-                      const grades::RatingFit& fit) {
+                      const grades::RatingFit& fit, const Fitted* f = nullptr) {
+  // A static fit keeps the "drift":false of before (bit-identical output);
+  // a drifting one records its settings.
+  std::string drift = ",\"drift\":false";
+  if (f != nullptr && f->drift) {
+    drift = ",\"drift\":true,\"drift_mode\":" + JsonString(grades::DriftModeName(f->drift_mode)) +
+            ",\"drift_sd\":" + Fmt(f->dfit.drift_sd) +
+            ",\"drift_sd_estimated\":" + (f->dfit.drift_sd_estimated ? "true" : "false") +
+            ",\"season_days\":" + std::to_string(grades::kSeasonDays) +
+            ",\"node_days\":" + std::to_string(grades::kDriftNodeDays) +
+            ",\"first_date\":" + JsonString(DateOfDay(f->first_day)) +
+            ",\"last_date\":" + JsonString(DateOfDay(f->last_day));
+  }
   return std::string("\"discipline\":") + JsonString(grades::DisciplineName(in.discipline)) +
          ",\"scale\":" + JsonString(grades::ScaleName(in.scale)) +
          ",\"model\":" + JsonString(grades::RatingModelName(fit.model)) +
@@ -144,7 +210,7 @@ std::string ModelJson(const grades::RatingsInput& in, const grades::RatingParams
          ",\"climber_sd\":" + Fmt(k.climber_sd) + ",\"setter_sd\":" + Fmt(k.setter_sd) +
          ",\"open_route_sd\":" + Fmt(k.open_route_sd) + ",\"felt_sd\":" + Fmt(k.felt_sd) +
          ",\"session_offset\":" + Fmt(fit.session_offset) +
-         ",\"session_tries\":" + Fmt(fit.session_tries) + ",\"drift\":false";
+         ",\"session_tries\":" + Fmt(fit.session_tries) + drift;
 }
 
 int Fit(const FitArgs& a) {
@@ -160,12 +226,14 @@ int Fit(const FitArgs& a) {
   };
   std::string o;
   if (a.format == "json") {
-    o = "{" + ModelJson(*in, f.params, *fit) + ",\"routes\":[";
+    o = "{" + ModelJson(*in, f.params, *fit, &f) + ",\"routes\":[";
     for (size_t r = 0; r < in->routes.size(); ++r) {
       const double v = fit->difficulty[r], sd = fit->difficulty_sd[r];
+      const double lo = f.skewed.empty() ? v - grades::kZ80 * sd : f.skewed[r].lo;
+      const double hi = f.skewed.empty() ? v + grades::kZ80 * sd : f.skewed[r].hi;
       o += std::string(r ? "," : "") + "{\"route\":" + JsonString(in->routes[r]) +
            ",\"grade\":" + JsonString(grade_of(r, v)) + ",\"value\":" + Fmt(v) +
-           ",\"lo\":" + Fmt(v - grades::kZ80 * sd) + ",\"hi\":" + Fmt(v + grades::kZ80 * sd) +
+           ",\"lo\":" + Fmt(lo) + ",\"hi\":" + Fmt(hi) +
            ",\"n\":" + std::to_string(in->problem.route_ticks[r]) + "}";
     }
     o += "],\"climbers\":[";
@@ -174,7 +242,11 @@ int Fit(const FitArgs& a) {
       o += std::string(c ? "," : "") + "{\"climber\":" + JsonString(in->climbers[c]) +
            ",\"ability\":" + Fmt(v) + ",\"lo\":" + Fmt(v - grades::kZ80 * sd) +
            ",\"hi\":" + Fmt(v + grades::kZ80 * sd) +
-           ",\"n\":" + std::to_string(in->problem.climber_ticks[c]) + "}";
+           ",\"n\":" + std::to_string(in->problem.climber_ticks[c]) +
+           (f.drift ? ",\"sd\":" + Fmt(sd) + ",\"as_of\":" +
+                          JsonString(DateOfDay(int(f.dfit.latest_day[c])))
+                    : std::string()) +
+           "}";
     }
     o += "]}\n";
   } else {
@@ -184,14 +256,20 @@ int Fit(const FitArgs& a) {
         " climbers, " + std::to_string(ticks_n) + " ticks; " + grades::DisciplineName(d) +
         " (values on the " + (d == grades::Discipline::kBouldering ? "V" : "YDS") +
         " axis); 80% intervals (" + (fit->exact_intervals ? "exact" : "approximate") +
-        " Laplace)\n";
+        " Laplace" + (f.skewed.empty() ? "" : ", skewed to the evidence") + ")" +
+        (f.drift ? "; abilities drift (w = " + Fixed(f.dfit.drift_sd) + " grades per sqrt(year)" +
+                       (f.dfit.drift_sd_estimated ? ", estimated" : "") +
+                       "): each climber's latest"
+                 : std::string()) +
+        "\n";
     char line[512];
     std::snprintf(line, sizeof line, "%-20s %-9s %7s %16s %-17s %6s  %s\n", "route", "grade",
                   "value", "80% interval", "", "ticks", "setter");
     o += line;
     for (size_t r = 0; r < in->routes.size(); ++r) {
       const double v = fit->difficulty[r], sd = fit->difficulty_sd[r];
-      const double lo = v - grades::kZ80 * sd, hi = v + grades::kZ80 * sd;
+      const double lo = f.skewed.empty() ? v - grades::kZ80 * sd : f.skewed[r].lo;
+      const double hi = f.skewed.empty() ? v + grades::kZ80 * sd : f.skewed[r].hi;
       std::snprintf(line, sizeof line, "%-20s %-9s %7s %7s .. %-6s %-17s %6d  %s\n",
                     in->routes[r].c_str(), grade_of(r, v).c_str(), Fixed(v).c_str(),
                     Fixed(lo).c_str(), Fixed(hi).c_str(),
@@ -226,6 +304,9 @@ struct Predictor {
   grades::RatingModel model = grades::RatingModel::kTries;
   double prior_mean = 0, session_offset = 0, session_tries = 0;
   std::unordered_map<std::string, double> ability, difficulty;
+  // A drifting fit: each climber's latest ability's sd (the prediction
+  // averages over it); empty for a static fit.
+  std::unordered_map<std::string, double> ability_sd;
 };
 
 Result<Predictor> PredictorFromJson(const std::string& path) {
@@ -277,6 +358,9 @@ Result<Predictor> PredictorFromJson(const std::string& path) {
   };
   SB_RETURN_IF_ERROR(list("routes", "route", "value", &p.difficulty));
   SB_RETURN_IF_ERROR(list("climbers", "climber", "ability", &p.ability));
+  if (j.contains("drift") && j["drift"].is_boolean() && j["drift"].get<bool>()) {
+    SB_RETURN_IF_ERROR(list("climbers", "climber", "sd", &p.ability_sd));
+  }
   return p;
 }
 
@@ -334,6 +418,10 @@ int Predict(const PredictArgs& a) {
       p.difficulty.emplace(f.in.routes[r], f.fit.difficulty[r]);
     for (size_t c = 0; c < f.in.climbers.size(); ++c)
       p.ability.emplace(f.in.climbers[c], f.fit.ability[c]);
+    if (f.drift) {
+      for (size_t c = 0; c < f.in.climbers.size(); ++c)
+        p.ability_sd.emplace(f.in.climbers[c], f.fit.ability_sd[c]);
+    }
   }
   std::string o = a.format == "csv" ? "climber,route,p_flash,p_send\n"
                                     : "{\"model\":" + JsonString(grades::RatingModelName(p.model)) +
@@ -357,8 +445,13 @@ int Predict(const PredictArgs& a) {
     const auto di = p.difficulty.find(route);
     const double ability = ai != p.ability.end() ? ai->second : p.prior_mean;
     const double difficulty = di != p.difficulty.end() ? di->second : p.prior_mean;
-    const grades::SendChances s = grades::PredictSend(p.params, p.model, p.session_offset,
-                                                      p.session_tries, ability, difficulty);
+    const auto si = p.ability_sd.find(climber);
+    const grades::SendChances s =
+        si == p.ability_sd.end()
+            ? grades::PredictSend(p.params, p.model, p.session_offset, p.session_tries, ability,
+                                  difficulty)
+            : grades::PredictSendUncertain(p.params, p.model, p.session_offset, p.session_tries,
+                                           ability, si->second, difficulty);
     if (a.format == "csv") {
       o += FormatCsvRow({climber, route, Fmt(s.p_flash), Fmt(s.p_send)});
     } else {
@@ -374,8 +467,15 @@ int Predict(const PredictArgs& a) {
   return WriteOutput(kCmd, a.out, o);
 }
 
-int Synth(const grades::SynthGymParams& sp, const std::string& out) {
-  auto gym = grades::MakeSynthGym(sp);
+int Synth(const grades::SynthGymParams& sp, const std::string& out, bool drifting) {
+  Result<grades::SynthGym> gym = Status::Internal("unset");
+  if (drifting) {
+    auto dg = grades::MakeDriftingGym(sp);
+    if (!dg.ok()) return Fail(kCmd, dg.status());
+    gym = std::move(dg->gym);
+  } else {
+    gym = grades::MakeSynthGym(sp);
+  }
   if (!gym.ok()) return Fail(kCmd, gym.status());
   std::error_code ec;
   std::filesystem::create_directories(out, ec);
@@ -392,8 +492,81 @@ int Synth(const grades::SynthGymParams& sp, const std::string& out) {
   return 0;
 }
 
+// The drifting gym, or a drifting fit / skewed intervals on either gym:
+// the route figures with the skewed intervals' and the climbers' latest
+// abilities' (EvaluateDriftingGym).
+int EvalDrift(grades::SynthGymParams sp, const std::vector<int>& ks, const std::string& format,
+              grades::RatingFitOptions opt, grades::RatingModel model, bool drifting,
+              bool drift, double drift_sd) {
+  const grades::RatingParams params = grades::RatingParams::For(grades::Discipline::kBouldering);
+  std::string o;
+  if (format == "text") {
+    o = std::string(drifting ? "drifting" : "static") + " synthetic gyms: " +
+        std::to_string(sp.routes) + " routes, " + std::to_string(sp.climbers) +
+        " climbers, seed " + std::to_string(sp.seed) + "; fit with drift " +
+        (drift ? "on" : "off") + " (docs/grades.md, \"Abilities that drift\")\n";
+    char line[256];
+    std::snprintf(line, sizeof line, "%-11s %8s %9s %7s %8s %8s %9s %9s %8s %6s\n",
+                  "ticks/route", "spearman", "coverage", "mae", "width", "skewed", "sk-width",
+                  "clb-mae", "clb-cov", "w");
+    o += line;
+  } else {
+    o = "{\"climbers\":" + std::to_string(sp.climbers) +
+        ",\"routes\":" + std::to_string(sp.routes) + ",\"seed\":" + std::to_string(sp.seed) +
+        ",\"drifting\":" + (drifting ? "true" : "false") + ",\"drift\":" +
+        (drift ? "true" : "false") + ",\"results\":[";
+  }
+  grades::DriftOptions dopt;
+  if (drift_sd > 0) dopt.sd = drift_sd;
+  for (size_t i = 0; i < ks.size(); ++i) {
+    sp.ticks_per_route = ks[i];
+    grades::DriftingGym dg;
+    if (drifting) {
+      auto g = grades::MakeDriftingGym(sp);
+      if (!g.ok()) return Fail(kCmd, g.status());
+      dg = std::move(g).value();
+    } else {
+      auto g = grades::MakeSynthGym(sp);
+      if (!g.ok()) return Fail(kCmd, g.status());
+      dg.gym = std::move(g).value();
+      for (const auto& t : dg.gym.ticks) dg.ability_at_tick.push_back(dg.gym.true_ability[size_t(t.climber)]);
+    }
+    auto ev = grades::EvaluateDriftingGym(dg, params, drift, dopt, opt, model);
+    if (!ev.ok()) return Fail(kCmd, ev.status());
+    const grades::RatingEvaluation& r = ev->routes;
+    if (format == "text") {
+      char line[256];
+      std::snprintf(line, sizeof line,
+                    "%-11d %8.4f %9.3f %7.3f %8.2f %8.3f %9.2f %9.3f %8.3f %6.2f\n", ks[i],
+                    r.spearman, r.coverage, r.mae, r.mean_interval_width, ev->skewed_coverage,
+                    ev->skewed_width, ev->climber_mae, ev->climber_coverage, ev->drift_sd);
+      o += line;
+    } else {
+      o += std::string(i ? "," : "") + "{\"ticks_per_route\":" + std::to_string(ks[i]) +
+           ",\"ticks\":" + std::to_string(r.ticks) + ",\"spearman\":" + Fmt(r.spearman) +
+           ",\"coverage\":" + Fmt(r.coverage) + ",\"mae\":" + Fmt(r.mae) +
+           ",\"mean_interval_width\":" + Fmt(r.mean_interval_width) +
+           ",\"skewed_coverage\":" + Fmt(ev->skewed_coverage) +
+           ",\"skewed_width\":" + Fmt(ev->skewed_width) +
+           ",\"climber_mae\":" + Fmt(ev->climber_mae) +
+           ",\"climber_coverage\":" + Fmt(ev->climber_coverage) +
+           ",\"drift_sd\":" + Fmt(ev->drift_sd) + "}";
+    }
+  }
+  if (format == "text") {
+    o += "\ncoverage, width: the symmetric (Laplace) 80% intervals; skewed, sk-width: the "
+         "intervals\nthat follow the evidence; clb-mae, clb-cov: each climber's latest ability "
+         "against the\ntruth on the day of their last tick; w: the drift's sd (grades per "
+         "sqrt(year)).\n";
+  } else {
+    o += "]}\n";
+  }
+  return WriteOutput(kCmd, "-", o);
+}
+
 int Eval(grades::SynthGymParams sp, const std::string& ticks_list, const std::string& format,
-         const std::string& intervals, const std::string& model_name) {
+         const std::string& intervals, const std::string& model_name, bool drifting,
+         const std::string& drift_name, const std::string& shape, double drift_sd) {
   if (Status s = CheckFormat(format); !s.ok()) return Fail(kCmd, s);
   auto model = grades::ParseRatingModel(model_name, "--model");
   if (!model.ok()) return Fail(kCmd, model.status());
@@ -411,6 +584,17 @@ int Eval(grades::SynthGymParams sp, const std::string& ticks_list, const std::st
   }
   grades::RatingFitOptions opt;
   opt.intervals = *method;
+  auto drift_mode = grades::ParseDriftMode(drift_name, "--drift");
+  if (!drift_mode.ok()) return Fail(kCmd, drift_mode.status());
+  if (shape != "symmetric" && shape != "skewed") {
+    return Fail(kCmd, Status::InvalidInput("--interval-shape: expected symmetric or skewed, got '" +
+                                           shape + "'"));
+  }
+  if (drifting || *drift_mode != grades::DriftMode::kOff || shape == "skewed") {
+    // The synthetic gyms span a year: auto is on.
+    return EvalDrift(sp, ks, format, opt, *model, drifting,
+                     *drift_mode != grades::DriftMode::kOff, drift_sd);
+  }
   const grades::RatingParams params = grades::RatingParams::For(grades::Discipline::kBouldering);
   std::string o;
   if (format == "text") {
@@ -545,6 +729,16 @@ int RunRatings(const std::vector<std::string>& args) {
       ->check(CLI::Range(0, 256));
   fit->add_option("--model", fa.model, "tries (every try a game) or session (first try + session)")
       ->capture_default_str();
+  fit->add_option("--drift", fa.drift,
+                  "abilities that drift: on, off, or auto (on when the ticks span more than a "
+                  "season, 120 days)")
+      ->capture_default_str();
+  fit->add_option("--drift-sd", fa.drift_sd,
+                  "the drift's w in grades per sqrt(year) (0: estimated on a grid)")
+      ->capture_default_str();
+  fit->add_option("--interval-shape", fa.interval_shape,
+                  "symmetric (Laplace) or skewed (follows one-sided evidence) route intervals")
+      ->capture_default_str();
 
   CLI::App* predict = app.add_subcommand(
       "predict", "Each climber,route pair's chance to flash and to send in one session.");
@@ -559,6 +753,10 @@ int RunRatings(const std::vector<std::string>& args) {
       ->capture_default_str();
   predict->add_flag("--dedupe", pa.fit.dedupe, "count an exact duplicate row of TICKS.csv once");
   predict->add_flag("--skip-bad", pa.fit.skip_bad, "report bad rows and fit without them");
+  predict->add_option("--drift", pa.fit.drift, "on, off or auto (when fitting)")
+      ->capture_default_str();
+  predict->add_option("--drift-sd", pa.fit.drift_sd, "w (0: estimated; when fitting)")
+      ->capture_default_str();
   predict->add_option("-o,--out", pa.out, "write the result here instead of stdout");
 
   grades::SynthGymParams sp;
@@ -571,6 +769,10 @@ int RunRatings(const std::vector<std::string>& args) {
       ->capture_default_str();
   synth->add_option("--seed", sp.seed, "random seed")->capture_default_str();
   synth->add_option("--out", synth_out, "output directory")->required();
+  bool synth_drifting = false;
+  synth->add_flag("--drifting", synth_drifting,
+                  "abilities drift over the year (a trend and a Wiener process), routes up for "
+                  "eight weeks");
 
   grades::SynthGymParams ep;
   CLI::App* eval = app.add_subcommand(
@@ -587,6 +789,18 @@ int RunRatings(const std::vector<std::string>& args) {
       ->capture_default_str();
 
   eval->add_option("--model", eval_model, "tries or session")->capture_default_str();
+  bool eval_drifting = false;
+  std::string eval_drift = "off", eval_shape = "symmetric";
+  double eval_drift_sd = 0;
+  eval->add_flag("--drifting", eval_drifting,
+                 "gyms whose abilities drift (a trend and a Wiener process over a year; routes up "
+                 "for eight weeks)");
+  eval->add_option("--drift", eval_drift, "fit with drift: off, on (auto = on: the gyms span a year)")
+      ->capture_default_str();
+  eval->add_option("--drift-sd", eval_drift_sd, "the drift's w (0: estimated)")->capture_default_str();
+  eval->add_option("--interval-shape", eval_shape,
+                   "symmetric or skewed (either way both are reported with --drift/--drifting)")
+      ->capture_default_str();
 
   CLI::App* eval_real = app.add_subcommand(
       "eval-real",
@@ -603,9 +817,10 @@ int RunRatings(const std::vector<std::string>& args) {
     pa.fit.intervals = "approximate";  // predictions use the values only
     return Predict(pa);
   }
-  if (synth->parsed()) return Synth(sp, synth_out);
+  if (synth->parsed()) return Synth(sp, synth_out, synth_drifting);
   if (eval_real->parsed()) return EvalReal(real_ascents, real_format);
-  return Eval(ep, eval_ticks, eval_format, eval_intervals, eval_model);
+  return Eval(ep, eval_ticks, eval_format, eval_intervals, eval_model, eval_drifting, eval_drift,
+              eval_shape, eval_drift_sd);
 }
 
 }  // namespace sb::cli

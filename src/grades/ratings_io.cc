@@ -484,6 +484,13 @@ Result<RatingsInput> ReadRatingsInput(std::string_view ticks_csv, std::string_vi
       continue;
     }
     b.AddTick(c, r, games, felt);
+    if (options.keep_dates) {
+      const int day = DayNumber(date);
+      if (in.dated.empty()) in.first_day = in.last_day = day;
+      in.first_day = std::min(in.first_day, day);
+      in.last_day = std::max(in.last_day, day);
+      in.dated.push_back({c, r, day, games});
+    }
     if (attempts) {
       b.AddSessionTries(*attempts);
     } else if (*outcome == TickOutcome::kFlash) {

@@ -14,6 +14,7 @@
 
 #include "base/status.h"
 #include "grades/ratings.h"
+#include "grades/ratings_drift.h"
 #include "grades/scale.h"
 
 namespace sb::grades {
@@ -54,6 +55,11 @@ struct RatingsInput {
   // blanks to an earlier row's) and rows of 0 tries.
   int duplicate_rows = 0;
   int zero_try_rows = 0;
+  // With RatingsReadOptions::keep_dates: every tick of `problem` with its
+  // day (ratings_drift.h), in file order, and the first and last day of
+  // the ticks (0, 0 without any). Empty otherwise.
+  std::vector<DatedTick> dated;
+  int first_day = 0, last_day = 0;
 };
 
 struct RatingsReadOptions {
@@ -61,6 +67,8 @@ struct RatingsReadOptions {
   bool dedupe = false;
   // How ticks become games (ratings.h, TickGamesFor).
   RatingModel model = RatingModel::kTries;
+  // Keep each tick's day (RatingsInput::dated) for a drifting fit.
+  bool keep_dates = false;
 };
 
 // Reads TICKS.csv (header with the columns climber, route, date, outcome,
