@@ -467,10 +467,11 @@ int Predict(const PredictArgs& a) {
   return WriteOutput(kCmd, a.out, o);
 }
 
-int Synth(const grades::SynthGymParams& sp, const std::string& out, bool drifting) {
+int Synth(const grades::SynthGymParams& sp, const std::string& out, bool drifting,
+          const grades::DriftGymParams& dgp) {
   Result<grades::SynthGym> gym = Status::Internal("unset");
   if (drifting) {
-    auto dg = grades::MakeDriftingGym(sp);
+    auto dg = grades::MakeDriftingGym(sp, dgp);
     if (!dg.ok()) return Fail(kCmd, dg.status());
     gym = std::move(dg->gym);
   } else {
@@ -497,7 +498,7 @@ int Synth(const grades::SynthGymParams& sp, const std::string& out, bool driftin
 // abilities' (EvaluateDriftingGym).
 int EvalDrift(grades::SynthGymParams sp, const std::vector<int>& ks, const std::string& format,
               grades::RatingFitOptions opt, grades::RatingModel model, bool drifting,
-              bool drift, double drift_sd) {
+              bool drift, double drift_sd, const grades::DriftGymParams& dgp) {
   const grades::RatingParams params = grades::RatingParams::For(grades::Discipline::kBouldering);
   std::string o;
   if (format == "text") {
@@ -522,7 +523,7 @@ int EvalDrift(grades::SynthGymParams sp, const std::vector<int>& ks, const std::
     sp.ticks_per_route = ks[i];
     grades::DriftingGym dg;
     if (drifting) {
-      auto g = grades::MakeDriftingGym(sp);
+      auto g = grades::MakeDriftingGym(sp, dgp);
       if (!g.ok()) return Fail(kCmd, g.status());
       dg = std::move(g).value();
     } else {
@@ -566,7 +567,8 @@ int EvalDrift(grades::SynthGymParams sp, const std::vector<int>& ks, const std::
 
 int Eval(grades::SynthGymParams sp, const std::string& ticks_list, const std::string& format,
          const std::string& intervals, const std::string& model_name, bool drifting,
-         const std::string& drift_name, const std::string& shape, double drift_sd) {
+         const std::string& drift_name, const std::string& shape, double drift_sd,
+         const grades::DriftGymParams& dgp) {
   if (Status s = CheckFormat(format); !s.ok()) return Fail(kCmd, s);
   auto model = grades::ParseRatingModel(model_name, "--model");
   if (!model.ok()) return Fail(kCmd, model.status());
@@ -593,7 +595,7 @@ int Eval(grades::SynthGymParams sp, const std::string& ticks_list, const std::st
   if (drifting || *drift_mode != grades::DriftMode::kOff || shape == "skewed") {
     // The synthetic gyms span a year: auto is on.
     return EvalDrift(sp, ks, format, opt, *model, drifting,
-                     *drift_mode != grades::DriftMode::kOff, drift_sd);
+                     *drift_mode != grades::DriftMode::kOff, drift_sd, dgp);
   }
   const grades::RatingParams params = grades::RatingParams::For(grades::Discipline::kBouldering);
   std::string o;
@@ -773,6 +775,13 @@ int RunRatings(const std::vector<std::string>& args) {
   synth->add_flag("--drifting", synth_drifting,
                   "abilities drift over the year (a trend and a Wiener process), routes up for "
                   "eight weeks");
+  grades::DriftGymParams synth_dgp;
+  synth->add_option("--trend-mean", synth_dgp.trend_mean, "drifting: mean trend (grades a year)")
+      ->capture_default_str();
+  synth->add_option("--trend-sd", synth_dgp.trend_sd, "drifting: sd of the trends")
+      ->capture_default_str();
+  synth->add_option("--wiener-sd", synth_dgp.wiener_sd, "drifting: Wiener sd per sqrt(year)")
+      ->capture_default_str();
 
   grades::SynthGymParams ep;
   CLI::App* eval = app.add_subcommand(
@@ -798,6 +807,13 @@ int RunRatings(const std::vector<std::string>& args) {
   eval->add_option("--drift", eval_drift, "fit with drift: off, on (auto = on: the gyms span a year)")
       ->capture_default_str();
   eval->add_option("--drift-sd", eval_drift_sd, "the drift's w (0: estimated)")->capture_default_str();
+  grades::DriftGymParams eval_dgp;
+  eval->add_option("--trend-mean", eval_dgp.trend_mean, "drifting: mean trend (grades a year)")
+      ->capture_default_str();
+  eval->add_option("--trend-sd", eval_dgp.trend_sd, "drifting: sd of the trends")
+      ->capture_default_str();
+  eval->add_option("--wiener-sd", eval_dgp.wiener_sd, "drifting: Wiener sd per sqrt(year)")
+      ->capture_default_str();
   eval->add_option("--interval-shape", eval_shape,
                    "symmetric or skewed (either way both are reported with --drift/--drifting)")
       ->capture_default_str();
@@ -817,10 +833,10 @@ int RunRatings(const std::vector<std::string>& args) {
     pa.fit.intervals = "approximate";  // predictions use the values only
     return Predict(pa);
   }
-  if (synth->parsed()) return Synth(sp, synth_out, synth_drifting);
+  if (synth->parsed()) return Synth(sp, synth_out, synth_drifting, synth_dgp);
   if (eval_real->parsed()) return EvalReal(real_ascents, real_format);
   return Eval(ep, eval_ticks, eval_format, eval_intervals, eval_model, eval_drifting, eval_drift,
-              eval_shape, eval_drift_sd);
+              eval_shape, eval_drift_sd, eval_dgp);
 }
 
 }  // namespace sb::cli

@@ -575,15 +575,14 @@ Result<DriftFit> FitDriftRatings(const DriftProblem& problem, const RatingParams
     grid_w.push_back(kDefaultDriftSd);
   }
   // Start: every node at m, every route at its setter's grade; each grid
-  // point starts from the last one's optimum.
+  // point starts from the last one fitted.
   std::vector<double> x(n + r_n);
   for (size_t j = 0; j < n; ++j) x[j] = m;
   for (size_t r = 0; r < r_n; ++r) x[n + r] = problem.base.setter[r].value_or(m);
   double b = session ? options.session_offset.value_or(kSessionOffsetPriorMean) : 0.0;
   DriftFit best;
-  bool have_best = false;
   std::vector<std::pair<double, double>> grid;
-  for (double w : grid_w) {
+  auto fit_at = [&](double w) -> Result<DriftFit> {
     DriftSolver solver(problem, params, m, w, b);
     DriftFit out;
     out.fit.prior_mean = m;
@@ -637,7 +636,7 @@ Result<DriftFit> FitDriftRatings(const DriftProblem& problem, const RatingParams
     out.fit.session_offset = session ? b : 0.0;
     out.fit.exact_intervals = exact;
     out.drift_sd = w;
-    out.drift_sd_estimated = grid_w.size() > 1;
+    out.drift_sd_estimated = !drift.sd && exact;
     out.node_value.assign(x.begin(), x.begin() + long(n));
     out.fit.difficulty.assign(x.begin() + long(n), x.end());
     out.fit.ability.resize(c_n);
@@ -659,13 +658,44 @@ Result<DriftFit> FitDriftRatings(const DriftProblem& problem, const RatingParams
       }
       out.log_evidence = -solver.Objective(x) + 0.5 * prior_ld - 0.5 * log_det;
     }
-    grid.emplace_back(w, out.log_evidence);
-    if (!have_best || out.log_evidence > best.log_evidence) {
-      best = std::move(out);
-      have_best = true;
-    }
+    return out;
+  };
+  if (grid_w.size() == 1) {
+    SB_ASSIGN_OR_RETURN(best, fit_at(grid_w[0]));
+    return best;
   }
-  if (grid_w.size() > 1) best.grid = std::move(grid);
+  // The log evidence over the grid, taken as unimodal: from the default w,
+  // walk the grid the way the evidence rises and stop where it falls.
+  const int size = int(grid_w.size());
+  std::vector<std::optional<DriftFit>> fits(static_cast<size_t>(size));
+  auto eval = [&](int i) -> Status {
+    if (!fits[size_t(i)]) {
+      SB_ASSIGN_OR_RETURN(DriftFit f, fit_at(grid_w[size_t(i)]));
+      fits[size_t(i)] = std::move(f);
+    }
+    return Status::Ok();
+  };
+  auto ev = [&](int i) { return fits[size_t(i)]->log_evidence; };
+  int i = int(std::find(grid_w.begin(), grid_w.end(), kDefaultDriftSd) - grid_w.begin());
+  if (i >= size - 1) i = size - 2;
+  SB_RETURN_IF_ERROR(eval(i));
+  SB_RETURN_IF_ERROR(eval(i + 1));
+  int dir = 1;
+  if (ev(i + 1) > ev(i)) {
+    ++i;
+  } else {
+    dir = -1;
+  }
+  while (i + dir >= 0 && i + dir < size) {
+    SB_RETURN_IF_ERROR(eval(i + dir));
+    if (ev(i + dir) <= ev(i)) break;
+    i += dir;
+  }
+  for (int k = 0; k < size; ++k) {
+    if (fits[size_t(k)]) grid.emplace_back(grid_w[size_t(k)], ev(k));
+  }
+  best = std::move(*fits[size_t(i)]);
+  best.grid = std::move(grid);
   return best;
 }
 
