@@ -19,7 +19,7 @@ for size in 1m 5m; do
   ticks=$(($(wc -l < "$dir/TICKS.csv") - 1))
   for who in strangebeta numpy; do
     if [ $who = strangebeta ]; then
-      /usr/bin/time -v "$build/strangebeta" ratings fit --ticks "$dir/TICKS.csv" --routes "$dir/ROUTES.csv" --format json -o "$dir/fit.json" 2> "$dir/time.$who" >/dev/null
+      /usr/bin/time -v "$build/strangebeta" ratings fit --ticks "$dir/TICKS.csv" --routes "$dir/ROUTES.csv" --format json --drift off -o "$dir/fit.json" 2> "$dir/time.$who" >/dev/null
     else
       /usr/bin/time -v /usr/bin/python3 "$(dirname "$0")/ratings_rasch_numpy.py" "$dir/TICKS.csv" 2> "$dir/time.$who" > "$dir/out.$who"
     fi

@@ -69,6 +69,10 @@ struct FitArgs {
   // Abilities that drift (ratings_drift.h): on, off, auto (on past a season).
   std::string drift = "auto", interval_shape = "symmetric";
   double drift_sd = 0;  // w (grades per sqrt(year)); 0: estimated
+  // Predictions: a static fit needs the values only (approximate
+  // intervals); a drifting one averages over the latest ability's sd, so
+  // it keeps `intervals`.
+  bool values_only = false;
 };
 
 // The input read and fitted (shared by fit and predict).
@@ -167,6 +171,7 @@ std::variant<int, Fitted> LoadAndFit(const FitArgs& a) {
       for (const auto& q : pairs) ability_of_pair.push_back(out.dfit.node_value[size_t(q.climber)]);
     }
   } else {
+    if (a.values_only) opt.intervals = IntervalMethod::kApproximate;
     auto fit = grades::FitRatings(in->problem, out.params, opt);
     if (!fit.ok()) return Fail(kCmd, fit.status());
     out.fit = std::move(fit).value();
@@ -830,7 +835,7 @@ int RunRatings(const std::vector<std::string>& args) {
   if (int rc = ParseArgs(app, args); rc >= 0) return rc;
   if (fit->parsed()) return Fit(fa);
   if (predict->parsed()) {
-    pa.fit.intervals = "approximate";  // predictions use the values only
+    pa.fit.values_only = true;  // a static fit's predictions use the values only
     return Predict(pa);
   }
   if (synth->parsed()) return Synth(sp, synth_out, synth_drifting, synth_dgp);

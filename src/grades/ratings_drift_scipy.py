@@ -1,0 +1,160 @@
+#!/usr/bin/python3
+"""SciPy reference for the drifting ascent rating (ratings_drift_scipy_test.cc).
+
+Usage: /usr/bin/python3 ratings_drift_scipy.py IN.json OUT.json
+
+IN.json: {"cases": [{"params": {"logit_per_unit", "climber_sd", "setter_sd",
+"open_route_sd", "felt_sd"}, "climbers": C, "routes": R, "setter": [value or
+null per route], "ticks": [[climber, route, "flash"|"send"|"attempt",
+attempts or null, felt value or null, day], ...], "w": W, "node_days": 7}]}
+OUT.json: {"cases": [{"difficulty", "difficulty_sd", "ability" (each
+climber's latest node), "ability_sd", "log_evidence", "success"}]}
+
+An independent re-implementation of docs/grades.md ("Abilities that drift")
+on numpy/scipy, sharing no code with the C++ module: each tick is expanded
+into its games (the tries model); a climber's ticks are grouped by week
+(days from the first tick's day, integer-divided by node_days), one unknown
+per climber per week (a climber without ticks: one); the negative log
+posterior (games; first week ~ N(m, climber_sd^2); consecutive weeks differ
+by N(0, w^2 dt), dt = days / 365.25; routes' priors and felt grades as the
+static model) is minimised by scipy.optimize.minimize (trust-exact) and
+polished by Newton; the sds are the square roots of the diagonal of the
+dense inverse Hessian; the Laplace log evidence is -f(x) + sum(log link
+precision) / 2 - log det(H) / 2 (numpy.linalg.slogdet), up to constants free
+of w (the felt grades' sum(f^2) / 2 felt_sd^2 is left out, as the C++ does).
+Exit code 3 when scipy is missing (the test then skips with a message).
+"""
+import json
+import sys
+
+try:
+    import numpy as np
+    from scipy import optimize
+    from scipy.special import expit, log_expit
+except ImportError as e:  # pragma: no cover
+    print(f"ratings_drift_scipy.py: {e}", file=sys.stderr)
+    sys.exit(3)
+
+
+def games(outcome, attempts):
+    if outcome == "flash":
+        return 1, 0
+    if outcome == "send":
+        n = 2 if attempts is None else attempts
+        return 1, n - 1
+    return 0, (1 if attempts is None else attempts)
+
+
+def fit(case):
+    k = case["params"]
+    s = k["logit_per_unit"]
+    C, R = case["climbers"], case["routes"]
+    setter = case["setter"]
+    w, node_days = case["w"], case["node_days"]
+    graded = [g for g in setter if g is not None]
+    felt_all = [t[4] for t in case["ticks"] if t[4] is not None]
+    m = float(np.mean(graded)) if graded else (float(np.mean(felt_all)) if felt_all else 0.0)
+    mu = np.array([m if g is None else g for g in setter], dtype=float)
+    sd = np.array([k["open_route_sd"] if g is None else k["setter_sd"] for g in setter])
+    first = min(t[5] for t in case["ticks"])
+    keys = sorted({(t[0], (t[5] - first) // node_days) for t in case["ticks"]} |
+                  {(c, 0) for c in range(C) if not any(t[0] == c for t in case["ticks"])})
+    node = {key: i for i, key in enumerate(keys)}
+    N = len(keys)
+    gc, gr, gw, fr, fv = [], [], [], [], []
+    for c, r, outcome, attempts, felt, day in case["ticks"]:
+        j = node[(c, (day - first) // node_days)]
+        win, loss = games(outcome, attempts)
+        gc += [j] * (win + loss)
+        gr += [r] * (win + loss)
+        gw += [1] * win + [0] * loss
+        if felt is not None:
+            fr.append(r)
+            fv.append(felt)
+    gc, gr, gw = np.array(gc, dtype=int), np.array(gr, dtype=int), np.array(gw, dtype=float)
+    fr, fv = np.array(fr, dtype=int), np.array(fv, dtype=float)
+    firsts = [i for i, key in enumerate(keys) if i == 0 or keys[i - 1][0] != key[0]]
+    links = []  # (i, i + 1, precision)
+    for i in range(N - 1):
+        if keys[i][0] == keys[i + 1][0]:
+            dt = (keys[i + 1][1] - keys[i][1]) * node_days / 365.25
+            links.append((i, i + 1, 1.0 / (w * w * dt)))
+    latest = [max(i for i, key in enumerate(keys) if key[0] == c) for c in range(C)]
+    pa, pf = 1.0 / k["climber_sd"] ** 2, 1.0 / k["felt_sd"] ** 2
+    n = N + R
+
+    def f(x):
+        a, d = x[:N], x[N:]
+        z = s * (a[gc] - d[gr])
+        v = -np.sum(gw * log_expit(z) + (1 - gw) * log_expit(-z))
+        v += 0.5 * pa * np.sum((a[firsts] - m) ** 2)
+        v += sum(0.5 * q * (a[j] - a[i]) ** 2 for i, j, q in links)
+        v += 0.5 * np.sum(((d - mu) / sd) ** 2) + 0.5 * pf * np.sum((fv - d[fr]) ** 2)
+        return v
+
+    def grad(x):
+        a, d = x[:N], x[N:]
+        e = s * (expit(s * (a[gc] - d[gr])) - gw)
+        g = np.zeros(n)
+        np.add.at(g, gc, e)
+        np.add.at(g, N + gr, -e)
+        g[firsts] += pa * (a[firsts] - m)
+        for i, j, q in links:
+            g[i] -= q * (a[j] - a[i])
+            g[j] += q * (a[j] - a[i])
+        g[N:] += (d - mu) / sd ** 2
+        np.add.at(g, N + fr, pf * (d[fr] - fv))
+        return g
+
+    def hess(x):
+        a, d = x[:N], x[N:]
+        p = expit(s * (a[gc] - d[gr]))
+        h = s * s * p * (1 - p)
+        H = np.zeros((n, n))
+        np.add.at(H, (gc, gc), h)
+        np.add.at(H, (N + gr, N + gr), h)
+        np.add.at(H, (gc, N + gr), -h)
+        np.add.at(H, (N + gr, gc), -h)
+        H[firsts, firsts] += pa
+        for i, j, q in links:
+            H[i, i] += q
+            H[j, j] += q
+            H[i, j] -= q
+            H[j, i] -= q
+        H[N + np.arange(R), N + np.arange(R)] += 1 / sd ** 2
+        np.add.at(H, (N + fr, N + fr), pf)
+        return H
+
+    x0 = np.concatenate([np.full(N, m), mu])
+    res = optimize.minimize(f, x0, jac=grad, hess=hess, method="trust-exact",
+                            options={"gtol": 1e-10, "maxiter": 1000})
+    x = res.x
+    for _ in range(50):
+        g = grad(x)
+        if np.max(np.abs(g)) < 1e-11:
+            break
+        x = x - np.linalg.solve(hess(x), g)
+    H = hess(x)
+    sds = np.sqrt(np.diag(np.linalg.inv(H)))
+    _, logdet = np.linalg.slogdet(H)
+    ev = -f(x) + 0.5 * sum(np.log(q) for _, _, q in links) - 0.5 * logdet
+    # The C++ objective leaves out the felt grades' constant sum(f^2) / 2
+    # felt_sd^2 (free of every unknown and of w): the same here.
+    ev += 0.5 * pf * float(np.sum(fv ** 2))
+    return {"difficulty": x[N:].tolist(), "difficulty_sd": sds[N:].tolist(),
+            "ability": [float(x[i]) for i in latest],
+            "ability_sd": [float(sds[i]) for i in latest],
+            "log_evidence": float(ev), "nodes": N,
+            "success": bool(np.max(np.abs(grad(x))) < 1e-8)}
+
+
+def main():
+    with open(sys.argv[1]) as fh:
+        spec = json.load(fh)
+    out = {"cases": [fit(c) for c in spec["cases"]]}
+    with open(sys.argv[2], "w") as fh:
+        json.dump(out, fh)
+
+
+if __name__ == "__main__":
+    main()
