@@ -13,8 +13,8 @@ namespace sb::grades {
 namespace {
 
 constexpr double kDaysPerYear = 365.25;
-// Largest step of one coordinate of a Newton step's line search start, as
-// ratings.cc: the logistic's flat tails make far steps overshoot.
+// Newton iterations before giving up (the problem is convex; the drifting
+// gyms take 10 to 25 from the prior).
 constexpr int kMaxNewton = 200;
 constexpr int kMaxOffsetRounds = 200;
 constexpr double kMaxForcing = 1e-2;
@@ -403,7 +403,7 @@ Status DriftVariances(const DriftProblem& p, const DriftSolver& s, bool exact, D
   for (size_t r = 0; r < r_n; ++r) fit.difficulty_sd[r] = std::sqrt(var[r]);
   // Latest node l of climber c: var = Tinv_ll + v^T S^-1 v, v_r = sum over
   // the chain's pairs of h_i Tinv[node_i, l].
-  std::vector<double> v(r_n), wv(r_n);
+  std::vector<double> v(r_n);
   for (size_t c = 0; c < c_n; ++c) {
     const size_t lo = size_t(p.climber_start[c]), hi = size_t(p.climber_start[c + 1]);
     ChainInverse(s, lo, hi, &inv);
@@ -420,7 +420,6 @@ Status DriftVariances(const DriftProblem& p, const DriftSolver& s, bool exact, D
     }
     double q = 0;
     if (lowest < r_n) {
-      std::fill(wv.begin(), wv.end(), 0.0);
       for (size_t row = lowest; row < r_n; ++row) {
         double t = 0;
         for (size_t col = lowest; col <= row; ++col) t += w[row * r_n + col] * v[col];
@@ -770,8 +769,12 @@ Result<DriftingGym> MakeDriftingGym(const SynthGymParams& sp, const DriftGymPara
   if (dp.route_days < 1 || dp.route_days > 365) {
     return Status::InvalidInput("route_days: expected 1 to 365");
   }
-  if (!(std::isfinite(dp.trend_mean) && dp.trend_sd >= 0 && dp.wiener_sd >= 0)) {
-    return Status::InvalidInput("trend / wiener sd: expected finite numbers >= 0");
+  if (!std::isfinite(dp.trend_mean)) return Status::InvalidInput("--trend-mean: expected a number");
+  if (!(std::isfinite(dp.trend_sd) && dp.trend_sd >= 0)) {
+    return Status::InvalidInput("--trend-sd: expected a number >= 0");
+  }
+  if (!(std::isfinite(dp.wiener_sd) && dp.wiener_sd >= 0)) {
+    return Status::InvalidInput("--wiener-sd: expected a number >= 0");
   }
   Draw draw(sp.seed);
   DriftingGym out;
