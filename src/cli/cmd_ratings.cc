@@ -483,20 +483,27 @@ int EvalReal(const std::string& path, const std::string& format) {
   bool first = true;
   for (grades::AscentSplit split :
        {grades::AscentSplit::kHeldout, grades::AscentSplit::kTemporal}) {
-    for (grades::RatingModel model : {grades::RatingModel::kTries, grades::RatingModel::kSession}) {
-      auto ev = grades::EvaluateAscents(*csv, path, split, model);
+    // tries, session (ratings.h), then zones: the session model with zones
+    // and session offsets (ratings_session.h, the CV-chosen defaults).
+    for (int m = 0; m < 3; ++m) {
+      const grades::RatingModel model =
+          m == 0 ? grades::RatingModel::kTries : grades::RatingModel::kSession;
+      const char* model_name = m == 2 ? "zones" : grades::RatingModelName(model);
+      auto ev = m == 2 ? grades::EvaluateAscentsZones(*csv, path, split,
+                                                      grades::SessionModelParams::Defaults())
+                       : grades::EvaluateAscents(*csv, path, split, model);
       if (!ev.ok()) return Fail(kCmd, ev.status());
       if (format == "text") {
         char line[256];
         std::snprintf(line, sizeof line, "%-8s %-8s %6d %6d %8.3f %9.4f %9.4f %9.4f %7.3f\n",
-                      grades::AscentSplitName(split), grades::RatingModelName(model), ev->fit_rows,
+                      grades::AscentSplitName(split), model_name, ev->fit_rows,
                       ev->scored_rows, ev->top_rate, ev->top_auc, ev->top_log_loss, ev->flash_auc,
                       ev->session_offset);
         o += line;
       } else {
         o += std::string(first ? "" : ",") +
              "{\"split\":" + JsonString(grades::AscentSplitName(split)) +
-             ",\"model\":" + JsonString(grades::RatingModelName(model)) +
+             ",\"model\":" + JsonString(model_name) +
              ",\"fit_rows\":" + std::to_string(ev->fit_rows) +
              ",\"scored_rows\":" + std::to_string(ev->scored_rows) +
              ",\"top_rate\":" + Fmt(ev->top_rate) + ",\"top_auc\":" + Fmt(ev->top_auc) +
@@ -510,7 +517,9 @@ int EvalReal(const std::string& path, const std::string& format) {
   if (format == "text") {
     o +=
         "\ntop-auc, top-ll: AUC and log-loss of p_send for a top; flash-auc: AUC of p_flash for a\n"
-        "top on the first try; b: the session model's offset (logit of a session over one try).\n";
+        "top on the first try; b: the session model's offset (logit of a session over one try);\n"
+        "zones: the session model with the zones' evidence and per-boulder and per-athlete\n"
+        "session offsets (docs/grades.md, \"Real outcomes\").\n";
   } else {
     o += "]}\n";
   }

@@ -75,12 +75,27 @@ TEST(RatingsReal, WorldCupFigures) {
   ASSERT_TRUE(tries.ok()) << tries.status().message();
   EXPECT_GT(session->top_auc, tries->top_auc);
   EXPECT_LT(session->top_log_loss, tries->top_log_loss);
+  // The session model with zones and session offsets (the CV-chosen
+  // defaults): the goals, from p_send and p_flash as they come.
+  auto zones = EvaluateAscentsZones(*csv, path, AscentSplit::kHeldout,
+                                    SessionModelParams::Defaults());
+  ASSERT_TRUE(zones.ok()) << zones.status().message();
+  EXPECT_EQ(zones->scored_rows, 916);
+  EXPECT_GE(zones->top_auc, 0.885);
+  EXPECT_LE(zones->top_log_loss, 0.390);
+  EXPECT_GE(zones->flash_auc, 0.865);
   // Temporal: every boulder of Bern 2026 is new (at the prior): only the
   // athletes' abilities order the rows.
   auto temporal = EvaluateAscents(*csv, path, AscentSplit::kTemporal, RatingModel::kSession);
   ASSERT_TRUE(temporal.ok()) << temporal.status().message();
   EXPECT_EQ(temporal->scored_rows, 624);
   EXPECT_GT(temporal->top_auc, 0.6);
+  auto temporal_zones = EvaluateAscentsZones(*csv, path, AscentSplit::kTemporal,
+                                             SessionModelParams::Defaults());
+  ASSERT_TRUE(temporal_zones.ok()) << temporal_zones.status().message();
+  EXPECT_EQ(temporal_zones->scored_rows, 624);
+  EXPECT_GT(temporal_zones->top_auc, temporal->top_auc);
+  EXPECT_GT(temporal_zones->flash_auc, temporal->flash_auc);
 }
 
 }  // namespace
