@@ -9,6 +9,7 @@
 //   strangebeta ratings synth --climbers N --routes M --ticks-per-route K --seed S --out DIR
 //   strangebeta ratings eval [--climbers N] [--routes M] [--ticks-per-route 20,5,2] [--seed S]
 //                            [--format text|json] [--intervals ...]
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -26,6 +27,7 @@
 #include "grades/ratings.h"
 #include "grades/ratings_io.h"
 #include "grades/ratings_real.h"
+#include "grades/ratings_session.h"
 #include "grades/ratings_synth.h"
 #include "grades/scale.h"
 
@@ -40,6 +42,8 @@ constexpr const char* kCmd = "ratings";
 constexpr size_t kMaxReportedRows = 100;
 
 std::string Fmt(double v) { return FormatDouble(v, 17); }
+// JSON null for a figure a model does not give (NaN: no intervals).
+std::string FmtOrNull(double v) { return std::isnan(v) ? "null" : Fmt(v); }
 
 std::string Fixed(double v, int digits = 2) {
   char b[48];
@@ -395,7 +399,10 @@ int Synth(const grades::SynthGymParams& sp, const std::string& out) {
 int Eval(grades::SynthGymParams sp, const std::string& ticks_list, const std::string& format,
          const std::string& intervals, const std::string& model_name) {
   if (Status s = CheckFormat(format); !s.ok()) return Fail(kCmd, s);
-  auto model = grades::ParseRatingModel(model_name, "--model");
+  // zones: the session model with route and climber session offsets
+  // (ratings_session.h; the synthetic gym has no zones).
+  const bool zones = model_name == "zones";
+  auto model = grades::ParseRatingModel(zones ? "session" : model_name, "--model");
   if (!model.ok()) return Fail(kCmd, model.status());
   auto method = ParseIntervals(intervals);
   if (!method.ok()) return Fail(kCmd, method.status());
@@ -430,7 +437,9 @@ int Eval(grades::SynthGymParams sp, const std::string& ticks_list, const std::st
     sp.ticks_per_route = ks[i];
     auto gym = grades::MakeSynthGym(sp);
     if (!gym.ok()) return Fail(kCmd, gym.status());
-    auto ev = grades::EvaluateSynthGym(*gym, params, opt, *model);
+    auto ev = zones ? grades::EvaluateSynthGymSession(*gym, params,
+                                                      grades::SessionModelParams::Defaults())
+                    : grades::EvaluateSynthGym(*gym, params, opt, *model);
     if (!ev.ok()) return Fail(kCmd, ev.status());
     // How much lower the fit's error is than the felt grades' median, on the
     // routes that have felt grades.
@@ -445,12 +454,12 @@ int Eval(grades::SynthGymParams sp, const std::string& ticks_list, const std::st
     } else {
       o += std::string(i ? "," : "") + "{\"ticks_per_route\":" + std::to_string(ks[i]) +
            ",\"ticks\":" + std::to_string(ev->ticks) + ",\"spearman\":" + Fmt(ev->spearman) +
-           ",\"coverage\":" + Fmt(ev->coverage) + ",\"mae\":" + Fmt(ev->mae) +
+           ",\"coverage\":" + FmtOrNull(ev->coverage) + ",\"mae\":" + Fmt(ev->mae) +
            ",\"setter_mae\":" + Fmt(ev->setter_mae) +
            ",\"felt_routes\":" + std::to_string(ev->felt_routes) +
            ",\"mae_felt_routes\":" + Fmt(ev->mae_felt_routes) +
            ",\"felt_median_mae\":" + Fmt(ev->felt_mae) + ",\"gain\":" + Fmt(gain) +
-           ",\"mean_interval_width\":" + Fmt(ev->mean_interval_width) +
+           ",\"mean_interval_width\":" + FmtOrNull(ev->mean_interval_width) +
            ",\"exact_intervals\":" + (ev->exact_intervals ? "true" : "false") + "}";
     }
   }
@@ -595,7 +604,10 @@ int RunRatings(const std::vector<std::string>& args) {
   eval->add_option("--intervals", eval_intervals, "auto, exact or approximate")
       ->capture_default_str();
 
-  eval->add_option("--model", eval_model, "tries or session")->capture_default_str();
+  eval->add_option("--model", eval_model,
+                   "tries, session, or zones (session with route and climber session offsets; "
+                   "no intervals)")
+      ->capture_default_str();
 
   CLI::App* eval_real = app.add_subcommand(
       "eval-real",

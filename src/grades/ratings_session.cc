@@ -198,9 +198,21 @@ Status SessionModelParams::Validate() const {
 }
 
 Result<SessionModelFit> FitSessionModel(const std::vector<SessionObs>& obs, int climbers,
-                                        int routes, const SessionModelParams& k) {
+                                        int routes, const SessionModelParams& k,
+                                        const std::vector<RoutePrior>& route_prior) {
   SB_RETURN_IF_ERROR(k.Validate());
   if (climbers < 0 || routes < 0) return Status::InvalidInput("session model: negative counts");
+  if (!route_prior.empty() && route_prior.size() != size_t(routes)) {
+    return Status::InvalidInput("session model: route priors: expected " + std::to_string(routes) +
+                                ", got " + std::to_string(route_prior.size()));
+  }
+  for (size_t r = 0; r < route_prior.size(); ++r) {
+    if (!std::isfinite(route_prior[r].mean) || !std::isfinite(route_prior[r].sd) ||
+        !(route_prior[r].sd > 0)) {
+      return Status::InvalidInput("session model: route prior " + std::to_string(r) +
+                                  ": expected a finite mean and an sd > 0");
+    }
+  }
   const Layout L{size_t(climbers), size_t(routes)};
   const double kk = k.logit_per_unit;
   const bool zones = k.zone_sd > 0, route_off = k.route_offset_sd > 0,
@@ -274,7 +286,13 @@ Result<SessionModelFit> FitSessionModel(const std::vector<SessionObs>& obs, int 
   // Unused parts (an sd of 0) are pinned at 0 by a unit prior: they appear
   // in no game, so they stay at 0 and change nothing else.
   for (size_t c = 0; c < L.c; ++c) prior1(L.a(c), k.prior_mean, k.climber_sd);
-  for (size_t r = 0; r < L.r; ++r) prior1(L.d(r), k.prior_mean, k.route_sd);
+  for (size_t r = 0; r < L.r; ++r) {
+    if (route_prior.empty()) {
+      prior1(L.d(r), k.prior_mean, k.route_sd);
+    } else {
+      prior1(L.d(r), route_prior[r].mean, route_prior[r].sd);
+    }
+  }
   for (size_t r = 0; r < L.r; ++r) {
     if (zones) {
       Prior p;  // z_r - d_r + delta ~ N(0, zone_sd^2)
@@ -294,7 +312,9 @@ Result<SessionModelFit> FitSessionModel(const std::vector<SessionObs>& obs, int 
 
   std::vector<double> x(L.size(), 0);
   for (size_t c = 0; c < L.c; ++c) x[L.a(c)] = k.prior_mean;
-  for (size_t r = 0; r < L.r; ++r) x[L.d(r)] = x[L.z(r)] = k.prior_mean;
+  for (size_t r = 0; r < L.r; ++r) {
+    x[L.d(r)] = x[L.z(r)] = route_prior.empty() ? k.prior_mean : route_prior[r].mean;
+  }
   x[L.b()] = k.offset_mean;
   SessionModelFit fit;
   fit.prior_mean = k.prior_mean;
@@ -341,6 +361,98 @@ Result<SessionModelFit> FitSessionModel(const std::vector<SessionObs>& obs, int 
   fit.offset = x[L.b()];
   fit.delta = x[L.delta()];
   return fit;
+}
+
+Result<std::vector<SessionObs>> SessionObsOfProblem(const RatingProblem& problem) {
+  if (problem.model != RatingModel::kSession) {
+    return Status::InvalidInput("session model: the problem is not a session model's");
+  }
+  std::vector<SessionObs> obs;
+  for (const RatingPair& q : problem.pairs) {
+    if (q.wins + q.losses != q.session_wins + q.session_losses || q.wins > q.session_wins) {
+      return Status::InvalidInput("session model: pair (" + std::to_string(q.climber) + ", " +
+                                  std::to_string(q.route) + "): games disagree");
+    }
+    SessionObs o;
+    o.climber = q.climber;
+    o.route = q.route;
+    o.top = true;
+    o.tries = 1;
+    for (int i = 0; i < q.wins; ++i) obs.push_back(o);  // flashes
+    o.tries = 2;
+    for (int i = q.wins; i < q.session_wins; ++i) obs.push_back(o);  // sends
+    o.top = false;
+    o.tries = 1;
+    for (int i = 0; i < q.session_losses; ++i) obs.push_back(o);  // attempts
+  }
+  return obs;
+}
+
+std::vector<RoutePrior> RoutePriorsOfProblem(const RatingProblem& problem,
+                                             const RatingParams& params, double prior_mean) {
+  std::vector<RoutePrior> out(size_t(problem.num_routes()));
+  for (size_t r = 0; r < out.size(); ++r) {
+    const auto& s = problem.setter[r];
+    const double sd = s ? params.setter_sd : params.open_route_sd;
+    const double p0 = 1 / (sd * sd), pf = 1 / (params.felt_sd * params.felt_sd);
+    const double prec = p0 + pf * problem.felt_count[r];
+    out[r].mean = (p0 * (s ? *s : prior_mean) + pf * problem.felt_sum[r]) / prec;
+    out[r].sd = std::sqrt(1 / prec);
+  }
+  return out;
+}
+
+Result<RatingEvaluation> EvaluateSynthGymSession(const SynthGym& gym, const RatingParams& params,
+                                                 const SessionModelParams& k) {
+  const RatingProblem problem = SynthProblem(gym, RatingModel::kSession);
+  double sum = 0;
+  int n_set = 0;
+  for (const auto& g : problem.setter) {
+    if (g) {
+      sum += *g;
+      ++n_set;
+    }
+  }
+  SessionModelParams kk = k;
+  kk.prior_mean = n_set > 0 ? sum / n_set : 0.0;
+  kk.climber_sd = params.climber_sd;
+  kk.logit_per_unit = params.logit_per_unit;
+  SB_ASSIGN_OR_RETURN(std::vector<SessionObs> obs, SessionObsOfProblem(problem));
+  SB_ASSIGN_OR_RETURN(SessionModelFit fit,
+                      FitSessionModel(obs, problem.num_climbers, problem.num_routes(), kk,
+                                      RoutePriorsOfProblem(problem, params, kk.prior_mean)));
+  RatingEvaluation ev;
+  const size_t n = gym.true_difficulty.size();
+  ev.routes = int(n);
+  ev.ticks = int(gym.ticks.size());
+  ev.spearman = Spearman(fit.difficulty, gym.true_difficulty);
+  std::vector<std::vector<double>> felt(n);
+  for (const SynthTick& t : gym.ticks) {
+    if (t.felt) felt[size_t(t.route)].push_back(*t.felt);
+  }
+  double felt_err = 0, fit_err_felt = 0;
+  for (size_t r = 0; r < n; ++r) {
+    const double truth = gym.true_difficulty[r];
+    ev.mae += std::abs(fit.difficulty[r] - truth);
+    ev.setter_mae += std::abs(gym.setter_grade[r] - truth);
+    if (!felt[r].empty()) {
+      ++ev.felt_routes;
+      std::vector<double>& f = felt[r];
+      std::sort(f.begin(), f.end());
+      const double med =
+          f.size() % 2 ? f[f.size() / 2] : (f[f.size() / 2 - 1] + f[f.size() / 2]) / 2;
+      felt_err += std::abs(med - truth);
+      fit_err_felt += std::abs(fit.difficulty[r] - truth);
+    }
+  }
+  ev.mae /= double(n);
+  ev.setter_mae /= double(n);
+  ev.coverage = ev.mean_interval_width = std::nan("");
+  if (ev.felt_routes > 0) {
+    ev.felt_mae = felt_err / ev.felt_routes;
+    ev.mae_felt_routes = fit_err_felt / ev.felt_routes;
+  }
+  return ev;
 }
 
 SendChances PredictSessionModel(const SessionModelParams& params, const SessionModelFit& fit,

@@ -28,6 +28,7 @@
 
 #include "base/status.h"
 #include "grades/ratings.h"
+#include "grades/ratings_synth.h"
 
 namespace sb::grades {
 
@@ -82,12 +83,43 @@ struct SessionModelFit {
   double gradient_max = 0;
 };
 
-// Fits the model to `obs` (climbers and routes indices below the counts).
-// Errors: kInvalidInput from params.Validate() or an index out of range /
-// tries above kMaxTickAttempts (naming the observation); kInternal when
-// Newton does not converge. Pure; thread-safe.
+// A route's own prior on its top difficulty (a gym's setter's grade with
+// its sd, felt grades folded in): replaces N(prior_mean, route_sd^2).
+struct RoutePrior {
+  double mean = 0, sd = 1;
+};
+
+// Fits the model to `obs` (climbers and routes indices below the counts);
+// `route_prior`: empty, or one per route. Errors: kInvalidInput from
+// params.Validate(), an index out of range, tries above kMaxTickAttempts
+// (naming the observation) or a route prior of the wrong size or a sd not
+// > 0; kInternal when Newton does not converge. Pure; thread-safe.
 Result<SessionModelFit> FitSessionModel(const std::vector<SessionObs>& obs, int climbers,
-                                        int routes, const SessionModelParams& params);
+                                        int routes, const SessionModelParams& params,
+                                        const std::vector<RoutePrior>& route_prior = {});
+
+// The session games of a gym's problem (built with RatingModel::kSession:
+// per pair, first-try wins and losses and session wins and losses) as
+// observations with the same games: a flash per first-try win, a send in 2
+// per session win past those, an attempt of one try per session loss (no
+// zones). Errors: kInvalidInput when the problem is not a session model's
+// or a pair's counts disagree (first-try games != session games). Pure.
+Result<std::vector<SessionObs>> SessionObsOfProblem(const RatingProblem& problem);
+
+// The route priors of a gym's problem under `params`: the setter's grade
+// (sd setter_sd) or the fit's prior mean (sd open_route_sd), each route's
+// felt grades folded in as Gaussian observations (sd felt_sd). Pure.
+std::vector<RoutePrior> RoutePriorsOfProblem(const RatingProblem& problem,
+                                             const RatingParams& params, double prior_mean);
+
+// A synthetic gym (ratings_synth.h) fitted by this model (no zones: the
+// session games with the route and climber offsets of `k`; the setters'
+// grades and felt grades as route priors under `params`, abilities
+// N(mean setter's grade, params.climber_sd^2)): spearman, mae and
+// setter_mae as EvaluateSynthGym; no intervals (coverage and width NaN),
+// mae_felt_routes and felt_mae as there. Pure.
+Result<RatingEvaluation> EvaluateSynthGymSession(const SynthGym& gym, const RatingParams& params,
+                                                 const SessionModelParams& k);
 
 // p_flash and p_send of `climber` on `route` (an index < 0 or past the fit:
 // unseen, at the prior mean with offset 0). Pure.

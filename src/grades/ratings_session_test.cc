@@ -222,6 +222,38 @@ TEST(RatingsSession, WithoutZonesAndOffsetsIsTheSessionModel) {
   }
 }
 
+// A gym's problem (setters' grades, felt grades) as observations and route
+// priors: with the offsets off, the same fit as FitRatings' session model.
+TEST(RatingsSession, GymProblemMatchesTheSessionFit) {
+  SynthGymParams sp;
+  sp.climbers = 30;
+  sp.routes = 40;
+  sp.ticks_per_route = 6;
+  sp.seed = 46;
+  const SynthGym gym = *MakeSynthGym(sp);
+  const RatingProblem problem = SynthProblem(gym, RatingModel::kSession);
+  const RatingParams params = RatingParams::For(Discipline::kBouldering);
+  auto ref = FitRatings(problem, params);
+  ASSERT_TRUE(ref.ok()) << ref.status().message();
+  auto obs = SessionObsOfProblem(problem);
+  ASSERT_TRUE(obs.ok()) << obs.status().message();
+  SessionModelParams k = SessionModelParams::Defaults();
+  k.zone_sd = k.route_offset_sd = k.climber_offset_sd = 0;
+  k.prior_mean = ref->prior_mean;
+  k.climber_sd = params.climber_sd;
+  auto fit = FitSessionModel(*obs, problem.num_climbers, problem.num_routes(), k,
+                             RoutePriorsOfProblem(problem, params, ref->prior_mean));
+  ASSERT_TRUE(fit.ok()) << fit.status().message();
+  EXPECT_NEAR(fit->offset, ref->session_offset, 1e-7);
+  for (size_t i = 0; i < fit->difficulty.size(); ++i) {
+    EXPECT_NEAR(fit->difficulty[i], ref->difficulty[i], 1e-7) << i;
+  }
+  for (size_t i = 0; i < fit->ability.size(); ++i) {
+    EXPECT_NEAR(fit->ability[i], ref->ability[i], 1e-7) << i;
+  }
+  EXPECT_FALSE(SessionObsOfProblem(SynthProblem(gym, RatingModel::kTries)).ok());
+}
+
 TEST(RatingsSession, RefusesBadInput) {
   SessionModelParams k = SessionModelParams::Defaults();
   std::vector<SessionObs> rows(1);
