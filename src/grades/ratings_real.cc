@@ -24,7 +24,7 @@ struct AscentRow {
   bool heldout = false;
   std::optional<bool> zone;  // the zone columns, when the file has them
   std::optional<int> zone_tries;
-  std::string round;
+  std::string round, category;  // when the file has them
 };
 
 // Reads ascents.csv's rows (the columns EvaluateAscents names; zone,
@@ -168,6 +168,22 @@ Result<AscentEvaluation> EvaluateAscentsZones(std::string_view csv, std::string_
                       FitSessionModel(obs, ev.fit_climbers, ev.fit_routes, params));
   ev.session_offset = fit.offset;
   ev.newton_iterations = fit.newton_iterations;
+  // An unseen boulder: the mean fitted difficulty of the boulders of its
+  // category and round (a final's boulders are set harder than a
+  // qualification's), else the prior mean.
+  std::unordered_map<std::string, std::pair<double, int>> level;
+  {
+    std::vector<bool> counted(route.size(), false);
+    for (const AscentRow& a : rows) {
+      if (!in_fit(a)) continue;
+      const int r = route.at(a.route);
+      if (counted[size_t(r)]) continue;
+      counted[size_t(r)] = true;
+      auto& [sum, n] = level[a.category + "/" + a.round];
+      sum += fit.difficulty[size_t(r)];
+      ++n;
+    }
+  }
   std::vector<double> p_send, p_flash;
   std::vector<int> top, flash;
   for (const AscentRow& a : rows) {
@@ -175,8 +191,12 @@ Result<AscentEvaluation> EvaluateAscentsZones(std::string_view csv, std::string_
     auto ci = climber.find(a.athlete);
     if (split == AscentSplit::kTemporal && ci == climber.end()) continue;  // unseen athletes
     auto ri = route.find(a.route);
+    std::optional<double> unseen;
+    if (auto li = level.find(a.category + "/" + a.round); li != level.end()) {
+      unseen = li->second.first / li->second.second;
+    }
     const SendChances s = PredictSessionModel(params, fit, ci != climber.end() ? ci->second : -1,
-                                              ri != route.end() ? ri->second : -1);
+                                              ri != route.end() ? ri->second : -1, unseen);
     p_send.push_back(s.p_send);
     p_flash.push_back(s.p_flash);
     top.push_back(a.top ? 1 : 0);
@@ -213,9 +233,9 @@ Result<std::vector<AscentRow>> ReadAscentRows(std::string_view csv, std::string_
     }
   }
   // Optional columns: zone, zone_tries (both or neither), round.
-  size_t zcol[3] = {SIZE_MAX, SIZE_MAX, SIZE_MAX};
-  const char* znames[] = {"zone", "zone_tries", "round"};
-  for (size_t k = 0; k < 3; ++k) {
+  size_t zcol[4] = {SIZE_MAX, SIZE_MAX, SIZE_MAX, SIZE_MAX};
+  const char* znames[] = {"zone", "zone_tries", "round", "category"};
+  for (size_t k = 0; k < 4; ++k) {
     for (size_t i = 0; i < t.rows[0].size(); ++i) {
       if (Trim(t.rows[0][i]) == znames[k]) zcol[k] = i;
     }
@@ -273,6 +293,7 @@ Result<std::vector<AscentRow>> ReadAscentRows(std::string_view csv, std::string_
       }
     }
     if (zcol[2] != SIZE_MAX) a.round = std::string(Trim(r[zcol[2]]));
+    if (zcol[3] != SIZE_MAX) a.category = std::string(Trim(r[zcol[3]]));
     rows.push_back(std::move(a));
   }
   return rows;

@@ -260,12 +260,14 @@ def fit_session_zones(case):
 
     case: {"model": "session_zones", "params": {"logit_per_unit", "climber_sd",
     "route_sd", "zone_sd", "route_offset_sd", "climber_offset_sd",
-    "offset_mean", "offset_sd", "delta_sd", "prior_mean"}, "climbers": C,
+    "offset_mean", "offset_sd", "delta_sd", "prior_mean", "later_tries_weight"},
+    "climbers": C,
     "routes": R, "rows": [[climber, route, top 0/1, tries or null, zone 0/1 or
     null, zone_tries or null], ...], "pairs": [...]}. Written from the
     docs' formula: per row a first-try game s(k (a - d)) won by a top in one
     try and a session game s(k (a - d) + b + e_r + u_c) won by a top (none
-    with 0 tries); with a zone, a first-try zone game s(k (a - z_r)) (zone
+    with 0 tries) and, at weight later_tries_weight, one per-try game
+    s(k (a - d)) per try after the first (the topping try won); with a zone, a first-try zone game s(k (a - z_r)) (zone
     tries known) and a session zone game s(k (a - z_r) + b); priors a, d ~
     N(m, sd^2), z_r - d_r + delta ~ N(0, zone_sd^2), e_r, u_c ~ N(0, sd^2),
     b ~ N(offset_mean, offset_sd^2), delta ~ N(0, delta_sd^2). Dense design
@@ -280,7 +282,7 @@ def fit_session_zones(case):
     ia, id_, iz, ie, iu = 0, C, C + R, C + 2 * R, C + 3 * R
     ib, idl = 2 * C + 3 * R, 2 * C + 3 * R + 1
     n = idl + 1
-    rows, y = [], []
+    rows, y, wts_extra = [], [], []
     for c, r, top, tries, zone, zt in case["rows"]:
         if tries != 0:
             v = np.zeros(n)
@@ -294,6 +296,20 @@ def fit_session_zones(case):
                 v[iu + c] = 1.0
             rows.append(v)
             y.append(1.0 if top else 0.0)
+            lw = k.get("later_tries_weight", 0.0)
+            if lw > 0 and tries is not None and tries > 1:
+                # the later tries: one game per try, each at weight lw
+                lost = tries - 2 if top else tries - 1
+                v = np.zeros(n)
+                v[ia + c], v[id_ + r] = s, -s
+                for _ in range(lost):
+                    rows.append(v.copy())
+                    y.append(0.0)
+                    wts_extra.append(len(rows) - 1)
+                if top:
+                    rows.append(v.copy())
+                    y.append(1.0)
+                    wts_extra.append(len(rows) - 1)
         if k["zone_sd"] > 0 and zone is not None and zt != 0:
             v = np.zeros(n)
             v[ia + c], v[iz + r] = s, -s
@@ -304,6 +320,8 @@ def fit_session_zones(case):
             rows.append(v)
             y.append(1.0 if zone else 0.0)
     X, y = np.array(rows), np.array(y)
+    wt = np.ones(len(y))
+    wt[wts_extra] = k.get("later_tries_weight", 0.0)
     # priors: rows of Pm x - mu with precisions lam
     Pm, mu, lam = [], [], []
 
@@ -332,14 +350,15 @@ def fit_session_zones(case):
     def f(x):
         z = X @ x
         r = Pm @ x - mu
-        return -np.sum(y * log_expit(z) + (1 - y) * log_expit(-z)) + 0.5 * np.sum(lam * r * r)
+        return (-np.sum(wt * (y * log_expit(z) + (1 - y) * log_expit(-z)))
+                + 0.5 * np.sum(lam * r * r))
 
     def grad(x):
-        return X.T @ (expit(X @ x) - y) + Pm.T @ (lam * (Pm @ x - mu))
+        return X.T @ (wt * (expit(X @ x) - y)) + Pm.T @ (lam * (Pm @ x - mu))
 
     def hess(x):
         p = expit(X @ x)
-        return (X.T * (p * (1 - p))) @ X + (Pm.T * lam) @ Pm
+        return (X.T * (wt * p * (1 - p))) @ X + (Pm.T * lam) @ Pm
 
     x0 = np.zeros(n)
     x0[ia:ia + C] = m

@@ -24,12 +24,14 @@ std::string Num(double v) {
   return b;
 }
 
-// One game: z = sum coef * x[index] (up to five terms), won or lost, weight 1.
+// One game: z = sum coef * x[index] (up to five terms), won or lost, with
+// a weight (1, or the later tries' weight).
 struct Game {
   std::array<int32_t, 5> idx{};
   std::array<double, 5> coef{};
   int n = 0;
   bool win = false;
+  double weight = 1;
 };
 
 // One Gaussian prior term: (sum coef * x[index] - mean)^2 / 2 sd^2.
@@ -64,7 +66,7 @@ class Problem {
     double f = 0;
     for (const Game& g : games) {
       const double z = Z(g, x);
-      f += g.win ? Softplus(-z) : Softplus(z);
+      f += g.weight * (g.win ? Softplus(-z) : Softplus(z));
     }
     for (const Prior& p : priors) {
       const double r = R(p, x);
@@ -81,8 +83,8 @@ class Problem {
     for (size_t i = 0; i < games.size(); ++i) {
       const Game& q = games[i];
       const double p = Sigmoid(Z(q, x));
-      const double r = p - (q.win ? 1.0 : 0.0);
-      w_[i] = p * (1 - p);
+      const double r = q.weight * (p - (q.win ? 1.0 : 0.0));
+      w_[i] = q.weight * p * (1 - p);
       for (int t = 0; t < q.n; ++t) {
         (*g)[size_t(q.idx[size_t(t)])] += r * q.coef[size_t(t)];
         diag_[size_t(q.idx[size_t(t)])] += w_[i] * q.coef[size_t(t)] * q.coef[size_t(t)];
@@ -184,7 +186,8 @@ Status SessionModelParams::Validate() const {
   }
   const std::pair<const char*, double> nonneg[] = {{"zone_sd", zone_sd},
                                                    {"route_offset_sd", route_offset_sd},
-                                                   {"climber_offset_sd", climber_offset_sd}};
+                                                   {"climber_offset_sd", climber_offset_sd},
+                                                   {"later_tries_weight", later_tries_weight}};
   for (const auto& [name, v] : nonneg) {
     if (!std::isfinite(v) || v < 0) {
       return Status::InvalidInput(std::string("session model: ") + name +
@@ -256,6 +259,23 @@ Result<SessionModelFit> FitSessionModel(const std::vector<SessionObs>& obs, int 
       }
       session.win = o.top;
       P.games.push_back(session);
+      // The tries after the first as per-try games at a small weight: a top
+      // in n is a won try and n - 2 lost ones, no top in n is n - 1 lost.
+      const int n = o.tries.value_or(0);
+      if (k.later_tries_weight > 0 && n > 1) {
+        Game later = first;
+        later.weight = k.later_tries_weight;
+        if (o.top) {
+          later.win = true;
+          P.games.push_back(later);
+        }
+        const int lost = o.top ? n - 2 : n - 1;
+        if (lost > 0) {
+          later.win = false;
+          later.weight = k.later_tries_weight * lost;
+          P.games.push_back(later);
+        }
+      }
     }
     if (zones && o.zone && !(o.zone_tries && *o.zone_tries == 0)) {
       Game zfirst;
@@ -417,6 +437,9 @@ Result<RatingEvaluation> EvaluateSynthGymSession(const SynthGym& gym, const Rati
   kk.prior_mean = n_set > 0 ? sum / n_set : 0.0;
   kk.climber_sd = params.climber_sd;
   kk.logit_per_unit = params.logit_per_unit;
+  // The session problem keeps no try counts (a send reads as 2 tries): no
+  // later-tries games.
+  kk.later_tries_weight = 0;
   SB_ASSIGN_OR_RETURN(std::vector<SessionObs> obs, SessionObsOfProblem(problem));
   SB_ASSIGN_OR_RETURN(SessionModelFit fit,
                       FitSessionModel(obs, problem.num_climbers, problem.num_routes(), kk,
@@ -456,11 +479,13 @@ Result<RatingEvaluation> EvaluateSynthGymSession(const SynthGym& gym, const Rati
 }
 
 SendChances PredictSessionModel(const SessionModelParams& params, const SessionModelFit& fit,
-                                int climber, int route) {
+                                int climber, int route,
+                                std::optional<double> unseen_difficulty) {
   const bool seen_c = climber >= 0 && size_t(climber) < fit.ability.size();
   const bool seen_r = route >= 0 && size_t(route) < fit.difficulty.size();
   const double a = seen_c ? fit.ability[size_t(climber)] : fit.prior_mean;
-  const double d = seen_r ? fit.difficulty[size_t(route)] : fit.prior_mean;
+  const double d =
+      seen_r ? fit.difficulty[size_t(route)] : unseen_difficulty.value_or(fit.prior_mean);
   const double u = seen_c ? fit.climber_offset[size_t(climber)] : 0.0;
   const double e = seen_r ? fit.route_offset[size_t(route)] : 0.0;
   const double z = params.logit_per_unit * (a - d);

@@ -51,14 +51,17 @@ struct SessionObs {
 
 // The model's priors (all on the V axis for bouldering, k logit per unit).
 // A standard deviation of 0 turns its part off (no zone games, no route or
-// climber offsets).
+// climber offsets); so does a later tries' weight of 0.
 struct SessionModelParams {
   double logit_per_unit = 1.0986122886681098;  // ln 3: one V grade
-  double climber_sd = 3;    // abilities ~ N(prior_mean, climber_sd^2)
-  double route_sd = 3;      // top difficulties ~ N(prior_mean, route_sd^2)
+  double climber_sd = 2;    // abilities ~ N(prior_mean, climber_sd^2)
+  double route_sd = 4;      // top difficulties ~ N(prior_mean, route_sd^2)
   double zone_sd = 1;       // zone difficulty ~ N(d_r - delta, zone_sd^2)
   double route_offset_sd = 1;      // e_r ~ N(0, route_offset_sd^2)
   double climber_offset_sd = 0.3;  // u_c ~ N(0, climber_offset_sd^2)
+  // The tries after the first as per-try games s(k (a - d)) at this weight
+  // (a top in n: one won and n - 2 lost; none in n: n - 1 lost; 0: none).
+  double later_tries_weight = 0.2;
   double offset_mean = kSessionOffsetPriorMean;  // b ~ N(offset_mean, offset_sd^2)
   double offset_sd = kSessionOffsetPriorSd;
   double delta_sd = 10;   // delta ~ N(0, delta_sd^2): weak
@@ -67,7 +70,7 @@ struct SessionModelParams {
   // The defaults chosen by cross-validation on the World Cup rows with
   // heldout = 0 (docs/grades.md, "Real outcomes"): the values above.
   static SessionModelParams Defaults() { return {}; }
-  // Sds finite and >= 0 (climber_sd, route_sd, offset_sd, delta_sd and k
+  // Sds and the weight finite and >= 0 (climber_sd, route_sd, offset_sd, delta_sd and k
   // > 0); errors name the field. Pure.
   Status Validate() const;
 };
@@ -100,9 +103,10 @@ Result<SessionModelFit> FitSessionModel(const std::vector<SessionObs>& obs, int 
 
 // The session games of a gym's problem (built with RatingModel::kSession:
 // per pair, first-try wins and losses and session wins and losses) as
-// observations with the same games: a flash per first-try win, a send in 2
-// per session win past those, an attempt of one try per session loss (no
-// zones). Errors: kInvalidInput when the problem is not a session model's
+// observations with the same first-try and session games: a flash per
+// first-try win, a send in 2 per session win past those, an attempt of one
+// try per session loss (no zones; the counts of tries are not kept, so fit
+// these with later_tries_weight 0). Errors: kInvalidInput when the problem is not a session model's
 // or a pair's counts disagree (first-try games != session games). Pure.
 Result<std::vector<SessionObs>> SessionObsOfProblem(const RatingProblem& problem);
 
@@ -115,16 +119,19 @@ std::vector<RoutePrior> RoutePriorsOfProblem(const RatingProblem& problem,
 // A synthetic gym (ratings_synth.h) fitted by this model (no zones: the
 // session games with the route and climber offsets of `k`; the setters'
 // grades and felt grades as route priors under `params`, abilities
-// N(mean setter's grade, params.climber_sd^2)): spearman, mae and
+// N(mean setter's grade, params.climber_sd^2); no later-tries games: the
+// session problem keeps no try counts): spearman, mae and
 // setter_mae as EvaluateSynthGym; no intervals (coverage and width NaN),
 // mae_felt_routes and felt_mae as there. Pure.
 Result<RatingEvaluation> EvaluateSynthGymSession(const SynthGym& gym, const RatingParams& params,
                                                  const SessionModelParams& k);
 
 // p_flash and p_send of `climber` on `route` (an index < 0 or past the fit:
-// unseen, at the prior mean with offset 0). Pure.
+// unseen, at the prior mean, or at `unseen_difficulty` when given, with
+// offset 0). Pure.
 SendChances PredictSessionModel(const SessionModelParams& params, const SessionModelFit& fit,
-                                int climber, int route);
+                                int climber, int route,
+                                std::optional<double> unseen_difficulty = std::nullopt);
 
 }  // namespace sb::grades
 

@@ -85,7 +85,8 @@ json Spec(const std::vector<SessionObs>& rows, int climbers, int routes,
               {"offset_mean", k.offset_mean},
               {"offset_sd", k.offset_sd},
               {"delta_sd", k.delta_sd},
-              {"prior_mean", k.prior_mean}}}};
+              {"prior_mean", k.prior_mean},
+              {"later_tries_weight", k.later_tries_weight}}}};
   json rs = json::array();
   for (const SessionObs& o : rows) {
     rs.push_back({o.climber, o.route, o.top ? 1 : 0, o.tries ? json(*o.tries) : json(nullptr),
@@ -152,6 +153,7 @@ TEST(RatingsSession, AgreesWithScipy) {
   SessionModelParams nozone = SessionModelParams::Defaults();
   nozone.zone_sd = 0;  // offsets only
   nozone.climber_sd = 2;
+  nozone.later_tries_weight = 0.3;
   cases.push_back({9, 4, 44, nozone});
   json specs = json::array();
   std::vector<std::vector<SessionObs>> rows;
@@ -196,7 +198,8 @@ TEST(RatingsSession, AgreesWithScipy) {
 TEST(RatingsSession, WithoutZonesAndOffsetsIsTheSessionModel) {
   const std::vector<SessionObs> rows = MakeRows(12, 9, 45);
   SessionModelParams k = SessionModelParams::Defaults();
-  k.zone_sd = k.route_offset_sd = k.climber_offset_sd = 0;
+  k.zone_sd = k.route_offset_sd = k.climber_offset_sd = k.later_tries_weight = 0;
+  k.climber_sd = k.route_sd = 3;  // RatingParams' bouldering defaults
   auto fit = FitSessionModel(rows, 12, 9, k);
   ASSERT_TRUE(fit.ok()) << fit.status().message();
   RatingProblemBuilder b;
@@ -238,7 +241,7 @@ TEST(RatingsSession, GymProblemMatchesTheSessionFit) {
   auto obs = SessionObsOfProblem(problem);
   ASSERT_TRUE(obs.ok()) << obs.status().message();
   SessionModelParams k = SessionModelParams::Defaults();
-  k.zone_sd = k.route_offset_sd = k.climber_offset_sd = 0;
+  k.zone_sd = k.route_offset_sd = k.climber_offset_sd = k.later_tries_weight = 0;
   k.prior_mean = ref->prior_mean;
   k.climber_sd = params.climber_sd;
   auto fit = FitSessionModel(*obs, problem.num_climbers, problem.num_routes(), k,
