@@ -4,7 +4,8 @@
 //   strangebeta ratings fit --ticks TICKS.csv [--routes ROUTES.csv] [--format text|json]
 //                           [--skip-bad] [--intervals auto|exact|approximate] [-o FILE]
 //   strangebeta ratings predict --ticks TICKS.csv [--routes ROUTES.csv] --pairs PAIRS.csv
-//                               [--format csv|json] [--fit FIT.json] [--model tries|session]
+//                               [--format csv|json] [--fit FIT.json]
+//                               [--model tries|session|zones]
 //   strangebeta ratings eval-real --ascents ascents.csv [--format text|json]
 //   strangebeta ratings synth --climbers N --routes M --ticks-per-route K --seed S --out DIR
 //   strangebeta ratings eval [--climbers N] [--routes M] [--ticks-per-route 20,5,2] [--seed S]
@@ -226,6 +227,11 @@ struct PredictArgs {
 
 // What a prediction needs from a fit, by name.
 struct Predictor {
+  // The zones model fitted to a gym's ticks (ratings_session.h): predictions
+  // from it by index, not from the maps below.
+  bool zones = false;
+  grades::GymSessionFit gym;
+  std::unordered_map<std::string, int> climber_index, route_index;
   grades::RatingParams params;
   grades::RatingModel model = grades::RatingModel::kTries;
   double prior_mean = 0, session_offset = 0, session_tries = 0;
@@ -310,7 +316,27 @@ int Predict(const PredictArgs& a) {
                                                  (ci == SIZE_MAX ? "climber" : "route") + "'"));
   }
   Predictor p;
-  if (!a.fit_json.empty()) {
+  const bool zones = a.fit.model == "zones";
+  if (zones && !a.fit_json.empty()) {
+    return Fail(kCmd, Status::InvalidInput("--model zones: predicts from --ticks only (a saved fit "
+                                           "has no session offsets)"));
+  }
+  if (zones) {
+    FitArgs fa = a.fit;
+    fa.model = "session";  // read as session games, then fit the zones model
+    auto loaded = LoadAndFit(fa);
+    if (std::holds_alternative<int>(loaded)) return std::get<int>(loaded);
+    Fitted& f = std::get<Fitted>(loaded);
+    auto gym = grades::FitGymSessionModel(f.in.problem, f.params, f.fit.prior_mean);
+    if (!gym.ok()) return Fail(kCmd, gym.status());
+    p.zones = true;
+    p.gym = std::move(gym).value();
+    p.params = f.params;
+    p.prior_mean = f.fit.prior_mean;
+    for (size_t r = 0; r < f.in.routes.size(); ++r) p.route_index.emplace(f.in.routes[r], int(r));
+    for (size_t c = 0; c < f.in.climbers.size(); ++c)
+      p.climber_index.emplace(f.in.climbers[c], int(c));
+  } else if (!a.fit_json.empty()) {
     auto loaded = PredictorFromJson(a.fit_json);
     if (!loaded.ok()) return Fail(kCmd, loaded.status());
     p = std::move(loaded).value();
@@ -339,9 +365,9 @@ int Predict(const PredictArgs& a) {
     for (size_t c = 0; c < f.in.climbers.size(); ++c)
       p.ability.emplace(f.in.climbers[c], f.fit.ability[c]);
   }
+  const std::string model_name = p.zones ? "zones" : grades::RatingModelName(p.model);
   std::string o = a.format == "csv" ? "climber,route,p_flash,p_send\n"
-                                    : "{\"model\":" + JsonString(grades::RatingModelName(p.model)) +
-                                          ",\"pairs\":[";
+                                    : "{\"model\":" + JsonString(model_name) + ",\"pairs\":[";
   size_t n = 0;
   for (size_t i = 1; i < pairs->rows.size(); ++i) {
     const CsvRow& row = pairs->rows[i];
@@ -359,18 +385,26 @@ int Predict(const PredictArgs& a) {
     }
     const auto ai = p.ability.find(climber);
     const auto di = p.difficulty.find(route);
+    const auto zci = p.climber_index.find(climber);
+    const auto zri = p.route_index.find(route);
     const double ability = ai != p.ability.end() ? ai->second : p.prior_mean;
     const double difficulty = di != p.difficulty.end() ? di->second : p.prior_mean;
-    const grades::SendChances s = grades::PredictSend(p.params, p.model, p.session_offset,
-                                                      p.session_tries, ability, difficulty);
+    const grades::SendChances s =
+        p.zones ? grades::PredictSessionModel(p.gym.params, p.gym.fit,
+                                              zci != p.climber_index.end() ? zci->second : -1,
+                                              zri != p.route_index.end() ? zri->second : -1)
+                : grades::PredictSend(p.params, p.model, p.session_offset, p.session_tries,
+                                      ability, difficulty);
+    const bool climber_seen = p.zones ? zci != p.climber_index.end() : ai != p.ability.end();
+    const bool route_seen = p.zones ? zri != p.route_index.end() : di != p.difficulty.end();
     if (a.format == "csv") {
       o += FormatCsvRow({climber, route, Fmt(s.p_flash), Fmt(s.p_send)});
     } else {
       o += std::string(n ? "," : "") + "{\"climber\":" + JsonString(climber) +
            ",\"route\":" + JsonString(route) + ",\"p_flash\":" + Fmt(s.p_flash) +
            ",\"p_send\":" + Fmt(s.p_send) +
-           ",\"climber_seen\":" + (ai != p.ability.end() ? "true" : "false") +
-           ",\"route_seen\":" + (di != p.difficulty.end() ? "true" : "false") + "}";
+           ",\"climber_seen\":" + (climber_seen ? "true" : "false") +
+           ",\"route_seen\":" + (route_seen ? "true" : "false") + "}";
     }
     ++n;
   }
@@ -573,7 +607,9 @@ int RunRatings(const std::vector<std::string>& args) {
   predict->add_option("--fit", pa.fit_json,
                       "a saved fit (ratings fit --format json) instead of --ticks");
   predict->add_option("--format", pa.format, "csv or json")->capture_default_str();
-  predict->add_option("--model", pa.fit.model, "tries or session (when fitting)")
+  predict->add_option("--model", pa.fit.model,
+                      "tries, session, or zones (session with route and climber session "
+                      "offsets; from --ticks only)")
       ->capture_default_str();
   predict->add_flag("--dedupe", pa.fit.dedupe, "count an exact duplicate row of TICKS.csv once");
   predict->add_flag("--skip-bad", pa.fit.skip_bad, "report bad rows and fit without them");

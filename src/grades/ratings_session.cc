@@ -422,6 +422,23 @@ std::vector<RoutePrior> RoutePriorsOfProblem(const RatingProblem& problem,
   return out;
 }
 
+Result<GymSessionFit> FitGymSessionModel(const RatingProblem& problem, const RatingParams& params,
+                                         double prior_mean, const SessionModelParams& k) {
+  GymSessionFit out;
+  out.params = k;
+  out.params.prior_mean = prior_mean;
+  out.params.climber_sd = params.climber_sd;
+  out.params.logit_per_unit = params.logit_per_unit;
+  // The session problem keeps no try counts (a send reads as 2 tries): no
+  // later-tries games.
+  out.params.later_tries_weight = 0;
+  SB_ASSIGN_OR_RETURN(std::vector<SessionObs> obs, SessionObsOfProblem(problem));
+  SB_ASSIGN_OR_RETURN(out.fit,
+                      FitSessionModel(obs, problem.num_climbers, problem.num_routes(), out.params,
+                                      RoutePriorsOfProblem(problem, params, prior_mean)));
+  return out;
+}
+
 Result<RatingEvaluation> EvaluateSynthGymSession(const SynthGym& gym, const RatingParams& params,
                                                  const SessionModelParams& k) {
   const RatingProblem problem = SynthProblem(gym, RatingModel::kSession);
@@ -433,17 +450,9 @@ Result<RatingEvaluation> EvaluateSynthGymSession(const SynthGym& gym, const Rati
       ++n_set;
     }
   }
-  SessionModelParams kk = k;
-  kk.prior_mean = n_set > 0 ? sum / n_set : 0.0;
-  kk.climber_sd = params.climber_sd;
-  kk.logit_per_unit = params.logit_per_unit;
-  // The session problem keeps no try counts (a send reads as 2 tries): no
-  // later-tries games.
-  kk.later_tries_weight = 0;
-  SB_ASSIGN_OR_RETURN(std::vector<SessionObs> obs, SessionObsOfProblem(problem));
-  SB_ASSIGN_OR_RETURN(SessionModelFit fit,
-                      FitSessionModel(obs, problem.num_climbers, problem.num_routes(), kk,
-                                      RoutePriorsOfProblem(problem, params, kk.prior_mean)));
+  SB_ASSIGN_OR_RETURN(GymSessionFit gf,
+                      FitGymSessionModel(problem, params, n_set > 0 ? sum / n_set : 0.0, k));
+  const SessionModelFit& fit = gf.fit;
   RatingEvaluation ev;
   const size_t n = gym.true_difficulty.size();
   ev.routes = int(n);

@@ -116,6 +116,20 @@ Result<std::vector<SessionObs>> SessionObsOfProblem(const RatingProblem& problem
 std::vector<RoutePrior> RoutePriorsOfProblem(const RatingProblem& problem,
                                              const RatingParams& params, double prior_mean);
 
+// A gym's problem (built with RatingModel::kSession) fitted by this model:
+// SessionObsOfProblem's rows, RoutePriorsOfProblem's priors, abilities
+// N(prior_mean, params.climber_sd^2), k = params.logit_per_unit, the
+// offsets' and b's priors of `k` and no later-tries games (the problem
+// keeps no try counts). Returns the parameters used with the fit. Errors: those of
+// SessionObsOfProblem and FitSessionModel. Pure.
+struct GymSessionFit {
+  SessionModelParams params;
+  SessionModelFit fit;
+};
+Result<GymSessionFit> FitGymSessionModel(
+    const RatingProblem& problem, const RatingParams& params, double prior_mean,
+    const SessionModelParams& k = SessionModelParams::Defaults());
+
 // A synthetic gym (ratings_synth.h) fitted by this model (no zones: the
 // session games with the route and climber offsets of `k`; the setters'
 // grades and felt grades as route priors under `params`, abilities
