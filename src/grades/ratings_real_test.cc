@@ -47,6 +47,28 @@ TEST(RatingsReal, ReadsRowsAsTicksAndRefusesBadOnes) {
                              RatingModel::kTries);
   ASSERT_FALSE(bad.ok());
   EXPECT_EQ(bad.status().message(), "A.csv:2: top: expected 0 or 1, got 'yes'");
+  // The zone columns: read by the zones model, refused when bad or half present.
+  const std::string zhead = "event_id,route_id,athlete_id,top,top_tries,zone,zone_tries,heldout\n";
+  auto zones = EvaluateAscentsZones(zhead +
+                                        "1,r1,a,1,1,1,1,0\n"
+                                        "1,r1,b,0,3,1,2,0\n"
+                                        "1,r2,a,1,2,1,,0\n"
+                                        "1,r2,b,0,4,0,4,0\n"
+                                        "1,r1,c,0,2,0,2,1\n"
+                                        "1,r2,c,1,1,1,1,1\n",
+                                    "Z.csv", AscentSplit::kHeldout, SessionModelParams::Defaults());
+  ASSERT_TRUE(zones.ok()) << zones.status().message();
+  EXPECT_EQ(zones->fit_rows, 4);
+  EXPECT_EQ(zones->scored_rows, 2);
+  auto bad_zone = EvaluateAscentsZones(zhead + "1,r1,a,1,1,yes,1,0\n", "Z.csv",
+                                       AscentSplit::kHeldout, SessionModelParams::Defaults());
+  ASSERT_FALSE(bad_zone.ok());
+  EXPECT_EQ(bad_zone.status().message(), "Z.csv:2: zone: expected 0, 1 or empty, got 'yes'");
+  auto half = EvaluateAscentsZones("event_id,route_id,athlete_id,top,top_tries,zone,heldout\n",
+                                   "Z.csv", AscentSplit::kHeldout, SessionModelParams::Defaults());
+  ASSERT_FALSE(half.ok());
+  EXPECT_EQ(half.status().message(),
+            "Z.csv:1: zone and zone_tries: expected both columns or neither");
   auto missing =
       EvaluateAscents("event_id,route_id\n", "A.csv", AscentSplit::kHeldout, RatingModel::kTries);
   ASSERT_FALSE(missing.ok());
