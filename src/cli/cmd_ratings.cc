@@ -4,7 +4,8 @@
 //   strangebeta ratings fit --ticks TICKS.csv [--routes ROUTES.csv] [--format text|json]
 //                           [--skip-bad] [--intervals auto|exact|approximate] [-o FILE]
 //   strangebeta ratings predict --ticks TICKS.csv [--routes ROUTES.csv] --pairs PAIRS.csv
-//                               [--format csv|json] [--fit FIT.json] [--model tries|session]
+//                               [--format csv|json] [--fit FIT.json]
+//                               [--model tries|session|zones]
 //   strangebeta ratings eval-real --ascents ascents.csv [--format text|json]
 //   strangebeta ratings synth --climbers N --routes M --ticks-per-route K --seed S --out DIR
 //   strangebeta ratings eval [--climbers N] [--routes M] [--ticks-per-route 20,5,2] [--seed S]
@@ -29,6 +30,7 @@
 #include "grades/ratings_drift.h"
 #include "grades/ratings_io.h"
 #include "grades/ratings_real.h"
+#include "grades/ratings_session.h"
 #include "grades/ratings_synth.h"
 #include "grades/scale.h"
 
@@ -43,6 +45,8 @@ constexpr const char* kCmd = "ratings";
 constexpr size_t kMaxReportedRows = 100;
 
 std::string Fmt(double v) { return FormatDouble(v, 17); }
+// JSON null for a figure a model does not give (NaN: no intervals).
+std::string FmtOrNull(double v) { return std::isnan(v) ? "null" : Fmt(v); }
 
 std::string Fixed(double v, int digits = 2) {
   char b[48];
@@ -305,6 +309,11 @@ struct PredictArgs {
 
 // What a prediction needs from a fit, by name.
 struct Predictor {
+  // The zones model fitted to a gym's ticks (ratings_session.h): predictions
+  // from it by index, not from the maps below.
+  bool zones = false;
+  grades::GymSessionFit gym;
+  std::unordered_map<std::string, int> climber_index, route_index;
   grades::RatingParams params;
   grades::RatingModel model = grades::RatingModel::kTries;
   double prior_mean = 0, session_offset = 0, session_tries = 0;
@@ -395,7 +404,27 @@ int Predict(const PredictArgs& a) {
                                                  (ci == SIZE_MAX ? "climber" : "route") + "'"));
   }
   Predictor p;
-  if (!a.fit_json.empty()) {
+  const bool zones = a.fit.model == "zones";
+  if (zones && !a.fit_json.empty()) {
+    return Fail(kCmd, Status::InvalidInput("--model zones: predicts from --ticks only (a saved fit "
+                                           "has no session offsets)"));
+  }
+  if (zones) {
+    FitArgs fa = a.fit;
+    fa.model = "session";  // read as session games, then fit the zones model
+    auto loaded = LoadAndFit(fa);
+    if (std::holds_alternative<int>(loaded)) return std::get<int>(loaded);
+    Fitted& f = std::get<Fitted>(loaded);
+    auto gym = grades::FitGymSessionModel(f.in.problem, f.params, f.fit.prior_mean);
+    if (!gym.ok()) return Fail(kCmd, gym.status());
+    p.zones = true;
+    p.gym = std::move(gym).value();
+    p.params = f.params;
+    p.prior_mean = f.fit.prior_mean;
+    for (size_t r = 0; r < f.in.routes.size(); ++r) p.route_index.emplace(f.in.routes[r], int(r));
+    for (size_t c = 0; c < f.in.climbers.size(); ++c)
+      p.climber_index.emplace(f.in.climbers[c], int(c));
+  } else if (!a.fit_json.empty()) {
     auto loaded = PredictorFromJson(a.fit_json);
     if (!loaded.ok()) return Fail(kCmd, loaded.status());
     p = std::move(loaded).value();
@@ -428,9 +457,9 @@ int Predict(const PredictArgs& a) {
         p.ability_sd.emplace(f.in.climbers[c], f.fit.ability_sd[c]);
     }
   }
+  const std::string model_name = p.zones ? "zones" : grades::RatingModelName(p.model);
   std::string o = a.format == "csv" ? "climber,route,p_flash,p_send\n"
-                                    : "{\"model\":" + JsonString(grades::RatingModelName(p.model)) +
-                                          ",\"pairs\":[";
+                                    : "{\"model\":" + JsonString(model_name) + ",\"pairs\":[";
   size_t n = 0;
   for (size_t i = 1; i < pairs->rows.size(); ++i) {
     const CsvRow& row = pairs->rows[i];
@@ -448,23 +477,30 @@ int Predict(const PredictArgs& a) {
     }
     const auto ai = p.ability.find(climber);
     const auto di = p.difficulty.find(route);
+    const auto zci = p.climber_index.find(climber);
+    const auto zri = p.route_index.find(route);
     const double ability = ai != p.ability.end() ? ai->second : p.prior_mean;
     const double difficulty = di != p.difficulty.end() ? di->second : p.prior_mean;
     const auto si = p.ability_sd.find(climber);
     const grades::SendChances s =
-        si == p.ability_sd.end()
+        p.zones ? grades::PredictSessionModel(p.gym.params, p.gym.fit,
+                                              zci != p.climber_index.end() ? zci->second : -1,
+                                              zri != p.route_index.end() ? zri->second : -1)
+        : si == p.ability_sd.end()
             ? grades::PredictSend(p.params, p.model, p.session_offset, p.session_tries, ability,
                                   difficulty)
             : grades::PredictSendUncertain(p.params, p.model, p.session_offset, p.session_tries,
                                            ability, si->second, difficulty);
+    const bool climber_seen = p.zones ? zci != p.climber_index.end() : ai != p.ability.end();
+    const bool route_seen = p.zones ? zri != p.route_index.end() : di != p.difficulty.end();
     if (a.format == "csv") {
       o += FormatCsvRow({climber, route, Fmt(s.p_flash), Fmt(s.p_send)});
     } else {
       o += std::string(n ? "," : "") + "{\"climber\":" + JsonString(climber) +
            ",\"route\":" + JsonString(route) + ",\"p_flash\":" + Fmt(s.p_flash) +
            ",\"p_send\":" + Fmt(s.p_send) +
-           ",\"climber_seen\":" + (ai != p.ability.end() ? "true" : "false") +
-           ",\"route_seen\":" + (di != p.difficulty.end() ? "true" : "false") + "}";
+           ",\"climber_seen\":" + (climber_seen ? "true" : "false") +
+           ",\"route_seen\":" + (route_seen ? "true" : "false") + "}";
     }
     ++n;
   }
@@ -575,7 +611,10 @@ int Eval(grades::SynthGymParams sp, const std::string& ticks_list, const std::st
          const std::string& drift_name, const std::string& shape, double drift_sd,
          const grades::DriftGymParams& dgp) {
   if (Status s = CheckFormat(format); !s.ok()) return Fail(kCmd, s);
-  auto model = grades::ParseRatingModel(model_name, "--model");
+  // zones: the session model with route and climber session offsets
+  // (ratings_session.h; the synthetic gym has no zones).
+  const bool zones = model_name == "zones";
+  auto model = grades::ParseRatingModel(zones ? "session" : model_name, "--model");
   if (!model.ok()) return Fail(kCmd, model.status());
   auto method = ParseIntervals(intervals);
   if (!method.ok()) return Fail(kCmd, method.status());
@@ -621,7 +660,9 @@ int Eval(grades::SynthGymParams sp, const std::string& ticks_list, const std::st
     sp.ticks_per_route = ks[i];
     auto gym = grades::MakeSynthGym(sp);
     if (!gym.ok()) return Fail(kCmd, gym.status());
-    auto ev = grades::EvaluateSynthGym(*gym, params, opt, *model);
+    auto ev = zones ? grades::EvaluateSynthGymSession(*gym, params,
+                                                      grades::SessionModelParams::Defaults())
+                    : grades::EvaluateSynthGym(*gym, params, opt, *model);
     if (!ev.ok()) return Fail(kCmd, ev.status());
     // How much lower the fit's error is than the felt grades' median, on the
     // routes that have felt grades.
@@ -636,12 +677,12 @@ int Eval(grades::SynthGymParams sp, const std::string& ticks_list, const std::st
     } else {
       o += std::string(i ? "," : "") + "{\"ticks_per_route\":" + std::to_string(ks[i]) +
            ",\"ticks\":" + std::to_string(ev->ticks) + ",\"spearman\":" + Fmt(ev->spearman) +
-           ",\"coverage\":" + Fmt(ev->coverage) + ",\"mae\":" + Fmt(ev->mae) +
+           ",\"coverage\":" + FmtOrNull(ev->coverage) + ",\"mae\":" + Fmt(ev->mae) +
            ",\"setter_mae\":" + Fmt(ev->setter_mae) +
            ",\"felt_routes\":" + std::to_string(ev->felt_routes) +
            ",\"mae_felt_routes\":" + Fmt(ev->mae_felt_routes) +
            ",\"felt_median_mae\":" + Fmt(ev->felt_mae) + ",\"gain\":" + Fmt(gain) +
-           ",\"mean_interval_width\":" + Fmt(ev->mean_interval_width) +
+           ",\"mean_interval_width\":" + FmtOrNull(ev->mean_interval_width) +
            ",\"exact_intervals\":" + (ev->exact_intervals ? "true" : "false") + "}";
     }
   }
@@ -674,20 +715,27 @@ int EvalReal(const std::string& path, const std::string& format) {
   bool first = true;
   for (grades::AscentSplit split :
        {grades::AscentSplit::kHeldout, grades::AscentSplit::kTemporal}) {
-    for (grades::RatingModel model : {grades::RatingModel::kTries, grades::RatingModel::kSession}) {
-      auto ev = grades::EvaluateAscents(*csv, path, split, model);
+    // tries, session (ratings.h), then zones: the session model with zones
+    // and session offsets (ratings_session.h, the CV-chosen defaults).
+    for (int m = 0; m < 3; ++m) {
+      const grades::RatingModel model =
+          m == 0 ? grades::RatingModel::kTries : grades::RatingModel::kSession;
+      const char* model_name = m == 2 ? "zones" : grades::RatingModelName(model);
+      auto ev = m == 2 ? grades::EvaluateAscentsZones(*csv, path, split,
+                                                      grades::SessionModelParams::Defaults())
+                       : grades::EvaluateAscents(*csv, path, split, model);
       if (!ev.ok()) return Fail(kCmd, ev.status());
       if (format == "text") {
         char line[256];
         std::snprintf(line, sizeof line, "%-8s %-8s %6d %6d %8.3f %9.4f %9.4f %9.4f %7.3f\n",
-                      grades::AscentSplitName(split), grades::RatingModelName(model), ev->fit_rows,
+                      grades::AscentSplitName(split), model_name, ev->fit_rows,
                       ev->scored_rows, ev->top_rate, ev->top_auc, ev->top_log_loss, ev->flash_auc,
                       ev->session_offset);
         o += line;
       } else {
         o += std::string(first ? "" : ",") +
              "{\"split\":" + JsonString(grades::AscentSplitName(split)) +
-             ",\"model\":" + JsonString(grades::RatingModelName(model)) +
+             ",\"model\":" + JsonString(model_name) +
              ",\"fit_rows\":" + std::to_string(ev->fit_rows) +
              ",\"scored_rows\":" + std::to_string(ev->scored_rows) +
              ",\"top_rate\":" + Fmt(ev->top_rate) + ",\"top_auc\":" + Fmt(ev->top_auc) +
@@ -701,7 +749,9 @@ int EvalReal(const std::string& path, const std::string& format) {
   if (format == "text") {
     o +=
         "\ntop-auc, top-ll: AUC and log-loss of p_send for a top; flash-auc: AUC of p_flash for a\n"
-        "top on the first try; b: the session model's offset (logit of a session over one try).\n";
+        "top on the first try; b: the session model's offset (logit of a session over one try);\n"
+        "zones: the session model with the zones' evidence and per-boulder and per-athlete\n"
+        "session offsets (docs/grades.md, \"Real outcomes\").\n";
   } else {
     o += "]}\n";
   }
@@ -756,7 +806,9 @@ int RunRatings(const std::vector<std::string>& args) {
   predict->add_option("--fit", pa.fit_json,
                       "a saved fit (ratings fit --format json) instead of --ticks");
   predict->add_option("--format", pa.format, "csv or json")->capture_default_str();
-  predict->add_option("--model", pa.fit.model, "tries or session (when fitting)")
+  predict->add_option("--model", pa.fit.model,
+                      "tries, session, or zones (session with route and climber session "
+                      "offsets; from --ticks only)")
       ->capture_default_str();
   predict->add_flag("--dedupe", pa.fit.dedupe, "count an exact duplicate row of TICKS.csv once");
   predict->add_flag("--skip-bad", pa.fit.skip_bad, "report bad rows and fit without them");
@@ -802,7 +854,10 @@ int RunRatings(const std::vector<std::string>& args) {
   eval->add_option("--intervals", eval_intervals, "auto, exact or approximate")
       ->capture_default_str();
 
-  eval->add_option("--model", eval_model, "tries or session")->capture_default_str();
+  eval->add_option("--model", eval_model,
+                   "tries, session, or zones (session with route and climber session offsets; "
+                   "no intervals)")
+      ->capture_default_str();
   bool eval_drifting = false;
   std::string eval_drift = "off", eval_shape = "symmetric";
   double eval_drift_sd = 0;

@@ -257,6 +257,25 @@ TEST_F(RatingsCli, PredictFromTicksOrASavedFit) {
     EXPECT_NEAR(j["pairs"][3]["p_flash"].get<double>(),
                 1 / (1 + std::exp(-k * (a - fit["prior_mean"].get<double>()))), 1e-15);
   }
+  // The zones model (session offsets; a gym has no zones) from the ticks.
+  ASSERT_EQ(Ratings({"predict", "--ticks", P("TICKS.csv"), "--routes", P("ROUTES.csv"), "--pairs",
+                     P("PAIRS.csv"), "--model", "zones", "--format", "json"}),
+            0)
+      << err_;
+  const auto z = nlohmann::json::parse(out_);
+  EXPECT_EQ(z["model"], "zones");
+  ASSERT_EQ(z["pairs"].size(), 4u);
+  for (const auto& p : z["pairs"]) {
+    EXPECT_GT(p["p_flash"].get<double>(), 0.0);
+    EXPECT_LE(p["p_flash"].get<double>(), p["p_send"].get<double>());
+    EXPECT_LT(p["p_send"].get<double>(), 1.0);
+  }
+  EXPECT_EQ(z["pairs"][2]["climber_seen"], false);
+  EXPECT_EQ(z["pairs"][3]["route_seen"], false);
+  EXPECT_EQ(Ratings({"predict", "--fit", P("FIT.json"), "--pairs", P("PAIRS.csv"), "--model",
+                     "zones"}),
+            2);
+  EXPECT_NE(err_.find("--model zones: predicts from --ticks only"), std::string::npos) << err_;
   // Errors name the file and field.
   Write("NOPAIRS.csv", "climber,wall\nann,x\n");
   EXPECT_EQ(Ratings({"predict", "--ticks", P("TICKS.csv"), "--pairs", P("NOPAIRS.csv")}), 2);

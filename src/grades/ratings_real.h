@@ -14,6 +14,7 @@
 
 #include "base/status.h"
 #include "grades/ratings.h"
+#include "grades/ratings_session.h"
 
 namespace sb::grades {
 
@@ -50,6 +51,14 @@ struct AscentEvaluation {
 // a missing column, from FitRatings. Pure.
 Result<AscentEvaluation> EvaluateAscents(std::string_view csv, std::string_view name,
                                          AscentSplit split, RatingModel model);
+
+// The same with the session model with zones and session offsets
+// (ratings_session.h): each fitted row is a SessionObs (its zone and
+// zone_tries when the file has those columns; without them no zone games).
+// Errors as EvaluateAscents, and "zone: ..." / "zone_tries: ..." for a bad
+// zone field. Pure.
+Result<AscentEvaluation> EvaluateAscentsZones(std::string_view csv, std::string_view name,
+                                              AscentSplit split, const SessionModelParams& params);
 
 // Area under the ROC curve of scores for the labels (average ranks for
 // ties; NaN without both classes). Pure.

@@ -47,6 +47,28 @@ TEST(RatingsReal, ReadsRowsAsTicksAndRefusesBadOnes) {
                              RatingModel::kTries);
   ASSERT_FALSE(bad.ok());
   EXPECT_EQ(bad.status().message(), "A.csv:2: top: expected 0 or 1, got 'yes'");
+  // The zone columns: read by the zones model, refused when bad or half present.
+  const std::string zhead = "event_id,route_id,athlete_id,top,top_tries,zone,zone_tries,heldout\n";
+  auto zones = EvaluateAscentsZones(zhead +
+                                        "1,r1,a,1,1,1,1,0\n"
+                                        "1,r1,b,0,3,1,2,0\n"
+                                        "1,r2,a,1,2,1,,0\n"
+                                        "1,r2,b,0,4,0,4,0\n"
+                                        "1,r1,c,0,2,0,2,1\n"
+                                        "1,r2,c,1,1,1,1,1\n",
+                                    "Z.csv", AscentSplit::kHeldout, SessionModelParams::Defaults());
+  ASSERT_TRUE(zones.ok()) << zones.status().message();
+  EXPECT_EQ(zones->fit_rows, 4);
+  EXPECT_EQ(zones->scored_rows, 2);
+  auto bad_zone = EvaluateAscentsZones(zhead + "1,r1,a,1,1,yes,1,0\n", "Z.csv",
+                                       AscentSplit::kHeldout, SessionModelParams::Defaults());
+  ASSERT_FALSE(bad_zone.ok());
+  EXPECT_EQ(bad_zone.status().message(), "Z.csv:2: zone: expected 0, 1 or empty, got 'yes'");
+  auto half = EvaluateAscentsZones("event_id,route_id,athlete_id,top,top_tries,zone,heldout\n",
+                                   "Z.csv", AscentSplit::kHeldout, SessionModelParams::Defaults());
+  ASSERT_FALSE(half.ok());
+  EXPECT_EQ(half.status().message(),
+            "Z.csv:1: zone and zone_tries: expected both columns or neither");
   auto missing =
       EvaluateAscents("event_id,route_id\n", "A.csv", AscentSplit::kHeldout, RatingModel::kTries);
   ASSERT_FALSE(missing.ok());
@@ -75,12 +97,33 @@ TEST(RatingsReal, WorldCupFigures) {
   ASSERT_TRUE(tries.ok()) << tries.status().message();
   EXPECT_GT(session->top_auc, tries->top_auc);
   EXPECT_LT(session->top_log_loss, tries->top_log_loss);
+  // The session model with zones and session offsets (the CV-chosen
+  // defaults): the goals, from p_send and p_flash as they come.
+  auto zones = EvaluateAscentsZones(*csv, path, AscentSplit::kHeldout,
+                                    SessionModelParams::Defaults());
+  ASSERT_TRUE(zones.ok()) << zones.status().message();
+  EXPECT_EQ(zones->scored_rows, 916);
+  EXPECT_GE(zones->top_auc, 0.885);
+  EXPECT_LE(zones->top_log_loss, 0.390);
+  EXPECT_GE(zones->flash_auc, 0.865);
   // Temporal: every boulder of Bern 2026 is new (at the prior): only the
   // athletes' abilities order the rows.
   auto temporal = EvaluateAscents(*csv, path, AscentSplit::kTemporal, RatingModel::kSession);
   ASSERT_TRUE(temporal.ok()) << temporal.status().message();
   EXPECT_EQ(temporal->scored_rows, 624);
   EXPECT_GT(temporal->top_auc, 0.6);
+  auto temporal_zones = EvaluateAscentsZones(*csv, path, AscentSplit::kTemporal,
+                                             SessionModelParams::Defaults());
+  ASSERT_TRUE(temporal_zones.ok()) << temporal_zones.status().message();
+  EXPECT_EQ(temporal_zones->scored_rows, 624);
+  // New boulders at their category and round's mean level: ahead of the
+  // session model on every temporal figure (docs/grades.md).
+  EXPECT_GE(temporal_zones->top_auc, 0.68);
+  EXPECT_LE(temporal_zones->top_log_loss, 0.65);
+  EXPECT_GE(temporal_zones->flash_auc, 0.67);
+  EXPECT_GT(temporal_zones->top_auc, temporal->top_auc);
+  EXPECT_LT(temporal_zones->top_log_loss, temporal->top_log_loss);
+  EXPECT_GT(temporal_zones->flash_auc, temporal->flash_auc);
 }
 
 }  // namespace

@@ -31,6 +31,9 @@ with b held at its optimum (the inverse of their block of the Hessian).
 Predictions: p_flash = s(k (a - d)); p_send = s(k (a - d) + b) (session) or
 1 - (1 - p_flash)^T (tries; T the mean tries of the ticks with a known
 count, a flash one try).
+The session model with zones and session offsets ("model": "session_zones",
+fit_session_zones below; ratings_session.h) takes rows of competition
+results instead of ticks.
 Exit code 3 when scipy is missing (the test then skips with a message).
 """
 import json
@@ -57,6 +60,8 @@ def games(outcome, attempts):
 def fit(case):
     if case.get("model") == "session":
         return fit_session(case)
+    if case.get("model") == "session_zones":
+        return fit_session_zones(case)
     k = case["params"]
     s = k["logit_per_unit"]
     C, R = case["climbers"], case["routes"]
@@ -248,6 +253,133 @@ def fit_session(case):
             "session_offset": b, "success": bool(np.max(np.abs(grad(x))) < 1e-8),
             "p_flash": predict(case, x[:C], x[C:n], m, s).tolist(),
             "p_send": predict(case, x[:C], x[C:n], m, s, b).tolist()}
+
+
+def fit_session_zones(case):
+    """The session model with zones and session offsets (ratings_session.h).
+
+    case: {"model": "session_zones", "params": {"logit_per_unit", "climber_sd",
+    "route_sd", "zone_sd", "route_offset_sd", "climber_offset_sd",
+    "offset_mean", "offset_sd", "delta_sd", "prior_mean", "later_tries_weight"},
+    "climbers": C,
+    "routes": R, "rows": [[climber, route, top 0/1, tries or null, zone 0/1 or
+    null, zone_tries or null], ...], "pairs": [...]}. Written from the
+    docs' formula: per row a first-try game s(k (a - d)) won by a top in one
+    try and a session game s(k (a - d) + b + e_r + u_c) won by a top (none
+    with 0 tries) and, at weight later_tries_weight, one per-try game
+    s(k (a - d)) per try after the first (the topping try won); with a zone, a first-try zone game s(k (a - z_r)) (zone
+    tries known) and a session zone game s(k (a - z_r) + b); priors a, d ~
+    N(m, sd^2), z_r - d_r + delta ~ N(0, zone_sd^2), e_r, u_c ~ N(0, sd^2),
+    b ~ N(offset_mean, offset_sd^2), delta ~ N(0, delta_sd^2). Dense design
+    matrix X (games x unknowns), minimised by trust-exact with the exact
+    Hessian X' W X + priors, then polished by Newton.
+    """
+    k = case["params"]
+    s = k["logit_per_unit"]
+    C, R = case["climbers"], case["routes"]
+    m = k["prior_mean"]
+    # x = [a (C), d (R), z (R), e (R), u (C), b, delta]
+    ia, id_, iz, ie, iu = 0, C, C + R, C + 2 * R, C + 3 * R
+    ib, idl = 2 * C + 3 * R, 2 * C + 3 * R + 1
+    n = idl + 1
+    rows, y, wts_extra = [], [], []
+    for c, r, top, tries, zone, zt in case["rows"]:
+        if tries != 0:
+            v = np.zeros(n)
+            v[ia + c], v[id_ + r] = s, -s
+            rows.append(v.copy())
+            y.append(1.0 if (top and tries == 1) else 0.0)
+            v[ib] = 1.0
+            if k["route_offset_sd"] > 0:
+                v[ie + r] = 1.0
+            if k["climber_offset_sd"] > 0:
+                v[iu + c] = 1.0
+            rows.append(v)
+            y.append(1.0 if top else 0.0)
+            lw = k.get("later_tries_weight", 0.0)
+            if lw > 0 and tries is not None and tries > 1:
+                # the later tries: one game per try, each at weight lw
+                lost = tries - 2 if top else tries - 1
+                v = np.zeros(n)
+                v[ia + c], v[id_ + r] = s, -s
+                for _ in range(lost):
+                    rows.append(v.copy())
+                    y.append(0.0)
+                    wts_extra.append(len(rows) - 1)
+                if top:
+                    rows.append(v.copy())
+                    y.append(1.0)
+                    wts_extra.append(len(rows) - 1)
+        if k["zone_sd"] > 0 and zone is not None and zt != 0:
+            v = np.zeros(n)
+            v[ia + c], v[iz + r] = s, -s
+            if zt is not None:
+                rows.append(v.copy())
+                y.append(1.0 if (zone and zt == 1) else 0.0)
+            v[ib] = 1.0
+            rows.append(v)
+            y.append(1.0 if zone else 0.0)
+    X, y = np.array(rows), np.array(y)
+    wt = np.ones(len(y))
+    wt[wts_extra] = k.get("later_tries_weight", 0.0)
+    # priors: rows of Pm x - mu with precisions lam
+    Pm, mu, lam = [], [], []
+
+    def prior(terms, mean, sd):
+        v = np.zeros(n)
+        for j, c in terms:
+            v[j] += c
+        Pm.append(v)
+        mu.append(mean)
+        lam.append(1.0 / sd ** 2)
+
+    for c in range(C):
+        prior([(ia + c, 1)], m, k["climber_sd"])
+        prior([(iu + c, 1)], 0.0, k["climber_offset_sd"] or 1.0)
+    for r in range(R):
+        prior([(id_ + r, 1)], m, k["route_sd"])
+        if k["zone_sd"] > 0:
+            prior([(iz + r, 1), (id_ + r, -1), (idl, 1)], 0.0, k["zone_sd"])
+        else:
+            prior([(iz + r, 1)], 0.0, 1.0)
+        prior([(ie + r, 1)], 0.0, k["route_offset_sd"] or 1.0)
+    prior([(ib, 1)], k["offset_mean"], k["offset_sd"])
+    prior([(idl, 1)], 0.0, k["delta_sd"])
+    Pm, mu, lam = np.array(Pm), np.array(mu), np.array(lam)
+
+    def f(x):
+        z = X @ x
+        r = Pm @ x - mu
+        return (-np.sum(wt * (y * log_expit(z) + (1 - y) * log_expit(-z)))
+                + 0.5 * np.sum(lam * r * r))
+
+    def grad(x):
+        return X.T @ (wt * (expit(X @ x) - y)) + Pm.T @ (lam * (Pm @ x - mu))
+
+    def hess(x):
+        p = expit(X @ x)
+        return (X.T * (wt * p * (1 - p))) @ X + (Pm.T * lam) @ Pm
+
+    x0 = np.zeros(n)
+    x0[ia:ia + C] = m
+    x0[id_:iz + R] = m
+    x0[ib] = k["offset_mean"]
+    res = optimize.minimize(f, x0, jac=grad, hess=hess, method="trust-exact",
+                            options={"gtol": 1e-8, "maxiter": 1000})
+    x = polish(res.x, grad, hess)
+    pf, ps = [], []
+    for c, r in case.get("pairs", []):
+        a = x[ia + c] if c < C else m
+        d = x[id_ + r] if r < R else m
+        u = x[iu + c] if c < C else 0.0
+        e = x[ie + r] if r < R else 0.0
+        pf.append(float(expit(s * (a - d))))
+        ps.append(float(expit(s * (a - d) + x[ib] + e + u)))
+    return {"ability": x[ia:ia + C].tolist(), "difficulty": x[id_:id_ + R].tolist(),
+            "zone_difficulty": x[iz:iz + R].tolist(), "route_offset": x[ie:ie + R].tolist(),
+            "climber_offset": x[iu:iu + C].tolist(), "offset": float(x[ib]),
+            "delta": float(x[idl]), "success": bool(np.max(np.abs(grad(x))) < 1e-8),
+            "p_flash": pf, "p_send": ps}
 
 
 def main():
