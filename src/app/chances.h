@@ -37,7 +37,8 @@ struct ChanceLimits {
   static constexpr int kActiveDays = 56;
   // Active climbers read per discipline, the most recently active first: the
   // project list costs routes x climbers predictions (1,000 routes x 500 =
-  // 0.5 M, some 10 ms), whatever the gym's size.
+  // 0.5 M, each an exp and a log; estimated, not measured), whatever the
+  // gym's size.
   static constexpr size_t kMaxActiveClimbers = 500;
   // Fewer active climbers than this make no project list: a median of one or
   // two climbers is their taste, not the gym's.
