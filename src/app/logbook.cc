@@ -15,6 +15,7 @@
 #include "app/convert.h"
 #include "app/discipline.h"
 #include "app/routes.h"
+#include "app/scales.h"
 #include "base/date.h"
 #include "base/log.h"
 #include "base/text.h"
@@ -86,6 +87,7 @@ AscentGrade MakeGrade(const std::string& discipline, Discipline d, const store::
   a.ticks = ticks;
   a.fitted = true;
   a.discipline = discipline;
+  a.wall_id = r.wall_id.value_or(0);
   a.value = value;
   a.lo = value - grades::kZ80 * sd;
   a.hi = value + grades::kZ80 * sd;
@@ -93,6 +95,7 @@ AscentGrade MakeGrade(const std::string& discipline, Discipline d, const store::
   a.lo_grade = grades::FormatValue(a.lo, d, scale);
   a.hi_grade = grades::FormatValue(a.hi, d, scale);
   if (r.grade_value && r.grade_discipline == discipline) {
+    a.setter_value = r.grade_value;
     const int band = grades::Band(*r.grade_value);
     if (a.hi < band - 0.5) a.verdict = "soft";
     if (a.lo >= band + 0.5) a.verdict = "sandbagged";
@@ -102,15 +105,49 @@ AscentGrade MakeGrade(const std::string& discipline, Discipline d, const store::
     if (c.ok()) {
       a.felt_votes = c->count;
       a.felt_median = grades::FormatValue(c->median, d, scale);
+      a.felt_median_value = c->median;
     }
   }
   return a;
+}
+
+// Issue 32: `a` (a copy a reader gets) written in its wall's gym scale when
+// the wall has one of a's discipline: the value, the interval's ends and the
+// felt median as the scale's labels, the verdict against the range of the
+// setter's label. Built-in wall scales need nothing: the route's grade is
+// read in it, so MakeGrade wrote it there. `walls` caches each wall's scale
+// for one call (errors reading one leave the grade as it is).
+void InWallScale(store::Store* store, int64_t gym_id, std::map<int64_t, WallGradeScale>* walls,
+                 AscentGrade* a) {
+  if (!a->fitted || a->wall_id == 0) return;
+  auto it = walls->find(a->wall_id);
+  if (it == walls->end()) {
+    Result<WallGradeScale> ws = LoadWallScale(store, gym_id, a->wall_id);
+    it = walls->emplace(a->wall_id, ws.ok() ? std::move(ws).value() : WallGradeScale{}).first;
+  }
+  const WallGradeScale& ws = it->second;
+  if (!ws.custom || grades::DisciplineName(ws.custom->discipline) != a->discipline) return;
+  const grades::GymScale& g = *ws.custom;
+  a->scale = g.name;
+  a->grade = g.Format(a->value);
+  a->lo_grade = g.Format(a->lo);
+  a->hi_grade = g.Format(a->hi);
+  if (a->felt_votes > 0) a->felt_median = g.Format(a->felt_median_value);
+  if (a->setter_value) {
+    // The setter's label: the one holding its value (the label's middle).
+    for (const grades::GymLabel& l : g.labels) {
+      if (*a->setter_value < l.lo || *a->setter_value > l.hi) continue;
+      a->verdict = a->hi < l.lo - 0.5 ? "soft" : a->lo >= l.hi + 0.5 ? "sandbagged" : "";
+      break;
+    }
+  }
 }
 
 // What one tick contributes to a fit: its games and felt grade on the axis.
 struct Counted {
   grades::Games games;
   std::optional<double> felt;
+  std::string day;  // the tick's day (issue 35: when its climber was last active)
 };
 
 // The contribution of `t` to a fit of discipline `d`: none unless its state
@@ -125,9 +162,9 @@ std::optional<Counted> CountedOf(const store::TickRecord& t, Discipline d, bool 
   if (!g.ok()) return std::nullopt;
   if (young) {
     const bool sent = g->wins > 0;
-    return Counted{grades::Games{sent ? 1 : 0, sent ? 0 : 1}, std::nullopt};
+    return Counted{grades::Games{sent ? 1 : 0, sent ? 0 : 1}, std::nullopt, t.day};
   }
-  return Counted{*g, FeltOn(t, d)};
+  return Counted{*g, FeltOn(t, d), t.day};
 }
 
 // The climber a tick counts as in a fit: itself, or for a new identity the
@@ -152,6 +189,9 @@ struct FitState {
   std::map<int64_t, std::vector<double>> felt;   // route id -> felt values
   int64_t fitted_ticks = 0;                      // ticks of the full fit
   int64_t absorbed = 0;                          // ticks absorbed since
+  // Issue 35: each climber's last counted tick's day (pooled identities
+  // too), for the active climbers of FitSnapshot.
+  std::map<std::string, std::string> last_day;
 };
 }  // namespace logbook_internal
 
@@ -287,6 +327,8 @@ Result<std::optional<AscentGrade>> Absorb(FitState* s, const store::RouteRecord&
     }
   }
   if (add) {
+    std::string& last = s->last_day[climber];
+    last = std::max(last, add->day);
     grades::AddTickTo(&e, c, add->games, add->felt);
     ++p.climber_ticks[size_t(c)];
     if (add->felt) felt.push_back(*add->felt);
@@ -698,6 +740,7 @@ Status Logbook::DoFlight(const Key& key, Flight* flight) {
   grades::RatingProblemBuilder b;
   b.EnsureRoutes(static_cast<int>(route_index.size()));
   std::map<int64_t, std::vector<double>> felt;
+  std::map<std::string, std::string> last_day;
   // Issue 34: each identity's aged routes (counted ticks at least
   // history_age_seconds old, any discipline); with fewer than history_routes
   // besides a route, its tick there counts as the route's pool of new
@@ -722,6 +765,15 @@ Status Logbook::DoFlight(const Key& key, Flight* flight) {
     (void)inserted;
     if (counted->felt) felt[t->route_id].push_back(*counted->felt);
     b.AddTick(c->second, route_index.at(t->route_id), counted->games, counted->felt);
+    // Issue 35: a session's length as `ratings predict` counts it (a known
+    // count of tries; a flash is one), and when each climber last ticked.
+    if (t->attempts) {
+      b.AddSessionTries(*t->attempts);
+    } else if (t->outcome == "flash") {
+      b.AddSessionTries(1);
+    }
+    std::string& last = last_day[c->first];
+    last = std::max(last, t->day);
   }
   b.EnsureClimbers(static_cast<int>(climber_index.size()));
   for (const auto& [id, idx] : route_index) {
@@ -749,6 +801,7 @@ Status Logbook::DoFlight(const Key& key, Flight* flight) {
     state->climbers = std::move(climber_index);
     state->routes = std::move(route_index);
     state->felt = std::move(felt);
+    state->last_day = std::move(last_day);
   }
   // Publish under the tick lock: the ticks written during the fit are
   // replayed into it first, so it is current for the latest of them.
@@ -862,6 +915,53 @@ Result<Logbook::FitRead> Logbook::FitGym(int64_t gym_id, const std::string& disc
   }
 }
 
+Result<FitSnapshot> Logbook::Snapshot(int64_t gym_id, const std::string& discipline,
+                                      const SnapshotQuery& q) {
+  if (ticks_ == nullptr) return Status::Internal("this store keeps no ticks");
+  SB_RETURN_IF_ERROR(grades::ParseDiscipline(discipline).status());
+  SB_ASSIGN_OR_RETURN(FitRead read, FitGym(gym_id, discipline, /*anonymous=*/false));
+  FitSnapshot out;
+  out.age_seconds = read.age_seconds;
+  std::lock_guard<std::mutex> lock(mu_);
+  auto it = cache_.find(Key(gym_id, discipline));
+  // No state: nothing fitted, or an entry left inconsistent (refitted by
+  // its next read); no prediction rather than a wrong one.
+  if (it == cache_.end() || !it->second.state) return out;
+  const FitState& s = *it->second.state;
+  out.fitted = true;
+  out.params = s.params;
+  out.model = s.fit.model;
+  out.prior_mean = s.fit.prior_mean;
+  out.session_offset = s.fit.session_offset;
+  out.session_tries = s.fit.session_tries;
+  auto add_climber = [&](const std::string& key) {
+    auto c = s.climbers.find(key);
+    if (c != s.climbers.end() && size_t(c->second) < s.fit.ability.size()) {
+      out.ability[key] = s.fit.ability[size_t(c->second)];
+    }
+  };
+  for (const std::string& key : q.climbers) add_climber(key);
+  if (!q.active_since.empty() && q.max_active > 0) {
+    std::vector<std::pair<std::string, std::string>> active;  // (day, key)
+    for (const auto& [key, day] : s.last_day) {
+      if (day >= q.active_since && key.rfind("new:", 0) != 0) active.emplace_back(day, key);
+    }
+    std::sort(active.begin(), active.end(), [](const auto& a, const auto& b) {
+      return a.first != b.first ? a.first > b.first : a.second < b.second;
+    });
+    if (active.size() > q.max_active) active.resize(q.max_active);
+    for (const auto& [day, key] : active) add_climber(key);
+  }
+  for (int64_t id : q.routes) {
+    auto r = s.routes.find(id);
+    if (r != s.routes.end() && size_t(r->second) < s.fit.difficulty.size()) {
+      out.difficulty[id] = {s.fit.difficulty[size_t(r->second)],
+                            s.fit.difficulty_sd[size_t(r->second)]};
+    }
+  }
+  return out;
+}
+
 uint64_t Logbook::FullFits() {
   std::lock_guard<std::mutex> lock(mu_);
   return full_fits_;
@@ -878,6 +978,8 @@ Result<AscentGrade> Logbook::Ascent(const Viewer& v, int64_t route_id) {
   if (it == read.fit->routes.end()) return none;
   AscentGrade a = it->second;
   a.age_seconds = read.age_seconds;
+  std::map<int64_t, WallGradeScale> walls;
+  InWallScale(store_, *route.gym_id, &walls, &a);
   return a;
 }
 
@@ -917,10 +1019,12 @@ Result<std::map<int64_t, AscentGrade>> Logbook::Ascents(const Viewer& v,
 Status Logbook::FillAscents(int64_t gym_id, const std::string& discipline, bool anonymous,
                             std::map<int64_t, AscentGrade>* grades) {
   SB_ASSIGN_OR_RETURN(FitRead read, FitGym(gym_id, discipline, anonymous));
+  std::map<int64_t, WallGradeScale> walls;
   for (auto& [id, a] : *grades) {
     if (auto it = read.fit->routes.find(id); it != read.fit->routes.end()) {
       a = it->second;
       a.age_seconds = read.age_seconds;
+      InWallScale(store_, gym_id, &walls, &a);
     }
   }
   return Status::Ok();
@@ -1000,8 +1104,10 @@ Result<LogbookView> Logbook::Mine(const Viewer& v, std::string_view participant_
     SB_ASSIGN_OR_RETURN(std::vector<store::TickRecord> ticks, ticks_->ClimberTicks(*key));
     out.ticks = ToViews(ticks);
   }
-  std::map<int, int> sends;  // band -> count; INT32_MIN for no grade
-  std::map<int, std::string> band_names;
+  // (band value, band name) -> sends; a route on a wall with a gym scale
+  // (issue 32) counts under its label, valued at the label's middle.
+  std::map<std::pair<double, std::string>, int> sends;
+  std::map<int64_t, WallGradeScale> walls;
   std::set<int64_t> tried, sent, gyms;
   for (const Tick& t : out.ticks) {
     tried.insert(t.route_id);
@@ -1014,15 +1120,28 @@ Result<LogbookView> Logbook::Mine(const Viewer& v, std::string_view participant_
     if (!sent.count(id)) continue;
     Result<Discipline> d = grades::ParseDiscipline(r.ok() ? r->grade_discipline : "");
     if (r.ok() && r->grade_value && d.ok()) {
+      if (r->wall_id && r->gym_id) {
+        auto w = walls.find(*r->wall_id);
+        if (w == walls.end()) {
+          Result<WallGradeScale> ws = LoadWallScale(store_, *r->gym_id, *r->wall_id);
+          w = walls.emplace(*r->wall_id, ws.ok() ? std::move(ws).value() : WallGradeScale{}).first;
+        }
+        const std::optional<grades::GymScale>& g = w->second.custom;
+        if (g && g->discipline == *d) {
+          if (std::optional<size_t> i = g->Find(r->grade)) {
+            ++sends[{g->labels[*i].value(), g->labels[*i].label}];
+            continue;
+          }
+        }
+      }
       const int band = grades::Band(*r->grade_value);
-      ++sends[band];
-      band_names[band] = grades::BandName(*d, band);
+      ++sends[{double(band), grades::BandName(*d, band)}];
     } else {
-      ++sends[INT32_MIN];
+      ++sends[{-HUGE_VAL, "?"}];
     }
   }
   for (auto it = sends.rbegin(); it != sends.rend(); ++it) {
-    out.pyramid.emplace_back(it->first == INT32_MIN ? "?" : band_names[it->first], it->second);
+    out.pyramid.emplace_back(it->first.second, it->second);
   }
   // The gyms to list: the climber's gyms (signed in), else those ticked.
   if (v.user_id) {

@@ -26,6 +26,7 @@
 #include "app/participants.h"
 #include "app/types.h"
 #include "base/status.h"
+#include "grades/ratings.h"
 #include "store/store.h"
 #include "store/visibility.h"
 #include "store/tick_store.h"
@@ -146,6 +147,41 @@ struct AscentGrade {
   // Seconds since the gym's ticks moved past the fit shown (0: current);
   // set while a background refit is under way (issue 34).
   int64_t age_seconds = 0;
+  // Issue 32: the gym scale the grades above are written in ("" = the
+  // route's own built-in scale): a route on a wall with a gym scale gets
+  // that scale's labels (and its verdict against its label's range).
+  std::string scale;
+  // What the labels are made from (kept by the fit): the route's wall (0:
+  // none), its setter's value on the axis and the felt median's value.
+  int64_t wall_id = 0;
+  std::optional<double> setter_value;
+  double felt_median_value = 0;
+};
+
+// What predictions (issue 35, app/chances.h) read from a gym's cached fit of
+// one discipline: the model's settings and the asked-for abilities and
+// difficulties, copied out so the prediction runs without the cache's lock.
+struct FitSnapshot {
+  bool fitted = false;  // false: nothing fitted (no counted ticks); the rest unset
+  grades::RatingParams params;
+  grades::RatingModel model = grades::RatingModel::kTries;
+  double prior_mean = 0, session_offset = 0, session_tries = 0;
+  // Climbers of the query that the fit has (pooled new identities never).
+  std::map<std::string, double> ability;
+  // Routes of the query that the fit has: (difficulty, sd) on the axis.
+  std::map<int64_t, std::pair<double, double>> difficulty;
+  int64_t age_seconds = 0;  // as AscentGrade::age_seconds
+};
+
+// What a FitSnapshot copies out.
+struct SnapshotQuery {
+  std::vector<std::string> climbers;  // climber keys ("u:ID", "d:HASH")
+  std::vector<int64_t> routes;
+  // When set ("YYYY-MM-DD"): also the fit's climbers (no pooled identity)
+  // whose last counted tick is on or after this day, most recent first, at
+  // most max_active of them.
+  std::string active_since;
+  size_t max_active = 0;
 };
 
 // One route of the logbook's "not tried yet" list.
@@ -160,7 +196,8 @@ struct LogbookView {
   std::vector<Tick> ticks;                     // newest day first
   std::map<int64_t, std::string> route_names;  // of the ticked routes
   // Sends (flash or send) by band of the route's setter grade: (band name,
-  // count), hardest first; routes without a grade under "?".
+  // count), hardest first; routes without a grade under "?"; a route on a
+  // wall with a gym scale under its label (issue 32).
   std::vector<std::pair<std::string, int>> pyramid;
   // The gym's routes on the wall (state "set") not ticked yet, by wall
   // (wall name, routes); routes without a wall under "".
@@ -199,6 +236,13 @@ class Logbook {
   // are not read again.
   Result<std::map<int64_t, AscentGrade>> Ascents(const Viewer& v,
                                                  const std::vector<RouteView>& routes);
+
+  // Issue 35: the cached fit of (gym, discipline) as FitGym keeps it (a
+  // signed-in reader's: fitted when missing or stale, as Ascent does),
+  // copied for `q`. Never refits when a cached fit is current. Errors: the
+  // store's, kInvalidInput for an unknown discipline.
+  Result<FitSnapshot> Snapshot(int64_t gym_id, const std::string& discipline,
+                               const SnapshotQuery& q);
 
   // Setters of the route's gym (head, setter) and the route's owner only:
   // every tick of the route (kPermission otherwise, kUnauthenticated when

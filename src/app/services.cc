@@ -16,6 +16,7 @@ Services::Services(Database* store, const Options& opts, Clock* clock)
       renders(opts.renders),
       gyms(store, opts),
       logbook(store, clock),
+      chances(store, &logbook, clock),
       dashboard(store, opts, clock),
       reports(store, &gyms, &logbook),
       setting_days(store, opts, &routes, &gyms, &variations, &renders, &dashboard),

@@ -8,6 +8,7 @@
 
 #include "app/accounts.h"
 #include "app/budget.h"
+#include "app/chances.h"
 #include "app/climber_feedback.h"
 #include "app/clock.h"
 #include "app/dashboard.h"
@@ -46,6 +47,9 @@ struct Services {
   Gyms gyms;
   // The climbers' logbook and ascent grades (issue 23).
   Logbook logbook;
+  // A climber's chances on a route and the gym's likely projects, from
+  // the logbook's cached fits (issue 35).
+  Chances chances;
   // The setting dashboard and wall targets (issue 22).
   Dashboard dashboard;
   // The wall and setting-day reports over the logbook (issue 23).

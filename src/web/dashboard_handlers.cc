@@ -11,6 +11,7 @@
 #include "app/discipline_targets.h"
 #include "base/number.h"
 #include "base/text.h"
+#include "web/chance_handlers.h"
 #include "web/logbook_handlers.h"
 #include "web/pages.h"
 
@@ -514,7 +515,7 @@ std::string DashboardPage(const PageViewer& v, const app::GymDashboard& d, int64
 }
 
 std::string DashboardBody(const app::GymDashboard& d, int64_t only_wall,
-                          const DashboardAscents& ascents) {
+                          const DashboardAscents& ascents, const std::string& projects_html) {
   const std::string gid = Id(d.gym.id);
   std::string b = "<p class=\"no-print\"><a href=\"/gyms/" + gid + "\">" + E(d.gym.name) +
                   "</a></p>\n<h1 id=\"dashboard-title\">" + E(d.gym.name) +
@@ -534,6 +535,7 @@ std::string DashboardBody(const app::GymDashboard& d, int64_t only_wall,
   }
   if (!only_wall) {
     for (const app::DisciplineDashboard& t : d.disciplines) b += DisciplineSection(d, t);
+    b += projects_html;  // issue 35
   }
   bool any = false;
   for (const app::WallDashboard& w : d.walls) {
@@ -579,6 +581,10 @@ void GetDashboard(Exchange& x) {
             {"disciplines", disciplines},
             {"circuit_words", d->circuit_words},
             {"archive_styles", d->archive_styles}};
+  // Issue 35: the routes its climbers are most likely to project.
+  Result<app::ProjectList> projects = ProjectsOf(x, *d);
+  if (!projects.ok()) return ApiError(x, projects.status());
+  body["projects"] = ProjectsJson(*projects);
   if (!*stamp) return ReplyJson(x.res, 200, body);
   // ReplyJson's text: invalid UTF-8 replaced, never a throw.
   std::shared_ptr<const std::string> text = x.services.rendered.Keep(
@@ -676,7 +682,13 @@ void PageDashboard(Exchange& x) {
   if (!slot) return;
   Result<DashboardAscents> ascents = AscentsOf(x, *d);
   if (!ascents.ok()) return PageError(x, ascents.status());
-  std::string body = DashboardBody(*d, only, *ascents);
+  std::string projects;
+  if (!only) {
+    Result<app::ProjectList> p = ProjectsOf(x, *d);
+    if (!p.ok()) return PageError(x, p.status());
+    projects = ProjectsHtml(*p);
+  }
+  std::string body = DashboardBody(*d, only, *ascents, projects);
   if (*stamp) body = *x.services.rendered.Keep(key, **stamp, std::move(body));
   x.res.SetBody(200, PageLayout(x.caller.page(), title, body),
                 "text/html; charset=utf-8");

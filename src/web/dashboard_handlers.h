@@ -33,9 +33,11 @@ using DashboardAscents = std::map<int64_t, app::AscentGrade>;
 std::string DashboardPage(const PageViewer& v, const app::GymDashboard& d, int64_t only_wall,
                           const DashboardAscents& ascents = {});
 // The page's body, inside the layout (what DashboardPage wraps; issue 22:
-// kept by app::RenderCache). Pure.
+// kept by app::RenderCache). `projects_html` (issue 35, ProjectsHtml) goes
+// after the discipline sections when every wall is shown. Pure.
 std::string DashboardBody(const app::GymDashboard& d, int64_t only_wall,
-                          const DashboardAscents& ascents = {});
+                          const DashboardAscents& ascents = {},
+                          const std::string& projects_html = "");
 // The floor plan as SVG: walls on their plan rectangles, filled by the age
 // of what is on them, each a link to /walls/{id}; "" when no wall has a
 // rectangle. Pure.

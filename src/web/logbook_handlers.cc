@@ -10,6 +10,7 @@
 #include "app/routes.h"
 #include "base/log.h"
 #include "base/text.h"
+#include "web/chance_handlers.h"
 #include "web/climber_handlers.h"
 
 namespace sb::web {
@@ -73,6 +74,8 @@ json AscentJson(const app::AscentGrade& a) {
     j["felt_median"] = a.felt_median;
     // The fit shown is this old while a refit runs (issue 34).
     if (a.age_seconds > 0) j["age_seconds"] = a.age_seconds;
+    // Issue 32: the grades are a gym scale's labels.
+    if (!a.scale.empty()) j["scale"] = a.scale;
   }
   return j;
 }
@@ -204,6 +207,12 @@ void GetRouteAscent(Exchange& x) {
   if (!a.ok()) return ApiError(x, a.status());
   json j = AscentJson(*a);
   j["route"] = *id;
+  // Issue 35: the signed-in caller's chances (Ascent checked the route is seen).
+  if (x.caller.viewer.logged_in()) {
+    Result<app::Chance> c = x.services.chances.For(x.caller.viewer, *id);
+    if (!c.ok()) return ApiError(x, c.status());
+    AddChanceJson(*c, &j);
+  }
   ReplyJson(x.res, 200, j);
 }
 
@@ -292,7 +301,8 @@ std::string AscentBlock(Exchange& x, const app::RouteView& route) {
     LogError("ascent grade of route " + std::to_string(route.id) + ": " + a.status().message());
     return "";
   }
-  std::string b = "<script src=\"/static/logbook.js\" defer></script>\n" + AscentHtml(*a);
+  std::string b = "<script src=\"/static/logbook.js\" defer></script>\n" + AscentHtml(*a) +
+                  ChanceBlock(x, route);  // issue 35
   if (x.caller.viewer.logged_in()) {
     std::map<int64_t, std::string> reasons;
     Result<std::vector<app::Tick>> ticks =

@@ -1,7 +1,7 @@
 // The logbook (issue 23): five climbers on 390 px phones tick a route (flash, sends, attempts,
 // stars); one clears its cookies and stuffs "V9" grades from new identities, which are held and
 // shown to the setter; the route page shows the ascent grade with its interval; a climber signs
-// in and finds their phone's ticks merged into their logbook.
+// in and finds their phone's ticks merged into their logbook, and their chance on the route.
 'use strict';
 module.exports = async (t) => {
   const { page, base, check, shot, api } = t;
@@ -99,5 +99,10 @@ module.exports = async (t) => {
         'the phone\'s tick is in the signed-in climber\'s logbook');
   check((await page.textContent('#pyramid')).includes('V4'), 'the pyramid counts the flash at V4');
   await shot('95-logbook-phone');
+  // Issue 35: signed in with a tick at the gym, her chance on the route shows under its grade.
+  await page.goto(base + '/r/' + rid);
+  const chance = await page.textContent('#chance');
+  check(/Your chance to flash: \S+% · to send this session: \S+%/.test(chance),
+        'the chance line appears after ticks: ' + chance);
   await page.setViewportSize({ width: 1200, height: 900 });
 };

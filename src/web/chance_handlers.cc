@@ -1,0 +1,119 @@
+#include "web/chance_handlers.h"
+
+#include <cstdio>
+
+#include "base/log.h"
+#include "base/number.h"
+#include "base/text.h"
+
+namespace sb::web {
+
+namespace {
+
+using nlohmann::json;
+
+std::string E(std::string_view s) { return XmlEscape(s); }
+
+// A chance as a whole percent; "<1%" and ">99%" at the ends, so a tiny
+// chance never reads as none and a near-certain one never as certain.
+std::string Percent(double p) {
+  if (p < 0.005) return "&lt;1%";
+  if (p > 0.995) return "&gt;99%";
+  char buf[16];
+  std::snprintf(buf, sizeof buf, "%.0f%%", p * 100);
+  return buf;
+}
+
+}  // namespace
+
+std::string ChanceHtml(const app::Chance& c) {
+  if (!c.shown()) {
+    return "<p class=\"chance no-print\" id=\"chance-none\">Tick a few routes to see your chances "
+           "here.</p>\n";
+  }
+  std::string b = "<p class=\"chance no-print\" id=\"chance\" data-p-flash=\"" +
+                  FormatDouble(c.p_flash) + "\" data-p-send=\"" + FormatDouble(c.p_send) +
+                  "\" data-basis=\"" + E(c.basis) + "\">Your chance to flash: <strong "
+                  "id=\"chance-flash\">" +
+                  Percent(c.p_flash) + "</strong> · to send this session: <strong "
+                  "id=\"chance-send\">" +
+                  Percent(c.p_send) + "</strong> <small>(from your " + std::to_string(c.ticks) +
+                  " tick" + (c.ticks == 1 ? "" : "s") + " here)</small></p>\n";
+  return b;
+}
+
+std::string ChanceBlock(Exchange& x, const app::RouteView& route) {
+  if (!x.caller.viewer.logged_in() || !route.gym_id) return "";
+  Result<app::Chance> c = x.services.chances.For(x.caller.viewer, route);
+  if (!c.ok()) {
+    LogError("chance on route " + std::to_string(route.id) + ": " + c.status().message());
+    return "";
+  }
+  return ChanceHtml(*c);
+}
+
+void AddChanceJson(const app::Chance& c, json* j) {
+  if (!c.shown()) return;
+  (*j)["p_flash"] = c.p_flash;
+  (*j)["p_send"] = c.p_send;
+  (*j)["chance_basis"] = c.basis;
+}
+
+Result<app::ProjectList> ProjectsOf(Exchange& x, const app::GymDashboard& d) {
+  std::vector<app::ProjectCandidate> routes;
+  for (const app::WallDashboard& w : d.walls) {
+    for (const app::DashboardRoute& r : w.routes) {
+      routes.push_back({r.id, r.name, r.grade, w.wall.name, w.wall.discipline});
+    }
+  }
+  return x.services.chances.Projects(d.gym.id, routes);
+}
+
+json ProjectsJson(const app::ProjectList& p) {
+  json routes = json::array();
+  for (const app::ProjectRoute& r : p.routes) {
+    routes.push_back({{"id", r.id},
+                      {"name", r.name},
+                      {"grade", r.grade},
+                      {"wall", r.wall},
+                      {"discipline", r.discipline},
+                      {"median_p_send", r.median_p_send},
+                      {"median_p_flash", r.median_p_flash},
+                      {"projectors", r.projectors},
+                      {"climbers", r.climbers}});
+  }
+  return json{{"active_climbers", p.active_climbers}, {"routes", routes}};
+}
+
+std::string ProjectsHtml(const app::ProjectList& p) {
+  std::string b = "<section class=\"projects\" id=\"projects\"><h2>Likely projects</h2>\n";
+  int active = 0;
+  for (const auto& [d, n] : p.active_climbers) active += n;
+  b += "<p class=\"msg\">Routes the median climber active here in the last " +
+       std::to_string(app::ChanceLimits::kActiveDays / 7) +
+       " weeks (" + std::to_string(active) + ") sends in one session with a chance of " +
+       Percent(app::ChanceLimits::kProjectLow) + " to " + Percent(app::ChanceLimits::kProjectHigh) +
+       ", most projectors first.</p>\n";
+  if (p.routes.empty()) {
+    b += "<p class=\"empty\" id=\"projects-none\">" +
+         std::string(active < app::ChanceLimits::kMinActiveClimbers
+                         ? "Too few active climbers for a project list yet."
+                         : "No route on the wall is a project for the median climber.") +
+         "</p>\n</section>\n";
+    return b;
+  }
+  b += "<table id=\"projects-table\"><tr><th>Route</th><th>Grade</th><th>Wall</th><th "
+       "class=\"num\">Send this session (median)</th><th class=\"num\">Flash (median)</th><th "
+       "class=\"num\">Projecting</th></tr>\n";
+  for (const app::ProjectRoute& r : p.routes) {
+    b += "<tr class=\"project\" data-route=\"" + std::to_string(r.id) + "\" data-p-send=\"" +
+         FormatDouble(r.median_p_send) + "\"><td><a href=\"/routes/" + std::to_string(r.id) +
+         "\">" + E(r.name) + "</a></td><td>" + E(r.grade) + "</td><td>" + E(r.wall) +
+         "</td><td class=\"num\">" + Percent(r.median_p_send) + "</td><td class=\"num\">" +
+         Percent(r.median_p_flash) + "</td><td class=\"num\">" + std::to_string(r.projectors) +
+         " of " + std::to_string(r.climbers) + "</td></tr>\n";
+  }
+  return b + "</table>\n</section>\n";
+}
+
+}  // namespace sb::web
