@@ -175,7 +175,7 @@ std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<
   } else {
     b += "<ul id=\"circuit-list\">";
     for (const app::Circuit& c : circuits) {
-      b += "<li><a href=\"/?gym=" + gid + "&amp;circuit=" + E(c.colour) + "\">" + ColourHtml(c.colour) +
+      b += "<li><a href=\"/?gym=" + gid + "&amp;circuit=" + E(c.colour) + "\">" + ColourHtml(c.colour, v.lang) +
            "</a>";
       if (!c.grade_from.empty() || !c.grade_to.empty()) {
         b += " = " + E(c.grade_from) + "–" + E(c.grade_to);
