@@ -14,7 +14,7 @@ PACKAGES=(
   wrk chromium chromium-driver nodejs npm
   poppler-utils fonts-dejavu-core fonts-noto-cjk zbar-tools
   fonts-noto-color-emoji
-  libboost-dev python3-scipy
+  libboost-dev libboost-locale-dev gettext python3-scipy
   python3 curl
   clang libclang-rt-dev
 )

@@ -32,11 +32,18 @@
     };
     form.querySelectorAll('input[name="outcome"]').forEach((r) => r.addEventListener('change', sync));
     sync();
+    // Issue 32: the page's language — the server puts the translated
+    // messages on the form (data-msg-*, "{1}" the outcome's label).
+    const t = (key, english) => form.dataset[key] || english;
+    const label = (o) => {
+      const span = o.parentElement.querySelector('span');
+      return span ? span.textContent : o.value;
+    };
     form.addEventListener('submit', async (ev) => {
       ev.preventDefault();
       const msg = document.getElementById('tick-msg');
       const o = form.querySelector('input[name="outcome"]:checked');
-      if (!o) { say(msg, 'Tap flash, send or attempt first.', false); return; }
+      if (!o) { say(msg, t('msgPick', 'Tap flash, send or attempt first.'), false); return; }
       const body = { outcome: o.value };
       const a = document.getElementById('tick-attempts').value;
       if (o.value !== 'flash' && a !== '') body.attempts = parseInt(a, 10);
@@ -48,15 +55,19 @@
       if (c) body.comment = c;
       const r = await send('POST', '/api/routes/' + form.dataset.route + '/ticks', body);
       if (!r.ok) { say(msg, r.data.error || ('error ' + r.status), false); return; }
-      say(msg, (r.data.edited ? 'Tick updated: ' : 'Ticked: ') + r.data.outcome +
-               (r.data.held ? ' (held for the setters to check)' : '') + '.', true);
+      const done = r.data.edited ? t('msgUpdated', 'Tick updated: {1}')
+                                 : t('msgTicked', 'Ticked: {1}');
+      say(msg, done.replace('{1}', label(o)) +
+               (r.data.held ? ' ' + t('msgHeld', '(held for the setters to check)') : '') + '.',
+          true);
       const g = r.data.ascent;
       const p = document.getElementById('ascent-ticks');
       if (g && g.fitted && p) {
         p.textContent = g.ticks;
         document.getElementById('ascent-value').textContent = g.grade;
         document.getElementById('ascent-interval').textContent =
-            '(80%: ' + g.lo_grade + ' to ' + g.hi_grade + ')';
+            '(' + t('msgInterval', '80%: {1} to {2}').replace('{1}', g.lo_grade)
+                .replace('{2}', g.hi_grade) + ')';
       }
     });
   }

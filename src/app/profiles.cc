@@ -119,6 +119,24 @@ Result<Profile> Profiles::Get(const Viewer& v) {
   return Profile{r.user_id, r.username, r.display_name, r.language};
 }
 
+Result<std::string> Profiles::GymLanguage(int64_t gym) {
+  store::ProfileStore* ps = ProfilesOf(store_);
+  if (ps == nullptr) return std::string();
+  return ps->GetGymLanguage(gym);
+}
+
+Status Profiles::SetGymLanguage(const Viewer& v, const std::string& role, int64_t gym,
+                                const std::string& language) {
+  if (!v.logged_in()) return NotLoggedIn();
+  if (role != "head") return Status::Permission("only the gym's head setters may do this");
+  if (!language.empty() && !IsLanguage(language)) {
+    return Status::InvalidInput("language: one of en, de, fr");
+  }
+  store::ProfileStore* ps = ProfilesOf(store_);
+  if (ps == nullptr) return Status::Internal("this store keeps no profiles");
+  return ps->SetGymLanguage(gym, language);
+}
+
 Status Profiles::Init(int64_t user_id, const std::optional<std::string>& display_name,
                       const std::optional<std::string>& language) {
   if (!display_name && !language) return Status::Ok();

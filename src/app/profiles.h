@@ -75,6 +75,16 @@ class Profiles {
   // one POSIX tar archive.
   Result<std::string> RoutesTar(const Viewer& v);
 
+  // A gym's default language (issue 32, schema 18): "en", "de", "fr" or ""
+  // (none set). kNotFound for an unknown gym. Needs no viewer (the pages of
+  // every visitor use it).
+  Result<std::string> GymLanguage(int64_t gym);
+  // Sets it (`language` "" clears it) when the viewer is a head setter of
+  // the gym (`role`: the viewer's role there, app::Gyms::RoleIn).
+  // kUnauthenticated, kPermission, kInvalidInput "language: one of en, de, fr".
+  Status SetGymLanguage(const Viewer& v, const std::string& role, int64_t gym,
+                        const std::string& language);
+
  private:
   store::Store* store_;
   Options options_;

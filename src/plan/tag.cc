@@ -14,17 +14,29 @@
 
 namespace sb::plan {
 
+namespace {
+
+// `words` with its "{1}" replaced by `value` (appended when it has none).
+std::string Said(const std::string& words, const std::string& value) {
+  const size_t at = words.find("{1}");
+  if (at == std::string::npos) return words + " " + value;
+  return words.substr(0, at) + value + words.substr(at + 3);
+}
+
+}  // namespace
+
 std::vector<std::string> TagLines(const TagInfo& info) {
   std::vector<std::string> out;
-  if (!info.wall.empty()) out.push_back("Wall: " + info.wall);
+  const TagInfo::Words& w = info.words;
+  if (!info.wall.empty()) out.push_back(Said(w.wall, info.wall));
   std::string setters;
   for (const std::string& s : info.setters) {
     if (s.empty()) continue;
     setters += (setters.empty() ? "" : ", ") + s;
   }
-  if (!setters.empty()) out.push_back((info.planned ? "To be set by " : "Set by ") + setters);
+  if (!setters.empty()) out.push_back(Said(info.planned ? w.to_be_set_by : w.set_by, setters));
   if (!info.set_on.empty()) {
-    out.push_back((info.planned ? "Planned for " : "Set on ") + info.set_on);
+    out.push_back(Said(info.planned ? w.planned_for : w.set_on, info.set_on));
   }
   return out;
 }
@@ -216,7 +228,8 @@ void DrawTag(cairo_t* cr, const TagInfo& tag, Box c) {
     // route's) is printed as its name only, never beside an empty box.
     const double sw = rgb ? kColourPt : 0;
     const double gap = rgb ? 5 : 0;
-    Text colour(cr, ColourLabel(tag.colour), kColourPt, true, col_w - sw - gap);
+    Text colour(cr, tag.colour_label.empty() ? ColourLabel(tag.colour) : tag.colour_label,
+                kColourPt, true, col_w - sw - gap);
     clear_url(sw + gap + colour.width(), std::max(colour.height(), sw + 3));
     if (rgb) DrawSwatch(cr, rgb, {x0, y + 2.5, sw, sw});
     cairo_set_source_rgb(cr, 0, 0, 0);

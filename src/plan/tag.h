@@ -34,6 +34,18 @@ struct TagInfo {
   // The QR code's link (the route's climbers' page, `BASE/r/{id}`); "" for
   // none. At most kMaxQrBytes (plan/qr.h), else the tag has no code.
   std::string url;
+  // Issue 32: the words of the tag's lines in the page's language (the web
+  // layer's catalogs fill them; English by default). "{1}" is the value.
+  struct Words {
+    std::string wall = "Wall: {1}";
+    std::string set_by = "Set by {1}";
+    std::string to_be_set_by = "To be set by {1}";
+    std::string set_on = "Set on {1}";
+    std::string planned_for = "Planned for {1}";
+  };
+  Words words;
+  // The colour's name as printed beside its swatch; "" = ColourLabel(colour).
+  std::string colour_label;
 };
 
 // The tags on one sheet page: two across, four down (each about 95 × 69 mm

@@ -77,7 +77,8 @@ const std::vector<std::string>& AddedColumns(const std::string& table) {
   static const std::vector<std::string> kStudies = {"gym_id"};
   // Schema 14 (issue 31): the revisions.
   static const std::vector<std::string> kRevision = {"revision"};
-  static const std::vector<std::string> kRevisions = {"revision", "targets_revision"};
+  // Schema 18 (issue 32): the gym's default language.
+  static const std::vector<std::string> kRevisions = {"revision", "targets_revision", "language"};
   // Schema 16 and 17 (issue 32): the account's profile; the wall's scale.
   static const std::vector<std::string> kUsers = {"display_name", "language"};
   static const std::vector<std::string> kWalls = {"revision", "targets_revision", "scale"};

@@ -43,6 +43,10 @@ class ProfileStore {
   // cleared), its routes stay without an owner (as the schema says), its
   // sessions, memberships and studies go. kNotFound for an unknown user.
   virtual Status DeleteAccount(int64_t user_id, const std::string& anon_key) = 0;
+  // Schema 18: a gym's default language (gyms.language, "" = none).
+  // kNotFound for an unknown gym.
+  virtual Result<std::string> GetGymLanguage(int64_t gym_id) = 0;
+  virtual Status SetGymLanguage(int64_t gym_id, const std::string& language) = 0;
 };
 
 // The ProfileStore of a store opened by store::OpenStore (both backends);

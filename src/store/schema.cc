@@ -619,6 +619,14 @@ CREATE TABLE gym_scales (
 ALTER TABLE walls ADD COLUMN scale TEXT NOT NULL DEFAULT '';
 )sql"},
        }},
+      // Schema 18 (issue 32): a gym's default language for its pages ("" =
+      // none: the browser's, else English). store/profile_store.h.
+      {"a gym's default language (issue 32)",
+       {
+           {Only::kBoth, R"sql(
+ALTER TABLE gyms ADD COLUMN language TEXT NOT NULL DEFAULT '';
+)sql"},
+       }},
   };
   return kMigrations;
 }

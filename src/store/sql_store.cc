@@ -263,6 +263,21 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
     return Status::Ok();
   }
 
+  Result<std::string> GetGymLanguage(int64_t gym_id) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(Rows r, c->Query("SELECT language FROM gyms WHERE id = ?", {gym_id}));
+    if (r.empty()) return Status::NotFound("no gym " + std::to_string(gym_id));
+    return r.Text(0, 0);
+  }
+
+  Status SetGymLanguage(int64_t gym_id, const std::string& language) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(Rows r, c->Query("UPDATE gyms SET language = ? WHERE id = ? RETURNING id",
+                                         {language, gym_id}));
+    if (r.empty()) return Status::NotFound("no gym " + std::to_string(gym_id));
+    return Status::Ok();
+  }
+
   Status SetPassword(int64_t user_id, const std::string& password_hash,
                      const std::string& keep_session) override {
     SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());

@@ -94,7 +94,8 @@ void GetAccountRoutesTar(Exchange& x) {
 void PageAccount(Exchange& x) {
   Result<app::Profile> p = x.services.profiles.Get(x.caller.viewer);
   if (!p.ok()) return PageError(x, p.status());
-  auto lang = [&](const char* code, const char* name) {
+  const PageViewer v = x.caller.page();
+  auto lang = [&](const char* code, const std::string& name) {
     return std::string("<option value=\"") + code + "\"" +
            (p->language == code ? " selected" : "") + ">" + name + "</option>";
   };
@@ -105,38 +106,51 @@ void PageAccount(Exchange& x) {
            "<button type=\"submit\">" + submit +
            "</button><p class=\"msg\" role=\"status\"></p></form>\n";
   };
-  std::string b = "<h1>Your account</h1>\n";
-  b += "<p>Log-in name: <strong id=\"account-username\">" + E(p->username) +
-       "</strong> (it stays as it is).</p>\n";
-  b += "<h2>Name and language</h2>\n";
+  std::string b = "<h1>" + Tr(v, "Your account") + "</h1>\n";
+  b += "<p>" +
+       Fmt(Tr(v, "Log-in name: {1} (it stays as it is)."),
+           "<strong id=\"account-username\">" + E(p->username) + "</strong>") +
+       "</p>\n";
+  b += "<h2>" + Tr(v, "Name and language") + "</h2>\n";
+  // The page reloads after a save: a new language shows at once.
   b += form("account-profile", "PUT /api/account",
-            "<label>Display name <input name=\"display_name\" id=\"display-name\" maxlength=\"80\" "
-            "value=\"" + E(p->display_name) + "\" placeholder=\"" + E(p->username) +
-                "\"></label> <label>Language <select name=\"language\" id=\"language\">" +
-                lang("", "the browser's") + lang("en", "English") + lang("de", "Deutsch") +
-                lang("fr", "Français") + "</select></label> ",
-            "Save");
-  b += "<h2>Password</h2>\n<p>Changing it ends your other sessions (other browsers and "
-       "phones log in again).</p>\n";
+            "<label>" + Tr(v, "Display name") +
+                " <input name=\"display_name\" id=\"display-name\" maxlength=\"80\" value=\"" +
+                E(p->display_name) + "\" placeholder=\"" + E(p->username) + "\"></label> <label>" +
+                Tr(v, "Language") + " <select name=\"language\" id=\"language\">" +
+                lang("", Tr(v, "the browser's")) + lang("en", "English") +  // i18n: name
+                lang("de", "Deutsch") + lang("fr", "Français") +          // i18n: name
+                "</select></label> ",
+            Tr(v, "Save"), "/account");
+  b += "<h2>" + Tr(v, "Password") + "</h2>\n<p>" +
+       Tr(v, "Changing it ends your other sessions (other browsers and phones log in again).") +
+       "</p>\n";
   b += form("account-password", "PUT /api/account",
-            "<label>Current password <input type=\"password\" name=\"current_password\" "
-            "id=\"current-password\" autocomplete=\"current-password\" required></label> "
-            "<label>New password <input type=\"password\" name=\"password\" id=\"new-password\" "
-            "autocomplete=\"new-password\" minlength=\"8\" required></label> ",
-            "Change password");
-  b += "<h2>Your data</h2>\n<ul id=\"account-data\"><li><a href=\"/api/account/ticks.csv\" "
-       "id=\"download-ticks\" download>Logbook and ticks (CSV)</a></li><li><a "
-       "href=\"/api/account/routes.tar\" id=\"download-routes\" download>Your routes (CRDL files, "
-       "tar)</a></li></ul>\n";
-  b += "<h2>Delete the account</h2>\n<p>Your routes stay in their gyms without your name; your "
-       "ticks stay, anonymous, so the ascent grades do not change; your sessions, memberships "
-       "and studies are deleted.</p>\n";
+            "<label>" + Tr(v, "Current password") +
+                " <input type=\"password\" name=\"current_password\" id=\"current-password\" "
+                "autocomplete=\"current-password\" required></label> <label>" +
+                Tr(v, "New password") +
+                " <input type=\"password\" name=\"password\" id=\"new-password\" "
+                "autocomplete=\"new-password\" minlength=\"8\" required></label> ",
+            Tr(v, "Change password"));
+  b += "<h2>" + Tr(v, "Your data") +
+       "</h2>\n<ul id=\"account-data\"><li><a href=\"/api/account/ticks.csv\" "
+       "id=\"download-ticks\" download>" +
+       Tr(v, "Logbook and ticks (CSV)") +
+       "</a></li><li><a href=\"/api/account/routes.tar\" id=\"download-routes\" download>" +
+       Tr(v, "Your routes (CRDL files, tar)") + "</a></li></ul>\n";
+  b += "<h2>" + Tr(v, "Delete the account") + "</h2>\n<p>" +
+       Tr(v, "Your routes stay in their gyms without your name; your ticks stay, anonymous, so "
+             "the ascent grades do not change; your sessions, memberships and studies are "
+             "deleted.") +
+       "</p>\n";
   b += form("account-delete", "DELETE /api/account",
-            "<label>Password <input type=\"password\" name=\"password\" id=\"delete-password\" "
-            "autocomplete=\"current-password\" required></label> ",
-            "Delete my account", "/");
+            "<label>" + Tr(v, "Password") +
+                " <input type=\"password\" name=\"password\" id=\"delete-password\" "
+                "autocomplete=\"current-password\" required></label> ",
+            Tr(v, "Delete my account"), "/");
   b += "<script src=\"/static/gyms.js\" defer></script>\n";
-  x.res.SetBody(200, PageLayout(x.caller.page(), "Account", b), "text/html; charset=utf-8");
+  x.res.SetBody(200, PageLayout(v, Tr(v, "Account"), b), "text/html; charset=utf-8");
 }
 
 }  // namespace sb::web

@@ -106,8 +106,12 @@ json GymJson(Exchange& x, int64_t id) {
   json w = json::array(), c = json::array();
   for (const app::Wall& wall : *walls) w.push_back(WallJson(wall));
   for (const app::Circuit& ci : *circuits) c.push_back(CircuitJson(ci));
-  return json{{"id", g->id},       {"name", g->name},   {"role", g->role},
-              {"revision", g->revision}, {"walls", w}, {"circuits", c}};
+  json j{{"id", g->id},       {"name", g->name},   {"role", g->role},
+         {"revision", g->revision}, {"walls", w}, {"circuits", c}};
+  // Issue 32: the gym's default language ("" = none).
+  Result<std::string> lang = x.services.profiles.GymLanguage(id);
+  j["language"] = lang.ok() ? *lang : std::string();
+  return j;
 }
 
 // A wall of gym `gym` the caller may see (kNotFound otherwise).
@@ -212,13 +216,43 @@ void PutGym(Exchange& x) {
   if (!id.ok()) return ApiError(x, id.status());
   Result<json> body = BodyObject(x.req);
   if (!body.ok()) return ApiError(x, body.status());
-  Result<std::string> name = StringField(*body, "name");
+  // Issue 32: "language" (the gym's default: en, de, fr; "" or null
+  // clears it); "name" may then be left out.
+  std::optional<std::string> language;
+  if (body->contains("language")) {
+    const json& l = (*body)["language"];
+    if (l.is_null()) {
+      language = "";
+    } else if (l.is_string()) {
+      language = l.get<std::string>();
+    } else {
+      return ApiError(x, Status::InvalidInput("language: one of en, de, fr"));
+    }
+    if (!language->empty() && !app::IsLanguage(*language)) {
+      return ApiError(x, Status::InvalidInput("language: one of en, de, fr"));
+    }
+  }
+  const bool rename = !language || body->contains("name");
+  Result<std::string> name = rename ? StringField(*body, "name") : Result<std::string>("");
   if (!name.ok()) return ApiError(x, name.status());
   Result<std::optional<int64_t>> revision = RevisionField(*body);
   if (!revision.ok()) return ApiError(x, revision.status());
-  if (Status s = x.services.gyms.Rename(x.caller.viewer, *id, *name, revision->value_or(0));
-      !s.ok()) {
-    return ApiConflict(x, s, GymJson(x, *id));
+  if (language) {
+    Result<std::string> role = x.services.gyms.RoleIn(x.caller.viewer, *id);
+    if (!role.ok()) return ApiError(x, role.status());
+    if (role->empty() && x.caller.viewer.logged_in()) {
+      return ApiError(x, Status::NotFound("no gym " + std::to_string(*id)));
+    }
+    if (Status s = x.services.profiles.SetGymLanguage(x.caller.viewer, *role, *id, *language);
+        !s.ok()) {
+      return ApiError(x, s);
+    }
+  }
+  if (rename) {
+    if (Status s = x.services.gyms.Rename(x.caller.viewer, *id, *name, revision->value_or(0));
+        !s.ok()) {
+      return ApiConflict(x, s, GymJson(x, *id));
+    }
   }
   json j = GymJson(x, *id);
   ReplyJson(x.res, 200, j.is_null() ? json{{"id", *id}, {"name", *name}} : j);

@@ -34,6 +34,7 @@ PageViewer Caller::page() const {
   p.user_id = viewer.user_id.value_or(0);
   p.username = viewer.username;
   p.csrf = csrf;
+  p.lang = lang;
   for (const app::GymRole& g : viewer.gyms) p.setter = p.setter || app::CanSet(g.role);
   return p;
 }

@@ -5,6 +5,7 @@
 #include "base/log.h"
 #include "base/number.h"
 #include "base/text.h"
+#include "web/i18n.h"
 
 namespace sb::web {
 
@@ -26,20 +27,20 @@ std::string Percent(double p) {
 
 }  // namespace
 
-std::string ChanceHtml(const app::Chance& c) {
+std::string ChanceHtml(std::string_view lang, const app::Chance& c) {
   if (!c.shown()) {
-    return "<p class=\"chance no-print\" id=\"chance-none\">Tick a few routes to see your chances "
-           "here.</p>\n";
+    return "<p class=\"chance no-print\" id=\"chance-none\">" +
+           Tr(lang, "Tick a few routes to see your chances here.") + "</p>\n";
   }
-  std::string b = "<p class=\"chance no-print\" id=\"chance\" data-p-flash=\"" +
-                  FormatDouble(c.p_flash) + "\" data-p-send=\"" + FormatDouble(c.p_send) +
-                  "\" data-basis=\"" + E(c.basis) + "\">Your chance to flash: <strong "
-                  "id=\"chance-flash\">" +
-                  Percent(c.p_flash) + "</strong> · to send this session: <strong "
-                  "id=\"chance-send\">" +
-                  Percent(c.p_send) + "</strong> <small>(from your " + std::to_string(c.ticks) +
-                  " tick" + (c.ticks == 1 ? "" : "s") + " here)</small></p>\n";
-  return b;
+  const std::string flash = "<strong id=\"chance-flash\">" + Percent(c.p_flash) + "</strong>";
+  const std::string send = "<strong id=\"chance-send\">" + Percent(c.p_send) + "</strong>";
+  const std::string from = Fmt(TrN(lang, "(from your {1} tick here)", "(from your {1} ticks here)",
+                                   c.ticks),
+                               std::to_string(c.ticks));
+  return "<p class=\"chance no-print\" id=\"chance\" data-p-flash=\"" + FormatDouble(c.p_flash) +
+         "\" data-p-send=\"" + FormatDouble(c.p_send) + "\" data-basis=\"" + E(c.basis) + "\">" +
+         Fmt(Tr(lang, "Your chance to flash: {1} · to send this session: {2}"), flash, send) +
+         " <small>" + E(from) + "</small></p>\n";
 }
 
 std::string ChanceBlock(Exchange& x, const app::RouteView& route) {
@@ -49,7 +50,7 @@ std::string ChanceBlock(Exchange& x, const app::RouteView& route) {
     LogError("chance on route " + std::to_string(route.id) + ": " + c.status().message());
     return "";
   }
-  return ChanceHtml(*c);
+  return ChanceHtml(x.caller.lang, *c);
 }
 
 void AddChanceJson(const app::Chance& c, json* j) {

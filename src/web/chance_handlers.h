@@ -22,7 +22,7 @@ std::string ChanceBlock(Exchange& x, const app::RouteView& route);
 // The line itself: the two chances (percent) with their exact values in
 // data-p-flash / data-p-send, or, for a signed-in climber without ticks
 // there, "Tick a few routes ..." (id "chance-none"). Pure.
-std::string ChanceHtml(const app::Chance& c);
+std::string ChanceHtml(std::string_view lang, const app::Chance& c);
 // Adds "p_flash", "p_send" and "chance_basis" to `j` when `c` is shown. Pure.
 void AddChanceJson(const app::Chance& c, nlohmann::json* j);
 

@@ -174,7 +174,7 @@ std::string ConsensusBlock(Exchange& x, const app::RouteView& route) {
     return "";
   }
   return ConsensusHtml(p->grade, route.id, app::IsOwner(route, x.caller.viewer),
-                       Policy(x).min_votes_shown) +
+                       Policy(x).min_votes_shown, x.caller.lang) +
          AscentBlock(x, route);
 }
 

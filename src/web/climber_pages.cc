@@ -52,10 +52,11 @@ std::string Round(double v, int decimals) {
 
 // The labels of a response scale: the paper's five for a 5-point scale,
 // the numbers otherwise.
-std::vector<std::string> ScaleLabels(const studies::Instrument& in) {
+std::vector<std::string> ScaleLabels(std::string_view lang, const studies::Instrument& in) {
   std::vector<std::string> out;
   if (in.scale_max - in.scale_min == 4) {
-    return {"Strongly disagree", "Disagree", "Neutral", "Agree", "Strongly agree"};
+    return {Tr(lang, "Strongly disagree"), Tr(lang, "Disagree"), Tr(lang, "Neutral"),
+            Tr(lang, "Agree"), Tr(lang, "Strongly agree")};
   }
   for (int x = in.scale_min; x <= in.scale_max; ++x) out.push_back(std::to_string(x));
   return out;
@@ -63,9 +64,9 @@ std::vector<std::string> ScaleLabels(const studies::Instrument& in) {
 
 // One Likert item as a row of radio buttons named `name` (value = the
 // answer on the scale), `current` checked.
-std::string LikertItem(const studies::Instrument& in, size_t i, const std::string& name,
-                       std::optional<int> current) {
-  const std::vector<std::string> labels = ScaleLabels(in);
+std::string LikertItem(std::string_view lang, const studies::Instrument& in, size_t i,
+                       const std::string& name, std::optional<int> current) {
+  const std::vector<std::string> labels = ScaleLabels(lang, in);
   std::string h = "<fieldset class=\"likert\" data-item=\"" + E(in.items[i].id) + "\"><legend>" +
                   std::to_string(i + 1) + ". " + E(in.items[i].text) + "</legend><div>";
   for (int x = in.scale_min; x <= in.scale_max; ++x) {
@@ -81,39 +82,50 @@ std::string Scale(const app::GradeSummary& g) {
 }
 
 // The setter's grade, the consensus and the drift flag.
-std::string GradeBlock(const app::GradeSummary& g, int min_votes_note) {
+std::string GradeBlock(std::string_view lang, const app::GradeSummary& g, int min_votes_note) {
   std::string h = "<dl class=\"consensus\" id=\"consensus\">";
-  h += "<dt>Setter's grade</dt><dd id=\"setter-grade\">" +
-       (g.setter_grade.empty() ? std::string("none") : E(g.setter_grade)) + "</dd>";
-  h += "<dt>Climbers' grade</dt><dd id=\"consensus-grade\">";
+  h += "<dt>" + Tr(lang, "Setter's grade") + "</dt><dd id=\"setter-grade\">" +
+       (g.setter_grade.empty() ? Tr(lang, "none") : E(g.setter_grade)) + "</dd>";
+  h += "<dt>" + Tr(lang, "Climbers' grade") + "</dt><dd id=\"consensus-grade\">";
   if (g.votes == 0) {
-    h += "no felt grades yet";
+    h += Tr(lang, "no felt grades yet");
   } else if (!g.shown && g.votes < min_votes_note) {
-    h += "shown from " + std::to_string(min_votes_note) + " felt grades on";
+    h += Fmt(Tr(lang, "shown from {1} felt grades on"), std::to_string(min_votes_note));
   } else if (!g.shown) {
     // app::ConsensusRevealsNoVote: one vote would decide what is shown.
-    h += "shown once no single felt grade decides it";
+    h += Tr(lang, "shown once no single felt grade decides it");
   } else {
     h += E(g.median_grade) + " <span class=\"spread\">(" + E(g.low_grade) + "–" + E(g.high_grade) +
-         ", " + std::to_string(g.consensus.count) + " vote" + (g.consensus.count == 1 ? "" : "s") +
+         ", " +
+         Fmt(TrN(lang, "{1} vote", "{1} votes", g.consensus.count),
+             std::to_string(g.consensus.count)) +
          ")</span>";
   }
   h += "</dd>";
   if (g.shown && g.votes > 0 && g.setter_value) {
     const grades::Drift& d = g.drift;
-    h +=
-        "<dt>Drift</dt><dd id=\"drift\" class=\"" + std::string(d.flagged ? "flagged" : "") + "\">";
+    h += "<dt>" + Tr(lang, "Drift") + "</dt><dd id=\"drift\" class=\"" +
+         std::string(d.flagged ? "flagged" : "") + "\">";
+    const std::string n = std::to_string(std::abs(d.bands));
     if (d.flagged) {
-      h += "<strong>Flagged:</strong> climbers feel it " + std::to_string(std::abs(d.bands)) +
-           " bands " + (d.bands > 0 ? "harder" : "easier") + " than graded";
+      h += "<strong>" + Tr(lang, "Flagged:") + "</strong> " +
+           Fmt(d.bands > 0 ? TrN(lang, "climbers feel it {1} band harder than graded",
+                                 "climbers feel it {1} bands harder than graded", std::abs(d.bands))
+                           : TrN(lang, "climbers feel it {1} band easier than graded",
+                                 "climbers feel it {1} bands easier than graded", std::abs(d.bands)),
+               n);
     } else {
-      h += d.bands == 0
-               ? std::string("climbers agree")
-               : std::to_string(std::abs(d.bands)) + " band" + (std::abs(d.bands) == 1 ? "" : "s") +
-                     (d.bands > 0 ? " harder" : " easier") + ", not flagged";
+      h += d.bands == 0 ? Tr(lang, "climbers agree")
+                        : Fmt(d.bands > 0 ? TrN(lang, "{1} band harder, not flagged",
+                                                "{1} bands harder, not flagged", std::abs(d.bands))
+                                          : TrN(lang, "{1} band easier, not flagged",
+                                                "{1} bands easier, not flagged", std::abs(d.bands)),
+                              n);
     }
-    h += " <span class=\"spread\">(" + std::to_string(d.above) + " harder, " +
-         std::to_string(d.below) + " easier; sign test p = " + Round(d.p_value, 3) + ")</span>";
+    h += " <span class=\"spread\">(" +
+         Fmt(Tr(lang, "{1} harder, {2} easier; sign test p = {3}"), std::to_string(d.above),
+             std::to_string(d.below), Round(d.p_value, 3)) +
+         ")</span>";
     h += "</dd>";
   }
   return h + "</dl>\n";
@@ -127,14 +139,15 @@ std::string Checkbox(const char* id, const char* label, bool on) {
 }  // namespace
 
 std::string ConsensusHtml(const app::GradeSummary& grade, int64_t route_id, bool owner,
-                          int min_votes_shown) {
-  std::string h = "<section class=\"climbers-consensus no-print\"><h2>Climbers</h2>\n" +
-                  GradeBlock(grade, min_votes_shown);
-  h += "<p><a href=\"/r/" + Id(route_id) + "\" id=\"feedback-link\">Rate this route</a>";
+                          int min_votes_shown, std::string_view lang) {
+  std::string h = "<section class=\"climbers-consensus no-print\"><h2>" + Tr(lang, "Climbers") +
+                  "</h2>\n" + GradeBlock(lang, grade, min_votes_shown);
+  h += "<p><a href=\"/r/" + Id(route_id) + "\" id=\"feedback-link\">" +
+       Tr(lang, "Rate this route") + "</a>";
   if (owner) {
-    h += " · <a href=\"/r/" + Id(route_id) +
-         "/responses\" id=\"responses-link\">Climbers' "
-         "answers</a> · <a href=\"/drift\">Your grade drift</a>";
+    h += " · <a href=\"/r/" + Id(route_id) + "/responses\" id=\"responses-link\">" +
+         Tr(lang, "Climbers' answers") + "</a> · <a href=\"/drift\">" +
+         Tr(lang, "Your grade drift") + "</a>";
   }
   return h + "</p></section>\n";
 }
@@ -145,38 +158,41 @@ std::string FeedbackPageHtml(const PageViewer& v, const app::FeedbackPage& page,
   const studies::Instrument& in = page.instrument;
   std::string b = kAssets;
   b += "<h1 id=\"route-name\">" + E(r.name) + "</h1>\n";
-  b += GradeBlock(page.grade, min_votes_shown);
+  b += GradeBlock(v.lang, page.grade, min_votes_shown);
   if (owner) {
     b += "<p class=\"owner-links\"><a href=\"/r/" + Id(r.id) +
-         "/responses\" id=\"responses-link\">Climbers' answers</a> · <a href=\"/drift\">Your "
-         "grade drift</a></p>\n";
+         "/responses\" id=\"responses-link\">" + Tr(v, "Climbers' answers") +
+         "</a> · <a href=\"/drift\">" + Tr(v, "Your grade drift") + "</a></p>\n";
   }
   b += tick_block;
   const bool mine = page.mine.has_value();
   b += "<form id=\"feedback-form\" class=\"climber-form\" data-route=\"" + Id(r.id) +
        "\" data-items=\"" + std::to_string(in.items.size()) + "\">\n";
   b += "<p class=\"msg\" id=\"feedback-state\">" +
-       std::string(mine ? "Your earlier answers are filled in; change them and save again."
-                        : "No account needed. Only the route's setter sees your answers.") +
+       (mine ? Tr(v, "Your earlier answers are filled in; change them and save again.")
+             : Tr(v, "No account needed. Only the route's setter sees your answers.")) +
        "</p>\n";
-  b += "<h2>How was it?</h2>\n<p class=\"msg\">" + E(in.name) + ". Skip any question.</p>\n";
+  b += "<h2>" + Tr(v, "How was it?") + "</h2>\n<p class=\"msg\">" + E(in.name) + ". " +
+       Tr(v, "Skip any question.") + "</p>\n";
   for (size_t i = 0; i < in.items.size(); ++i) {
     std::optional<int> cur;
     if (mine && i < page.mine->answers.size()) cur = page.mine->answers[i];
-    b += LikertItem(in, i, "q" + std::to_string(i), cur);
+    b += LikertItem(v.lang, in, i, "q" + std::to_string(i), cur);
   }
   std::string example = page.grade.discipline == grades::Discipline::kBouldering ? "V4" : "5.10b";
-  b += "<label class=\"field\">Grade it felt (" +
-       E(Scale(page.grade).empty() ? "any scale" : Scale(page.grade) + ", any scale") +
+  b += "<label class=\"field\">" + Tr(v, "Grade it felt") + " (" +
+       E(Scale(page.grade).empty() ? Tr(v, "any scale")
+                                   : Scale(page.grade) + ", " + Tr(v, "any scale")) +
        ")<input type=\"text\" id=\"felt-grade\" autocomplete=\"off\" placeholder=\"" + example +
        "\" maxlength=\"20\" value=\"" + E(mine ? page.mine->felt_grade : "") + "\"></label>\n";
-  b += "<label class=\"field\">Anything else?<textarea id=\"comment\" rows=\"3\" maxlength=\"" +
+  b += "<label class=\"field\">" + Tr(v, "Anything else?") +
+       "<textarea id=\"comment\" rows=\"3\" maxlength=\"" +
        std::to_string(app::kMaxCommentBytes) + "\">" + E(mine ? page.mine->comment : "") +
        "</textarea></label>\n";
   b += "<button type=\"submit\" id=\"feedback-submit\">" +
-       std::string(mine ? "Save changes" : "Send") + "</button>\n";
+       (mine ? Tr(v, "Save changes") : Tr(v, "Send")) + "</button>\n";
   b += "<p class=\"msg\" id=\"feedback-msg\" role=\"status\"></p>\n</form>\n";
-  return PageLayout(v, r.name + " · feedback", b, "climber");
+  return PageLayout(v, r.name + " · " + Tr(v, "feedback"), b, "climber");
 }
 
 std::string SetterFeedbackHtml(const PageViewer& v, const app::SetterView& view,
@@ -185,7 +201,7 @@ std::string SetterFeedbackHtml(const PageViewer& v, const app::SetterView& view,
   std::string b = kAssets;
   b += "<h1>" + E(r.name) + " · climbers' answers</h1>\n";
   b += "<p><a href=\"/r/" + Id(r.id) + "\">Feedback page</a> (the route card's QR code)</p>\n";
-  b += GradeBlock(view.grade, min_votes_shown);
+  b += GradeBlock(v.lang, view.grade, min_votes_shown);
   b += "<dl class=\"consensus\"><dt>Responses</dt><dd id=\"responses\">" +
        std::to_string(view.responses) + "</dd><dt>Answering " + E(view.instrument.name) +
        "</dt><dd id=\"answered\">" + std::to_string(view.answered) + "</dd>";
@@ -379,27 +395,27 @@ std::string StudyFormHtml(const PageViewer& v, const app::StudyForm& f) {
   std::string b = kAssets;
   b += "<h1>" + E(f.name) + "</h1>\n";
   if (!f.open) {
-    b += "<p class=\"error\" id=\"study-closed\">This study is closed.</p>\n";
+    b += "<p class=\"error\" id=\"study-closed\">" + Tr(v, "This study is closed.") + "</p>\n";
     return PageLayout(v, f.name, b, "climber");
   }
   if (f.answered) {
-    b += "<p class=\"msg ok\" id=\"study-answered\">You have answered this study. Thank "
-         "you!</p>\n";
+    b += "<p class=\"msg ok\" id=\"study-answered\">" +
+         Tr(v, "You have answered this study. Thank you!") + "</p>\n";
     return PageLayout(v, f.name, b, "climber");
   }
   const studies::Instrument& in = f.instrument;
   b += "<form id=\"study-response\" class=\"climber-form\" data-id=\"" + Id(f.id) +
        "\" data-routes=\"" + std::to_string(f.routes) + "\" data-items=\"" +
        std::to_string(in.items.size()) + "\">\n";
-  b += "<p class=\"msg\">No account needed; you answer once. Skip a route you did not "
-       "climb.</p>\n";
+  b += "<p class=\"msg\">" +
+       Tr(v, "No account needed; you answer once. Skip a route you did not climb.") + "</p>\n";
   for (int k = 1; k <= f.routes; ++k) {
-    b += "<section class=\"study-route\" data-label=\"" + std::to_string(k) + "\"><h2>Route " +
-         std::to_string(k) + "</h2>\n";
+    b += "<section class=\"study-route\" data-label=\"" + std::to_string(k) + "\"><h2>" +
+         Fmt(Tr(v, "Route {1}"), std::to_string(k)) + "</h2>\n";
     for (size_t i = 0; i < in.items.size(); ++i) {
-      b += LikertItem(in, i, "r" + std::to_string(k) + "q" + std::to_string(i), std::nullopt);
+      b += LikertItem(v.lang, in, i, "r" + std::to_string(k) + "q" + std::to_string(i), std::nullopt);
     }
-    auto select = [&](const char* cls, const char* label) {
+    auto select = [&](const char* cls, const std::string& label) {
       std::string h = std::string("<label class=\"field\">") + label + "<select class=\"" + cls +
                       "\"><option value=\"\">–</option>";
       for (int j = 1; j <= f.routes; ++j) {
@@ -407,12 +423,12 @@ std::string StudyFormHtml(const PageViewer& v, const app::StudyForm& f) {
       }
       return h + "</select></label>\n";
     };
-    if (f.ask_rank) b += select("rank", "Your rank of this route (1 = best)");
-    if (f.ask_order) b += select("order", "Climbed as number (1 = first)");
+    if (f.ask_rank) b += select("rank", Tr(v, "Your rank of this route (1 = best)"));
+    if (f.ask_order) b += select("order", Tr(v, "Climbed as number (1 = first)"));
     b += "</section>\n";
   }
   if (f.demographics) {
-    b += "<section class=\"demographics\"><h2>About you</h2>\n";
+    b += "<section class=\"demographics\"><h2>" + Tr(v, "About you") + "</h2>\n";
     for (const studies::Question& q : studies::BrcDemographics()) {
       auto input = [&](const std::string& key, const std::string& label, const char* type) {
         return "<label class=\"field\">" + E(label) + "<input type=\"" + type +
@@ -429,8 +445,8 @@ std::string StudyFormHtml(const PageViewer& v, const app::StudyForm& f) {
           b += input(q.id, q.text, "text");
           break;
         case studies::AnswerKind::kGradeRange:
-          b += input(q.id + ".low", q.text + " — from", "text");
-          b += input(q.id + ".high", q.text + " — to", "text");
+          b += input(q.id + ".low", q.text + " — " + Tr(v, "from"), "text");
+          b += input(q.id + ".high", q.text + " — " + Tr(v, "to"), "text");
           break;
         default:
           break;  // rank and order are asked per route above
@@ -438,8 +454,8 @@ std::string StudyFormHtml(const PageViewer& v, const app::StudyForm& f) {
     }
     b += "</section>\n";
   }
-  b += "<button type=\"submit\" id=\"study-submit\">Send my answers</button>\n"
-       "<p class=\"msg\" id=\"study-msg\" role=\"status\"></p>\n</form>\n";
+  b += "<button type=\"submit\" id=\"study-submit\">" + Tr(v, "Send my answers") +
+       "</button>\n<p class=\"msg\" id=\"study-msg\" role=\"status\"></p>\n</form>\n";
   return PageLayout(v, f.name, b, "climber");
 }
 

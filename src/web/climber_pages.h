@@ -35,7 +35,7 @@ std::string SetterFeedbackHtml(const PageViewer& v, const app::SetterView& view,
 // climbers' consensus, the drift flag and the links to /r/{id} (and, for
 // the owner, to the answers and the drift report).
 std::string ConsensusHtml(const app::GradeSummary& grade, int64_t route_id, bool owner,
-                          int min_votes_shown);
+                          int min_votes_shown, std::string_view lang = "en");
 // "/drift": a setter's grades against the climbers' consensus, per route.
 std::string DriftPageHtml(const PageViewer& v, const app::DriftReport& report);
 // "/studies": the viewer's studies (or a log-in prompt).

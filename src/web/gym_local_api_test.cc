@@ -119,18 +119,24 @@ TEST_F(GymLocalApiTest, ColoursInThreeLanguagesAndUnknownOnesRefused) {
             0u);
   head.Json("POST", gp + "/circuits", R"({"colour":"rouge"})", 201);
 
-  // Pages show a swatch and the name; the tag's PDF prints the name.
+  // Pages show a swatch and the name, in the page's language (issue 32:
+  // English here; German for a browser asking for it); the tag's PDF prints it.
   const int64_t id = AddSet(head, g, "name: Gelbe\ngrade: V2\ncolour: gelb\n---\n");
   auto tag = head.Send("GET", "/routes/" + std::to_string(id) + "/tag");
   ASSERT_TRUE(tag);
-  EXPECT_NE(tag->body.find("<span class=\"swatch\" style=\"background:rgb(255,222,0)\"></span>gelb"),
+  EXPECT_NE(tag->body.find("<span class=\"swatch\" style=\"background:rgb(255,222,0)\"></span>yellow"),
+            std::string::npos);
+  auto tag_de = head.Send("GET", "/routes/" + std::to_string(id) + "/tag", "", true,
+                          "application/json", {{"Accept-Language", "de"}});
+  ASSERT_TRUE(tag_de);
+  EXPECT_NE(tag_de->body.find("<span class=\"swatch\" style=\"background:rgb(255,222,0)\"></span>gelb"),
             std::string::npos);
   auto hex = head.Send("GET", "/routes/" + std::to_string(AddSet(head, g, "name: H\ncolour: #ffdd00\n---\n")) + "/tag");
   ASSERT_TRUE(hex);
   EXPECT_NE(hex->body.find("yellow (#ffdd00)"), std::string::npos);
   auto gym_page = head.Send("GET", "/gyms/" + std::to_string(g));
   ASSERT_TRUE(gym_page);
-  EXPECT_NE(gym_page->body.find("<span class=\"swatch\" style=\"background:rgb(217,26,26)\"></span>rouge"),
+  EXPECT_NE(gym_page->body.find("<span class=\"swatch\" style=\"background:rgb(217,26,26)\"></span>red"),
             std::string::npos);
 }
 

@@ -63,25 +63,25 @@ std::string StateName(const std::string& s) {
 }  // namespace
 
 std::string GymsPage(const PageViewer& v, const std::vector<app::Gym>& gyms) {
-  std::string b = "<h1>Gyms</h1>\n";
+  std::string b = "<h1>" + Tr(v, "Gyms") + "</h1>\n";
   if (gyms.empty()) {
-    b += "<p class=\"empty\">You are a member of no gym yet.</p>\n";
+    b += "<p class=\"empty\">" + Tr(v, "You are a member of no gym yet.") + "</p>\n";
   } else {
     b += "<ul class=\"gyms\" id=\"gym-list\">";
     for (const app::Gym& g : gyms) {
       b += "<li><a href=\"/gyms/" + std::to_string(g.id) + "\">" + E(g.name) + "</a> <span "
-           "class=\"tag\">" + E(g.role) + "</span></li>";
+           "class=\"tag\">" + E(Tr(v, g.role.c_str())) + "</span></li>";
     }
     b += "</ul>\n";
   }
   if (v.logged_in) {
-    b += "<h2>New gym</h2>\n" +
+    b += "<h2>" + Tr(v, "New gym") + "</h2>\n" +
          ApiForm("new-gym", "POST", "/api/gyms",
-                 "<label>Name <input name=\"name\" id=\"gym-name\" required "
-                 "maxlength=\"100\"></label>",
-                 "Create gym", "/gyms/:id");
+                 "<label>" + Tr(v, "Name") +
+                     " <input name=\"name\" id=\"gym-name\" required maxlength=\"100\"></label>",
+                 Tr(v, "Create gym"), "/gyms/:id");
   }
-  return PageLayout(v, "Gyms", b + Script());
+  return PageLayout(v, Tr(v, "Gyms"), b + Script());
 }
 
 std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<app::Wall>& walls,
@@ -90,18 +90,23 @@ std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<
                     const std::vector<app::GymHistoryEntry>& history) {
   const std::string gid = std::to_string(gym.id);
   const bool head = gym.role == "head";
-  std::string b = "<h1 id=\"gym-title\">" + E(gym.name) + "</h1>\n<p>You are <strong>" +
-                  E(gym.role) + "</strong> here. <a href=\"/?gym=" + gid +
-                  "\" id=\"gym-routes\">Routes</a> · <a href=\"/?gym=" + gid +
-                  "&amp;state=stripped\" id=\"gym-archive\">Archive</a> · <a href=\"/gyms/" + gid +
-                  "/dashboard\" id=\"gym-dashboard\">Dashboard</a>" +
+  [[maybe_unused]] static constexpr const char* kRoles[] = {N_("head"), N_("setter"),
+                                                            N_("climber")};
+  std::string b = "<h1 id=\"gym-title\">" + E(gym.name) + "</h1>\n<p>" +
+                  Fmt(Tr(v, "You are {1} here."),
+                      "<strong>" + E(Tr(v, gym.role.c_str())) + "</strong>") +
+                  " <a href=\"/?gym=" + gid + "\" id=\"gym-routes\">" + Tr(v, "Routes") +
+                  "</a> · <a href=\"/?gym=" + gid + "&amp;state=stripped\" id=\"gym-archive\">" +
+                  Tr(v, "Archive") + "</a> · <a href=\"/gyms/" + gid +
+                  "/dashboard\" id=\"gym-dashboard\">" + Tr(v, "Dashboard") + "</a>" +
        (app::CanSet(gym.role) ? " · <a href=\"/gyms/" + gid +
-                                    "/setting-day\" id=\"gym-setting-day\">Setting day</a>"
+                                    "/setting-day\" id=\"gym-setting-day\">" +
+                                    Tr(v, "Setting day") + "</a>"
                               : std::string()) +
        "</p>\n";
-  b += "<h2>Walls</h2>\n";
+  b += "<h2>" + Tr(v, "Walls") + "</h2>\n";
   if (walls.empty()) {
-    b += "<p class=\"empty\">No walls yet.</p>\n";
+    b += "<p class=\"empty\">" + Tr(v, "No walls yet.") + "</p>\n";
   } else {
     b += "<div class=\"table-wrap\"><table class=\"list\" id=\"wall-list\"><thead><tr><th>Wall"
          "</th><th>Discipline</th><th class=\"num\">Angle</th><th class=\"num\">Reset</th>"
@@ -175,7 +180,7 @@ std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<
   } else {
     b += "<ul id=\"circuit-list\">";
     for (const app::Circuit& c : circuits) {
-      b += "<li><a href=\"/?gym=" + gid + "&amp;circuit=" + E(c.colour) + "\">" + ColourHtml(c.colour) +
+      b += "<li><a href=\"/?gym=" + gid + "&amp;circuit=" + E(c.colour) + "\">" + ColourHtml(c.colour, v.lang) +
            "</a>";
       if (!c.grade_from.empty() || !c.grade_to.empty()) {
         b += " = " + E(c.grade_from) + "–" + E(c.grade_to);

@@ -26,6 +26,7 @@ struct Caller {
   app::Viewer viewer;
   std::string csrf;           // the session's CSRF token ("" when anonymous)
   std::string session_token;  // the cookie value, when it names a session
+  std::string lang = "en";    // the pages' language (issue 32, web/i18n.h)
 
   // The page renderers' view of the caller.
   PageViewer page() const;

@@ -95,41 +95,48 @@ Result<std::string> OptStringField(const json& body, const char* field) {
   return StringField(body, field);
 }
 
-std::string AscentHtml(const app::AscentGrade& a) {
+std::string AscentHtml(std::string_view lang, const app::AscentGrade& a) {
   if (!a.fitted) {
-    return "<p class=\"ascent no-print\" id=\"ascent-grade\" data-ticks=\"0\">Ascent grade: "
-           "no ticks yet.</p>\n";
+    return "<p class=\"ascent no-print\" id=\"ascent-grade\" data-ticks=\"0\">" +
+           Tr(lang, "Ascent grade: no ticks yet.") + "</p>\n";
   }
   return "<p class=\"ascent no-print\" id=\"ascent-grade\" data-ticks=\"" +
          std::to_string(a.ticks) + "\" data-value=\"" + Fixed(a.value) + "\" data-lo=\"" +
-         Fixed(a.lo) + "\" data-hi=\"" + Fixed(a.hi) + "\">Ascent grade " + AscentText(a, true) +
-         (a.age_seconds > 0 ? " <small class=\"ascent-age\">(as of " +
-                                  std::to_string(a.age_seconds) + " s ago; updating)</small>"
+         Fixed(a.lo) + "\" data-hi=\"" + Fixed(a.hi) + "\">" + Tr(lang, "Ascent grade") + " " + AscentText(a, true, lang) +
+         (a.age_seconds > 0 ? " <small class=\"ascent-age\">" +
+                                  Fmt(Tr(lang, "(as of {1} s ago; updating)"),
+                                      std::to_string(a.age_seconds)) +
+                                  "</small>"
                             : std::string()) +
          "</p>\n";
 }
 
 // The held ticks of a route with accept/discard, for its setters.
-std::string HeldHtml(int64_t route_id, const std::vector<app::Tick>& ticks,
+std::string HeldHtml(std::string_view lang, int64_t route_id, const std::vector<app::Tick>& ticks,
                      const std::map<int64_t, std::string>& reasons) {
   std::string b;
   int held = 0;
   for (const app::Tick& t : ticks) held += t.state == "held";
   if (held == 0) return b;
   b += "<section id=\"held-ticks\" class=\"no-print\" data-route=\"" + Id(route_id) +
-       "\"><h2>Held ticks (" + std::to_string(held) +
-       ")</h2>\n<p class=\"msg\">Many new identities on this route (a burst from one "
-       "address, or a rush from many): these count nowhere until you accept them.</p>\n<ul>\n";
+       "\"><h2>" + Fmt(Tr(lang, "Held ticks ({1})"), std::to_string(held)) +
+       "</h2>\n<p class=\"msg\">" +
+       Tr(lang,
+          "Many new identities on this route (a burst from one address, or a rush from many): "
+          "these count nowhere until you accept them.") +
+       "</p>\n<ul>\n";
   for (const app::Tick& t : ticks) {
     if (t.state != "held") continue;
-    b += "<li class=\"held-tick\" data-tick=\"" + Id(t.id) + "\">" + E(t.day) + " " +
-         E(t.outcome) + (t.attempts ? " (" + std::to_string(*t.attempts) + " tries)" : "") +
-         (t.felt_grade.empty() ? "" : ", felt " + E(t.felt_grade)) +
+    b += "<li class=\"held-tick\" data-tick=\"" + Id(t.id) + "\">" + E(FormatDate(lang, t.day)) +
+         " " + E(Tr(lang, t.outcome.c_str())) +
+         (t.attempts ? " (" + Fmt(TrN(lang, "{1} try", "{1} tries", *t.attempts), std::to_string(*t.attempts)) + ")" : "") +
+         (t.felt_grade.empty() ? "" : ", " + Fmt(Tr(lang, "felt {1}"), E(t.felt_grade))) +
          (t.comment.empty() ? "" : ": " + E(t.comment)) +
          (reasons.count(t.id) ? " <small class=\"held-reason\">" + E(reasons.at(t.id)) + "</small>"
                               : std::string()) +
-         " <button type=\"button\" class=\"tick-accept\">Accept</button> <button "
-         "type=\"button\" class=\"tick-discard\">Discard</button></li>\n";
+         " <button type=\"button\" class=\"tick-accept\">" + Tr(lang, "Accept") +
+         "</button> <button type=\"button\" class=\"tick-discard\">" + Tr(lang, "Discard") +
+         "</button></li>\n";
   }
   b += "</ul></section>\n";
   return b;
@@ -241,32 +248,41 @@ void GetLogbook(Exchange& x) {
 void PageLogbook(Exchange& x) {
   Result<app::LogbookView> v = x.services.logbook.Mine(x.caller.viewer, Token(x));
   if (!v.ok()) return PageError(x, v.status());
+  const PageViewer pv = x.caller.page();
+  const std::string_view lang = pv.lang;
   std::string b = "<link rel=\"stylesheet\" href=\"/static/climbers.css\">\n";
-  b += "<h1>Your logbook</h1>\n";
+  b += "<h1>" + Tr(lang, "Your logbook") + "</h1>\n";
   if (!x.caller.viewer.logged_in()) {
-    b += "<p class=\"msg\">These are this phone's ticks. <a href=\"/login\">Log in</a> to keep "
-         "one logbook across devices: this phone's ticks move into it.</p>\n";
+    b += "<p class=\"msg\">" +
+         Fmt(Tr(lang, "These are this phone's ticks. {1} to keep one logbook across devices: "
+                      "this phone's ticks move into it."),
+             "<a href=\"/login\">" + Tr(lang, "Log in") + "</a>") +
+         "</p>\n";
   }
-  b += "<h2>Ticks</h2>\n";
+  b += "<h2>" + Tr(lang, "Ticks") + "</h2>\n";
   if (v->ticks.empty()) {
-    b += "<p id=\"no-ticks\">No ticks yet: scan a route's QR code and tick it.</p>\n";
+    b += "<p id=\"no-ticks\">" + Tr(lang, "No ticks yet: scan a route's QR code and tick it.") +
+         "</p>\n";
   } else {
-    b += "<table id=\"ticks\"><tr><th>Day</th><th>Route</th><th>Tick</th><th>Stars</th>"
-         "<th>Felt</th></tr>\n";
+    b += "<table id=\"ticks\"><tr><th>" + Tr(lang, "Day") + "</th><th>" + Tr(lang, "Route") +
+         "</th><th>" + Tr(lang, "Tick") + "</th><th>" + Tr(lang, "Stars") + "</th><th>" +
+         Tr(lang, "Felt") + "</th></tr>\n";
     for (const app::Tick& t : v->ticks) {
-      b += "<tr class=\"tick\" data-route=\"" + Id(t.route_id) + "\"><td>" + E(t.day) +
-           "</td><td><a href=\"/r/" + Id(t.route_id) + "\">" + E(v->route_names[t.route_id]) +
-           "</a></td><td class=\"outcome\">" + E(t.outcome) +
+      b += "<tr class=\"tick\" data-route=\"" + Id(t.route_id) + "\" data-day=\"" + E(t.day) +
+           "\"><td>" + E(FormatDate(lang, t.day)) + "</td><td><a href=\"/r/" + Id(t.route_id) +
+           "\">" + E(v->route_names[t.route_id]) + "</a></td><td class=\"outcome\" data-outcome=\"" +
+           E(t.outcome) + "\">" + E(Tr(lang, t.outcome.c_str())) +
            (t.outcome != "flash" && t.attempts ? " (" + std::to_string(*t.attempts) + ")" : "") +
-           (t.state == "held" ? " <span class=\"tag\">held</span>" : "") + "</td><td>" +
+           (t.state == "held" ? " <span class=\"tag\">" + Tr(lang, "held") + "</span>" : "") +
+           "</td><td>" +
            (t.stars ? std::string(static_cast<size_t>(*t.stars), '*') : "") + "</td><td>" +
            E(t.felt_grade) + "</td></tr>\n";
     }
     b += "</table>\n";
   }
-  b += "<h2>Sends by grade</h2>\n";
+  b += "<h2>" + Tr(lang, "Sends by grade") + "</h2>\n";
   if (v->pyramid.empty()) {
-    b += "<p>No sends yet.</p>\n";
+    b += "<p>" + Tr(lang, "No sends yet.") + "</p>\n";
   } else {
     int most = 1;
     for (const auto& [band, n] : v->pyramid) most = std::max(most, n);
@@ -278,19 +294,19 @@ void PageLogbook(Exchange& x) {
     }
     b += "</table>\n";
   }
-  b += "<h2>On the wall, not tried yet</h2>\n<div id=\"untried\">\n";
-  if (v->untried.empty()) b += "<p>Nothing listed.</p>\n";
+  b += "<h2>" + Tr(lang, "On the wall, not tried yet") + "</h2>\n<div id=\"untried\">\n";
+  if (v->untried.empty()) b += "<p>" + Tr(lang, "Nothing listed.") + "</p>\n";
   for (const auto& [wall, routes] : v->untried) {
-    b += "<h3>" + E(wall.empty() ? "No wall" : wall) + "</h3>\n<ul>\n";
+    b += "<h3>" + E(wall.empty() ? Tr(lang, "No wall") : wall) + "</h3>\n<ul>\n";
     for (const app::UntriedRoute& r : routes) {
       b += "<li><a href=\"/r/" + Id(r.id) + "\">" + E(r.name) + "</a> " + E(r.grade) +
-           (r.colour.empty() ? "" : " · " + E(r.colour)) + "</li>\n";
+           (r.colour.empty() ? "" : " · " + E(ColourLabelIn(lang, r.colour))) + "</li>\n";
     }
     b += "</ul>\n";
   }
   b += "</div>\n";
   x.res.SetHeader("Cache-Control", "no-store");
-  x.res.SetBody(200, PageLayout(x.caller.page(), "Logbook", b, "climber"),
+  x.res.SetBody(200, PageLayout(pv, Tr(lang, "Logbook"), b, "climber"),
                 "text/html; charset=utf-8");
 }
 
@@ -301,60 +317,72 @@ std::string AscentBlock(Exchange& x, const app::RouteView& route) {
     LogError("ascent grade of route " + std::to_string(route.id) + ": " + a.status().message());
     return "";
   }
-  std::string b = "<script src=\"/static/logbook.js\" defer></script>\n" + AscentHtml(*a) +
-                  ChanceBlock(x, route);  // issue 35
+  std::string b = "<script src=\"/static/logbook.js\" defer></script>
+" +
+                  AscentHtml(x.caller.lang, *a) + ChanceBlock(x, route);  // issue 35
   if (x.caller.viewer.logged_in()) {
     std::map<int64_t, std::string> reasons;
     Result<std::vector<app::Tick>> ticks =
         x.services.logbook.ForSetters(x.caller.viewer, route.id, &reasons);
-    if (ticks.ok()) b += HeldHtml(route.id, *ticks, reasons);
+    if (ticks.ok()) b += HeldHtml(x.caller.lang, route.id, *ticks, reasons);
   }
   return b;
 }
 
 std::string TickBlock(Exchange& x, const app::RouteView& route) {
   if (!route.gym_id) return "";
+  const std::string_view lang = x.caller.lang;
   std::string b = AscentBlock(x, route);
-  b += "<form id=\"tick-form\" class=\"climber-form\" data-route=\"" + Id(route.id) + "\">\n";
-  b += "<h2>Tick it</h2>\n<div class=\"outcomes\" role=\"radiogroup\">";
-  for (const char* o : {"flash", "send", "attempt"}) {
+  // The script's messages in the page's language (web/logbook.js).
+  b += "<form id=\"tick-form\" class=\"climber-form\" data-route=\"" + Id(route.id) +
+       "\" data-msg-pick=\"" + E(Tr(lang, "Tap flash, send or attempt first.")) +
+       "\" data-msg-ticked=\"" + E(Tr(lang, "Ticked: {1}")) + "\" data-msg-updated=\"" +
+       E(Tr(lang, "Tick updated: {1}")) + "\" data-msg-held=\"" +
+       E(Tr(lang, "(held for the setters to check)")) + "\" data-msg-interval=\"" +
+       E(Tr(lang, "80%: {1} to {2}")) + "\">\n";
+  b += "<h2>" + Tr(lang, "Tick it") + "</h2>\n<div class=\"outcomes\" role=\"radiogroup\">";
+  for (const char* o : {N_("flash"), N_("send"), N_("attempt")}) {
     b += "<label class=\"outcome\"><input type=\"radio\" name=\"outcome\" value=\"" +
-         std::string(o) + "\" id=\"outcome-" + o + "\"><span>" + o + "</span></label>";
+         std::string(o) + "\" id=\"outcome-" + o + "\"><span>" + Tr(lang, o) + "</span></label>";
   }
-  b += "</div>\n<label class=\"field\" id=\"attempts-field\">Tries<input type=\"number\" "
-       "id=\"tick-attempts\" min=\"1\" max=\"500\" inputmode=\"numeric\"></label>\n";
-  b += "<div class=\"stars\" role=\"radiogroup\" aria-label=\"stars\">";
+  b += "</div>\n<label class=\"field\" id=\"attempts-field\">" + Tr(lang, "Tries") +
+       "<input type=\"number\" id=\"tick-attempts\" min=\"1\" max=\"500\" "
+       "inputmode=\"numeric\"></label>\n";
+  b += "<div class=\"stars\" role=\"radiogroup\" aria-label=\"" + Tr(lang, "stars") + "\">";
   for (int s = 1; s <= 5; ++s) {
     b += "<label><input type=\"radio\" name=\"stars\" value=\"" + std::to_string(s) +
          "\" id=\"stars-" + std::to_string(s) + "\"><span>" + std::to_string(s) +
          "&#9733;</span></label>";
   }
-  b += "</div>\n<label class=\"field\">Grade it felt<input type=\"text\" id=\"tick-felt\" "
-       "autocomplete=\"off\" maxlength=\"20\"></label>\n";
-  b += "<label class=\"field\">Comment<textarea id=\"tick-comment\" rows=\"2\" maxlength=\"" +
+  b += "</div>\n<label class=\"field\">" + Tr(lang, "Grade it felt") +
+       "<input type=\"text\" id=\"tick-felt\" autocomplete=\"off\" maxlength=\"20\"></label>\n";
+  b += "<label class=\"field\">" + Tr(lang, "Comment") +
+       "<textarea id=\"tick-comment\" rows=\"2\" maxlength=\"" +
        std::to_string(app::kMaxCommentBytes) + "\"></textarea></label>\n";
-  b += "<button type=\"submit\" id=\"tick-submit\">Log tick</button>\n";
+  b += "<button type=\"submit\" id=\"tick-submit\">" + Tr(lang, "Log tick") + "</button>\n";
   b += "<p class=\"msg\" id=\"tick-msg\" role=\"status\"></p>\n";
-  b += "<p><a href=\"/logbook\" id=\"logbook-link\">Your logbook</a></p>\n</form>\n";
-  b += "<p class=\"msg\">The survey below is optional.</p>\n";
+  b += "<p><a href=\"/logbook\" id=\"logbook-link\">" + Tr(lang, "Your logbook") +
+       "</a></p>\n</form>\n";
+  b += "<p class=\"msg\">" + Tr(lang, "The survey below is optional.") + "</p>\n";
   return b;
 }
 
 json AscentGradeJson(const app::AscentGrade& a) { return AscentJson(a); }
 
-std::string AscentText(const app::AscentGrade& a, bool with_ids) {
-  if (!a.fitted) return "no ticks yet";
+std::string AscentText(const app::AscentGrade& a, bool with_ids, std::string_view lang) {
+  if (!a.fitted) return Tr(lang, "no ticks yet");
   auto id = [&](const char* name) {
     return with_ids ? std::string(" id=\"") + name + "\"" : std::string();
   };
   std::string b = "<strong" + id("ascent-value") + " class=\"ascent-value\">" + E(a.grade) +
-                  "</strong> <span" + id("ascent-interval") + " class=\"ascent-interval\">(80%: " +
-                  E(a.lo_grade) + " to " + E(a.hi_grade) + ")</span> from <span" +
-                  id("ascent-ticks") + " class=\"ascent-ticks\">" + std::to_string(a.ticks) +
-                  "</span> tick" + (a.ticks == 1 ? "" : "s");
+                  "</strong> <span" + id("ascent-interval") + " class=\"ascent-interval\">(" +
+                  Fmt(Tr(lang, "80%: {1} to {2}"), E(a.lo_grade), E(a.hi_grade)) + ")</span> " +
+                  Fmt(TrN(lang, "from {1} tick", "from {1} ticks", a.ticks), "<span" +
+                      id("ascent-ticks") + " class=\"ascent-ticks\">" + std::to_string(a.ticks) +
+                      "</span>");
   if (a.felt_votes > 0) {
-    b += "; felt by climbers who ticked it: " + E(a.felt_median) + " (" +
-         std::to_string(a.felt_votes) + ")";
+    b += "; " + Fmt(Tr(lang, "felt by climbers who ticked it: {1} ({2})"), E(a.felt_median),
+                    std::to_string(a.felt_votes));
   }
   if (!a.verdict.empty()) {
     b += " <span class=\"tag ascent-verdict\"" + id("ascent-verdict") + ">" + E(a.verdict) +
@@ -363,13 +391,13 @@ std::string AscentText(const app::AscentGrade& a, bool with_ids) {
   return b;
 }
 
-std::string AscentCell(const app::AscentGrade& a) {
+std::string AscentCell(const app::AscentGrade& a, std::string_view lang) {
   return "<td class=\"ascent\" data-ticks=\"" + std::to_string(a.ticks) + "\"" +
          (a.fitted ? " data-value=\"" + Fixed(a.value) + "\" data-lo=\"" + Fixed(a.lo) +
                          "\" data-hi=\"" + Fixed(a.hi) + "\""
                    : std::string()) +
          (a.verdict.empty() ? std::string() : " data-verdict=\"" + E(a.verdict) + "\"") + ">" +
-         AscentText(a, false) + "</td>";
+         AscentText(a, false, lang) + "</td>";
 }
 
 void MergeDeviceTicks(Exchange& x, int64_t user_id) {

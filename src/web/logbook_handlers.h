@@ -34,10 +34,11 @@ nlohmann::json AscentGradeJson(const app::AscentGrade& a);
 // The ascent grade in words (HTML, escaped): "<strong>V4</strong> (80%: V3
 // to V5) from 6 ticks", the felt median and the soft/sandbagged tag; with
 // `with_ids` the elements carry the route page's ids (one per page).
-std::string AscentText(const app::AscentGrade& a, bool with_ids);
+// `lang`: the page's language (web/i18n.h).
+std::string AscentText(const app::AscentGrade& a, bool with_ids, std::string_view lang = "en");
 // A table cell (<td class="ascent">, data-ticks/value/lo/hi/verdict) with
 // AscentText, for the wall pages and the report.
-std::string AscentCell(const app::AscentGrade& a);
+std::string AscentCell(const app::AscentGrade& a, std::string_view lang = "en");
 // After a sign-in as `user_id`: moves the device cookie's ticks into the
 // climber's logbook (failures are logged, never fail the sign-in).
 void MergeDeviceTicks(Exchange& x, int64_t user_id);

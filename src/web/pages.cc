@@ -16,10 +16,10 @@
 
 namespace sb::web {
 
-std::string ColourHtml(const std::string& colour) {
+std::string ColourHtml(const std::string& colour, std::string_view lang) {
   if (Trim(colour).empty()) return "";
   std::optional<plan::Rgb> c = plan::ColourSwatch(colour);
-  const std::string label = XmlEscape(plan::ColourLabel(colour));
+  const std::string label = XmlEscape(ColourLabelIn(lang, colour));
   if (!c) return "<span class=\"colour\">" + label + "</span>";
   auto b = [](double v) { return std::to_string(static_cast<int>(std::lround(v * 255))); };
   return "<span class=\"colour\"><span class=\"swatch\" style=\"background:rgb(" + b(c->r) + "," +
@@ -51,7 +51,7 @@ std::string UrlEncode(std::string_view s) {
 std::string Layout(const PageViewer& v, const std::string& title, const std::string& body,
                    const std::string& page_class = "") {
   std::string h;
-  h += "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n";
+  h += "<!DOCTYPE html>\n<html lang=\"" + E(v.lang) + "\">\n<head>\n<meta charset=\"utf-8\">\n";
   h += "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n";
   h += "<title>" + E(title) + " · Strange Beta</title>\n";
   if (v.logged_in) h += "<meta name=\"csrf-token\" content=\"" + E(v.csrf) + "\">\n";
@@ -59,67 +59,77 @@ std::string Layout(const PageViewer& v, const std::string& title, const std::str
   h += "<link rel=\"stylesheet\" href=\"/static/app.css\">\n";
   h += "<script src=\"/static/app.js\" defer></script>\n</head>\n";
   h += "<body class=\"" + E(page_class) + "\">\n<header class=\"top no-print\">\n";
-  h += "<a class=\"brand\" href=\"/\">Strange Beta</a>\n<nav>\n";
-  h += "<a href=\"/\">Routes</a>\n";
+  h += "<a class=\"brand\" href=\"/\">Strange Beta</a>\n<nav>\n";  // i18n: name
+  h += "<a href=\"/\">" + Tr(v, "Routes") + "</a>\n";
   // Issue 31: the setters' tools only for setters (the pages stay reachable).
   const bool setter = v.logged_in && v.setter;
-  if (setter) h += "<a href=\"/routes/new\" id=\"nav-new\">New route</a>\n";
-  if (setter) h += "<a href=\"/vary\" id=\"nav-vary\">Vary</a>\n";
-  if (v.logged_in) h += "<a href=\"/gyms\" id=\"nav-gyms\">Gyms</a>\n";
+  if (setter) h += "<a href=\"/routes/new\" id=\"nav-new\">" + Tr(v, "New route") + "</a>\n";
+  if (setter) h += "<a href=\"/vary\" id=\"nav-vary\">" + Tr(v, "Vary") + "</a>\n";
+  if (v.logged_in) h += "<a href=\"/gyms\" id=\"nav-gyms\">" + Tr(v, "Gyms") + "</a>\n";
   if (setter) {  // issue 23: the climbers' side of a setter's work
-    h += "<a href=\"/studies\" id=\"nav-studies\">Studies</a>\n<a href=\"/drift\" "
-         "id=\"nav-drift\">Drift</a>\n";
+    h += "<a href=\"/studies\" id=\"nav-studies\">" + Tr(v, "Studies") +
+         "</a>\n<a href=\"/drift\" id=\"nav-drift\">" + Tr(v, "Drift") + "</a>\n";
   }
-  if (setter) h += "<a href=\"/import\" id=\"nav-import\">Import/export</a>\n";
+  if (setter) {
+    h += "<a href=\"/import\" id=\"nav-import\">" + Tr(v, "Import/export") + "</a>\n";
+  }
   h += "</nav>\n<div class=\"who\">";
   if (v.logged_in) {
     h += "<a id=\"whoami\" href=\"/account\">" + E(v.username) +
-         "</a> <button type=\"button\" id=\"logout\" class=\"link\">Log out</button>";
+         "</a> <button type=\"button\" id=\"logout\" class=\"link\">" + Tr(v, "Log out") +
+         "</button>";
   } else {
-    h += "<a href=\"/login\" id=\"nav-login\">Log in</a> <a href=\"/signup\" "
-         "id=\"nav-signup\">Sign up</a>";
+    h += "<a href=\"/login\" id=\"nav-login\">" + Tr(v, "Log in") +
+         "</a> <a href=\"/signup\" id=\"nav-signup\">" + Tr(v, "Sign up") + "</a>";
   }
   h += "</div>\n</header>\n<main>\n" + body + "\n</main>\n";
-  h += "<footer class=\"no-print\">Strange Beta — chaotic variations of climbing routes "
-       "(Phillips, Becker &amp; Bradley 2011).</footer>\n</body>\n</html>\n";
+  h += "<footer class=\"no-print\">" +
+       Tr(v, "Strange Beta — chaotic variations of climbing routes "
+             "(Phillips, Becker &amp; Bradley 2011).") +
+       "</footer>\n</body>\n</html>\n";
   return h;
 }
 
-std::string RouteRows(const std::vector<app::RouteView>& routes) {
+std::string RouteRows(const PageViewer& v, const std::vector<app::RouteView>& routes) {
   std::string h;
   for (const app::RouteView& r : routes) {
     std::string url =
         r.is_variation ? "/variations/" + std::to_string(r.id) : "/routes/" + std::to_string(r.id);
     h += "<tr><td><a href=\"" + url + "\">" + E(r.name) + "</a>";
-    if (r.is_variation) h += " <span class=\"tag\">variation</span>";
+    if (r.is_variation) h += " <span class=\"tag\">" + Tr(v, "variation") + "</span>";
     if (!r.is_public) {  // issue 31: a gym's unpublished route is its members'
-      h += r.gym_id ? " <span class=\"tag private\">gym only</span>"
-                    : " <span class=\"tag private\">private</span>";
+      h += r.gym_id ? " <span class=\"tag private\">" + Tr(v, "gym only") + "</span>"
+                    : " <span class=\"tag private\">" + Tr(v, "private") + "</span>";
     }
     if (r.state == "planned" || r.state == "stripped") {
-      h += " <span class=\"tag state\">" + E(r.state) + "</span>";
+      h += " <span class=\"tag state\">" + E(Tr(v, r.state.c_str())) + "</span>";
     }
     h += "</td><td>" + E(r.grade) + "</td><td>" + E(r.setter.empty() ? r.owner_name : r.setter) +
          "</td><td>" + E(r.wall_name.empty() ? r.wall : r.wall_name) + "</td><td class=\"num\">" + std::to_string(r.move_count) + "</td><td>" +
-         E(r.created_at.substr(0, 10)) + "</td></tr>\n";
+         E(FormatDate(v, r.created_at.substr(0, 10))) + "</td></tr>\n";
   }
   return h;
 }
 
-std::string MovesTable(const Route& route, const std::vector<std::string>& readings) {
+std::string MovesTable(std::string_view lang, const Route& route,
+                       const std::vector<std::string>& readings) {
   if (route.moves.empty()) return "";  // issue 32: said by the route page's note
   bool show = !readings.empty();
-  std::string h = "<table class=\"moves\"><thead><tr><th>#</th><th>Hand</th><th>Move</th>" +
-                  std::string(show ? "<th>How it reads</th>" : "") +
+  std::string h = "<table class=\"moves\"><thead><tr><th>#</th><th>" + Tr(lang, "Hand") +
+                  "</th><th>" + Tr(lang, "Move") + "</th>" +
+                  (show ? "<th>" + Tr(lang, "How it reads") + "</th>" : std::string()) +
                   "</tr></thead><tbody>\n";
   for (size_t i = 0; i < route.moves.size(); ++i) {
     h += "<tr" + std::string(route.moves[i].crux ? " class=\"crux\"" : "") +
          "><td class=\"num\">" + std::to_string(i + 1) + "</td><td class=\"hand\">" +
          HandLetter(route.moves[i].hand) + "</td><td>" + E(route.moves[i].text) +
-         (route.moves[i].crux ? " <span class=\"tag crux\">crux</span>" : "") + "</td>";
+         (route.moves[i].crux ? " <span class=\"tag crux\">" + Tr(lang, "crux") + "</span>"
+                              : std::string()) +
+         "</td>";
     if (show) {
       std::string r = i < readings.size() ? readings[i] : "";
-      h += r.empty() ? "<td class=\"reading unparsed\">not understood as a move</td>"
+      h += r.empty() ? "<td class=\"reading unparsed\">" + Tr(lang, "not understood as a move") +
+                           "</td>"
                      : "<td class=\"reading\">" + E(r.substr(0, r.find(" \xE2\x80\x94 "))) + "</td>";
     }
     h += "</tr>\n";
@@ -137,13 +147,13 @@ std::string Description(const Route& route) {
   return h.empty() ? "" : "<p class=\"description\">" + h + "</p>\n";
 }
 
-std::string Meta(const Route& route) {
+std::string Meta(const Route& route, std::string_view lang) {
   std::string h;
   for (const HeaderLine& l : route.header) {
     if (l.key.empty() || ToLower(l.key) == "name") continue;
     const std::string key = ToLower(l.key);
     h += "<dt>" + E(l.key) + "</dt><dd>" +
-         (key == "colour" || key == "color" ? ColourHtml(l.value) : E(l.value)) + "</dd>";
+         (key == "colour" || key == "color" ? ColourHtml(l.value, lang) : E(l.value)) + "</dd>";
   }
   return h.empty() ? "" : "<dl class=\"meta\">" + h + "</dl>\n";
 }
@@ -193,69 +203,77 @@ std::string Option(const std::string& value, const std::string& label, const std
 
 std::string RouteListPage(const PageViewer& v, const app::RoutePage& page,
                           const app::RouteQuery& q) {
-  std::string b = "<h1>Routes</h1>\n";
-  b += "<form class=\"search no-print\" method=\"get\" action=\"/\" role=\"search\">"
-       "<label>Search <input type=\"search\" id=\"q\" name=\"q\" placeholder=\"name, setter, "
-       "wall or move text\" value=\"" + E(q.text) + "\"></label>"
-       "<label>Grade <input type=\"text\" name=\"grade\" size=\"6\" placeholder=\"V4, 6B+\" "
-       "value=\"" + E(q.grade) + "\"></label>"
-       "<label>From <input type=\"text\" name=\"from\" size=\"6\" placeholder=\"V2\" value=\"" +
-       E(q.grade_from) + "\"></label>"
-       "<label>To <input type=\"text\" name=\"to\" size=\"6\" placeholder=\"V6\" value=\"" +
-       E(q.grade_to) + "\"></label>"
-       "<label>Setter <input type=\"text\" name=\"setter\" size=\"10\" value=\"" + E(q.setter) +
-       "\"></label>"
-       "<label>Wall <input type=\"text\" name=\"wall\" size=\"10\" value=\"" + E(q.wall) +
-       "\"></label>"
-       "<label>State <select name=\"state\" id=\"state-filter\">" + Option("", "any", q.state) +
-       Option("draft", "draft", q.state) + Option("planned", "planned", q.state) +
-       Option("set", "on the wall", q.state) + Option("stripped", "stripped (archive)", q.state) +
-       "</select></label>" +
+  const std::string variations = q.variations ? (*q.variations ? "1" : "0") : "";
+  std::string b = "<h1>" + Tr(v, "Routes") + "</h1>\n";
+  b += "<form class=\"search no-print\" method=\"get\" action=\"/\" role=\"search\"><label>" +
+       Tr(v, "Search") + " <input type=\"search\" id=\"q\" name=\"q\" placeholder=\"" +
+       E(Tr(v, "name, setter, wall or move text")) + "\" value=\"" + E(q.text) + "\"></label><label>" +
+       Tr(v, "Grade") +
+       " <input type=\"text\" name=\"grade\" size=\"6\" placeholder=\"V4, 6B+\" value=\"" +
+       E(q.grade) + "\"></label><label>" + Tr(v, "From") +
+       " <input type=\"text\" name=\"from\" size=\"6\" placeholder=\"V2\" value=\"" +
+       E(q.grade_from) + "\"></label><label>" + Tr(v, "To") +
+       " <input type=\"text\" name=\"to\" size=\"6\" placeholder=\"V6\" value=\"" +
+       E(q.grade_to) + "\"></label><label>" + Tr(v, "Setter") +
+       " <input type=\"text\" name=\"setter\" size=\"10\" value=\"" + E(q.setter) +
+       "\"></label><label>" + Tr(v, "Wall") +
+       " <input type=\"text\" name=\"wall\" size=\"10\" value=\"" + E(q.wall) +
+       "\"></label><label>" + Tr(v, "State") + " <select name=\"state\" id=\"state-filter\">" +
+       Option("", Tr(v, "any"), q.state) + Option("draft", Tr(v, "draft"), q.state) +
+       Option("planned", Tr(v, "planned"), q.state) +
+       Option("set", Tr(v, "on the wall"), q.state) +
+       Option("stripped", Tr(v, "stripped (archive)"), q.state) + "</select></label>" +
        (q.gym ? "<input type=\"hidden\" name=\"gym\" value=\"" + std::to_string(*q.gym) + "\">"
               : std::string()) +
-       "<label>Show <select name=\"variations\">" +
-       Option("", "routes and variations", q.variations ? (*q.variations ? "1" : "0") : "") +
-       Option("0", "routes only", q.variations ? (*q.variations ? "1" : "0") : "") +
-       Option("1", "variations only", q.variations ? (*q.variations ? "1" : "0") : "") +
-       "</select></label>"
-       "<label>Sort <select name=\"sort\">" + Option("newest", "newest", q.sort) +
-       Option("oldest", "oldest", q.sort) + Option("name", "name", q.sort) +
-       Option("easiest", "easiest", q.sort) + Option("hardest", "hardest", q.sort) +
-       Option("set", "set date", q.sort) + Option("age", "oldest on the wall", q.sort) +
-       "</select></label><button type=\"submit\">Search</button></form>\n";
+       "<label>" + Tr(v, "Show") + " <select name=\"variations\">" +
+       Option("", Tr(v, "routes and variations"), variations) +
+       Option("0", Tr(v, "routes only"), variations) +
+       Option("1", Tr(v, "variations only"), variations) + "</select></label><label>" +
+       Tr(v, "Sort") + " <select name=\"sort\">" + Option("newest", Tr(v, "newest"), q.sort) +
+       Option("oldest", Tr(v, "oldest"), q.sort) + Option("name", Tr(v, "name"), q.sort) +
+       Option("easiest", Tr(v, "easiest"), q.sort) + Option("hardest", Tr(v, "hardest"), q.sort) +
+       Option("set", Tr(v, "set date"), q.sort) +
+       Option("age", Tr(v, "oldest on the wall"), q.sort) +
+       "</select></label><button type=\"submit\">" + Tr(v, "Search") + "</button></form>\n";
   if (page.routes.empty()) {
-    b += "<p class=\"empty\">No routes match.";
-    if (v.logged_in) b += " <a href=\"/routes/new\">Add one</a>.";
+    b += "<p class=\"empty\">" + Tr(v, "No routes match.");
+    if (v.logged_in) b += " <a href=\"/routes/new\">" + Tr(v, "Add one") + "</a>.";
     b += "</p>\n";
   } else {
-    b += "<div class=\"table-wrap\"><table class=\"list\" id=\"route-list\"><thead><tr><th>Name"
-         "</th><th>Grade</th><th>Setter</th><th>Wall</th><th class=\"num\">Moves</th><th>Added"
-         "</th></tr></thead><tbody>\n" + RouteRows(page.routes) + "</tbody></table></div>\n";
+    b += "<div class=\"table-wrap\"><table class=\"list\" id=\"route-list\"><thead><tr><th>" +
+         Tr(v, "Name") + "</th><th>" + Tr(v, "Grade") + "</th><th>" + Tr(v, "Setter") +
+         "</th><th>" + Tr(v, "Wall") + "</th><th class=\"num\">" + Tr(v, "Moves") + "</th><th>" +
+         Tr(v, "Added") + "</th></tr></thead><tbody>\n" + RouteRows(v, page.routes) +
+         "</tbody></table></div>\n";
   }
   const int64_t first = page.routes.empty() ? 0 : page.offset + 1;
   const int64_t last = page.offset + static_cast<int64_t>(page.routes.size());
-  b += "<nav class=\"pager\" id=\"pager\"><span id=\"shown\">" + std::to_string(first) + "–" +
-       std::to_string(last) + " of " + std::to_string(page.total) + "</span>";
+  b += "<nav class=\"pager\" id=\"pager\"><span id=\"shown\">" +
+       Fmt(Tr(v, "{1}–{2} of {3}"), std::to_string(first), std::to_string(last),
+           std::to_string(page.total)) +
+       "</span>";
   if (page.offset > 0) {
     b += " <a id=\"prev\" rel=\"prev\" href=\"" +
-         E(ListUrl(q, std::max(0, page.offset - page.limit))) + "\">← Newer page</a>";
+         E(ListUrl(q, std::max(0, page.offset - page.limit))) + "\">" + Tr(v, "← Newer page") +
+         "</a>";
   }
   if (last < page.total) {
     b += " <a id=\"next\" rel=\"next\" href=\"" + E(ListUrl(q, page.offset + page.limit)) +
-         "\">Next page →</a>";
+         "\">" + Tr(v, "Next page →") + "</a>";
   }
   b += "</nav>\n";
-  return Layout(v, "Routes", b);
+  return Layout(v, Tr(v, "Routes"), b);
 }
 
 std::string LoginPage(const PageViewer& v, bool signup) {
-  std::string title = signup ? "Sign up" : "Log in";
+  std::string title = signup ? Tr(v, "Sign up") : Tr(v, "Log in");
   std::string b = "<h1>" + title + "</h1>\n";
   b += std::string("<form id=\"") + (signup ? "signup-form" : "login-form") +
-       "\" class=\"card narrow\">"
-       "<label>User name <input name=\"username\" id=\"username\" autocomplete=\"username\" "
-       "required maxlength=\"40\" pattern=\"[A-Za-z0-9_.\\-]{1,40}\"></label>"
-       "<label>Password <input name=\"password\" id=\"password\" type=\"password\" "
+       "\" class=\"card narrow\"><label>" + Tr(v, "User name") +
+       " <input name=\"username\" id=\"username\" autocomplete=\"username\" "
+       "required maxlength=\"40\" pattern=\"[A-Za-z0-9_.\\-]{1,40}\"></label><label>" +
+       Tr(v, "Password") +
+       " <input name=\"password\" id=\"password\" type=\"password\" "
        "minlength=\"8\" required autocomplete=\"" +
        (signup ? "new-password" : "current-password") +
        "\"></label>"
@@ -264,11 +282,17 @@ std::string LoginPage(const PageViewer& v, bool signup) {
        "</button>"
        "<p class=\"msg\" id=\"form-msg\" role=\"alert\"></p></form>\n";
   if (signup) {
-    b += "<p class=\"hint\" id=\"signup-rules\">User name: 1 to 40 letters, digits, dots, dashes "
-         "or underscores. Password: at least 8 characters.</p>\n";
+    b += "<p class=\"hint\" id=\"signup-rules\">" +
+         Tr(v, "User name: 1 to 40 letters, digits, dots, dashes or underscores. Password: at "
+               "least 8 characters.") +
+         "</p>\n";
   }
-  b += signup ? "<p>Already have an account? <a href=\"/login\">Log in</a>.</p>"
-              : "<p>No account yet? <a href=\"/signup\">Sign up</a>.</p>";
+  b += signup ? "<p>" + Fmt(Tr(v, "Already have an account? {1}."),
+                            "<a href=\"/login\">" + Tr(v, "Log in") + "</a>") +
+                    "</p>"
+              : "<p>" + Fmt(Tr(v, "No account yet? {1}."),
+                            "<a href=\"/signup\">" + Tr(v, "Sign up") + "</a>") +
+                    "</p>";
   return Layout(v, title, b);
 }
 
@@ -311,22 +335,24 @@ std::string RoutePage(const PageViewer& v, const app::RouteView& r, bool can_cha
   b += "<p class=\"byline\">";
   if (!r.grade.empty()) {
     const std::string note = app::GradeNote(r.grade, r.grade_discipline);
-    b += "Grade " + E(r.grade) +
+    b += Tr(v, "Grade") + " " + E(r.grade) +
          (note.empty() ? "" : " <span class=\"grade-note\" id=\"grade-note\">(" + E(note) + ")</span>") +
          " · ";
   }
   if (!discipline.empty()) {
     b += "<span id=\"route-discipline\">" + E(discipline) + "</span> · ";
   }
-  if (!r.setter.empty()) b += "set by " + E(r.setter) + " · ";
-  b += "added by " + E(r.owner_name.empty() ? "nobody" : r.owner_name) + " on " +
-       E(r.created_at.substr(0, 10));
+  if (!r.setter.empty()) b += Fmt(Tr(v, "set by {1}"), E(r.setter)) + " · ";
+  b += Fmt(Tr(v, "added by {1} on {2}"), E(r.owner_name.empty() ? Tr(v, "nobody") : r.owner_name),
+           E(FormatDate(v, r.created_at.substr(0, 10))));
   if (r.gym_id) {  // issue 31: a gym's route is its members' until published
     b += r.is_public
-             ? " · <span class=\"tag library\" id=\"library-tag\">in the shared library</span>"
-             : " · <span class=\"tag private\" id=\"library-tag\">gym only</span>";
+             ? " · <span class=\"tag library\" id=\"library-tag\">" +
+                   Tr(v, "in the shared library") + "</span>"
+             : " · <span class=\"tag private\" id=\"library-tag\">" + Tr(v, "gym only") +
+                   "</span>";
   } else {
-    b += r.is_public ? "" : " · <span class=\"tag private\">private</span>";
+    b += r.is_public ? "" : " · <span class=\"tag private\">" + Tr(v, "private") + "</span>";
   }
   b += "</p>\n";
   if (r.gym_id && can_change) {
@@ -338,7 +364,7 @@ std::string RoutePage(const PageViewer& v, const app::RouteView& r, bool can_cha
   }
   Result<Route> parsed = ParseCrdl(r.crdl, "route " + std::to_string(r.id));
   if (parsed.ok()) {
-    b += Description(*parsed) + Meta(*parsed) + MovesTable(*parsed, readings);
+    b += Description(*parsed) + Meta(*parsed, v.lang) + MovesTable(v.lang, *parsed, readings);
   } else {
     b += "<p class=\"error\">" + E(parsed.status().message()) + "</p><pre>" + E(r.crdl) + "</pre>";
   }
@@ -347,21 +373,22 @@ std::string RoutePage(const PageViewer& v, const app::RouteView& r, bool can_cha
   // moves says so here instead of failing later.
   const bool no_moves = parsed.ok() && parsed->moves.empty();
   if (no_moves) {
-    b += "<p class=\"note\" id=\"no-moves\">" + E(app::kNoMovesMessage) + "</p>\n";
+    b += "<p class=\"note\" id=\"no-moves\">" + E(Tr(v, app::kNoMovesMessage)) + "</p>\n";
   }
   b += "<p class=\"actions no-print\">" +
        std::string(no_moves ? ""
                             : "<a class=\"button\" id=\"vary-this\" href=\"/vary?routes=" + id +
-                                  "\">Vary this route</a> ") +
-       "<a href=\"/api/routes/" + id +
-       ".crdl\" download>Download CRDL</a> <a class=\"button\" id=\"tag-link\" href=\"/routes/" +
-       id + "/tag\">Tag</a>";
+                                  "\">" + Tr(v, "Vary this route") + "</a> ") +
+       "<a href=\"/api/routes/" + id + ".crdl\" download>" + Tr(v, "Download CRDL") +
+       "</a> <a class=\"button\" id=\"tag-link\" href=\"/routes/" + id + "/tag\">" +
+       Tr(v, "Tag") + "</a>";
   if (can_change) {
-    b += " <a class=\"button\" href=\"/routes/" + id + "/edit\" id=\"edit\">Edit</a>";
+    b += " <a class=\"button\" href=\"/routes/" + id + "/edit\" id=\"edit\">" + Tr(v, "Edit") +
+         "</a>";
   }
   if (v.logged_in && r.owner_id && *r.owner_id == v.user_id) {  // deleting stays the owner's here
     b += " <button type=\"button\" class=\"danger\" id=\"delete-route\" data-id=\"" + id +
-         "\">Delete</button>";
+         "\">" + Tr(v, "Delete") + "</button>";
   }
   b += "</p>\n";
   return Layout(v, r.name, b);
@@ -667,9 +694,12 @@ std::string PageLayout(const PageViewer& v, const std::string& title, const std:
 }
 
 std::string ErrorPage(const PageViewer& v, int status, const std::string& message) {
-  return Layout(v, "Error " + std::to_string(status),
-                "<h1>" + std::to_string(status) + "</h1><p class=\"error\">" + E(message) +
-                    "</p><p><a href=\"/\">Back to the routes</a></p>");
+  // A message the catalogs know (the handlers' fixed ones, marked N_) is
+  // shown in the page's language; others (naming a field) as they are.
+  return Layout(v, Fmt(Tr(v, "Error {1}"), std::to_string(status)),
+                "<h1>" + std::to_string(status) + "</h1><p class=\"error\">" +
+                    E(Tr(v, message.c_str())) + "</p><p><a href=\"/\">" +
+                    Tr(v, "Back to the routes") + "</a></p>");
 }
 
 }  // namespace sb::web

@@ -12,6 +12,7 @@
 #include "app/types.h"
 #include "plan/card.h"
 #include "plan/plan.h"
+#include "web/i18n.h"
 
 namespace sb::web {
 
@@ -26,6 +27,9 @@ struct PageViewer {
   // (New route, Vary, Studies, Drift, Import) is theirs; climbers, accounts in
   // no gym and visitors do not see it.
   bool setter = false;
+  // The page's language (issue 32, web/i18n.h): "en", "de" or "fr" — the
+  // account's, else the browser's Accept-Language, else the gym's default.
+  std::string lang = "en";
 };
 
 // "/": one page of the route list (server-side search, filters, sort and
@@ -68,7 +72,9 @@ std::string PageLayout(const PageViewer& v, const std::string& title, const std:
 // A colour as pages show it (issue 32): a swatch and its name
 // (plan::ColourLabel), escaped; a colour no table knows is its name only
 // (no empty box); "" for "".
-std::string ColourHtml(const std::string& colour);
+// `lang`: the page's language (a known single colour word and a hex code's
+// nearest name in it, web/i18n.h ColourLabelIn).
+std::string ColourHtml(const std::string& colour, std::string_view lang = "en");
 // An error page for `status` with a message (escaped).
 std::string ErrorPage(const PageViewer& v, int status, const std::string& message);
 

@@ -338,6 +338,24 @@ struct Server::Impl {
     return c;
   }
 
+  // The language of the caller's pages (issue 32): the account's, else the
+  // browser's Accept-Language, else the default gym's (app::Gyms::DefaultGym).
+  std::string LanguageOf(const Request& req, const Caller& c) {
+    std::string account;
+    if (c.viewer.logged_in()) {
+      if (Result<app::Profile> p = services.profiles.Get(c.viewer); p.ok()) account = p->language;
+    }
+    const std::string accept = req.Header("accept-language");
+    if (IsUiLanguage(account) || !LanguageFromAcceptLanguage(accept).empty()) {
+      return ChooseLanguage(account, accept, "");
+    }
+    std::string gym;
+    if (Result<std::optional<int64_t>> g = services.gyms.DefaultGym(c.viewer); g.ok() && *g) {
+      if (Result<std::string> l = services.profiles.GymLanguage(**g); l.ok()) gym = *l;
+    }
+    return ChooseLanguage("", "", gym);
+  }
+
   // The checks every state-changing request passes before any handler:
   // a same-origin Origin (when sent), a JSON body, and the session's CSRF
   // token when it carries a session.
@@ -368,6 +386,9 @@ struct Server::Impl {
     }
     Request req = in;
     Caller caller = CallerOf(req);
+    // Pages and the PDFs (tag sheets under /api/ too) are in the caller's
+    // language; JSON answers are not, so API calls skip the look-up.
+    if (!IsApi(req) || req.path.ends_with(".pdf")) caller.lang = LanguageOf(req, caller);
     bool method_mismatch = false;
     const Handler* h = router.Find(&req, &method_mismatch);
     Exchange x{services, options, req, caller, *res};

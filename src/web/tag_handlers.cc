@@ -22,6 +22,7 @@ Result<std::pair<app::RouteView, plan::TagInfo>> TagOfPath(Exchange& x) {
   SB_ASSIGN_OR_RETURN(int64_t id, PathId(x.req, "No such route."));
   SB_ASSIGN_OR_RETURN(app::RouteView r, x.services.routes.Get(x.caller.viewer, id));
   plan::TagInfo tag = app::TagInfoOf(r, ShortLink(x, r.id));
+  LocaliseTag(x.caller.lang, &tag);
   return std::make_pair(std::move(r), std::move(tag));
 }
 
@@ -73,7 +74,10 @@ void GetTagSheetPdf(Exchange& x) {
   if (!slot) return;
   std::vector<plan::TagInfo> tags;
   tags.reserve(routes->size());
-  for (const app::RouteView& r : *routes) tags.push_back(app::TagInfoOf(r, ShortLink(x, r.id)));
+  for (const app::RouteView& r : *routes) {
+    tags.push_back(app::TagInfoOf(r, ShortLink(x, r.id)));
+    LocaliseTag(x.caller.lang, &tags.back());
+  }
   const plan::Paper paper = TagPaperOf(x.req);
   Result<std::string> pdf = plan::RenderTagSheetPdf(tags, paper);
   if (!pdf.ok()) return PageError(x, pdf.status());
@@ -96,7 +100,10 @@ void GetGymTagSheetPdf(Exchange& x) {
   if (!slot) return;
   std::vector<plan::TagInfo> tags;
   tags.reserve(routes->size());
-  for (const app::RouteView& r : *routes) tags.push_back(app::TagInfoOf(r, ShortLink(x, r.id)));
+  for (const app::RouteView& r : *routes) {
+    tags.push_back(app::TagInfoOf(r, ShortLink(x, r.id)));
+    LocaliseTag(x.caller.lang, &tags.back());
+  }
   const plan::Paper paper = TagPaperOf(x.req);
   Result<std::string> pdf = plan::RenderTagSheetPdf(tags, paper);
   if (!pdf.ok()) return ApiError(x, pdf.status());

@@ -22,6 +22,17 @@ std::string Css(const std::optional<plan::Rgb>& c) {
 
 }  // namespace
 
+void LocaliseTag(std::string_view lang, plan::TagInfo* tag) {
+  plan::TagInfo::Words& w = tag->words;
+  w.wall = Tr(lang, "Wall: {1}");
+  w.set_by = Tr(lang, "Set by {1}");
+  w.to_be_set_by = Tr(lang, "To be set by {1}");
+  w.set_on = Tr(lang, "Set on {1}");
+  w.planned_for = Tr(lang, "Planned for {1}");
+  tag->colour_label = ColourLabelIn(lang, tag->colour);
+  tag->set_on = FormatDate(lang, tag->set_on);
+}
+
 std::string TagPage(const PageViewer& v, int64_t id, const plan::TagInfo& tag) {
   const std::string sid = std::to_string(id);
   const std::string colour = Css(plan::ColourSwatch(tag.colour));
@@ -34,7 +45,8 @@ std::string TagPage(const PageViewer& v, int64_t id, const plan::TagInfo& tag) {
     // Issue 32: a swatch only for a colour the table knows, and its name.
     b += "<p class=\"tag-colour\">" +
          (colour.empty() ? std::string() : "<span class=\"swatch\"" + fill + "></span>") +
-         E(plan::ColourLabel(tag.colour)) + "</p>\n";
+         E(tag.colour_label.empty() ? plan::ColourLabel(tag.colour) : tag.colour_label) +
+         "</p>\n";
   }
   for (const std::string& line : plan::TagLines(tag)) {
     b += "<p class=\"tag-line\">" + E(line) + "</p>\n";
@@ -52,12 +64,13 @@ std::string TagPage(const PageViewer& v, int64_t id, const plan::TagInfo& tag) {
          "</figcaption></figure>\n";
   }
   b += "</div>\n</article>\n";
-  b += "<p class=\"actions no-print\"><button type=\"button\" id=\"print\">Print the tag</button> "
-       "<a class=\"button\" id=\"tag-pdf\" href=\"/routes/" + sid +
-       "/tag.pdf\">PDF (A4)</a> <a class=\"button\" id=\"tag-pdf-letter\" href=\"/routes/" + sid +
-       "/tag.pdf?paper=letter\">PDF (Letter)</a> <a href=\"/routes/" + sid +
-       "\">Back to the route</a></p>\n";
-  return PageLayout(v, "Tag: " + tag.name, b, "page-tag");
+  b += "<p class=\"actions no-print\"><button type=\"button\" id=\"print\">" +
+       Tr(v, "Print the tag") + "</button> <a class=\"button\" id=\"tag-pdf\" href=\"/routes/" +
+       sid + "/tag.pdf\">" + Tr(v, "PDF (A4)") +
+       "</a> <a class=\"button\" id=\"tag-pdf-letter\" href=\"/routes/" + sid +
+       "/tag.pdf?paper=letter\">" + Tr(v, "PDF (Letter)") + "</a> <a href=\"/routes/" + sid +
+       "\">" + Tr(v, "Back to the route") + "</a></p>\n";
+  return PageLayout(v, Fmt(Tr(v, "Tag: {1}"), tag.name), b, "page-tag");
 }
 
 }  // namespace sb::web

@@ -18,6 +18,10 @@ namespace sb::web {
 // puts it on one page, and links to the PDFs (A4, Letter) and the route.
 std::string TagPage(const PageViewer& v, int64_t id, const plan::TagInfo& tag);
 
+// Issue 32: `tag`'s words, colour name and set date in `lang` (web/i18n.h),
+// for the page and the PDFs alike.
+void LocaliseTag(std::string_view lang, plan::TagInfo* tag);
+
 }  // namespace sb::web
 
 #endif  // SB_WEB_TAG_PAGES_H_

@@ -1,0 +1,118 @@
+// The UI's languages (issue 32): choosing one, the catalogs (compiled from
+// po/*.po by the build), plural rules, dates, colour names; and over a real
+// server: <html lang>, Accept-Language, the account's language and a gym's.
+#include "web/i18n.h"
+
+#include <gtest/gtest.h>
+#include <httplib.h>
+
+#include <nlohmann/json.hpp>
+
+#include "web/api_test_util.h"
+#include "web/pages.h"
+
+namespace sb::web {
+namespace {
+
+using nlohmann::json;
+
+TEST(I18nTest, ChoosesTheAccountsThenTheBrowsersThenTheGymsLanguage) {
+  EXPECT_EQ(LanguageFromAcceptLanguage("de-CH,de;q=0.9,en;q=0.8"), "de");
+  EXPECT_EQ(LanguageFromAcceptLanguage("it-IT, fr;q=0.4, en;q=0.3"), "fr");
+  EXPECT_EQ(LanguageFromAcceptLanguage("en;q=0.2, FR-be;q=0.7"), "fr");
+  EXPECT_EQ(LanguageFromAcceptLanguage("fr;q=0, de;q=0.1"), "de");
+  EXPECT_EQ(LanguageFromAcceptLanguage("it, es"), "");
+  EXPECT_EQ(LanguageFromAcceptLanguage(""), "");
+  EXPECT_EQ(ChooseLanguage("fr", "de", "en"), "fr");
+  EXPECT_EQ(ChooseLanguage("", "de-AT", "fr"), "de");
+  EXPECT_EQ(ChooseLanguage("", "it", "fr"), "fr");
+  EXPECT_EQ(ChooseLanguage("", "", ""), "en");
+  EXPECT_EQ(ChooseLanguage("xx", "", "yy"), "en");
+}
+
+TEST(I18nTest, TranslatesFromTheCatalogsWithPluralRulesAndPlaceholders) {
+  ASSERT_FALSE(CatalogDir().empty()) << "the build compiles po/*.po into build/locale";
+  EXPECT_EQ(Tr("en", "Log in"), "Log in");
+  EXPECT_EQ(Tr("de", "Log in"), "Anmelden");
+  EXPECT_EQ(Tr("fr", "Log in"), "Se connecter");
+  EXPECT_EQ(Tr("de", "a message no catalog has"), "a message no catalog has");
+  EXPECT_EQ(Tr("de", ""), "");
+  PageViewer v;
+  v.lang = "de";
+  EXPECT_EQ(Fmt(Tr(v, "Set by {1}"), "Simon Räss"), "Geschraubt von Simon Räss");
+  // German: one is singular, zero plural; French: zero and one singular.
+  EXPECT_EQ(Fmt(TrN("de", "{1} try", "{1} tries", 1), "1"), "1 Versuch");
+  EXPECT_EQ(Fmt(TrN("de", "{1} try", "{1} tries", 0), "0"), "0 Versuche");
+  EXPECT_EQ(Fmt(TrN("fr", "{1} try", "{1} tries", 0), "0"), "0 essai");
+  EXPECT_EQ(Fmt(TrN("fr", "{1} try", "{1} tries", 2), "2"), "2 essais");
+  EXPECT_EQ(Fmt(TrN("en", "{1} try", "{1} tries", 2), "2"), "2 tries");
+  EXPECT_EQ(Fmt("{2} before {1}", "a", "b"), "b before a");
+}
+
+TEST(I18nTest, DatesNumbersAndColoursInTheLanguage) {
+  EXPECT_EQ(FormatDate("de", "2026-11-28"), "28.11.2026");
+  EXPECT_EQ(FormatDate("de", "2026-03-01 10:00:00"), "01.03.2026");
+  EXPECT_NE(FormatDate("fr", "2026-11-28").find("2026"), std::string::npos);
+  EXPECT_EQ(FormatDate("fr", "2026-11-28").substr(0, 3), "28 ");
+  EXPECT_EQ(FormatDate("en", "2026-11-28"), "2026-11-28");
+  EXPECT_EQ(FormatDate("de", "not a date"), "not a date");
+  EXPECT_EQ(FormatDate("de", "2026-13-01"), "2026-13-01");
+  EXPECT_EQ(FormatNumber("de", 4.5, 1), "4,5");
+  EXPECT_EQ(FormatNumber("en", 4.5, 1), "4.5");
+  EXPECT_EQ(ColourLabelIn("en", "gelb"), "yellow");
+  EXPECT_EQ(ColourLabelIn("fr", "Gelb"), "jaune");
+  EXPECT_EQ(ColourLabelIn("de", "yellow"), "gelb");
+  EXPECT_EQ(ColourLabelIn("de", "#ffdd00"), "gelb (#ffdd00)");
+  EXPECT_EQ(ColourLabelIn("fr", "light blue"), "light blue");
+  EXPECT_EQ(ColourLabelIn("de", "gelbb"), "gelbb");
+}
+
+class I18nApiTest : public testing::ApiFixture {};
+
+std::string HtmlLang(const std::string& page) {
+  const size_t at = page.find("<html lang=\"");
+  if (at == std::string::npos) return "?";
+  return page.substr(at + 12, page.find('"', at + 12) - at - 12);
+}
+
+TEST_F(I18nApiTest, PagesAnswerInTheAccountsBrowsersOrGymsLanguage) {
+  testing::Client head = NewClient();
+  head.SignUp("head");
+  ASSERT_TRUE(head.LogIn("head"));
+  json gyms = head.Json("GET", "/api/gyms", "", 200);
+  ASSERT_EQ(gyms["gyms"].size(), 1u);
+  const std::string gym = "/api/gyms/" + std::to_string(gyms["gyms"][0]["id"].get<int64_t>());
+  EXPECT_EQ(head.Json("PUT", gym, json{{"language", "fr"}}.dump(), 200)["language"], "fr");
+  EXPECT_EQ(head.Json("PUT", gym, json{{"language", "es"}}.dump(), 400)["error"],
+            "language: one of en, de, fr");
+  testing::Client other = NewClient();
+  other.SignUp("other");
+  ASSERT_TRUE(other.LogIn("other"));
+  EXPECT_EQ(other.Status("PUT", gym, json{{"language", "de"}}.dump()), 404);
+
+  httplib::Client anon("127.0.0.1", server_->port());
+  // No account, no Accept-Language: the install's gym's default.
+  auto r = anon.Get("/login");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(HtmlLang(r->body), "fr");
+  EXPECT_NE(r->body.find("Se connecter"), std::string::npos);
+  // The browser's language first.
+  r = anon.Get("/login", {{"Accept-Language", "de-DE,de;q=0.9"}});
+  ASSERT_TRUE(r);
+  EXPECT_EQ(HtmlLang(r->body), "de");
+  EXPECT_NE(r->body.find("Anmelden"), std::string::npos);
+  // The account's language before the browser's.
+  head.Json("PUT", "/api/account", json{{"language", "de"}}.dump(), 200);
+  r = head.Send("GET", "/account", "", true, "application/json", {{"Accept-Language", "fr"}});
+  ASSERT_TRUE(r);
+  EXPECT_EQ(HtmlLang(r->body), "de");
+  EXPECT_NE(r->body.find("Dein Konto"), std::string::npos);
+  // Clearing the gym's default: English.
+  head.Json("PUT", gym, json{{"language", nullptr}}.dump(), 200);
+  r = anon.Get("/login");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(HtmlLang(r->body), "en");
+}
+
+}  // namespace
+}  // namespace sb::web

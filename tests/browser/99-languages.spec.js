@@ -1,0 +1,88 @@
+// The UI's languages (issue 32): an account set to German sees German pages (html lang, labels,
+// dates as 28.11.2026) and ticks a route on a phone in German; a browser asking for French
+// (Accept-Language) sees French pages without an account, and a tag sheet printed from it is in
+// French (pdftotext: "Ouverte par", "jaune"); a gym's default language is set over the API.
+'use strict';
+const fs = require('fs');
+const path = require('path');
+const { execFileSync } = require('child_process');
+
+module.exports = async (t) => {
+  const { page, base, check, shot, api, out } = t;
+  const n = Date.now() % 100000;
+  const user = 'sprache' + n;
+  const password = 'correct horse battery';
+  const ctx = page.context();
+  const lang = () => page.evaluate(() => document.documentElement.lang);
+  const text = (sel) => page.textContent(sel);
+
+  await ctx.clearCookies();
+  await page.goto(base + '/signup');
+  await page.fill('#username', user);
+  await page.fill('#password', password);
+  await Promise.all([page.waitForURL(base + '/'), page.click('#submit')]);
+  const put = await api('PUT', '/api/account', { language: 'de' });
+  check(put.status === 200 && put.data.language === 'de', 'the account is set to German (' + put.status + ')');
+
+  // A gym (its default language French) with a route on its wall: colour "gelb", no moves.
+  const gym = await api('POST', '/api/gyms', { name: 'Sprachhalle ' + n });
+  const gput = await api('PUT', '/api/gyms/' + gym.data.id, { language: 'fr' });
+  check(gput.status === 200 && gput.data.language === 'fr', 'PUT /api/gyms/{gym} sets the gym\'s language (' + gput.status + ')');
+  const bad = await api('PUT', '/api/gyms/' + gym.data.id, { language: 'xx' });
+  check(bad.status === 400 && /language/.test(bad.data.error), 'an unknown language is refused naming the field');
+  const crdl = 'name: Gelbe Kante ' + n + '\ngrade: V3\ncolour: gelb\n---\n';
+  const made = await api('POST', '/api/routes', { crdl, public: true, gym: gym.data.id, state: 'set' });
+  check(made.status === 201, 'a route without moves is set (' + made.status + ')');
+  const rid = made.data.id;
+
+  // German, from the account: the route list, its dates, the account page.
+  await page.goto(base + '/?q=' + encodeURIComponent('Gelbe Kante ' + n));
+  check(await lang() === 'de', '<html lang="de"> for the German account');
+  check((await text('h1')).trim() === 'Routen' && (await text('#logout')).includes('Abmelden'),
+        'the route list says "Routen" and "Abmelden"');
+  const added = await page.textContent('#route-list tbody tr td:last-child');
+  check(/^\d{2}\.\d{2}\.\d{4}$/.test(added.trim()), 'the date is in the German format (' + added.trim() + ')');
+  await page.goto(base + '/account');
+  check((await text('h1')).includes('Dein Konto') && (await text('main')).includes('Passwort ändern'),
+        'the account page is German');
+
+  // A tick on a phone in German.
+  await page.setViewportSize({ width: 390, height: 844 });
+  await page.goto(base + '/r/' + rid);
+  check(await lang() === 'de' && (await text('#tick-form h2')).includes('Abhaken'), '/r/{id} on the phone is German');
+  await page.click('label.outcome:has(#outcome-send)');
+  await page.fill('#tick-attempts', '3');
+  await page.click('#tick-submit');
+  await page.waitForFunction(() => document.getElementById('tick-msg').textContent !== '');
+  const msg = await text('#tick-msg');
+  check(msg.startsWith('Abgehakt: Durchstieg'), 'the tick is confirmed in German (' + msg + ')');
+  await shot('99-tick-german');
+  await page.goto(base + '/logbook');
+  const day = await page.textContent('#ticks tr.tick td');
+  check((await text('h1')).includes('Dein Logbuch') && /^\d{2}\.\d{2}\.\d{4}$/.test(day.trim()),
+        'the logbook is German, its day ' + day.trim());
+  await page.setViewportSize({ width: 1200, height: 900 });
+
+  // French, from the browser's Accept-Language (no account).
+  await ctx.clearCookies();
+  await page.setExtraHTTPHeaders({ 'Accept-Language': 'fr-FR,fr;q=0.9,en;q=0.5' });
+  try {
+    await page.goto(base + '/login');
+    check(await lang() === 'fr' && (await text('h1')).includes('Se connecter'), 'the log-in page is French');
+    await page.goto(base + '/r/' + rid);
+    check(await lang() === 'fr' && (await text('#tick-form h2')).includes('Cocher') &&
+          (await text('#tick-submit')).includes('Enregistrer la croix'), '/r/{id} is French');
+    await shot('99-route-french');
+    const sheet = await page.request.get(base + '/tags.pdf?ids=' + rid,
+                                         { headers: { 'Accept-Language': 'fr-FR,fr;q=0.9' } });
+    const file = path.join(out, 'tags-french.pdf');
+    fs.writeFileSync(file, await sheet.body());
+    const words = execFileSync('pdftotext', [file, '-']).toString();
+    check(sheet.status() === 200 && words.includes('Ouverte par') && words.includes('Ouverte le') &&
+          words.includes('jaune'), 'the tag sheet is French (' + words.replace(/\s+/g, ' ').slice(0, 120) + ')');
+  } finally {
+    await page.setExtraHTTPHeaders({});
+  }
+  await page.goto(base + '/login');
+  check(await lang() === 'en', 'without them the pages are English again');
+};
