@@ -317,8 +317,7 @@ std::string AscentBlock(Exchange& x, const app::RouteView& route) {
     LogError("ascent grade of route " + std::to_string(route.id) + ": " + a.status().message());
     return "";
   }
-  std::string b = "<script src=\"/static/logbook.js\" defer></script>
-" +
+  std::string b = "<script src=\"/static/logbook.js\" defer></script>\n" +
                   AscentHtml(x.caller.lang, *a) + ChanceBlock(x, route);  // issue 35
   if (x.caller.viewer.logged_in()) {
     std::map<int64_t, std::string> reasons;
