@@ -99,8 +99,8 @@ Result<WorkBudget::Slot> WorkBudget::Admit(const Viewer& viewer, double cost,
                             : std::chrono::milliseconds(1000LL * policy_.max_wait_seconds);
   auto& queue = queue_[si];
   auto busy_refusal = [&] {
-    const int retry = std::max(1, static_cast<int>(std::chrono::ceil<std::chrono::seconds>(
-                                                       wait).count()));
+    const int retry =
+        std::max(1, static_cast<int>(std::chrono::ceil<std::chrono::seconds>(wait).count()));
     if (retry_after_seconds) *retry_after_seconds = retry;
     if (busy) *busy = true;
     return Status::ResourceExhausted("server busy with costly requests; retry in " +
@@ -125,8 +125,8 @@ Result<WorkBudget::Slot> WorkBudget::Admit(const Viewer& viewer, double cost,
   };
   if (members) {
     // A member waits only in a short queue, one waiting job per caller.
-    const bool waiting = std::any_of(queue.begin(), queue.end(),
-                                     [&](const auto& e) { return e.second == key; });
+    const bool waiting =
+        std::any_of(queue.begin(), queue.end(), [&](const auto& e) { return e.second == key; });
     if (waiting || static_cast<int>(queue.size()) >= std::max(0, policy_.member_queue)) {
       if (!(queue.empty() && running_[si] < slots)) return busy_refusal();
     }
@@ -134,8 +134,8 @@ Result<WorkBudget::Slot> WorkBudget::Admit(const Viewer& viewer, double cost,
   ticket = next_ticket_++;
   queue.emplace_back(ticket, key);
   bool admitted = cv_.wait_for(lock, wait, can_run);
-  queue.erase(std::find_if(queue.begin(), queue.end(),
-                           [&](const auto& e) { return e.first == ticket; }));
+  queue.erase(
+      std::find_if(queue.begin(), queue.end(), [&](const auto& e) { return e.first == ticket; }));
   if (!admitted) {
     cv_.notify_all();  // a job behind this one may run now
     return busy_refusal();

@@ -138,7 +138,6 @@ TEST(WorkBudgetTest, JobsUnderTheFreeCostAreNeitherCountedNorRefused) {
   EXPECT_FALSE(b.Admit(Anonymous("c"), p.anonymous_max_cost * 2).ok());
 }
 
-
 Viewer Member(int64_t id, int64_t gym, const std::string& role = "climber") {
   Viewer v = User(id);
   v.gyms.push_back({gym, role});

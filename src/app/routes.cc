@@ -1024,8 +1024,11 @@ Result<CsvFiles> Routes::ExportCsv(const Viewer& v, bool mine) {
       SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> page, store_->ListRoutes(f));
       for (const store::RouteRecord& r : page) {
         Result<store::RouteRecord> whole = store_->GetRoute(r.id);
-        if (whole.ok()) all.push_back(std::move(whole).value());
-        else if (whole.status().code() != Status::Code::kNotFound) return whole.status();
+        if (whole.ok()) {
+          all.push_back(std::move(whole).value());
+        } else if (whole.status().code() != Status::Code::kNotFound) {
+          return whole.status();
+        }
       }
       if (static_cast<int>(page.size()) < f.limit) break;
     }

@@ -304,7 +304,6 @@ TEST_F(DashboardApiTest, TheKeptDashboardAndWallPageShowEveryWriteOnTheNextGet) 
   EXPECT_EQ(dash_page(climber).find("Renamedling"), std::string::npos);  // off the wall
 }
 
-
 // Issue 34: a variation is seen only when every route it was made from is.
 // When its source route in another gym leaves the library, the kept wall page
 // and dashboard of the variation's gym drop it on the next GET (the source's
@@ -323,17 +322,21 @@ TEST_F(DashboardApiTest, AKeptPageDropsAVariationWhoseSourceInAnotherGymTurnedPr
   rival.Json("POST", "/api/gyms/" + std::to_string(g2) + "/walls", R"({"name":"Roof"})", 201);
   json src{{"crdl", Crdl("Sourceling", "V4", "2026-01-01", "red",
                          "R small crimp\nL heel hook the arete\nR jug\n")},
-           {"library", true}, {"gym", g2}, {"wall", "Roof"}, {"state", "set"},
+           {"library", true},
+           {"gym", g2},
+           {"wall", "Roof"},
+           {"state", "set"},
            {"set_on", "2026-01-01"}};
   const int64_t s = rival.Json("POST", "/api/routes", src.dump(), 201)["id"];
   // The head setter sets a variation of it on this gym's wall.
-  const int64_t v = head.Json("POST", "/api/variations",
-                              json{{"routes", {s}}, {"gym", g}, {"name", "Foreignling"}}.dump(),
-                              201)["id"];
-  ASSERT_EQ(head.Status("PUT", "/api/routes/" + std::to_string(v),
-                        json{{"gym", g}, {"wall", "Cave"}, {"state", "set"},
-                             {"set_on", "2026-01-02"}}.dump()),
-            200);
+  const int64_t v =
+      head.Json("POST", "/api/variations",
+                json{{"routes", {s}}, {"gym", g}, {"name", "Foreignling"}}.dump(), 201)["id"];
+  ASSERT_EQ(
+      head.Status(
+          "PUT", "/api/routes/" + std::to_string(v),
+          json{{"gym", g}, {"wall", "Cave"}, {"state", "set"}, {"set_on", "2026-01-02"}}.dump()),
+      200);
   const std::string wp = "/walls/" + std::to_string(cave);
   const std::string dp = "/gyms/" + std::to_string(g) + "/dashboard";
   auto body = [&](const std::string& path) {
