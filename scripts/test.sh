@@ -26,7 +26,7 @@ done
 status=0
 if [[ "${SB_TEST_SANITIZE:-1}" != 0 ]]; then
   stage scripts/sanitize.sh
-  SANITIZE_CTEST_EXCLUDE=${SANITIZE_CTEST_EXCLUDE-'^docs_|^durability$|^[A-Za-z0-9_]+\.[A-Za-z0-9_]+/postgresql$'} \
+  SANITIZE_CTEST_EXCLUDE=${SANITIZE_CTEST_EXCLUDE-'^docs_|^durability$|^load$|^[A-Za-z0-9_]+\.[A-Za-z0-9_]+/postgresql$'} \
     bash scripts/sanitize.sh || status=1
 fi
 fuzz_seconds=${SB_TEST_FUZZ_SECONDS:-6}

@@ -17,16 +17,35 @@ WorkBudget::WorkBudget(BudgetPolicy policy) : policy_(policy) {}
 
 WorkBudget::Slot& WorkBudget::Slot::operator=(Slot&& o) noexcept {
   if (this != &o) {
-    if (budget_) budget_->Release(key_);
+    if (budget_) budget_->Release(key_, share_);
     budget_ = o.budget_;
     key_ = std::move(o.key_);
+    share_ = o.share_;
     o.budget_ = nullptr;
   }
   return *this;
 }
 
 WorkBudget::Slot::~Slot() {
-  if (budget_) budget_->Release(key_);
+  if (budget_) budget_->Release(key_, share_);
+}
+
+WorkBudget::Share WorkBudget::ShareOf(const Viewer& viewer, std::optional<int64_t> gym) const {
+  if (policy_.member_parallel <= 0 || !viewer.logged_in()) return Share::kPublic;
+  for (const GymRole& g : viewer.gyms) {
+    if (gym ? g.gym_id == *gym : (g.role == "head" || g.role == "setter")) return Share::kMembers;
+  }
+  return Share::kPublic;
+}
+
+int WorkBudget::Running(Share share) {
+  std::lock_guard<std::mutex> lock(mu_);
+  return running_[static_cast<int>(share)];
+}
+
+int WorkBudget::Waiting(Share share) {
+  std::lock_guard<std::mutex> lock(mu_);
+  return static_cast<int>(queue_[static_cast<int>(share)].size());
 }
 
 std::string WorkBudget::KeyOf(const Viewer& viewer) {
@@ -41,7 +60,8 @@ void WorkBudget::Refill(Account* a, double capacity, double per_minute,
 }
 
 Result<WorkBudget::Slot> WorkBudget::Admit(const Viewer& viewer, double cost,
-                                           int* retry_after_seconds, bool* busy) {
+                                           int* retry_after_seconds, bool* busy,
+                                           std::optional<int64_t> gym) {
   if (retry_after_seconds) *retry_after_seconds = 0;
   if (busy) *busy = false;
   if (cost < policy_.free_below) return Slot();
@@ -71,47 +91,67 @@ Result<WorkBudget::Slot> WorkBudget::Admit(const Viewer& viewer, double cost,
                                      " units per minute; retry in " +
                                      std::to_string(std::max(1, wait)) + " s");
   }
-  uint64_t ticket = next_ticket_++;
-  queue_.emplace_back(ticket, key);
-  // Runs when a slot is free, the caller is under its own cap, and every
-  // earlier waiting job is blocked by its caller's cap (first come, first
-  // served among the jobs that can run).
+  const Share share = ShareOf(viewer, gym);
+  const int si = static_cast<int>(share);
+  const bool members = share == Share::kMembers;
+  const int slots = members ? policy_.member_parallel : policy_.max_parallel;
+  const auto wait = members ? std::chrono::milliseconds(policy_.member_wait_ms)
+                            : std::chrono::milliseconds(1000LL * policy_.max_wait_seconds);
+  auto& queue = queue_[si];
+  auto busy_refusal = [&] {
+    const int retry =
+        std::max(1, static_cast<int>(std::chrono::ceil<std::chrono::seconds>(wait).count()));
+    if (retry_after_seconds) *retry_after_seconds = retry;
+    if (busy) *busy = true;
+    return Status::ResourceExhausted("server busy with costly requests; retry in " +
+                                     std::to_string(retry) + " s");
+  };
+  // Runs when a slot of its share is free, the caller is under its own cap,
+  // and every earlier waiting job of the share is blocked by its caller's
+  // cap (first come, first served among the jobs that can run).
+  uint64_t ticket = 0;
   auto can_run = [&] {
-    if (running_ >= policy_.max_parallel) return false;
+    if (running_[si] >= slots) return false;
     auto mine = running_by_key_.find(key);
     if (mine != running_by_key_.end() && mine->second >= policy_.max_parallel_per_caller) {
       return false;
     }
-    for (const auto& [t, k] : queue_) {
+    for (const auto& [t, k] : queue) {
       if (t == ticket) return true;
       auto r = running_by_key_.find(k);
       if (r == running_by_key_.end() || r->second < policy_.max_parallel_per_caller) return false;
     }
     return false;
   };
-  bool admitted = cv_.wait_for(lock, std::chrono::seconds(policy_.max_wait_seconds), can_run);
-  queue_.erase(std::find_if(queue_.begin(), queue_.end(),
-                            [&](const auto& e) { return e.first == ticket; }));
+  if (members) {
+    // A member waits only in a short queue, one waiting job per caller.
+    const bool waiting =
+        std::any_of(queue.begin(), queue.end(), [&](const auto& e) { return e.second == key; });
+    if (waiting || static_cast<int>(queue.size()) >= std::max(0, policy_.member_queue)) {
+      if (!(queue.empty() && running_[si] < slots)) return busy_refusal();
+    }
+  }
+  ticket = next_ticket_++;
+  queue.emplace_back(ticket, key);
+  bool admitted = cv_.wait_for(lock, wait, can_run);
+  queue.erase(
+      std::find_if(queue.begin(), queue.end(), [&](const auto& e) { return e.first == ticket; }));
   if (!admitted) {
     cv_.notify_all();  // a job behind this one may run now
-    const int retry = std::max(1, policy_.max_wait_seconds);
-    if (retry_after_seconds) *retry_after_seconds = retry;
-    if (busy) *busy = true;
-    return Status::ResourceExhausted("server busy with costly requests; retry in " +
-                                     std::to_string(retry) + " s");
+    return busy_refusal();
   }
   // The wait may have taken a while: refill and charge now.
   Refill(&account, per_minute, per_minute, std::chrono::steady_clock::now());
   account.available -= cost;
-  ++running_;
+  ++running_[si];
   ++running_by_key_[key];
-  return Slot(this, key);
+  return Slot(this, key, share);
 }
 
-void WorkBudget::Release(const std::string& key) {
+void WorkBudget::Release(const std::string& key, Share share) {
   {
     std::lock_guard<std::mutex> lock(mu_);
-    --running_;
+    --running_[static_cast<int>(share)];
     auto it = running_by_key_.find(key);
     if (it != running_by_key_.end() && --it->second <= 0) running_by_key_.erase(it);
   }

@@ -138,5 +138,86 @@ TEST(WorkBudgetTest, JobsUnderTheFreeCostAreNeitherCountedNorRefused) {
   EXPECT_FALSE(b.Admit(Anonymous("c"), p.anonymous_max_cost * 2).ok());
 }
 
+Viewer Member(int64_t id, int64_t gym, const std::string& role = "climber") {
+  Viewer v = User(id);
+  v.gyms.push_back({gym, role});
+  return v;
+}
+
+// Issue 34, fair capacity: anonymous callers filling their share never take
+// the slots of a gym's members; a member is admitted meanwhile, and signed-in
+// callers who are not members of that gym share the anonymous slots.
+TEST(WorkBudgetTest, MembersHaveSlotsAnonymousCallersCannotTake) {
+  BudgetPolicy p = RenderBudgetPolicy();
+  p.member_wait_ms = 0;
+  WorkBudget b(p);
+  const double big = p.free_below * 2;
+  std::vector<WorkBudget::Slot> anonymous;
+  for (int i = 0; i < p.max_parallel; ++i) {
+    Result<WorkBudget::Slot> s = b.Admit(Anonymous("10.0.0." + std::to_string(i)), big);
+    ASSERT_TRUE(s.ok()) << i;
+    anonymous.push_back(std::move(s).value());
+  }
+  int retry = 0;
+  bool busy = false;
+  Result<WorkBudget::Slot> flood = b.Admit(Anonymous("10.0.0.99"), big, &retry, &busy);
+  ASSERT_FALSE(flood.ok());
+  EXPECT_TRUE(busy);
+  EXPECT_GE(retry, 1);
+  // Signed in but no member of gym 7 (or a member of another gym): the same share.
+  EXPECT_FALSE(b.Admit(User(5), big, nullptr, nullptr, 7).ok());
+  EXPECT_FALSE(b.Admit(Member(6, 8), big, nullptr, nullptr, 7).ok());
+  EXPECT_EQ(b.ShareOf(Member(6, 8), 7), WorkBudget::Share::kPublic);
+  // Members of gym 7 have their own slots, one per caller.
+  Result<WorkBudget::Slot> m1 = b.Admit(Member(1, 7), big, nullptr, nullptr, 7);
+  ASSERT_TRUE(m1.ok()) << m1.status().message();
+  EXPECT_FALSE(b.Admit(Member(1, 7), big, nullptr, nullptr, 7).ok());  // one at a time
+  Result<WorkBudget::Slot> m2 = b.Admit(Member(2, 7, "setter"), big, nullptr, nullptr, 7);
+  ASSERT_TRUE(m2.ok()) << m2.status().message();
+  EXPECT_EQ(b.Running(WorkBudget::Share::kMembers), 2);
+  EXPECT_EQ(b.Running(WorkBudget::Share::kPublic), p.max_parallel);
+  // Work of no gym: a setter of some gym takes the member share.
+  EXPECT_EQ(b.ShareOf(Member(2, 7, "setter"), std::nullopt), WorkBudget::Share::kMembers);
+  EXPECT_EQ(b.ShareOf(Member(1, 7), std::nullopt), WorkBudget::Share::kPublic);
+  // Without a member share everyone is in one.
+  BudgetPolicy one;
+  EXPECT_EQ(WorkBudget(one).ShareOf(Member(1, 7), 7), WorkBudget::Share::kPublic);
+}
+
+// A member's job waits (bounded) for a member slot, first come first served,
+// one waiting job per caller and at most member_queue waiting.
+TEST(WorkBudgetTest, AMemberWaitsBrieflyForAMemberSlotInTurn) {
+  BudgetPolicy p = RenderBudgetPolicy();
+  p.member_parallel = 1;
+  p.member_queue = 1;
+  p.member_wait_ms = 5000;
+  WorkBudget b(p);
+  const double big = p.free_below * 2;
+  Result<WorkBudget::Slot> holder = b.Admit(Member(1, 7), big, nullptr, nullptr, 7);
+  ASSERT_TRUE(holder.ok());
+  std::atomic<bool> admitted{false};
+  std::thread waiter([&] {
+    Result<WorkBudget::Slot> s = b.Admit(Member(2, 7), big, nullptr, nullptr, 7);
+    admitted = s.ok();
+  });
+  // Once the second member waits, a third finds the queue full: refused at once.
+  for (int i = 0; i < 400 && b.Waiting(WorkBudget::Share::kMembers) == 0; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ASSERT_EQ(b.Waiting(WorkBudget::Share::kMembers), 1);
+  int retry = 0;
+  auto t0 = std::chrono::steady_clock::now();
+  Result<WorkBudget::Slot> third = b.Admit(Member(3, 7), big, &retry, nullptr, 7);
+  const double waited =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_FALSE(third.ok());
+  EXPECT_LT(waited, 0.5);
+  EXPECT_GE(retry, 1);
+  EXPECT_FALSE(admitted.load());
+  holder = Result<WorkBudget::Slot>(WorkBudget::Slot());  // the first member is done
+  waiter.join();
+  EXPECT_TRUE(admitted.load());
+}
+
 }  // namespace
 }  // namespace sb::app

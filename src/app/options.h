@@ -140,6 +140,18 @@ struct BudgetPolicy {
   // Jobs costing less are not counted at all: they never wait and are
   // never refused (0: every job is counted).
   double free_below = 0;
+  // Issue 34, fair capacity: slots of a share of their own for a gym's
+  // members (work on a gym they belong to; app/budget.h), beside the
+  // max_parallel slots every other caller shares, so no flood of anonymous
+  // or outside callers can take them (0: one share for all).
+  int member_parallel = 0;
+  // A member's job finding no free member slot may wait this long for one,
+  // first come first served among callers (one running and one waiting per
+  // caller), and at most member_queue such jobs wait at once: a member's
+  // page waits for one of the few costly jobs ahead of it instead of being
+  // refused, and waiting jobs hold at most member_queue workers.
+  int member_wait_ms = 0;
+  int member_queue = 0;
 };
 
 // The work budget of the pages and files a request can ask for (route and
@@ -161,6 +173,13 @@ inline BudgetPolicy RenderBudgetPolicy() {
   p.max_parallel = 2;
   p.max_parallel_per_caller = 1;
   p.max_wait_seconds = 0;
+  // Issue 34: two more slots for members of the gym the work is for (a
+  // setter's sheet, a member's report); a member's job waits up to 1.5 s
+  // (about three reports at chain size) for one, at most two waiting, so
+  // costly work holds at most 2 + 2 + 2 of the server's 8 workers.
+  p.member_parallel = 2;
+  p.member_wait_ms = 1500;
+  p.member_queue = 2;
   return p;
 }
 
@@ -184,6 +203,15 @@ struct RenderCosts {
   // Issue 22: one candidate of a setting-day proposal (its share of a
   // gallery: 9 IC searches and plans per slot; docs/BENCHMARKS.md).
   double day_candidate = 8e3;
+  // Issue 34: reads that grow with the data, costed before the ticks are read.
+  // The report (GET /api/gyms/{gym}/report): each route row listed to find
+  // the scope (10 as a list row), one indexed tick query per route in scope
+  // (~0.1 ms on SQLite, a round trip on PostgreSQL) and each tick it reads
+  // and counts (~5 us: a row of text fields, stars and felt grades).
+  double report_per_route = 100;
+  double report_per_tick = 5;
+  // A climber's logbook, a study's CSV rows: per row read and written.
+  double row_per_read = 5;
 };
 
 struct Options {

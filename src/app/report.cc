@@ -103,10 +103,20 @@ VariationComparison CompareStars(std::vector<double> variation, std::vector<doub
   return c;
 }
 
-Reports::Reports(store::Store* store, Gyms* gyms, Logbook* logbook, int max_routes)
-    : store_(store), gyms_(gyms), logbook_(logbook), max_routes_(std::max(1, max_routes)) {}
+Reports::Reports(store::Store* store, Gyms* gyms, Logbook* logbook, int max_routes,
+                 RenderCosts costs)
+    : store_(store),
+      gyms_(gyms),
+      logbook_(logbook),
+      max_routes_(std::max(1, max_routes)),
+      costs_(costs) {}
 
 Result<GymReport> Reports::Report(const Viewer& v, int64_t gym, const ReportQuery& q) {
+  SB_ASSIGN_OR_RETURN(ReportPlan plan, Plan(v, gym, q));
+  return Build(v, std::move(plan));
+}
+
+Result<ReportPlan> Reports::Plan(const Viewer& v, int64_t gym, const ReportQuery& q) {
   store::TickStore* ticks = store::TickStoreOf(store_);
   if (ticks == nullptr) return Status::Internal("this store keeps no ticks");
   SB_ASSIGN_OR_RETURN(Gym g, gyms_->Get(v, gym));
@@ -115,7 +125,8 @@ Result<GymReport> Reports::Report(const Viewer& v, int64_t gym, const ReportQuer
     return Status::InvalidInput("wall: give either a wall or a date (YYYY-MM-DD), not " +
                                 std::string(wall_key.empty() ? "neither" : "both"));
   }
-  GymReport out;
+  ReportPlan plan;
+  GymReport& out = plan.head;
   out.gym_id = g.id;
   out.gym_name = g.name;
   out.can_set = CanSet(g.role);
@@ -140,11 +151,30 @@ Result<GymReport> Reports::Report(const Viewer& v, int64_t gym, const ReportQuer
   // The routes, by id.
   std::map<int64_t, store::RouteRecord> routes;
   out.max_routes = max_routes_;
+  if (!date.empty()) {
+    // A setting day (issue 34): the gym's routes by set date, newest first,
+    // read only down to the day (not the whole history: 10,000 rows took
+    // seconds), and its planned routes planned for the day.
+    f.sort = store::RouteSort::kSetNewest;
+    store::RouteFilter planned = f;
+    planned.state = "planned";
+    planned.limit = kPage;
+    SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> plans, store_->ListRoutes(planned));
+    plan.listed += static_cast<int64_t>(plans.size());
+    for (store::RouteRecord& r : plans) {
+      if (r.planned_on != date || !IsVisible(r, v)) continue;
+      const int64_t id = r.id;
+      routes.emplace(id, std::move(r));
+    }
+  }
   for (f.offset = 0; f.offset < max_routes_; f.offset += f.limit) {
-    f.limit = std::min(kPage, max_routes_ - f.offset);
+    // Day scans start with a small page: most days asked for are recent.
+    f.limit = std::min(date.empty() || f.offset > 0 ? kPage : 200, max_routes_ - f.offset);
     SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> page, store_->ListRoutes(f));
-    const bool full = static_cast<int>(page.size()) == f.limit;
+    plan.listed += static_cast<int64_t>(page.size());
+    bool full = static_cast<int>(page.size()) == f.limit;
     for (store::RouteRecord& r : page) {
+      if (!date.empty() && IsIsoDate(r.set_on) && r.set_on < date) full = false;  // past the day
       if (!IsVisible(r, v)) continue;
       if (!date.empty() && r.set_on != date && r.planned_on != date) continue;
       const int64_t id = r.id;
@@ -157,6 +187,7 @@ Result<GymReport> Reports::Report(const Viewer& v, int64_t gym, const ReportQuer
       beyond.offset = max_routes_;
       beyond.limit = 1;
       SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> more, store_->ListRoutes(beyond));
+      plan.listed += static_cast<int64_t>(more.size());
       out.capped = !more.empty();
     }
   }
@@ -166,13 +197,54 @@ Result<GymReport> Reports::Report(const Viewer& v, int64_t gym, const ReportQuer
                       (out.scope == "wall" ? " of this wall" : " of the gym") +
                       " only; narrow by wall or date.";
   }
+  // The ascent grades of the routes in scope from the gym's kept fits (one
+  // fit per discipline, not one lookup per route; issue 34), and from them
+  // the ticks the report will read.
+  std::vector<int64_t> ids;
+  ids.reserve(routes.size());
+  for (const auto& [id, r] : routes) ids.push_back(id);
+  SB_ASSIGN_OR_RETURN(plan.ascents, logbook_->Ascents(gym, ids));
+  for (const auto& [id, a] : plan.ascents) plan.ticks += a.ticks;
+  plan.routes.reserve(routes.size());
+  for (auto& [id, r] : routes) plan.routes.push_back(std::move(r));
+  plan.cost = static_cast<double>(plan.listed) * costs_.list_per_row +
+              static_cast<double>(plan.routes.size()) * costs_.report_per_route +
+              static_cast<double>(plan.ticks) * costs_.report_per_tick;
+  return plan;
+}
 
-  // The unheld ticks of those routes (GymTicks: state "ok", by id).
-  SB_ASSIGN_OR_RETURN(std::vector<store::TickRecord> all, ticks->GymTicks(gym));
-  std::map<int64_t, std::vector<const store::TickRecord*>> by_route;
-  for (const store::TickRecord& t : all) {
-    if (routes.count(t.route_id)) by_route[t.route_id].push_back(&t);
+Result<GymReport> Reports::Build([[maybe_unused]] const Viewer& v, ReportPlan plan) {
+  store::TickStore* ticks = store::TickStoreOf(store_);
+  if (ticks == nullptr) return Status::Internal("this store keeps no ticks");
+  GymReport out = std::move(plan.head);
+  std::map<int64_t, store::RouteRecord> routes;
+  for (store::RouteRecord& r : plan.routes) {
+    const int64_t id = r.id;
+    routes.emplace(id, std::move(r));
   }
+  // The unheld ticks of those routes only (issue 34: the gym's 250,000 ticks
+  // were read for a setting day's 15 routes).
+  std::vector<store::TickRecord> all;
+  std::map<int64_t, std::vector<const store::TickRecord*>> by_route;
+  {
+    std::vector<std::vector<store::TickRecord>> per_route;
+    per_route.reserve(routes.size());
+    for (const auto& [id, r] : routes) {
+      SB_ASSIGN_OR_RETURN(std::vector<store::TickRecord> rt, ticks->RouteTicks(id));
+      std::erase_if(rt, [](const store::TickRecord& t) { return t.state != "ok"; });
+      // By id, as GymTicks gave them.
+      std::sort(rt.begin(), rt.end(),
+                [](const store::TickRecord& a, const store::TickRecord& b) { return a.id < b.id; });
+      per_route.push_back(std::move(rt));
+    }
+    size_t n = 0;
+    for (const auto& rt : per_route) n += rt.size();
+    all.reserve(n);
+    for (auto& rt : per_route) {
+      for (store::TickRecord& t : rt) all.push_back(std::move(t));
+    }
+  }
+  for (const store::TickRecord& t : all) by_route[t.route_id].push_back(&t);
 
   // Star ratings per band: (band, is_variation) -> stars; routes behind them.
   // Keyed by (discipline, band): a roped band never meets a bouldering one.
@@ -252,8 +324,7 @@ Result<GymReport> Reports::Report(const Viewer& v, int64_t gym, const ReportQuer
       if (cons.ok()) rr.felt_median = grades::FormatValue(cons->median, *d, ScaleOf(r, *d));
     }
     if (!by_route[id].empty()) {
-      Result<AscentGrade> a = logbook_->Ascent(v, id);
-      if (a.ok()) rr.ascent = std::move(a).value();
+      if (auto a = plan.ascents.find(id); a != plan.ascents.end()) rr.ascent = a->second;
     }
     out.ticks += rr.ticks;
     out.felt_n += rr.felt_n;

@@ -115,18 +115,44 @@ struct GymReport {
   std::string capped_note;
 };
 
+// What a report will read, known before its ticks are read (issue 34: the
+// cost is checked before the work): the routes in scope and their cost.
+struct ReportPlan {
+  GymReport head;  // gym, scope, wall/date, can_set, capped: no routes or totals yet
+  std::vector<store::RouteRecord> routes;  // the routes in scope, by id
+  std::map<int64_t, AscentGrade> ascents;  // from the gym's kept fits (no rows read)
+  int64_t listed = 0;  // route rows read to find them (at most max_routes + 1)
+  int64_t ticks = 0;   // unheld ticks of those routes by the kept fits (an estimate)
+  // The work in render units (app::RenderCosts): listed rows, one tick query
+  // per route in scope and the ticks it reads. See Reports::Cost.
+  double cost = 0;
+};
+
 // Thread-safe. Does not own its arguments.
 class Reports {
  public:
-  // `max_routes`: the cap on routes read (tests lower it; > 0).
+  // `max_routes`: the cap on routes read (tests lower it; > 0). `costs`:
+  // what a plan's cost counts (options.render_costs).
   Reports(store::Store* store, Gyms* gyms, Logbook* logbook,
-          int max_routes = ReportLimits::kMaxRoutes);
+          int max_routes = ReportLimits::kMaxRoutes, RenderCosts costs = {});
+
+  // The first half of Report: checks the viewer and the query, lists the
+  // routes in scope (route rows only, at most max_routes + 1, no text, no
+  // ticks) and their ascent grades from the gym's kept fits, and says what
+  // reading their ticks will cost (ReportPlan::cost) before any tick is
+  // read. Errors as Report.
+  Result<ReportPlan> Plan(const Viewer& v, int64_t gym, const ReportQuery& q);
+  // The second half: reads the ticks of the plan's routes only (one indexed
+  // query per route, issue 34: not every tick of the gym) and builds the
+  // report. Errors: the store's.
+  Result<GymReport> Build(const Viewer& v, ReportPlan plan);
 
   // The report of a wall or setting day of `gym` for a member of it.
   // Errors: kNotFound "no gym N" for non-members and "no wall ..." for
   // another gym's wall; kInvalidInput "wall"/"date" when neither or both
   // are given or the date is not YYYY-MM-DD; kInternal when the store keeps
   // no ticks; the store's.
+  // Plan then Build, with no budget (tests, the CLI).
   Result<GymReport> Report(const Viewer& v, int64_t gym, const ReportQuery& q);
 
  private:
@@ -134,6 +160,7 @@ class Reports {
   Gyms* gyms_;
   Logbook* logbook_;
   const int max_routes_;
+  const RenderCosts costs_;
 };
 
 // The comparison of two groups of star ratings (exposed for tests): means,

@@ -1006,7 +1006,33 @@ Result<ImportSummary> Routes::ImportCsv(const Viewer& v, std::string_view routes
 }
 
 Result<CsvFiles> Routes::ExportCsv(const Viewer& v, bool mine) {
-  SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> all, store_->AllRoutes(std::nullopt));
+  // Issue 34: only what the caller may see is read (the whole install was
+  // loaded and charged for the visible routes only): the caller's own routes
+  // for `mine`, else the visible routes' ids by the listing's visibility
+  // rule, each read whole by id.
+  std::vector<store::RouteRecord> all;
+  if (mine) {
+    if (v.logged_in()) {
+      SB_ASSIGN_OR_RETURN(all, store_->AllRoutes(*v.user_id));
+    }
+  } else {
+    store::RouteFilter f;
+    f.viewer = v.user_id;
+    f.sort = store::RouteSort::kOldest;
+    f.limit = 1000;
+    for (f.offset = 0;; f.offset += f.limit) {
+      SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> page, store_->ListRoutes(f));
+      for (const store::RouteRecord& r : page) {
+        Result<store::RouteRecord> whole = store_->GetRoute(r.id);
+        if (whole.ok()) {
+          all.push_back(std::move(whole).value());
+        } else if (whole.status().code() != Status::Code::kNotFound) {
+          return whole.status();
+        }
+      }
+      if (static_cast<int>(page.size()) < f.limit) break;
+    }
+  }
   SiteExport ex;
   for (const store::RouteRecord& rec : all) {
     if (!IsVisible(rec, v) || (mine && !IsOwner(rec, v))) continue;

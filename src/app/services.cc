@@ -18,7 +18,7 @@ Services::Services(Database* store, const Options& opts, Clock* clock)
       logbook(store, clock),
       chances(store, &logbook, clock),
       dashboard(store, opts, clock),
-      reports(store, &gyms, &logbook),
+      reports(store, &gyms, &logbook, ReportLimits::kMaxRoutes, opts.render_costs),
       setting_days(store, opts, &routes, &gyms, &variations, &renders, &dashboard),
       rendered(store, clock),
       profiles(store, opts),

@@ -627,6 +627,48 @@ ALTER TABLE walls ADD COLUMN scale TEXT NOT NULL DEFAULT '';
 ALTER TABLE gyms ADD COLUMN language TEXT NOT NULL DEFAULT '';
 )sql"},
        }},
+      // Schema 19 (issue 34, "kept pages keyed on everything that decides
+      // what they show"): a variation is seen only when every route it was
+      // made from is, so a change of a route's visibility (library flag,
+      // state, owner, gym) also moves the data version of every gym holding
+      // a variation made from it (route_sources), beside its own gym's: a
+      // kept page of another gym listing such a variation renders again on
+      // the next GET. The routes' update trigger is made again with that.
+      {"a route's visibility change moves the versions of gyms with variations of it (issue 34)",
+       {
+           // SQLite: the trigger is dropped and made again (no CREATE OR REPLACE).
+           {Only::kSqlite, R"sql(
+DROP TRIGGER gv_routes_upd;
+CREATE TRIGGER gv_routes_upd AFTER UPDATE ON routes BEGIN
+UPDATE gym_versions SET data_version = data_version + 1 WHERE gym_id IN (NEW.gym_id, OLD.gym_id);
+UPDATE gym_versions SET data_version = data_version + 1
+  WHERE (OLD.is_public IS NOT NEW.is_public OR OLD.state IS NOT NEW.state
+         OR OLD.owner_id IS NOT NEW.owner_id OR OLD.gym_id IS NOT NEW.gym_id)
+    AND gym_id IS NOT NEW.gym_id AND gym_id IS NOT OLD.gym_id
+    AND gym_id IN (SELECT v.gym_id FROM route_sources s JOIN routes v ON v.id = s.variation_id
+                   WHERE s.route_id = NEW.id);
+END;
+)sql"},
+           // PostgreSQL: the trigger's function is replaced.
+           {Only::kPostgres, R"sql(
+CREATE OR REPLACE FUNCTION gv_routes() RETURNS trigger LANGUAGE plpgsql AS $$ BEGIN
+IF TG_OP = 'INSERT' THEN
+  UPDATE gym_versions SET data_version = data_version + 1 WHERE gym_id IN (NEW.gym_id);
+ELSIF TG_OP = 'DELETE' THEN
+  UPDATE gym_versions SET data_version = data_version + 1 WHERE gym_id IN (OLD.gym_id);
+ELSE
+  UPDATE gym_versions SET data_version = data_version + 1 WHERE gym_id IN (NEW.gym_id, OLD.gym_id);
+  IF OLD.is_public IS DISTINCT FROM NEW.is_public OR OLD.state IS DISTINCT FROM NEW.state
+     OR OLD.owner_id IS DISTINCT FROM NEW.owner_id OR OLD.gym_id IS DISTINCT FROM NEW.gym_id THEN
+    UPDATE gym_versions SET data_version = data_version + 1
+      WHERE gym_id IS DISTINCT FROM NEW.gym_id AND gym_id IS DISTINCT FROM OLD.gym_id
+        AND gym_id IN (SELECT v.gym_id FROM route_sources s JOIN routes v ON v.id = s.variation_id
+                       WHERE s.route_id = NEW.id);
+  END IF;
+END IF;
+RETURN NULL; END $$;
+)sql"},
+       }},
   };
   return kMigrations;
 }

@@ -63,7 +63,8 @@ void GetRoute(Exchange& x) {
   if (!id.ok()) return ApiError(x, id.status());
   Result<app::RouteView> r = x.services.routes.Get(x.caller.viewer, *id);
   if (!r.ok()) return ApiError(x, r.status());
-  auto slot = AdmitWork(x, r->move_count * x.services.options.render_costs.page_per_move);
+  auto slot =
+      AdmitWork(x, r->move_count * x.services.options.render_costs.page_per_move, r->gym_id);
   if (!slot) return;
   json j = RouteJson(*r);
   if (Result<app::RouteDiscipline> d = x.services.routes.DisciplineOf(*r); d.ok()) {
@@ -79,7 +80,8 @@ void GetRouteCrdl(Exchange& x) {
   if (!id.ok()) return ApiError(x, id.status());
   Result<app::RouteView> r = x.services.routes.Get(x.caller.viewer, *id);
   if (!r.ok()) return ApiError(x, r.status());
-  auto slot = AdmitWork(x, r->move_count * x.services.options.render_costs.page_per_move);
+  auto slot =
+      AdmitWork(x, r->move_count * x.services.options.render_costs.page_per_move, r->gym_id);
   if (!slot) return;
   x.res.SetHeader("Content-Disposition",
                   "attachment; filename=\"route-" + std::to_string(*id) + ".crdl\"");

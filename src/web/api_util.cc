@@ -11,13 +11,16 @@ namespace sb::web {
 
 using nlohmann::json;
 
-std::optional<app::WorkBudget::Slot> AdmitWork(Exchange& x, double cost) {
+std::optional<app::WorkBudget::Slot> AdmitWork(Exchange& x, double cost,
+                                               std::optional<int64_t> gym) {
   int retry_after = 0;
   bool busy = false;
   Result<app::WorkBudget::Slot> slot =
-      x.services.renders.Admit(x.caller.viewer, cost, &retry_after, &busy);
+      x.services.renders.Admit(x.caller.viewer, cost, &retry_after, &busy, gym);
   if (slot.ok()) return std::move(slot).value();
-  const int status = busy ? 503 : 429;
+  // Issue 34: slots taken is the caller's share being full, not the server
+  // failing: 429 with Retry-After like a spent budget (was 503).
+  const int status = 429;
   const std::string message = slot.status().message();
   if (x.req.path.rfind("/api/", 0) == 0) {
     ReplyJson(x.res, status, json{{"error", message}});

@@ -198,7 +198,8 @@ void GetVariation(Exchange& x) {
   if (!id.ok()) return ApiError(x, id.status());
   Result<app::RouteView> r = x.services.routes.Get(x.caller.viewer, *id);
   if (!r.ok()) return ApiError(x, r.status());
-  auto slot = AdmitWork(x, r->move_count * x.services.options.render_costs.plan_per_move);
+  auto slot =
+      AdmitWork(x, r->move_count * x.services.options.render_costs.plan_per_move, r->gym_id);
   if (!slot) return;
   Result<app::PlanView> p = x.services.variations.Plan(x.caller.viewer, *id);
   if (!p.ok()) return ApiError(x, p.status());

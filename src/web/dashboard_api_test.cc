@@ -304,5 +304,63 @@ TEST_F(DashboardApiTest, TheKeptDashboardAndWallPageShowEveryWriteOnTheNextGet) 
   EXPECT_EQ(dash_page(climber).find("Renamedling"), std::string::npos);  // off the wall
 }
 
+// Issue 34: a variation is seen only when every route it was made from is.
+// When its source route in another gym leaves the library, the kept wall page
+// and dashboard of the variation's gym drop it on the next GET (the source's
+// visibility moves that gym's data version too: schema 19).
+TEST_F(DashboardApiTest, AKeptPageDropsAVariationWhoseSourceInAnotherGymTurnedPrivate) {
+  const int port = server_->port();
+  Client head(port), climber(port), rival(port);
+  const int64_t g = HeadAndClimber(head, climber);
+  ASSERT_GT(g, 0);
+  rival.SignUp("rival");
+  ASSERT_TRUE(rival.LogIn("rival"));
+  const std::string gp = "/api/gyms/" + std::to_string(g);
+  const int64_t cave = head.Json("POST", gp + "/walls", R"({"name":"Cave"})", 201)["id"];
+  // The rival's gym publishes a route set on its wall.
+  const int64_t g2 = rival.Json("POST", "/api/gyms", R"({"name":"Rival"})", 201)["id"];
+  rival.Json("POST", "/api/gyms/" + std::to_string(g2) + "/walls", R"({"name":"Roof"})", 201);
+  json src{{"crdl", Crdl("Sourceling", "V4", "2026-01-01", "red",
+                         "R small crimp\nL heel hook the arete\nR jug\n")},
+           {"library", true},
+           {"gym", g2},
+           {"wall", "Roof"},
+           {"state", "set"},
+           {"set_on", "2026-01-01"}};
+  const int64_t s = rival.Json("POST", "/api/routes", src.dump(), 201)["id"];
+  // The head setter sets a variation of it on this gym's wall.
+  const int64_t v =
+      head.Json("POST", "/api/variations",
+                json{{"routes", {s}}, {"gym", g}, {"name", "Foreignling"}}.dump(), 201)["id"];
+  ASSERT_EQ(
+      head.Status(
+          "PUT", "/api/routes/" + std::to_string(v),
+          json{{"gym", g}, {"wall", "Cave"}, {"state", "set"}, {"set_on", "2026-01-02"}}.dump()),
+      200);
+  const std::string wp = "/walls/" + std::to_string(cave);
+  const std::string dp = "/gyms/" + std::to_string(g) + "/dashboard";
+  auto body = [&](const std::string& path) {
+    auto r = climber.Send("GET", path);
+    EXPECT_TRUE(r && r->status == 200) << path;
+    return r ? r->body : std::string();
+  };
+  for (int i = 0; i < 2; ++i) {  // rendered, then kept
+    EXPECT_NE(body(wp).find("Foreignling"), std::string::npos) << i;
+    EXPECT_NE(body(dp).find("Foreignling"), std::string::npos) << i;
+    EXPECT_NE(body(gp + "/dashboard").find("Foreignling"), std::string::npos) << i;
+  }
+  // The source leaves the library: the climber (no member of the rival gym)
+  // no longer sees it, nor the variation, on the next GET of each page.
+  ASSERT_EQ(rival.Status("PUT", "/api/routes/" + std::to_string(s), R"({"library":false})"), 200);
+  EXPECT_EQ(climber.Status("GET", "/api/routes/" + std::to_string(v)), 404);
+  EXPECT_EQ(body(wp).find("Foreignling"), std::string::npos);
+  EXPECT_EQ(body(dp).find("Foreignling"), std::string::npos);
+  EXPECT_EQ(body(gp + "/dashboard").find("Foreignling"), std::string::npos);
+  // Back in the library: back on the pages.
+  ASSERT_EQ(rival.Status("PUT", "/api/routes/" + std::to_string(s), R"({"library":true})"), 200);
+  EXPECT_NE(body(wp).find("Foreignling"), std::string::npos);
+  EXPECT_NE(body(dp).find("Foreignling"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace sb::web

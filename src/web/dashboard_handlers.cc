@@ -567,7 +567,7 @@ void GetDashboard(Exchange& x) {
   }
   Result<app::GymDashboard> d = x.services.dashboard.Get(x.caller.viewer, *id);
   if (!d.ok()) return ApiError(x, d.status());
-  auto slot = AdmitWork(x, Cost(x, *d));
+  auto slot = AdmitWork(x, Cost(x, *d), *id);
   if (!slot) return;
   json walls = json::array();
   Result<DashboardAscents> ascents = AscentsOf(x, *d);
@@ -678,7 +678,7 @@ void PageDashboard(Exchange& x) {
   }
   Result<app::GymDashboard> d = x.services.dashboard.Get(x.caller.viewer, *id);
   if (!d.ok()) return PageError(x, d.status());
-  auto slot = AdmitWork(x, Cost(x, *d));
+  auto slot = AdmitWork(x, Cost(x, *d), *id);
   if (!slot) return;
   Result<DashboardAscents> ascents = AscentsOf(x, *d);
   if (!ascents.ok()) return PageError(x, ascents.status());

@@ -57,10 +57,13 @@ void PageError(Exchange& x, const Status& s);
 // Charges `cost` render units (app::RenderCosts) to the caller in
 // app::Services::renders before the rendering. Returns the slot to hold
 // while rendering, or nullopt when refused, with the reply written (JSON for
-// /api/, else an error page): 429 when over the per-request cap or the
-// caller's budget, 503 when the big-page slots are taken; Retry-After when
-// waiting helps. Pages under the free cost always pass.
-std::optional<app::WorkBudget::Slot> AdmitWork(Exchange& x, double cost);
+// /api/, else an error page): 429 when over the per-request cap, the
+// caller's budget or when the slots of the caller's share are taken (issue
+// 34: never 503), with Retry-After when waiting helps. Pages under the free
+// cost always pass. `gym`: the gym whose data the work reads, so its members
+// take the member share (app::WorkBudget::ShareOf).
+std::optional<app::WorkBudget::Slot> AdmitWork(Exchange& x, double cost,
+                                               std::optional<int64_t> gym = std::nullopt);
 
 // The render cost of a route list of `limit` rows (default and cap as the
 // list service applies them).

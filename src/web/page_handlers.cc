@@ -66,7 +66,8 @@ void PageEditRoute(Exchange& x) {
     return PageError(x, Status::Permission("Only the route's owner may edit it."));
   }
   if (!r.ok()) return PageError(x, r.status());
-  auto slot = AdmitWork(x, r->move_count * x.services.options.render_costs.page_per_move);
+  auto slot =
+      AdmitWork(x, r->move_count * x.services.options.render_costs.page_per_move, r->gym_id);
   if (!slot) return;
   Html(x, EditorPage(x.caller.page(), *r));
 }
@@ -81,7 +82,8 @@ void PageRoute(Exchange& x) {
     x.res.SetHeader("Location", "/variations/" + std::to_string(*id));
     return;
   }
-  auto slot = AdmitWork(x, r->move_count * x.services.options.render_costs.page_per_move);
+  auto slot =
+      AdmitWork(x, r->move_count * x.services.options.render_costs.page_per_move, r->gym_id);
   if (!slot) return;
   std::vector<std::string> readings;
   if (Result<Route> parsed = ParseCrdl(r->crdl, "route"); parsed.ok()) {
@@ -139,7 +141,8 @@ std::optional<AdmittedPlan> AdmittedPlanOf(Exchange& x, double base, double per_
     PageError(x, r.ok() ? Status::NotFound("No such variation.") : r.status());
     return std::nullopt;
   }
-  std::optional<app::WorkBudget::Slot> slot = AdmitWork(x, base + r->move_count * per_move);
+  std::optional<app::WorkBudget::Slot> slot =
+      AdmitWork(x, base + r->move_count * per_move, r->gym_id);
   if (!slot) return std::nullopt;
   Result<app::PlanView> p = x.services.variations.Plan(x.caller.viewer, *id);
   if (!p.ok()) {

@@ -240,10 +240,27 @@ std::string ReportPageHtml(const PageViewer& v, const app::GymReport& r) {
   return PageLayout(v, title, b, "climber results");
 }
 
+// Issue 34: the report's cost (its routes and their ticks) is known from
+// the plan before any tick is read, and charged in the member share of the
+// gym (reports are for members only).
+static Result<app::GymReport> CostedReport(Exchange& x, int64_t gym, bool* refused) {
+  *refused = false;
+  SB_ASSIGN_OR_RETURN(app::ReportPlan plan,
+                      x.services.reports.Plan(x.caller.viewer, gym, QueryOf(x.req)));
+  std::optional<app::WorkBudget::Slot> slot = AdmitWork(x, plan.cost, gym);
+  if (!slot) {
+    *refused = true;
+    return Status::ResourceExhausted("refused");  // the reply is written
+  }
+  return x.services.reports.Build(x.caller.viewer, std::move(plan));
+}
+
 void GetGymReport(Exchange& x) {
   Result<int64_t> id = PathId(x.req, "no such gym");
   if (!id.ok()) return ApiError(x, id.status());
-  Result<app::GymReport> r = x.services.reports.Report(x.caller.viewer, *id, QueryOf(x.req));
+  bool refused = false;
+  Result<app::GymReport> r = CostedReport(x, *id, &refused);
+  if (refused) return;
   if (!r.ok()) return ApiError(x, r.status());
   x.res.SetHeader("Cache-Control", "no-store");
   ReplyJson(x.res, 200, ReportJson(*r));
@@ -252,7 +269,9 @@ void GetGymReport(Exchange& x) {
 void PageGymReport(Exchange& x) {
   Result<int64_t> id = PathId(x.req, "No such gym.");
   if (!id.ok()) return PageError(x, id.status());
-  Result<app::GymReport> r = x.services.reports.Report(x.caller.viewer, *id, QueryOf(x.req));
+  bool refused = false;
+  Result<app::GymReport> r = CostedReport(x, *id, &refused);
+  if (refused) return;
   if (!r.ok()) return PageError(x, r.status());
   x.res.SetHeader("Cache-Control", "no-store");
   x.res.SetBody(200, ReportPageHtml(x.caller.page(), *r), "text/html; charset=utf-8");

@@ -96,7 +96,7 @@ void GetGymTagSheetPdf(Exchange& x) {
   }
   const app::RenderCosts& c = x.services.options.render_costs;
   std::optional<app::WorkBudget::Slot> slot =
-      AdmitWork(x, c.tag_base + c.tag_each * static_cast<double>(routes->size()));
+      AdmitWork(x, c.tag_base + c.tag_each * static_cast<double>(routes->size()), *gym);
   if (!slot) return;
   std::vector<plan::TagInfo> tags;
   tags.reserve(routes->size());
