@@ -35,6 +35,8 @@ PageViewer Caller::page() const {
   p.username = viewer.username;
   p.csrf = csrf;
   for (const app::GymRole& g : viewer.gyms) p.setter = p.setter || app::CanSet(g.role);
+  p.gyms = gyms;
+  p.gym = gym.value_or(0);
   return p;
 }
 
