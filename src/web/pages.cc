@@ -319,6 +319,7 @@ const char kNoCircuit[] = "(none: a colour of its own)";
 const char kColour[] = "Hold colour";
 const char kSetters[] = "Setters";
 const char kOtherSetters[] = "Other names (comma-separated)";
+const char kSetterNames[] = "Names (comma-separated)";
 const char kState[] = "State";
 const char kDate[] = "Planned / set date";
 const char kNotes[] = "Notes";
@@ -447,7 +448,7 @@ std::string EditorPage(const PageViewer& v, const std::optional<app::RouteView>&
          E(m.username) + "\"" + (on ? " checked" : "") + "> " +
          E(m.display_name.empty() ? m.username : m.display_name) + "</label> ";
   }
-  b += "<label>" + std::string(form.members.empty() ? t::kSetters : t::kOtherSetters) +
+  b += "<label>" + std::string(form.members.empty() ? t::kSetterNames : t::kOtherSetters) +
        " <input id=\"f-setters-other\" maxlength=\"400\" value=\"" + E(others) + "\" data-gym=\"" +
        (route && route->gym_id ? "1" : "") + "\"></label>" + msg("setters") + "</fieldset>\n";
   b += "<label>" + std::string(t::kNotes) +
