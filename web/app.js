@@ -242,7 +242,7 @@
       refresh();
     }
 
-    let timer = null, seq = 0;
+    let timer = null, seq = 0, holdMsg = false;
     async function refresh() {
       const mine = ++seq;
       const text = currentText();
@@ -295,6 +295,7 @@
         list.appendChild(li);
       }
       const msg = $('#save-msg');
+      if (holdMsg) return;
       if (!r.data.ok && r.data.error) {
         say(msg, 'line ' + r.data.error.line + ': ' + r.data.error.message);
       } else {
@@ -302,8 +303,10 @@
       }
     }
     const later = () => { clearTimeout(timer); timer = setTimeout(refresh, 200); };
-    ta.addEventListener('input', later);
-    $('#route-form').addEventListener('input', later);
+    // A refusal stays said until the user types again.
+    const typed = () => { holdMsg = false; later(); };
+    ta.addEventListener('input', typed);
+    $('#route-form').addEventListener('input', typed);
     $('#route-form').addEventListener('change', later);
     if ($('#f-wall')) $('#f-wall').addEventListener('change', scaleHint);
     if ($('#f-circuit')) {
@@ -317,6 +320,7 @@
 
     // A refusal next to the field it names ("grade: ...", or a located error's line).
     function fieldMessage(err, line) {
+      holdMsg = true;
       for (const m of document.querySelectorAll('.field-msg')) m.textContent = '';
       let field = '', text = humane(err);
       if (line && view === 'form' && lineMap[line - 1]) {
@@ -380,6 +384,7 @@
         pre.textContent = cur.crdl;
         box.append(p, pre);
         say($('#save-msg'), 'not saved: changed meanwhile');
+        holdMsg = true;
       } else {
         fieldMessage((r.data && r.data.error) || ('error ' + r.status), r.data && r.data.line);
       }
