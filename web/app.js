@@ -52,6 +52,28 @@
     el.classList.toggle('bad', !ok);
   }
 
+  // Issue 31: the gym this page writes to (the header's switcher; none: personal or asked).
+  const pageGym = () => {
+    const m = document.querySelector('meta[name="sb-gym"]');
+    return m ? Number(m.content) : undefined;
+  };
+  const gymSwitch = $('#gym-switch');
+  if (gymSwitch) {
+    gymSwitch.addEventListener('change', () => {
+      const id = gymSwitch.value;
+      document.cookie = 'sb_gym=' + id + '; path=/; max-age=31536000; SameSite=Lax';
+      // A gym's own pages go to the chosen gym's; other pages stay, with ?gym=.
+      if (/^\/(gyms\/\d+|walls\/\d+)/.test(location.pathname)) {
+        const rest = (location.pathname.match(/^\/gyms\/\d+(\/[a-z-]+)?/) || [])[1] || '';
+        location.href = '/gyms/' + id + rest;
+        return;
+      }
+      const u = new URL(location.href);
+      u.searchParams.set('gym', id);
+      location.href = u.toString();
+    });
+  }
+
   // ---- accounts ----
   async function login(username, password) {
     return api('POST', '/api/sessions', { username, password });
@@ -77,7 +99,8 @@
       if (r.status !== 200) return say($('#form-msg'), (r.data && r.data.error) || 'Log-in failed');
       // Back to the page that sent here (issue 31: a gym page), on this site only.
       const next = new URLSearchParams(location.search).get('next') || '';
-      location.href = /^\/[A-Za-z0-9/_.-]*$/.test(next) && !next.startsWith('//') ? next : '/';
+      // Its query too (?date=...): letters, digits and the URL's own punctuation only.
+      location.href = /^\/[A-Za-z0-9/_.-]*(\?[A-Za-z0-9_.~%=&+,-]*)?$/.test(next) && !next.startsWith('//') ? next : '/';
     });
   }
   const logout = $('#logout');
@@ -88,27 +111,156 @@
     });
   }
 
-  // ---- route editor with live feedback ----
+  // ---- route editor: the form and the CRDL text (issue 31), live feedback ----
   const editor = $('#editor');
   if (editor) {
     const ta = $('#crdl');
     const list = $('#feedback');
-    let timer = null, seq = 0;
+    const inGym = !!editor.dataset.gym;
+    const routeId = editor.dataset.routeId;
+    const KEY = /^([A-Za-z0-9_-]+):(?:[ \t]+(.*)|[ \t]*)$/;
+    // Header keys the form owns; the others stay as they are (kept in `extra`).
+    const OWN = inGym ? ['name', 'grade', 'colour', 'color', 'setter', 'state', 'set', 'date', 'wall']
+                      : ['name', 'grade', 'colour', 'color', 'setter'];
+    let extra = [];   // header lines of the text the form does not show, in order
+    let lineMap = []; // what each line of the last text built from the form came from
+    let view = 'form';
+    const val = (sel) => ($(sel) ? $(sel).value.trim() : '');
+    const ISO = /^\d{4}-\d{2}-\d{2}$/;
+
+    function splitText(text) {
+      const lines = text.replace(/\r/g, '').split('\n');
+      const sep = lines.findIndex((l) => l.trim() === '---');
+      return { header: sep < 0 ? lines : lines.slice(0, sep), moves: sep < 0 ? [] : lines.slice(sep + 1) };
+    }
+    function settersOfForm() {
+      const out = Array.from(document.querySelectorAll('.f-setter:checked')).map((c) => c.value);
+      for (const n of val('#f-setters-other').split(',')) if (n.trim()) out.push(n.trim());
+      return out;
+    }
+    function scaleHint() {
+      const w = $('#f-wall');
+      const opt = w && w.selectedOptions[0];
+      const hint = $('#f-grade-scale');
+      const dl = $('#grade-labels');
+      dl.textContent = '';
+      const scale = opt ? opt.dataset.scale : '';
+      if (!scale) { hint.textContent = hint.dataset.any; return; }
+      const labels = (opt.dataset.labels || '').split('|').filter(Boolean);
+      hint.textContent = 'in the wall\'s scale "' + scale + '"' + (labels.length ? ': ' + labels.join(', ') : '');
+      for (const l of labels) { const o = document.createElement('option'); o.value = l; dl.appendChild(o); }
+    }
+    // The text -> the form. `all`: the gym fields too (a switch from the text view);
+    // otherwise they stay as the page drew them from the record.
+    function textToForm(text, all) {
+      const { header, moves } = splitText(text);
+      extra = [];
+      const notes = [], setters = [];
+      for (const line of header) {
+        const m = line.match(KEY);
+        const key = m ? m[1].toLowerCase() : '';
+        const value = m ? (m[2] || '').trim() : '';
+        if (!m) { if (line.trim() || notes.length) notes.push(line); continue; }
+        if (!OWN.includes(key)) { extra.push(line); continue; }
+        if (key === 'name') $('#f-name').value = value;
+        else if (key === 'grade') $('#f-grade').value = value;
+        else if (key === 'colour' || key === 'color') $('#f-colour').value = value;
+        else if (key === 'setter') setters.push(value);
+        else if (!all) continue;
+        else if (key === 'state') {
+          const sel = $('#f-state');
+          if (!Array.from(sel.options).some((o) => o.value === value)) sel.add(new Option(value, value));
+          sel.value = value;
+        } else if (key === 'set' || key === 'date') {
+          if (ISO.test(value)) $('#f-date').value = value; else extra.push(line);
+        } else if (key === 'wall') {
+          const opt = Array.from($('#f-wall').options).find((o) => o.value && o.dataset.name.toLowerCase() === value.toLowerCase());
+          if (opt) $('#f-wall').value = opt.value; else extra.push(line);
+        }
+      }
+      while (notes.length && !notes[notes.length - 1].trim()) notes.pop();
+      $('#f-notes').value = notes.join('\n');
+      while (moves.length && !moves[moves.length - 1].trim()) moves.pop();
+      $('#f-moves').value = moves.join('\n');
+      // Setters: the text's lines (a personal route, or a switch from the text view).
+      if (all || !$('#f-setters-other').dataset.gym) {
+        const boxes = Array.from(document.querySelectorAll('.f-setter'));
+        const others = [];
+        for (const b of boxes) b.checked = false;
+        for (const s of setters) {
+          const b = boxes.find((x) => x.value.toLowerCase() === s.toLowerCase());
+          if (b) b.checked = true; else others.push(s);
+        }
+        $('#f-setters-other').value = others.join(', ');
+      }
+      const circ = $('#f-circuit');
+      if (circ) {
+        const c = Array.from(circ.options).find((o) => o.value && o.value.toLowerCase() === val('#f-colour').toLowerCase());
+        circ.value = c ? c.value : '';
+      }
+      scaleHint();
+    }
+    // The form -> the text (and lineMap: the field of each line).
+    function formToText() {
+      const out = [];
+      lineMap = [];
+      const add = (line, field) => { out.push(line); lineMap.push(field); };
+      if (val('#f-name')) add('name: ' + val('#f-name'), 'name');
+      if (val('#f-grade')) add('grade: ' + val('#f-grade'), 'grade');
+      if (val('#f-colour')) add('colour: ' + val('#f-colour'), 'colour');
+      if (inGym) {
+        const w = $('#f-wall').selectedOptions[0];
+        if (w && w.value) add('wall: ' + w.dataset.name, 'wall');
+      }
+      for (const s of settersOfForm()) add('setter: ' + s, 'setters');
+      if (inGym) {
+        if (val('#f-state') && val('#f-state') !== 'draft') add('state: ' + val('#f-state'), 'state');
+        if (val('#f-date')) add('set: ' + val('#f-date'), 'set_on');
+      }
+      for (const l of extra) add(l, 'crdl');
+      const notes = $('#f-notes').value.replace(/\r/g, '');
+      if (notes.trim()) for (const l of notes.split('\n')) add(l, 'notes');
+      const moves = $('#f-moves').value.replace(/\r/g, '');
+      if (!out.length && !moves.trim()) { lineMap = []; return ''; }  // nothing typed yet
+      add('---', 'moves');
+      let k = 0;
+      for (const l of moves.split('\n')) { if (l.trim() || moves.trim()) add(l, 'moves:' + (++k)); }
+      return out.join('\n') + '\n';
+    }
+    const currentText = () => (view === 'form' ? formToText() : ta.value);
+
+    function showView(which) {
+      if (which === view) return;
+      if (which === 'form') textToForm(ta.value, true);
+      else ta.value = formToText();
+      view = which;
+      $('#route-form').hidden = which !== 'form';
+      $('#text-view').hidden = which !== 'text';
+      $('#view-form').setAttribute('aria-selected', String(which === 'form'));
+      $('#view-text').setAttribute('aria-selected', String(which === 'text'));
+      editor.classList.toggle('form-view', which === 'form');
+      refresh();
+    }
+
+    let timer = null, seq = 0, holdMsg = false;
     async function refresh() {
       const mine = ++seq;
+      const text = currentText();
       // Nothing typed yet: nothing to complain about (issue 21).
-      if (!ta.value.trim()) {
+      if (!(view === 'form' ? val('#f-moves') || val('#f-name') : ta.value.trim())) {
         list.innerHTML = '';
         say($('#save-msg'), '', true);
         return;
       }
-      const r = await api('POST', '/api/feedback', { crdl: ta.value });
+      const r = await api('POST', '/api/feedback', { crdl: text });
       if (mine !== seq || r.status !== 200) return;
       list.innerHTML = '';
+      const sepLine = text.split('\n').findIndex((l) => l.trim() === '---') + 1;
       for (const l of r.data.lines) {
         if (l.kind === 'blank') continue;
         const li = document.createElement('li');
-        li.value = l.line;
+        // The form shows the moves numbered as moves; the text its lines.
+        li.value = view === 'form' && sepLine && l.line > sepLine ? l.line - sepLine : l.line;
         li.className = 'fb-' + l.kind + (l.kind === 'move' && r.data.language && !l.parsed ? ' unparsed' : '');
         const src = document.createElement('code');
         src.textContent = l.text;
@@ -143,25 +295,78 @@
         list.appendChild(li);
       }
       const msg = $('#save-msg');
+      if (holdMsg) return;
       if (!r.data.ok && r.data.error) {
         say(msg, 'line ' + r.data.error.line + ': ' + r.data.error.message);
       } else {
         say(msg, r.data.moves + ' moves', true);
       }
     }
-    ta.addEventListener('input', () => { clearTimeout(timer); timer = setTimeout(refresh, 200); });
+    const later = () => { clearTimeout(timer); timer = setTimeout(refresh, 200); };
+    // A refusal stays said until the user types again.
+    const typed = () => { holdMsg = false; later(); };
+    ta.addEventListener('input', typed);
+    $('#route-form').addEventListener('input', typed);
+    $('#route-form').addEventListener('change', later);
+    if ($('#f-wall')) $('#f-wall').addEventListener('change', scaleHint);
+    if ($('#f-circuit')) {
+      $('#f-circuit').addEventListener('change', () => { if ($('#f-circuit').value) $('#f-colour').value = $('#f-circuit').value; });
+    }
+    $('#view-form').addEventListener('click', () => showView('form'));
+    $('#view-text').addEventListener('click', () => showView('text'));
+    textToForm(ta.value, false);
+    editor.classList.add('form-view');
     refresh();
+
+    // A refusal next to the field it names ("grade: ...", or a located error's line).
+    function fieldMessage(err, line) {
+      holdMsg = true;
+      for (const m of document.querySelectorAll('.field-msg')) m.textContent = '';
+      let field = '', text = humane(err);
+      if (line && view === 'form' && lineMap[line - 1]) {
+        field = lineMap[line - 1];
+        const mv = field.match(/^moves:(\d+)$/);
+        if (mv) { field = 'moves'; text = 'line ' + mv[1] + ' of the moves: ' + err.replace(/^[^:]*:\d+:\d+: /, ''); }
+      } else if (line) {
+        field = 'crdl';
+      } else {
+        const m = String(err).match(/^([a-z_]+)(?:\[\d+\])?:/);
+        if (m) field = m[1] === 'color' ? 'colour' : m[1];
+        if (field === 'crdl' && view === 'form') field = 'moves';
+      }
+      const box = document.querySelector('.field-msg[data-for="' + field + '"]');
+      if (box && !(view === 'text' && field !== 'crdl' && box.closest('#route-form'))) {
+        box.textContent = text;
+        box.classList.add('bad');
+        say($('#save-msg'), 'not saved: see ' + (field === 'crdl' ? 'the text' : 'the field "' + field + '"'));
+      } else {
+        say($('#save-msg'), text);
+      }
+    }
+
     $('#save').addEventListener('click', async () => {
-      const id = editor.dataset.routeId;
-      const body = { crdl: ta.value, public: $('#public').value === '1' };
-      if (id && editor.dataset.revision) body.revision = Number(editor.dataset.revision);
-      const r = id ? await api('PUT', '/api/routes/' + id, body) : await api('POST', '/api/routes', body);
+      const text = currentText();
+      if (view === 'text') textToForm(text, true);  // the gym fields the text names
+      const body = { crdl: text, public: $('#public').value === '1' };
+      if (inGym) {
+        if (!routeId) body.gym = Number(editor.dataset.gym);
+        body.wall = val('#f-wall');
+        body.setters = settersOfForm();
+        // A route's state changes only when asked (the cycle's rule, app::CheckTransition).
+        if (!routeId || val('#f-state') !== editor.dataset.state) body.state = val('#f-state');
+        body.set_on = val('#f-date');
+      } else if (!routeId) {
+        body.gym = null;  // a personal route, in no gym's lists
+      }
+      if (routeId && editor.dataset.revision) body.revision = Number(editor.dataset.revision);
+      const r = routeId ? await api('PUT', '/api/routes/' + routeId, body) : await api('POST', '/api/routes', body);
       if (r.status === 200 || r.status === 201) {
-        location.href = '/routes/' + (id || r.data.id);
-      } else if (r.status === 409 && r.data && r.data.current) {
+        location.href = '/routes/' + (routeId || r.data.id);
+      } else if (r.status === 409 && r.data && r.data.current && /^revision:/.test(r.data.error || '')) {
         // Issue 31: someone saved first. Show theirs; keep ours; saving again applies ours.
         const cur = r.data.current;
         editor.dataset.revision = cur.revision;
+        editor.dataset.state = cur.state;
         let box = $('#conflict');
         if (!box) {
           box = document.createElement('div');
@@ -179,8 +384,9 @@
         pre.textContent = cur.crdl;
         box.append(p, pre);
         say($('#save-msg'), 'not saved: changed meanwhile');
+        holdMsg = true;
       } else {
-        say($('#save-msg'), humane((r.data && r.data.error) || ('error ' + r.status)));
+        fieldMessage((r.data && r.data.error) || ('error ' + r.status), r.data && r.data.line);
       }
     });
   }
@@ -505,6 +711,7 @@
       if ($('#duplicate').checked) body.duplicate = true;
       Object.assign(body, setterFields());
       say($('#vary-msg'), 'Generating…', true);
+      if (pageGym() !== undefined && body.gym === undefined) body.gym = pageGym();
       const r = await api('POST', '/api/variations', body);
       if (r.status === 201 || r.status === 200) {
         // Issue 22: the setter's preset chose the gallery's best; the plan page says so.
@@ -558,7 +765,7 @@
       importCrdl.disabled = true;
       try {
         for (const f of files) {
-          const r = await api('POST', '/api/routes', { crdl: await f.text() });
+          const r = await api('POST', '/api/routes', { crdl: await f.text(), gym: pageGym() });
           if (r.status === 201) ok++; else errors.push(f.name + ': ' + ((r.data && r.data.error) || r.status));
         }
       } finally {
@@ -579,7 +786,8 @@
       importCsv.disabled = true;
       say($('#csv-msg'), 'Importing…', true);
       try {
-        const r = await api('POST', '/api/import/csv', { routes_csv: await rf.text(), moves_csv: await mf.text() });
+        const r = await api('POST', '/api/import/csv', { routes_csv: await rf.text(), moves_csv: await mf.text(),
+                                                          gym: pageGym() });
         if (r.status === 201) {
           const skipped = r.data.skipped || [];
           say($('#csv-msg'), r.data.imported + ' routes imported, ' + skipped.length + ' notes', true);

@@ -700,6 +700,17 @@ Status Routes::Update(const Viewer& v, int64_t id, const RouteEdit& edit) {
   GymFields g = edit.crdl ? WithHeaderFields(*edit.crdl, edit.gym) : edit.gym;
   if (g.state && *g.state == r.state && !edit.gym.state) g.state.reset();  // unchanged header
   if (g.strip_on && *g.strip_on == r.strip_on && !edit.gym.strip_on) g.strip_on.reset();
+  if (g.state && *g.state != r.state) {
+    // Issue 31: a PUT (or the text's "state:" line) changes the state by the
+    // cycle's one rule, as POST /api/routes/{id}/state does; its own state
+    // is no change.
+    std::optional<RouteState> to = RouteStateOf(ToLower(Trim(*g.state)));
+    if (!to) return Status::InvalidInput("state: expected draft, planned, set or stripped");
+    if (NameOf(*to) != r.state) {
+      SB_RETURN_IF_ERROR(
+          CheckTransition(RouteStateOf(r.state).value_or(RouteState::kDraft), *to));
+    }
+  }
   SB_RETURN_IF_ERROR(ApplyGymFields(v, g, &r, &changes, &setters));
   if (edit.discipline) SB_RETURN_IF_ERROR(SetDiscipline(v, *edit.discipline, &r, &changes));
   if (r.gym_id) SyncHeader(&r);

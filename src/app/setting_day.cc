@@ -611,14 +611,26 @@ Result<std::vector<DayRoute>> SettingDays::Planned(const Viewer& v, int64_t gym,
                                                    const std::string& date) {
   if (!date.empty()) SB_RETURN_IF_ERROR(CheckDayDate(date));
   SB_RETURN_IF_ERROR(gyms_->Get(v, gym).status());  // members only
-  RouteQuery q;
-  q.gym = gym;
-  q.state = "planned";
-  q.limit = options_.limits.max_tag_sheet_routes;
-  SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> list, routes_->ListRows(v, q));
+  // Issue 31: a day's sheet keeps every route planned for that day whatever
+  // its state now (set, stripped, back to draft); all dates: what is planned.
+  std::vector<store::RouteRecord> list;
+  for (const char* state : {"planned", "set", "stripped", "draft"}) {
+    if (date.empty() && std::string(state) != "planned") break;
+    RouteQuery q;
+    q.gym = gym;
+    q.state = state;
+    q.sort = std::string(state) == "planned" ? "" : "set";  // the day's routes come first
+    q.limit = std::string(state) == "planned"
+                  ? static_cast<int>(options_.limits.max_tag_sheet_routes)
+                  : options_.limits.max_list_rows;
+    SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> rows, routes_->ListRows(v, q));
+    for (store::RouteRecord& r : rows) {
+      if (date.empty() || r.planned_on == date) list.push_back(std::move(r));
+    }
+  }
   std::vector<DayRoute> out;
   for (const store::RouteRecord& r : list) {
-    if (!date.empty() && r.planned_on != date) continue;
+    if (out.size() >= options_.limits.max_tag_sheet_routes) break;
     DayRoute d;
     d.id = r.id;
     d.name = r.name;

@@ -192,8 +192,10 @@ class SettingDays {
   // gym's day was made from the same parameters and inputs (issue 33).
   Result<int64_t> Accept(const Viewer& v, const AcceptRequest& req);
 
-  // The gym's planned routes of `date` (all dates when ""), by wall and name,
-  // for the sheet. Members only (kNotFound otherwise).
+  // The gym's routes planned for `date` whatever their state now (issue 31:
+  // set and stripped ones stay on the day's sheet), or every planned route
+  // when `date` is "", by wall and name, for the sheet. Members only
+  // (kNotFound otherwise).
   Result<std::vector<DayRoute>> Planned(const Viewer& v, int64_t gym, const std::string& date);
 
  private:

@@ -39,6 +39,8 @@ PageViewer Caller::page() const {
   p.csrf = csrf;
   p.lang = lang;
   for (const app::GymRole& g : viewer.gyms) p.setter = p.setter || app::CanSet(g.role);
+  p.gyms = gyms;
+  p.gym = gym.value_or(0);
   return p;
 }
 

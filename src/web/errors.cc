@@ -48,6 +48,36 @@ bool LogInFirst(const Exchange& x, int status) {
   return true;
 }
 
+// Percent-encodes a query part (RFC 3986 unreserved characters stay; `/`
+// too with `slash`).
+std::string Encoded(std::string_view s, bool slash = false) {
+  static const char kHex[] = "0123456789ABCDEF";
+  std::string out;
+  for (unsigned char c : s) {
+    if (std::isalnum(c) || c == '-' || c == '_' || c == '.' || c == '~' || (slash && c == '/')) {
+      out += static_cast<char>(c);
+    } else {
+      out += '%';
+      out += kHex[c >> 4];
+      out += kHex[c & 15];
+    }
+  }
+  return out;
+}
+
+// The page to come back to after logging in: the path and (issue 31) its
+// query, as one encoded `next` value.
+std::string NextOf(const Request& req) {
+  std::string query;
+  for (const auto& [k, v] : req.query) {
+    query += query.empty() ? '?' : '&';
+    query += Encoded(k);
+    query += '=';
+    query += Encoded(v);
+  }
+  return Encoded(req.path + query, /*slash=*/true);
+}
+
 }  // namespace
 
 void ApiError(Exchange& x, const Status& s) {
@@ -64,7 +94,7 @@ void PageError(Exchange& x, const Status& s) {
   int status = HttpStatusOf(s);
   if (LogInFirst(x, status)) {
     x.res.status = 302;
-    x.res.SetHeader("Location", "/login?next=" + x.req.path);
+    x.res.SetHeader("Location", "/login?next=" + NextOf(x.req));
     x.res.SetHeader("Cache-Control", "no-store");
     return;
   }

@@ -20,6 +20,8 @@ namespace sb::web {
 
 // The session cookie.
 inline constexpr char kSessionCookie[] = "sb_session";
+// The header's gym switcher's choice (issue 31; a gym id, set by app.js).
+inline constexpr char kGymCookie[] = "sb_gym";
 
 // Who is asking (app::Viewer) plus what the web layer knows of the session.
 struct Caller {
@@ -27,6 +29,12 @@ struct Caller {
   std::string csrf;           // the session's CSRF token ("" when anonymous)
   std::string session_token;  // the cookie value, when it names a session
   std::string lang = "en";    // the pages' language (issue 32, web/i18n.h)
+  // Issue 31: the caller's gyms (names and roles, by id) and the gym their
+  // pages write to: `?gym=G` when they are a member of G, else the
+  // switcher's cookie (kGymCookie), else their first gym they set in, else
+  // their first gym; nullopt in no gym.
+  std::vector<app::Gym> gyms;
+  std::optional<int64_t> gym;
 
   // The page renderers' view of the caller.
   PageViewer page() const;

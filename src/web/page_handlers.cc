@@ -4,6 +4,7 @@
 
 #include "app/feedback.h"
 #include "app/routes.h"
+#include "app/scales.h"
 #include "base/text.h"
 #include "crdl/route.h"
 #include "plan/card.h"
@@ -52,7 +53,45 @@ void PageIndex(Exchange& x) {
 
 void PageLogin(Exchange& x) { Html(x, LoginPage(x.caller.page(), false)); }
 void PageSignup(Exchange& x) { Html(x, LoginPage(x.caller.page(), true)); }
-void PageNewRoute(Exchange& x) { Html(x, EditorPage(x.caller.page(), std::nullopt)); }
+namespace {
+
+// What the route form offers (issue 31): the gym's walls (with their grade
+// scales), circuits and members when the viewer sets in `gym`; nothing
+// otherwise (a personal route's form). Lookup errors leave a part empty.
+RouteFormData FormDataOf(Exchange& x, std::optional<int64_t> gym) {
+  RouteFormData f;
+  if (!gym) return f;
+  Result<app::Gym> g = x.services.gyms.Get(x.caller.viewer, *gym);
+  if (!g.ok() || !app::CanSet(g->role)) return f;
+  f.gym = *g;
+  const app::Viewer& v = x.caller.viewer;
+  if (Result<std::vector<app::Wall>> w = x.services.gyms.Walls(v, *gym); w.ok()) f.walls = *w;
+  if (Result<std::vector<app::Circuit>> c = x.services.gyms.Circuits(v, *gym); c.ok()) {
+    f.circuits = *c;
+  }
+  if (Result<std::vector<app::Member>> m = x.services.gyms.Members(v, *gym); m.ok()) {
+    f.members = *m;
+  }
+  for (const app::Wall& w : f.walls) {
+    Result<std::string> scale = x.services.scales.WallScaleName(v, w.id);
+    if (scale.ok() && !scale->empty()) f.wall_scales[w.id] = *scale;
+  }
+  if (!f.wall_scales.empty()) {
+    if (Result<std::vector<app::GymScaleView>> scales = x.services.scales.List(v, *gym);
+        scales.ok()) {
+      for (const app::GymScaleView& sc : *scales) {
+        for (const grades::LabelSpec& l : sc.labels) f.scale_labels[sc.name].push_back(l.label);
+      }
+    }
+  }
+  return f;
+}
+
+}  // namespace
+
+void PageNewRoute(Exchange& x) {
+  Html(x, EditorPage(x.caller.page(), std::nullopt, FormDataOf(x, x.caller.gym)));
+}
 
 void PageEditRoute(Exchange& x) {
   Result<int64_t> id = PathId(x.req, "No such route.");
@@ -69,7 +108,7 @@ void PageEditRoute(Exchange& x) {
   auto slot =
       AdmitWork(x, r->move_count * x.services.options.render_costs.page_per_move, r->gym_id);
   if (!slot) return;
-  Html(x, EditorPage(x.caller.page(), *r));
+  Html(x, EditorPage(x.caller.page(), *r, FormDataOf(x, r->gym_id)));
 }
 
 void PageRoute(Exchange& x) {

@@ -48,6 +48,21 @@ std::string UrlEncode(std::string_view s) {
   return out;
 }
 
+// The header's gym switcher (issue 31): a member of several gyms picks the
+// gym their pages write to; app.js keeps the choice (?gym= and a cookie).
+const char kGymSwitchLabel[] = "Gym";
+const char kGymSwitchTitle[] = "The gym your new routes, imports and variations go to";
+
+std::string GymSwitcher(const PageViewer& v) {
+  std::string h = "<label class=\"gym-switch\" title=\"" + E(kGymSwitchTitle) + "\">" +
+                  E(kGymSwitchLabel) + " <select id=\"gym-switch\">";
+  for (const app::Gym& g : v.gyms) {
+    h += "<option value=\"" + std::to_string(g.id) + "\"" + (g.id == v.gym ? " selected" : "") +
+         ">" + E(g.name) + "</option>";
+  }
+  return h + "</select></label> ";
+}
+
 std::string Layout(const PageViewer& v, const std::string& title, const std::string& body,
                    const std::string& page_class = "") {
   std::string h;
@@ -55,6 +70,13 @@ std::string Layout(const PageViewer& v, const std::string& title, const std::str
   h += "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n";
   h += "<title>" + E(title) + " · Strange Beta</title>\n";
   if (v.logged_in) h += "<meta name=\"csrf-token\" content=\"" + E(v.csrf) + "\">\n";
+  // Issue 31: the gym this page's writes go to (app.js sends it).
+  const auto write_gym = std::find_if(v.gyms.begin(), v.gyms.end(), [&](const app::Gym& g) {
+    return g.id == v.gym && app::CanSet(g.role);
+  });
+  if (v.logged_in && write_gym != v.gyms.end()) {
+    h += "<meta name=\"sb-gym\" content=\"" + std::to_string(v.gym) + "\">\n";
+  }
   h += "<link rel=\"icon\" href=\"/static/favicon.svg\" type=\"image/svg+xml\">\n";
   h += "<link rel=\"stylesheet\" href=\"/static/app.css\">\n";
   h += "<script src=\"/static/app.js\" defer></script>\n</head>\n";
@@ -74,6 +96,7 @@ std::string Layout(const PageViewer& v, const std::string& title, const std::str
     h += "<a href=\"/import\" id=\"nav-import\">" + Tr(v, "Import/export") + "</a>\n";
   }
   h += "</nav>\n<div class=\"who\">";
+  if (v.logged_in && v.gyms.size() >= 2) h += GymSwitcher(v);
   if (v.logged_in) {
     h += "<a id=\"whoami\" href=\"/account\">" + E(v.username) +
          "</a> <button type=\"button\" id=\"logout\" class=\"link\">" + Tr(v, "Log out") +
@@ -296,7 +319,51 @@ std::string LoginPage(const PageViewer& v, bool signup) {
   return Layout(v, title, b);
 }
 
-std::string EditorPage(const PageViewer& v, const std::optional<app::RouteView>& route) {
+namespace {
+
+// The route form's words (issue 31), in one place for translation.
+namespace form_text {
+const char kIntro[] =
+    "Fill in the form, or write the route as CRDL text (the advanced view): header lines "
+    "(<code>name: …</code>, <code>grade: …</code>, free description), a line <code>---</code>, "
+    "then one move per line starting with L or R. Switching views carries what you typed; each "
+    "move shows how the grammar reads it.";
+const char kViewForm[] = "Form";
+const char kViewText[] = "CRDL text (advanced)";
+const char kGym[] = "Gym";
+const char kGymSwitch[] = "(switch gyms in the header)";
+const char kPersonal[] = "A personal route: in no gym's lists.";
+const char kName[] = "Name";
+const char kWall[] = "Wall";
+const char kNoWall[] = "(no wall yet)";
+const char kGrade[] = "Grade";
+const char kGradeAny[] = "any scale (V4, 6B+, 5.10a, ...)";
+const char kCircuit[] = "Circuit";
+const char kNoCircuit[] = "(none: a colour of its own)";
+const char kColour[] = "Hold colour";
+const char kSetters[] = "Setters";
+const char kOtherSetters[] = "Other names (comma-separated)";
+const char kSetterNames[] = "Names (comma-separated)";
+const char kState[] = "State";
+const char kDate[] = "Planned / set date";
+const char kNotes[] = "Notes";
+const char kMoves[] = "Moves, one per line (L or R first; \"(crux)\" at the end marks the crux)";
+const char kText[] = "CRDL text";
+const char kSave[] = "Save route";
+const char kReads[] = "How it reads";
+}  // namespace form_text
+
+std::string StateLabel(const std::string& s) {
+  if (s == "set") return "on the wall";
+  if (s == "stripped") return "stripped (archive)";
+  return s;
+}
+
+}  // namespace
+
+std::string EditorPage(const PageViewer& v, const std::optional<app::RouteView>& route,
+                       const RouteFormData& form) {
+  namespace t = form_text;
   std::string b;
   if (!v.logged_in) {
     b = "<h1>Route editor</h1><p>Please <a href=\"/login\">log in</a> to add or edit routes.</p>";
@@ -304,28 +371,132 @@ std::string EditorPage(const PageViewer& v, const std::optional<app::RouteView>&
   }
   std::string title = route ? "Edit " + route->name : "New route";
   b += "<h1>" + E(title) + "</h1>\n";
-  b += "<p class=\"hint no-print\">CRDL: header lines (<code>name: …</code>, <code>grade: "
-       "…</code>, free description), a line <code>---</code>, then one move per line starting "
-       "with L or R. Each move shows how the grammar reads it.</p>\n";
+  b += "<p class=\"hint no-print\">" + std::string(t::kIntro) + "</p>\n";
+  const bool in_gym = form.gym.has_value();
   // Issue 31: the revision the text was read at; a save over a newer one is refused.
   b += "<div class=\"editor\" id=\"editor\" data-route-id=\"" +
        (route ? std::to_string(route->id) : std::string()) + "\" data-revision=\"" +
-       (route ? std::to_string(route->revision) : std::string()) + "\">\n";
-  b += "<div class=\"pane\"><textarea id=\"crdl\" spellcheck=\"false\" rows=\"22\" "
-       "placeholder=\"" + E(kNewRouteTemplate) + "\">" + E(route ? route->crdl : std::string()) +
-       "</textarea>\n";
+       (route ? std::to_string(route->revision) : std::string()) + "\" data-gym=\"" +
+       (in_gym ? std::to_string(form.gym->id) : std::string()) + "\" data-state=\"" +
+       E(route ? route->state : std::string()) + "\">\n<div class=\"pane\">\n";
+  b += "<div class=\"view-tabs no-print\" role=\"tablist\"><button type=\"button\" role=\"tab\" "
+       "id=\"view-form\" aria-selected=\"true\">" + std::string(t::kViewForm) +
+       "</button><button type=\"button\" role=\"tab\" id=\"view-text\" aria-selected=\"false\">" +
+       t::kViewText + "</button></div>\n";
+  auto msg = [](const char* field) {
+    return "<span class=\"field-msg\" data-for=\"" + std::string(field) + "\" role=\"alert\"></span>";
+  };
+  // The form (its values are filled from the text by app.js, the gym fields
+  // from the record here).
+  b += "<form id=\"route-form\" class=\"route-form\" novalidate>\n";
+  if (in_gym) {
+    b += "<p class=\"form-gym\" id=\"form-gym\">" + std::string(t::kGym) + ": <strong>" +
+         E(form.gym->name) + "</strong>" +
+         (route || v.gyms.size() < 2 ? std::string() : " " + std::string(t::kGymSwitch)) + "</p>\n";
+  } else if (!route || !route->gym_id) {
+    b += "<p class=\"form-gym\" id=\"form-gym\">" + std::string(t::kPersonal) + "</p>\n";
+  }
+  b += "<div class=\"grid2\">\n<label>" + std::string(t::kName) +
+       " <input id=\"f-name\" name=\"name\" maxlength=\"200\" autocomplete=\"off\">" + msg("name") +
+       "</label>\n";
+  if (in_gym) {
+    b += "<label>" + std::string(t::kWall) + " <select id=\"f-wall\" name=\"wall\"><option "
+         "value=\"\">" + t::kNoWall + "</option>";
+    for (const app::Wall& w : form.walls) {
+      auto sc = form.wall_scales.find(w.id);
+      const std::string scale = sc == form.wall_scales.end() ? "" : sc->second;
+      std::string labels;
+      if (auto l = form.scale_labels.find(scale); l != form.scale_labels.end()) {
+        for (const std::string& x : l->second) labels += (labels.empty() ? "" : "|") + x;
+      }
+      const bool chosen = route && route->wall_id == w.id;
+      b += "<option value=\"" + std::to_string(w.id) + "\" data-name=\"" + E(w.name) +
+           "\" data-scale=\"" + E(scale) + "\" data-labels=\"" + E(labels) + "\"" +
+           (chosen ? " selected" : "") + ">" + E(w.name) + "</option>";
+    }
+    b += "</select>" + msg("wall") + "</label>\n";
+  }
+  b += "<label>" + std::string(t::kGrade) +
+       " <input id=\"f-grade\" name=\"grade\" maxlength=\"40\" list=\"grade-labels\" "
+       "autocomplete=\"off\"><small class=\"hint\" id=\"f-grade-scale\" data-any=\"" +
+       E(t::kGradeAny) + "\">" + E(t::kGradeAny) + "</small>" + msg("grade") +
+       "</label><datalist id=\"grade-labels\"></datalist>\n";
+  if (in_gym && !form.circuits.empty()) {
+    b += "<label>" + std::string(t::kCircuit) + " <select id=\"f-circuit\"><option value=\"\">" +
+         t::kNoCircuit + "</option>";
+    for (const app::Circuit& c : form.circuits) {
+      std::string range = c.grade_from.empty() && c.grade_to.empty()
+                              ? ""
+                              : " (" + c.grade_from + "–" + c.grade_to + ")";
+      b += "<option value=\"" + E(c.colour) + "\">" + E(c.colour + range) + "</option>";
+    }
+    b += "</select></label>\n";
+  }
+  b += "<label>" + std::string(t::kColour) +
+       " <input id=\"f-colour\" name=\"colour\" maxlength=\"60\" autocomplete=\"off\">" +
+       msg("colour") + "</label>\n";
+  if (in_gym) {
+    const std::string cur = route ? route->state : "draft";
+    b += "<label>" + std::string(t::kState) + " <select id=\"f-state\" name=\"state\">";
+    for (const char* s : {"draft", "planned", "set", "stripped"}) {
+      // A new route starts as a draft, planned or set (app::CheckTransition);
+      // an edit offers its own state and those the cycle allows from it.
+      bool offer = s == cur;
+      std::optional<app::RouteState> from = app::RouteStateOf(cur), to = app::RouteStateOf(s);
+      if (!offer && from && to) offer = app::CheckTransition(*from, *to).ok();
+      if (!offer) continue;
+      b += "<option value=\"" + std::string(s) + "\"" + (s == cur ? " selected" : "") + ">" +
+           E(StateLabel(s)) + "</option>";
+    }
+    b += "</select>" + msg("state") + "</label>\n";
+    b += "<label>" + std::string(t::kDate) + " <input type=\"date\" id=\"f-date\" name=\"set_on\" "
+         "value=\"" + E(route ? route->set_on : std::string()) + "\">" + msg("set_on") +
+         "</label>\n";
+  }
+  b += "</div>\n<fieldset id=\"f-setters\"><legend>" + std::string(t::kSetters) + "</legend>";
+  std::vector<std::string> chosen;  // the route's setters (gym routes: the record's)
+  if (route && route->gym_id) {
+    for (const auto& s : route->setters) chosen.push_back(s.name);
+  }
+  std::string others;
+  for (const std::string& c : chosen) {
+    bool member = false;
+    for (const app::Member& m : form.members) member = member || ToLower(m.username) == ToLower(c);
+    if (!member) others += (others.empty() ? "" : ", ") + c;
+  }
+  for (const app::Member& m : form.members) {
+    if (m.role == "climber") continue;
+    bool on = false;
+    for (const std::string& c : chosen) on = on || ToLower(c) == ToLower(m.username);
+    b += "<label class=\"inline\"><input type=\"checkbox\" class=\"f-setter\" value=\"" +
+         E(m.username) + "\"" + (on ? " checked" : "") + "> " +
+         E(m.display_name.empty() ? m.username : m.display_name) + "</label> ";
+  }
+  b += "<label>" + std::string(form.members.empty() ? t::kSetterNames : t::kOtherSetters) +
+       " <input id=\"f-setters-other\" maxlength=\"400\" value=\"" + E(others) + "\" data-gym=\"" +
+       (route && route->gym_id ? "1" : "") + "\"></label>" + msg("setters") + "</fieldset>\n";
+  b += "<label>" + std::string(t::kNotes) +
+       " <textarea id=\"f-notes\" rows=\"2\" maxlength=\"4000\"></textarea></label>\n";
+  b += "<div class=\"moves-pane\"><label>" + std::string(t::kMoves) +
+       " <textarea id=\"f-moves\" rows=\"10\" spellcheck=\"false\" placeholder=\"R start on the "
+       "big jug&#10;L reach to a crimp\"></textarea></label>" + msg("moves") + "</div>\n";
+  b += "</form>\n";
+  b += "<div id=\"text-view\" hidden><label>" + std::string(t::kText) +
+       " <textarea id=\"crdl\" spellcheck=\"false\" rows=\"22\" placeholder=\"" +
+       E(kNewRouteTemplate) + "\">" + E(route ? route->crdl : std::string()) +
+       "</textarea></label>" + msg("crdl") + "</div>\n";
   // Variations of private routes are private by default (and cannot be public).
   // Issue 31: a setter's new route goes to their gym, unpublished by default.
-  const bool pub = route ? route->is_public : !v.setter;
-  const bool gym = route ? route->gym_id.has_value() : v.setter;
+  const bool pub = route ? route->is_public : !in_gym;
+  const bool gym = route ? route->gym_id.has_value() : in_gym;
   b += "<label class=\"inline\">Who can see it <select id=\"public\"><option value=\"1\"" +
        std::string(pub ? " selected" : "") + ">public: everyone (the shared library)</option>"
        "<option value=\"0\"" + std::string(pub ? "" : " selected") + ">" +
        (gym ? "the gym only: its members" : "private: only me") + "</option></select></label>\n";
-  b += "<button type=\"button\" id=\"save\">Save route</button> <span class=\"msg\" "
-       "id=\"save-msg\" role=\"alert\"></span></div>\n";
-  b += "<div class=\"pane\"><h2>How it reads</h2><ol class=\"feedback\" id=\"feedback\"></ol>"
-       "</div>\n</div>\n";
+  b += "<p><button type=\"button\" id=\"save\">" + std::string(t::kSave) +
+       "</button> <span class=\"msg\" id=\"save-msg\" role=\"alert\"></span></p></div>\n";
+  b += "<div class=\"pane\"><h2>" + std::string(t::kReads) +
+       "</h2><ol class=\"feedback\" id=\"feedback\"></ol></div>\n</div>\n";
   return Layout(v, title, b, "page-editor");
 }
 

@@ -4,10 +4,12 @@
 #define SB_WEB_PAGES_H_
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "app/gyms.h"
 #include "app/routes.h"
 #include "app/types.h"
 #include "plan/card.h"
@@ -30,6 +32,11 @@ struct PageViewer {
   // The page's language (issue 32, web/i18n.h): "en", "de" or "fr" — the
   // account's, else the browser's Accept-Language, else the gym's default.
   std::string lang = "en";
+  // Issue 31: the viewer's gyms and the one their pages write to (0: none).
+  // A member of two or more gyms gets the header's gym switcher; every page
+  // carries the gym in <meta name="sb-gym"> for the scripts' writes.
+  std::vector<app::Gym> gyms;
+  int64_t gym = 0;
 };
 
 // "/": one page of the route list (server-side search, filters, sort and
@@ -38,8 +45,26 @@ std::string RouteListPage(const PageViewer& v, const app::RoutePage& page,
                           const app::RouteQuery& query);
 // "/login" or (signup) "/signup": the account form.
 std::string LoginPage(const PageViewer& v, bool signup);
-// The CRDL editor with live feedback; `route` = nullopt for a new route.
-std::string EditorPage(const PageViewer& v, const std::optional<app::RouteView>& route);
+// What the route form offers (issue 31): the gym the route is (to be) in
+// when the viewer sets in it, its walls (each with the scale it reads grades
+// in: `wall_scales`, wall id -> scale name; `scale_labels`, a gym scale's
+// name -> its labels), circuits and members. Empty without a gym: the form
+// of a personal route (name, grade, colour, setters, moves).
+struct RouteFormData {
+  std::optional<app::Gym> gym;
+  std::vector<app::Wall> walls;
+  std::map<int64_t, std::string> wall_scales;
+  std::map<std::string, std::vector<std::string>> scale_labels;
+  std::vector<app::Circuit> circuits;
+  std::vector<app::Member> members;
+};
+// "/routes/new" and "/routes/{id}/edit" (`route` = nullopt for a new route):
+// the route form (name, wall, grade, circuit/colour, setters, state, date,
+// notes, moves one per line with the grammar's reading beside each) and the
+// CRDL text as the advanced view, kept in sync by app.js; both post to
+// /api/routes with `form`'s gym.
+std::string EditorPage(const PageViewer& v, const std::optional<app::RouteView>& route,
+                       const RouteFormData& form = {});
 // "/routes/{id}". `can_change` = the viewer may edit and delete it (the
 // ownership rule, app::IsOwner). `readings[i]` = how the grammar read move i
 // ("" when it does not parse; an empty vector when the grammar is not

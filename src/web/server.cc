@@ -314,6 +314,24 @@ struct Server::Impl {
     if (!name.empty()) hosts.push_back(name);
   }
 
+  // The gym a member of `gyms` writes to (Caller::gym): `?gym=`, else the
+  // switcher's cookie, when they name one of them; else the first they set
+  // in; else the first.
+  static std::optional<int64_t> ChosenGym(const Request& req, const std::vector<app::Gym>& gyms) {
+    if (gyms.empty()) return std::nullopt;
+    for (const std::string& asked : {req.Query("gym").value_or(""), req.Cookie(kGymCookie)}) {
+      std::optional<int64_t> id = ParseId(asked);
+      if (!id) continue;
+      for (const app::Gym& g : gyms) {
+        if (g.id == *id) return g.id;
+      }
+    }
+    for (const app::Gym& g : gyms) {
+      if (app::CanSet(g.role)) return g.id;
+    }
+    return gyms.front().id;
+  }
+
   // Who is asking: the session named by the cookie, if any.
   Caller CallerOf(const Request& req) {
     Caller c;
@@ -327,9 +345,12 @@ struct Server::Impl {
     }
     c.viewer.user_id = s->user_id;
     c.viewer.username = s->username;
-    // The caller's gyms and roles (issue 21), for the visibility rule.
-    if (Result<std::vector<app::GymRole>> g = services.gyms.RolesOf(c.viewer); g.ok()) {
-      c.viewer.gyms = std::move(g).value();
+    // The caller's gyms and roles (issue 21), for the visibility rule, and
+    // the gym their pages write to (issue 31, the header's switcher).
+    if (Result<std::vector<app::Gym>> g = services.gyms.Mine(c.viewer); g.ok()) {
+      c.gyms = std::move(g).value();
+      for (const app::Gym& gym : c.gyms) c.viewer.gyms.push_back({gym.id, gym.role});
+      c.gym = ChosenGym(req, c.gyms);
     } else {
       LogError(g.status().message());
     }

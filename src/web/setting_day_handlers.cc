@@ -463,6 +463,39 @@ void PageSettingDay(Exchange& x) {
   Html(x, PageLayout(x.caller.page(), "Setting day · " + gym->name, b));
 }
 
+namespace {
+
+// The sheet's state column and buttons (issue 31), its words in one place.
+const char kSheetState[] = "State";
+std::string SheetStateName(const std::string& s) {
+  if (s == "set") return "on the wall";
+  if (s == "stripped") return "stripped";
+  return s;
+}
+// The plan / set / strip buttons a route's state allows (app::CheckTransition;
+// POST /api/routes/{id}/state, sent by gyms.js, which reloads the sheet).
+// `copy` tells the rows of a route under two setters apart (0 for the first).
+std::string SheetButtons(const app::DayRoute& r, int copy) {
+  static const std::pair<const char*, const char*> kButtons[] = {
+      {"planned", "Plan"}, {"set", "Set on the wall"}, {"stripped", "Strip"}};
+  const std::optional<app::RouteState> from = app::RouteStateOf(r.state);
+  if (!from) return "";
+  std::string h;
+  for (const auto& [to, label] : kButtons) {
+    if (!app::CheckTransition(*from, *app::RouteStateOf(to)).ok()) continue;
+    const std::string id = "sheet-" + std::string(to) + "-" + std::to_string(r.id) +
+                           (copy ? "-" + std::to_string(copy + 1) : std::string());
+    h += " <form class=\"gym-form inline-form no-print\" id=\"" + id + "\" data-api=\"POST "
+         "/api/routes/" + std::to_string(r.id) + "/state\"><input type=\"hidden\" name=\"state\" "
+         "value=\"" + std::string(to) + "\"><button type=\"submit\" class=\"sheet-" +
+         std::string(to) + "\">" + label + "</button><span class=\"msg\" role=\"status\">"
+         "</span></form>";
+  }
+  return h;
+}
+
+}  // namespace
+
 void PageSettingDaySheet(Exchange& x) {
   Result<int64_t> gid = PathId(x.req, "No such gym.");
   if (!gid.ok()) return PageError(x, gid.status());
@@ -494,19 +527,26 @@ void PageSettingDaySheet(Exchange& x) {
       if (r.setters.empty()) by_setter["(no setter)"].push_back(&r);
       for (const std::string& s : r.setters) by_setter[s].push_back(&r);
     }
+    const bool can_set = app::CanSet(gym->role);
+    std::map<int64_t, int> copies;  // rows of each route so far
     for (const auto& [setter, list] : by_setter) {
       b += "<h2>" + E(setter) + "</h2>\n<div class=\"table-wrap\"><table class=\"list "
            "day-sheet\"><thead><tr><th>Wall</th><th>Route</th><th>Grade</th><th class=\"num\">"
-           "Moves</th><th class=\"no-print\">Card · tag</th></tr></thead><tbody>\n";
+           "Moves</th><th>" + std::string(kSheetState) + "</th><th class=\"no-print\">Card · "
+           "tag</th></tr></thead><tbody>\n";
       for (const app::DayRoute* r : list) {
         const std::string id = std::to_string(r->id);
-        b += "<tr><td>" + E(r->wall_name) + "</td><td><a href=\"/variations/" + id + "\">" +
-             E(r->name) + "</a></td><td>" + E(r->grade) + "</td><td class=\"num\">" +
-             std::to_string(r->move_count) + "</td><td class=\"no-print\"><a href=\"/variations/" +
-             id + ".pdf\">card</a> · <a href=\"/routes/" + id + "/tag.pdf\">tag</a></td></tr>\n";
+        b += "<tr data-route=\"" + id + "\"><td>" + E(r->wall_name) +
+             "</td><td><a href=\"/variations/" + id + "\">" + E(r->name) + "</a></td><td>" +
+             E(r->grade) + "</td><td class=\"num\">" + std::to_string(r->move_count) +
+             "</td><td class=\"sheet-state\">" + E(SheetStateName(r->state)) +
+             (can_set ? SheetButtons(*r, copies[r->id]++) : std::string()) +
+             "</td><td class=\"no-print\"><a href=\"/variations/" + id +
+             ".pdf\">card</a> · <a href=\"/routes/" + id + "/tag.pdf\">tag</a></td></tr>\n";
       }
       b += "</tbody></table></div>\n";
     }
+    if (can_set) b += "<script src=\"/static/gyms.js\" defer></script>\n";
   }
   Html(x, PageLayout(x.caller.page(), "Setting day sheet · " + gym->name, b));
 }

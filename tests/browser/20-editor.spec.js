@@ -17,6 +17,8 @@ const ROUTE = [
 module.exports = async (t) => {
   const { page, base, check, shot } = t;
   await page.goto(base + '/routes/new');
+  check(await page.isVisible('#route-form'), 'a new route is a form first (issue 31)');
+  await page.click('#view-text');  // the CRDL text: the advanced view
   check((await page.inputValue('#crdl')) === '', 'the editor starts empty (the starter text is a placeholder)');
   await page.fill('#crdl', ROUTE);
   await page.waitForSelector('#feedback li.fb-error');
@@ -34,6 +36,7 @@ module.exports = async (t) => {
   await shot('05-route');
   // An unknown word gets a did-you-mean from the grammar's vocabulary.
   await page.goto(base + '/routes/new');
+  await page.click('#view-text');
   await page.fill('#crdl', 'name: Typo\n---\nR crmip\n');
   await page.waitForSelector('#feedback .did-you-mean');
   check((await page.textContent('#feedback .did-you-mean')).includes('"crimp"'), '"crmip" is flagged: did you mean "crimp"?');

@@ -8,6 +8,7 @@ module.exports = async (t) => {
   await page.goto(base + '/variations/' + id);
   const rowsBefore = (await page.$$('table.card-moves tbody tr:not(.suggested)')).length;
   await page.click('#edit');
+  await page.click('#view-text');  // the CRDL text (issue 31: the form comes first)
   await page.waitForSelector('#crdl');
   const text = await page.inputValue('#crdl');
   const lines = text.split('\n');
