@@ -50,12 +50,12 @@ std::string UrlEncode(std::string_view s) {
 
 // The header's gym switcher (issue 31): a member of several gyms picks the
 // gym their pages write to; app.js keeps the choice (?gym= and a cookie).
-const char kGymSwitchLabel[] = "Gym";
-const char kGymSwitchTitle[] = "The gym your new routes, imports and variations go to";
+const char* const kGymSwitchLabel = N_("Gym");
+const char* const kGymSwitchTitle = N_("The gym your new routes, imports and variations go to");
 
 std::string GymSwitcher(const PageViewer& v) {
-  std::string h = "<label class=\"gym-switch\" title=\"" + E(kGymSwitchTitle) + "\">" +
-                  E(kGymSwitchLabel) + " <select id=\"gym-switch\">";
+  std::string h = "<label class=\"gym-switch\" title=\"" + E(Tr(v, kGymSwitchTitle)) + "\">" +
+                  E(Tr(v, kGymSwitchLabel)) + " <select id=\"gym-switch\">";
   for (const app::Gym& g : v.gyms) {
     h += "<option value=\"" + std::to_string(g.id) + "\"" + (g.id == v.gym ? " selected" : "") +
          ">" + E(g.name) + "</option>";
