@@ -290,6 +290,7 @@ Result<GymReport> Reports::Report(const Viewer& v, int64_t gym, const ReportQuer
   out.comparison.bands = std::move(bands);
   out.comparison.variation_routes = static_cast<int>(variation_routes.size());
   out.comparison.hand_routes = static_cast<int>(hand_routes.size());
+  out.predictions = CheckPredictedGrades(store_, logbook_, gym, PredictionInputsOf(out.routes));
 
   std::stable_sort(out.comments.begin(), out.comments.end(),
                    [](const ReportComment& a, const ReportComment& b) {

@@ -18,7 +18,8 @@ Services::Services(Database* store, const Options& opts, Clock* clock)
       logbook(store, clock),
       dashboard(store, opts, clock),
       reports(store, &gyms, &logbook),
-      setting_days(store, opts, &routes, &gyms, &variations, &renders, &dashboard),
+      setting_days(store, opts, &routes, &gyms, &variations, &renders, &dashboard, &logbook,
+                   clock),
       rendered(store, clock),
       profiles(store, opts),
       scales(store, &gyms) {
