@@ -4,7 +4,7 @@
 
 Signs in as head-G of the chain (`strangebeta synth`, password synth-chain-password),
 reads the gym's walls and posts `POST /api/gyms/G/setting-days` with all of them,
-`"candidates": 6`, `"date": "2026-11-27"` (no slots: the dashboard's gap slots), RUNS
+`"candidates": 6`, `"date": "2099-12-01"` (no slots: the dashboard's gap slots), RUNS
 times, one request at a time; prints each request's status, wall time, slots and
 candidates. With OUT, the last reply's JSON is written there (compare two builds' with
 cmp: the proposal is deterministic). Python stdlib only.
@@ -43,7 +43,7 @@ h = {'Cookie': r.getheader('set-cookie').split(';')[0], 'Content-Type': 'applica
 c = conn()
 c.request('GET', '/api/gyms/%d/walls' % gym, headers=h)
 walls = [w['id'] for w in json.loads(c.getresponse().read())['walls']]
-body = json.dumps({'date': '2026-11-27', 'walls': walls, 'candidates': 6})
+body = json.dumps({'date': '2099-12-01', 'walls': walls, 'candidates': 6})
 band = None
 if write:
     c = conn()

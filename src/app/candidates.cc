@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <optional>
 #include <set>
 #include <utility>
@@ -144,6 +145,10 @@ struct CandidateScorer::Impl {
   language::MoveLanguage symbols;  // the model's own reading of moves
   markov::TokenModel model;
   int symbol_set = 0;  // 0..3 (k1..k4)
+  // The inputs' moves-model means (MovesModelDelta), for the inputs of
+  // `means_key` (their names and move counts).
+  std::string means_key;
+  std::vector<std::optional<double>> input_means;
   Impl(CandidateSlot s, language::MoveLanguage st, language::MoveLanguage sy, markov::TokenModel m,
        int set)
       : slot(std::move(s)),
@@ -251,35 +256,86 @@ CandidateScore CandidateScorer::Score(const plan::RoutePlan& p) {
     s.reasons.push_back(Plural(nw, "warning", "warnings") + " (" + kinds + ")");
   }
 
-  // The estimated grade against the band.
+  // The predicted grade (issue 33): the inputs' grades weighted by the moves
+  // taken from each, plus the moves model's part for the new moves.
   if (p.grades) s.estimated_band = p.grades->estimate;
+  if (p.grades && !p.grades->discipline.empty()) {
+    auto d = grades::ParseDiscipline(p.grades->discipline);
+    auto sc = grades::ParseScale(p.grades->scale);
+    if (d.ok() && sc.ok()) {
+      std::vector<InputGradeBasis> basis = slot.input_grades;
+      if (basis.size() != p.variation.inputs.size()) {
+        basis.clear();
+        for (const chaos::InputRoute& in : p.variation.inputs) {
+          basis.push_back(SetterGradeBasis(in, *d));
+        }
+      }
+      std::string key;
+      for (const chaos::InputRoute& in : p.variation.inputs) {
+        key += in.name + "\n" + std::to_string(in.route.moves.size()) + "\n";
+      }
+      if (key != impl_->means_key) {
+        impl_->means_key = key;
+        impl_->input_means.clear();
+      }
+      const double delta =
+          MovesModelDelta(p.variation, p.profile ? p.profile->difficulty : std::vector<double>{},
+                          *d, impl_->styles, &impl_->input_means);
+      s.predicted = PredictGrade(p.variation, basis, *d, *sc, delta);
+    }
+  }
+  // The grade against the band: the predicted one, else the estimate.
+  const std::string graded = s.predicted.known ? s.predicted.grade : s.estimated_band;
+  const std::string graded_words = s.predicted.known ? "predicted " : "estimated ";
   if (slot.band.empty()) {
     s.grade_part = kScoreGrade;
     s.reasons.push_back("any grade (no band asked)" +
-                        (s.estimated_band.empty() ? "" : ": estimated " + s.estimated_band));
-  } else if (!p.grades || p.grades->estimate.empty() || p.grades->discipline.empty()) {
-    s.reasons.push_back("no grade estimate" +
-                        (p.grades && !p.grades->note.empty() ? ": " + p.grades->note : ""));
+                        (graded.empty() ? "" : ": " + graded_words + graded));
+  } else if (!p.grades || graded.empty() || p.grades->discipline.empty()) {
+    s.reasons.push_back("no grade prediction" +
+                        (s.predicted.note.empty()
+                             ? (p.grades && !p.grades->note.empty() ? ": " + p.grades->note : "")
+                             : ": " + s.predicted.note));
   } else {
     auto d = grades::ParseDiscipline(p.grades->discipline);
     std::optional<grades::Scale> scale;
     if (auto sc = grades::ParseScale(p.grades->scale); sc.ok()) scale = *sc;
-    std::optional<int> est = d.ok() ? BandOf(p.grades->estimate, *d, scale) : std::nullopt;
+    std::optional<int> est = s.predicted.known ? std::optional<int>(s.predicted.band)
+                             : d.ok()          ? BandOf(graded, *d, scale)
+                                               : std::nullopt;
     std::optional<int> lo = d.ok() ? BandOf(slot.band, *d, scale) : std::nullopt;
     std::optional<int> hi =
         d.ok() ? (slot.band_to.empty() ? lo : BandOf(slot.band_to, *d, scale)) : std::nullopt;
     const std::string band = slot.band + (slot.band_to.empty() ? "" : "-" + slot.band_to);
     if (!est || !lo || !hi) {
-      s.reasons.push_back("estimated " + p.grades->estimate + ", not comparable with band " +
-                          band);
+      s.reasons.push_back(graded_words + graded + ", not comparable with band " + band);
     } else {
       if (*hi < *lo) std::swap(*lo, *hi);
       const int off = *est < *lo ? *lo - *est : *est > *hi ? *est - *hi : 0;
       s.grade_part = off == 0 ? kScoreGrade : off == 1 ? kScoreGrade / 2 : 0.0;
-      s.reasons.push_back("estimated " + p.grades->estimate +
+      s.reasons.push_back(graded_words + graded +
                           (off == 0 ? " inside band " : " " + Plural(off, "band", "bands") +
                                                             " outside band ") +
                           band);
+    }
+  }
+
+  // The styles its moves have, in words (the style reading).
+  {
+    std::map<std::string, int> count;
+    for (const chaos::VariedMove& m : p.variation.moves) {
+      for (const std::string& st : language::ReadStyle(impl_->styles, m.text).All()) {
+        if (st != "unparsed" && st != "match") ++count[st];
+      }
+    }
+    std::vector<std::pair<int, std::string>> order;
+    for (const auto& [st, n] : count) order.push_back({-n, st});
+    std::sort(order.begin(), order.end());
+    for (size_t k = 0; k < order.size() && k < 3; ++k) {
+      s.style_words += (k ? ", " : "") + order[k].second + " (" +
+                       (k == 0 ? Plural(-order[k].first, "move", "moves")
+                               : std::to_string(-order[k].first)) +
+                       ")";
     }
   }
 
@@ -363,7 +419,11 @@ Result<std::vector<Candidate>> MakeGallery(const std::vector<chaos::InputRoute>&
       return !c.score.rejected && c.score.novelty == options.novelty;
     });
   };
-  for (size_t level = 0; level < order.size() && (level == 0 || !met()); ++level) {
+  if (options.max_levels < 1 || options.max_levels > 3) {
+    return Status::InvalidInput("max_levels: between 1 and 3");
+  }
+  const size_t levels = std::min(order.size(), static_cast<size_t>(options.max_levels));
+  for (size_t level = 0; level < levels && (level == 0 || !met()); ++level) {
     const chaos::VaryParams centre = NoveltyCentre(params, order[level]);
     std::vector<chaos::State> ics = {centre.var_ic};
     const double step =
@@ -426,12 +486,21 @@ Result<std::vector<Candidate>> MakeGallery(const std::vector<chaos::InputRoute>&
               "; the best shown is " + NoveltyWords(best.score.novelty) + " (" +
               std::to_string(best.score.new_moves) + " of " + std::to_string(best.score.moves) +
               " moves new): try novelty " + NoveltyName(best.score.novelty) + " or other inputs";
+      if (levels < order.size()) {
+        *note += " (the other novelty levels' ICs were not tried: the request's work budget "
+                 "pays for " + std::to_string(levels) + " of 3 levels; ask fewer slots or "
+                 "candidates)";
+      }
     }
   }
   return out;
 }
 
-int GalleryPlanCount(const GalleryOptions& options) { return 1 + 8 * options.rings; }
+int GalleryPlanCount(const GalleryOptions& options) {
+  // Issue 33: a level not met by its own ICs tries the other levels'
+  // (MakeGallery, up to max_levels), so the worst case is charged in full.
+  return std::clamp(options.max_levels, 1, 3) * (1 + 8 * options.rings);
+}
 
 Result<GalleryChoice> ChooseFromGallery(const std::vector<chaos::InputRoute>& inputs,
                                         chaos::VaryParams* params,

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "app/grade_prediction.h"
 #include "app/setting.h"
 #include "base/status.h"
 #include "chaos/variation.h"
@@ -37,6 +38,11 @@ struct CandidateSlot {
   std::string band_to;
   // A style name (language/styles.h, docs/setting.md "Style names").
   std::string style;
+  // Issue 33: the grades of the gallery's inputs the predicted grade rests
+  // on (app/grade_prediction.h), one per input in order: a setting day's
+  // ascent grades where the gym has ticks. Empty: each input's setter's
+  // grade (its grade: line).
+  std::vector<InputGradeBasis> input_grades;
   // kInvalidInput naming the field: an unknown style, band_to without band.
   // Grades are read when scoring (they need the candidates' discipline).
   Status Validate() const;
@@ -44,7 +50,8 @@ struct CandidateSlot {
 
 // The weights of the score's parts, out of 100 (docs/setting.md). No
 // warning at all earns the first in full (each warning shrinks it:
-// weight / (1 + warnings)); the estimated grade inside the band the second
+// weight / (1 + warnings)); the predicted grade (else the estimated one)
+// inside the band the second
 // (one band off: half); the slot's style on at least one move the third;
 // smoothness the fourth (in full when the candidate's bits per move under
 // the Markov model are at most its inputs', halved for each bit more).
@@ -107,6 +114,12 @@ struct CandidateScore {
   std::vector<std::string> reasons;   // words, one per part (and the filter's)
   std::vector<std::string> warnings;  // "kind: message", as the plan shows them
   std::string estimated_band;         // the plan's estimated grade ("" = none)
+  // Issue 33: the grade predicted from its inputs' grades (what the grade
+  // part scores when known; else the estimate above).
+  PredictedGrade predicted;
+  // The styles read from its moves, in words: "crimp (5 moves), sidepull
+  // (3), dyno (1)"; the three most frequent ("" = none read).
+  std::string style_words;
   int style_moves = 0;                // moves having the slot's style
   int new_moves = 0;                  // moves new against its inputs (MoveChange)
   int moves = 0;                      // its moves
@@ -175,6 +188,10 @@ struct GalleryOptions {
   // is kept in the level, the other levels' ICs are tried too (nearest level
   // first) and the note says so.
   Novelty novelty = Novelty::kMix;
+  // Levels whose ICs may be tried, the level asked first (1..3): what the
+  // caller's work budget pays for (GalleryPlanCount); fewer than 3 and the
+  // level not met, the note says the others were not tried.
+  int max_levels = 3;
 };
 // Where a level's ICs are centred, the way the paper's picker moves away
 // from the reference IC for more change: `mix` is the IC asked (the default
@@ -211,8 +228,10 @@ struct GalleryChoice {
   int kept = 0;                       // of them, kept by the filter
   std::string note;                   // MakeGallery's (the level not met, why)
 };
-// The plans a gallery with `options` builds (its ICs: 1 + 8 per ring), what a
-// caller charges to a work budget before the work starts. Pure.
+// The plans a gallery with `options` builds at most (its ICs: 1 + 8 per ring,
+// for each of the max_levels novelty levels MakeGallery may try), what a
+// caller charges to a work budget before the work starts (issue 33: 27 plans
+// were charged as 9). Pure.
 int GalleryPlanCount(const GalleryOptions& options);
 // Makes the gallery (MakeGallery with `slot` and `options`) from `*params`
 // and sets params->var_ic (and skip) to the IC the best candidate's search

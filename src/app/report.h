@@ -17,6 +17,7 @@
 #include "app/gyms.h"
 #include "app/logbook.h"
 #include "app/options.h"
+#include "app/report_predicted.h"
 #include "base/status.h"
 #include "store/store.h"
 
@@ -107,6 +108,9 @@ struct GymReport {
   int felt_harder = 0, felt_same = 0, felt_softer = 0;
   std::vector<ReportComment> comments;  // newest day first, then route id (setters only)
   VariationComparison comparison;
+  // Issue 33: the variations' predicted grades against their ascent grades,
+  // per setting day (app/report_predicted.h).
+  PredictionCheck predictions;
   // The gym has more routes than the report reads (`max_routes`, the cap:
   // ReportLimits::kMaxRoutes): only the newest were read, and `capped_note`
   // says so in words for the page and the API ("" when not capped).

@@ -19,7 +19,8 @@ Services::Services(Database* store, const Options& opts, Clock* clock)
       chances(store, &logbook, clock),
       dashboard(store, opts, clock),
       reports(store, &gyms, &logbook, ReportLimits::kMaxRoutes, opts.render_costs),
-      setting_days(store, opts, &routes, &gyms, &variations, &renders, &dashboard),
+      setting_days(store, opts, &routes, &gyms, &variations, &renders, &dashboard, &logbook,
+                   clock),
       rendered(store, clock),
       profiles(store, opts),
       scales(store, &gyms) {

@@ -263,4 +263,28 @@ plan::PlanGrades GradesOf(const chaos::Variation& v, const plan::DifficultyProfi
   return out;
 }
 
+std::optional<double> EstimatedGradeMean(const Route& route, std::vector<double> difficulty,
+                                         grades::Discipline d, language::MoveLanguage& lang) {
+  if (route.moves.empty()) return std::nullopt;
+  std::string why;
+  const grades::GradeEstimator* est = BundledGradeEstimator(&why);
+  if (est == nullptr) return std::nullopt;
+  const grades::DisciplineModel* model = est->model(d);
+  if (model == nullptr) return std::nullopt;
+  std::vector<std::string> texts;
+  for (const Move& m : route.moves) texts.push_back(m.text);
+  grades::RouteReading reading = grades::ReadRoute(lang, texts, est->symbol_set());
+  if (NeedsDifficulty(*model)) {
+    if (difficulty.size() != route.moves.size()) {
+      Result<const difficulty::Estimator*> de = BundledDifficulty();
+      difficulty.clear();
+      if (de.ok() && *de != nullptr) difficulty = (*de)->Estimate(route, lang);
+    }
+    reading.move_difficulty = std::move(difficulty);
+  }
+  Result<grades::Estimate> e = est->EstimateRoute(reading, d);
+  if (!e.ok()) return std::nullopt;
+  return e->mean;
+}
+
 }  // namespace sb::app

@@ -22,6 +22,7 @@
 #include "chaos/constraints.h"
 #include "chaos/search.h"
 #include "chaos/variation.h"
+#include "grades/scale.h"
 #include "language/symbols.h"
 #include "plan/plan.h"
 #include "plan/warnings.h"
@@ -121,6 +122,15 @@ Result<SettingOutcome> VaryWithSetting(std::vector<chaos::InputRoute> inputs,
 // fails; deterministic. Not thread-safe for one `lang`.
 plan::PlanGrades GradesOf(const chaos::Variation& variation,
                           const plan::DifficultyProfile& profile, language::MoveLanguage& lang);
+
+// The bundled grade estimator's mean (on `d`'s axis) for the moves of
+// `route`, with per-move difficulty estimates `difficulty` (empty: the
+// bundled difficulty model's, when the estimator needs them). nullopt when
+// the estimator, its model of `d` or the moves cannot be had (issue 33: the
+// moves model's part of a predicted grade, app/grade_prediction.h). Not
+// thread-safe for one `lang`.
+std::optional<double> EstimatedGradeMean(const Route& route, std::vector<double> difficulty,
+                                         grades::Discipline d, language::MoveLanguage& lang);
 
 }  // namespace sb::app
 

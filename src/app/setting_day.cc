@@ -1,6 +1,7 @@
 #include "app/setting_day.h"
 
 #include "app/convert.h"
+#include "app/grade_prediction.h"
 
 #include <algorithm>
 #include <atomic>
@@ -15,6 +16,7 @@
 #include "base/text.h"
 #include "chaos/variation.h"
 #include "crdl/route.h"
+#include "grades/estimator.h"
 #include "grades/scale.h"
 #include "language/styles.h"
 #include "language/symbols.h"
@@ -75,6 +77,8 @@ struct Pool {
   Route route;
   int style_moves = 0;
   int band_off = 0;
+  std::optional<int> band;  // its band by its grade (ascent, else setter's)
+  InputGradeBasis grade;    // what its grade is (issue 33's prediction)
   double stars = 0;  // mean climbers' stars, 0 = none
   bool same_wall = false;
   bool gym = false;
@@ -86,6 +90,8 @@ struct SlotWork {
   std::vector<chaos::InputRoute> inputs;
   std::vector<int64_t> ids;
   std::vector<std::string> names;
+  std::vector<InputGradeBasis> grades;  // the inputs' grades (ascent, else setter's)
+  std::string band;                     // the band its gallery is made for
   std::vector<DayCandidate> all;  // every distinct candidate of its gallery, ranked
 };
 
@@ -220,14 +226,44 @@ std::string CandidateId(const std::string& params_json, const std::vector<int64_
 }
 
 SettingDays::SettingDays(store::Store* store, const Options& options, Routes* routes, Gyms* gyms,
-                         Variations* variations, WorkBudget* budget, Dashboard* dashboard)
+                         Variations* variations, WorkBudget* budget, Dashboard* dashboard,
+                         Logbook* logbook, Clock* clock)
     : store_(store),
       options_(options),
       routes_(routes),
       gyms_(gyms),
       variations_(variations),
       budget_(budget),
-      dashboard_(dashboard) {}
+      dashboard_(dashboard),
+      logbook_(logbook),
+      clock_(clock) {}
+
+bool StyleAllowed(const std::string& style, const Wall& wall, std::optional<int> band,
+                  std::string* why) {
+  if (style != "dyno") return true;
+  std::string name = ToLower(wall.name);
+  if (name.find("kid") != std::string::npos) {
+    if (why) *why = "no dyno on a kids' wall (" + wall.name + ")";
+    return false;
+  }
+  const grades::Discipline d = DisciplineOfWall(wall);
+  const int low = d == grades::Discipline::kBouldering ? 0 : 8;  // V0, 5.8
+  if (wall.angle < 0 && band && *band <= low) {
+    if (why) *why = "no dyno on a " + grades::BandName(d, *band) + " slab (" + wall.name + ")";
+    return false;
+  }
+  return true;
+}
+
+Status CheckNotPast(const std::string& date, int64_t now) {
+  SB_RETURN_IF_ERROR(CheckDayDate(date));
+  const std::string today = UtcDateText(now);
+  if (date < today) {
+    return Status::InvalidInput("date: " + date + " is in the past (today is " + today +
+                                "): choose today or a later day");
+  }
+  return Status::Ok();
+}
 
 Status SettingDays::RequireSetter(const Viewer& v, int64_t gym) {
   if (!v.logged_in()) return Status::Unauthenticated("log in first");
@@ -241,6 +277,7 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
                                                 int* retry_after_seconds) {
   SB_RETURN_IF_ERROR(RequireSetter(v, req.gym));
   SB_RETURN_IF_ERROR(req.Validate());
+  if (clock_ != nullptr) SB_RETURN_IF_ERROR(CheckNotPast(req.date, clock_->Now()));
   std::map<int64_t, Wall> walls;
   std::vector<Wall> day_walls;
   for (int64_t id : req.walls) {
@@ -290,9 +327,44 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
       if (slots.size() < kMaxDaySlots) slots.push_back(s);
     }
   }
-  // The budget, before the work.
-  const double cost = options_.render_costs.day_candidate * static_cast<double>(slots.size()) *
-                      req.candidates;
+  // Styles the wall and grade allow (issue 33), for slots the setter did not
+  // ask: a dyno on a V0 slab or a kids' wall becomes the first allowed style
+  // of kDefaultSlotStyles not yet asked of the wall.
+  std::vector<std::string> style_notes(slots.size());
+  if (req.slots.empty()) {
+    for (size_t i = 0; i < slots.size(); ++i) {
+      const Wall& w = walls.at(slots[i].wall);
+      const std::optional<int> band =
+          slots[i].band.empty() ? std::nullopt : BandOfText(slots[i].band, DisciplineOfWall(w));
+      std::string why;
+      if (StyleAllowed(slots[i].style, w, band, &why)) continue;
+      std::set<std::string> on_wall_styles;
+      for (const DaySlot& o : slots) {
+        if (o.wall == w.id) on_wall_styles.insert(o.style);
+      }
+      std::string instead;
+      for (const std::string& st : kDefaultSlotStyles) {
+        if (StyleAllowed(st, w, band) && !on_wall_styles.count(st)) {
+          instead = st;
+          break;
+        }
+      }
+      style_notes[i] = why + ": asks " + (instead.empty() ? "any style" : instead) +
+                       " instead (choose dyno on the page to ask it anyway)";
+      slots[i].style = instead;
+    }
+  }
+  // The budget, before the work (issue 33: charged for every plan built).
+  // A slot's gallery builds 9 plans for its level (charged day_candidate per
+  // candidate, as measured: docs/BENCHMARKS.md), and 9 more for each other
+  // novelty level it may try when its own is not met: as many levels (up to
+  // 3, the same for every slot, so the proposal stays deterministic) as the
+  // request's cap on signed-in work (options.renders.user_max_cost) pays for.
+  const double per_level = options_.render_costs.day_candidate *
+                           static_cast<double>(slots.size()) * req.candidates;
+  int levels = 1;
+  while (levels < 3 && per_level * (levels + 1) <= options_.renders.user_max_cost) ++levels;
+  const double cost = per_level * levels;
   int retry = 0;
   Result<WorkBudget::Slot> admitted = budget_->Admit(v, cost, &retry);
   if (retry_after_seconds) *retry_after_seconds = retry;
@@ -371,6 +443,16 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
       }
     }
   }
+  // Issue 33: the gym's ascent grades of its routes in the pools (the
+  // logbook's cached fit), so inputs are chosen and graded by what climbers
+  // found; the setter's grade where the gym has no ticks of a route.
+  std::map<int64_t, AscentGrade> ascents;
+  if (logbook_ != nullptr && !pool_ids.empty()) {
+    std::sort(pool_ids.begin(), pool_ids.end());
+    pool_ids.erase(std::unique(pool_ids.begin(), pool_ids.end()), pool_ids.end());
+    Result<std::map<int64_t, AscentGrade>> a = logbook_->Ascents(req.gym, pool_ids);
+    if (a.ok()) ascents = std::move(a).value();
+  }
   for (size_t i = 0; i < slots.size(); ++i) {
     const DaySlot& slot = slots[i];
     const Wall& w = walls.at(slot.wall);
@@ -385,38 +467,85 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
       return Status::InvalidInput("slots[" + std::to_string(i) + "].band: \"" + slot.band +
                                   "\" is not a " + w.discipline + " grade");
     }
+    sp.style_note = style_notes[i];
     // The pool: the gym's routes (set or stripped) and public routes, near the band.
-    const auto [from, to] = RangeOf(band, d);
-    SB_ASSIGN_OR_RETURN(const std::vector<store::RouteRecord>* recs, rows_of(from, to));
-    std::vector<Pool> pool;
-    for (const store::RouteRecord& r : *recs) {
-      // Lists carry no CRDL: each route is read once per proposal.
-      auto cached = parsed.find(r.id);
-      if (cached == parsed.end()) {
-        std::optional<Route> route;
-        if (Result<store::RouteRecord> full = store_->GetRoute(r.id); full.ok()) {
-          if (Result<Route> pr = ParseCrdl(full->crdl, r.name); pr.ok() && pr->moves.size() >= 2) {
-            route = std::move(pr).value();
+    auto make_pool = [&](const std::vector<store::RouteRecord>& recs) {
+      std::vector<Pool> pool;
+      for (const store::RouteRecord& r : recs) {
+        // Lists carry no CRDL: each route is read once per proposal.
+        auto cached = parsed.find(r.id);
+        if (cached == parsed.end()) {
+          std::optional<Route> route;
+          if (Result<store::RouteRecord> full = store_->GetRoute(r.id); full.ok()) {
+            if (Result<Route> pr = ParseCrdl(full->crdl, r.name);
+                pr.ok() && pr->moves.size() >= 2) {
+              route = std::move(pr).value();
+            }
+          }
+          cached = parsed.emplace(r.id, std::move(route)).first;
+        }
+        if (!cached->second) continue;
+        Pool p{&r, *cached->second};
+        if (!slot.style.empty()) {
+          for (const Move& m : p.route.moves) {
+            const std::vector<std::string> all = language::ReadStyle(lang, m.text).All();
+            p.style_moves += std::find(all.begin(), all.end(), slot.style) != all.end();
           }
         }
-        cached = parsed.emplace(r.id, std::move(route)).first;
+        // Its grade: the gym's ascent grade where it has ticks, else the setter's.
+        if (auto a = ascents.find(r.id); a != ascents.end() && a->second.fitted) {
+          p.grade = AscentGradeBasis(a->second, r.name, d);
+        }
+        if (!p.grade.known) p.grade = SetterGradeBasis({r.name, p.route}, d);
+        p.grade.name = r.name;
+        p.band = p.grade.known ? std::optional<int>(grades::Band(p.grade.value))
+                               : BandOfRecord(r, d);
+        if (band) p.band_off = p.band ? std::abs(*p.band - *band) : 3;
+        if (auto st = stars.find(r.id); st != stars.end()) p.stars = st->second;
+        p.same_wall = r.wall_id && *r.wall_id == w.id;
+        p.gym = r.gym_id && *r.gym_id == req.gym;
+        pool.push_back(std::move(p));
       }
-      if (!cached->second) continue;
-      Pool p{&r, *cached->second};
-      if (!slot.style.empty()) {
-        for (const Move& m : p.route.moves) {
-          const std::vector<std::string> all = language::ReadStyle(lang, m.text).All();
-          p.style_moves += std::find(all.begin(), all.end(), slot.style) != all.end();
+      return pool;
+    };
+    const auto [from, to] = RangeOf(band, d);
+    SB_ASSIGN_OR_RETURN(const std::vector<store::RouteRecord>* recs, rows_of(from, to));
+    std::vector<Pool> pool = make_pool(*recs);
+    // Near the band: within one band by its grade (an ascent grade may have
+    // moved a route out of the range its setter's grade put it in).
+    if (band) {
+      std::erase_if(pool, [](const Pool& p) { return p.band_off > 1; });
+    }
+    work[i].band = slot.band;
+    if (pool.empty() && band) {
+      // Nothing near: the nearest band the gym's and the library's routes
+      // reach, offered instead (and said).
+      SB_ASSIGN_OR_RETURN(const std::vector<store::RouteRecord>* any, rows_of("", ""));
+      std::vector<Pool> all = make_pool(*any);
+      std::optional<int> nearest;
+      for (const Pool& p : all) {
+        if (!p.band) continue;
+        const int off = std::abs(*p.band - *band);
+        if (!nearest || off < std::abs(*nearest - *band) ||
+            (off == std::abs(*nearest - *band) && *p.band < *nearest)) {
+          nearest = *p.band;
         }
       }
-      if (band) {
-        std::optional<int> b = BandOfRecord(r, d);
-        p.band_off = b ? std::abs(*b - *band) : 3;
+      if (nearest) {
+        for (Pool& p : all) {
+          if (p.band && std::abs(*p.band - *nearest) <= 1) {
+            p.band_off = std::abs(*p.band - *nearest);
+            pool.push_back(std::move(p));
+          }
+        }
+        sp.reachable_band = grades::BandName(d, *nearest);
+        work[i].band = sp.reachable_band;
+        sp.note = "no route of this gym or the library is near " + slot.band +
+                  " (within one band); the nearest are " + sp.reachable_band +
+                  ", so these candidates are made for " + sp.reachable_band +
+                  ": set this slot to " + sp.reachable_band + ", or set or share routes near " +
+                  slot.band + " to vary";
       }
-      if (auto s = stars.find(r.id); s != stars.end()) p.stars = s->second;
-      p.same_wall = r.wall_id && *r.wall_id == w.id;
-      p.gym = r.gym_id && *r.gym_id == req.gym;
-      pool.push_back(std::move(p));
     }
     // Style first, then the band, the climbers' stars, this wall, this gym, id.
     std::stable_sort(pool.begin(), pool.end(), [](const Pool& a, const Pool& b) {
@@ -437,10 +566,12 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
       work[i].inputs.push_back({pool[j].rec->name, pool[j].route});
       work[i].ids.push_back(pool[j].rec->id);
       work[i].names.push_back(pool[j].rec->name);
+      work[i].grades.push_back(pool[j].grade);
     }
     if (work[i].inputs.empty()) {
-      sp.note = "no route of this gym or public route near " +
-                (slot.band.empty() ? std::string("any band") : slot.band) + " to vary";
+      sp.note = "no route of this gym or the library has moves to vary" +
+                (slot.band.empty() ? std::string() : " near " + slot.band + " or any other band") +
+                ": set or share routes with their moves (CRDL) first";
     }
     out.slots.push_back(std::move(sp));
   }
@@ -456,10 +587,12 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
     for (size_t i = next++; i < work.size(); i = next++) {
       if (work[i].inputs.empty()) continue;
       CandidateSlot cs;
-      cs.band = work[i].slot.band;
+      cs.band = work[i].band;
       cs.style = work[i].slot.style;
+      cs.input_grades = work[i].grades;
       GalleryOptions go;
       go.novelty = work[i].slot.novelty.value_or(req.novelty);
+      go.max_levels = levels;
       std::string level_note;
       Result<std::vector<Candidate>> gallery =
           MakeGallery(work[i].inputs, params, setting, cs, go, &level_note);
@@ -487,7 +620,7 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
         dc.id = CandidateId(dc.params_json, dc.inputs, dc.moves);
         work[i].all.push_back(std::move(dc));
       }
-      sp.note = level_note;
+      if (!level_note.empty()) sp.note += (sp.note.empty() ? "" : "; ") + level_note;
     }
   };
   std::vector<std::thread> threads;
@@ -530,9 +663,40 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
   return out;
 }
 
+Result<PredictedGrade> SettingDays::Predict(int64_t gym, const std::vector<int64_t>& ids,
+                                            const plan::RoutePlan& plan) {
+  if (!plan.grades || plan.grades->discipline.empty()) {
+    return Status::NotFound("no discipline to predict a grade in");
+  }
+  SB_ASSIGN_OR_RETURN(grades::Discipline d, grades::ParseDiscipline(plan.grades->discipline));
+  SB_ASSIGN_OR_RETURN(grades::Scale sc, grades::ParseScale(plan.grades->scale));
+  std::map<int64_t, AscentGrade> ascents;
+  if (logbook_ != nullptr && !ids.empty()) {
+    Result<std::map<int64_t, AscentGrade>> a = logbook_->Ascents(gym, ids);
+    if (a.ok()) ascents = std::move(a).value();
+  }
+  std::vector<InputGradeBasis> basis;
+  for (size_t i = 0; i < plan.variation.inputs.size(); ++i) {
+    const chaos::InputRoute& in = plan.variation.inputs[i];
+    InputGradeBasis b;
+    if (i < ids.size()) {
+      if (auto a = ascents.find(ids[i]); a != ascents.end()) b = AscentGradeBasis(a->second, in.name, d);
+    }
+    if (!b.known) b = SetterGradeBasis(in, d);
+    basis.push_back(std::move(b));
+  }
+  SB_ASSIGN_OR_RETURN(language::MoveLanguage lang, language::MoveLanguage::LoadDefault());
+  std::vector<std::optional<double>> means;
+  const double delta = MovesModelDelta(
+      plan.variation, plan.profile ? plan.profile->difficulty : std::vector<double>{}, d, lang,
+      &means);
+  return PredictGrade(plan.variation, basis, d, sc, delta);
+}
+
 Result<int64_t> SettingDays::Accept(const Viewer& v, const AcceptRequest& req) {
   SB_RETURN_IF_ERROR(RequireSetter(v, req.gym));
   SB_RETURN_IF_ERROR(CheckDayDate(req.date));
+  if (clock_ != nullptr) SB_RETURN_IF_ERROR(CheckNotPast(req.date, clock_->Now()));
   if (req.inputs.empty() || req.inputs.size() > options_.limits.max_vary_routes) {
     return Status::InvalidInput("candidate.inputs: expected the candidate's input route ids");
   }
@@ -594,9 +758,15 @@ Result<int64_t> SettingDays::Accept(const Viewer& v, const AcceptRequest& req) {
   vr.meta.wall = wall->name;
   vr.meta.setter = setter;
   vr.meta.date = req.date;
-  // Its grade until the setter grades it: the estimate from its moves (the
-  // one the gallery scored it by).
+  // Its grade until the setter grades it: the grade predicted from its
+  // inputs' grades (issue 33: the one the gallery scored it by; the estimate
+  // from its moves when no input has a grade).
   if (plan.grades) vr.meta.grade = plan.grades->estimate;
+  if (Result<PredictedGrade> pg = Predict(req.gym, req.inputs, plan); pg.ok() && pg->known) {
+    Result<grades::Discipline> d = grades::ParseDiscipline(pg->discipline);
+    Result<grades::Scale> sc = grades::ParseScale(pg->scale);
+    if (d.ok() && sc.ok()) vr.meta.grade = grades::FormatBand(*d, pg->band, *sc);
+  }
   SB_ASSIGN_OR_RETURN(CreatedVariation created, variations_->Create(v, vr));
   RouteEdit edit;
   edit.gym.wall = std::to_string(wall->id);

@@ -25,8 +25,10 @@
 
 #include "app/budget.h"
 #include "app/candidates.h"
+#include "app/clock.h"
 #include "app/dashboard.h"
 #include "app/gyms.h"
+#include "app/logbook.h"
 #include "app/options.h"
 #include "app/routes.h"
 #include "app/variations.h"
@@ -111,6 +113,14 @@ struct DaySlotProposal {
   // Issue 33: the planned route of this day accepted from this slot's
   // gallery (0 = none yet): the slot is filled.
   int64_t accepted_route = 0;
+  // Issue 33: when no input is near the slot's band, the band its
+  // candidates could reach instead (the nearest band with inputs; they are
+  // made and scored for it, and `note` says so); "" = the slot's own.
+  std::string reachable_band;
+  // Issue 33: the slot's style was not one the wall and grade allow (a dyno
+  // on a V0 slab or a kids' wall) and was not asked: the style used instead
+  // and why ("" = the slot's own).
+  std::string style_note;
 };
 
 struct SettingDayProposal {
@@ -169,8 +179,12 @@ class SettingDays {
   // With `dashboard`, a request without slots gets the dashboard's
   // gap-based slots (ProposeSlots); walls it gives none, and every wall
   // without `dashboard`, get DefaultSlots.
+  // With `logbook`, inputs are graded by their ascent grades where the gym
+  // has ticks (issue 33's predicted grade); with `clock`, a date before
+  // today (UTC) is refused.
   SettingDays(store::Store* store, const Options& options, Routes* routes, Gyms* gyms,
-              Variations* variations, WorkBudget* budget, Dashboard* dashboard = nullptr);
+              Variations* variations, WorkBudget* budget, Dashboard* dashboard = nullptr,
+              Logbook* logbook = nullptr, Clock* clock = nullptr);
 
   // A proposal for the gym's setting day: head setters and setters only
   // (kNotFound "no gym N" for non-members, kPermission for climbers,
@@ -200,6 +214,11 @@ class SettingDays {
 
  private:
   Status RequireSetter(const Viewer& v, int64_t gym);
+  // The grade predicted for `plan` (a variation of the routes `ids`, in
+  // order): each input's ascent grade in `gym` where it has ticks, else its
+  // setter's grade (app/grade_prediction.h).
+  Result<PredictedGrade> Predict(int64_t gym, const std::vector<int64_t>& ids,
+                                 const plan::RoutePlan& plan);
 
   store::Store* store_;
   const Options options_;
@@ -208,7 +227,21 @@ class SettingDays {
   Variations* variations_;
   WorkBudget* budget_;
   Dashboard* dashboard_;
+  Logbook* logbook_;
+  Clock* clock_;
 };
+
+// Issue 33: whether a slot may ask `style` of a wall at `band` when the
+// setter did not ask it: no dyno on a slab (angle < 0) at the discipline's
+// two lowest bands of a gym (VB, V0; 5.8 and below), nor on a kids' wall
+// (its name says "kid"); every other style is allowed. `*why` (optional)
+// says why not in words. Pure.
+bool StyleAllowed(const std::string& style, const Wall& wall, std::optional<int> band,
+                  std::string* why = nullptr);
+
+// Issue 33: kInvalidInput "date: ... is in the past ..." when `date`
+// (YYYY-MM-DD) is before the UTC day of `now` (unix seconds). Pure.
+Status CheckNotPast(const std::string& date, int64_t now);
 
 }  // namespace sb::app
 

@@ -230,7 +230,10 @@ TEST_F(SettingDayTest, AcceptingMakesAPlannedRouteAndChecksTheMoves) {
   EXPECT_EQ(r->setters[0].name, "sam");
   EXPECT_TRUE(r->is_variation);
   EXPECT_EQ(r->move_count, static_cast<int>(c.moves.size()));
-  EXPECT_EQ(r->grade, c.score.estimated_band);  // graded by its estimate until the setter grades it
+  // Graded by its predicted grade (issue 33: from its inputs' grades, no
+  // longer the estimate from its moves) until the setter grades it.
+  ASSERT_TRUE(c.score.predicted.known) << c.score.predicted.note;
+  EXPECT_EQ(r->grade, grades::BandName(grades::Discipline::kBouldering, c.score.predicted.band));
   // The sheet lists it on its day only.
   Result<std::vector<DayRoute>> day = services_->setting_days.Planned(head_, gym_, "2026-12-01");
   ASSERT_TRUE(day.ok());

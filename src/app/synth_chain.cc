@@ -251,7 +251,7 @@ Result<Built> BuildRoute(const ChainParams& p, const Vocabulary& vocab,
   const GymInfo& gym = gyms[static_cast<size_t>(wall.gym)];
   Built b;
   store::RouteRecord& rec = b.record;
-  // Difficulty: most routes in the middle grades.
+  // Difficulty: most routes in the middle grades (ChainRouteDifficulty).
   double d = std::clamp(4.0 + 2.2 * rng.Normal(), 0.0, 10.0);
   std::string grade, colour;
   if (wall.roped) {
@@ -571,6 +571,12 @@ Result<ChainSummary> SynthChainInto(const std::string& db, const ChainParams& pa
   options.pool_size = 1;
   SB_ASSIGN_OR_RETURN(std::unique_ptr<store::Store> store, store::OpenStore(db, options));
   return SynthChain(store.get(), params, examples_dir, progress);
+}
+
+double ChainRouteDifficulty(const ChainParams& params, int index) {
+  // The first draw of the route's own stream (BuildRoute).
+  Rng rng(StreamSeed(params.seed, 1, static_cast<uint64_t>(index)));
+  return std::clamp(4.0 + 2.2 * rng.Normal(), 0.0, 10.0);
 }
 
 }  // namespace sb::app

@@ -100,6 +100,13 @@ Result<ChainSummary> SynthChainInto(const std::string& db, const ChainParams& pa
                                     const std::string& examples_dir,
                                     const ChainProgress& progress = nullptr);
 
+// Issue 33: the true difficulty (on the climbers' ability axis, 0..10: V
+// grades on a bouldering wall, whose setter's grade is its nearest whole V
+// grade) the generator gave the route it made `index`-th (0-based: the route
+// named "... N" has index N - 1), the truth a predicted grade is measured
+// against (docs/setting.md, "The predicted grade"). Pure; deterministic.
+double ChainRouteDifficulty(const ChainParams& params, int index);
+
 }  // namespace sb::app
 
 #endif  // SB_APP_SYNTH_CHAIN_H_

@@ -143,6 +143,10 @@ TEST_F(LogbookApiTest, TicksEditsBurstsReviewMergeAndGymIsolation) {
   EXPECT_FALSE(r["variations_vs_hand_set"]["enough"].get<bool>());
   EXPECT_NE(r["variations_vs_hand_set"]["verdict"].get<std::string>().find("Too few"),
             std::string::npos);
+  // Issue 33: the predicted grades of variations against their ascent grades.
+  EXPECT_NE(r["variations_vs_hand_set"]["predicted_grades"]["verdict"].get<std::string>().find(
+                "no variation"),
+            std::string::npos);
   json as_climber = climber.Json("GET", report, "", 200);
   EXPECT_FALSE(as_climber.contains("comments"));
   EXPECT_EQ(rival.Status("GET", report), 404);
@@ -152,6 +156,7 @@ TEST_F(LogbookApiTest, TicksEditsBurstsReviewMergeAndGymIsolation) {
   ASSERT_TRUE(page);
   EXPECT_EQ(page->status, 200);
   EXPECT_NE(page->body.find("id=\"report-verdict\""), std::string::npos);
+  EXPECT_NE(page->body.find("id=\"report-predicted\""), std::string::npos);
   EXPECT_NE(page->body.find("sharp crimps"), std::string::npos);
   auto climber_page = climber.Send("GET", "/gyms/" + std::to_string(g) + "/report?wall=cave");
   ASSERT_TRUE(climber_page);

@@ -7,6 +7,7 @@
 #include "base/number.h"
 #include "base/text.h"
 #include "web/logbook_handlers.h"
+#include "web/report_predicted_render.h"
 
 namespace sb::web {
 
@@ -110,6 +111,7 @@ json ReportJson(const app::GymReport& r) {
         {"enough", c.enough},
         {"min_ratings", app::ReportLimits::kMinRatingsPerGroup},
         {"verdict", c.verdict}}}};
+  out["variations_vs_hand_set"]["predicted_grades"] = PredictionCheckJson(r.predictions);
   out["capped"] = r.capped;  // only the newest max_routes routes were read
   out["max_routes"] = r.max_routes;
   if (r.capped) out["capped_note"] = r.capped_note;
@@ -198,6 +200,7 @@ std::string ReportPageHtml(const PageViewer& v, const app::GymReport& r) {
   }
   b += "<p class=\"msg\">Only grade bands with ratings of both kinds enter the tests; each "
        "rests on the ratings counted above.</p>\n</section>\n";
+  b += PredictionCheckHtml(r.predictions);
 
   // The routes.
   b += "<h2>Routes</h2>\n";

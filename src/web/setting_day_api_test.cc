@@ -59,7 +59,7 @@ TEST_F(SettingDayApiTest, ProposeAcceptAndTheRoles) {
     head.Json("POST", "/api/routes", body.dump(), 201);
   }
 
-  const json ask{{"date", "2026-12-01"},
+  const json ask{{"date", "2099-12-01"},
                  {"walls", {cave}},
                  {"slots", {{{"wall", cave}, {"band", "V4"}, {"style", "crimp"}}}},
                  {"candidates", 2}};
@@ -78,12 +78,20 @@ TEST_F(SettingDayApiTest, ProposeAcceptAndTheRoles) {
   }
   EXPECT_TRUE(cand["params"].is_object());
   EXPECT_TRUE(cand["params"].value("keep_start", false));
+  // Issue 33: the grade predicted from the inputs' grades, with its interval,
+  // and the candidate's style in words.
+  ASSERT_TRUE(cand["predicted_grade"].is_object()) << cand.dump();
+  EXPECT_EQ(cand["predicted_grade"]["interval"].size(), 2u);
+  EXPECT_LE(cand["predicted_grade"]["interval"][0].get<double>(),
+            cand["predicted_grade"]["value"].get<double>());
+  EXPECT_FALSE(cand["predicted_grade"]["grade"].get<std::string>().empty());
+  EXPECT_TRUE(cand["style"].is_string());
   // The same request again: the same candidates (determinism).
   EXPECT_EQ(head.Json("POST", gp + "/setting-days", ask.dump(), 200), day);
   // Without slots: the dashboard's slots for the chosen wall (its routes due
   // are stripped and replaced), each on that wall with a band.
   json d2 = head.Json("POST", gp + "/setting-days",
-                      json{{"date", "2026-12-01"}, {"walls", {cave}}, {"candidates", 1}}.dump(),
+                      json{{"date", "2099-12-01"}, {"walls", {cave}}, {"candidates", 1}}.dump(),
                       200);
   ASSERT_FALSE(d2["slots"].empty());
   for (const json& slot : d2["slots"]) {
@@ -103,9 +111,14 @@ TEST_F(SettingDayApiTest, ProposeAcceptAndTheRoles) {
   bad = ask;
   bad["date"] = "soon";
   EXPECT_EQ(head.Status("POST", gp + "/setting-days", bad.dump()), 400);
+  bad["date"] = "2020-01-01";  // issue 33: a date in the past, refused by the service
+  EXPECT_NE(head.Json("POST", gp + "/setting-days", bad.dump(), 400)["error"]
+                .get<std::string>()
+                .find("date: 2020-01-01 is in the past"),
+            std::string::npos);
 
   // Accept: tampered moves are refused; the candidate becomes a planned route.
-  json accept{{"date", "2026-12-01"}, {"wall", cave}, {"setter", "sam"}, {"candidate", cand}};
+  json accept{{"date", "2099-12-01"}, {"wall", cave}, {"setter", "sam"}, {"candidate", cand}};
   json tampered = accept;
   tampered["candidate"]["moves"][0] = "R campus to the moon";
   EXPECT_EQ(setter.Status("POST", gp + "/setting-days/accept", tampered.dump()), 409);
@@ -133,7 +146,7 @@ TEST_F(SettingDayApiTest, ProposeAcceptAndTheRoles) {
   auto card = head.Send("GET", "/variations/" + std::to_string(id) + ".pdf");
   ASSERT_TRUE(card);
   EXPECT_EQ(card->status, 200);
-  auto sheet = head.Send("GET", "/gyms/" + std::to_string(g) + "/setting-day/sheet?date=2026-12-01");
+  auto sheet = head.Send("GET", "/gyms/" + std::to_string(g) + "/setting-day/sheet?date=2099-12-01");
   ASSERT_TRUE(sheet);
   EXPECT_EQ(sheet->status, 200);
   EXPECT_NE(sheet->body.find("/routes/" + std::to_string(id) + "/tag.pdf"), std::string::npos);
@@ -143,11 +156,11 @@ TEST_F(SettingDayApiTest, ProposeAcceptAndTheRoles) {
   ASSERT_TRUE(tags);
   EXPECT_EQ(tags->status, 200);
   auto other_day =
-      head.Send("GET", "/gyms/" + std::to_string(g) + "/setting-day/sheet?date=2026-12-02");
+      head.Send("GET", "/gyms/" + std::to_string(g) + "/setting-day/sheet?date=2099-12-02");
   ASSERT_TRUE(other_day);
   EXPECT_EQ(other_day->body.find("/routes/" + std::to_string(id) + "/tag.pdf"), std::string::npos);
   // The page shows the galleries with an Accept per candidate.
-  auto page = setter.Send("GET", "/gyms/" + std::to_string(g) + "/setting-day?date=2026-12-01&walls=" +
+  auto page = setter.Send("GET", "/gyms/" + std::to_string(g) + "/setting-day?date=2099-12-01&walls=" +
                                      std::to_string(cave) + "&k=1");
   ASSERT_TRUE(page);
   EXPECT_EQ(page->status, 200);

@@ -86,6 +86,21 @@ Result<app::SettingDayRequest> DayRequestOf(const json& body, int64_t gym) {
   return r;
 }
 
+// Issue 33: a candidate's predicted grade (app/grade_prediction.h); null
+// with "predicted_grade_note" in the candidate when unknown.
+json PredictedGradeJson(const app::PredictedGrade& g) {
+  if (!g.known) return json(nullptr);
+  return json{{"grade", g.grade},
+              {"value", g.value},
+              {"interval", {g.lo, g.hi}},
+              {"interval_grades", {g.lo_grade, g.hi_grade}},
+              {"level", 0.8},
+              {"discipline", g.discipline},
+              {"from_inputs", g.from_inputs},
+              {"moves_model", g.moves_model},
+              {"basis", g.basis}};
+}
+
 json CandidateJson(const app::DayCandidate& c) {
   json params = json::parse(c.params_json, nullptr, false);
   json out{{"id", c.id},
@@ -101,6 +116,11 @@ json CandidateJson(const app::DayCandidate& c) {
               {"inputs", c.inputs},
               {"input_names", c.input_names}};
   if (c.accepted_route) out["accepted_route"] = c.accepted_route;
+  out["predicted_grade"] = PredictedGradeJson(c.score.predicted);
+  if (!c.score.predicted.known && !c.score.predicted.note.empty()) {
+    out["predicted_grade_note"] = c.score.predicted.note;
+  }
+  out["style"] = c.score.style_words;
   return out;
 }
 
@@ -114,9 +134,27 @@ json ProposalJson(const app::SettingDayProposal& p) {
            {"candidates", cands}};
     if (!s.note.empty()) j["note"] = s.note;
     if (s.accepted_route) j["accepted_route"] = s.accepted_route;
+    if (!s.reachable_band.empty()) j["reachable_band"] = s.reachable_band;
+    if (!s.style_note.empty()) j["style_note"] = s.style_note;
     slots.push_back(std::move(j));
   }
   return json{{"gym", p.gym}, {"date", p.date}, {"slots", slots}};
+}
+
+// Issue 33: the candidate's predicted grade with its interval and what it
+// rests on, and its style in words (a card's line).
+std::string DayPredictedLine(const app::DayCandidate& c) {
+  std::string h = "<p class=\"day-predicted\">";
+  if (c.score.predicted.known) {
+    h += "Predicted grade <b>" + E(app::PredictedGradeText(c.score.predicted)) +
+         "</b> <small>(" + E(c.score.predicted.basis) + ")</small>";
+  } else {
+    h += "No predicted grade" + (c.score.predicted.note.empty()
+                                     ? std::string()
+                                     : ": " + E(c.score.predicted.note));
+  }
+  if (!c.score.style_words.empty()) h += "<br>Style: " + E(c.score.style_words);
+  return h + "</p>\n";
 }
 
 std::string Fixed1(double v) {
@@ -331,6 +369,7 @@ void PageSettingDay(Exchange& x) {
              E(s.slot.style.empty() ? "any style" : s.slot.style) + " · " +
              E(app::NoveltyWords(s.novelty)) + "</h2>\n";
         if (!s.note.empty()) b += "<p class=\"note\">" + E(s.note) + "</p>\n";
+        if (!s.style_note.empty()) b += "<p class=\"note\">" + E(s.style_note) + "</p>\n";
         if (s.accepted_route) {
           const std::string id = std::to_string(s.accepted_route);
           b += "<p class=\"day-accepted\">Accepted: <a href=\"/routes/" + id + "\">route " + id +
@@ -348,7 +387,10 @@ void PageSettingDay(Exchange& x) {
                            "\"><h3>" + std::to_string(rank) + ". score " + Fixed1(c.score.score) +
                            " / 100" +
                            (c.score.rejected ? " <span class=\"bad\">(rejected)</span>" : "") +
-                           (c.score.estimated_band.empty()
+                           (c.score.predicted.known
+                                ? " · predicted <span class=\"predicted\">" +
+                                      E(c.score.predicted.grade) + "</span>"
+                            : c.score.estimated_band.empty()
                                 ? ""
                                 : " · estimated " + E(c.score.estimated_band)) +
                            " · " + std::to_string(c.score.new_moves) + " of " +
@@ -362,7 +404,7 @@ void PageSettingDay(Exchange& x) {
           h += "<p class=\"why\">" + std::string(rank == 1 && !c.score.rejected
                                                        ? "Why it ranks first: "
                                                        : "Why: ") +
-               E(why) + "</p>\n<p class=\"inputs\">From: ";
+               E(why) + "</p>\n" + DayPredictedLine(c) + "<p class=\"inputs\">From: ";
           for (size_t i = 0; i < c.inputs.size(); ++i) {
             h += (i ? ", " : "") + std::string("<a href=\"/routes/") +
                  std::to_string(c.inputs[i]) + "\">" + E(c.input_names[i]) + "</a>";

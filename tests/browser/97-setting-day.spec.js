@@ -9,6 +9,8 @@ const { execFileSync } = require('child_process');
 module.exports = async (t) => {
   const { page, base, check, shot, api, out } = t;
   const n = Date.now() % 100000;
+  // A day ahead (a date in the past is refused, issue 33).
+  const day = new Date(Date.now() + 30 * 864e5).toISOString().slice(0, 10);
   const head = 'dayhead' + n;
   const password = 'correct horse battery';
   await page.context().clearCookies();
@@ -31,10 +33,10 @@ module.exports = async (t) => {
 
   await page.goto(base + '/gyms/' + gym);
   await Promise.all([page.waitForURL(/setting-day/), page.click('#gym-setting-day')]);
-  await page.fill('#day-date', '2026-12-01');
+  await page.fill('#day-date', day);
   await page.check('input[name="walls"][value="' + wall + '"]');
   await Promise.all([page.waitForURL(/walls=/), page.click('#day-propose')]);
-  check(page.url().includes('date=2026-12-01'), 'the day\'s state is in the URL');
+  check(page.url().includes('date=' + day), 'the day\'s state is in the URL');
   const cands = await page.$$('.day-candidate');
   check(cands.length >= 1, 'the slot shows a ranked gallery (' + cands.length + ' candidates)');
   const first = await page.textContent('.day-candidate h3');
@@ -49,6 +51,11 @@ module.exports = async (t) => {
   const h2 = await page.textContent('#slot-1 h2');
   check(h2.includes('V3') && h2.includes('sloper'), 'the slot is the one edited (' + h2.trim() + ')');
   check(!(await page.$('.day-rejected .day-accept')), 'rejected candidates have no Accept button');
+  // Issue 33: the best candidate's predicted grade (from its inputs' grades) and style.
+  const predicted = await page.textContent('#slot-1 > .day-candidate .day-predicted');
+  check(/Predicted grade V\d+/.test(predicted) && predicted.includes('80%'),
+        'the best candidate shows its predicted grade with an interval (' + predicted.trim().slice(0, 60) + ')');
+  check(predicted.includes('Style:'), 'and its style in words');
   const slotsUrl = page.url();
 
   // Accept one per slot (one wall, one slot here).
@@ -57,7 +64,7 @@ module.exports = async (t) => {
   const tagHref = await page.getAttribute('.day-candidate .accepted-tag', 'href');
   const id = Number(tagHref.match(/\/routes\/(\d+)\/tag\.pdf/)[1]);
   const route = (await api('GET', '/api/routes/' + id)).data;
-  check(route.state === 'planned' && route.set_on === '2026-12-01' && route.wall_id === wall,
+  check(route.state === 'planned' && route.set_on === day && route.wall_id === wall,
         'the accepted candidate is a planned route on the wall (' + route.state + ')');
   // Reloaded: the slot shows it accepted, its other candidates folded;
   // accepting it again is refused with a message.
@@ -79,7 +86,7 @@ module.exports = async (t) => {
   check(tagRes.status() === 200 && tagText.includes(route.name.slice(0, 20)) && tagText.includes(head),
         'its tag prints its name and setter');
 
-  await page.goto(base + '/gyms/' + gym + '/setting-day/sheet?date=2026-12-01');
+  await page.goto(base + '/gyms/' + gym + '/setting-day/sheet?date=' + day);
   const sheet = await page.textContent('main');
   check(sheet.includes(head) && sheet.includes('Cave') && sheet.includes(route.name.slice(0, 20)),
         'the day\'s sheet lists what each setter sets where');
