@@ -98,6 +98,8 @@ std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<
        (app::CanSet(gym.role) ? " · <a href=\"/gyms/" + gid +
                                     "/setting-day\" id=\"gym-setting-day\">Setting day</a>"
                               : std::string()) +
+       (head ? " · <a href=\"/gyms/" + gid + "/import\" id=\"gym-import\">Import a route list</a>"
+             : std::string()) +
        "</p>\n";
   b += "<h2>Walls</h2>\n";
   if (walls.empty()) {
