@@ -79,8 +79,8 @@
 
   function showPreview(d) {
     const summary = d.new + ' new, ' + d.changed + ' changed, ' + d.missing + ' no longer in the list' +
-      (d.missing ? ': strip them?' : '') + (d.same ? ' (' + d.same + ' unchanged)' : '') +
-      (d.new_walls && d.new_walls.length ? '. New sectors: ' + d.new_walls.join(', ') : '');
+      (d.missing ? ': strip them?' : '.') + (d.same ? ' (' + d.same + ' unchanged)' : '') +
+      (d.new_walls && d.new_walls.length ? ' New sectors: ' + d.new_walls.join(', ') + '.' : '');
     $('#import-summary').textContent = summary;
     $('#import-strip-label').hidden = !d.missing;
     const errs = $('#import-errors');

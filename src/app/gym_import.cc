@@ -865,6 +865,32 @@ Result<ImportOutcome> GymImport::Confirm(const Viewer& v, int64_t gym, const Imp
   return out;
 }
 
+Result<std::pair<int64_t, Viewer>> GymImport::HeadSetterOf(const std::string& gym,
+                                                           const std::string& username) {
+  store::GymStore* gs = store::GymStoreOf(store_);
+  if (gs == nullptr) return Status::Internal("this store keeps no gyms");
+  SB_ASSIGN_OR_RETURN(std::vector<store::GymRecord> gyms, gs->ListGyms());
+  std::optional<int64_t> id;
+  for (const store::GymRecord& g : gyms) {
+    if (std::to_string(g.id) == Trim(gym) || SameFolded(g.name, gym)) id = g.id;
+  }
+  if (!id) return Status::NotFound("gym: no gym \"" + gym + "\" (an id or a name)");
+  SB_ASSIGN_OR_RETURN(std::vector<store::MemberRecord> members, gs->ListMembers(*id));
+  for (const store::MemberRecord& m : members) {
+    if (m.role != "head" || (!username.empty() && !EqualsIgnoreCase(m.username, username))) {
+      continue;
+    }
+    Viewer v;
+    v.user_id = m.user_id;
+    v.username = m.username;
+    v.address = "command line";
+    return std::make_pair(*id, v);
+  }
+  return Status::NotFound(username.empty()
+                              ? "user: the gym has no head setter"
+                              : "user: \"" + username + "\" is no head setter of the gym");
+}
+
 Result<CrdlImportSummary> GymImport::ImportCrdlFiles(const Viewer& v,
                                                      const std::vector<CrdlFile>& files,
                                                      std::optional<int64_t> gym, bool personal) {

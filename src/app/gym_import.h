@@ -20,6 +20,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "app/gyms.h"
@@ -160,6 +161,13 @@ class GymImport {
   // the file (`name:line:col: reason`), and Routes::Create's.
   Result<CrdlImportSummary> ImportCrdlFiles(const Viewer& v, const std::vector<CrdlFile>& files,
                                             std::optional<int64_t> gym, bool personal);
+
+  // For the command line (whoever holds the database acts for its gyms):
+  // the gym named by `gym` (an id, or a name ignoring case) and a viewer
+  // of its head setter `username` (the first head setter when empty).
+  // Errors: kNotFound "gym: ..." / "user: ..." naming what is missing.
+  Result<std::pair<int64_t, Viewer>> HeadSetterOf(const std::string& gym,
+                                                  const std::string& username);
 
   // The rows of `req.data` (a cheap count for the budget: lines of CSV,
   // objects of JSON, approximated by '{'). Pure.
