@@ -761,17 +761,22 @@
     importCrdl.addEventListener('click', async () => {
       if (importCrdl.disabled) return;  // one import at a time
       const files = $('#crdl-files').files;
-      let ok = 0; const errors = [];
       importCrdl.disabled = true;
       try {
-        for (const f of files) {
-          const r = await api('POST', '/api/routes', { crdl: await f.text(), gym: pageGym() });
-          if (r.status === 201) ok++; else errors.push(f.name + ': ' + ((r.data && r.data.error) || r.status));
+        // One request: every file is checked before any is stored, and a
+        // file imported before (same content) is skipped, not duplicated.
+        const list = [];
+        for (const f of files) list.push({ name: f.name, crdl: await f.text() });
+        const r = await api('POST', '/api/import/crdl', { files: list, gym: pageGym() });
+        if (r.status === 201) {
+          const skipped = r.data.skipped || [];
+          say($('#crdl-msg'), r.data.imported + ' imported' + (skipped.length ? '; ' + skipped.join('; ') : ''), true);
+        } else {
+          say($('#crdl-msg'), (r.data && r.data.error) || String(r.status), false);
         }
       } finally {
         importCrdl.disabled = false;
       }
-      say($('#crdl-msg'), ok + ' imported' + (errors.length ? '; ' + errors.join('; ') : ''), !errors.length);
     });
   }
   const importCsv = $('#import-csv');

@@ -96,6 +96,23 @@ TEST_F(AppTest, ExportReimportsToTheSameRoutes) {
   }
 }
 
+// Issue 32: importing the same export twice as personal routes duplicates
+// nothing (recognised by the original site's id, as in a gym).
+TEST_F(AppTest, ImportingTheSameCsvTwiceDuplicatesNothing) {
+  Viewer alice = User("alice");
+  Result<ImportSummary> im = services_->routes.ImportCsv(alice, kRoutes, kMoves);
+  ASSERT_TRUE(im.ok()) << im.status().message();
+  Result<ImportSummary> again = services_->routes.ImportCsv(alice, kRoutes, kMoves);
+  ASSERT_TRUE(again.ok()) << again.status().message();
+  EXPECT_TRUE(again->ids.empty());
+  int already = 0;
+  for (const std::string& n : again->skipped) already += n.find("already imported") != std::string::npos;
+  EXPECT_EQ(already, 4);
+  RouteQuery q;
+  q.mine = true;
+  EXPECT_EQ(services_->routes.List(alice, q)->size(), 4u);
+}
+
 TEST_F(AppTest, HostileRowsAreRefusedWithAPlaceAndNothingIsStored) {
   Viewer alice = User("alice");
   const std::string head =

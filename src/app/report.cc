@@ -361,7 +361,8 @@ Result<GymReport> Reports::Build([[maybe_unused]] const Viewer& v, ReportPlan pl
   out.comparison.bands = std::move(bands);
   out.comparison.variation_routes = static_cast<int>(variation_routes.size());
   out.comparison.hand_routes = static_cast<int>(hand_routes.size());
-  out.predictions = CheckPredictedGrades(store_, logbook_, gym, PredictionInputsOf(out.routes));
+  out.predictions =
+      CheckPredictedGrades(store_, logbook_, out.gym_id, PredictionInputsOf(out.routes));
 
   std::stable_sort(out.comments.begin(), out.comments.end(),
                    [](const ReportComment& a, const ReportComment& b) {

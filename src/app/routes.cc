@@ -860,6 +860,15 @@ Result<ImportSummary> Routes::ImportCsv(const Viewer& v, std::string_view routes
   std::vector<Imported> batch;
   std::map<int, int> position;  // file route_id -> position in the batch
   std::map<int, int64_t> earlier;  // file route_id -> the route a former import made
+  // Issue 32: a personal import (no gym) recognises the importer's own
+  // earlier imports by the original site's id too: twice duplicates nothing.
+  std::map<int64_t, int64_t> personal_known;  // original id -> route
+  if (!gym) {
+    SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> own, store_->AllRoutes(v.user_id));
+    for (const store::RouteRecord& r : own) {
+      if (!r.gym_id && r.original_id) personal_known.emplace(*r.original_id, r.id);
+    }
+  }
   for (const SiteRoute& sr : ex.routes) {
     SourceLocation at{kRoutesFile, sr.line, 0};
     std::string where = std::string(kRoutesFile) + ": route " + std::to_string(sr.id) + ": ";
@@ -897,6 +906,10 @@ Result<ImportSummary> Routes::ImportCsv(const Viewer& v, std::string_view routes
         out.skipped.push_back(where + "already imported as route " + std::to_string(*known));
         continue;
       }
+    } else if (auto k = personal_known.find(sr.id); !gym && k != personal_known.end()) {
+      earlier[sr.id] = k->second;
+      out.skipped.push_back(where + "already imported as route " + std::to_string(k->second));
+      continue;
     }
     Imported im{&sr, {}, {}};
     store::RouteRecord& rec = im.record;

@@ -23,7 +23,8 @@ Services::Services(Database* store, const Options& opts, Clock* clock)
                    clock),
       rendered(store, clock),
       profiles(store, opts),
-      scales(store, &gyms) {
+      scales(store, &gyms),
+      imports(store, opts, &routes, &gyms, &scales) {
   // An install starts with one gym (issue 21), named at its first start.
   if (Status g = gyms.EnsureFirstGym(opts.first_gym_name); !g.ok()) {
     LogError("first gym: " + g.message());

@@ -12,6 +12,7 @@
 #include "app/climber_feedback.h"
 #include "app/clock.h"
 #include "app/dashboard.h"
+#include "app/gym_import.h"
 #include "app/gyms.h"
 #include "app/logbook.h"
 #include "app/maps.h"
@@ -63,6 +64,9 @@ struct Services {
   Profiles profiles;
   // A gym's own grade scales and a wall's scale (issue 32).
   Scales scales;
+  // A gym's own route list, previewed and confirmed; CRDL files once only
+  // (issue 32).
+  GymImport imports;
 };
 
 }  // namespace sb::app

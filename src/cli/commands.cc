@@ -27,6 +27,7 @@ const Command kCommands[] = {
     {"serve", "run the web app", RunServe},
     {"db", "database operations: info, migrate, copy between SQLite and PostgreSQL", RunDb},
     {"synth", "fill a fresh database with a synthetic gym chain (benchmarks at scale)", RunSynth},
+    {"import", "import a gym's own route list (CSV or JSON; --dry-run previews)", RunImport},
 };
 
 void PrintUsage(std::FILE* out) {

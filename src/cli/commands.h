@@ -41,6 +41,7 @@ int RunGrade(const std::vector<std::string>& args);
 int RunDifficulty(const std::vector<std::string>& args);
 int RunRatings(const std::vector<std::string>& args);
 int RunSynth(const std::vector<std::string>& args);  // cmd_synth.cc (issue 22)
+int RunImport(const std::vector<std::string>& args);  // cmd_import.cc (issue 32)
 
 }  // namespace sb::cli
 

@@ -73,7 +73,9 @@ std::vector<size_t> ColumnsByName(const Rows& r) {
 const std::vector<std::string>& AddedColumns(const std::string& table) {
   static const std::vector<std::string> kRoutes = {
       "gym_id",      "wall_id", "state", "planned_on", "strip_on", "original_id",
-      "search_text", "search_version", "revision"};
+      "search_text", "search_version", "revision",
+      // Schema 20 (issue 32): the import key.
+      "import_key"};
   static const std::vector<std::string> kStudies = {"gym_id"};
   // Schema 14 (issue 31): the revisions.
   static const std::vector<std::string> kRevision = {"revision"};

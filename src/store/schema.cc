@@ -669,6 +669,18 @@ END IF;
 RETURN NULL; END $$;
 )sql"},
        }},
+      // Schema 20 (issue 32, route lists as gyms have them): what an import
+      // recognises a route by ("id:B-17", the gym list's own id; "crdl:<hex>",
+      // the content hash of an imported CRDL file; "" = none), so importing
+      // the same list or files again updates or skips instead of duplicating.
+      // store/import_store.h.
+      {"a route's import key (issue 32)",
+       {
+           {Only::kBoth, R"sql(
+ALTER TABLE routes ADD COLUMN import_key TEXT NOT NULL DEFAULT '';
+CREATE INDEX routes_import_key ON routes(gym_id, import_key);
+)sql"},
+       }},
   };
   return kMigrations;
 }

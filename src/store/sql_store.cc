@@ -15,6 +15,7 @@
 #include "store/bulk_sql.h"
 #include "store/bulk_store.h"
 #include "store/gym_store.h"
+#include "store/import_store.h"
 #include "store/open.h"
 #include "store/profile_store.h"
 #include "store/scale_store.h"
@@ -180,7 +181,8 @@ VariationInput ReadInput(const Rows& s, size_t i, size_t first) {
 }
 
 class SqlStore final : public Store, public GymStore, public TickStore, public TargetStore,
-                       public BulkStore, public ProfileStore, public ScaleStore {
+                       public BulkStore, public ProfileStore, public ScaleStore,
+                       public ImportStore {
  public:
   explicit SqlStore(std::unique_ptr<sql::Pool> pool)
       : pool_(std::move(pool)), pg_(pool_->dialect() == sql::Dialect::kPostgres) {}
@@ -340,6 +342,42 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
     for (size_t i = 0; i < r.size(); ++i) {
       out.push_back({r.Int(i, 0), r.Int(i, 1), r.Text(i, 2), r.Text(i, 3)});
     }
+    return out;
+  }
+
+  // -- import keys (issue 32) -----------------------------------------------
+
+  Status SetImportKey(int64_t route_id, const std::string& key) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(
+        Rows r, c->Query("UPDATE routes SET import_key = ? WHERE id = ? RETURNING id",
+                         {key, route_id}));
+    if (r.empty()) return Status::NotFound("no route " + std::to_string(route_id));
+    return Status::Ok();
+  }
+
+  Result<std::vector<std::pair<std::string, int64_t>>> ImportKeys(
+      std::optional<int64_t> gym_id, std::optional<int64_t> owner_id,
+      const std::string& prefix) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    std::string q =
+        "SELECT import_key, id FROM routes WHERE import_key <> '' AND import_key LIKE ?";
+    // The prefixes are the app's constants ("id:", "crdl:"): no LIKE escapes.
+    std::vector<Value> args{prefix + "%"};
+    if (gym_id) {
+      q += " AND gym_id = ?";
+      args.push_back(*gym_id);
+    } else {
+      q += " AND gym_id IS NULL";
+    }
+    if (owner_id) {
+      q += " AND owner_id = ?";
+      args.push_back(*owner_id);
+    }
+    q += " ORDER BY id";
+    SB_ASSIGN_OR_RETURN(Rows r, c->Query(q, args));
+    std::vector<std::pair<std::string, int64_t>> out;
+    for (size_t i = 0; i < r.size(); ++i) out.emplace_back(r.Text(i, 0), r.Int(i, 1));
     return out;
   }
 
@@ -1689,6 +1727,7 @@ TargetStore* TargetStoreOf(Store* store) { return dynamic_cast<TargetStore*>(sto
 BulkStore* BulkStoreOf(Store* store) { return dynamic_cast<BulkStore*>(store); }
 ProfileStore* ProfileStoreOf(Store* store) { return dynamic_cast<ProfileStore*>(store); }
 ScaleStore* ScaleStoreOf(Store* store) { return dynamic_cast<ScaleStore*>(store); }
+ImportStore* ImportStoreOf(Store* store) { return dynamic_cast<ImportStore*>(store); }
 
 bool IsDatabaseUrl(std::string_view db) {
   size_t colon = db.find(':');

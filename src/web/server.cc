@@ -76,6 +76,9 @@ const Endpoint kEndpoints[] = {
     {"GET", "/api/gyms/{id}/circuits", ListCircuits},
     {"POST", "/api/gyms/{id}/scales", PostGymScale},
     {"GET", "/api/gyms/{id}/scales", ListGymScales},
+    {"POST", "/api/gyms/{id}/import", PostGymImport},
+    {"POST", "/api/import/crdl", PostImportCrdl},
+    {"GET", "/gyms/{id}/import", PageGymImport},
     {"GET", "/api/gyms/{id}/tags.pdf", GetGymTagSheetPdf},
     // Setting days (setting_day_handlers.cc, issue 22).
     {"POST", "/api/gyms/{id}/setting-days", PostSettingDay},
