@@ -103,7 +103,8 @@ std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<
                                     "/setting-day\" id=\"gym-setting-day\">" +
                                     Tr(v, "Setting day") + "</a>"
                               : std::string()) +
-       (head ? " · <a href=\"/gyms/" + gid + "/import\" id=\"gym-import\">Import a route list</a>"
+       (head ? " · <a href=\"/gyms/" + gid + "/import\" id=\"gym-import\">" +
+                    Tr(v, "Import a route list") + "</a>"
              : std::string()) +
        "</p>\n";
   b += "<h2>" + Tr(v, "Walls") + "</h2>\n";
