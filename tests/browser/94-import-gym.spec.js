@@ -52,13 +52,16 @@ module.exports = async (t) => {
   const walls = (await api('GET', gp + '/walls')).data.walls;
   const a = walls.find((w) => w.name === 'Sektor A');
   check(a && a.scale === 'Halle 1-6', 'the new sector reads the gym scale (' + (a && a.scale) + ')');
+  // A German head setter: the tags print in their language (the account's, issue 32).
+  const de = await api('PUT', '/api/account', { language: 'de' });
+  check(de.status === 200, 'the head setter reads German (' + de.status + ')');
   const pdf = await page.request.get(base + gp + '/tags.pdf?wall=' + a.id);
   check(pdf.status() === 200, 'the sector\'s tags print (' + pdf.status() + ')');
   const file = path.join(out, '94-sektor-a.pdf');
   fs.writeFileSync(file, await pdf.body());
   const text = execFileSync('pdftotext', [file, '-']).toString();
   check(['Gelber Riss', 'gelb', 'blau', 'schwarz', 'Simon Räss'].every((s) => text.includes(s)),
-    'the tags show the names, colour names and setters');
+    'the tags show the names, colour names and setters (' + text.replace(/\s+/g, ' ').slice(0, 200) + ')');
   const tg = await api('PUT', gp + '/walls/' + a.id + '/targets', { grades: { '3': 2, '6': 1 } });
   check(tg.status === 200, 'targets in the gym scale are accepted (' + tg.status + ')');
   const bad = await api('PUT', gp + '/walls/' + a.id + '/targets', { grades: { 'V4': 1 } });
