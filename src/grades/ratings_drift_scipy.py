@@ -23,56 +23,25 @@ dense inverse Hessian; the Laplace log evidence is -f(x) + sum(log link
 precision) / 2 - log det(H) / 2 (numpy.linalg.slogdet), up to constants free
 of w (the felt grades' sum(f^2) / 2 felt_sd^2 is left out, as the C++ does).
 Exit code 3 when scipy is missing (the test then skips with a message).
+The reading of a case, the games of a tick and the Newton polish are
+ratings_oracle.py's (shared with ratings_scipy.py).
 """
-import json
-import sys
-
-try:
-    import numpy as np
-    from scipy import optimize
-    from scipy.special import expit, log_expit
-except ImportError as e:  # pragma: no cover
-    print(f"ratings_drift_scipy.py: {e}", file=sys.stderr)
-    sys.exit(3)
-
-
-def games(outcome, attempts):
-    if outcome == "flash":
-        return 1, 0
-    if outcome == "send":
-        n = 2 if attempts is None else attempts
-        return 1, n - 1
-    return 0, (1 if attempts is None else attempts)
+from ratings_oracle import expit, log_expit, main, np, optimize, polish, route_priors, tick_games
 
 
 def fit(case):
     k = case["params"]
     s = k["logit_per_unit"]
     C, R = case["climbers"], case["routes"]
-    setter = case["setter"]
     w, node_days = case["w"], case["node_days"]
-    graded = [g for g in setter if g is not None]
-    felt_all = [t[4] for t in case["ticks"] if t[4] is not None]
-    m = float(np.mean(graded)) if graded else (float(np.mean(felt_all)) if felt_all else 0.0)
-    mu = np.array([m if g is None else g for g in setter], dtype=float)
-    sd = np.array([k["open_route_sd"] if g is None else k["setter_sd"] for g in setter])
+    m, mu, sd = route_priors(case)
     first = min(t[5] for t in case["ticks"])
     keys = sorted({(t[0], (t[5] - first) // node_days) for t in case["ticks"]} |
                   {(c, 0) for c in range(C) if not any(t[0] == c for t in case["ticks"])})
     node = {key: i for i, key in enumerate(keys)}
     N = len(keys)
-    gc, gr, gw, fr, fv = [], [], [], [], []
-    for c, r, outcome, attempts, felt, day in case["ticks"]:
-        j = node[(c, (day - first) // node_days)]
-        win, loss = games(outcome, attempts)
-        gc += [j] * (win + loss)
-        gr += [r] * (win + loss)
-        gw += [1] * win + [0] * loss
-        if felt is not None:
-            fr.append(r)
-            fv.append(felt)
-    gc, gr, gw = np.array(gc, dtype=int), np.array(gr, dtype=int), np.array(gw, dtype=float)
-    fr, fv = np.array(fr, dtype=int), np.array(fv, dtype=float)
+    gc, gr, gw, fr, fv = tick_games(case["ticks"],
+                                    lambda t: node[(t[0], (t[5] - first) // node_days)])
     firsts = [i for i, key in enumerate(keys) if i == 0 or keys[i - 1][0] != key[0]]
     links = []  # (i, i + 1, precision)
     for i in range(N - 1):
@@ -128,12 +97,7 @@ def fit(case):
     x0 = np.concatenate([np.full(N, m), mu])
     res = optimize.minimize(f, x0, jac=grad, hess=hess, method="trust-exact",
                             options={"gtol": 1e-10, "maxiter": 1000})
-    x = res.x
-    for _ in range(50):
-        g = grad(x)
-        if np.max(np.abs(g)) < 1e-11:
-            break
-        x = x - np.linalg.solve(hess(x), g)
+    x = polish(res.x, grad, hess)
     H = hess(x)
     sds = np.sqrt(np.diag(np.linalg.inv(H)))
     _, logdet = np.linalg.slogdet(H)
@@ -148,13 +112,5 @@ def fit(case):
             "success": bool(np.max(np.abs(grad(x))) < 1e-8)}
 
 
-def main():
-    with open(sys.argv[1]) as fh:
-        spec = json.load(fh)
-    out = {"cases": [fit(c) for c in spec["cases"]]}
-    with open(sys.argv[2], "w") as fh:
-        json.dump(out, fh)
-
-
 if __name__ == "__main__":
-    main()
+    main(fit)

@@ -35,26 +35,10 @@ The session model with zones and session offsets ("model": "session_zones",
 fit_session_zones below; ratings_session.h) takes rows of competition
 results instead of ticks.
 Exit code 3 when scipy is missing (the test then skips with a message).
+The reading of a case, the games of a tick and the Newton polish are
+ratings_oracle.py's (shared with ratings_drift_scipy.py).
 """
-import json
-import sys
-
-try:
-    import numpy as np
-    from scipy import optimize
-    from scipy.special import expit, log_expit
-except ImportError as e:  # pragma: no cover
-    print(f"ratings_scipy.py: {e}", file=sys.stderr)
-    sys.exit(3)
-
-
-def games(outcome, attempts):
-    if outcome == "flash":
-        return 1, 0
-    if outcome == "send":
-        n = 2 if attempts is None else attempts
-        return 1, n - 1
-    return 0, (1 if attempts is None else attempts)
+from ratings_oracle import expit, log_expit, main, np, optimize, polish, route_priors, tick_games
 
 
 def fit(case):
@@ -65,30 +49,9 @@ def fit(case):
     k = case["params"]
     s = k["logit_per_unit"]
     C, R = case["climbers"], case["routes"]
-    setter = case["setter"]
-    graded = [g for g in setter if g is not None]
-    felt_all = [t[4] for t in case["ticks"] if t[4] is not None]
-    if graded:
-        m = float(np.mean(graded))
-    elif felt_all:
-        m = float(np.mean(felt_all))
-    else:
-        m = 0.0
-    mu = np.array([m if g is None else g for g in setter], dtype=float)
-    sd = np.array([k["open_route_sd"] if g is None else k["setter_sd"] for g in setter])
+    m, mu, sd = route_priors(case)
     # One row per game: climber index, route index, 1 for a climber's win.
-    gc, gr, gw = [], [], []
-    fr, fv = [], []
-    for c, r, outcome, attempts, felt in case["ticks"]:
-        w, l = games(outcome, attempts)
-        gc += [c] * (w + l)
-        gr += [r] * (w + l)
-        gw += [1] * w + [0] * l
-        if felt is not None:
-            fr.append(r)
-            fv.append(felt)
-    gc, gr, gw = np.array(gc, dtype=int), np.array(gr, dtype=int), np.array(gw, dtype=float)
-    fr, fv = np.array(fr, dtype=int), np.array(fv, dtype=float)
+    gc, gr, gw, fr, fv = tick_games(case["ticks"])
     pa = 1.0 / k["climber_sd"] ** 2
     pf = 1.0 / k["felt_sd"] ** 2
     n = C + R
@@ -160,28 +123,12 @@ def predict(case, a, d, m, s, offset=0.0):
     return np.array(res, dtype=float)
 
 
-def polish(x, grad, hess):
-    """Plain Newton steps from the minimiser's answer until the gradient is
-    below 1e-11 (trust-exact can stop short on the flat session games)."""
-    for _ in range(50):
-        g = grad(x)
-        if np.max(np.abs(g)) < 1e-11:
-            break
-        x = x - np.linalg.solve(hess(x), g)
-    return x
-
-
 def fit_session(case):
     """The session model: a first-try game and a session game per tick."""
     k = case["params"]
     s = k["logit_per_unit"]
     C, R = case["climbers"], case["routes"]
-    setter = case["setter"]
-    graded = [g for g in setter if g is not None]
-    felt_all = [t[4] for t in case["ticks"] if t[4] is not None]
-    m = float(np.mean(graded)) if graded else (float(np.mean(felt_all)) if felt_all else 0.0)
-    mu = np.array([m if g is None else g for g in setter], dtype=float)
-    sd = np.array([k["open_route_sd"] if g is None else k["setter_sd"] for g in setter])
+    m, mu, sd = route_priors(case)
     gc, gr, gw, gs, fr, fv = [], [], [], [], [], []
     for c, r, outcome, attempts, felt in case["ticks"]:
         # first try: won only by a flash; session: won by a flash or a send
@@ -382,13 +329,5 @@ def fit_session_zones(case):
             "p_flash": pf, "p_send": ps}
 
 
-def main():
-    with open(sys.argv[1]) as fh:
-        spec = json.load(fh)
-    out = {"cases": [fit(c) for c in spec["cases"]]}
-    with open(sys.argv[2], "w") as fh:
-        json.dump(out, fh)
-
-
 if __name__ == "__main__":
-    main()
+    main(fit)
