@@ -8,60 +8,23 @@
 #include <thread>
 #include <utility>
 
+#include "grades/ratings_newton.h"
+
 namespace sb::grades {
 
 namespace {
 
-// Largest relative residual of a Newton step's CG solve. A CG iteration
-// costs one pass over the pairs without exp(), a Newton iteration several
-// with it, so solving each step well (1e-2) pays: looser steps (0.5) took
-// three to four times the Newton iterations on the synthetic gyms.
-constexpr double kMaxForcing = 1e-2;
+using newton::Num;
+using newton::PairTerms;
+using newton::PriorMean;
+using newton::Sigmoid;
+using newton::Softplus;
 // Largest step of one coordinate pass, in grades: a 1-D Newton step from a
 // point where the logistic is flat can be huge; two grades is far enough to
 // cross a gym in a few passes without jumping past the optimum.
 constexpr double kMaxCoordinateStep = 2.0;
 // Coordinate passes before Newton when there is no warm start.
 constexpr int kCoordinateRounds = 4;
-// Alternations of the session offset with the other values before giving up.
-constexpr int kMaxOffsetRounds = 200;
-
-// log(1 + exp(x)) without overflow or loss of precision.
-double Softplus(double x) { return x > 0 ? x + std::log1p(std::exp(-x)) : std::log1p(std::exp(x)); }
-
-// 1 / (1 + exp(-x)).
-double Sigmoid(double x) {
-  if (x >= 0) return 1 / (1 + std::exp(-x));
-  const double e = std::exp(x);
-  return e / (1 + e);
-}
-
-std::string Num(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%g", v);
-  return b;
-}
-
-// The prior mean m of climbers and of routes without a setter's grade.
-double PriorMean(const RatingProblem& p) {
-  double sum = 0;
-  int n = 0;
-  for (const auto& s : p.setter) {
-    if (s) {
-      sum += *s;
-      ++n;
-    }
-  }
-  if (n > 0) return sum / n;
-  double felt = 0;
-  int fn = 0;
-  for (int r = 0; r < p.num_routes(); ++r) {
-    felt += p.felt_sum[size_t(r)];
-    fn += p.felt_count[size_t(r)];
-  }
-  return fn > 0 ? felt / fn : 0;
-}
-
 // Problems below this many pairs run on one thread (threads cost more than
 // they save).
 constexpr size_t kMinPairsPerThread = 20000;
@@ -94,7 +57,13 @@ void ParallelFor(size_t n, int threads, const Fn& fn) {
 class Solver {
  public:
   Solver(const RatingProblem& p, const RatingParams& k, double m, double b = 0, int threads = 1)
-      : p_(p), k_(k), m_(m), b_(b), c_(size_t(p.num_climbers)), r_(size_t(p.num_routes())) {
+      : p_(p),
+        k_(k),
+        m_(m),
+        b_(b),
+        c_(size_t(p.num_climbers)),
+        r_(size_t(p.num_routes())),
+        routes_(p, k, m) {
     threads_ = p.pairs.size() < kMinPairsPerThread ? 1 : std::max(1, threads);
     if (threads_ > 1) {
       route_start_.assign(r_ + 1, 0);
@@ -110,14 +79,6 @@ class Solver {
       }
       dz_.resize(p.pairs.size());
     }
-    prior_mean_.resize(r_);
-    prior_prec_.resize(r_);
-    for (size_t r = 0; r < r_; ++r) {
-      const auto& s = p.setter[r];
-      const double sd = s ? k.setter_sd : k.open_route_sd;
-      prior_mean_[r] = s ? *s : m;
-      prior_prec_[r] = 1 / (sd * sd) + p.felt_count[r] / (k.felt_sd * k.felt_sd);
-    }
     h_.resize(p.pairs.size());
     diag_.resize(c_ + r_);
   }
@@ -126,7 +87,6 @@ class Solver {
   double Objective(const std::vector<double>& x) const {
     const double kk = k_.logit_per_unit;
     const double pa = 1 / (k_.climber_sd * k_.climber_sd);
-    const double pf = 1 / (k_.felt_sd * k_.felt_sd);
     double f = 0;
     for (const RatingPair& q : p_.pairs) {
       const double z = kk * (x[size_t(q.climber)] - x[c_ + size_t(q.route)]);
@@ -138,13 +98,7 @@ class Solver {
       }
     }
     for (size_t c = 0; c < c_; ++c) f += 0.5 * pa * (x[c] - m_) * (x[c] - m_);
-    for (size_t r = 0; r < r_; ++r) {
-      const double d = x[c_ + r];
-      const auto& s = p_.setter[r];
-      const double sd = s ? k_.setter_sd : k_.open_route_sd;
-      f += 0.5 * (d - prior_mean_[r]) * (d - prior_mean_[r]) / (sd * sd);
-      f += 0.5 * pf * (p_.felt_count[r] * d * d - 2 * d * p_.felt_sum[r]);
-    }
+    routes_.AddObjective(x, c_, &f);
     return f;
   }
 
@@ -153,20 +107,12 @@ class Solver {
   void GradientAndHessian(const std::vector<double>& x, std::vector<double>* g) {
     const double kk = k_.logit_per_unit;
     const double pa = 1 / (k_.climber_sd * k_.climber_sd);
-    const double pf = 1 / (k_.felt_sd * k_.felt_sd);
     g->assign(c_ + r_, 0);
     for (size_t c = 0; c < c_; ++c) {
       (*g)[c] = pa * (x[c] - m_);
       diag_[c] = pa;
     }
-    for (size_t r = 0; r < r_; ++r) {
-      const double d = x[c_ + r];
-      const auto& s = p_.setter[r];
-      const double sd = s ? k_.setter_sd : k_.open_route_sd;
-      (*g)[c_ + r] =
-          (d - prior_mean_[r]) / (sd * sd) + pf * (p_.felt_count[r] * d - p_.felt_sum[r]);
-      diag_[c_ + r] = prior_prec_[r];
-    }
+    routes_.SetGradient(x, c_, g, &diag_);
     if (threads_ > 1) {
       // Routes (their pairs contiguous): each pair's terms, the route's sums.
       ParallelFor(r_, threads_, [&](size_t lo, size_t hi) {
@@ -175,11 +121,8 @@ class Solver {
           for (size_t i = route_start_[r]; i < route_start_[r + 1]; ++i) {
             const RatingPair& q = p_.pairs[i];
             const size_t a = size_t(q.climber);
-            const double pr = Sigmoid(kk * (x[a] - x[d]));
-            const double n = double(q.wins) + double(q.losses);
-            double dz = kk * (n * pr - q.wins);
-            double h = kk * kk * n * pr * (1 - pr);
-            if (q.session_wins | q.session_losses) SessionTerms(q, x[a] - x[d], &dz, &h);
+            double dz = 0, h = 0;
+            PairTerms(q, kk, b_, x[a] - x[d], &dz, &h);
             dz_[i] = dz;
             h_[i] = h;
             (*g)[d] -= dz;
@@ -202,11 +145,8 @@ class Solver {
     for (size_t i = 0; i < p_.pairs.size(); ++i) {
       const RatingPair& q = p_.pairs[i];
       const size_t a = size_t(q.climber), d = c_ + size_t(q.route);
-      const double pr = Sigmoid(kk * (x[a] - x[d]));
-      const double n = double(q.wins) + double(q.losses);
-      double dz = kk * (n * pr - q.wins);
-      double h = kk * kk * n * pr * (1 - pr);
-      if (q.session_wins | q.session_losses) SessionTerms(q, x[a] - x[d], &dz, &h);
+      double dz = 0, h = 0;
+      PairTerms(q, kk, b_, x[a] - x[d], &dz, &h);
       (*g)[a] += dz;
       (*g)[d] -= dz;
       h_[i] = h;
@@ -252,48 +192,9 @@ class Solver {
   // Solves H s = -g approximately (relative residual eta) by Jacobi-
   // preconditioned conjugate gradients from s = 0. Returns the iterations.
   int SolveNewtonStep(const std::vector<double>& g, double eta, std::vector<double>* s) {
-    const size_t n = c_ + r_;
-    s->assign(n, 0);
-    std::vector<double> r(n), z(n), dir(n), hd(n);
-    double g2 = 0;
-    for (size_t i = 0; i < n; ++i) {
-      r[i] = -g[i];
-      g2 += g[i] * g[i];
-    }
-    double rz = 0;
-    for (size_t i = 0; i < n; ++i) {
-      z[i] = r[i] / diag_[i];
-      dir[i] = z[i];
-      rz += r[i] * z[i];
-    }
-    const double target = eta * eta * g2;
-    // CG converges in at most n steps in exact arithmetic; the bound keeps a
-    // pathological problem from spinning (the iterate is a descent direction
-    // at every step, so stopping early is safe).
-    const int max_iter = int(std::min<size_t>(n, 5000));
-    int it = 0;
-    double r2 = g2;
-    while (it < max_iter && r2 > target) {
-      Multiply(dir, &hd);
-      double dhd = 0;
-      for (size_t i = 0; i < n; ++i) dhd += dir[i] * hd[i];
-      if (!(dhd > 0)) break;
-      const double alpha = rz / dhd;
-      r2 = 0;
-      double rz_new = 0;
-      for (size_t i = 0; i < n; ++i) {
-        (*s)[i] += alpha * dir[i];
-        r[i] -= alpha * hd[i];
-        r2 += r[i] * r[i];
-        z[i] = r[i] / diag_[i];
-        rz_new += r[i] * z[i];
-      }
-      const double beta = rz_new / rz;
-      rz = rz_new;
-      for (size_t i = 0; i < n; ++i) dir[i] = z[i] + beta * dir[i];
-      ++it;
-    }
-    return it;
+    return newton::SolveJacobiCg(
+        g, eta, diag_, s,
+        [this](const std::vector<double>& v, std::vector<double>* y) { Multiply(v, y); });
   }
 
   // A starting point near the optimum: alternating passes in which every
@@ -306,7 +207,6 @@ class Solver {
   void CoordinatePasses(std::vector<double>* x, int rounds) {
     const double kk = k_.logit_per_unit;
     const double pa = 1 / (k_.climber_sd * k_.climber_sd);
-    const double pf = 1 / (k_.felt_sd * k_.felt_sd);
     std::vector<double> g(c_ + r_), h(c_ + r_);
     for (int round = 0; round < rounds; ++round) {
       for (int side = 0; side < 2; ++side) {
@@ -315,25 +215,14 @@ class Solver {
           g[c] = pa * ((*x)[c] - m_);
           h[c] = pa;
         }
-        for (size_t r = 0; r < r_ && side == 1; ++r) {
-          const double d = (*x)[c_ + r];
-          const auto& s = p_.setter[r];
-          const double sd = s ? k_.setter_sd : k_.open_route_sd;
-          g[c_ + r] =
-              (d - prior_mean_[r]) / (sd * sd) + pf * (p_.felt_count[r] * d - p_.felt_sum[r]);
-          h[c_ + r] = prior_prec_[r];
-        }
+        if (side == 1) routes_.SetGradient(*x, c_, &g, &h);
         if (threads_ > 1) {
           // One pass per side: a route's pairs are contiguous; a climber's
           // come from the index, in pair order (the loop below's order).
           auto term = [&](size_t i, double* dz, double* w) {
             const RatingPair& q = p_.pairs[i];
             const size_t a = size_t(q.climber), d = c_ + size_t(q.route);
-            const double pr = Sigmoid(kk * ((*x)[a] - (*x)[d]));
-            const double n = double(q.wins) + double(q.losses);
-            *dz = kk * (n * pr - q.wins);
-            *w = kk * kk * n * pr * (1 - pr);
-            if (q.session_wins | q.session_losses) SessionTerms(q, (*x)[a] - (*x)[d], dz, w);
+            PairTerms(q, kk, b_, (*x)[a] - (*x)[d], dz, w);
           };
           if (side == 0) {
             ParallelFor(c_, threads_, [&](size_t clo, size_t chi) {
@@ -362,11 +251,8 @@ class Solver {
         for (const RatingPair& q : p_.pairs) {
           if (threads_ > 1) break;
           const size_t a = size_t(q.climber), d = c_ + size_t(q.route);
-          const double pr = Sigmoid(kk * ((*x)[a] - (*x)[d]));
-          const double n = double(q.wins) + double(q.losses);
-          double dz = kk * (n * pr - q.wins);
-          double w = kk * kk * n * pr * (1 - pr);
-          if (q.session_wins | q.session_losses) SessionTerms(q, (*x)[a] - (*x)[d], &dz, &w);
+          double dz = 0, w = 0;
+          PairTerms(q, kk, b_, (*x)[a] - (*x)[d], &dz, &w);
           const size_t i = side == 0 ? a : d;
           g[i] += side == 0 ? dz : -dz;
           h[i] += w;
@@ -378,29 +264,10 @@ class Solver {
     }
   }
 
-  // The session games' gradient (per unit of a - d) and Fisher information
-  // added to dz and h.
-  void SessionTerms(const RatingPair& q, double diff, double* dz, double* h) const {
-    const double kk = k_.logit_per_unit;
-    const double ps = Sigmoid(kk * diff + b_);
-    const double ns = double(q.session_wins) + double(q.session_losses);
-    *dz += kk * (ns * ps - q.session_wins);
-    *h += kk * kk * ns * ps * (1 - ps);
-  }
-
   // The session offset's gradient and second derivative of the games (its
   // prior not included) at x.
   void OffsetDerivatives(const std::vector<double>& x, double* g, double* h) const {
-    const double kk = k_.logit_per_unit;
-    *g = 0;
-    *h = 0;
-    for (const RatingPair& q : p_.pairs) {
-      if (!(q.session_wins | q.session_losses)) continue;
-      const double ps = Sigmoid(kk * (x[size_t(q.climber)] - x[c_ + size_t(q.route)]) + b_);
-      const double ns = double(q.session_wins) + double(q.session_losses);
-      *g += ns * ps - q.session_wins;
-      *h += ns * ps * (1 - ps);
-    }
+    newton::OffsetDerivatives(p_.pairs, k_.logit_per_unit, b_, x, c_, g, h);
   }
   void set_offset(double b) { b_ = b; }
   double offset() const { return b_; }
@@ -420,7 +287,7 @@ class Solver {
   std::vector<size_t> route_start_, climber_start_;
   std::vector<uint32_t> climber_pairs_;
   std::vector<double> dz_;
-  std::vector<double> prior_mean_, prior_prec_;
+  newton::RoutePriors routes_;
   std::vector<double> h_, diag_;
 };
 
@@ -454,41 +321,8 @@ Status ExactVariances(const RatingProblem& p, const std::vector<double>& h,
       }
     }
   }
-  // Cholesky, lower triangle in place (row-major).
-  for (size_t j = 0; j < r_n; ++j) {
-    double* rj = &s[j * r_n];
-    double dsum = rj[j];
-    for (size_t k = 0; k < j; ++k) dsum -= rj[k] * rj[k];
-    if (!(dsum > 0)) return Status::Internal("ratings: the Hessian is not positive definite");
-    const double ljj = std::sqrt(dsum);
-    rj[j] = ljj;
-    for (size_t i = j + 1; i < r_n; ++i) {
-      double* ri = &s[i * r_n];
-      double t = ri[j];
-      for (size_t k = 0; k < j; ++k) t -= ri[k] * rj[k];
-      ri[j] = t / ljj;
-    }
-  }
-  // W = L^-1, lower triangular, row-major: row i of W from rows < i.
-  std::vector<double> w(r_n * r_n, 0);
-  for (size_t i = 0; i < r_n; ++i) {
-    const double* li = &s[i * r_n];
-    double* wi = &w[i * r_n];
-    for (size_t k = 0; k < i; ++k) {
-      const double lik = li[k];
-      if (lik == 0) continue;
-      const double* wk = &w[k * r_n];
-      for (size_t j = 0; j <= k; ++j) wi[j] -= lik * wk[j];
-    }
-    for (size_t j = 0; j < i; ++j) wi[j] /= li[i];
-    wi[i] = 1 / li[i];
-  }
-  std::vector<double> var(r_n, 0);
-  for (size_t i = 0; i < r_n; ++i) {
-    const double* wi = &w[i * r_n];
-    for (size_t j = 0; j <= i; ++j) var[j] += wi[j] * wi[j];
-  }
-  for (size_t r = 0; r < r_n; ++r) fit->difficulty_sd[r] = std::sqrt(var[r]);
+  std::vector<double> w;
+  SB_RETURN_IF_ERROR(newton::SchurVariances(&s, r_n, &w, &fit->difficulty_sd));
   std::vector<double> wb(r_n);
   for (size_t c = 0; c < c_n; ++c) {
     std::fill(wb.begin(), wb.end(), 0.0);
@@ -758,13 +592,7 @@ Result<RatingFit> FitRatings(const RatingProblem& problem, const RatingParams& p
   SB_RETURN_IF_ERROR(params.Validate());
   SB_RETURN_IF_ERROR(problem.Validate());
   const size_t c_n = size_t(problem.num_climbers), r_n = size_t(problem.num_routes());
-  const bool exact = options.intervals == IntervalMethod::kExact ||
-                     (options.intervals == IntervalMethod::kAuto && r_n <= kMaxExactRoutes);
-  if (exact && r_n > kMaxExactRoutes) {
-    return Status::InvalidInput("intervals: exact intervals are limited to " +
-                                std::to_string(kMaxExactRoutes) + " routes, got " +
-                                std::to_string(r_n) + " (use approximate)");
-  }
+  SB_ASSIGN_OR_RETURN(const bool exact, newton::UseExactIntervals(options.intervals, r_n));
   RatingFit fit;
   fit.prior_mean = PriorMean(problem);
   fit.model = problem.model;
@@ -792,59 +620,15 @@ Result<RatingFit> FitRatings(const RatingProblem& problem, const RatingParams& p
   } else {
     solver.CoordinatePasses(&x, kCoordinateRounds);
   }
-  std::vector<double> g, step, trial(x.size());
-  bool converged = false;
-  // The session model's offset b: blocks alternate (Newton on the abilities
-  // and difficulties with b held, then one Newton step on b with them held)
-  // until b's gradient is below the tolerance too; the objective is jointly
-  // convex, so this reaches the joint optimum.
-  for (int round = 0; round < kMaxOffsetRounds; ++round) {
-    double f = solver.Objective(x);
-    converged = false;
-    for (int it = 0; it <= options.max_newton_iterations; ++it) {
-      solver.GradientAndHessian(x, &g);
-      double gmax = 0;
-      for (double v : g) gmax = std::max(gmax, std::abs(v));
-      fit.gradient_max = gmax;
-      if (gmax <= options.gradient_tolerance) {
-        converged = true;
-        break;
-      }
-      if (it == options.max_newton_iterations) break;
-      ++fit.newton_iterations;
-      // Forcing term: loose steps far from the optimum, exact ones near it
-      // (superlinear convergence of inexact Newton, Eisenstat & Walker).
-      const double eta = std::min(kMaxForcing, std::sqrt(gmax));
-      fit.cg_iterations += solver.SolveNewtonStep(g, eta, &step);
-      double slope = 0;
-      for (size_t i = 0; i < x.size(); ++i) slope += g[i] * step[i];
-      // Backtracking (Armijo); the relative slack absorbs rounding once the
-      // decrease is below the objective's last digits.
-      // Once the predicted decrease is below the objective's rounding, the
-      // objective cannot judge a step: take the full Newton step (quadratic
-      // convergence region).
-      const bool judge = -slope > 1e-10 * (1 + std::abs(f));
-      double t = 1;
-      double f_new = f;
-      for (int half = 0; half < 60; ++half, t *= 0.5) {
-        for (size_t i = 0; i < x.size(); ++i) trial[i] = x[i] + t * step[i];
-        f_new = solver.Objective(trial);
-        if (!judge || f_new <= f + 1e-4 * t * slope) break;
-      }
-      x.swap(trial);
-      f = f_new;
-    }
-    if (!converged || !estimate_offset) break;
-    double gb = 0, hb = 0;
-    solver.OffsetDerivatives(x, &gb, &hb);
-    const double pb = 1 / (kSessionOffsetPriorSd * kSessionOffsetPriorSd);
-    gb += pb * (solver.offset() - kSessionOffsetPriorMean);
-    hb += pb;
-    if (std::abs(gb) <= options.gradient_tolerance) break;
-    converged = false;
-    solver.set_offset(solver.offset() -
-                      std::clamp(gb / hb, -kMaxCoordinateStep, kMaxCoordinateStep));
-  }
+  // The session model's offset b: blocks alternate with the rest
+  // (newton::MinimizeNewtonWithOffset).
+  newton::NewtonStats st;
+  const bool converged =
+      newton::MinimizeNewtonWithOffset(solver, &x, options.gradient_tolerance,
+                                       options.max_newton_iterations, estimate_offset, &st);
+  fit.newton_iterations = st.newton_iterations;
+  fit.cg_iterations = st.cg_iterations;
+  fit.gradient_max = st.gradient_max;
   fit.session_offset = session ? solver.offset() : 0.0;
   if (!converged) {
     return Status::Internal("ratings: Newton did not converge (largest gradient " +

@@ -6,6 +6,7 @@
 #include <random>
 #include <string>
 
+#include "grades/ratings_newton.h"
 #include "grades/scale.h"
 
 namespace sb::grades {
@@ -16,16 +17,9 @@ constexpr double kDaysPerYear = 365.25;
 // Newton iterations before giving up (the problem is convex; the drifting
 // gyms take 10 to 25 from the prior).
 constexpr int kMaxNewton = 200;
-constexpr int kMaxOffsetRounds = 200;
-constexpr double kMaxForcing = 1e-2;
 
-double Softplus(double x) { return x > 0 ? x + std::log1p(std::exp(-x)) : std::log1p(std::exp(x)); }
-
-double Sigmoid(double x) {
-  if (x >= 0) return 1 / (1 + std::exp(-x));
-  const double e = std::exp(x);
-  return e / (1 + e);
-}
+using newton::PairTerms;
+using newton::Softplus;
 
 // The games' negative log-likelihood of one pair at a - d = diff.
 double PairLoss(const RatingPair& q, double kk, double b, double diff) {
@@ -38,45 +32,17 @@ double PairLoss(const RatingPair& q, double kk, double b, double diff) {
   return f;
 }
 
-// Its derivative per unit of diff (dz, as ratings.cc: d loss / d a) and
-// Fisher information.
-void PairTerms(const RatingPair& q, double kk, double b, double diff, double* dz, double* h) {
-  const double pr = Sigmoid(kk * diff);
-  const double n = double(q.wins) + double(q.losses);
-  *dz = kk * (n * pr - q.wins);
-  *h = kk * kk * n * pr * (1 - pr);
-  if (q.session_wins | q.session_losses) {
-    const double ps = Sigmoid(kk * diff + b);
-    const double ns = double(q.session_wins) + double(q.session_losses);
-    *dz += kk * (ns * ps - q.session_wins);
-    *h += kk * kk * ns * ps * (1 - ps);
-  }
-}
-
-double PriorMeanOf(const RatingProblem& p) {
-  double sum = 0;
-  int n = 0;
-  for (const auto& s : p.setter) {
-    if (s) {
-      sum += *s;
-      ++n;
-    }
-  }
-  if (n > 0) return sum / n;
-  double felt = 0;
-  int fn = 0;
-  for (int r = 0; r < p.num_routes(); ++r) {
-    felt += p.felt_sum[size_t(r)];
-    fn += p.felt_count[size_t(r)];
-  }
-  return fn > 0 ? felt / fn : 0;
-}
-
 // The drifting fit's working state: x = [nodes (N), difficulties (R)].
 class DriftSolver {
  public:
   DriftSolver(const DriftProblem& p, const RatingParams& k, double m, double w, double b)
-      : p_(p), k_(k), m_(m), b_(b), n_(size_t(p.num_nodes())), r_(size_t(p.base.num_routes())) {
+      : p_(p),
+        k_(k),
+        m_(m),
+        b_(b),
+        n_(size_t(p.num_nodes())),
+        r_(size_t(p.base.num_routes())),
+        routes_(p.base, k, m) {
     // Chain precisions between consecutive nodes of a climber (0 across climbers).
     link_.assign(n_, 0);
     first_.assign(n_, false);
@@ -88,14 +54,6 @@ class DriftSolver {
         link_[j] = 1 / (w * w * dt);
       }
     }
-    prior_mean_.resize(r_);
-    prior_prec_.resize(r_);
-    for (size_t r = 0; r < r_; ++r) {
-      const auto& s = p.base.setter[r];
-      const double sd = s ? k.setter_sd : k.open_route_sd;
-      prior_mean_[r] = s ? *s : m;
-      prior_prec_[r] = 1 / (sd * sd) + p.base.felt_count[r] / (k.felt_sd * k.felt_sd);
-    }
     h_.resize(p.pairs.size());
     diag_.resize(n_ + r_);
     piv_.resize(n_);
@@ -105,7 +63,6 @@ class DriftSolver {
   double Objective(const std::vector<double>& x) const {
     const double kk = k_.logit_per_unit;
     const double pa = 1 / (k_.climber_sd * k_.climber_sd);
-    const double pf = 1 / (k_.felt_sd * k_.felt_sd);
     double f = 0;
     for (const RatingPair& q : p_.pairs) {
       f += PairLoss(q, kk, b_, x[size_t(q.climber)] - x[n_ + size_t(q.route)]);
@@ -114,20 +71,13 @@ class DriftSolver {
       if (first_[j]) f += 0.5 * pa * (x[j] - m_) * (x[j] - m_);
       if (link_[j] > 0) f += 0.5 * link_[j] * (x[j + 1] - x[j]) * (x[j + 1] - x[j]);
     }
-    for (size_t r = 0; r < r_; ++r) {
-      const double d = x[n_ + r];
-      const auto& s = p_.base.setter[r];
-      const double sd = s ? k_.setter_sd : k_.open_route_sd;
-      f += 0.5 * (d - prior_mean_[r]) * (d - prior_mean_[r]) / (sd * sd);
-      f += 0.5 * pf * (p_.base.felt_count[r] * d * d - 2 * d * p_.base.felt_sum[r]);
-    }
+    routes_.AddObjective(x, n_, &f);
     return f;
   }
 
   void GradientAndHessian(const std::vector<double>& x, std::vector<double>* g) {
     const double kk = k_.logit_per_unit;
     const double pa = 1 / (k_.climber_sd * k_.climber_sd);
-    const double pf = 1 / (k_.felt_sd * k_.felt_sd);
     g->assign(n_ + r_, 0);
     std::fill(diag_.begin(), diag_.begin() + long(n_), 0.0);
     for (size_t j = 0; j < n_; ++j) {
@@ -143,14 +93,7 @@ class DriftSolver {
         diag_[j + 1] += link_[j];
       }
     }
-    for (size_t r = 0; r < r_; ++r) {
-      const double d = x[n_ + r];
-      const auto& s = p_.base.setter[r];
-      const double sd = s ? k_.setter_sd : k_.open_route_sd;
-      (*g)[n_ + r] = (d - prior_mean_[r]) / (sd * sd) +
-                     pf * (p_.base.felt_count[r] * d - p_.base.felt_sum[r]);
-      diag_[n_ + r] = prior_prec_[r];
-    }
+    routes_.SetGradient(x, n_, g, &diag_);
     for (size_t i = 0; i < p_.pairs.size(); ++i) {
       const RatingPair& q = p_.pairs[i];
       const size_t a = size_t(q.climber), d = n_ + size_t(q.route);
@@ -204,59 +147,16 @@ class DriftSolver {
     for (size_t i = n_; i < n_ + r_; ++i) (*z)[i] = r[i] / diag_[i];
   }
 
-  int SolveNewtonStep(const std::vector<double>& g, double eta, std::vector<double>* s) {
-    const size_t n = n_ + r_;
-    s->assign(n, 0);
-    std::vector<double> r(n), z(n), dir(n), hd(n);
-    double g2 = 0;
-    for (size_t i = 0; i < n; ++i) {
-      r[i] = -g[i];
-      g2 += g[i] * g[i];
-    }
-    Precondition(r, &z);
-    double rz = 0;
-    for (size_t i = 0; i < n; ++i) {
-      dir[i] = z[i];
-      rz += r[i] * z[i];
-    }
-    const double target = eta * eta * g2;
-    const int max_iter = int(std::min<size_t>(n, 5000));
-    int it = 0;
-    double r2 = g2;
-    while (it < max_iter && r2 > target) {
-      Multiply(dir, &hd);
-      double dhd = 0;
-      for (size_t i = 0; i < n; ++i) dhd += dir[i] * hd[i];
-      if (!(dhd > 0)) break;
-      const double alpha = rz / dhd;
-      r2 = 0;
-      for (size_t i = 0; i < n; ++i) {
-        (*s)[i] += alpha * dir[i];
-        r[i] -= alpha * hd[i];
-        r2 += r[i] * r[i];
-      }
-      Precondition(r, &z);
-      double rz_new = 0;
-      for (size_t i = 0; i < n; ++i) rz_new += r[i] * z[i];
-      const double beta = rz_new / rz;
-      rz = rz_new;
-      for (size_t i = 0; i < n; ++i) dir[i] = z[i] + beta * dir[i];
-      ++it;
-    }
-    return it;
+  // Solves H s = -g to relative residual eta by CG preconditioned by the
+  // climbers' chains.
+  int SolveNewtonStep(const std::vector<double>& g, double eta, std::vector<double>* s) const {
+    return newton::SolveCg(
+        g, eta, s, [this](const std::vector<double>& v, std::vector<double>* y) { Multiply(v, y); },
+        [this](const std::vector<double>& r, std::vector<double>* z) { Precondition(r, z); });
   }
 
   void OffsetDerivatives(const std::vector<double>& x, double* g, double* h) const {
-    const double kk = k_.logit_per_unit;
-    *g = 0;
-    *h = 0;
-    for (const RatingPair& q : p_.pairs) {
-      if (!(q.session_wins | q.session_losses)) continue;
-      const double ps = Sigmoid(kk * (x[size_t(q.climber)] - x[n_ + size_t(q.route)]) + b_);
-      const double ns = double(q.session_wins) + double(q.session_losses);
-      *g += ns * ps - q.session_wins;
-      *h += ns * ps * (1 - ps);
-    }
+    newton::OffsetDerivatives(p_.pairs, k_.logit_per_unit, b_, x, n_, g, h);
   }
   void set_offset(double b) { b_ = b; }
   double offset() const { return b_; }
@@ -274,7 +174,7 @@ class DriftSolver {
   const size_t n_, r_;
   std::vector<double> link_;
   std::vector<bool> first_;
-  std::vector<double> prior_mean_, prior_prec_;
+  newton::RoutePriors routes_;
   std::vector<double> h_, diag_, piv_, mul_;
 };
 
@@ -367,40 +267,8 @@ Status DriftVariances(const DriftProblem& p, const DriftSolver& s, bool exact, D
       }
     }
   }
-  for (size_t j = 0; j < r_n; ++j) {
-    double* rj = &sm[j * r_n];
-    double dsum = rj[j];
-    for (size_t k = 0; k < j; ++k) dsum -= rj[k] * rj[k];
-    if (!(dsum > 0)) return Status::Internal("ratings: the Hessian is not positive definite");
-    const double ljj = std::sqrt(dsum);
-    ld += 2 * std::log(ljj);
-    rj[j] = ljj;
-    for (size_t i = j + 1; i < r_n; ++i) {
-      double* ri = &sm[i * r_n];
-      double t = ri[j];
-      for (size_t k = 0; k < j; ++k) t -= ri[k] * rj[k];
-      ri[j] = t / ljj;
-    }
-  }
-  std::vector<double> w(r_n * r_n, 0);
-  for (size_t i = 0; i < r_n; ++i) {
-    const double* li = &sm[i * r_n];
-    double* wi = &w[i * r_n];
-    for (size_t k = 0; k < i; ++k) {
-      const double lik = li[k];
-      if (lik == 0) continue;
-      const double* wk = &w[k * r_n];
-      for (size_t j = 0; j <= k; ++j) wi[j] -= lik * wk[j];
-    }
-    for (size_t j = 0; j < i; ++j) wi[j] /= li[i];
-    wi[i] = 1 / li[i];
-  }
-  std::vector<double> var(r_n, 0);
-  for (size_t i = 0; i < r_n; ++i) {
-    const double* wi = &w[i * r_n];
-    for (size_t j = 0; j <= i; ++j) var[j] += wi[j] * wi[j];
-  }
-  for (size_t r = 0; r < r_n; ++r) fit.difficulty_sd[r] = std::sqrt(var[r]);
+  std::vector<double> w;
+  SB_RETURN_IF_ERROR(newton::SchurVariances(&sm, r_n, &w, &fit.difficulty_sd, &ld));
   // Latest node l of climber c: var = Tinv_ll + v^T S^-1 v, v_r = sum over
   // the chain's pairs of h_i Tinv[node_i, l].
   std::vector<double> v(r_n);
@@ -555,14 +423,8 @@ Result<DriftFit> FitDriftRatings(const DriftProblem& problem, const RatingParams
   }
   const size_t n = size_t(problem.num_nodes()), r_n = size_t(problem.base.num_routes());
   const size_t c_n = size_t(problem.base.num_climbers);
-  const bool exact = options.intervals == IntervalMethod::kExact ||
-                     (options.intervals == IntervalMethod::kAuto && r_n <= kMaxExactRoutes);
-  if (exact && r_n > kMaxExactRoutes) {
-    return Status::InvalidInput("intervals: exact intervals are limited to " +
-                                std::to_string(kMaxExactRoutes) + " routes, got " +
-                                std::to_string(r_n) + " (use approximate)");
-  }
-  const double m = PriorMeanOf(problem.base);
+  SB_ASSIGN_OR_RETURN(const bool exact, newton::UseExactIntervals(options.intervals, r_n));
+  const double m = newton::PriorMean(problem.base);
   const bool session = problem.base.model == RatingModel::kSession;
   const bool estimate_offset = session && !options.session_offset;
   std::vector<double> grid_w;
@@ -587,46 +449,12 @@ Result<DriftFit> FitDriftRatings(const DriftProblem& problem, const RatingParams
     out.fit.prior_mean = m;
     out.fit.model = problem.base.model;
     out.fit.session_tries = problem.base.session_tries;
-    std::vector<double> g, step, trial(x.size());
-    bool converged = false;
-    for (int round = 0; round < kMaxOffsetRounds; ++round) {
-      double f = solver.Objective(x);
-      converged = false;
-      for (int it = 0; it <= kMaxNewton; ++it) {
-        solver.GradientAndHessian(x, &g);
-        double gmax = 0;
-        for (double v : g) gmax = std::max(gmax, std::abs(v));
-        out.fit.gradient_max = gmax;
-        if (gmax <= options.gradient_tolerance) {
-          converged = true;
-          break;
-        }
-        if (it == kMaxNewton) break;
-        ++out.fit.newton_iterations;
-        const double eta = std::min(kMaxForcing, std::sqrt(gmax));
-        out.fit.cg_iterations += solver.SolveNewtonStep(g, eta, &step);
-        double slope = 0;
-        for (size_t i = 0; i < x.size(); ++i) slope += g[i] * step[i];
-        const bool judge = -slope > 1e-10 * (1 + std::abs(f));
-        double t = 1, f_new = f;
-        for (int half = 0; half < 60; ++half, t *= 0.5) {
-          for (size_t i = 0; i < x.size(); ++i) trial[i] = x[i] + t * step[i];
-          f_new = solver.Objective(trial);
-          if (!judge || f_new <= f + 1e-4 * t * slope) break;
-        }
-        x.swap(trial);
-        f = f_new;
-      }
-      if (!converged || !estimate_offset) break;
-      double gb = 0, hb = 0;
-      solver.OffsetDerivatives(x, &gb, &hb);
-      const double pb = 1 / (kSessionOffsetPriorSd * kSessionOffsetPriorSd);
-      gb += pb * (solver.offset() - kSessionOffsetPriorMean);
-      hb += pb;
-      if (std::abs(gb) <= options.gradient_tolerance) break;
-      converged = false;
-      solver.set_offset(solver.offset() - std::clamp(gb / hb, -2.0, 2.0));
-    }
+    newton::NewtonStats st;
+    const bool converged = newton::MinimizeNewtonWithOffset(
+        solver, &x, options.gradient_tolerance, kMaxNewton, estimate_offset, &st);
+    out.fit.newton_iterations = st.newton_iterations;
+    out.fit.cg_iterations = st.cg_iterations;
+    out.fit.gradient_max = st.gradient_max;
     if (!converged) {
       return Status::Internal("ratings: Newton did not converge with drift (largest gradient " +
                               std::to_string(out.fit.gradient_max) + ")");

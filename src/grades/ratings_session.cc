@@ -6,23 +6,15 @@
 #include <cstdio>
 #include <string>
 
+#include "grades/ratings_newton.h"
+
 namespace sb::grades {
 
 namespace {
 
-double Softplus(double x) { return x > 0 ? x + std::log1p(std::exp(-x)) : std::log1p(std::exp(x)); }
-
-double Sigmoid(double x) {
-  if (x >= 0) return 1 / (1 + std::exp(-x));
-  const double e = std::exp(x);
-  return e / (1 + e);
-}
-
-std::string Num(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%g", v);
-  return b;
-}
+using newton::Num;
+using newton::Sigmoid;
+using newton::Softplus;
 
 // One game: z = sum coef * x[index] (up to five terms), won or lost, with
 // a weight (1, or the later tries' weight).
@@ -76,7 +68,7 @@ class Problem {
   }
 
   // Gradient into g, each game's weight p (1 - p) into w_, the diagonal into diag_.
-  void Gradient(const std::vector<double>& x, std::vector<double>* g) {
+  void GradientAndHessian(const std::vector<double>& x, std::vector<double>* g) {
     g->assign(n, 0);
     diag_.assign(n, 0);
     w_.resize(games.size());
@@ -118,42 +110,10 @@ class Problem {
   }
 
   // Solves H s = -g to relative residual eta by Jacobi-preconditioned CG.
-  int Solve(const std::vector<double>& g, double eta, std::vector<double>* s) const {
-    s->assign(n, 0);
-    std::vector<double> r(n), z(n), dir(n), hd(n);
-    double g2 = 0, rz = 0;
-    for (size_t i = 0; i < n; ++i) {
-      r[i] = -g[i];
-      g2 += g[i] * g[i];
-      z[i] = r[i] / diag_[i];
-      dir[i] = z[i];
-      rz += r[i] * z[i];
-    }
-    const double target = eta * eta * g2;
-    double r2 = g2;
-    int it = 0;
-    const int max_iter = int(std::min<size_t>(n, 5000));
-    while (it < max_iter && r2 > target) {
-      Multiply(dir, &hd);
-      double dhd = 0;
-      for (size_t i = 0; i < n; ++i) dhd += dir[i] * hd[i];
-      if (!(dhd > 0)) break;
-      const double alpha = rz / dhd;
-      r2 = 0;
-      double rz_new = 0;
-      for (size_t i = 0; i < n; ++i) {
-        (*s)[i] += alpha * dir[i];
-        r[i] -= alpha * hd[i];
-        r2 += r[i] * r[i];
-        z[i] = r[i] / diag_[i];
-        rz_new += r[i] * z[i];
-      }
-      const double beta = rz_new / rz;
-      rz = rz_new;
-      for (size_t i = 0; i < n; ++i) dir[i] = z[i] + beta * dir[i];
-      ++it;
-    }
-    return it;
+  int SolveNewtonStep(const std::vector<double>& g, double eta, std::vector<double>* s) const {
+    return newton::SolveJacobiCg(
+        g, eta, diag_, s,
+        [this](const std::vector<double>& v, std::vector<double>* y) { Multiply(v, y); });
   }
 
  private:
@@ -338,34 +298,12 @@ Result<SessionModelFit> FitSessionModel(const std::vector<SessionObs>& obs, int 
   x[L.b()] = k.offset_mean;
   SessionModelFit fit;
   fit.prior_mean = k.prior_mean;
-  std::vector<double> g, step, trial(x.size());
-  double f = P.Objective(x);
-  bool converged = false;
+  newton::NewtonStats st;
   constexpr double kTolerance = 1e-9;
-  for (int it = 0; it <= 200; ++it) {
-    P.Gradient(x, &g);
-    double gmax = 0;
-    for (double v : g) gmax = std::max(gmax, std::abs(v));
-    fit.gradient_max = gmax;
-    if (gmax <= kTolerance) {
-      converged = true;
-      break;
-    }
-    if (it == 200) break;
-    ++fit.newton_iterations;
-    fit.cg_iterations += P.Solve(g, std::min(1e-2, std::sqrt(gmax)), &step);
-    double slope = 0;
-    for (size_t i = 0; i < x.size(); ++i) slope += g[i] * step[i];
-    const bool judge = -slope > 1e-10 * (1 + std::abs(f));
-    double t = 1, f_new = f;
-    for (int half = 0; half < 60; ++half, t *= 0.5) {
-      for (size_t i = 0; i < x.size(); ++i) trial[i] = x[i] + t * step[i];
-      f_new = P.Objective(trial);
-      if (!judge || f_new <= f + 1e-4 * t * slope) break;
-    }
-    x.swap(trial);
-    f = f_new;
-  }
+  const bool converged = newton::MinimizeNewton(P, &x, kTolerance, 200, &st);
+  fit.newton_iterations = st.newton_iterations;
+  fit.cg_iterations = st.cg_iterations;
+  fit.gradient_max = st.gradient_max;
   if (!converged) {
     return Status::Internal("session model: Newton did not converge (largest gradient " +
                             Num(fit.gradient_max) + ")");
