@@ -5,6 +5,7 @@
 #include <limits>
 #include <numeric>
 #include <string>
+#include <tuple>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
@@ -30,6 +31,52 @@ struct AscentRow {
 // Reads ascents.csv's rows (the columns EvaluateAscents names; zone,
 // zone_tries and round when present).
 Result<std::vector<AscentRow>> ReadAscentRows(std::string_view csv, std::string_view name);
+
+// Whether a row is in the fitted part of `split` (heldout: the rows not
+// held out; temporal: the events before kTemporalEvent).
+bool InFit(AscentSplit split, const AscentRow& a) {
+  return split == AscentSplit::kHeldout ? !a.heldout : a.event != kTemporalEvent;
+}
+
+// The dense indices of a fitted row's athlete and route (new ones appended).
+std::pair<int, int> IndexRow(const AscentRow& a, std::unordered_map<std::string, int>* climber,
+                             std::unordered_map<std::string, int>* route) {
+  return {climber->emplace(a.athlete, int(climber->size())).first->second,
+          route->emplace(a.route, int(route->size())).first->second};
+}
+
+// Scores the rows outside the fitted part: predict(row, climber index,
+// route index) (-1: not in the fit) gives its chances; the temporal split
+// leaves out athletes the fit has not seen. Fills ev's scored_rows,
+// top_rate and the AUCs and log losses of tops and flashes.
+template <typename Predict>
+void ScoreHeldOut(const std::vector<AscentRow>& rows, AscentSplit split,
+                  const std::unordered_map<std::string, int>& climber,
+                  const std::unordered_map<std::string, int>& route, const Predict& predict,
+                  AscentEvaluation* ev) {
+  std::vector<double> p_send, p_flash;
+  std::vector<int> top, flash;
+  for (const AscentRow& a : rows) {
+    if (InFit(split, a)) continue;
+    auto ci = climber.find(a.athlete);
+    if (split == AscentSplit::kTemporal && ci == climber.end()) continue;  // unseen athletes
+    auto ri = route.find(a.route);
+    const SendChances s = predict(a, ci != climber.end() ? ci->second : -1,
+                                  ri != route.end() ? ri->second : -1);
+    p_send.push_back(s.p_send);
+    p_flash.push_back(s.p_flash);
+    top.push_back(a.top ? 1 : 0);
+    flash.push_back(a.top && a.tries && *a.tries == 1 ? 1 : 0);
+  }
+  ev->scored_rows = int(top.size());
+  if (ev->scored_rows > 0) {
+    ev->top_rate = double(std::accumulate(top.begin(), top.end(), 0)) / ev->scored_rows;
+  }
+  ev->top_auc = RocAuc(p_send, top);
+  ev->top_log_loss = LogLoss(p_send, top);
+  ev->flash_auc = RocAuc(p_flash, flash);
+  ev->flash_log_loss = LogLoss(p_flash, flash);
+}
 
 }  // namespace
 
@@ -83,18 +130,14 @@ double LogLoss(std::span<const double> p, std::span<const int> label) {
 Result<AscentEvaluation> EvaluateAscents(std::string_view csv, std::string_view name,
                                          AscentSplit split, RatingModel model) {
   SB_ASSIGN_OR_RETURN(std::vector<AscentRow> rows, ReadAscentRows(csv, name));
-  auto in_fit = [&](const AscentRow& a) {
-    return split == AscentSplit::kHeldout ? !a.heldout : a.event != kTemporalEvent;
-  };
   std::unordered_map<std::string, int> climber, route;
   RatingProblemBuilder b;
   b.SetModel(model);
   AscentEvaluation ev;
   for (const AscentRow& a : rows) {
-    if (!in_fit(a)) continue;
+    if (!InFit(split, a)) continue;
     ++ev.fit_rows;
-    const int c = climber.emplace(a.athlete, int(climber.size())).first->second;
-    const int r = route.emplace(a.route, int(route.size())).first->second;
+    const auto [c, r] = IndexRow(a, &climber, &route);
     b.EnsureClimbers(c + 1);
     b.EnsureRoutes(r + 1);
     if (a.tries && *a.tries == 0) continue;  // a session with no try: no games
@@ -113,49 +156,29 @@ Result<AscentEvaluation> EvaluateAscents(std::string_view csv, std::string_view 
   SB_ASSIGN_OR_RETURN(RatingFit fit, FitRatings(b.Build(), params, opt));
   ev.session_offset = fit.session_offset;
   ev.newton_iterations = fit.newton_iterations;
-  std::vector<double> p_send, p_flash;
-  std::vector<int> top, flash;
-  for (const AscentRow& a : rows) {
-    if (in_fit(a)) continue;
-    auto ci = climber.find(a.athlete);
-    if (split == AscentSplit::kTemporal && ci == climber.end()) continue;  // unseen athletes
-    auto ri = route.find(a.route);
-    const double ability = ci != climber.end() ? fit.ability[size_t(ci->second)] : fit.prior_mean;
-    const double difficulty =
-        ri != route.end() ? fit.difficulty[size_t(ri->second)] : fit.prior_mean;
-    const SendChances s =
-        PredictSend(params, fit.model, fit.session_offset, fit.session_tries, ability, difficulty);
-    p_send.push_back(s.p_send);
-    p_flash.push_back(s.p_flash);
-    top.push_back(a.top ? 1 : 0);
-    flash.push_back(a.top && a.tries && *a.tries == 1 ? 1 : 0);
-  }
-  ev.scored_rows = int(top.size());
-  if (ev.scored_rows > 0) {
-    ev.top_rate = double(std::accumulate(top.begin(), top.end(), 0)) / ev.scored_rows;
-  }
-  ev.top_auc = RocAuc(p_send, top);
-  ev.top_log_loss = LogLoss(p_send, top);
-  ev.flash_auc = RocAuc(p_flash, flash);
-  ev.flash_log_loss = LogLoss(p_flash, flash);
+  ScoreHeldOut(
+      rows, split, climber, route,
+      [&](const AscentRow&, int c, int r) {
+        const double ability = c >= 0 ? fit.ability[size_t(c)] : fit.prior_mean;
+        const double difficulty = r >= 0 ? fit.difficulty[size_t(r)] : fit.prior_mean;
+        return PredictSend(params, fit.model, fit.session_offset, fit.session_tries, ability,
+                           difficulty);
+      },
+      &ev);
   return ev;
 }
 
 Result<AscentEvaluation> EvaluateAscentsZones(std::string_view csv, std::string_view name,
                                               AscentSplit split, const SessionModelParams& params) {
   SB_ASSIGN_OR_RETURN(std::vector<AscentRow> rows, ReadAscentRows(csv, name));
-  auto in_fit = [&](const AscentRow& a) {
-    return split == AscentSplit::kHeldout ? !a.heldout : a.event != kTemporalEvent;
-  };
   std::unordered_map<std::string, int> climber, route;
   std::vector<SessionObs> obs;
   AscentEvaluation ev;
   for (const AscentRow& a : rows) {
-    if (!in_fit(a)) continue;
+    if (!InFit(split, a)) continue;
     ++ev.fit_rows;
     SessionObs o;
-    o.climber = climber.emplace(a.athlete, int(climber.size())).first->second;
-    o.route = route.emplace(a.route, int(route.size())).first->second;
+    std::tie(o.climber, o.route) = IndexRow(a, &climber, &route);
     o.top = a.top;
     o.tries = a.tries;
     o.zone = a.zone;
@@ -175,7 +198,7 @@ Result<AscentEvaluation> EvaluateAscentsZones(std::string_view csv, std::string_
   {
     std::vector<bool> counted(route.size(), false);
     for (const AscentRow& a : rows) {
-      if (!in_fit(a)) continue;
+      if (!InFit(split, a)) continue;
       const int r = route.at(a.route);
       if (counted[size_t(r)]) continue;
       counted[size_t(r)] = true;
@@ -184,32 +207,16 @@ Result<AscentEvaluation> EvaluateAscentsZones(std::string_view csv, std::string_
       ++n;
     }
   }
-  std::vector<double> p_send, p_flash;
-  std::vector<int> top, flash;
-  for (const AscentRow& a : rows) {
-    if (in_fit(a)) continue;
-    auto ci = climber.find(a.athlete);
-    if (split == AscentSplit::kTemporal && ci == climber.end()) continue;  // unseen athletes
-    auto ri = route.find(a.route);
-    std::optional<double> unseen;
-    if (auto li = level.find(a.category + "/" + a.round); li != level.end()) {
-      unseen = li->second.first / li->second.second;
-    }
-    const SendChances s = PredictSessionModel(params, fit, ci != climber.end() ? ci->second : -1,
-                                              ri != route.end() ? ri->second : -1, unseen);
-    p_send.push_back(s.p_send);
-    p_flash.push_back(s.p_flash);
-    top.push_back(a.top ? 1 : 0);
-    flash.push_back(a.top && a.tries && *a.tries == 1 ? 1 : 0);
-  }
-  ev.scored_rows = int(top.size());
-  if (ev.scored_rows > 0) {
-    ev.top_rate = double(std::accumulate(top.begin(), top.end(), 0)) / ev.scored_rows;
-  }
-  ev.top_auc = RocAuc(p_send, top);
-  ev.top_log_loss = LogLoss(p_send, top);
-  ev.flash_auc = RocAuc(p_flash, flash);
-  ev.flash_log_loss = LogLoss(p_flash, flash);
+  ScoreHeldOut(
+      rows, split, climber, route,
+      [&](const AscentRow& a, int c, int r) {
+        std::optional<double> unseen;
+        if (auto li = level.find(a.category + "/" + a.round); li != level.end()) {
+          unseen = li->second.first / li->second.second;
+        }
+        return PredictSessionModel(params, fit, c, r, unseen);
+      },
+      &ev);
   return ev;
 }
 
