@@ -7,6 +7,7 @@
 #include <string>
 
 #include "grades/ratings_newton.h"
+#include "grades/ratings_synth_draw.h"
 #include "grades/scale.h"
 
 namespace sb::grades {
@@ -300,24 +301,6 @@ Status DriftVariances(const DriftProblem& p, const DriftSolver& s, bool exact, D
   return Status::Ok();
 }
 
-// Portable draws, as ratings_synth.cc's (std::mt19937_64 with explicit
-// transforms).
-class Draw {
- public:
-  explicit Draw(uint64_t seed) : g_(seed) {}
-  double Uniform() { return double(g_() >> 11) * 0x1.0p-53; }
-  int Below(int n) { return int(Uniform() * n); }
-  double Normal() {
-    double u1 = Uniform();
-    while (u1 <= 0) u1 = Uniform();
-    const double u2 = Uniform();
-    return std::sqrt(-2 * std::log(u1)) * std::cos(2 * M_PI * u2);
-  }
-
- private:
-  std::mt19937_64 g_;
-};
-
 }  // namespace
 
 const char* DriftModeName(DriftMode m) {
@@ -604,7 +587,7 @@ Result<DriftingGym> MakeDriftingGym(const SynthGymParams& sp, const DriftGymPara
   if (!(std::isfinite(dp.wiener_sd) && dp.wiener_sd >= 0)) {
     return Status::InvalidInput("--wiener-sd: expected a number >= 0");
   }
-  Draw draw(sp.seed);
+  synth::Draw draw(sp.seed);
   DriftingGym out;
   SynthGym& gym = out.gym;
   const size_t c_n = size_t(sp.climbers);
@@ -626,73 +609,32 @@ Result<DriftingGym> MakeDriftingGym(const SynthGymParams& sp, const DriftGymPara
   gym.setter_grade.resize(size_t(sp.routes));
   std::vector<int> set_day(size_t(sp.routes));
   for (size_t r = 0; r < size_t(sp.routes); ++r) {
-    const double d = std::clamp(sp.difficulty_mean + sp.difficulty_sd * draw.Normal(), -1.0, 14.0);
-    gym.true_difficulty[r] = d;
-    gym.setter_grade[r] = std::clamp(int(std::lround(d + sp.setter_sd * draw.Normal())), -1,
-                                     kVTopNumber);
+    synth::DrawRoute(draw, sp, &gym.true_difficulty[r], &gym.setter_grade[r]);
     set_day[r] = draw.Below(kDays - dp.route_days + 1);
   }
   // Climbers by ability on each week's first day, to find the one nearest
   // a target at a route's mid-life.
   constexpr int kWeeks = (kDays + 6) / 7;
-  std::vector<std::vector<int>> by_week(kWeeks);
-  std::vector<std::vector<double>> sorted(kWeeks);
+  std::vector<synth::NearestClimber> by_week;
+  by_week.reserve(kWeeks);
   for (int wk = 0; wk < kWeeks; ++wk) {
     const size_t t = size_t(std::min(kDays - 1, wk * 7));
-    std::vector<int>& order = by_week[size_t(wk)];
-    order.resize(c_n);
-    std::iota(order.begin(), order.end(), 0);
-    std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
-      return path[size_t(a) * kDays + t] < path[size_t(b) * kDays + t];
-    });
-    sorted[size_t(wk)].resize(c_n);
-    for (size_t i = 0; i < c_n; ++i) sorted[size_t(wk)][i] = path[size_t(order[i]) * kDays + t];
+    by_week.emplace_back(c_n, [&](size_t c) { return double(path[c * kDays + t]); });
   }
   std::vector<int> seen;
   gym.ticks.reserve(size_t(sp.routes) * size_t(sp.ticks_per_route));
   for (int r = 0; r < sp.routes; ++r) {
     const double d = gym.true_difficulty[size_t(r)];
     const int wk = std::min(kWeeks - 1, (set_day[size_t(r)] + dp.route_days / 2) / 7);
-    const std::vector<double>& srt = sorted[size_t(wk)];
-    auto nearest = [&](double t) {
-      auto it = std::lower_bound(srt.begin(), srt.end(), t);
-      size_t i = size_t(it - srt.begin());
-      if (i == srt.size() || (i > 0 && t - srt[i - 1] < srt[i] - t)) --i;
-      return by_week[size_t(wk)][i];
-    };
     seen.clear();
     for (int k = 0; k < sp.ticks_per_route; ++k) {
-      int c = 0;
-      for (int tries = 0; tries < 8; ++tries) {
-        c = nearest(d + 0.5 + sp.choice_sd * draw.Normal());
-        if (std::find(seen.begin(), seen.end(), c) == seen.end()) break;
-      }
-      seen.push_back(c);
       SynthTick tick;
-      tick.climber = c;
+      tick.climber = synth::PickClimber(draw, sp, d, by_week[size_t(wk)], &seen);
       tick.route = r;
       tick.day = set_day[size_t(r)] + draw.Below(dp.route_days);
-      const double a = path[size_t(c) * kDays + size_t(tick.day)];
-      const double p = 1 / (1 + std::exp(-sp.logit_per_unit * (a - d)));
-      const int session = 1 + draw.Below(sp.max_tries);
-      int sent_at = 0;
-      for (int t = 1; t <= session && !sent_at; ++t) {
-        if (draw.Uniform() < p) sent_at = t;
-      }
-      if (sent_at == 1) {
-        tick.outcome = TickOutcome::kFlash;
-      } else if (sent_at > 1) {
-        tick.outcome = TickOutcome::kSend;
-        tick.attempts = sent_at;
-      } else {
-        tick.outcome = TickOutcome::kAttempt;
-        if (session > 1 || draw.Uniform() < 0.5) tick.attempts = session;
-      }
-      if (sent_at && draw.Uniform() < sp.felt_share) {
-        tick.felt = std::clamp(
-            int(std::lround(d - sp.felt_bias * (a - d) + sp.felt_sd * draw.Normal())), -1,
-            kVTopNumber);
-      }
+      const double a = path[size_t(tick.climber) * kDays + size_t(tick.day)];
+      const synth::Session session = synth::DrawSession(draw, sp, synth::TryChance(sp, a, d));
+      synth::FinishTick(draw, sp, session, a, d, &tick);
       gym.ticks.push_back(tick);
       out.ability_at_tick.push_back(a);
     }

@@ -7,31 +7,74 @@
 
 #include "base/csv.h"
 #include "base/number.h"
+#include "grades/ratings_synth_draw.h"
 #include "grades/scale.h"
 
 namespace sb::grades {
 
+namespace synth {
+
 namespace {
 
-// Portable draws: the generator's output bits with explicit transforms
-// (std::normal_distribution differs between standard libraries).
-class Draw {
- public:
-  explicit Draw(uint64_t seed) : g_(seed) {}
-  double Uniform() { return double(g_() >> 11) * 0x1.0p-53; }  // [0, 1)
-  int Below(int n) { return int(Uniform() * n); }
-  double Normal() {  // Box-Muller, one value per call
-    double u1 = Uniform();
-    while (u1 <= 0) u1 = Uniform();
-    const double u2 = Uniform();
-    return std::sqrt(-2 * std::log(u1)) * std::cos(2 * M_PI * u2);
-  }
-
- private:
-  std::mt19937_64 g_;
-};
-
 int Whole(double v, int lo, int hi) { return std::clamp(int(std::lround(v)), lo, hi); }
+
+}  // namespace
+
+int NearestClimber::operator()(double t) const {
+  auto it = std::lower_bound(sorted_.begin(), sorted_.end(), t);
+  size_t i = size_t(it - sorted_.begin());
+  if (i == sorted_.size() || (i > 0 && t - sorted_[i - 1] < sorted_[i] - t)) --i;
+  return order_[i];
+}
+
+void DrawRoute(Draw& draw, const SynthGymParams& sp, double* difficulty, int* setter_grade) {
+  const double d = std::clamp(sp.difficulty_mean + sp.difficulty_sd * draw.Normal(), -1.0, 14.0);
+  *difficulty = d;
+  *setter_grade = Whole(d + sp.setter_sd * draw.Normal(), -1, kVTopNumber);
+}
+
+int PickClimber(Draw& draw, const SynthGymParams& sp, double d, const NearestClimber& nearest,
+                std::vector<int>* seen) {
+  int c = 0;
+  for (int tries = 0; tries < 8; ++tries) {
+    c = nearest(d + 0.5 + sp.choice_sd * draw.Normal());
+    if (std::find(seen->begin(), seen->end(), c) == seen->end()) break;
+  }
+  seen->push_back(c);
+  return c;
+}
+
+Session DrawSession(Draw& draw, const SynthGymParams& sp, double p) {
+  Session s;
+  s.tries = 1 + draw.Below(sp.max_tries);
+  for (int t = 1; t <= s.tries && !s.sent_at; ++t) {
+    if (draw.Uniform() < p) s.sent_at = t;
+  }
+  return s;
+}
+
+void FinishTick(Draw& draw, const SynthGymParams& sp, const Session& s, double a, double d,
+                SynthTick* tick) {
+  if (s.sent_at == 1) {
+    tick->outcome = TickOutcome::kFlash;
+  } else if (s.sent_at > 1) {
+    tick->outcome = TickOutcome::kSend;
+    tick->attempts = s.sent_at;
+  } else {
+    tick->outcome = TickOutcome::kAttempt;
+    // A single try is often logged without a count (the model reads it as 1).
+    if (s.tries > 1 || draw.Uniform() < 0.5) tick->attempts = s.tries;
+  }
+  if (s.sent_at && draw.Uniform() < sp.felt_share) {
+    tick->felt = Whole(d - sp.felt_bias * (a - d) + sp.felt_sd * draw.Normal(), -1, kVTopNumber);
+  }
+}
+
+}  // namespace synth
+
+namespace {
+
+using synth::Draw;
 
 std::string VName(int v) { return v < 0 ? "VB" : "V" + std::to_string(v); }
 
@@ -107,62 +150,24 @@ Result<SynthGym> MakeSynthGym(const SynthGymParams& sp) {
   gym.true_difficulty.resize(size_t(sp.routes));
   gym.setter_grade.resize(size_t(sp.routes));
   for (size_t r = 0; r < size_t(sp.routes); ++r) {
-    const double d = std::clamp(sp.difficulty_mean + sp.difficulty_sd * draw.Normal(), -1.0, 14.0);
-    gym.true_difficulty[r] = d;
-    gym.setter_grade[r] = Whole(d + sp.setter_sd * draw.Normal(), -1, kVTopNumber);
+    synth::DrawRoute(draw, sp, &gym.true_difficulty[r], &gym.setter_grade[r]);
   }
   // Climbers by ability, to find the one nearest a target.
-  std::vector<int> by_ability(size_t(sp.climbers));
-  std::iota(by_ability.begin(), by_ability.end(), 0);
-  std::stable_sort(by_ability.begin(), by_ability.end(), [&](int a, int b) {
-    return gym.true_ability[size_t(a)] < gym.true_ability[size_t(b)];
-  });
-  std::vector<double> sorted(by_ability.size());
-  for (size_t i = 0; i < sorted.size(); ++i) sorted[i] = gym.true_ability[size_t(by_ability[i])];
-  auto nearest = [&](double t) {
-    auto it = std::lower_bound(sorted.begin(), sorted.end(), t);
-    size_t i = size_t(it - sorted.begin());
-    if (i == sorted.size() || (i > 0 && t - sorted[i - 1] < sorted[i] - t)) --i;
-    return by_ability[i];
-  };
+  const synth::NearestClimber nearest(gym.true_ability.size(),
+                                      [&](size_t c) { return gym.true_ability[c]; });
   gym.ticks.reserve(size_t(sp.routes) * size_t(sp.ticks_per_route));
   std::vector<int> seen;
   for (int r = 0; r < sp.routes; ++r) {
     const double d = gym.true_difficulty[size_t(r)];
     seen.clear();
     for (int k = 0; k < sp.ticks_per_route; ++k) {
-      int c = 0;
-      // A few draws to find a climber who has not ticked this route yet
-      // (small gyms may run out; then a climber comes back another day).
-      for (int tries = 0; tries < 8; ++tries) {
-        c = nearest(d + 0.5 + sp.choice_sd * draw.Normal());
-        if (std::find(seen.begin(), seen.end(), c) == seen.end()) break;
-      }
-      seen.push_back(c);
-      const double a = gym.true_ability[size_t(c)];
-      const double p = 1 / (1 + std::exp(-sp.logit_per_unit * (a - d)));
-      const int session = 1 + draw.Below(sp.max_tries);
-      int sent_at = 0;
-      for (int t = 1; t <= session && !sent_at; ++t) {
-        if (draw.Uniform() < p) sent_at = t;
-      }
       SynthTick tick;
-      tick.climber = c;
+      tick.climber = synth::PickClimber(draw, sp, d, nearest, &seen);
       tick.route = r;
+      const double a = gym.true_ability[size_t(tick.climber)];
+      const synth::Session session = synth::DrawSession(draw, sp, synth::TryChance(sp, a, d));
       tick.day = draw.Below(365);
-      if (sent_at == 1) {
-        tick.outcome = TickOutcome::kFlash;
-      } else if (sent_at > 1) {
-        tick.outcome = TickOutcome::kSend;
-        tick.attempts = sent_at;
-      } else {
-        tick.outcome = TickOutcome::kAttempt;
-        // A single try is often logged without a count (the model reads it as 1).
-        if (session > 1 || draw.Uniform() < 0.5) tick.attempts = session;
-      }
-      if (sent_at && draw.Uniform() < sp.felt_share) {
-        tick.felt = Whole(d - sp.felt_bias * (a - d) + sp.felt_sd * draw.Normal(), -1, kVTopNumber);
-      }
+      synth::FinishTick(draw, sp, session, a, d, &tick);
       gym.ticks.push_back(tick);
     }
   }
