@@ -15,6 +15,7 @@
 #include <string>
 
 #include "grades/ratings_drift.h"
+#include "grades/ratings_scipy_oracle.h"
 #include "grades/ratings_synth.h"
 
 namespace sb::grades {
@@ -23,21 +24,6 @@ namespace {
 using nlohmann::json;
 
 constexpr double kTolerance = 1e-6;
-
-// Debian's /usr/bin/python3, or $SB_SCIPY_PYTHON.
-std::string Python() {
-  const char* env = std::getenv("SB_SCIPY_PYTHON");
-  return env != nullptr && *env != '\0' ? env : "/usr/bin/python3";
-}
-
-std::string ScipyMissing() {
-  if (::access(Python().c_str(), X_OK) != 0) return Python() + " is missing";
-  if (std::system(("'" + Python() + "' -c 'import scipy.special, scipy.optimize' >/dev/null 2>&1")
-                      .c_str()) != 0) {
-    return Python() + " has no scipy (install Debian's python3-scipy: scripts/setup.sh)";
-  }
-  return "";
-}
 
 struct DriftCase {
   std::string label;
@@ -88,29 +74,14 @@ DriftCase MakeDriftCase(const std::string& label, int climbers, int routes, int 
 }
 
 TEST(RatingsDriftScipy, DriftingFitAndEvidenceAgreeWithScipy) {
-  if (std::string why = ScipyMissing(); !why.empty()) GTEST_SKIP() << why;
+  if (std::string why = ScipyUnavailable(); !why.empty()) GTEST_SKIP() << why;
   std::vector<DriftCase> cases;
   cases.push_back(MakeDriftCase("12x15x6 w=1", 12, 15, 6, 41, 1.0, 2));
   cases.push_back(MakeDriftCase("20x25x6 w=2", 20, 25, 6, 42, 2.0, 7));
-  json input = {{"cases", json::array()}};
-  for (const DriftCase& c : cases) input["cases"].push_back(c.spec);
-  const auto dir = std::filesystem::path(::testing::TempDir()) /
-                   ("sb_ratings_drift_scipy_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  const auto in = dir / "in.json", out = dir / "out.json", err = dir / "err.txt";
-  std::ofstream(in) << input.dump();
-  const std::string cmd = "'" + Python() + "' '" + std::string(SB_SOURCE_DIR) +
-                          "/src/grades/ratings_drift_scipy.py' '" + in.string() + "' '" +
-                          out.string() + "' 2>'" + err.string() + "'";
-  if (std::system(cmd.c_str()) != 0) {
-    std::ifstream e(err);
-    std::stringstream ss;
-    ss << e.rdbuf();
-    std::filesystem::remove_all(dir);
-    FAIL() << "ratings_drift_scipy.py failed: " << ss.str();
-  }
-  const json ref = json::parse(std::ifstream(out));
-  std::filesystem::remove_all(dir);
+  json specs = json::array();
+  for (const DriftCase& c : cases) specs.push_back(c.spec);
+  const json ref = RunScipyOracle("ratings_drift_scipy.py", specs);
+  if (ref.is_null()) return;  // failed (reported)
   ASSERT_EQ(ref["cases"].size(), cases.size());
   const RatingParams k = RatingParams::For(Discipline::kBouldering);
   for (size_t i = 0; i < cases.size(); ++i) {

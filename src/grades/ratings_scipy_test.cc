@@ -17,6 +17,7 @@
 
 #include "base/number.h"
 #include "grades/ratings.h"
+#include "grades/ratings_scipy_oracle.h"
 #include "grades/ratings_synth.h"
 
 namespace sb::grades {
@@ -25,15 +26,6 @@ namespace {
 using nlohmann::json;
 
 constexpr double kTolerance = 1e-6;
-
-std::string ScipyUnavailable() {
-  if (::access("/usr/bin/python3", X_OK) != 0) return "/usr/bin/python3 is missing";
-  if (std::system("/usr/bin/python3 -c 'import scipy.special, scipy.optimize' >/dev/null 2>&1") !=
-      0) {
-    return "/usr/bin/python3 has no scipy (install Debian's python3-scipy: scripts/setup.sh)";
-  }
-  return "";
-}
 
 struct Case {
   std::string label;
@@ -113,28 +105,9 @@ Case MakeCase(const std::string& label, int climbers, int routes, int ticks, uin
 
 // Runs ratings_scipy.py on the cases; null (with a failure recorded) when it fails.
 json RunScipy(const std::vector<Case>& cases) {
-  json input = {{"cases", json::array()}};
-  for (const Case& c : cases) input["cases"].push_back(c.spec);
-  const auto dir = std::filesystem::path(::testing::TempDir()) /
-                   ("sb_ratings_scipy_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  const auto in = dir / "in.json", out = dir / "out.json", err = dir / "err.txt";
-  std::ofstream(in) << input.dump();
-  const std::string cmd = "/usr/bin/python3 '" + std::string(SB_SOURCE_DIR) +
-                          "/src/grades/ratings_scipy.py' '" + in.string() + "' '" + out.string() +
-                          "' 2>'" + err.string() + "'";
-  const int rc = std::system(cmd.c_str());
-  if (rc != 0) {
-    std::ifstream e(err);
-    std::stringstream ss;
-    ss << e.rdbuf();
-    ADD_FAILURE() << "ratings_scipy.py failed (" << rc << "): " << ss.str();
-    std::filesystem::remove_all(dir);
-    return json();
-  }
-  json ref = json::parse(std::ifstream(out));
-  std::filesystem::remove_all(dir);
-  return ref;
+  json specs = json::array();
+  for (const Case& c : cases) specs.push_back(c.spec);
+  return RunScipyOracle("ratings_scipy.py", specs);
 }
 
 TEST(RatingsScipy, FitAndIntervalsAgreeWithScipy) {

@@ -2,6 +2,7 @@
 // against the independent SciPy implementation (ratings_scipy.py,
 // "session_zones") to 1e-6, its parts switching off, and bad input.
 #include "grades/ratings_session.h"
+#include "grades/ratings_scipy_oracle.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -104,38 +105,6 @@ json Spec(const std::vector<SessionObs>& rows, int climbers, int routes,
   return j;
 }
 
-std::string ScipyUnavailable() {
-  if (::access("/usr/bin/python3", X_OK) != 0) return "/usr/bin/python3 is missing";
-  if (std::system("/usr/bin/python3 -c 'import scipy.special, scipy.optimize' >/dev/null 2>&1") !=
-      0) {
-    return "/usr/bin/python3 has no scipy (install Debian's python3-scipy: scripts/setup.sh)";
-  }
-  return "";
-}
-
-json RunScipy(const json& cases) {
-  const auto dir = std::filesystem::path(::testing::TempDir()) /
-                   ("sb_ratings_session_scipy_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  const auto in = dir / "in.json", out = dir / "out.json", err = dir / "err.txt";
-  std::ofstream(in) << json({{"cases", cases}}).dump();
-  const std::string cmd = "/usr/bin/python3 '" + std::string(SB_SOURCE_DIR) +
-                          "/src/grades/ratings_scipy.py' '" + in.string() + "' '" + out.string() +
-                          "' 2>'" + err.string() + "'";
-  const int rc = std::system(cmd.c_str());
-  if (rc != 0) {
-    std::ifstream e(err);
-    std::stringstream ss;
-    ss << e.rdbuf();
-    ADD_FAILURE() << "ratings_scipy.py failed (" << rc << "): " << ss.str();
-    std::filesystem::remove_all(dir);
-    return json();
-  }
-  json ref = json::parse(std::ifstream(out));
-  std::filesystem::remove_all(dir);
-  return ref;
-}
-
 TEST(RatingsSession, AgreesWithScipy) {
   if (std::string why = ScipyUnavailable(); !why.empty()) GTEST_SKIP() << why;
   struct Case {
@@ -161,7 +130,7 @@ TEST(RatingsSession, AgreesWithScipy) {
     rows.push_back(MakeRows(c.climbers, c.routes, c.seed));
     specs.push_back(Spec(rows.back(), c.climbers, c.routes, c.k));
   }
-  json ref = RunScipy(specs);
+  json ref = RunScipyOracle("ratings_scipy.py", specs);
   if (ref.is_null()) return;
   ASSERT_EQ(ref["cases"].size(), cases.size());
   for (size_t i = 0; i < cases.size(); ++i) {
