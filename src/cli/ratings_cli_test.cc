@@ -13,32 +13,13 @@
 
 #include "base/files.h"
 #include "cli/commands.h"
+#include "cli/ratings_cli_fixture.h"
 
 namespace sb::cli {
 namespace {
 
-class RatingsCli : public ::testing::Test {
+class RatingsCli : public RatingsCliFixture {
  protected:
-  void SetUp() override {
-    dir_ = std::filesystem::temp_directory_path() /
-           ("sb_ratings_cli_" + std::to_string(getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    std::filesystem::create_directories(dir_);
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-
-  int Ratings(const std::vector<std::string>& args) {
-    ::testing::internal::CaptureStderr();
-    ::testing::internal::CaptureStdout();
-    int rc = RunRatings(args);
-    err_ = ::testing::internal::GetCapturedStderr();
-    out_ = ::testing::internal::GetCapturedStdout();
-    return rc;
-  }
-  std::string P(const std::string& name) const { return (dir_ / name).string(); }
-  void Write(const std::string& name, const std::string& text) {
-    ASSERT_TRUE(WriteFileAtomic(P(name), text).ok());
-  }
   void WriteGym(const std::string& bad_rows = "") {
     Write("TICKS.csv",
           "climber,route,date,outcome,attempts,felt_grade\n"
@@ -50,9 +31,6 @@ class RatingsCli : public ::testing::Test {
               bad_rows);
     Write("ROUTES.csv", "route,grade\nCrimp Line,V4\nBlue Roof,6B+\nNew Slab,V1\n");
   }
-
-  std::filesystem::path dir_;
-  std::string out_, err_;
 };
 
 TEST_F(RatingsCli, JsonShape) {

@@ -14,31 +14,12 @@
 #include "base/files.h"
 #include "base/hash.h"
 #include "cli/commands.h"
+#include "cli/ratings_cli_fixture.h"
 
 namespace sb::cli {
 namespace {
 
-class RatingsDriftCli : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = std::filesystem::temp_directory_path() /
-           ("sb_ratings_drift_cli_" + std::to_string(getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    std::filesystem::create_directories(dir_);
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-  int Ratings(const std::vector<std::string>& args) {
-    ::testing::internal::CaptureStderr();
-    ::testing::internal::CaptureStdout();
-    int rc = RunRatings(args);
-    err_ = ::testing::internal::GetCapturedStderr();
-    out_ = ::testing::internal::GetCapturedStdout();
-    return rc;
-  }
-  std::string P(const std::string& name) const { return (dir_ / name).string(); }
-  std::filesystem::path dir_;
-  std::string out_, err_;
-};
+using RatingsDriftCli = RatingsCliFixture;
 
 // The digests are FNV-1a 64 of main's `strangebeta ratings fit` output
 // (commit abe9d84, before drift) on `ratings synth --climbers 60 --routes 50
