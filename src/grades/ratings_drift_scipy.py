@@ -26,7 +26,8 @@ Exit code 3 when scipy is missing (the test then skips with a message).
 The reading of a case, the games of a tick and the Newton polish are
 ratings_oracle.py's (shared with ratings_scipy.py).
 """
-from ratings_oracle import expit, log_expit, main, np, optimize, polish, route_priors, tick_games
+from ratings_oracle import (games_grad, games_hess, games_nll, main, np, optimize, polish,
+                            route_priors, tick_games)
 
 
 def fit(case):
@@ -54,8 +55,7 @@ def fit(case):
 
     def f(x):
         a, d = x[:N], x[N:]
-        z = s * (a[gc] - d[gr])
-        v = -np.sum(gw * log_expit(z) + (1 - gw) * log_expit(-z))
+        v = games_nll(s, gc, gr, gw, a, d)
         v += 0.5 * pa * np.sum((a[firsts] - m) ** 2)
         v += sum(0.5 * q * (a[j] - a[i]) ** 2 for i, j, q in links)
         v += 0.5 * np.sum(((d - mu) / sd) ** 2) + 0.5 * pf * np.sum((fv - d[fr]) ** 2)
@@ -63,10 +63,7 @@ def fit(case):
 
     def grad(x):
         a, d = x[:N], x[N:]
-        e = s * (expit(s * (a[gc] - d[gr])) - gw)
-        g = np.zeros(n)
-        np.add.at(g, gc, e)
-        np.add.at(g, N + gr, -e)
+        g = games_grad(s, gc, gr, gw, a, d, n)
         g[firsts] += pa * (a[firsts] - m)
         for i, j, q in links:
             g[i] -= q * (a[j] - a[i])
@@ -76,14 +73,7 @@ def fit(case):
         return g
 
     def hess(x):
-        a, d = x[:N], x[N:]
-        p = expit(s * (a[gc] - d[gr]))
-        h = s * s * p * (1 - p)
-        H = np.zeros((n, n))
-        np.add.at(H, (gc, gc), h)
-        np.add.at(H, (N + gr, N + gr), h)
-        np.add.at(H, (gc, N + gr), -h)
-        np.add.at(H, (N + gr, gc), -h)
+        H = games_hess(s, gc, gr, x[:N], x[N:], n)
         H[firsts, firsts] += pa
         for i, j, q in links:
             H[i, i] += q

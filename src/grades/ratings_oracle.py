@@ -61,6 +61,34 @@ def tick_games(ticks, unknown_of=lambda t: t[0]):
     return gc, gr, gw, fr, fv
 
 
+def games_nll(s, gc, gr, gw, a, d):
+    """The games' negative log-likelihood at abilities a and difficulties d."""
+    z = s * (a[gc] - d[gr])
+    return -np.sum(gw * log_expit(z) + (1 - gw) * log_expit(-z))
+
+
+def games_grad(s, gc, gr, gw, a, d, n):
+    """Its gradient over n unknowns: a first, d from len(a)."""
+    e = s * (expit(s * (a[gc] - d[gr])) - gw)  # d nll / d a for each game
+    g = np.zeros(n)
+    np.add.at(g, gc, e)
+    np.add.at(g, len(a) + gr, -e)
+    return g
+
+
+def games_hess(s, gc, gr, a, d, n):
+    """Its Hessian over n unknowns: a first, d from len(a)."""
+    p = expit(s * (a[gc] - d[gr]))
+    h = s * s * p * (1 - p)
+    H = np.zeros((n, n))
+    o = len(a)
+    np.add.at(H, (gc, gc), h)
+    np.add.at(H, (o + gr, o + gr), h)
+    np.add.at(H, (gc, o + gr), -h)
+    np.add.at(H, (o + gr, gc), -h)
+    return H
+
+
 def polish(x, grad, hess):
     """Plain Newton steps from the minimiser's answer until the gradient is
     below 1e-11 (trust-exact can stop short on flat games)."""

@@ -38,7 +38,8 @@ Exit code 3 when scipy is missing (the test then skips with a message).
 The reading of a case, the games of a tick and the Newton polish are
 ratings_oracle.py's (shared with ratings_drift_scipy.py).
 """
-from ratings_oracle import expit, log_expit, main, np, optimize, polish, route_priors, tick_games
+from ratings_oracle import (expit, games_grad, games_hess, games_nll, log_expit, main, np,
+                            optimize, polish, route_priors, tick_games)
 
 
 def fit(case):
@@ -58,8 +59,7 @@ def fit(case):
 
     def f(x):
         a, d = x[:C], x[C:]
-        z = s * (a[gc] - d[gr])
-        nll = -np.sum(gw * log_expit(z) + (1 - gw) * log_expit(-z))
+        nll = games_nll(s, gc, gr, gw, a, d)
         nll += 0.5 * pa * np.sum((a - m) ** 2)
         nll += 0.5 * np.sum(((d - mu) / sd) ** 2)
         nll += 0.5 * pf * np.sum((fv - d[fr]) ** 2)
@@ -67,25 +67,14 @@ def fit(case):
 
     def grad(x):
         a, d = x[:C], x[C:]
-        z = s * (a[gc] - d[gr])
-        e = s * (expit(z) - gw)  # d nll / d a for each game
-        g = np.zeros(n)
-        np.add.at(g, gc, e)
-        np.add.at(g, C + gr, -e)
+        g = games_grad(s, gc, gr, gw, a, d, n)
         g[:C] += pa * (a - m)
         g[C:] += (d - mu) / sd ** 2
         np.add.at(g, C + fr, pf * (d[fr] - fv))
         return g
 
     def hess(x):
-        a, d = x[:C], x[C:]
-        p = expit(s * (a[gc] - d[gr]))
-        w = s * s * p * (1 - p)
-        H = np.zeros((n, n))
-        np.add.at(H, (gc, gc), w)
-        np.add.at(H, (C + gr, C + gr), w)
-        np.add.at(H, (gc, C + gr), -w)
-        np.add.at(H, (C + gr, gc), -w)
+        H = games_hess(s, gc, gr, x[:C], x[C:], n)
         H[np.arange(C), np.arange(C)] += pa
         H[C + np.arange(R), C + np.arange(R)] += 1 / sd ** 2
         np.add.at(H, (C + fr, C + fr), pf)
