@@ -142,17 +142,7 @@ class Solver {
       });
       return;
     }
-    for (size_t i = 0; i < p_.pairs.size(); ++i) {
-      const RatingPair& q = p_.pairs[i];
-      const size_t a = size_t(q.climber), d = c_ + size_t(q.route);
-      double dz = 0, h = 0;
-      PairTerms(q, kk, b_, x[a] - x[d], &dz, &h);
-      (*g)[a] += dz;
-      (*g)[d] -= dz;
-      h_[i] = h;
-      diag_[a] += h;
-      diag_[d] += h;
-    }
+    newton::AddPairGradient(p_.pairs, kk, b_, x, c_, g, &h_, &diag_);
   }
 
   // y = H v.
@@ -181,12 +171,7 @@ class Solver {
       return;
     }
     for (size_t i = 0; i < c_ + r_; ++i) (*y)[i] = diag_[i] * v[i];
-    for (size_t i = 0; i < p_.pairs.size(); ++i) {
-      const RatingPair& q = p_.pairs[i];
-      const size_t a = size_t(q.climber), d = c_ + size_t(q.route);
-      (*y)[a] -= h_[i] * v[d];
-      (*y)[d] -= h_[i] * v[a];
-    }
+    newton::SubtractPairProducts(p_.pairs, h_, v, c_, y);
   }
 
   // Solves H s = -g approximately (relative residual eta) by Jacobi-
@@ -291,23 +276,13 @@ class Solver {
   std::vector<double> h_, diag_;
 };
 
-// Climber -> pair indices (CSR), pairs of a climber in route order.
-void ClimberIndex(const RatingProblem& p, std::vector<size_t>* start, std::vector<size_t>* idx) {
-  start->assign(size_t(p.num_climbers) + 1, 0);
-  for (const RatingPair& q : p.pairs) ++(*start)[size_t(q.climber) + 1];
-  for (size_t c = 0; c < size_t(p.num_climbers); ++c) (*start)[c + 1] += (*start)[c];
-  idx->resize(p.pairs.size());
-  std::vector<size_t> fill(start->begin(), start->end() - 1);
-  for (size_t i = 0; i < p.pairs.size(); ++i) (*idx)[fill[size_t(p.pairs[i].climber)]++] = i;
-}
-
 // Exact marginal variances: S = D_r - B^T D_c^-1 B (dense), S = L L^T,
 // W = L^-1; var(d_r) = sum_k W_kr^2; var(a_c) = 1/H_cc + |W b_c|^2 / H_cc^2.
 Status ExactVariances(const RatingProblem& p, const std::vector<double>& h,
                       const std::vector<double>& diag, RatingFit* fit) {
   const size_t c_n = size_t(p.num_climbers), r_n = size_t(p.num_routes());
   std::vector<size_t> start, idx;
-  ClimberIndex(p, &start, &idx);
+  newton::PairsByClimber(c_n, p.pairs, &start, &idx);  // a climber's pairs in route order
   std::vector<double> s(r_n * r_n, 0);
   for (size_t r = 0; r < r_n; ++r) s[r * r_n + r] = diag[c_n + r];
   for (size_t c = 0; c < c_n; ++c) {

@@ -95,17 +95,7 @@ class DriftSolver {
       }
     }
     routes_.SetGradient(x, n_, g, &diag_);
-    for (size_t i = 0; i < p_.pairs.size(); ++i) {
-      const RatingPair& q = p_.pairs[i];
-      const size_t a = size_t(q.climber), d = n_ + size_t(q.route);
-      double dz = 0, h = 0;
-      PairTerms(q, kk, b_, x[a] - x[d], &dz, &h);
-      (*g)[a] += dz;
-      (*g)[d] -= dz;
-      h_[i] = h;
-      diag_[a] += h;
-      diag_[d] += h;
-    }
+    newton::AddPairGradient(p_.pairs, kk, b_, x, n_, g, &h_, &diag_);
     // Each climber's tridiagonal block, factorised (L D L^T): the
     // preconditioner of the Newton step and the chain's inverse.
     for (size_t j = 0; j < n_; ++j) {
@@ -128,12 +118,7 @@ class DriftSolver {
         (*y)[j + 1] -= link_[j] * v[j];
       }
     }
-    for (size_t i = 0; i < p_.pairs.size(); ++i) {
-      const RatingPair& q = p_.pairs[i];
-      const size_t a = size_t(q.climber), d = n_ + size_t(q.route);
-      (*y)[a] -= h_[i] * v[d];
-      (*y)[d] -= h_[i] * v[a];
-    }
+    newton::SubtractPairProducts(p_.pairs, h_, v, n_, y);
   }
 
   // z = M^-1 r: each climber's chain solved exactly (tridiagonal), routes
@@ -199,17 +184,6 @@ void ChainInverse(const DriftSolver& s, size_t lo, size_t hi, std::vector<double
   }
 }
 
-// Node -> pair indices (CSR).
-void NodeIndex(const DriftProblem& p, std::vector<size_t>* start, std::vector<size_t>* idx) {
-  const size_t n = size_t(p.num_nodes());
-  start->assign(n + 1, 0);
-  for (const RatingPair& q : p.pairs) ++(*start)[size_t(q.climber) + 1];
-  for (size_t j = 0; j < n; ++j) (*start)[j + 1] += (*start)[j];
-  idx->resize(p.pairs.size());
-  std::vector<size_t> fill(start->begin(), start->end() - 1);
-  for (size_t i = 0; i < p.pairs.size(); ++i) (*idx)[fill[size_t(p.pairs[i].climber)]++] = i;
-}
-
 // Variances of the routes and each climber's latest node; the log
 // determinant of the Hessian (exact only). Exact: S = D_r - sum_c B_c^T
 // T_c^-1 B_c (dense), Cholesky, W = L^-1.
@@ -218,7 +192,7 @@ Status DriftVariances(const DriftProblem& p, const DriftSolver& s, bool exact, D
   const size_t n = size_t(p.num_nodes()), r_n = size_t(p.base.num_routes());
   const size_t c_n = size_t(p.base.num_climbers);
   std::vector<size_t> start, idx;
-  NodeIndex(p, &start, &idx);
+  newton::PairsByClimber(n, p.pairs, &start, &idx);
   const std::vector<double>& h = s.h();
   const std::vector<double>& diag = s.diag();
   RatingFit& fit = out->fit;

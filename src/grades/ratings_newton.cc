@@ -76,6 +76,16 @@ void RoutePriors::SetGradient(const std::vector<double>& x, size_t off, std::vec
   }
 }
 
+void PairsByClimber(size_t n, const std::vector<RatingPair>& pairs, std::vector<size_t>* start,
+                    std::vector<size_t>* idx) {
+  start->assign(n + 1, 0);
+  for (const RatingPair& q : pairs) ++(*start)[size_t(q.climber) + 1];
+  for (size_t c = 0; c < n; ++c) (*start)[c + 1] += (*start)[c];
+  idx->resize(pairs.size());
+  std::vector<size_t> fill(start->begin(), start->end() - 1);
+  for (size_t i = 0; i < pairs.size(); ++i) (*idx)[fill[size_t(pairs[i].climber)]++] = i;
+}
+
 void OffsetDerivatives(const std::vector<RatingPair>& pairs, double kk, double b,
                        const std::vector<double>& x, size_t off, double* g, double* h) {
   *g = 0;

@@ -60,6 +60,43 @@ inline void PairTerms(const RatingPair& q, double kk, double b, double diff, dou
   }
 }
 
+// The pairs' games at x (climber or node c at x[c], route r at x[off + r]):
+// adds their gradient to g and their Fisher information to diag (at both
+// ends), and keeps pair i's in h[i].
+inline void AddPairGradient(const std::vector<RatingPair>& pairs, double kk, double b,
+                            const std::vector<double>& x, size_t off, std::vector<double>* g,
+                            std::vector<double>* h, std::vector<double>* diag) {
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    const RatingPair& q = pairs[i];
+    const size_t a = size_t(q.climber), d = off + size_t(q.route);
+    double dz = 0, w = 0;
+    PairTerms(q, kk, b, x[a] - x[d], &dz, &w);
+    (*g)[a] += dz;
+    (*g)[d] -= dz;
+    (*h)[i] = w;
+    (*diag)[a] += w;
+    (*diag)[d] += w;
+  }
+}
+
+// y -= the pairs' off-diagonal part of the Hessian (-h[i] between pair i's
+// climber and route) times v.
+inline void SubtractPairProducts(const std::vector<RatingPair>& pairs, const std::vector<double>& h,
+                                 const std::vector<double>& v, size_t off,
+                                 std::vector<double>* y) {
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    const RatingPair& q = pairs[i];
+    const size_t a = size_t(q.climber), d = off + size_t(q.route);
+    (*y)[a] -= h[i] * v[d];
+    (*y)[d] -= h[i] * v[a];
+  }
+}
+
+// The pairs by climber (or node), CSR: climber c's pair indices are
+// idx[start[c]] .. idx[start[c + 1] - 1], in pair order; n climbers.
+void PairsByClimber(size_t n, const std::vector<RatingPair>& pairs, std::vector<size_t>* start,
+                    std::vector<size_t>* idx);
+
 // The routes' Gaussian terms: the setter's grade (or m) at setter_sd (or
 // open_route_sd) and the felt grades at felt_sd; x holds route r at off + r.
 class RoutePriors {

@@ -380,16 +380,9 @@ Result<GymSessionFit> FitGymSessionModel(const RatingProblem& problem, const Rat
 Result<RatingEvaluation> EvaluateSynthGymSession(const SynthGym& gym, const RatingParams& params,
                                                  const SessionModelParams& k) {
   const RatingProblem problem = SynthProblem(gym, RatingModel::kSession);
-  double sum = 0;
-  int n_set = 0;
-  for (const auto& g : problem.setter) {
-    if (g) {
-      sum += *g;
-      ++n_set;
-    }
-  }
+  // Every synthetic route has a setter's grade: m is their mean.
   SB_ASSIGN_OR_RETURN(GymSessionFit gf,
-                      FitGymSessionModel(problem, params, n_set > 0 ? sum / n_set : 0.0, k));
+                      FitGymSessionModel(problem, params, newton::PriorMean(problem), k));
   const SessionModelFit& fit = gf.fit;
   RatingEvaluation ev;
   const size_t n = gym.true_difficulty.size();
