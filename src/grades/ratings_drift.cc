@@ -650,29 +650,17 @@ Result<DriftEvaluation> EvaluateDriftingGym(const DriftingGym& dg, const RatingP
     pairs = problem.pairs;
     for (const RatingPair& q : pairs) ability_of_pair.push_back(fit.ability[size_t(q.climber)]);
   }
-  RatingEvaluation& re = ev.routes;
+  ev.routes = CompareWithTruth(gym, fit.difficulty, fit.difficulty_sd);
+  ev.routes.exact_intervals = fit.exact_intervals;
   const size_t n = gym.true_difficulty.size();
-  re.routes = int(n);
-  re.ticks = int(gym.ticks.size());
-  re.exact_intervals = fit.exact_intervals;
-  re.spearman = Spearman(fit.difficulty, gym.true_difficulty);
   const std::vector<Interval> skew = SkewedRouteIntervals(problem, pairs, ability_of_pair, params,
                                                           fit);
-  int covered = 0, skew_covered = 0;
+  int skew_covered = 0;
   for (size_t r = 0; r < n; ++r) {
     const double truth = gym.true_difficulty[r];
-    const double v = fit.difficulty[r], sd = fit.difficulty_sd[r];
-    if (truth >= v - kZ80 * sd && truth <= v + kZ80 * sd) ++covered;
     if (truth >= skew[r].lo && truth <= skew[r].hi) ++skew_covered;
-    re.mae += std::abs(v - truth);
-    re.setter_mae += std::abs(gym.setter_grade[r] - truth);
-    re.mean_interval_width += 2 * kZ80 * sd;
     ev.skewed_width += skew[r].hi - skew[r].lo;
   }
-  re.coverage = double(covered) / double(n);
-  re.mae /= double(n);
-  re.setter_mae /= double(n);
-  re.mean_interval_width /= double(n);
   ev.skewed_coverage = double(skew_covered) / double(n);
   ev.skewed_width /= double(n);
   // Climbers: the truth on the day of their last tick.

@@ -383,39 +383,7 @@ Result<RatingEvaluation> EvaluateSynthGymSession(const SynthGym& gym, const Rati
   // Every synthetic route has a setter's grade: m is their mean.
   SB_ASSIGN_OR_RETURN(GymSessionFit gf,
                       FitGymSessionModel(problem, params, newton::PriorMean(problem), k));
-  const SessionModelFit& fit = gf.fit;
-  RatingEvaluation ev;
-  const size_t n = gym.true_difficulty.size();
-  ev.routes = int(n);
-  ev.ticks = int(gym.ticks.size());
-  ev.spearman = Spearman(fit.difficulty, gym.true_difficulty);
-  std::vector<std::vector<double>> felt(n);
-  for (const SynthTick& t : gym.ticks) {
-    if (t.felt) felt[size_t(t.route)].push_back(*t.felt);
-  }
-  double felt_err = 0, fit_err_felt = 0;
-  for (size_t r = 0; r < n; ++r) {
-    const double truth = gym.true_difficulty[r];
-    ev.mae += std::abs(fit.difficulty[r] - truth);
-    ev.setter_mae += std::abs(gym.setter_grade[r] - truth);
-    if (!felt[r].empty()) {
-      ++ev.felt_routes;
-      std::vector<double>& f = felt[r];
-      std::sort(f.begin(), f.end());
-      const double med =
-          f.size() % 2 ? f[f.size() / 2] : (f[f.size() / 2 - 1] + f[f.size() / 2]) / 2;
-      felt_err += std::abs(med - truth);
-      fit_err_felt += std::abs(fit.difficulty[r] - truth);
-    }
-  }
-  ev.mae /= double(n);
-  ev.setter_mae /= double(n);
-  ev.coverage = ev.mean_interval_width = std::nan("");
-  if (ev.felt_routes > 0) {
-    ev.felt_mae = felt_err / ev.felt_routes;
-    ev.mae_felt_routes = fit_err_felt / ev.felt_routes;
-  }
-  return ev;
+  return CompareWithTruth(gym, gf.fit.difficulty);  // no intervals
 }
 
 SendChances PredictSessionModel(const SessionModelParams& params, const SessionModelFit& fit,

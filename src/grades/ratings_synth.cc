@@ -229,12 +229,19 @@ Result<RatingEvaluation> EvaluateSynthGym(const SynthGym& gym, const RatingParam
                                           const RatingFitOptions& options, RatingModel model) {
   const RatingProblem problem = SynthProblem(gym, model);
   SB_ASSIGN_OR_RETURN(RatingFit fit, FitRatings(problem, params, options));
+  RatingEvaluation ev = CompareWithTruth(gym, fit.difficulty, fit.difficulty_sd);
+  ev.exact_intervals = fit.exact_intervals;
+  return ev;
+}
+
+RatingEvaluation CompareWithTruth(const SynthGym& gym, std::span<const double> difficulty,
+                                  std::span<const double> difficulty_sd) {
   RatingEvaluation ev;
   const size_t n = gym.true_difficulty.size();
+  const bool intervals = !difficulty_sd.empty();
   ev.routes = int(n);
   ev.ticks = int(gym.ticks.size());
-  ev.exact_intervals = fit.exact_intervals;
-  ev.spearman = Spearman(fit.difficulty, gym.true_difficulty);
+  ev.spearman = Spearman(difficulty, gym.true_difficulty);
   std::vector<std::vector<double>> felt(n);
   for (const SynthTick& t : gym.ticks) {
     if (t.felt) felt[size_t(t.route)].push_back(*t.felt);
@@ -243,21 +250,28 @@ Result<RatingEvaluation> EvaluateSynthGym(const SynthGym& gym, const RatingParam
   double felt_err = 0, fit_err_felt = 0;
   for (size_t r = 0; r < n; ++r) {
     const double truth = gym.true_difficulty[r];
-    const double v = fit.difficulty[r], sd = fit.difficulty_sd[r];
-    if (truth >= v - kZ80 * sd && truth <= v + kZ80 * sd) ++covered;
+    const double v = difficulty[r];
+    if (intervals) {
+      const double sd = difficulty_sd[r];
+      if (truth >= v - kZ80 * sd && truth <= v + kZ80 * sd) ++covered;
+      ev.mean_interval_width += 2 * kZ80 * sd;
+    }
     ev.mae += std::abs(v - truth);
     ev.setter_mae += std::abs(gym.setter_grade[r] - truth);
-    ev.mean_interval_width += 2 * kZ80 * sd;
     if (!felt[r].empty()) {
       ++ev.felt_routes;
       felt_err += std::abs(Median(felt[r]) - truth);
       fit_err_felt += std::abs(v - truth);
     }
   }
-  ev.coverage = double(covered) / double(n);
+  if (intervals) {
+    ev.coverage = double(covered) / double(n);
+    ev.mean_interval_width /= double(n);
+  } else {
+    ev.coverage = ev.mean_interval_width = std::nan("");
+  }
   ev.mae /= double(n);
   ev.setter_mae /= double(n);
-  ev.mean_interval_width /= double(n);
   if (ev.felt_routes > 0) {
     ev.felt_mae = felt_err / ev.felt_routes;
     ev.mae_felt_routes = fit_err_felt / ev.felt_routes;

@@ -99,6 +99,13 @@ Result<RatingEvaluation> EvaluateSynthGym(const SynthGym& gym, const RatingParam
                                           const RatingFitOptions& options = {},
                                           RatingModel model = RatingModel::kTries);
 
+// Fitted difficulties (one per route of `gym`) against its truth: routes,
+// ticks, spearman, the errors and the felt grades' figures; with
+// difficulty_sd (one per route), the 80% intervals' coverage and mean width,
+// else both NaN (a fit without intervals). Pure.
+RatingEvaluation CompareWithTruth(const SynthGym& gym, std::span<const double> difficulty,
+                                  std::span<const double> difficulty_sd = {});
+
 // Spearman's rank correlation (average ranks for ties; NaN when either side
 // is constant or the sizes differ / are below 2). Pure.
 double Spearman(std::span<const double> a, std::span<const double> b);
