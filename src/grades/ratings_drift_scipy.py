@@ -27,7 +27,7 @@ The reading of a case, the games of a tick and the Newton polish are
 ratings_oracle.py's (shared with ratings_scipy.py).
 """
 from ratings_oracle import (games_grad, games_hess, games_nll, main, np, optimize, polish,
-                            route_priors, tick_games)
+                            route_prior_grad, route_prior_hess, route_priors, tick_games)
 
 
 def fit(case):
@@ -68,8 +68,7 @@ def fit(case):
         for i, j, q in links:
             g[i] -= q * (a[j] - a[i])
             g[j] += q * (a[j] - a[i])
-        g[N:] += (d - mu) / sd ** 2
-        np.add.at(g, N + fr, pf * (d[fr] - fv))
+        route_prior_grad(g, N, d, mu, sd, fr, fv, pf)
         return g
 
     def hess(x):
@@ -80,8 +79,7 @@ def fit(case):
             H[j, j] += q
             H[i, j] -= q
             H[j, i] -= q
-        H[N + np.arange(R), N + np.arange(R)] += 1 / sd ** 2
-        np.add.at(H, (N + fr, N + fr), pf)
+        route_prior_hess(H, N, sd, fr, pf)
         return H
 
     x0 = np.concatenate([np.full(N, m), mu])

@@ -89,6 +89,20 @@ def games_hess(s, gc, gr, a, d, n):
     return H
 
 
+def route_prior_grad(g, off, d, mu, sd, fr, fv, pf):
+    """Adds the routes' priors and felt grades to the gradient g (route r at
+    off + r)."""
+    g[off:off + len(d)] += (d - mu) / sd ** 2
+    np.add.at(g, off + fr, pf * (d[fr] - fv))
+
+
+def route_prior_hess(H, off, sd, fr, pf):
+    """Adds the routes' priors and felt grades to the Hessian H."""
+    R = len(sd)
+    H[off + np.arange(R), off + np.arange(R)] += 1 / sd ** 2
+    np.add.at(H, (off + fr, off + fr), pf)
+
+
 def polish(x, grad, hess):
     """Plain Newton steps from the minimiser's answer until the gradient is
     below 1e-11 (trust-exact can stop short on flat games)."""

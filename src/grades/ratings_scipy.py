@@ -39,7 +39,8 @@ The reading of a case, the games of a tick and the Newton polish are
 ratings_oracle.py's (shared with ratings_drift_scipy.py).
 """
 from ratings_oracle import (expit, games_grad, games_hess, games_nll, log_expit, main, np,
-                            optimize, polish, route_priors, tick_games)
+                            optimize, polish, route_prior_grad, route_prior_hess, route_priors,
+                            tick_games)
 
 
 def fit(case):
@@ -69,15 +70,13 @@ def fit(case):
         a, d = x[:C], x[C:]
         g = games_grad(s, gc, gr, gw, a, d, n)
         g[:C] += pa * (a - m)
-        g[C:] += (d - mu) / sd ** 2
-        np.add.at(g, C + fr, pf * (d[fr] - fv))
+        route_prior_grad(g, C, d, mu, sd, fr, fv, pf)
         return g
 
     def hess(x):
         H = games_hess(s, gc, gr, x[:C], x[C:], n)
         H[np.arange(C), np.arange(C)] += pa
-        H[C + np.arange(R), C + np.arange(R)] += 1 / sd ** 2
-        np.add.at(H, (C + fr, C + fr), pf)
+        route_prior_hess(H, C, sd, fr, pf)
         return H
 
     x0 = np.concatenate([np.full(C, m), mu])
@@ -155,8 +154,7 @@ def fit_session(case):
         np.add.at(g, C + gr, -s * e)
         g[n] = np.sum(gs * e) + pb * (b - b0)
         g[:C] += pa * (a - m)
-        g[C:n] += (d - mu) / sd ** 2
-        np.add.at(g, C + fr, pf * (d[fr] - fv))
+        route_prior_grad(g, C, d, mu, sd, fr, fv, pf)
         return g
 
     def hess(x):
@@ -173,8 +171,7 @@ def fit_session(case):
         np.add.at(H, (np.full(len(gr), n), C + gr), -s * gs * w)
         H[n, n] = np.sum(gs * w) + pb
         H[np.arange(C), np.arange(C)] += pa
-        H[C + np.arange(R), C + np.arange(R)] += 1 / sd ** 2
-        np.add.at(H, (C + fr, C + fr), pf)
+        route_prior_hess(H, C, sd, fr, pf)
         return H
 
     x0 = np.concatenate([np.full(C, m), mu, [b0]])
