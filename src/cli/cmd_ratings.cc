@@ -758,6 +758,15 @@ int EvalReal(const std::string& path, const std::string& format) {
   return WriteOutput(kCmd, "-", o);
 }
 
+// The drifting synthetic gym's options (synth and eval).
+void AddDriftGymOptions(CLI::App* sub, grades::DriftGymParams* p) {
+  sub->add_option("--trend-mean", p->trend_mean, "drifting: mean trend (grades a year)")
+      ->capture_default_str();
+  sub->add_option("--trend-sd", p->trend_sd, "drifting: sd of the trends")->capture_default_str();
+  sub->add_option("--wiener-sd", p->wiener_sd, "drifting: Wiener sd per sqrt(year)")
+      ->capture_default_str();
+}
+
 }  // namespace
 
 int RunRatings(const std::vector<std::string>& args) {
@@ -833,12 +842,7 @@ int RunRatings(const std::vector<std::string>& args) {
                   "abilities drift over the year (a trend and a Wiener process), routes up for "
                   "eight weeks");
   grades::DriftGymParams synth_dgp;
-  synth->add_option("--trend-mean", synth_dgp.trend_mean, "drifting: mean trend (grades a year)")
-      ->capture_default_str();
-  synth->add_option("--trend-sd", synth_dgp.trend_sd, "drifting: sd of the trends")
-      ->capture_default_str();
-  synth->add_option("--wiener-sd", synth_dgp.wiener_sd, "drifting: Wiener sd per sqrt(year)")
-      ->capture_default_str();
+  AddDriftGymOptions(synth, &synth_dgp);
 
   grades::SynthGymParams ep;
   CLI::App* eval = app.add_subcommand(
@@ -868,12 +872,7 @@ int RunRatings(const std::vector<std::string>& args) {
       ->capture_default_str();
   eval->add_option("--drift-sd", eval_drift_sd, "the drift's w (0: estimated)")->capture_default_str();
   grades::DriftGymParams eval_dgp;
-  eval->add_option("--trend-mean", eval_dgp.trend_mean, "drifting: mean trend (grades a year)")
-      ->capture_default_str();
-  eval->add_option("--trend-sd", eval_dgp.trend_sd, "drifting: sd of the trends")
-      ->capture_default_str();
-  eval->add_option("--wiener-sd", eval_dgp.wiener_sd, "drifting: Wiener sd per sqrt(year)")
-      ->capture_default_str();
+  AddDriftGymOptions(eval, &eval_dgp);
   eval->add_option("--interval-shape", eval_shape,
                    "symmetric or skewed (either way both are reported with --drift/--drifting)")
       ->capture_default_str();
