@@ -13,7 +13,7 @@
 
 #include "base/files.h"
 #include "cli/commands.h"
-#include "cli/ratings_cli_fixture.h"
+#include "cli/ratings_cli_test_util.h"
 
 namespace sb::cli {
 namespace {

@@ -14,7 +14,7 @@
 #include "base/files.h"
 #include "base/hash.h"
 #include "cli/commands.h"
-#include "cli/ratings_cli_fixture.h"
+#include "cli/ratings_cli_test_util.h"
 
 namespace sb::cli {
 namespace {

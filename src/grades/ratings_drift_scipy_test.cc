@@ -15,7 +15,7 @@
 #include <string>
 
 #include "grades/ratings_drift.h"
-#include "grades/ratings_scipy_oracle.h"
+#include "grades/ratings_scipy_test_util.h"
 #include "grades/ratings_synth.h"
 
 namespace sb::grades {

@@ -17,7 +17,7 @@
 
 #include "base/number.h"
 #include "grades/ratings.h"
-#include "grades/ratings_scipy_oracle.h"
+#include "grades/ratings_scipy_test_util.h"
 #include "grades/ratings_synth.h"
 
 namespace sb::grades {

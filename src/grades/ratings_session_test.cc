@@ -2,7 +2,7 @@
 // against the independent SciPy implementation (ratings_scipy.py,
 // "session_zones") to 1e-6, its parts switching off, and bad input.
 #include "grades/ratings_session.h"
-#include "grades/ratings_scipy_oracle.h"
+#include "grades/ratings_scipy_test_util.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>

@@ -2,8 +2,8 @@
 // (ratings_scipy_test.cc, ratings_session_test.cc,
 // ratings_drift_scipy_test.cc): why they cannot run here, and one run of a
 // script on a list of cases. Test-only.
-#ifndef SB_GRADES_RATINGS_SCIPY_ORACLE_H_
-#define SB_GRADES_RATINGS_SCIPY_ORACLE_H_
+#ifndef SB_GRADES_RATINGS_SCIPY_TEST_UTIL_H_
+#define SB_GRADES_RATINGS_SCIPY_TEST_UTIL_H_
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -61,4 +61,4 @@ inline nlohmann::json RunScipyOracle(const std::string& script, const nlohmann::
 
 }  // namespace sb::grades
 
-#endif  // SB_GRADES_RATINGS_SCIPY_ORACLE_H_
+#endif  // SB_GRADES_RATINGS_SCIPY_TEST_UTIL_H_

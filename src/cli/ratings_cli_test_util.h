@@ -2,8 +2,8 @@
 // (ratings_cli_test.cc, ratings_drift_cli_test.cc): a scratch folder per
 // test, RunRatings with its output captured, files written into the folder.
 // Test-only.
-#ifndef SB_CLI_RATINGS_CLI_FIXTURE_H_
-#define SB_CLI_RATINGS_CLI_FIXTURE_H_
+#ifndef SB_CLI_RATINGS_CLI_TEST_UTIL_H_
+#define SB_CLI_RATINGS_CLI_TEST_UTIL_H_
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -49,4 +49,4 @@ class RatingsCliFixture : public ::testing::Test {
 
 }  // namespace sb::cli
 
-#endif  // SB_CLI_RATINGS_CLI_FIXTURE_H_
+#endif  // SB_CLI_RATINGS_CLI_TEST_UTIL_H_
