@@ -447,7 +447,7 @@ std::string EditorPage(const PageViewer& v, const std::optional<app::RouteView>&
       if (!offer && from && to) offer = app::CheckTransition(*from, *to).ok();
       if (!offer) continue;
       b += "<option value=\"" + std::string(s) + "\"" + (s == cur ? " selected" : "") + ">" +
-           E(StateLabel(s)) + "</option>";
+           E(Tr(v, StateLabel(s).c_str())) + "</option>";
     }
     b += "</select>" + msg("state") + "</label>\n";
     b += "<label>" + Tr(v, t::kDate) + " <input type=\"date\" id=\"f-date\" name=\"set_on\" "
