@@ -5,6 +5,12 @@
 
 (function () {
   const $ = (sel) => document.querySelector(sel);
+  // Issue 32: the page's messages in its language (script_messages.h), by their English text.
+  const MSG = {};
+  for (const el of document.querySelectorAll('script.sb-messages')) {
+    try { Object.assign(MSG, JSON.parse(el.textContent)); } catch (e) { /* English */ }
+  }
+  const tx = (s, ...args) => (MSG[s] || s).replace(/\{(\d)\}/g, (m, i) => (args[i - 1] !== undefined ? String(args[i - 1]) : m));
   const root = $('#import-gym');
   if (!root) return;
   const gym = root.dataset.gym;
@@ -57,7 +63,7 @@
     for (const s of document.querySelectorAll('.import-map')) {
       s.textContent = '';
       const none = document.createElement('option');
-      none.value = ''; none.textContent = '(none)';
+      none.value = ''; none.textContent = tx('(none)');
       s.appendChild(none);
       for (const c of columns) {
         const o = document.createElement('option');
@@ -78,9 +84,9 @@
   }
 
   function showPreview(d) {
-    const summary = d.new + ' new, ' + d.changed + ' changed, ' + d.missing + ' no longer in the list' +
-      (d.missing ? ': strip them?' : '.') + (d.same ? ' (' + d.same + ' unchanged)' : '') +
-      (d.new_walls && d.new_walls.length ? ' New sectors: ' + d.new_walls.join(', ') + '.' : '');
+    const summary = tx('{1} new, {2} changed, {3} no longer in the list', d.new, d.changed, d.missing) +
+      (d.missing ? tx(': strip them?') : '.') + (d.same ? ' ' + tx('({1} unchanged)', d.same) : '') +
+      (d.new_walls && d.new_walls.length ? ' ' + tx('New sectors: {1}.', d.new_walls.join(', ')) : '');
     $('#import-summary').textContent = summary;
     $('#import-strip-label').hidden = !d.missing;
     const errs = $('#import-errors');
@@ -97,7 +103,7 @@
       const tr = document.createElement('tr');
       tr.className = 'import-' + r.action;
       cell(tr, r.line ? String(r.line) : '');
-      cell(tr, r.action);
+      cell(tr, tx(r.action));
       cell(tr, r.name);
       cell(tr, r.grade);
       cell(tr, r.wall);
@@ -111,8 +117,8 @@
 
   async function preview() {
     const msg = $('#import-msg');
-    if (!$('#import-data').value.trim()) return say(msg, 'Paste a list or choose a file.');
-    say(msg, 'Reading…', true);
+    if (!$('#import-data').value.trim()) return say(msg, tx('Paste a list or choose a file.'));
+    say(msg, tx('Reading…'), true);
     const r = await post(request(false));
     if (r.status !== 200) {
       $('#import-preview').hidden = true;
@@ -134,8 +140,8 @@
       const r = await post(request(true));
       if (r.status === 201) {
         const d = r.data;
-        say($('#import-done'), d.created + ' created, ' + d.updated + ' updated, ' + d.stripped +
-          ' stripped, ' + d.skipped + ' left as they were', true);
+        say($('#import-done'), tx('{1} created, {2} updated, {3} stripped, {4} left as they were',
+          d.created, d.updated, d.stripped, d.skipped), true);
       } else {
         say($('#import-done'), (r.data && r.data.error) || String(r.status));
       }

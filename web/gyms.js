@@ -5,6 +5,12 @@
 'use strict';
 
 (function () {
+  // Issue 32: the page's messages in its language (script_messages.h), by their English text.
+  const MSG = {};
+  for (const el of document.querySelectorAll('script.sb-messages')) {
+    try { Object.assign(MSG, JSON.parse(el.textContent)); } catch (e) { /* English */ }
+  }
+  const tr = (s, ...args) => (MSG[s] || s).replace(/\{(\d)\}/g, (m, i) => (args[i - 1] !== undefined ? String(args[i - 1]) : m));
   const csrf = () => {
     const m = document.querySelector('meta[name="csrf-token"]');
     return m ? m.content : '';
@@ -67,9 +73,8 @@
     }
     const rev = form.querySelector('input[name="revision"]');
     if (rev && cur.revision !== undefined) rev.value = cur.revision;
-    msg.textContent = 'Someone else saved this first (now revision ' + cur.revision + '). ' +
-      'It is now: ' + parts.join('; ') + '. Your changes are still here: save again to apply ' +
-      'yours over theirs, or reload to take theirs.';
+    msg.textContent = tr('Someone else saved this first (now revision {1}). It is now: {2}. Your changes ' +
+      'are still here: save again to apply yours over theirs, or reload to take theirs.', cur.revision, parts.join('; '));
     msg.classList.add('bad', 'conflict');
   }
 
@@ -92,7 +97,7 @@
       if (msg && r.status === 409 && r.data && r.data.current) {
         showConflict(form, msg, r.data);
       } else if (msg) {
-        msg.textContent = (r.data && r.data.error) || ('Failed (' + r.status + ')');
+        msg.textContent = (r.data && r.data.error) || tr('Failed ({1})', r.status);
         msg.classList.add('bad');
       }
     });

@@ -4,6 +4,12 @@
 'use strict';
 
 (function () {
+  // Issue 32: the page's messages in its language (script_messages.h), by their English text.
+  const MSG = {};
+  for (const el of document.querySelectorAll('script.sb-messages')) {
+    try { Object.assign(MSG, JSON.parse(el.textContent)); } catch (e) { /* English */ }
+  }
+  const tr = (s, ...args) => (MSG[s] || s).replace(/\{(\d)\}/g, (m, i) => (args[i - 1] !== undefined ? String(args[i - 1]) : m));
   const csrf = () => {
     const m = document.querySelector('meta[name="csrf-token"]');
     return m ? m.content : '';
@@ -27,19 +33,19 @@
       msg.textContent = '';
       if (res.status === 201 && data) {
         msg.classList.remove('bad');
-        msg.append('Planned: ');
-        for (const [label, href] of [['route ' + data.id, data.url], ['card', data.card],
-                                     ['tag', data.tag]]) {
+        msg.append(tr('Planned:') + ' ');
+        for (const [kind, label, href] of [['route', tr('route {1}', data.id), data.url],
+                                           ['card', tr('card'), data.card], ['tag', tr('tag'), data.tag]]) {
           const a = document.createElement('a');
           a.href = href;
           a.textContent = label;
-          a.className = 'accepted-' + label.split(' ')[0];
+          a.className = 'accepted-' + kind;
           msg.append(a, ' ');
         }
         return;
       }
       button.disabled = false;
-      msg.textContent = (data && data.error) || ('Failed (' + res.status + ')');
+      msg.textContent = (data && data.error) || tr('Failed ({1})', res.status);
       msg.classList.add('bad');
     });
   }

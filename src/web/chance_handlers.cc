@@ -86,33 +86,35 @@ json ProjectsJson(const app::ProjectList& p) {
   return json{{"active_climbers", p.active_climbers}, {"routes", routes}};
 }
 
-std::string ProjectsHtml(const app::ProjectList& p) {
-  std::string b = "<section class=\"projects\" id=\"projects\"><h2>Likely projects</h2>\n";
+std::string ProjectsHtml(const app::ProjectList& p, std::string_view lang) {
+  std::string b = "<section class=\"projects\" id=\"projects\"><h2>" + Tr(lang, "Likely projects") + "</h2>\n";
   int active = 0;
   for (const auto& [d, n] : p.active_climbers) active += n;
-  b += "<p class=\"msg\">Routes the median climber active here in the last " +
-       std::to_string(app::ChanceLimits::kActiveDays / 7) +
-       " weeks (" + std::to_string(active) + ") sends in one session with a chance of " +
-       Percent(app::ChanceLimits::kProjectLow) + " to " + Percent(app::ChanceLimits::kProjectHigh) +
-       ", most projectors first.</p>\n";
+  b += "<p class=\"msg\">" +
+       Fmt(Tr(lang, "Routes the median climber active here in the last {1} weeks ({2}) sends in "
+                    "one session with a chance of {3}, most projectors first."),
+           std::to_string(app::ChanceLimits::kActiveDays / 7), std::to_string(active),
+           Fmt(Tr(lang, "{1} to {2}"), Percent(app::ChanceLimits::kProjectLow),
+               Percent(app::ChanceLimits::kProjectHigh))) +
+       "</p>\n";
   if (p.routes.empty()) {
     b += "<p class=\"empty\" id=\"projects-none\">" +
-         std::string(active < app::ChanceLimits::kMinActiveClimbers
-                         ? "Too few active climbers for a project list yet."
-                         : "No route on the wall is a project for the median climber.") +
+         (active < app::ChanceLimits::kMinActiveClimbers
+              ? Tr(lang, "Too few active climbers for a project list yet.")
+              : Tr(lang, "No route on the wall is a project for the median climber.")) +
          "</p>\n</section>\n";
     return b;
   }
-  b += "<table id=\"projects-table\"><tr><th>Route</th><th>Grade</th><th>Wall</th><th "
-       "class=\"num\">Send this session (median)</th><th class=\"num\">Flash (median)</th><th "
-       "class=\"num\">Projecting</th></tr>\n";
+  b += "<table id=\"projects-table\"><tr><th>" + Tr(lang, "Route") + "</th><th>" + Tr(lang, "Grade") + "</th><th>" + Tr(lang, "Wall") + "</th><th "
+       "class=\"num\">" + Tr(lang, "Send this session (median)") + "</th><th class=\"num\">" + Tr(lang, "Flash (median)") + "</th><th "
+       "class=\"num\">" + Tr(lang, "Projecting") + "</th></tr>\n";
   for (const app::ProjectRoute& r : p.routes) {
     b += "<tr class=\"project\" data-route=\"" + std::to_string(r.id) + "\" data-p-send=\"" +
          FormatDouble(r.median_p_send) + "\"><td><a href=\"/routes/" + std::to_string(r.id) +
          "\">" + E(r.name) + "</a></td><td>" + E(r.grade) + "</td><td>" + E(r.wall) +
          "</td><td class=\"num\">" + Percent(r.median_p_send) + "</td><td class=\"num\">" +
-         Percent(r.median_p_flash) + "</td><td class=\"num\">" + std::to_string(r.projectors) +
-         " of " + std::to_string(r.climbers) + "</td></tr>\n";
+         Percent(r.median_p_flash) + "</td><td class=\"num\">" +
+         Fmt(Tr(lang, "{1} of {2}"), std::to_string(r.projectors), std::to_string(r.climbers)) + "</td></tr>\n";
   }
   return b + "</table>\n</section>\n";
 }

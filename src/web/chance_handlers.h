@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 #include <string>
+#include <string_view>
 
 #include "app/chances.h"
 #include "app/dashboard.h"
@@ -33,7 +34,7 @@ Result<app::ProjectList> ProjectsOf(Exchange& x, const app::GymDashboard& d);
 // "discipline","median_p_send","median_p_flash","projectors","climbers"}]}. Pure.
 nlohmann::json ProjectsJson(const app::ProjectList& p);
 // The dashboard's section "Likely projects" (id "projects"). Pure.
-std::string ProjectsHtml(const app::ProjectList& p);
+std::string ProjectsHtml(const app::ProjectList& p, std::string_view lang = "en");
 
 }  // namespace sb::web
 

@@ -131,7 +131,7 @@ std::string GradeBlock(std::string_view lang, const app::GradeSummary& g, int mi
   return h + "</dl>\n";
 }
 
-std::string Checkbox(const char* id, const char* label, bool on) {
+std::string Checkbox(const char* id, const std::string& label, bool on) {
   return std::string("<label class=\"check\"><input type=\"checkbox\" id=\"") + id + "\"" +
          (on ? " checked" : "") + "> " + label + "</label>\n";
 }
@@ -199,28 +199,28 @@ std::string SetterFeedbackHtml(const PageViewer& v, const app::SetterView& view,
                                int min_votes_shown) {
   const app::RouteView& r = view.route;
   std::string b = kAssets;
-  b += "<h1>" + E(r.name) + " · climbers' answers</h1>\n";
-  b += "<p><a href=\"/r/" + Id(r.id) + "\">Feedback page</a> (the route card's QR code)</p>\n";
+  b += "<h1>" + E(r.name) + " · " + Tr(v, "climbers' answers") + "</h1>\n";
+  b += "<p><a href=\"/r/" + Id(r.id) + "\">" + Tr(v, "Feedback page") + "</a> " + Tr(v, "(the route card's QR code)") + "</p>\n";
   b += GradeBlock(v.lang, view.grade, min_votes_shown);
-  b += "<dl class=\"consensus\"><dt>Responses</dt><dd id=\"responses\">" +
-       std::to_string(view.responses) + "</dd><dt>Answering " + E(view.instrument.name) +
+  b += "<dl class=\"consensus\"><dt>" + Tr(v, "Responses") + "</dt><dd id=\"responses\">" +
+       std::to_string(view.responses) + "</dd><dt>" + Fmt(Tr(v, "Answering {1}"), E(view.instrument.name)) +
        "</dt><dd id=\"answered\">" + std::to_string(view.answered) + "</dd>";
   if (view.other_instrument > 0) {
-    b += "<dt>Earlier questionnaire</dt><dd>" + std::to_string(view.other_instrument) +
-         " (left out)</dd>";
+    b += "<dt>" + Tr(v, "Earlier questionnaire") + "</dt><dd>" + std::to_string(view.other_instrument) +
+         " " + Tr(v, "(left out)") + "</dd>";
   }
-  b += "<dt>Median summed scale</dt><dd id=\"median-sum\" data-v=\"" +
+  b += "<dt>" + Tr(v, "Median summed scale") + "</dt><dd id=\"median-sum\" data-v=\"" +
        FormatDouble(view.median_sum) + "\">" + Round(view.median_sum, 1) + "</dd>";
-  b += "<dt>Mean % positive</dt><dd id=\"percent-positive\">" +
+  b += "<dt>" + Tr(v, "Mean % positive") + "</dt><dd id=\"percent-positive\">" +
        Round(view.mean_percent_positive, 1) + "</dd></dl>\n";
   if (!view.distribution.empty()) {
     int most = 1;
     for (const app::FeltBand& f : view.distribution) most = std::max(most, f.votes);
-    b += "<h2>Felt grades</h2>\n<table class=\"dist\" id=\"felt-distribution\">\n";
+    b += "<h2>" + Tr(v, "Felt grades") + "</h2>\n<table class=\"dist\" id=\"felt-distribution\">\n";
     for (const app::FeltBand& f : view.distribution) {
       int width = 100 * f.votes / most;
       b += "<tr" + std::string(f.setter ? " class=\"setter\"" : "") + "><th>" + E(f.name) +
-           (f.setter ? " <span class=\"tag\">setter</span>" : "") + "</th><td class=\"n\">" +
+           (f.setter ? " <span class=\"tag\">" + Tr(v, "setter") + "</span>" : std::string()) + "</th><td class=\"n\">" +
            std::to_string(f.votes) +
            "</td><td class=\"bar\"><span style=\"width:" + std::to_string(width) +
            "%\"></span></td></tr>\n";
@@ -228,7 +228,7 @@ std::string SetterFeedbackHtml(const PageViewer& v, const app::SetterView& view,
     b += "</table>\n";
   }
   if (!view.item_means.empty()) {
-    b += "<h2>Questions</h2>\n<table class=\"items\"><tr><th>Item</th><th>Mean (keyed)</th></tr>\n";
+    b += "<h2>" + Tr(v, "Questions") + "</h2>\n<table class=\"items\"><tr><th>" + Tr(v, "Item") + "</th><th>" + Tr(v, "Mean (keyed)") + "</th></tr>\n";
     for (size_t i = 0; i < view.item_means.size(); ++i) {
       const std::string& text =
           i < view.instrument.items.size() ? view.instrument.items[i].text : "";
@@ -237,27 +237,30 @@ std::string SetterFeedbackHtml(const PageViewer& v, const app::SetterView& view,
     }
     b += "</table>\n";
   }
-  b += "<h2>Comments</h2>\n<ul class=\"comments\" id=\"comments\">\n";
+  b += "<h2>" + Tr(v, "Comments") + "</h2>\n<ul class=\"comments\" id=\"comments\">\n";
   for (const app::FeedbackComment& c : view.comments) {
-    b += "<li><p>" + E(c.text) + "</p><small>" + E(c.date) +
-         (c.felt_grade.empty() ? "" : " · felt " + E(c.felt_grade)) + "</small></li>\n";
+    b += "<li><p>" + E(c.text) + "</p><small>" + E(FormatDate(v, c.date)) +
+         (c.felt_grade.empty() ? std::string() : " · " + Fmt(Tr(v, "felt {1}"), E(c.felt_grade))) + "</small></li>\n";
   }
-  if (view.comments.empty()) b += "<li class=\"msg\">No comments yet.</li>\n";
+  if (view.comments.empty()) b += "<li class=\"msg\">" + Tr(v, "No comments yet.") + "</li>\n";
   b += "</ul>\n";
-  return PageLayout(v, r.name + " · climbers' answers", b, "climber");
+  return PageLayout(v, r.name + " · " + Tr(v, "climbers' answers"), b, "climber");
 }
 
 std::string DriftPageHtml(const PageViewer& v, const app::DriftReport& report) {
   std::string b = kAssets;
-  b += "<h1>Your grades and the climbers'</h1>\n";
-  b += "<p id=\"drift-summary\">" + std::to_string(report.compared) + " routes compared, " +
-       std::to_string(report.flagged) + " flagged";
+  b += "<h1>" + Tr(v, "Your grades and the climbers'") + "</h1>\n";
+  b += "<p id=\"drift-summary\">" +
+       Fmt(TrN(v, "{1} route compared, {2} flagged", "{1} routes compared, {2} flagged", report.compared),
+           std::to_string(report.compared), std::to_string(report.flagged));
   if (std::isfinite(report.mean_bands)) {
-    b += "; on average climbers feel your routes " + Round(std::abs(report.mean_bands), 2) +
-         " bands " + (report.mean_bands >= 0 ? "harder" : "easier") + " than you grade them";
+    b += "; " + Fmt(report.mean_bands >= 0
+                        ? Tr(v, "on average climbers feel your routes {1} bands harder than you grade them")
+                        : Tr(v, "on average climbers feel your routes {1} bands easier than you grade them"),
+                    Round(std::abs(report.mean_bands), 2));
   }
-  b += ".</p>\n<table class=\"drift\"><tr><th>Route</th><th>Yours</th><th>Climbers</th>"
-       "<th>Votes</th><th>Drift</th></tr>\n";
+  b += ".</p>\n<table class=\"drift\"><tr><th>" + Tr(v, "Route") + "</th><th>" + Tr(v, "Yours") + "</th><th>" + Tr(v, "Climbers") + "</th>"
+       "<th>" + Tr(v, "Votes") + "</th><th>" + Tr(v, "Drift") + "</th></tr>\n";
   for (const app::RouteDrift& d : report.routes) {
     const app::GradeSummary& g = d.grade;
     b += "<tr" + std::string(g.drift.flagged ? " class=\"flagged\"" : "") + "><td><a href=\"/r/" +
@@ -269,55 +272,56 @@ std::string DriftPageHtml(const PageViewer& v, const app::DriftReport& report) {
          "</td></tr>\n";
   }
   b += "</table>\n";
-  return PageLayout(v, "Grade drift", b, "climber");
+  return PageLayout(v, Tr(v, "Grade drift"), b, "climber");
 }
 
 std::string StudiesPageHtml(const PageViewer& v, const std::vector<app::Study>& studies) {
   std::string b = kAssets;
-  b += "<h1>Studies</h1>\n";
+  b += "<h1>" + Tr(v, "Studies") + "</h1>\n";
   if (!v.logged_in) {
-    b += "<p><a href=\"/login\">Log in</a> to create and read your studies.</p>\n";
-    return PageLayout(v, "Studies", b, "climber");
+    b += "<p>" + Fmt(Tr(v, "{1} to create and read your studies."), "<a href=\"/login\">" + Tr(v, "Log in") + "</a>") + "</p>\n";
+    return PageLayout(v, Tr(v, "Studies"), b, "climber");
   }
-  b += "<p><a href=\"/studies/new\" id=\"new-study\">New study</a></p>\n";
-  b += "<table class=\"studies\" id=\"studies\"><tr><th>Study</th><th>Routes</th>"
-       "<th>Responses</th><th>State</th></tr>\n";
+  b += "<p><a href=\"/studies/new\" id=\"new-study\">" + Tr(v, "New study") + "</a></p>\n";
+  b += "<table class=\"studies\" id=\"studies\"><tr><th>" + Tr(v, "Study") + "</th><th>" + Tr(v, "Routes") + "</th>"
+       "<th>" + Tr(v, "Responses") + "</th><th>" + Tr(v, "State") + "</th></tr>\n";
   for (const app::Study& s : studies) {
     b += "<tr><td><a href=\"/studies/" + Id(s.id) + "\">" + E(s.name) +
          "</a></td><td class=\"n\">" + std::to_string(s.routes.size()) + "</td><td class=\"n\">" +
-         std::to_string(s.responses) + "</td><td>" + (s.is_open ? "open" : "closed") +
+         std::to_string(s.responses) + "</td><td>" + (s.is_open ? Tr(v, "open") : Tr(v, "closed")) +
          "</td></tr>\n";
   }
   b += "</table>\n";
-  return PageLayout(v, "Studies", b, "climber");
+  return PageLayout(v, Tr(v, "Studies"), b, "climber");
 }
 
 std::string StudyEditorHtml(const PageViewer& v, const std::vector<app::RouteView>& routes,
                             const std::optional<app::Study>& study, int64_t total,
                             const std::map<int64_t, std::string>& gym_names) {
   std::string b = kAssets;
-  b += std::string("<h1>") + (study ? "Edit study" : "New study") + "</h1>\n";
+  b += "<h1>" + (study ? Tr(v, "Edit study") : Tr(v, "New study")) + "</h1>\n";
   if (!v.logged_in) {
-    b += "<p><a href=\"/login\">Log in</a> to create a study.</p>\n";
-    return PageLayout(v, "Study", b, "climber");
+    b += "<p>" + Fmt(Tr(v, "{1} to create a study."), "<a href=\"/login\">" + Tr(v, "Log in") + "</a>") + "</p>\n";
+    return PageLayout(v, Tr(v, "Study"), b, "climber");
   }
   const bool frozen = study && study->responses > 0;
   b += "<form id=\"study-form\" class=\"climber-form\" data-id=\"" +
        (study ? Id(study->id) : std::string()) + "\">\n";
-  b += "<label class=\"field\">Name<input type=\"text\" id=\"study-name\" maxlength=\"" +
+  b += "<label class=\"field\">" + Tr(v, "Name") + "<input type=\"text\" id=\"study-name\" maxlength=\"" +
        std::to_string(app::kMaxStudyNameBytes) + "\" value=\"" + E(study ? study->name : "") +
        "\"></label>\n";
   if (frozen) {
-    b += "<p class=\"msg\">The study has responses: only its name and whether it is open can "
-         "change.</p>\n";
+    b += "<p class=\"msg\">" + Tr(v, "The study has responses: only its name and whether it is open can "
+         "change.") + "</p>\n";
   } else {
-    b += "<fieldset><legend>Routes, in the order climbers see them (labels 1, 2, …): tick them "
-         "in that order</legend>\n<ol id=\"study-order\" class=\"msg\"></ol>\n"
+    const int64_t found = total < 0 ? static_cast<int64_t>(routes.size()) : total;
+    b += "<fieldset><legend>" + Tr(v, "Routes, in the order climbers see them (labels 1, 2, …): tick them "
+         "in that order") + "</legend>\n<ol id=\"study-order\" class=\"msg\"></ol>\n"
          "<p class=\"route-find\"><input type=\"search\" id=\"study-find\" "
-         "placeholder=\"Find routes: name, grade, setter, wall\" aria-label=\"Find routes\"> "
+         "placeholder=\"" + E(Tr(v, "Find routes: name, grade, setter, wall")) + "\" aria-label=\"" + E(Tr(v, "Find routes")) + "\"> "
          "<small id=\"study-found\">" +
-         std::to_string(total < 0 ? static_cast<int64_t>(routes.size()) : total) +
-         " routes</small></p>\n";
+         Fmt(TrN(v, "{1} route", "{1} routes", found), std::to_string(found)) +
+         "</small></p>\n";
     nlohmann::json gyms = nlohmann::json::object();
     for (const auto& [id, name] : gym_names) gyms[std::to_string(id)] = name;
     b += "<div class=\"route-picks\" data-offset=\"" + std::to_string(routes.size()) +
@@ -357,38 +361,38 @@ std::string StudyEditorHtml(const PageViewer& v, const std::vector<app::RouteVie
       b += "<label class=\"check\"><input type=\"checkbox\" class=\"study-route\" value=\"" +
            Id(r.id) + "\"" +
            (it != chosen.end() ? " checked data-pos=\"" + std::to_string(it->second) + "\"" : "") +
-           "> " + E(r.name) + (r.is_variation ? " <span class=\"tag\">variation</span>" : "") +
+           "> " + E(r.name) + (r.is_variation ? " <span class=\"tag\">" + Tr(v, "variation") + "</span>" : std::string()) +
            " <small>" + E(r.grade) + "</small> <small class=\"where\">" + E(where) +
            "</small></label>\n";
     }
     b += "</div>\n<button type=\"button\" id=\"study-more\"" +
          std::string(total >= 0 && static_cast<int64_t>(routes.size()) < total ? "" : " hidden") +
-         ">More routes</button></fieldset>\n";
-    b += "<fieldset><legend>Questionnaire</legend>\n"
+         ">" + Tr(v, "More routes") + "</button></fieldset>\n";
+    b += "<fieldset><legend>" + Tr(v, "Questionnaire") + "</legend>\n"
          "<label class=\"check\"><input type=\"radio\" name=\"instrument\" value=\"brc\" "
-         "checked> The paper's 14 items (BRC study)</label>\n"
-         "<label class=\"check\"><input type=\"radio\" name=\"instrument\" value=\"pilot\"> The "
-         "paper's 5-item pilot</label>\n"
-         "<label class=\"check\"><input type=\"radio\" name=\"instrument\" value=\"file\"> A "
-         "file (docs/studies.md)</label>\n"
+         "checked> " + Tr(v, "The paper's 14 items (BRC study)") + "</label>\n"
+         "<label class=\"check\"><input type=\"radio\" name=\"instrument\" value=\"pilot\"> " + Tr(v, "The "
+         "paper's 5-item pilot") + "</label>\n"
+         "<label class=\"check\"><input type=\"radio\" name=\"instrument\" value=\"file\"> " + Tr(v, "A "
+         "file (docs/studies.md)") + "</label>\n"
          "<input type=\"file\" id=\"instrument-file\" accept=\".json,application/json\">\n";
     if (study) {
-      b += "<p class=\"msg\">Leave “" + std::string("keep") +
-           "” to keep the current questionnaire.</p><label class=\"check\"><input "
-           "type=\"radio\" name=\"instrument\" value=\"keep\" checked> keep</label>\n";
+      b += "<p class=\"msg\">" + Fmt(Tr(v, "Leave “{1}” to keep the current questionnaire."), Tr(v, "keep")) +
+           "</p><label class=\"check\"><input "
+           "type=\"radio\" name=\"instrument\" value=\"keep\" checked> " + Tr(v, "keep") + "</label>\n";
     }
-    b += "</fieldset>\n<fieldset><legend>Also ask</legend>\n";
-    b += Checkbox("ask-demographics", "Demographics (the paper's table 6)",
+    b += "</fieldset>\n<fieldset><legend>" + Tr(v, "Also ask") + "</legend>\n";
+    b += Checkbox("ask-demographics", Tr(v, "Demographics (the paper's table 6)"),
                   !study || study->demographics);
-    b += Checkbox("ask-rank", "Rank the routes", !study || study->ask_rank);
-    b += Checkbox("ask-order", "The order they were climbed in", !study || study->ask_order);
+    b += Checkbox("ask-rank", Tr(v, "Rank the routes"), !study || study->ask_rank);
+    b += Checkbox("ask-order", Tr(v, "The order they were climbed in"), !study || study->ask_order);
     b += "</fieldset>\n";
   }
-  if (study) b += Checkbox("study-open", "Open for responses", study->is_open);
-  b += "<button type=\"submit\" id=\"study-save\">" + std::string(study ? "Save" : "Create study") +
+  if (study) b += Checkbox("study-open", Tr(v, "Open for responses"), study->is_open);
+  b += "<button type=\"submit\" id=\"study-save\">" + (study ? Tr(v, "Save") : Tr(v, "Create study")) +
        "</button>\n"
        "<pre class=\"msg\" id=\"study-msg\" role=\"status\"></pre>\n</form>\n";
-  return PageLayout(v, study ? "Edit study" : "New study", b, "climber");
+  return PageLayout(v, study ? Tr(v, "Edit study") : Tr(v, "New study"), b, "climber");
 }
 
 std::string StudyFormHtml(const PageViewer& v, const app::StudyForm& f) {
@@ -465,16 +469,17 @@ std::string StudyResultsHtml(const PageViewer& v, const app::StudyResults& res,
   const std::string sid = Id(st.id);
   std::string b = kAssets;
   b += "<h1 id=\"study-title\">" + E(st.name) + "</h1>\n";
-  b += "<p>" + std::string(st.is_open ? "Open" : "Closed") + " · " + std::to_string(st.responses) +
-       " responses · climbers answer at <a id=\"study-link\" "
+  b += "<p>" + (st.is_open ? Tr(v, "Open") : Tr(v, "Closed")) + " · " +
+       Fmt(TrN(v, "{1} response", "{1} responses", st.responses), std::to_string(st.responses)) + " · " +
+       Fmt(Tr(v, "climbers answer at {1}"), "<a id=\"study-link\" "
        "href=\"/s/" +
-       sid + "\">/s/" + sid + "</a> · <a href=\"/studies/" + sid +
-       "/edit\" id=\"edit-study\">Edit</a></p>\n";
-  b += "<table class=\"labels\"><tr><th>Label</th><th>Route</th></tr>\n";
+       sid + "\">/s/" + sid + "</a>") + " · <a href=\"/studies/" + sid +
+       "/edit\" id=\"edit-study\">" + Tr(v, "Edit") + "</a></p>\n";
+  b += "<table class=\"labels\"><tr><th>" + Tr(v, "Label") + "</th><th>" + Tr(v, "Route") + "</th></tr>\n";
   for (const app::StudyRoute& sr : st.routes) {
     b += "<tr><td class=\"n\">" + std::to_string(sr.position) + "</td><td>" +
          (sr.route_id ? "<a href=\"/r/" + Id(*sr.route_id) + "\">" + E(sr.name) + "</a>"
-                      : E(sr.name) + " (deleted)") +
+                      : E(sr.name) + " " + Tr(v, "(deleted)")) +
          "</td></tr>\n";
   }
   b += "</table>\n";
@@ -487,70 +492,69 @@ std::string StudyResultsHtml(const PageViewer& v, const app::StudyResults& res,
     auto it = named.find(label);
     return it == named.end() ? label : it->second;
   };
-  b += "<p class=\"exports\">Export: <a id=\"export-csv\" href=\"/studies/" + sid +
-       "/responses.csv\">responses.csv</a> · <a id=\"export-instrument\" href=\"/studies/" + sid +
-       "/instrument.json\">instrument.json</a> · <a href=\"/studies/" + sid +
-       "/demographics.csv\">demographics.csv</a> · <a id=\"export-analysis\" href=\"/studies/" +
+  b += "<p class=\"exports\">" + Tr(v, "Export:") + " <a id=\"export-csv\" href=\"/studies/" + sid +
+       "/responses.csv\">responses.csv</a> · <a id=\"export-instrument\" href=\"/studies/" + sid +  // i18n: file names and a command
+       "/instrument.json\">instrument.json</a> · <a href=\"/studies/" + sid +  // i18n: file names and a command
+       "/demographics.csv\">demographics.csv</a> · <a id=\"export-analysis\" href=\"/studies/" +  // i18n: file names and a command
        sid + "/analysis.json" +
        (censor         ? "?censor=1"
         : drop.empty() ? ""
                        : "?drop=" + E(drop)) +
-       "\">analysis.json</a></p>\n";
-  b += "<pre class=\"cli\">strangebeta study analyze --instrument instrument.json --responses "
+       "\">analysis.json</a></p>\n";  // i18n: file names and a command
+  b += "<pre class=\"cli\">strangebeta study analyze --instrument instrument.json --responses "  // i18n: file names and a command
        "responses.csv" +
        std::string(censor         ? " --censor"
                    : drop.empty() ? ""
                                   : " --drop " + E(drop)) +
-       " --format json</pre>\n";
+       " --format json</pre>\n";  // i18n: file names and a command
   b += "<form method=\"get\" class=\"censor\" action=\"/studies/" + sid +
-       "\"><label class=\"field\">Drop items<input type=\"text\" name=\"drop\" id=\"drop\" "
+       "\"><label class=\"field\">" + Tr(v, "Drop items") + "<input type=\"text\" name=\"drop\" id=\"drop\" "
        "placeholder=\"q1,q9\" value=\"" +
        E(drop) +
        "\"></label><label class=\"check\"><input "
        "type=\"checkbox\" name=\"censor\" value=\"1\" id=\"censor\"" +
        (censor ? " checked" : "") +
-       "> the paper's rule (drop items that raise α)</label>"
-       "<button type=\"submit\" id=\"reanalyse\">Analyse</button></form>\n";
+       "> " + Tr(v, "the paper's rule (drop items that raise α)") + "</label>"
+       "<button type=\"submit\" id=\"reanalyse\">" + Tr(v, "Analyse") + "</button></form>\n";
   if (!error.empty()) b += "<p class=\"error\" id=\"analysis-error\">" + E(error) + "</p>\n";
   // The burst rule (issue 23, app/burst.h): held responses, for the owner.
   if (!res.held.empty()) {
     b += "<section id=\"held-responses\" class=\"no-print\" data-study=\"" + sid +
-         "\"><h2>Held responses (" + std::to_string(res.held.size()) +
-         ")</h2>\n<p class=\"msg\">A burst of new identities from one address answered this "
+         "\"><h2>" + Fmt(Tr(v, "Held responses ({1})"), std::to_string(res.held.size())) +
+         "</h2>\n<p class=\"msg\">" + Tr(v, "A burst of new identities from one address answered this "
          "study: these responses are left out of every number below and of the exports until "
-         "you accept them.</p>\n"
-         "<p><button type=\"button\" id=\"accept-all-held\">Accept all " +
-         std::to_string(res.held.size()) +
-         "</button> (people answering together on one network share its address)</p>\n<ul>\n";
+         "you accept them.") + "</p>\n"
+         "<p><button type=\"button\" id=\"accept-all-held\">" + Fmt(Tr(v, "Accept all {1}"),
+         std::to_string(res.held.size())) +
+         "</button> " + Tr(v, "(people answering together on one network share its address)") + "</p>\n<ul>\n";
     for (const app::HeldStudyResponse& h : res.held) {
       b += "<li class=\"held-response\" data-response=\"" + Id(h.id) + "\">" +
            E(h.participant) + ", " + E(h.created_at) + " UTC, " +
-           std::to_string(h.routes_answered) +
-           (h.routes_answered == 1 ? " route" : " routes") +
-           " answered <button type=\"button\" class=\"response-accept\">Accept</button> "
-           "<button type=\"button\" class=\"response-discard\">Discard</button></li>\n";
+           Fmt(TrN(v, "{1} route answered", "{1} routes answered", h.routes_answered), std::to_string(h.routes_answered)) +
+           " <button type=\"button\" class=\"response-accept\">" + Tr(v, "Accept") + "</button> "
+           "<button type=\"button\" class=\"response-discard\">" + Tr(v, "Discard") + "</button></li>\n";
     }
     b += "</ul></section>\n";
   }
   if (res.discarded > 0) {
-    b += "<p class=\"msg\" id=\"discarded-responses\">" + std::to_string(res.discarded) +
-         " discarded " + (res.discarded == 1 ? "response is" : "responses are") +
-         " left out.</p>\n";
+    b += "<p class=\"msg\" id=\"discarded-responses\">" +
+         Fmt(TrN(v, "{1} discarded response is left out.", "{1} discarded responses are left out.", res.discarded),
+             std::to_string(res.discarded)) + "</p>\n";
   }
   if (!res.analysis) {
-    b += "<p class=\"msg\" id=\"no-responses\">No responses yet.</p>\n";
+    b += "<p class=\"msg\" id=\"no-responses\">" + Tr(v, "No responses yet.") + "</p>\n";
     return PageLayout(v, st.name, b, "climber results");
   }
   const studies::Analysis& a = *res.analysis;
-  b += "<h2>Reliability</h2>\n<table class=\"stats\" id=\"alpha\"><tr><th>Rows</th>"
-       "<th>Participants</th><th>Complete</th><th>α</th><th>α censored</th><th>Censoring</th>"
+  b += "<h2>" + Tr(v, "Reliability") + "</h2>\n<table class=\"stats\" id=\"alpha\"><tr><th>" + Tr(v, "Rows") + "</th>"
+       "<th>" + Tr(v, "Participants") + "</th><th>" + Tr(v, "Complete") + "</th><th>α</th><th>" + Tr(v, "α censored") + "</th><th>" + Tr(v, "Censoring") + "</th>"
        "</tr><tr><td class=\"n\">" +
        std::to_string(a.rows) + "</td><td class=\"n\">" + std::to_string(a.participants) +
        "</td><td class=\"n\">" + std::to_string(a.complete) + "</td>" + Num(a.alpha, "/alpha") +
        Num(a.alpha_censored, "/alpha_censored") + "<td>" + E(a.censoring) +
        (a.dropped.empty() ? "" : ": " + E(Commas(a.dropped))) + "</td></tr></table>\n";
-  b += "<h2>Items</h2>\n<div class=\"scroll\"><table class=\"stats\" id=\"items\"><tr><th>Item"
-       "</th><th>Mean</th><th>α if deleted</th><th>τ item–total</th><th>p</th></tr>\n";
+  b += "<h2>" + Tr(v, "Items") + "</h2>\n<div class=\"scroll\"><table class=\"stats\" id=\"items\"><tr><th>" + Tr(v, "Item") +
+       "</th><th>" + Tr(v, "Mean") + "</th><th>" + Tr(v, "α if deleted") + "</th><th>" + Tr(v, "τ item–total") + "</th><th>p</th></tr>\n";
   for (size_t i = 0; i < a.items.size(); ++i) {
     const studies::ItemStats& it = a.items[i];
     const std::string k = "/items/" + std::to_string(i) + "/";
@@ -566,24 +570,24 @@ std::string StudyResultsHtml(const PageViewer& v, const app::StudyResults& res,
     for (const studies::ItemStats& it : a.items) {
       if (it.negative) reversed += (reversed.empty() ? "" : ", ") + it.id;
     }
-    b += "<p class=\"msg\" id=\"items-explained\">Each mean is the climbers' average answer "
-         "from " + std::to_string(res.instrument.scale_min) + " (strongly disagree) to " +
-         std::to_string(res.instrument.scale_max) +
-         " (strongly agree), keyed so that higher = more enjoyable for every item. " +
+    b += "<p class=\"msg\" id=\"items-explained\">" +
+         Fmt(Tr(v, "Each mean is the climbers' average answer from {1} (strongly disagree) to {2} "
+                   "(strongly agree), keyed so that higher = more enjoyable for every item."),
+             std::to_string(res.instrument.scale_min), std::to_string(res.instrument.scale_max)) + " " +
          (reversed.empty()
-              ? std::string("No item is reverse-keyed.")
-              : "Reverse-keyed (marked −): " + E(reversed) +
-                    ". Their statements are negative, so an answer x counts as " +
+              ? Tr(v, "No item is reverse-keyed.")
+              : Fmt(Tr(v, "Reverse-keyed (marked −): {1}. Their statements are negative, so an answer x "
+                          "counts as {2}: a high mean there means climbers disagreed with the negative "
+                          "statement."),
+                    E(reversed),
                     (res.instrument.scale_min + res.instrument.scale_max == 0
                          ? std::string("−x")
                          : std::to_string(res.instrument.scale_min + res.instrument.scale_max) +
-                               " − x") +
-                    ": a high mean there means climbers disagreed with the negative "
-                    "statement.") +
+                               " − x"))) +
          "</p>\n";
   }
-  b += "<h2>Routes</h2>\n<div class=\"scroll\"><table class=\"stats\" id=\"routes\"><tr><th>"
-       "Route</th><th>n</th><th>Median sum</th><th>Mean % positive</th><th>Median rank</th>"
+  b += "<h2>" + Tr(v, "Routes") + "</h2>\n<div class=\"scroll\"><table class=\"stats\" id=\"routes\"><tr><th>" +
+       Tr(v, "Route") + "</th><th>n</th><th>" + Tr(v, "Median sum") + "</th><th>" + Tr(v, "Mean % positive") + "</th><th>" + Tr(v, "Median rank") + "</th>"
        "</tr>\n";
   for (size_t i = 0; i < a.routes.size(); ++i) {
     const studies::RouteStats& r = a.routes[i];
@@ -598,10 +602,10 @@ std::string StudyResultsHtml(const PageViewer& v, const app::StudyResults& res,
        (censor         ? "?censor=1"
         : drop.empty() ? ""
                        : "?drop=" + E(drop)) +
-       "\" alt=\"Box plots of the summed scale per route\"><figcaption>Summed scale per route"
+       "\" alt=\"" + E(Tr(v, "Box plots of the summed scale per route")) + "\"><figcaption>" + Tr(v, "Summed scale per route") +
        "</figcaption></figure>\n";
-  b += "<h2>Pairs of routes</h2>\n<div class=\"scroll\"><table class=\"stats\" id=\"pairs\"><tr>"
-       "<th>Pair</th><th>Wilcoxon p</th><th>Welch t</th><th>Welch p</th></tr>\n";
+  b += "<h2>" + Tr(v, "Pairs of routes") + "</h2>\n<div class=\"scroll\"><table class=\"stats\" id=\"pairs\"><tr>"
+       "<th>" + Tr(v, "Pair") + "</th><th>Wilcoxon p</th><th>Welch t</th><th>Welch p</th></tr>\n";  // i18n: test names
   for (size_t i = 0; i < a.pairs.size(); ++i) {
     const studies::PairStats& p = a.pairs[i];
     const std::string k = "/pairs/" + std::to_string(i) + "/";
@@ -609,11 +613,11 @@ std::string StudyResultsHtml(const PageViewer& v, const app::StudyResults& res,
          Num(p.welch.t, k + "welch_t") + Num(p.welch.p, k + "welch_p") + "</tr>\n";
   }
   b += "</table></div>\n";
-  b += "<h2>Rankings</h2>\n<table class=\"stats\" id=\"kendall-w\"><tr><th>Kendall's W</th>"
-       "<th>p</th><th>Raters</th></tr><tr>" +
+  b += "<h2>" + Tr(v, "Rankings") + "</h2>\n<table class=\"stats\" id=\"kendall-w\"><tr><th>Kendall's W</th>"  // i18n: a statistic's name
+       "<th>p</th><th>" + Tr(v, "Raters") + "</th></tr><tr>" +
        Num(a.kendall_w.w, "/kendall_w/w") + Num(a.kendall_w.p, "/kendall_w/p") +
        "<td class=\"n\">" + std::to_string(a.kendall_w.raters) + "</td></tr></table>\n";
-  b += "<h2>Order and ability</h2>\n<div class=\"scroll\"><table class=\"stats\" "
+  b += "<h2>" + Tr(v, "Order and ability") + "</h2>\n<div class=\"scroll\"><table class=\"stats\" "
        "id=\"correlations\"><tr><th>x</th><th>y</th><th>n</th><th>τ</th><th>p</th><th>r</th>"
        "<th>p</th></tr>\n";
   for (size_t i = 0; i < a.correlations.size(); ++i) {

@@ -14,6 +14,7 @@
 #include "web/chance_handlers.h"
 #include "web/logbook_handlers.h"
 #include "web/pages.h"
+#include "web/script_messages.h"
 
 namespace sb::web {
 
@@ -131,23 +132,23 @@ struct AgeColour {
   const char* label;
 };
 AgeColour AgeOf(const app::WallDashboard& w) {
-  if (w.on_wall == 0 || !w.oldest_days) return {"#d0d0d0", "empty or undated"};
+  if (w.on_wall == 0 || !w.oldest_days) return {"#d0d0d0", N_("empty or undated")};
   const double cycle = 7.0 * w.wall.reset_weeks.value_or(8);
   const double f = *w.oldest_days / cycle;
-  if (f >= 1) return {"#e06666", "due for a reset"};
-  if (f >= 0.5) return {"#f6b26b", "past half its cycle"};
-  return {"#93c47d", "fresh"};
+  if (f >= 1) return {"#e06666", N_("due for a reset")};
+  if (f >= 0.5) return {"#f6b26b", N_("past half its cycle")};
+  return {"#93c47d", N_("fresh")};
 }
 
-std::string Legend() {
+std::string Legend(std::string_view lang) {
   std::string b = "<ul class=\"plan-legend\">";
-  for (const auto& [fill, label] : {std::pair<const char*, const char*>{"#93c47d", "fresh"},
-                                    {"#f6b26b", "past half its reset cycle"},
-                                    {"#e06666", "due for a reset"},
-                                    {"#d0d0d0", "empty or undated"}}) {
+  for (const auto& [fill, label] : {std::pair<const char*, const char*>{"#93c47d", N_("fresh")},
+                                    {"#f6b26b", N_("past half its reset cycle")},
+                                    {"#e06666", N_("due for a reset")},
+                                    {"#d0d0d0", N_("empty or undated")}}) {
     b += "<li><svg width=\"14\" height=\"14\" aria-hidden=\"true\"><rect width=\"14\" "
          "height=\"14\" fill=\"" + std::string(fill) + "\" stroke=\"#333\"/></svg> " +
-         std::string(label) + "</li>";
+         Tr(lang, label) + "</li>";
   }
   return b + "</ul>\n";
 }
@@ -156,7 +157,7 @@ std::string Legend() {
 // the wall) with the target as an outlined bar behind it.
 // `id` names the chart ("chart-" + id), `where` the walls in its label.
 std::string BandChart(const std::vector<app::BandRow>& bands, const std::string& id,
-                      const std::string& where) {
+                      const std::string& where, std::string_view lang) {
   if (bands.empty()) return "";
   int top = 1;
   for (const app::BandRow& b : bands) top = std::max({top, b.current, b.target.value_or(0)});
@@ -165,7 +166,7 @@ std::string BandChart(const std::vector<app::BandRow>& bands, const std::string&
   std::string s = "<svg class=\"grade-chart\" id=\"chart-" + E(id) +
                   "\" viewBox=\"0 0 " + Fixed(width) + " " + Fixed(h + 2 * label) +
                   "\" width=\"" + Fixed(width) + "\" role=\"img\" aria-label=\"" +
-                  E("Routes per band on " + where + " against the targets") + "\">";
+                  E(Fmt(Tr(lang, "Routes per band on {1} against the targets"), where)) + "\">";
   for (size_t i = 0; i < bands.size(); ++i) {
     const app::BandRow& b = bands[i];
     const double x = gap + i * (bw + gap);
@@ -189,40 +190,41 @@ std::string BandChart(const std::vector<app::BandRow>& bands, const std::string&
   return s + "</svg>";
 }
 
-std::string GradeChart(const app::WallDashboard& w) {
-  return BandChart(w.bands, Id(w.wall.id), w.wall.name);
+std::string GradeChart(const app::WallDashboard& w, std::string_view lang) {
+  return BandChart(w.bands, Id(w.wall.id), w.wall.name, lang);
 }
 
 // The chart's data table ("grades-" + id).
-std::string BandTable(const std::vector<app::BandRow>& bands, int ungraded, const std::string& id) {
+std::string BandTable(const std::vector<app::BandRow>& bands, int ungraded, const std::string& id,
+                      std::string_view lang) {
   std::string t = "<table class=\"list grade-table\" id=\"grades-" + E(id) +
-                  "\"><caption>Routes per band</caption><thead><tr><th>Band</th><th "
-                  "class=\"num\">On the wall</th><th class=\"num\">Target</th></tr></thead>"
+                  "\"><caption>" + Tr(lang, "Routes per band") + "</caption><thead><tr><th>" + Tr(lang, "Band") + "</th><th "
+                  "class=\"num\">" + Tr(lang, "On the wall") + "</th><th class=\"num\">" + Tr(lang, "Target") + "</th></tr></thead>"
                   "<tbody>";
   for (const app::BandRow& b : bands) {
     t += "<tr><td>" + E(b.band) + "</td><td class=\"num\">" + std::to_string(b.current) +
          "</td><td class=\"num\">" + (b.target ? std::to_string(*b.target) : "—") + "</td></tr>";
   }
   if (ungraded > 0) {
-    t += "<tr><td>ungraded</td><td class=\"num\">" + std::to_string(ungraded) +
+    t += "<tr><td>" + Tr(lang, "ungraded") + "</td><td class=\"num\">" + std::to_string(ungraded) +
          "</td><td class=\"num\">—</td></tr>";
   }
   return t + "</tbody></table>";
 }
 
-std::string GradeTable(const app::WallDashboard& w) {
-  return BandTable(w.bands, w.ungraded, Id(w.wall.id));
+std::string GradeTable(const app::WallDashboard& w, std::string_view lang) {
+  return BandTable(w.bands, w.ungraded, Id(w.wall.id), lang);
 }
 
-std::string StyleMix(const app::WallDashboard& w) {
+std::string StyleMix(const app::WallDashboard& w, std::string_view lang) {
   if (w.styles.empty()) return "";
   std::string t = "<table class=\"list style-table\" id=\"styles-" + Id(w.wall.id) +
-                  "\"><caption>Style mix (share of " + std::to_string(w.moves) +
-                  " moves)</caption><thead><tr><th>Style</th><th>Share</th><th class=\"num\">"
-                  "Aim</th></tr></thead><tbody>";
+                  "\"><caption>" + Fmt(TrN(lang, "Style mix (share of {1} move)", "Style mix (share of {1} moves)", w.moves), std::to_string(w.moves)) +
+                  "</caption><thead><tr><th>" + Tr(lang, "Style") + "</th><th>" + Tr(lang, "Share") + "</th><th class=\"num\">" +
+                  Tr(lang, "Aim") + "</th></tr></thead><tbody>";
   for (const app::StyleRow& s : w.styles) {
     const double pct = std::clamp(s.share, 0.0, 1.0) * 100;
-    t += "<tr><td>" + E(s.style) + "</td><td><svg class=\"bar\" viewBox=\"0 0 100 10\" "
+    t += "<tr><td>" + E(Tr(lang, s.style.c_str())) + "</td><td><svg class=\"bar\" viewBox=\"0 0 100 10\" "
          "width=\"100\" height=\"10\" aria-hidden=\"true\"><rect width=\"" + Fixed(pct) +
          "\" height=\"10\" fill=\"#6d9eeb\"/>" +
          (s.reference > 0 ? "<line x1=\"" + Fixed(s.reference * 100) + "\" x2=\"" +
@@ -230,25 +232,26 @@ std::string StyleMix(const app::WallDashboard& w) {
                                 "\" y1=\"0\" y2=\"10\" stroke=\"#333\" stroke-width=\"2\"/>"
                           : std::string()) +
          "</svg> " + Percent(s.share) + "</td><td class=\"num\">" +
-         (s.targeted || s.reference > 0 ? Percent(s.reference) + (s.targeted ? "" : " (archive)")
+         (s.targeted || s.reference > 0 ? Percent(s.reference) + (s.targeted ? "" : " " + Tr(lang, "(archive)"))
                                         : std::string("—")) +
          "</td></tr>";
   }
   return t + "</tbody></table>";
 }
 
-std::string RouteTable(const app::WallDashboard& w, const DashboardAscents& ascents) {
-  if (w.routes.empty()) return "<p class=\"empty\">Nothing on this wall.</p>";
+std::string RouteTable(const app::WallDashboard& w, const DashboardAscents& ascents,
+                       std::string_view lang) {
+  if (w.routes.empty()) return "<p class=\"empty\">" + Tr(lang, "Nothing on this wall.") + "</p>";
   std::string t = "<div class=\"table-wrap\"><table class=\"list\" id=\"routes-" + Id(w.wall.id) +
-                  "\"><caption>On the wall (least climbed first)</caption><thead><tr><th>Route"
-                  "</th><th>Grade</th><th>Circuit</th><th>Setters</th><th class=\"num\">Days"
-                  "</th><th class=\"num\">Ticks</th><th class=\"num\">Stars</th><th>Ascent grade"
+                  "\"><caption>" + Tr(lang, "On the wall (least climbed first)") + "</caption><thead><tr><th>" + Tr(lang, "Route") +
+                  "</th><th>" + Tr(lang, "Grade") + "</th><th>" + Tr(lang, "Circuit") + "</th><th>" + Tr(lang, "Setters") + "</th><th class=\"num\">" + Tr(lang, "Days") +
+                  "</th><th class=\"num\">" + Tr(lang, "Ticks") + "</th><th class=\"num\">" + Tr(lang, "Stars") + "</th><th>" + Tr(lang, "Ascent grade") +
                   "</th></tr></thead>"
                   "<tbody>";
   for (const app::DashboardRoute& r : w.routes) {
     t += "<tr" + std::string(r.due ? " class=\"due\"" : "") + "><td><a href=\"/routes/" +
-         Id(r.id) + "\">" + E(r.name) + "</a>" + (r.due ? " <span class=\"tag\">due</span>" : "") +
-         "</td><td>" + E(r.grade) + "</td><td>" + ColourHtml(r.colour) + "</td><td>" +
+         Id(r.id) + "\">" + E(r.name) + "</a>" + (r.due ? " <span class=\"tag\">" + Tr(lang, "due") + "</span>" : std::string()) +
+         "</td><td>" + E(r.grade) + "</td><td>" + ColourHtml(r.colour, lang) + "</td><td>" +
          E(Joined(r.setters)) + "</td><td class=\"num\">" +
          (r.age_days ? std::to_string(*r.age_days) : "—") + "</td><td class=\"num\">" +
          std::to_string(r.ticks) + "</td><td class=\"num\">" +
@@ -279,72 +282,77 @@ std::string MapText(const Targeted& w, bool grades) {
   return out;
 }
 
-std::string TargetForm(const app::GymDashboard& d, const app::WallDashboard& w) {
+std::string TargetForm(const app::GymDashboard& d, const app::WallDashboard& w,
+                       std::string_view lang) {
   const std::string url = "/api/gyms/" + Id(d.gym.id) + "/walls/" + Id(w.wall.id) + "/targets";
-  return "<details class=\"no-print\"><summary>Set targets</summary><form class=\"gym-form "
+  return "<details class=\"no-print\"><summary>" + Tr(lang, "Set targets") + "</summary><form class=\"gym-form "
          "targets-form\" id=\"targets-" + Id(w.wall.id) + "\" data-api=\"PUT " + E(url) +
          "\"><input type=\"hidden\" name=\"revision\" data-int value=\"" +
-         std::to_string(w.wall.targets_revision) + "\"><label>Routes per band <input name=\"grades\" data-map value=\"" +
-         E(MapText(w, true)) + "\" placeholder=\"V2: 3, V3: 4, V4: 3\"></label> <label>Share "
-         "of moves per style <input name=\"styles\" data-map value=\"" + E(MapText(w, false)) +
-         "\" placeholder=\"crimp: 0.3, heel hook: 0.1\"></label><button type=\"submit\">Save "
-         "targets</button><p class=\"msg\" role=\"status\"></p></form></details>";
+         std::to_string(w.wall.targets_revision) + "\"><label>" + Tr(lang, "Routes per band") + " <input name=\"grades\" data-map value=\"" +
+         E(MapText(w, true)) + "\" placeholder=\"V2: 3, V3: 4, V4: 3\"></label> <label>" + Tr(lang, "Share "
+         "of moves per style") + " <input name=\"styles\" data-map value=\"" + E(MapText(w, false)) +
+         "\" placeholder=\"crimp: 0.3, heel hook: 0.1\"></label><button type=\"submit\">" + Tr(lang, "Save "
+         "targets") + "</button><p class=\"msg\" role=\"status\"></p></form></details>";
 }
 
 std::string WallSection(const app::GymDashboard& d, const app::WallDashboard& w,
-                        const DashboardAscents& ascents) {
+                        const DashboardAscents& ascents, std::string_view lang) {
   const std::string id = Id(w.wall.id);
   std::string b = "<section class=\"dash-wall" + std::string(w.due ? " due" : "") +
                   "\" id=\"wall-" + id + "\"><h2><a href=\"/walls/" + id + "\">" +
                   E(w.wall.name) + "</a>" +
-                  (w.due ? " <span class=\"tag due\">due for a reset</span>" : "") + "</h2>\n";
-  b += "<p>" + std::to_string(w.on_wall) + " on the wall" +
-       (w.oldest_days ? ", the oldest " + std::to_string(*w.oldest_days) + " days" : "") +
-       (w.wall.reset_weeks ? ", reset every " + std::to_string(*w.wall.reset_weeks) + " weeks"
-                           : "") +
-       "; " + std::to_string(w.ticks) + " ticks. <a href=\"?wall=" + id +
-       "\">Only this wall</a></p>\n";
+                  (w.due ? " <span class=\"tag due\">" + Tr(lang, "due for a reset") + "</span>" : std::string()) + "</h2>\n";
+  b += "<p>" + Fmt(TrN(lang, "{1} on the wall", "{1} on the wall", w.on_wall), std::to_string(w.on_wall)) +
+       (w.oldest_days ? ", " + Fmt(TrN(lang, "the oldest {1} day", "the oldest {1} days", *w.oldest_days), std::to_string(*w.oldest_days)) : std::string()) +
+       (w.wall.reset_weeks ? ", " + Fmt(TrN(lang, "reset every {1} week", "reset every {1} weeks", *w.wall.reset_weeks), std::to_string(*w.wall.reset_weeks))
+                           : std::string()) +
+       "; " + Fmt(TrN(lang, "{1} tick", "{1} ticks", w.ticks), std::to_string(w.ticks)) + ". <a href=\"?wall=" + id +
+       "\">" + Tr(lang, "Only this wall") + "</a></p>\n";
   if (!w.gap_words.empty()) {
     b += "<ul class=\"gaps\" id=\"gaps-" + id + "\">";
     for (const std::string& g : w.gap_words) b += "<li>" + E(g) + "</li>";
     b += "</ul>\n";
   } else {
-    b += "<p class=\"gaps empty\" id=\"gaps-" + id + "\">No gaps.</p>\n";
+    b += "<p class=\"gaps empty\" id=\"gaps-" + id + "\">" + Tr(lang, "No gaps.") + "</p>\n";
   }
-  b += "<div class=\"chart-pair\">" + GradeChart(w) + GradeTable(w) + "</div>\n";
-  b += StyleMix(w) + "\n" + RouteTable(w, ascents) + "\n";
-  if (d.can_edit) b += TargetForm(d, w) + "\n";
+  b += "<div class=\"chart-pair\">" + GradeChart(w, lang) + GradeTable(w, lang) + "</div>\n";
+  b += StyleMix(w, lang) + "\n" + RouteTable(w, ascents, lang) + "\n";
+  if (d.can_edit) b += TargetForm(d, w, lang) + "\n";
   return b + "</section>\n";
 }
 
 // Issue 22: a discipline's routes on its walls against the gym's targets
 // for it, and its form (head setters).
-std::string DisciplineSection(const app::GymDashboard& d, const app::DisciplineDashboard& t) {
+std::string DisciplineSection(const app::GymDashboard& d, const app::DisciplineDashboard& t,
+                              std::string_view lang) {
   const std::string& name = t.discipline;
+  const std::string every = name == "roped" ? Tr(lang, "every roped wall")
+                            : name == "bouldering" ? Tr(lang, "every bouldering wall")
+                                                   : Fmt(Tr(lang, "every {1} wall"), name);
   std::string b = "<section class=\"dash-discipline\" id=\"discipline-" + E(name) + "\"><h2>" +
-                  E(name) + ": every " + E(name) + " wall</h2>\n<p>" +
-                  std::to_string(t.on_wall) + " on " + std::to_string(t.walls) + " wall" +
-                  (t.walls == 1 ? "" : "s") + ".</p>\n";
+                  E(Tr(lang, name.c_str())) + ": " + E(every) + "</h2>\n<p>" +
+                  Fmt(TrN(lang, "{1} on {2} wall", "{1} on {2} walls", t.walls), std::to_string(t.on_wall),
+                      std::to_string(t.walls)) + ".</p>\n";
   if (!t.gap_words.empty()) {
     b += "<ul class=\"gaps\" id=\"gaps-" + E(name) + "\">";
     for (const std::string& g : t.gap_words) b += "<li>" + E(g) + "</li>";
     b += "</ul>\n";
   } else {
-    b += "<p class=\"gaps empty\" id=\"gaps-" + E(name) + "\">No gaps against a target.</p>\n";
+    b += "<p class=\"gaps empty\" id=\"gaps-" + E(name) + "\">" + Tr(lang, "No gaps against a target.") + "</p>\n";
   }
-  b += "<div class=\"chart-pair\">" + BandChart(t.bands, name, "every " + name + " wall") +
-       BandTable(t.bands, t.ungraded, name) + "</div>\n";
+  b += "<div class=\"chart-pair\">" + BandChart(t.bands, name, every, lang) +
+       BandTable(t.bands, t.ungraded, name, lang) + "</div>\n";
   if (d.can_edit) {
     const std::string url = "/api/gyms/" + Id(d.gym.id) + "/targets";
-    b += "<details class=\"no-print\"><summary>Set " + E(name) + " targets</summary><form "
+    b += "<details class=\"no-print\"><summary>" + E(Fmt(Tr(lang, "Set targets: {1}"), Tr(lang, name.c_str()))) + "</summary><form "
          "class=\"gym-form targets-form\" id=\"targets-" + E(name) + "\" data-api=\"PUT " +
          E(url) + "\"><input type=\"hidden\" name=\"discipline\" value=\"" + E(name) +
-         "\"><label>Routes per band <input name=\"grades\" data-map value=\"" +
+         "\"><label>" + Tr(lang, "Routes per band") + " <input name=\"grades\" data-map value=\"" +
          E(MapText(t, true)) + "\" placeholder=\"" +
          (name == "roped" ? "5.9: 4, 5.10: 6" : "V2: 6, V3: 8, V4: 6") +
-         "\"></label> <label>Share of moves per style <input name=\"styles\" data-map value=\"" +
+         "\"></label> <label>" + Tr(lang, "Share of moves per style") + " <input name=\"styles\" data-map value=\"" +
          E(MapText(t, false)) + "\" placeholder=\"crimp: 0.3, heel hook: 0.1\"></label><button "
-         "type=\"submit\">Save targets</button><p class=\"msg\" role=\"status\"></p></form>"
+         "type=\"submit\">" + Tr(lang, "Save targets") + "</button><p class=\"msg\" role=\"status\"></p></form>"
          "</details>\n";
   }
   return b + "</section>\n";
@@ -443,7 +451,7 @@ Result<std::map<std::string, T>> NumberMap(const json& body, const char* field, 
 
 }  // namespace
 
-std::string PlanSvg(const app::GymDashboard& d) {
+std::string PlanSvg(const app::GymDashboard& d, std::string_view lang) {
   constexpr double kCell = 20;  // SVG units per plan cell
   double right = 0, bottom = 0;
   for (const app::WallDashboard& w : d.walls) {
@@ -454,7 +462,7 @@ std::string PlanSvg(const app::GymDashboard& d) {
   if (right <= 0 || bottom <= 0) return "";
   std::string s = "<svg id=\"plan\" class=\"plan\" viewBox=\"-4 -4 " + Fixed(right + 8) + " " +
                   Fixed(bottom + 8) + "\" width=\"100%\" role=\"img\" aria-label=\"" +
-                  E("Floor plan of " + d.gym.name) + "\"><title>" + E("Floor plan of " + d.gym.name) +
+                  E(Fmt(Tr(lang, "Floor plan of {1}"), d.gym.name)) + "\"><title>" + E(Fmt(Tr(lang, "Floor plan of {1}"), d.gym.name)) +
                   "</title>";
   for (const app::WallDashboard& w : d.walls) {
     if (!w.wall.plan_x) continue;
@@ -464,10 +472,10 @@ std::string PlanSvg(const app::GymDashboard& d) {
     const double font = std::clamp(std::min(ht / 3, wd / std::max<size_t>(4, w.wall.name.size()) * 1.6),
                                    8.0, 28.0);
     const std::string age =
-        w.oldest_days ? std::to_string(*w.oldest_days) + " d" : std::string("empty");
+        w.oldest_days ? Fmt(Tr(lang, "{1} d"), std::to_string(*w.oldest_days)) : Tr(lang, "empty");
     s += "<a href=\"/walls/" + Id(w.wall.id) + "\" class=\"plan-wall\" id=\"plan-wall-" +
-         Id(w.wall.id) + "\"><title>" + E(w.wall.name + ": " + std::to_string(w.on_wall) +
-                                          " on the wall, " + c.label) +
+         Id(w.wall.id) + "\"><title>" + E(w.wall.name + ": " + Fmt(TrN(lang, "{1} on the wall", "{1} on the wall", w.on_wall), std::to_string(w.on_wall)) +
+                                          ", " + Tr(lang, c.label)) +
          "</title><rect x=\"" + Fixed(x) + "\" y=\"" + Fixed(y) + "\" width=\"" + Fixed(wd) +
          "\" height=\"" + Fixed(ht) + "\" fill=\"" + c.fill +
          "\" stroke=\"#333\" stroke-width=\"2\"/><text x=\"" + Fixed(x + wd / 2) + "\" y=\"" +
@@ -481,7 +489,7 @@ std::string PlanSvg(const app::GymDashboard& d) {
 
 std::string WallStatus(const app::Wall& wall,
                        const std::vector<std::pair<std::string, std::string>>& routes,
-                       int64_t now) {
+                       int64_t now, std::string_view lang) {
   int on = 0;
   std::optional<int64_t> oldest;
   const int64_t today = now / 86400;
@@ -502,53 +510,54 @@ std::string WallStatus(const app::Wall& wall,
   }
   if (on == 0) return "";
   const bool due = wall.reset_weeks && oldest && *oldest >= *wall.reset_weeks * 7;
-  return "<p id=\"wall-status\">" + std::to_string(on) + " on the wall" +
-         (oldest ? ", the oldest " + std::to_string(*oldest) + " days" : std::string()) +
-         (due ? " — <strong class=\"tag due\">due for a reset</strong>" : std::string()) +
+  return "<p id=\"wall-status\">" + Fmt(TrN(lang, "{1} on the wall", "{1} on the wall", on), std::to_string(on)) +
+         (oldest ? ", " + Fmt(TrN(lang, "the oldest {1} day", "the oldest {1} days", *oldest), std::to_string(*oldest)) : std::string()) +
+         (due ? " — <strong class=\"tag due\">" + Tr(lang, "due for a reset") + "</strong>" : std::string()) +
          ". <a href=\"/gyms/" + Id(wall.gym_id) + "/dashboard?wall=" + Id(wall.id) +
-         "\">Dashboard</a></p>\n";
+         "\">" + Tr(lang, "Dashboard") + "</a></p>\n";
 }
 
 std::string DashboardPage(const PageViewer& v, const app::GymDashboard& d, int64_t only_wall,
                           const DashboardAscents& ascents) {
-  return PageLayout(v, d.gym.name + " dashboard", DashboardBody(d, only_wall, ascents));
+  return PageLayout(v, Fmt(Tr(v, "{1}: dashboard"), d.gym.name), DashboardBody(d, only_wall, ascents, "", v.lang));
 }
 
 std::string DashboardBody(const app::GymDashboard& d, int64_t only_wall,
-                          const DashboardAscents& ascents, const std::string& projects_html) {
+                          const DashboardAscents& ascents, const std::string& projects_html,
+                          std::string_view lang) {
   const std::string gid = Id(d.gym.id);
   std::string b = "<p class=\"no-print\"><a href=\"/gyms/" + gid + "\">" + E(d.gym.name) +
-                  "</a></p>\n<h1 id=\"dashboard-title\">" + E(d.gym.name) +
-                  ": what is up, what is missing</h1>\n";
-  if (only_wall) b += "<p class=\"no-print\"><a href=\"/gyms/" + gid + "/dashboard\">All walls</a></p>\n";
-  const std::string plan = PlanSvg(d);
+                  "</a></p>\n<h1 id=\"dashboard-title\">" +
+                  Fmt(Tr(lang, "{1}: what is up, what is missing"), E(d.gym.name)) + "</h1>\n";
+  if (only_wall) b += "<p class=\"no-print\"><a href=\"/gyms/" + gid + "/dashboard\">" + Tr(lang, "All walls") + "</a></p>\n";
+  const std::string plan = PlanSvg(d, lang);
   if (!only_wall) {
-    b += "<h2>Floor plan</h2>\n";
-    b += plan.empty() ? "<p class=\"empty\">No wall has a place on the floor plan yet (a head "
-                        "setter sets it on the gym page).</p>\n"
-                      : "<div class=\"plan-wrap\">" + plan + "</div>\n" + Legend();
+    b += "<h2>" + Tr(lang, "Floor plan") + "</h2>\n";
+    b += plan.empty() ? "<p class=\"empty\">" + Tr(lang, "No wall has a place on the floor plan yet (a head "
+                        "setter sets it on the gym page).") + "</p>\n"
+                      : "<div class=\"plan-wrap\">" + plan + "</div>\n" + Legend(lang);
     if (!d.circuit_words.empty()) {
-      b += "<h2>Circuits</h2>\n<ul class=\"gaps\" id=\"circuit-gaps\">";
+      b += "<h2>" + Tr(lang, "Circuits") + "</h2>\n<ul class=\"gaps\" id=\"circuit-gaps\">";
       for (const std::string& w : d.circuit_words) b += "<li>" + E(w) + "</li>";
       b += "</ul>\n";
     }
   }
   if (!only_wall) {
-    for (const app::DisciplineDashboard& t : d.disciplines) b += DisciplineSection(d, t);
+    for (const app::DisciplineDashboard& t : d.disciplines) b += DisciplineSection(d, t, lang);
     b += projects_html;  // issue 35
   }
   bool any = false;
   for (const app::WallDashboard& w : d.walls) {
     if (only_wall && w.wall.id != only_wall) continue;
     any = true;
-    b += WallSection(d, w, ascents);
+    b += WallSection(d, w, ascents, lang);
   }
-  if (!any) b += "<p class=\"empty\">No walls yet.</p>\n";
-  b += "<style>.chart-pair{display:flex;flex-wrap:wrap;gap:1em;align-items:flex-start}"
+  if (!any) b += "<p class=\"empty\">" + Tr(lang, "No walls yet.") + "</p>\n";
+  b += "<style>.chart-pair{display:flex;flex-wrap:wrap;gap:1em;align-items:flex-start}"  // i18n: CSS
        ".plan-wrap{max-width:48em}.plan-legend{list-style:none;padding:0;display:flex;"
        "flex-wrap:wrap;gap:1em}.grade-chart{max-width:100%;height:auto}tr.due td{font-weight:"
-       "bold}.dash-wall{break-inside:avoid}@media print{.no-print{display:none}}</style>\n";
-  b += "<script src=\"/static/gyms.js\" defer></script>\n";
+       "bold}.dash-wall{break-inside:avoid}@media print{.no-print{display:none}}</style>\n";  // i18n: CSS
+  b += GymsScriptMessages(lang) + "<script src=\"/static/gyms.js\" defer></script>\n";
   return b;
 }
 
@@ -666,10 +675,10 @@ void PageDashboard(Exchange& x) {
   if (!gym.ok()) return PageError(x, gym.status());
   Result<std::optional<app::Stamp>> stamp = x.services.rendered.StampOf(*id);
   if (!stamp.ok()) return PageError(x, stamp.status());
-  const app::RenderKey key{"dashboard " + std::to_string(only) + " " + gym->name, *id,
+  const app::RenderKey key{"dashboard " + x.caller.lang + " " + std::to_string(only) + " " + gym->name, *id,
                            x.caller.viewer.user_id.value_or(0)};
   x.res.SetHeader("Cache-Control", "no-store");
-  const std::string title = gym->name + " dashboard";
+  const std::string title = Fmt(Tr(x.caller.lang, "{1}: dashboard"), gym->name);
   if (*stamp) {
     if (auto hit = x.services.rendered.Find(key, **stamp)) {
       return x.res.SetBody(200, PageLayout(x.caller.page(), title, *hit),
@@ -686,9 +695,9 @@ void PageDashboard(Exchange& x) {
   if (!only) {
     Result<app::ProjectList> p = ProjectsOf(x, *d);
     if (!p.ok()) return PageError(x, p.status());
-    projects = ProjectsHtml(*p);
+    projects = ProjectsHtml(*p, x.caller.lang);
   }
-  std::string body = DashboardBody(*d, only, *ascents, projects);
+  std::string body = DashboardBody(*d, only, *ascents, projects, x.caller.lang);
   if (*stamp) body = *x.services.rendered.Keep(key, **stamp, std::move(body));
   x.res.SetBody(200, PageLayout(x.caller.page(), title, body),
                 "text/html; charset=utf-8");

@@ -37,11 +37,11 @@ std::string DashboardPage(const PageViewer& v, const app::GymDashboard& d, int64
 // after the discipline sections when every wall is shown. Pure.
 std::string DashboardBody(const app::GymDashboard& d, int64_t only_wall,
                           const DashboardAscents& ascents = {},
-                          const std::string& projects_html = "");
+                          const std::string& projects_html = "", std::string_view lang = "en");
 // The floor plan as SVG: walls on their plan rectangles, filled by the age
 // of what is on them, each a link to /walls/{id}; "" when no wall has a
 // rectangle. Pure.
-std::string PlanSvg(const app::GymDashboard& d);
+std::string PlanSvg(const app::GymDashboard& d, std::string_view lang = "en");
 // The wall page's line from the routes it lists, each as (state, set date
 // "YYYY-MM-DD"): how many are on the wall (state "set"), the oldest one's age
 // in days at `now` (unix seconds) and whether the wall is due for a reset
@@ -49,7 +49,7 @@ std::string PlanSvg(const app::GymDashboard& d);
 // nothing is on the wall. Pure.
 std::string WallStatus(const app::Wall& wall,
                        const std::vector<std::pair<std::string, std::string>>& routes,
-                       int64_t now);
+                       int64_t now, std::string_view lang = "en");
 
 }  // namespace sb::web
 

@@ -45,7 +45,9 @@ void PageGym(Exchange& x) {
     if (!h.ok()) return PageError(x, h.status());
     history = std::move(h).value();
   }
-  Html(x, GymPage(x.caller.page(), *gym, *walls, *circuits, *members, history));
+  Result<std::string> language = x.services.profiles.GymLanguage(*id);  // issue 32
+  Html(x, GymPage(x.caller.page(), *gym, *walls, *circuits, *members, history,
+                  language.ok() ? *language : std::string()));
 }
 
 void PageWall(Exchange& x) {
@@ -60,7 +62,7 @@ void PageWall(Exchange& x) {
   // The wall and gym above are read each time (a gym's rename moves no version).
   Result<std::optional<app::Stamp>> stamp = x.services.rendered.StampOf(wall->gym_id);
   if (!stamp.ok()) return PageError(x, stamp.status());
-  const app::RenderKey key{"wall", wall->id, x.caller.viewer.user_id.value_or(0)};
+  const app::RenderKey key{"wall/" + x.caller.lang, wall->id, x.caller.viewer.user_id.value_or(0)};
   if (*stamp) {
     if (auto hit = x.services.rendered.Find(key, **stamp)) {
       return Html(x, WallPage(x.caller.page(), *gym, *wall, *hit, Today()));
@@ -84,7 +86,8 @@ void PageWall(Exchange& x) {
   std::vector<std::pair<std::string, std::string>> dates;  // (state, set date) for the status line
   for (const auto& r : routes->routes) dates.emplace_back(r.state, r.set_on);
   std::string tables = WallRoutesHtml(*gym, *wall, routes->routes, &ascent,
-                                      WallStatus(*wall, dates, app::SystemClock().Now()));
+                                      WallStatus(*wall, dates, app::SystemClock().Now(), x.caller.lang),
+                                      x.caller.lang);
   // A page without its ascent grades (the fit failed) is not kept.
   if (*stamp && ascents.ok()) {
     return Html(x, WallPage(x.caller.page(), *gym, *wall,
@@ -105,7 +108,7 @@ std::string GymBlock(Exchange& x, const app::RouteView& r) {
   }
   const bool can_set =
       role.ok() && (app::CanSet(*role) && (r.state != "draft" || app::IsOwner(r, x.caller.viewer)));
-  return RouteGymBlock(r, history, can_set);
+  return RouteGymBlock(r, history, can_set, x.caller.lang);
 }
 
 }  // namespace sb::web

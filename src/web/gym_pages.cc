@@ -6,6 +6,7 @@
 #include "base/number.h"
 #include "base/text.h"
 #include "web/pages.h"
+#include "web/script_messages.h"
 
 namespace sb::web {
 
@@ -13,7 +14,9 @@ namespace {
 
 std::string E(std::string_view s) { return XmlEscape(s); }
 
-std::string Script() { return "<script src=\"/static/gyms.js\" defer></script>\n"; }
+std::string Script(std::string_view lang) {
+  return GymsScriptMessages(lang) + "<script src=\"/static/gyms.js\" defer></script>\n";
+}
 
 // A form the gyms.js script sends as JSON to `method url`.
 std::string ApiForm(const std::string& id, const std::string& method, const std::string& url,
@@ -54,10 +57,11 @@ std::string WallTagsUrl(const app::Gym& gym, int64_t wall) {
   return "/api/gyms/" + std::to_string(gym.id) + "/tags.pdf?wall=" + std::to_string(wall);
 }
 
-std::string StateName(const std::string& s) {
-  if (s == "set") return "on the wall";
-  if (s == "stripped") return "stripped (archive)";
-  return s;
+std::string StateName(std::string_view lang, const std::string& s) {
+  if (s == "set") return Tr(lang, "on the wall");
+  if (s == "stripped") return Tr(lang, "stripped (archive)");
+  [[maybe_unused]] static constexpr const char* kStates[] = {N_("draft"), N_("planned")};
+  return Tr(lang, s.c_str());
 }
 
 }  // namespace
@@ -81,13 +85,14 @@ std::string GymsPage(const PageViewer& v, const std::vector<app::Gym>& gyms) {
                      " <input name=\"name\" id=\"gym-name\" required maxlength=\"100\"></label>",
                  Tr(v, "Create gym"), "/gyms/:id");
   }
-  return PageLayout(v, Tr(v, "Gyms"), b + Script());
+  return PageLayout(v, Tr(v, "Gyms"), b + Script(v.lang));
 }
 
 std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<app::Wall>& walls,
                     const std::vector<app::Circuit>& circuits,
                     const std::vector<app::Member>& members,
-                    const std::vector<app::GymHistoryEntry>& history) {
+                    const std::vector<app::GymHistoryEntry>& history,
+                    const std::string& language) {
   const std::string gid = std::to_string(gym.id);
   const bool head = gym.role == "head";
   [[maybe_unused]] static constexpr const char* kRoles[] = {N_("head"), N_("setter"),
@@ -111,20 +116,20 @@ std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<
   if (walls.empty()) {
     b += "<p class=\"empty\">" + Tr(v, "No walls yet.") + "</p>\n";
   } else {
-    b += "<div class=\"table-wrap\"><table class=\"list\" id=\"wall-list\"><thead><tr><th>Wall"
-         "</th><th>Discipline</th><th class=\"num\">Angle</th><th class=\"num\">Reset</th>"
-         "<th>Climbers</th>" + std::string(app::CanSet(gym.role) ? "<th>Tags</th>" : "") +
+    b += "<div class=\"table-wrap\"><table class=\"list\" id=\"wall-list\"><thead><tr><th>" + Tr(v, "Wall") +
+         "</th><th>" + Tr(v, "Discipline") + "</th><th class=\"num\">" + Tr(v, "Angle") + "</th><th class=\"num\">" + Tr(v, "Reset") + "</th>"
+         "<th>" + Tr(v, "Climbers") + "</th>" + (app::CanSet(gym.role) ? "<th>" + Tr(v, "Tags") + "</th>" : std::string()) +
          "</tr></thead><tbody>\n";
     for (const app::Wall& w : walls) {
       b += "<tr><td><a href=\"/walls/" + std::to_string(w.id) + "\">" + E(w.name) + "</a></td><td>" +
-           E(w.discipline) + "</td><td class=\"num\">" + FormatDouble(w.angle) +
+           E(Tr(v, w.discipline.c_str())) + "</td><td class=\"num\">" + FormatDouble(w.angle) +
            "°</td><td class=\"num\">" +
-           (w.reset_weeks ? std::to_string(*w.reset_weeks) + " weeks" : std::string("—")) +
+           (w.reset_weeks ? Fmt(TrN(v, "{1} week", "{1} weeks", *w.reset_weeks), std::to_string(*w.reset_weeks)) : std::string("—")) +
            "</td><td><a class=\"wall-report\" href=\"/gyms/" + gid + "/report?wall=" +
-           std::to_string(w.id) + "\">report</a></td>";
+           std::to_string(w.id) + "\">" + Tr(v, "report") + "</a></td>";
       if (app::CanSet(gym.role)) {  // issue 31: the wall's tag sheet (planned and set routes)
         b += "<td><a class=\"wall-tags\" href=\"" + WallTagsUrl(gym, w.id) +
-             "\">tag sheet</a></td>";
+             "\">" + Tr(v, "tag sheet") + "</a></td>";
       }
       b += "</tr>\n";
     }
@@ -136,50 +141,50 @@ std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<
       const std::string url = "/api/gyms/" + gid + "/walls/" + wid;
       auto disc = [&](const char* d) {
         return "<option value=\"" + std::string(d) + "\"" + (w.discipline == d ? " selected" : "") +
-               ">" + d + "</option>";
+               ">" + Tr(v, d) + "</option>";
       };
       auto num = [](const std::string& name, const std::string& value, const char* extra) {
         return "<input type=\"number\" name=\"" + name + "\" value=\"" + value + "\" " + extra +
                ">";
       };
-      b += "<details class=\"wall-edit no-print\" id=\"wall-edit-" + wid + "\"><summary>Edit " +
-           E(w.name) + "</summary>" +
+      b += "<details class=\"wall-edit no-print\" id=\"wall-edit-" + wid + "\"><summary>" +
+           Fmt(Tr(v, "Edit {1}"), E(w.name)) + "</summary>" +
            ApiForm("wall-form-" + wid, "PUT", url,
-                   RevisionField(w.revision) + "<label>Name <input name=\"name\" required "
-                   "maxlength=\"100\" value=\"" + E(w.name) + "\"></label><label>Discipline "
+                   RevisionField(w.revision) + "<label>" + Tr(v, "Name") + " <input name=\"name\" required "
+                   "maxlength=\"100\" value=\"" + E(w.name) + "\"></label><label>" + Tr(v, "Discipline") + " "
                    "<select name=\"discipline\">" + disc("bouldering") + disc("roped") +
-                   "</select></label><label>Angle " +
+                   "</select></label><label>" + Tr(v, "Angle") + " " +
                    num("angle", FormatDouble(w.angle), "min=\"-90\" max=\"90\" step=\"any\"") +
-                   "</label><label>Reset every " +
-                   num("reset_weeks", OptInt(w.reset_weeks), "data-optional min=\"1\" max=\"104\"") +
-                   " weeks</label><label>Order " + num("position", std::to_string(w.position), "") +
-                   "</label><fieldset class=\"plan\"><legend>Floor plan (cells)</legend><label>x " +
+                   "</label><label>" + Fmt(Tr(v, "Reset every {1} weeks"),
+                   num("reset_weeks", OptInt(w.reset_weeks), "data-optional min=\"1\" max=\"104\"")) +
+                   "</label><label>" + Tr(v, "Order") + " " + num("position", std::to_string(w.position), "") +
+                   "</label><fieldset class=\"plan\"><legend>" + Tr(v, "Floor plan (cells)") + "</legend><label>x " +
                    num("plan.x", OptInt(w.plan_x), "data-optional min=\"0\"") + "</label><label>y " +
                    num("plan.y", OptInt(w.plan_y), "data-optional min=\"0\"") + "</label><label>w " +
                    num("plan.w", OptInt(w.plan_w), "data-optional min=\"1\"") + "</label><label>h " +
                    num("plan.h", OptInt(w.plan_h), "data-optional min=\"1\"") +
                    "</label></fieldset>",
-                   "Save wall") +
-           ButtonForm("wall-remove-" + wid, "DELETE", url, "", "Remove wall",
-                      "Remove the wall " + w.name + "?") +
+                   Tr(v, "Save wall")) +
+           ButtonForm("wall-remove-" + wid, "DELETE", url, "", Tr(v, "Remove wall"),
+                      Fmt(Tr(v, "Remove the wall {1}?"), w.name)) +
            "</details>\n";
     }
     b += ApiForm("new-wall", "POST", "/api/gyms/" + gid + "/walls",
-                 "<label>Name <input name=\"name\" id=\"wall-name\" required maxlength=\"100\">"
-                 "</label><label>Discipline <select name=\"discipline\" id=\"wall-discipline\">"
-                 "<option value=\"bouldering\">bouldering</option><option value=\"roped\">roped"
-                 "</option></select></label><label>Angle <input type=\"number\" name=\"angle\" "
+                 "<label>" + Tr(v, "Name") + " <input name=\"name\" id=\"wall-name\" required maxlength=\"100\">"
+                 "</label><label>" + Tr(v, "Discipline") + " <select name=\"discipline\" id=\"wall-discipline\">"
+                 "<option value=\"bouldering\">" + Tr(v, "bouldering") + "</option><option value=\"roped\">" + Tr(v, "roped") +
+                 "</option></select></label><label>" + Tr(v, "Angle") + " <input type=\"number\" name=\"angle\" "
                  "id=\"wall-angle\" value=\"0\" min=\"-90\" max=\"90\" step=\"any\"></label>"
-                 "<label>Reset every <input type=\"number\" name=\"reset_weeks\" data-optional "
-                 "min=\"1\" max=\"104\" size=\"3\"> weeks</label>",
-                 "Add wall");
+                 "<label>" + Fmt(Tr(v, "Reset every {1} weeks"), "<input type=\"number\" name=\"reset_weeks\" data-optional "
+                 "min=\"1\" max=\"104\" size=\"3\">") + "</label>",
+                 Tr(v, "Add wall"));
   }
   b += "<form method=\"get\" class=\"no-print\" id=\"day-report\" action=\"/gyms/" + gid +
-       "/report\"><label>What climbers said about a setting day <input type=\"date\" "
-       "name=\"date\" required></label> <button type=\"submit\">Report</button></form>\n";
-  b += "<h2>Circuits</h2>\n";
+       "/report\"><label>" + Tr(v, "What climbers said about a setting day") + " <input type=\"date\" "
+       "name=\"date\" required></label> <button type=\"submit\">" + Tr(v, "Report") + "</button></form>\n";
+  b += "<h2>" + Tr(v, "Circuits") + "</h2>\n";
   if (circuits.empty()) {
-    b += "<p class=\"empty\">No circuits yet.</p>\n";
+    b += "<p class=\"empty\">" + Tr(v, "No circuits yet.") + "</p>\n";
   } else {
     b += "<ul id=\"circuit-list\">";
     for (const app::Circuit& c : circuits) {
@@ -197,74 +202,89 @@ std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<
       const std::string cid = std::to_string(c.id);
       const std::string url = "/api/gyms/" + gid + "/circuits/" + cid;
       b += "<details class=\"circuit-edit no-print\" id=\"circuit-edit-" + cid +
-           "\"><summary>Edit " + E(c.colour) + "</summary>" +
+           "\"><summary>" + Fmt(Tr(v, "Edit {1}"), E(c.colour)) + "</summary>" +
            ApiForm("circuit-form-" + cid, "PUT", url,
-                   RevisionField(c.revision) + "<label>Colour <input name=\"colour\" required "
-                   "maxlength=\"40\" value=\"" + E(c.colour) + "\"></label><label>From <input "
+                   RevisionField(c.revision) + "<label>" + Tr(v, "Colour") + " <input name=\"colour\" required "
+                   "maxlength=\"40\" value=\"" + E(c.colour) + "\"></label><label>" + Tr(v, "From") + " <input "
                    "name=\"grade_from\" size=\"5\" value=\"" + E(c.grade_from) + "\"></label>"
-                   "<label>To <input name=\"grade_to\" size=\"5\" value=\"" + E(c.grade_to) +
+                   "<label>" + Tr(v, "To") + " <input name=\"grade_to\" size=\"5\" value=\"" + E(c.grade_to) +
                    "\"></label>",
-                   "Save circuit") +
-           ButtonForm("circuit-remove-" + cid, "DELETE", url, "", "Remove circuit",
-                      "Remove the circuit " + c.colour + "?") +
+                   Tr(v, "Save circuit")) +
+           ButtonForm("circuit-remove-" + cid, "DELETE", url, "", Tr(v, "Remove circuit"),
+                      Fmt(Tr(v, "Remove the circuit {1}?"), c.colour)) +
            "</details>\n";
     }
     b += ApiForm("new-circuit", "POST", "/api/gyms/" + gid + "/circuits",
-                 "<label>Colour <input name=\"colour\" id=\"circuit-colour\" required "
-                 "maxlength=\"40\"></label><label>From <input name=\"grade_from\" "
-                 "id=\"circuit-from\" size=\"5\" data-optional></label><label>To <input "
+                 "<label>" + Tr(v, "Colour") + " <input name=\"colour\" id=\"circuit-colour\" required "
+                 "maxlength=\"40\"></label><label>" + Tr(v, "From") + " <input name=\"grade_from\" "
+                 "id=\"circuit-from\" size=\"5\" data-optional></label><label>" + Tr(v, "To") + " <input "
                  "name=\"grade_to\" id=\"circuit-to\" size=\"5\" data-optional></label>",
-                 "Add circuit");
+                 Tr(v, "Add circuit"));
   }
-  b += "<h2>Team</h2>\n<ul id=\"member-list\">";
+  b += "<h2>" + Tr(v, "Team") + "</h2>\n<ul id=\"member-list\">";
   for (const app::Member& m : members) {
     // Issue 32: a member by display name (the log-in name beside it).
     b += "<li>" + (m.display_name.empty() ? E(m.username)
                                           : E(m.display_name) + " <small>(" + E(m.username) + ")</small>") +
-         " <span class=\"tag\">" + E(m.role) + "</span>";
+         " <span class=\"tag\">" + E(Tr(v, m.role.c_str())) + "</span>";
     if (head && m.username != v.username) {
       const std::string url = "/api/gyms/" + gid + "/members/" + m.username;
       auto opt = [&](const char* r, const char* label) {
         return "<option value=\"" + std::string(r) + "\"" + (m.role == r ? " selected" : "") +
-               ">" + label + "</option>";
+               ">" + Tr(v, label) + "</option>";
       };
       b += " " +
            ButtonForm("member-role-" + m.username, "PUT", url,
-                      "<select name=\"role\" aria-label=\"Role of " + E(m.username) + "\">" +
-                          opt("setter", "setter") + opt("head", "head setter") +
-                          opt("climber", "climber") + "</select>",
-                      "Change role") +
+                      "<select name=\"role\" aria-label=\"" + E(Fmt(Tr(v, "Role of {1}"), m.username)) + "\">" +
+                          opt("setter", N_("setter")) + opt("head", N_("head setter")) +
+                          opt("climber", N_("climber")) + "</select>",
+                      Tr(v, "Change role")) +
            " " +
-           ButtonForm("member-remove-" + m.username, "DELETE", url, "", "Remove",
-                      "Remove " + m.username + " from the team?");
+           ButtonForm("member-remove-" + m.username, "DELETE", url, "", Tr(v, "Remove"),
+                      Fmt(Tr(v, "Remove {1} from the team?"), m.username));
     }
     b += "</li>";
   }
   b += "</ul>\n";
   if (head) {
     b += ApiForm("new-member", "POST", "/api/gyms/" + gid + "/members",
-                 "<label>User name <input name=\"username\" id=\"member-name\" required></label>"
-                 "<label>Role <select name=\"role\" id=\"member-role\"><option value=\"setter\">"
-                 "setter</option><option value=\"head\">head setter</option><option "
-                 "value=\"climber\">climber</option></select></label>",
-                 "Add to the team");
-    b += "<p class=\"hint\">A new setter signs up first; then add them here by their user "
-         "name.</p>\n";
-    b += "<h2>Gym</h2>\n" +
+                 "<label>" + Tr(v, "User name") + " <input name=\"username\" id=\"member-name\" required></label>"
+                 "<label>" + Tr(v, "Role") + " <select name=\"role\" id=\"member-role\"><option value=\"setter\">" +
+                 Tr(v, "setter") + "</option><option value=\"head\">" + Tr(v, "head setter") + "</option><option "
+                 "value=\"climber\">" + Tr(v, "climber") + "</option></select></label>",
+                 Tr(v, "Add to the team"));
+    b += "<p class=\"hint\">" + Tr(v, "A new setter signs up first; then add them here by their user "
+         "name.") + "</p>\n";
+    b += "<h2>" + Tr(v, "Gym") + "</h2>\n" +
          ApiForm("gym-rename", "PUT", "/api/gyms/" + gid,
-                 RevisionField(gym.revision) + "<label>Name <input name=\"name\" id=\"gym-rename-name\" "
+                 RevisionField(gym.revision) + "<label>" + Tr(v, "Name") + " <input name=\"name\" id=\"gym-rename-name\" "
                  "required maxlength=\"100\" value=\"" + E(gym.name) + "\"></label>",
-                 "Rename gym");
+                 Tr(v, "Rename gym"));
+    // Issue 32: the gym's default language (pages of visitors with neither an
+    // account's nor a browser's language, and the gym's tags and tag PDFs).
+    auto lang_opt = [&](const char* code, const std::string& label) {
+      return "<option value=\"" + std::string(code) + "\"" + (language == code ? " selected" : "") +
+             ">" + label + "</option>";
+    };
+    b += ApiForm("gym-language", "PUT", "/api/gyms/" + gid,
+                 "<label>" + Tr(v, "Language of the gym") + " <select name=\"language\" id=\"gym-language-select\">" +
+                     lang_opt("", Tr(v, "none (each visitor's own)")) +
+                     lang_opt("en", "English") + lang_opt("de", "Deutsch") +  // i18n: each language's own name
+                     lang_opt("fr", "Français") +  // i18n: the language's own name
+                     "</select></label><p class=\"hint\">" +
+                     Tr(v, "Pages for visitors whose browser asks for none of English, German and French, "
+                           "and this gym's tags and tag PDFs, are in this language.") + "</p>",
+                 Tr(v, "Save language"));
   }
   if (!history.empty()) {
-    b += "<h2>History</h2>\n<ol class=\"history\" id=\"gym-history\">";
+    b += "<h2>" + Tr(v, "History") + "</h2>\n<ol class=\"history\" id=\"gym-history\">";
     for (const app::GymHistoryEntry& h : history) {
-      b += "<li><time>" + E(h.at) + "</time> " + E(h.who.empty() ? "someone" : h.who) + ": " +
+      b += "<li><time>" + E(h.at) + "</time> " + E(h.who.empty() ? Tr(v, "someone") : h.who) + ": " +
            E(h.what) + "</li>";
     }
     b += "</ol>\n";
   }
-  return PageLayout(v, gym.name, b + Script());
+  return PageLayout(v, gym.name, b + Script(v.lang));
 }
 
 // " (grade in another discipline's scale)" after a route's grade, or "".
@@ -276,16 +296,16 @@ std::string GradeNoteHtml(const app::RouteView& r) {
 std::string WallRoutesHtml(const app::Gym& gym, const app::Wall& wall,
                            const std::vector<app::RouteView>& routes,
                            const std::map<int64_t, std::string>* ascent_cells,
-                           const std::string& status) {
+                           const std::string& status, std::string_view lang) {
   std::string b = status + "<p><a id=\"wall-report\" href=\"/gyms/" + std::to_string(gym.id) +
-                  "/report?wall=" + std::to_string(wall.id) + "\">What climbers said</a></p>\n";
+                  "/report?wall=" + std::to_string(wall.id) + "\">" + Tr(lang, "What climbers said") + "</a></p>\n";
   for (const char* state : {"set", "planned", "draft", "stripped"}) {
     std::string rows;
     for (const app::RouteView& r : routes) {
       if (r.state != state) continue;
       rows += "<tr><td><a href=\"/routes/" + std::to_string(r.id) + "\">" + E(r.name) +
-              "</a></td><td>" + E(r.grade) + GradeNoteHtml(r) + "</td><td>" + ColourHtml(r.colour) + "</td><td>" +
-              E(r.state == "stripped" ? r.strip_on : r.set_on) + "</td>";
+              "</a></td><td>" + E(r.grade) + GradeNoteHtml(r) + "</td><td>" + ColourHtml(r.colour, lang) + "</td><td>" +
+              E(FormatDate(lang, r.state == "stripped" ? r.strip_on : r.set_on)) + "</td>";
       if (ascent_cells) {
         auto it = ascent_cells->find(r.id);
         rows += it == ascent_cells->end() ? "<td></td>" : it->second;
@@ -293,111 +313,112 @@ std::string WallRoutesHtml(const app::Gym& gym, const app::Wall& wall,
       rows += "</tr>\n";
     }
     if (rows.empty()) continue;
-    b += "<h2>" + E(StateName(state)) + "</h2>\n<div class=\"table-wrap\"><table class=\"list\" "
-         "id=\"wall-" + std::string(state) + "\"><thead><tr><th>Route</th><th>Grade</th><th>"
-         "Colour</th><th>Date</th>" + (ascent_cells ? "<th>Ascent grade</th>" : "") +
+    b += "<h2>" + E(StateName(lang, state)) + "</h2>\n<div class=\"table-wrap\"><table class=\"list\" "
+         "id=\"wall-" + std::string(state) + "\"><thead><tr><th>" + Tr(lang, "Route") + "</th><th>" + Tr(lang, "Grade") + "</th><th>" +
+         Tr(lang, "Colour") + "</th><th>" + Tr(lang, "Date") + "</th>" + (ascent_cells ? "<th>" + Tr(lang, "Ascent grade") + "</th>" : std::string()) +
          "</tr></thead><tbody>\n" + rows + "</tbody></table></div>\n";
   }
-  if (routes.empty()) b += "<p class=\"empty\">Nothing on this wall yet.</p>\n";
+  if (routes.empty()) b += "<p class=\"empty\">" + Tr(lang, "Nothing on this wall yet.") + "</p>\n";
   return b;
 }
 
 std::string WallPage(const PageViewer& v, const app::Gym& gym, const app::Wall& wall,
                      const std::vector<app::RouteView>& routes,
                      const std::map<int64_t, std::string>* ascent_cells, const std::string& status) {
-  return WallPage(v, gym, wall, WallRoutesHtml(gym, wall, routes, ascent_cells, status));
+  return WallPage(v, gym, wall, WallRoutesHtml(gym, wall, routes, ascent_cells, status, v.lang));
 }
 
 std::string WallPage(const PageViewer& v, const app::Gym& gym, const app::Wall& wall,
                      const std::string& routes_html, const std::string& today) {
   std::string b = "<p><a href=\"/gyms/" + std::to_string(gym.id) + "\">" + E(gym.name) +
                   "</a></p>\n<h1 id=\"wall-title\">" + E(wall.name) + "</h1>\n<p>" +
-                  E(wall.discipline) + ", " + FormatDouble(wall.angle) + "°" +
-                  (wall.reset_weeks ? ", reset every " + std::to_string(*wall.reset_weeks) +
-                                          " weeks"
+                  E(Tr(v, wall.discipline.c_str())) + ", " + FormatDouble(wall.angle) + "°" +
+                  (wall.reset_weeks ? ", " + Fmt(TrN(v, "reset every {1} week", "reset every {1} weeks", *wall.reset_weeks),
+                                                 std::to_string(*wall.reset_weeks))
                                     : std::string()) +
                   "</p>\n" + routes_html;
   if (app::CanSet(gym.role)) {
     b += "<p class=\"no-print\"><a class=\"button\" id=\"wall-tags\" href=\"" +
-         WallTagsUrl(gym, wall.id) + "\">Print this wall's tags</a> (its planned routes and "
-         "those on the wall, 8 a page)</p>\n";
-    b += "<p><a href=\"/routes/new\" id=\"plan-here\">New route</a> — then set its wall to "
-         "<strong>" + E(wall.name) + "</strong> on its page.</p>\n";
+         WallTagsUrl(gym, wall.id) + "\">" + Tr(v, "Print this wall's tags") + "</a> " +
+         Tr(v, "(its planned routes and those on the wall, 8 a page)") + "</p>\n";
+    b += "<p>" + Fmt(Tr(v, "{1} — then set its wall to {2} on its page."),
+                     "<a href=\"/routes/new\" id=\"plan-here\">" + Tr(v, "New route") + "</a>",
+                     "<strong>" + E(wall.name) + "</strong>") + "</p>\n";
     if (!today.empty()) {
       const std::string url = "/api/gyms/" + std::to_string(gym.id) + "/walls/" +
                               std::to_string(wall.id) + "/state";
       b += "<p class=\"wall-actions no-print\">" +
            ButtonForm("wall-set-today", "POST", url,
                       Hidden("from", "planned") + Hidden("to", "set") + Hidden("day", today),
-                      "Set all planned routes of today (" + today + ")") +
+                      Fmt(Tr(v, "Set all planned routes of today ({1})"), FormatDate(v, today))) +
            " " +
            ButtonForm("wall-strip", "POST", url, Hidden("from", "set") + Hidden("to", "stripped"),
-                      "Strip this wall", "Strip every route on " + wall.name + "?") +
+                      Tr(v, "Strip this wall"), Fmt(Tr(v, "Strip every route on {1}?"), wall.name)) +
            "</p>\n";
     }
   }
-  return PageLayout(v, wall.name, b + Script());
+  return PageLayout(v, wall.name, b + Script(v.lang));
 }
 
 std::string RouteGymBlock(const app::RouteView& r, const std::vector<app::HistoryEntry>& history,
-                          bool can_set) {
-  std::string b = "<section class=\"gym-block\" id=\"route-gym\"><h2>On the wall</h2>\n<dl>";
-  b += "<dt>State</dt><dd id=\"route-state\">" + E(StateName(r.state)) + "</dd>";
-  b += "<dt>Wall</dt><dd id=\"route-wall\">" +
+                          bool can_set, std::string_view lang) {
+  std::string b = "<section class=\"gym-block\" id=\"route-gym\"><h2>" + Tr(lang, "On the wall") + "</h2>\n<dl>";
+  b += "<dt>" + Tr(lang, "State") + "</dt><dd id=\"route-state\">" + E(StateName(lang, r.state)) + "</dd>";
+  b += "<dt>" + Tr(lang, "Wall") + "</dt><dd id=\"route-wall\">" +
        (r.wall_id ? "<a href=\"/walls/" + std::to_string(*r.wall_id) + "\">" + E(r.wall_name) +
                         "</a>"
                   : E(r.wall.empty() ? "—" : r.wall)) +
        "</dd>";
   std::string setters;
   for (const app::RouteSetter& s : r.setters) setters += (setters.empty() ? "" : ", ") + s.name;
-  b += "<dt>Setters</dt><dd id=\"route-setters\">" + E(setters.empty() ? "—" : setters) + "</dd>";
+  b += "<dt>" + Tr(lang, "Setters") + "</dt><dd id=\"route-setters\">" + E(setters.empty() ? "—" : setters) + "</dd>";
   if (!r.set_on.empty()) {
-    b += std::string("<dt>") + (r.state == "planned" ? "Planned for" : "Set") +
-         "</dt><dd id=\"route-set-on\">" + E(r.set_on) + "</dd>";
+    b += "<dt>" + (r.state == "planned" ? Tr(lang, "Planned for") : Tr(lang, "Set")) +
+         "</dt><dd id=\"route-set-on\">" + E(FormatDate(lang, r.set_on)) + "</dd>";
   }
-  if (!r.strip_on.empty()) b += "<dt>Stripped</dt><dd id=\"route-strip-on\">" + E(r.strip_on) + "</dd>";
+  if (!r.strip_on.empty()) b += "<dt>" + Tr(lang, "Stripped") + "</dt><dd id=\"route-strip-on\">" + E(FormatDate(lang, r.strip_on)) + "</dd>";
   b += "</dl>\n";
   if (can_set) {
     const std::string url = "/api/routes/" + std::to_string(r.id);
     auto opt = [&](const char* s) {
       return "<option value=\"" + std::string(s) + "\"" + (r.state == s ? " selected" : "") + ">" +
-             E(StateName(s)) + "</option>";
+             E(StateName(lang, s)) + "</option>";
     };
     // Issue 31: the buttons of the cycle (plan → set → strip), by the one
     // rule of app::CheckTransition; each carries the revision shown.
     std::string buttons;
     const std::optional<app::RouteState> from = app::RouteStateOf(r.state);
-    for (auto [to, label, id] : {std::tuple{app::RouteState::kPlanned, "Plan", "route-plan"},
-                                 std::tuple{app::RouteState::kSet, "Set on the wall", "route-set"},
-                                 std::tuple{app::RouteState::kStripped, "Strip", "route-strip"}}) {
+    for (auto [to, label, id] : {std::tuple{app::RouteState::kPlanned, N_("Plan"), "route-plan"},
+                                 std::tuple{app::RouteState::kSet, N_("Set on the wall"), "route-set"},
+                                 std::tuple{app::RouteState::kStripped, N_("Strip"), "route-strip"}}) {
       if (!from || !app::CheckTransition(*from, to).ok()) continue;
       buttons += ButtonForm(id, "POST", url + "/state",
                             Hidden("state", app::NameOf(to)) + RevisionField(r.revision) +
-                                "<label>on <input type=\"date\" name=\"on\" data-optional "
+                                "<label>" + Tr(lang, "on") + " <input type=\"date\" name=\"on\" data-optional "
                                 "value=\"" + E(to == app::RouteState::kPlanned ? r.set_on : "") +
                                 "\"></label>",
-                            label) + " ";
+                            Tr(lang, label)) + " ";
     }
     if (!buttons.empty()) b += "<p class=\"state-buttons\" id=\"route-state-buttons\">" + buttons + "</p>\n";
     b += ApiForm("route-gym-form", "PUT", url,
                  RevisionField(r.revision) +
-                 "<label>State <select name=\"state\" id=\"route-state-select\">" + opt("draft") +
+                 "<label>" + Tr(lang, "State") + " <select name=\"state\" id=\"route-state-select\">" + opt("draft") +
                      opt("planned") + opt("set") + opt("stripped") +
-                     "</select></label><label>Wall <input name=\"wall\" id=\"route-wall-input\" "
-                     "value=\"" + E(r.wall_name) + "\" placeholder=\"wall name or id\"></label>"
-                     "<label>Setters <input name=\"setters\" id=\"route-setters-input\" data-list "
+                     "</select></label><label>" + Tr(lang, "Wall") + " <input name=\"wall\" id=\"route-wall-input\" "
+                     "value=\"" + E(r.wall_name) + "\" placeholder=\"" + E(Tr(lang, "wall name or id")) + "\"></label>"
+                     "<label>" + Tr(lang, "Setters") + " <input name=\"setters\" id=\"route-setters-input\" data-list "
                      "value=\"" + E(setters) + "\" placeholder=\"ann, bob\"></label>",
-                 "Save");
+                 Tr(lang, "Save"));
   }
   if (!history.empty()) {
-    b += "<h3>History</h3>\n<ol class=\"history\" id=\"route-history\">";
+    b += "<h3>" + Tr(lang, "History") + "</h3>\n<ol class=\"history\" id=\"route-history\">";
     for (const app::HistoryEntry& h : history) {
-      b += "<li><time>" + E(h.at) + "</time> " + E(h.who.empty() ? "someone" : h.who) + ": " +
+      b += "<li><time>" + E(h.at) + "</time> " + E(h.who.empty() ? Tr(lang, "someone") : h.who) + ": " +
            E(h.what) + "</li>";
     }
     b += "</ol>\n";
   }
-  b += "</section>\n" + Script();
+  b += "</section>\n" + Script(lang);
   return b;
 }
 

@@ -21,11 +21,13 @@ std::string GymsPage(const PageViewer& v, const std::vector<app::Gym>& gyms);
 // "/gyms/{id}": walls (linking their pages), circuits, members; the head
 // setter's forms to add each, and (issue 31) to rename the gym, edit and
 // remove walls and circuits, change members' roles and remove them; the
-// gym's `history` (shown when not empty).
+// gym's `history` (shown when not empty). Head setters also get a form for
+// the gym's default `language` (issue 32; "" = none).
 std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<app::Wall>& walls,
                     const std::vector<app::Circuit>& circuits,
                     const std::vector<app::Member>& members,
-                    const std::vector<app::GymHistoryEntry>& history = {});
+                    const std::vector<app::GymHistoryEntry>& history = {},
+                    const std::string& language = "");
 // "/walls/{id}": the wall's routes grouped by state (on the wall, planned,
 // drafts, stripped), a form to plan a route on it for setters. With
 // `ascent_cells` (route id -> a <td>, logbook_handlers.h AscentCell) each
@@ -42,7 +44,7 @@ std::string WallPage(const PageViewer& v, const app::Gym& gym, const app::Wall& 
 std::string WallRoutesHtml(const app::Gym& gym, const app::Wall& wall,
                            const std::vector<app::RouteView>& routes,
                            const std::map<int64_t, std::string>* ascent_cells,
-                           const std::string& status);
+                           const std::string& status, std::string_view lang = "en");
 // "/walls/{id}" around `routes_html` (WallRoutesHtml): the gym link, the
 // title and the wall's line above, the setters' line below and (issue 31,
 // setters, `today` given) the buttons "set all planned routes of today" and
@@ -54,7 +56,7 @@ std::string WallPage(const PageViewer& v, const app::Gym& gym, const app::Wall& 
 // (carrying the route's revision, issue 31) and the plan / set / strip
 // buttons its state allows (an empty date keeps the route's, or is today).
 std::string RouteGymBlock(const app::RouteView& r, const std::vector<app::HistoryEntry>& history,
-                          bool can_set);
+                          bool can_set, std::string_view lang = "en");
 
 }  // namespace sb::web
 

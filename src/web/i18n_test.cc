@@ -6,7 +6,11 @@
 #include <gtest/gtest.h>
 #include <httplib.h>
 
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "web/api_test_util.h"
 #include "web/pages.h"
@@ -112,6 +116,47 @@ TEST_F(I18nApiTest, PagesAnswerInTheAccountsBrowsersOrGymsLanguage) {
   r = anon.Get("/login");
   ASSERT_TRUE(r);
   EXPECT_EQ(HtmlLang(r->body), "en");
+}
+
+// Issue 32: a gym's tags print in the gym's default language, whoever prints
+// them (the wall's words are the gym's); without one, in the printer's.
+TEST_F(I18nApiTest, TagsPrintInTheGymsLanguage) {
+  testing::Client head = NewClient();
+  head.SignUp("head");
+  ASSERT_TRUE(head.LogIn("head"));
+  head.Json("PUT", "/api/account", json{{"language", "fr"}}.dump(), 200);
+  const int64_t g = head.Json("GET", "/api/gyms", "", 200)["gyms"][0]["id"];
+  const std::string gym = "/api/gyms/" + std::to_string(g);
+  const char crdl[] = "name: Gelbe Platte\ngrade: V2\ncolour: yellow\n---\nR jug\nL jug\n";
+  json body{{"crdl", crdl}, {"gym", g}, {"state", "set"}, {"set_on", "2026-11-20"}};
+  const int64_t r = head.Json("POST", "/api/routes", body.dump(), 201)["id"];
+  const std::string tag = "/routes/" + std::to_string(r) + "/tag";
+  auto page = head.Send("GET", tag, "", true);
+  ASSERT_TRUE(page);
+  EXPECT_NE(page->body.find("jaune"), std::string::npos);  // no gym language: the printer's
+  head.Json("PUT", gym, json{{"language", "de"}}.dump(), 200);
+  page = head.Send("GET", tag, "", true);
+  ASSERT_TRUE(page);
+  EXPECT_EQ(HtmlLang(page->body), "fr");  // the page around the tag stays the printer's
+  EXPECT_NE(page->body.find(">gelb<"), std::string::npos) << page->body;
+  EXPECT_NE(page->body.find("20.11.2026"), std::string::npos);
+  EXPECT_EQ(page->body.find("jaune"), std::string::npos);
+  if (std::system("pdftotext -v >/dev/null 2>&1") == 0) {
+    auto pdf = head.Send("GET", gym + "/tags.pdf", "", true);
+    ASSERT_TRUE(pdf);
+    ASSERT_EQ(pdf->status, 200);
+    const std::string file = ::testing::TempDir() + "i18n_gym_tags.pdf";
+    std::ofstream(file, std::ios::binary) << pdf->body;
+    std::string text;
+    if (FILE* f = popen(("pdftotext " + file + " -").c_str(), "r")) {
+      char buf[4096];
+      for (size_t n; (n = fread(buf, 1, sizeof buf, f)) > 0;) text.append(buf, n);
+      pclose(f);
+    }
+    std::remove(file.c_str());
+    EXPECT_NE(text.find("gelb"), std::string::npos) << text;
+    EXPECT_EQ(text.find("jaune"), std::string::npos) << text;
+  }
 }
 
 }  // namespace

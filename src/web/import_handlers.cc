@@ -6,6 +6,7 @@
 
 #include "base/text.h"
 #include "web/handlers.h"
+#include "web/script_messages.h"
 
 namespace sb::web {
 
@@ -188,41 +189,42 @@ void PageGymImport(Exchange& x) {
     return PageError(x, Status::Permission("Only the gym's head setters import its route list."));
   }
   const std::string gid = std::to_string(gym->id);
-  std::string b = "<h1>Import a route list: " + XmlEscape(gym->name) + "</h1>\n";
-  b += "<p>Paste the gym's list (CSV with a header row, or JSON: an array of objects) or choose "
+  const std::string_view lang = x.caller.lang;
+  std::string b = "<h1>" + Fmt(Tr(lang, "Import a route list: {1}"), XmlEscape(gym->name)) + "</h1>\n";
+  b += "<p>" + Tr(lang, "Paste the gym's list (CSV with a header row, or JSON: an array of objects) or choose "
        "a file, then choose which column holds what. Nothing is written until you confirm the "
-       "preview. <a href=\"/gyms/" + gid + "\">Back to the gym</a></p>\n";
+       "preview.") + " <a href=\"/gyms/" + gid + "\">" + Tr(lang, "Back to the gym") + "</a></p>\n";
   b += "<section class=\"card\" id=\"import-gym\" data-gym=\"" + gid + "\">\n"
-       "<label>File <input type=\"file\" id=\"import-file\" accept=\".csv,.json,.txt\"></label>\n"
-       "<label>Format <select id=\"import-format\"><option value=\"csv\">CSV</option>"
-       "<option value=\"json\">JSON</option></select></label>\n"
-       "<label class=\"wide\">List<textarea id=\"import-data\" rows=\"10\" cols=\"80\" "
+       "<label>" + Tr(lang, "File") + " <input type=\"file\" id=\"import-file\" accept=\".csv,.json,.txt\"></label>\n"
+       "<label>" + Tr(lang, "Format") + " <select id=\"import-format\"><option value=\"csv\">CSV</option>"  // i18n: format names
+       "<option value=\"json\">JSON</option></select></label>\n"  // i18n: a format's name
+       "<label class=\"wide\">" + Tr(lang, "List") + "<textarea id=\"import-data\" rows=\"10\" cols=\"80\" "
        "spellcheck=\"false\"></textarea></label>\n"
-       "<button type=\"button\" id=\"import-read\">Read the list</button>\n"
+       "<button type=\"button\" id=\"import-read\">" + Tr(lang, "Read the list") + "</button>\n"
        "<p class=\"msg\" id=\"import-msg\"></p>\n</section>\n";
-  b += "<section class=\"card\" id=\"import-mapping\" hidden><h2>Columns</h2>\n<table><tbody>\n";
+  b += "<section class=\"card\" id=\"import-mapping\" hidden><h2>" + Tr(lang, "Columns") + "</h2>\n<table><tbody>\n";
   static const std::pair<const char*, const char*> kLabels[] = {
-      {"id", "Original id"},    {"name", "Name"},        {"grade", "Grade"},
-      {"scale", "Scale"},       {"wall", "Wall / sector"}, {"colour", "Colour"},
-      {"setters", "Setters"},   {"styles", "Styles"},    {"set_on", "Set on"},
-      {"strip_on", "Strip on"}, {"moves", "Moves"}};
+      {"id", N_("Original id")},    {"name", N_("Name")},        {"grade", N_("Grade")},
+      {"scale", N_("Scale")},       {"wall", N_("Wall / sector")}, {"colour", N_("Colour")},
+      {"setters", N_("Setters")},   {"styles", N_("Styles")},    {"set_on", N_("Set on")},
+      {"strip_on", N_("Strip on")}, {"moves", N_("Moves")}};
   for (const auto& [field, label] : kLabels) {
-    b += std::string("<tr><th><label for=\"map-") + field + "\">" + label +
+    b += std::string("<tr><th><label for=\"map-") + field + "\">" + Tr(lang, label) +
          "</label></th><td><select class=\"import-map\" id=\"map-" + field + "\" data-field=\"" +
-         field + "\"><option value=\"\">(none)</option></select></td></tr>\n";
+         field + "\"><option value=\"\">" + Tr(lang, "(none)") + "</option></select></td></tr>\n";
   }
   b += "</tbody></table>\n</section>\n";
-  b += "<section class=\"card\" id=\"import-preview\" hidden><h2>Preview</h2>\n"
+  b += "<section class=\"card\" id=\"import-preview\" hidden><h2>" + Tr(lang, "Preview") + "</h2>\n"
        "<p id=\"import-summary\"></p>\n<ul class=\"errors\" id=\"import-errors\"></ul>\n"
        "<label id=\"import-strip-label\"><input type=\"checkbox\" id=\"import-strip\"> "
-       "<span id=\"import-strip-text\">strip the routes no longer in the list</span></label>\n"
-       "<button type=\"button\" id=\"import-confirm\">Confirm the import</button>\n"
+       "<span id=\"import-strip-text\">" + Tr(lang, "strip the routes no longer in the list") + "</span></label>\n"
+       "<button type=\"button\" id=\"import-confirm\">" + Tr(lang, "Confirm the import") + "</button>\n"
        "<p class=\"msg\" id=\"import-done\"></p>\n"
-       "<table class=\"import-rows\"><thead><tr><th>Line</th><th>What</th><th>Name</th>"
-       "<th>Grade</th><th>Wall</th><th>Colour</th><th>Setters</th><th>Changes</th></tr></thead>"
+       "<table class=\"import-rows\"><thead><tr><th>" + Tr(lang, "Line") + "</th><th>" + Tr(lang, "What") + "</th><th>" + Tr(lang, "Name") + "</th>"
+       "<th>" + Tr(lang, "Grade") + "</th><th>" + Tr(lang, "Wall") + "</th><th>" + Tr(lang, "Colour") + "</th><th>" + Tr(lang, "Setters") + "</th><th>" + Tr(lang, "Changes") + "</th></tr></thead>"
        "<tbody id=\"import-rows\"></tbody></table>\n</section>\n";
-  b += "<script src=\"/static/gym_import.js\" defer></script>\n";
-  Html(x, PageLayout(x.caller.page(), "Import a route list", b, ""));
+  b += ImportScriptMessages(lang) + "<script src=\"/static/gym_import.js\" defer></script>\n";
+  Html(x, PageLayout(x.caller.page(), Tr(lang, "Import a route list"), b, ""));
 }
 
 }  // namespace sb::web

@@ -68,7 +68,7 @@ std::string Layout(const PageViewer& v, const std::string& title, const std::str
   std::string h;
   h += "<!DOCTYPE html>\n<html lang=\"" + E(v.lang) + "\">\n<head>\n<meta charset=\"utf-8\">\n";
   h += "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n";
-  h += "<title>" + E(title) + " · Strange Beta</title>\n";
+  h += "<title>" + E(title) + " · Strange Beta</title>\n";  // i18n: the brand
   if (v.logged_in) h += "<meta name=\"csrf-token\" content=\"" + E(v.csrf) + "\">\n";
   // Issue 31: the gym this page's writes go to (app.js sends it).
   const auto write_gym = std::find_if(v.gyms.begin(), v.gyms.end(), [&](const app::Gym& g) {
@@ -323,34 +323,34 @@ namespace {
 
 // The route form's words (issue 31), in one place for translation.
 namespace form_text {
-const char kIntro[] =
+const char* const kIntro = N_(
     "Fill in the form, or write the route as CRDL text (the advanced view): header lines "
-    "(<code>name: …</code>, <code>grade: …</code>, free description), a line <code>---</code>, "
+    "(<code>name: …</code>, <code>grade: …</code>, free description), a line <code>---</code>, "  // i18n: in N_() above
     "then one move per line starting with L or R. Switching views carries what you typed; each "
-    "move shows how the grammar reads it.";
-const char kViewForm[] = "Form";
-const char kViewText[] = "CRDL text (advanced)";
-const char kGym[] = "Gym";
-const char kGymSwitch[] = "(switch gyms in the header)";
-const char kPersonal[] = "A personal route: in no gym's lists.";
-const char kName[] = "Name";
-const char kWall[] = "Wall";
-const char kNoWall[] = "(no wall yet)";
-const char kGrade[] = "Grade";
-const char kGradeAny[] = "any scale (V4, 6B+, 5.10a, ...)";
-const char kCircuit[] = "Circuit";
-const char kNoCircuit[] = "(none: a colour of its own)";
-const char kColour[] = "Hold colour";
-const char kSetters[] = "Setters";
-const char kOtherSetters[] = "Other names (comma-separated)";
-const char kSetterNames[] = "Names (comma-separated)";
-const char kState[] = "State";
-const char kDate[] = "Planned / set date";
-const char kNotes[] = "Notes";
-const char kMoves[] = "Moves, one per line (L or R first; \"(crux)\" at the end marks the crux)";
-const char kText[] = "CRDL text";
-const char kSave[] = "Save route";
-const char kReads[] = "How it reads";
+    "move shows how the grammar reads it.");
+const char* const kViewForm = N_("Form");
+const char* const kViewText = N_("CRDL text (advanced)");
+const char* const kGym = N_("Gym");
+const char* const kGymSwitch = N_("(switch gyms in the header)");
+const char* const kPersonal = N_("A personal route: in no gym's lists.");
+const char* const kName = N_("Name");
+const char* const kWall = N_("Wall");
+const char* const kNoWall = N_("(no wall yet)");
+const char* const kGrade = N_("Grade");
+const char* const kGradeAny = N_("any scale (V4, 6B+, 5.10a, ...)");
+const char* const kCircuit = N_("Circuit");
+const char* const kNoCircuit = N_("(none: a colour of its own)");
+const char* const kColour = N_("Hold colour");
+const char* const kSetters = N_("Setters");
+const char* const kOtherSetters = N_("Other names (comma-separated)");
+const char* const kSetterNames = N_("Names (comma-separated)");
+const char* const kState = N_("State");
+const char* const kDate = N_("Planned / set date");
+const char* const kNotes = N_("Notes");
+const char* const kMoves = N_("Moves, one per line (L or R first; \"(crux)\" at the end marks the crux)");
+const char* const kText = N_("CRDL text");
+const char* const kSave = N_("Save route");
+const char* const kReads = N_("How it reads");
 }  // namespace form_text
 
 std::string StateLabel(const std::string& s) {
@@ -366,12 +366,13 @@ std::string EditorPage(const PageViewer& v, const std::optional<app::RouteView>&
   namespace t = form_text;
   std::string b;
   if (!v.logged_in) {
-    b = "<h1>Route editor</h1><p>Please <a href=\"/login\">log in</a> to add or edit routes.</p>";
-    return Layout(v, "Route editor", b);
+    b = "<h1>" + Tr(v, "Route editor") + "</h1><p>" +
+        Fmt(Tr(v, "Please {1} to add or edit routes."), "<a href=\"/login\">" + Tr(v, "log in") + "</a>") + "</p>";
+    return Layout(v, Tr(v, "Route editor"), b);
   }
-  std::string title = route ? "Edit " + route->name : "New route";
+  std::string title = route ? Fmt(Tr(v, "Edit {1}"), route->name) : Tr(v, "New route");
   b += "<h1>" + E(title) + "</h1>\n";
-  b += "<p class=\"hint no-print\">" + std::string(t::kIntro) + "</p>\n";
+  b += "<p class=\"hint no-print\">" + Tr(v, t::kIntro) + "</p>\n";
   const bool in_gym = form.gym.has_value();
   // Issue 31: the revision the text was read at; a save over a newer one is refused.
   b += "<div class=\"editor\" id=\"editor\" data-route-id=\"" +
@@ -380,9 +381,9 @@ std::string EditorPage(const PageViewer& v, const std::optional<app::RouteView>&
        (in_gym ? std::to_string(form.gym->id) : std::string()) + "\" data-state=\"" +
        E(route ? route->state : std::string()) + "\">\n<div class=\"pane\">\n";
   b += "<div class=\"view-tabs no-print\" role=\"tablist\"><button type=\"button\" role=\"tab\" "
-       "id=\"view-form\" aria-selected=\"true\">" + std::string(t::kViewForm) +
+       "id=\"view-form\" aria-selected=\"true\">" + Tr(v, t::kViewForm) +
        "</button><button type=\"button\" role=\"tab\" id=\"view-text\" aria-selected=\"false\">" +
-       t::kViewText + "</button></div>\n";
+       Tr(v, t::kViewText) + "</button></div>\n";
   auto msg = [](const char* field) {
     return "<span class=\"field-msg\" data-for=\"" + std::string(field) + "\" role=\"alert\"></span>";
   };
@@ -390,18 +391,18 @@ std::string EditorPage(const PageViewer& v, const std::optional<app::RouteView>&
   // from the record here).
   b += "<form id=\"route-form\" class=\"route-form\" novalidate>\n";
   if (in_gym) {
-    b += "<p class=\"form-gym\" id=\"form-gym\">" + std::string(t::kGym) + ": <strong>" +
+    b += "<p class=\"form-gym\" id=\"form-gym\">" + Tr(v, t::kGym) + ": <strong>" +
          E(form.gym->name) + "</strong>" +
-         (route || v.gyms.size() < 2 ? std::string() : " " + std::string(t::kGymSwitch)) + "</p>\n";
+         (route || v.gyms.size() < 2 ? std::string() : " " + Tr(v, t::kGymSwitch)) + "</p>\n";
   } else if (!route || !route->gym_id) {
-    b += "<p class=\"form-gym\" id=\"form-gym\">" + std::string(t::kPersonal) + "</p>\n";
+    b += "<p class=\"form-gym\" id=\"form-gym\">" + Tr(v, t::kPersonal) + "</p>\n";
   }
-  b += "<div class=\"grid2\">\n<label>" + std::string(t::kName) +
+  b += "<div class=\"grid2\">\n<label>" + Tr(v, t::kName) +
        " <input id=\"f-name\" name=\"name\" maxlength=\"200\" autocomplete=\"off\">" + msg("name") +
        "</label>\n";
   if (in_gym) {
-    b += "<label>" + std::string(t::kWall) + " <select id=\"f-wall\" name=\"wall\"><option "
-         "value=\"\">" + t::kNoWall + "</option>";
+    b += "<label>" + Tr(v, t::kWall) + " <select id=\"f-wall\" name=\"wall\"><option "
+         "value=\"\">" + Tr(v, t::kNoWall) + "</option>";
     for (const app::Wall& w : form.walls) {
       auto sc = form.wall_scales.find(w.id);
       const std::string scale = sc == form.wall_scales.end() ? "" : sc->second;
@@ -416,14 +417,14 @@ std::string EditorPage(const PageViewer& v, const std::optional<app::RouteView>&
     }
     b += "</select>" + msg("wall") + "</label>\n";
   }
-  b += "<label>" + std::string(t::kGrade) +
+  b += "<label>" + Tr(v, t::kGrade) +
        " <input id=\"f-grade\" name=\"grade\" maxlength=\"40\" list=\"grade-labels\" "
        "autocomplete=\"off\"><small class=\"hint\" id=\"f-grade-scale\" data-any=\"" +
-       E(t::kGradeAny) + "\">" + E(t::kGradeAny) + "</small>" + msg("grade") +
+       E(Tr(v, t::kGradeAny)) + "\">" + E(Tr(v, t::kGradeAny)) + "</small>" + msg("grade") +
        "</label><datalist id=\"grade-labels\"></datalist>\n";
   if (in_gym && !form.circuits.empty()) {
-    b += "<label>" + std::string(t::kCircuit) + " <select id=\"f-circuit\"><option value=\"\">" +
-         t::kNoCircuit + "</option>";
+    b += "<label>" + Tr(v, t::kCircuit) + " <select id=\"f-circuit\"><option value=\"\">" +
+         Tr(v, t::kNoCircuit) + "</option>";
     for (const app::Circuit& c : form.circuits) {
       std::string range = c.grade_from.empty() && c.grade_to.empty()
                               ? ""
@@ -432,12 +433,12 @@ std::string EditorPage(const PageViewer& v, const std::optional<app::RouteView>&
     }
     b += "</select></label>\n";
   }
-  b += "<label>" + std::string(t::kColour) +
+  b += "<label>" + Tr(v, t::kColour) +
        " <input id=\"f-colour\" name=\"colour\" maxlength=\"60\" autocomplete=\"off\">" +
        msg("colour") + "</label>\n";
   if (in_gym) {
     const std::string cur = route ? route->state : "draft";
-    b += "<label>" + std::string(t::kState) + " <select id=\"f-state\" name=\"state\">";
+    b += "<label>" + Tr(v, t::kState) + " <select id=\"f-state\" name=\"state\">";
     for (const char* s : {"draft", "planned", "set", "stripped"}) {
       // A new route starts as a draft, planned or set (app::CheckTransition);
       // an edit offers its own state and those the cycle allows from it.
@@ -446,14 +447,14 @@ std::string EditorPage(const PageViewer& v, const std::optional<app::RouteView>&
       if (!offer && from && to) offer = app::CheckTransition(*from, *to).ok();
       if (!offer) continue;
       b += "<option value=\"" + std::string(s) + "\"" + (s == cur ? " selected" : "") + ">" +
-           E(StateLabel(s)) + "</option>";
+           E(Tr(v, StateLabel(s).c_str())) + "</option>";
     }
     b += "</select>" + msg("state") + "</label>\n";
-    b += "<label>" + std::string(t::kDate) + " <input type=\"date\" id=\"f-date\" name=\"set_on\" "
+    b += "<label>" + Tr(v, t::kDate) + " <input type=\"date\" id=\"f-date\" name=\"set_on\" "
          "value=\"" + E(route ? route->set_on : std::string()) + "\">" + msg("set_on") +
          "</label>\n";
   }
-  b += "</div>\n<fieldset id=\"f-setters\"><legend>" + std::string(t::kSetters) + "</legend>";
+  b += "</div>\n<fieldset id=\"f-setters\"><legend>" + Tr(v, t::kSetters) + "</legend>";
   std::vector<std::string> chosen;  // the route's setters (gym routes: the record's)
   if (route && route->gym_id) {
     for (const auto& s : route->setters) chosen.push_back(s.name);
@@ -472,16 +473,16 @@ std::string EditorPage(const PageViewer& v, const std::optional<app::RouteView>&
          E(m.username) + "\"" + (on ? " checked" : "") + "> " +
          E(m.display_name.empty() ? m.username : m.display_name) + "</label> ";
   }
-  b += "<label>" + std::string(form.members.empty() ? t::kSetterNames : t::kOtherSetters) +
+  b += "<label>" + Tr(v, form.members.empty() ? t::kSetterNames : t::kOtherSetters) +
        " <input id=\"f-setters-other\" maxlength=\"400\" value=\"" + E(others) + "\" data-gym=\"" +
        (route && route->gym_id ? "1" : "") + "\"></label>" + msg("setters") + "</fieldset>\n";
-  b += "<label>" + std::string(t::kNotes) +
+  b += "<label>" + Tr(v, t::kNotes) +
        " <textarea id=\"f-notes\" rows=\"2\" maxlength=\"4000\"></textarea></label>\n";
-  b += "<div class=\"moves-pane\"><label>" + std::string(t::kMoves) +
+  b += "<div class=\"moves-pane\"><label>" + Tr(v, t::kMoves) +
        " <textarea id=\"f-moves\" rows=\"10\" spellcheck=\"false\" placeholder=\"R start on the "
        "big jug&#10;L reach to a crimp\"></textarea></label>" + msg("moves") + "</div>\n";
   b += "</form>\n";
-  b += "<div id=\"text-view\" hidden><label>" + std::string(t::kText) +
+  b += "<div id=\"text-view\" hidden><label>" + Tr(v, t::kText) +
        " <textarea id=\"crdl\" spellcheck=\"false\" rows=\"22\" placeholder=\"" +
        E(kNewRouteTemplate) + "\">" + E(route ? route->crdl : std::string()) +
        "</textarea></label>" + msg("crdl") + "</div>\n";
@@ -489,13 +490,13 @@ std::string EditorPage(const PageViewer& v, const std::optional<app::RouteView>&
   // Issue 31: a setter's new route goes to their gym, unpublished by default.
   const bool pub = route ? route->is_public : !in_gym;
   const bool gym = route ? route->gym_id.has_value() : in_gym;
-  b += "<label class=\"inline\">Who can see it <select id=\"public\"><option value=\"1\"" +
-       std::string(pub ? " selected" : "") + ">public: everyone (the shared library)</option>"
+  b += "<label class=\"inline\">" + Tr(v, "Who can see it") + " <select id=\"public\"><option value=\"1\"" +
+       std::string(pub ? " selected" : "") + ">" + Tr(v, "public: everyone (the shared library)") + "</option>"
        "<option value=\"0\"" + std::string(pub ? "" : " selected") + ">" +
-       (gym ? "the gym only: its members" : "private: only me") + "</option></select></label>\n";
-  b += "<p><button type=\"button\" id=\"save\">" + std::string(t::kSave) +
+       (gym ? Tr(v, "the gym only: its members") : Tr(v, "private: only me")) + "</option></select></label>\n";
+  b += "<p><button type=\"button\" id=\"save\">" + Tr(v, t::kSave) +
        "</button> <span class=\"msg\" id=\"save-msg\" role=\"alert\"></span></p></div>\n";
-  b += "<div class=\"pane\"><h2>" + std::string(t::kReads) +
+  b += "<div class=\"pane\"><h2>" + Tr(v, t::kReads) +
        "</h2><ol class=\"feedback\" id=\"feedback\"></ol></div>\n</div>\n";
   return Layout(v, title, b, "page-editor");
 }
@@ -529,8 +530,8 @@ std::string RoutePage(const PageViewer& v, const app::RouteView& r, bool can_cha
   if (r.gym_id && can_change) {
     b += "<p class=\"no-print library-box\"><label><input type=\"checkbox\" id=\"route-library\" "
          "data-id=\"" + std::to_string(r.id) + "\"" + (r.is_public ? " checked" : "") +
-         "> Shared library: everyone may see, search and vary this route (otherwise only the "
-         "gym's members, and anyone at its QR code while it is on the wall)</label> "
+         "> " + Tr(v, "Shared library: everyone may see, search and vary this route (otherwise only the "
+         "gym's members, and anyone at its QR code while it is on the wall)") + "</label> "
          "<span class=\"msg\" id=\"library-msg\" role=\"alert\"></span></p>\n";
   }
   Result<Route> parsed = ParseCrdl(r.crdl, "route " + std::to_string(r.id));
@@ -569,20 +570,20 @@ namespace {
 
 // One route of the vary page's picker: in the chosen list (with its order
 // buttons) or in the search results (with an add button).
-std::string PickItem(const app::RouteView& r, bool chosen) {
+std::string PickItem(const PageViewer& v, const app::RouteView& r, bool chosen) {
   std::string id = std::to_string(r.id);
   std::string h = "<li data-id=\"" + id + "\" data-moves=\"" + std::to_string(r.move_count) +
                   "\" data-name=\"" + E(r.name) + "\"><span class=\"pick-name\">" + E(r.name) +
-                  "</span> <small>(" + std::to_string(r.move_count) + " moves" +
-                  (r.grade.empty() ? "" : ", " + E(r.grade)) + (r.is_public ? "" : ", private") +
+                  "</span> <small>(" + Fmt(TrN(v, "{1} move", "{1} moves", r.move_count), std::to_string(r.move_count)) +
+                  (r.grade.empty() ? "" : ", " + E(r.grade)) + (r.is_public ? std::string() : ", " + Tr(v, "private")) +
                   ")</small> ";
   if (chosen) {
-    h += "<span class=\"pick-buttons\"><button type=\"button\" class=\"up\" aria-label=\"Move " +
-         E(r.name) + " up\">↑</button><button type=\"button\" class=\"down\" aria-label=\"Move " +
-         E(r.name) + " down\">↓</button><button type=\"button\" class=\"remove\" aria-label=\""
-         "Remove " + E(r.name) + "\">✕</button></span>";
+    h += "<span class=\"pick-buttons\"><button type=\"button\" class=\"up\" aria-label=\"" +
+         E(Fmt(Tr(v, "Move {1} up"), r.name)) + "\">↑</button><button type=\"button\" class=\"down\" aria-label=\"" +
+         E(Fmt(Tr(v, "Move {1} down"), r.name)) + "\">↓</button><button type=\"button\" class=\"remove\" aria-label=\"" +
+         E(Fmt(Tr(v, "Remove {1}"), r.name)) + "\">✕</button></span>";
   } else {
-    h += "<button type=\"button\" class=\"add\" aria-label=\"Add " + E(r.name) + "\">Add</button>";
+    h += "<button type=\"button\" class=\"add\" aria-label=\"" + E(Fmt(Tr(v, "Add {1}"), r.name)) + "\">" + Tr(v, "Add") + "</button>";
   }
   return h + "</li>\n";
 }
@@ -592,122 +593,132 @@ std::string PickItem(const app::RouteView& r, bool chosen) {
 std::string VaryPage(const PageViewer& v, const std::vector<app::RouteView>& chosen,
                      const std::vector<int64_t>& missing, const app::RoutePage& found,
                      const std::string& find) {
-  std::string b = "<h1>Vary routes</h1>\n";
+  std::string b = "<h1>" + Tr(v, "Vary routes") + "</h1>\n";
   if (!v.logged_in) {
-    b += "<p class=\"notice\" id=\"login-first\"><strong>Log in first:</strong> you can look "
-         "at the map here, but only a logged-in setter can generate and keep variations. <a "
-         "href=\"/login\">Log in</a> or <a href=\"/signup\">sign up</a>.</p>\n";
+    b += "<p class=\"notice\" id=\"login-first\"><strong>" + Tr(v, "Log in first:") + "</strong> " +
+         Fmt(Tr(v, "you can look at the map here, but only a logged-in setter can generate and keep "
+                   "variations. {1} or {2}."),
+             "<a href=\"/login\">" + Tr(v, "Log in") + "</a>", "<a href=\"/signup\">" + Tr(v, "sign up") + "</a>") +
+         "</p>\n";
   }
-  b += "<form id=\"vary-form\" class=\"vary\">\n<fieldset><legend>1. Routes</legend>\n"
-       "<p class=\"hint\">The variation follows the chosen routes in this order; move them with "
-       "↑ and ↓.</p>\n<ol class=\"chosen\" id=\"chosen\">\n";
-  for (const app::RouteView& r : chosen) b += PickItem(r, true);
+  b += "<form id=\"vary-form\" class=\"vary\">\n<fieldset><legend>" + Tr(v, "1. Routes") + "</legend>\n"
+       "<p class=\"hint\">" + Tr(v, "The variation follows the chosen routes in this order; move them with "
+       "↑ and ↓.") + "</p>\n<ol class=\"chosen\" id=\"chosen\">\n";
+  for (const app::RouteView& r : chosen) b += PickItem(v, r, true);
   b += "</ol>\n";
-  if (chosen.empty()) b += "<p class=\"empty\" id=\"chosen-empty\">No route chosen yet: find "
-                           "one below.</p>\n";
+  if (chosen.empty()) b += "<p class=\"empty\" id=\"chosen-empty\">" + Tr(v, "No route chosen yet: find "
+                           "one below.") + "</p>\n";
   if (!missing.empty()) {
-    b += "<p class=\"msg bad\" id=\"missing\">Not shown: ";
+    std::string list;
     for (size_t i = 0; i < missing.size(); ++i) {
-      b += (i ? ", " : "") + std::string("route ") + std::to_string(missing[i]);
+      list += (i ? ", " : "") + Fmt(Tr(v, "route {1}"), std::to_string(missing[i]));
     }
-    b += " (deleted, or private to someone else).</p>\n";
+    b += "<p class=\"msg bad\" id=\"missing\">" +
+         Fmt(Tr(v, "Not shown: {1} (deleted, or private to someone else)."), list) + "</p>\n";
   }
-  b += "<div class=\"finder\"><label>Find routes <input type=\"search\" id=\"route-find\" "
-       "placeholder=\"name, setter, grade, wall or move text\" autocomplete=\"off\" value=\"" +
+  b += "<div class=\"finder\"><label>" + Tr(v, "Find routes") + " <input type=\"search\" id=\"route-find\" "
+       "placeholder=\"" + E(Tr(v, "name, setter, grade, wall or move text")) + "\" autocomplete=\"off\" value=\"" +
        E(find) + "\"></label> <span class=\"msg\" id=\"found-count\">" +
-       std::to_string(found.total) + " routes</span>\n<ul class=\"found\" id=\"found\" "
+       Fmt(TrN(v, "{1} route", "{1} routes", found.total), std::to_string(found.total)) + "</span>\n<ul class=\"found\" id=\"found\" "
        "data-total=\"" + std::to_string(found.total) + "\">\n";
-  for (const app::RouteView& r : found.routes) b += PickItem(r, false);
+  for (const app::RouteView& r : found.routes) b += PickItem(v, r, false);
   b += "</ul><button type=\"button\" id=\"found-more\"" +
        std::string(static_cast<int64_t>(found.routes.size()) < found.total ? "" : " hidden") +
-       ">More routes</button></div>\n</fieldset>\n";
-  b += "<fieldset><legend>About the variation</legend><div class=\"grid2\">\n"
-       "<label>Name <input id=\"name\" maxlength=\"200\" placeholder=\"Variation of the chosen "
-       "routes\"></label>\n"
-       "<label>Grade <input id=\"grade\" maxlength=\"200\" placeholder=\"V4\"></label>\n"
-       "<label>Hold colour <input id=\"colour\" maxlength=\"200\" placeholder=\"yellow\">"
-       "</label>\n<label>Wall or area <input id=\"wall\" maxlength=\"200\" placeholder=\"the "
-       "cave\"></label>\n<label>Setter <input id=\"setter\" maxlength=\"200\" placeholder=\"" +
-       E(v.logged_in ? v.username : std::string("you")) + "\"></label>\n"
-       "<label>Date <input id=\"date\" maxlength=\"200\" placeholder=\"today\"></label>\n"
-       "</div><label>Notes <textarea id=\"notes\" rows=\"2\" maxlength=\"4000\"></textarea>"
-       "</label>\n<label>Visibility <select id=\"visibility\"><option value=\"\">private if "
-       "any chosen route is private, else public</option><option value=\"private\">private"
-       "</option><option value=\"public\">public</option></select></label>\n"
-       "<label class=\"inline\"><input type=\"checkbox\" id=\"duplicate\"> Make a new copy even "
-       "if I made this exact variation before</label></fieldset>\n";
-  b += "<fieldset><legend>2. Parameters</legend>\n"
-       "<label>Preset <select id=\"preset\"><option value=\"setter\" selected>setter (starts "
-       "and finishes like a route, hands alternate, no move twice in a row)</option><option value=\"default\">"
-       "default (the paper's: variation IC "
-       "-16,-12,52)</option><option value=\"more\">more (the paper's: IC -16,-13.5,52, skip "
-       "100)</option>"
-       "</select></label>\n"
-       "<label class=\"inline\"><input type=\"checkbox\" id=\"smooth\"> Smooth (suggest linking "
-       "moves)</label>\n"
-       "<details id=\"advanced\"><summary>Advanced parameters</summary><div class=\"grid2\">\n"
-       "<label>System <select id=\"system\"><option value=\"\">(preset)</option><option>lorenz"
-       "</option><option>rossler</option></select></label>\n"
-       "<label>System parameters <input id=\"params\" placeholder=\"16,45,4\"></label>\n"
-       "<label>Integrator <select id=\"integrator\"><option value=\"\">(preset)</option>"
-       "<option>rk4</option><option>rkf45</option></select></label>\n"
-       "<label>Step <input id=\"step\" placeholder=\"0.015\"></label>\n"
-       "<label>Reference IC <input id=\"ref_ic\" placeholder=\"-13,-12,52\"></label>\n"
-       "<label>Variation IC <input id=\"var_ic\" placeholder=\"-16,-12,52\"></label>\n"
-       "<label>Skip <input id=\"skip\" placeholder=\"0\"></label>\n"
-       "<label>Mapping <select id=\"mapping\"><option value=\"\">(preset)</option>"
-       "<option>euclidean</option><option>dabby</option></select></label>\n"
-       "<label>Mask (xyz) <input id=\"mask\" placeholder=\"101\"></label>\n"
-       "<label>Max repeat <input id=\"max_repeat\" placeholder=\"0\"></label>\n"
+       ">" + Tr(v, "More routes") + "</button></div>\n</fieldset>\n";
+  b += "<fieldset><legend>" + Tr(v, "About the variation") + "</legend><div class=\"grid2\">\n"
+       "<label>" + Tr(v, "Name") + " <input id=\"name\" maxlength=\"200\" placeholder=\"" +
+       E(Tr(v, "Variation of the chosen routes")) + "\"></label>\n"
+       "<label>" + Tr(v, "Grade") + " <input id=\"grade\" maxlength=\"200\" placeholder=\"V4\"></label>\n"
+       "<label>" + Tr(v, "Hold colour") + " <input id=\"colour\" maxlength=\"200\" placeholder=\"" +
+       E(Tr(v, "yellow")) + "\"></label>\n<label>" + Tr(v, "Wall or area") +
+       " <input id=\"wall\" maxlength=\"200\" placeholder=\"" + E(Tr(v, "the cave")) +
+       "\"></label>\n<label>" + Tr(v, "Setter") + " <input id=\"setter\" maxlength=\"200\" placeholder=\"" +
+       E(v.logged_in ? v.username : Tr(v, "you")) + "\"></label>\n"
+       "<label>" + Tr(v, "Date") + " <input id=\"date\" maxlength=\"200\" placeholder=\"" +
+       E(Tr(v, "today")) + "\"></label>\n"
+       "</div><label>" + Tr(v, "Notes") + " <textarea id=\"notes\" rows=\"2\" maxlength=\"4000\"></textarea>"
+       "</label>\n<label>" + Tr(v, "Visibility") + " <select id=\"visibility\"><option value=\"\">" +
+       Tr(v, "private if any chosen route is private, else public") + "</option><option value=\"private\">" +
+       Tr(v, "private") + "</option><option value=\"public\">" + Tr(v, "public") + "</option></select></label>\n"
+       "<label class=\"inline\"><input type=\"checkbox\" id=\"duplicate\"> " +
+       Tr(v, "Make a new copy even if I made this exact variation before") + "</label></fieldset>\n";
+  b += "<fieldset><legend>" + Tr(v, "2. Parameters") + "</legend>\n"
+       "<label>" + Tr(v, "Preset") + " <select id=\"preset\"><option value=\"setter\" selected>" +
+       Tr(v, "setter (starts and finishes like a route, hands alternate, no move twice in a row)") +
+       "</option><option value=\"default\">" + Tr(v, "default (the paper's: variation IC -16,-12,52)") +
+       "</option><option value=\"more\">" + Tr(v, "more (the paper's: IC -16,-13.5,52, skip 100)") +
+       "</option></select></label>\n"
+       "<label class=\"inline\"><input type=\"checkbox\" id=\"smooth\"> " +
+       Tr(v, "Smooth (suggest linking moves)") + "</label>\n"
+       "<details id=\"advanced\"><summary>" + Tr(v, "Advanced parameters") + "</summary><div class=\"grid2\">\n"
+       "<label>" + Tr(v, "System") + " <select id=\"system\"><option value=\"\">" + Tr(v, "(preset)") +
+       "</option><option>lorenz</option><option>rossler</option></select></label>\n"  // i18n: names of systems
+       "<label>" + Tr(v, "System parameters") + " <input id=\"params\" placeholder=\"16,45,4\"></label>\n"
+       "<label>" + Tr(v, "Integrator") + " <select id=\"integrator\"><option value=\"\">" + Tr(v, "(preset)") +
+       "</option><option>rk4</option><option>rkf45</option></select></label>\n"  // i18n: names of integrators
+       "<label>" + Tr(v, "Step") + " <input id=\"step\" placeholder=\"0.015\"></label>\n"
+       "<label>" + Tr(v, "Reference IC") + " <input id=\"ref_ic\" placeholder=\"-13,-12,52\"></label>\n"
+       "<label>" + Tr(v, "Variation IC") + " <input id=\"var_ic\" placeholder=\"-16,-12,52\"></label>\n"
+       "<label>" + Tr(v, "Skip") + " <input id=\"skip\" placeholder=\"0\"></label>\n"
+       "<label>" + Tr(v, "Mapping") + " <select id=\"mapping\"><option value=\"\">" + Tr(v, "(preset)") +
+       "</option><option>euclidean</option><option>dabby</option></select></label>\n"  // i18n: names of mappings
+       "<label>" + Tr(v, "Mask (xyz)") + " <input id=\"mask\" placeholder=\"101\"></label>\n"
+       "<label>" + Tr(v, "Max repeat") + " <input id=\"max_repeat\" placeholder=\"0\"></label>\n"
        "</div>\n"
        // The setter's constraints (issue 13), named as the JSON API's fields
        // (docs/setting.md): any of them makes the server search the ICs near
        // the variation IC for the nearest one that meets them all.
-       "<fieldset class=\"constraints\" id=\"constraints\"><legend>Constraints (the IC search "
-       "looks near the variation IC for one that meets them all)</legend>\n"
-       "<label class=\"inline\"><input type=\"checkbox\" id=\"keep_start\"> Keep start (begin "
-       "with an input's first move)</label>\n"
-       "<label class=\"inline\"><input type=\"checkbox\" id=\"keep_finish\"> Keep finish (end "
-       "with an input's last move)</label>\n"
-       "<label class=\"inline\"><input type=\"checkbox\" id=\"alternate_hands\"> Alternate "
-       "hands (no hand twice in a row)</label>\n<div class=\"grid2\">\n"
-       "<label>Crux window (fractions of the length) <input id=\"crux_window\" "
+       "<fieldset class=\"constraints\" id=\"constraints\"><legend>" +
+       Tr(v, "Constraints (the IC search looks near the variation IC for one that meets them all)") +
+       "</legend>\n"
+       "<label class=\"inline\"><input type=\"checkbox\" id=\"keep_start\"> " +
+       Tr(v, "Keep start (begin with an input's first move)") + "</label>\n"
+       "<label class=\"inline\"><input type=\"checkbox\" id=\"keep_finish\"> " +
+       Tr(v, "Keep finish (end with an input's last move)") + "</label>\n"
+       "<label class=\"inline\"><input type=\"checkbox\" id=\"alternate_hands\"> " +
+       Tr(v, "Alternate hands (no hand twice in a row)") + "</label>\n<div class=\"grid2\">\n"
+       "<label>" + Tr(v, "Crux window (fractions of the length)") + " <input id=\"crux_window\" "
        "placeholder=\"0.5,0.9\"></label>\n"
-       "<label>Match moves <select id=\"match\"><option value=\"text\">by text (the original "
-       "site)</option><option value=\"grammar\">by the grammar</option></select></label>\n"
-       "<label>Target effect (moves that change) <input id=\"target_effect\" type=\"number\" "
+       "<label>" + Tr(v, "Match moves") + " <select id=\"match\"><option value=\"text\">" +
+       Tr(v, "by text (the original site)") + "</option><option value=\"grammar\">" +
+       Tr(v, "by the grammar") + "</option></select></label>\n"
+       "<label>" + Tr(v, "Target effect (moves that change)") + " <input id=\"target_effect\" type=\"number\" "
        "min=\"0\" step=\"1\"></label>\n"
-       "<label>Target change (how far they move) <input id=\"target_change\" "
+       "<label>" + Tr(v, "Target change (how far they move)") + " <input id=\"target_change\" "
        "type=\"number\" min=\"0\" step=\"0.5\"></label>\n"
-       "<label>Smoothing method <select id=\"smooth_method\"><option value=\"vomm\">Markov "
-       "model (vomm)</option><option value=\"astar\">A* over the move graph (astar)</option>"
-       "</select></label>\n</div></fieldset>\n"
+       "<label>" + Tr(v, "Smoothing method") + " <select id=\"smooth_method\"><option value=\"vomm\">" +
+       Tr(v, "Markov model (vomm)") + "</option><option value=\"astar\">" +
+       Tr(v, "A* over the move graph (astar)") + "</option></select></label>\n</div></fieldset>\n"
        "</details></fieldset>\n";
-  b += "<fieldset><legend>3. Initial condition map</legend>\n";
+  b += "<fieldset><legend>" + Tr(v, "3. Initial condition map") + "</legend>\n";
   {
-    b += "<p class=\"hint\">Each pixel is a variation IC in the x–y plane through the reference "
-         "IC; colour shows the <em>effect</em> (how many moves change) or the <em>change</em> (how far "
-         "they move), warm for little variation and cold for much, as in the paper's figure 4. "
-         "Click to use that IC; ○ marks the reference IC, □ the presets, ◇ suggestions, ● yours.</p>\n"
-         "<div class=\"mapbar\"><label>Show <select id=\"metric\"><option value=\"effect\">effect"
-         "</option><option value=\"change\">change</option><option value=\"both\">both, side by side</option></select></label>"
-         "<button type=\"button\" id=\"map-refresh\">Update map</button> "
+    b += "<p class=\"hint\">" +
+         Fmt(Tr(v, "Each pixel is a variation IC in the x–y plane through the reference IC; colour "
+                   "shows the {1} (how many moves change) or the {2} (how far they move), warm for "
+                   "little variation and cold for much, as in the paper's figure 4. Click to use that "
+                   "IC; ○ marks the reference IC, □ the presets, ◇ suggestions, ● yours."),
+             "<em>" + Tr(v, "effect") + "</em>", "<em>" + Tr(v, "change") + "</em>") +
+         "</p>\n"
+         "<div class=\"mapbar\"><label>" + Tr(v, "Show") + " <select id=\"metric\"><option value=\"effect\">" +
+         Tr(v, "effect") + "</option><option value=\"change\">" + Tr(v, "change") +
+         "</option><option value=\"both\">" + Tr(v, "both, side by side") + "</option></select></label>"
+         "<button type=\"button\" id=\"map-refresh\">" + Tr(v, "Update map") + "</button> "
          "<span id=\"map-info\" class=\"msg\"></span></div>\n"
          "<div class=\"mapwrap\"><div class=\"mapcol\"><canvas id=\"icmap\" width=\"410\" height=\"410\"></canvas>"
          "<div class=\"legend\" id=\"map-legend\"></div><p id=\"map-readout\" class=\"readout\" "
-         "aria-live=\"polite\">Hover over the map to see an IC's effect and change.</p></div>"
-         "<div class=\"picker\"><h3>Suggest ICs</h3><p class=\"hint\">Moves to change (effect) "
-         "and how far they move (change):</p>"
-         "<label>Effect <input id=\"pick-effect\" type=\"number\" min=\"0\" step=\"1\" "
-         "placeholder=\"half the moves\"></label>"
-         "<label>Change <input id=\"pick-change\" type=\"number\" min=\"0\" step=\"0.5\" "
-         "value=\"2\"></label><button type=\"button\" id=\"pick\">Suggest</button>"
+         "aria-live=\"polite\">" + Tr(v, "Hover over the map to see an IC's effect and change.") + "</p></div>"
+         "<div class=\"picker\"><h3>" + Tr(v, "Suggest ICs") + "</h3><p class=\"hint\">" +
+         Tr(v, "Moves to change (effect) and how far they move (change):") + "</p>"
+         "<label>" + Tr(v, "Effect") + " <input id=\"pick-effect\" type=\"number\" min=\"0\" step=\"1\" "
+         "placeholder=\"" + E(Tr(v, "half the moves")) + "\"></label>"
+         "<label>" + Tr(v, "Change") + " <input id=\"pick-change\" type=\"number\" min=\"0\" step=\"0.5\" "
+         "value=\"2\"></label><button type=\"button\" id=\"pick\">" + Tr(v, "Suggest") + "</button>"
          "<ol id=\"candidates\"></ol></div></div>\n";
   }
   b += "</fieldset>\n<p><button type=\"submit\" id=\"generate\"" +
-       std::string(v.logged_in ? "" : " disabled") + ">Generate variation</button> "
+       std::string(v.logged_in ? "" : " disabled") + ">" + Tr(v, "Generate variation") + "</button> "
        "<span class=\"msg\" id=\"vary-msg\" role=\"alert\"></span></p>\n</form>\n";
-  return Layout(v, "Vary", b, "page-vary");
+  return Layout(v, Tr(v, "Vary"), b, "page-vary");
 }
 
 std::string PlanPage(const PageViewer& v, const app::RouteView& rec, const plan::RoutePlan& plan,
@@ -722,7 +733,7 @@ std::string PlanPage(const PageViewer& v, const app::RouteView& rec, const plan:
   std::string facts = plan::CardFactsLine(card), who = plan::CardSetterLine(card);
   if (!facts.empty()) b += "<p class=\"card-facts\">" + E(facts) + "</p>\n";
   if (!who.empty()) b += "<p class=\"card-setter\">" + E(who) + "</p>\n";
-  b += "<p class=\"byline\">Variation of ";
+  b += "<p class=\"byline\">" + Tr(v, "Variation of") + " ";
   for (size_t i = 0; i < var.inputs.size(); ++i) {
     if (i) b += ", ";
     std::string name = E(var.inputs[i].name);
@@ -732,9 +743,10 @@ std::string PlanPage(const PageViewer& v, const app::RouteView& rec, const plan:
     } else {
       b += name;
     }
-    b += " (" + std::to_string(var.inputs[i].route.moves.size()) + " moves)";
+    b += " (" + Fmt(TrN(v, "{1} move", "{1} moves", static_cast<long long>(var.inputs[i].route.moves.size())),
+                    std::to_string(var.inputs[i].route.moves.size())) + ")";
   }
-  b += std::string(rec.is_public ? "" : " · <span class=\"tag private\">private</span>") + "</p>";
+  b += (rec.is_public ? std::string() : " · <span class=\"tag private\">" + Tr(v, "private") + "</span>") + "</p>";
   // The card's annotations (plan/card.h): the estimated grade next to the
   // inputs' grades in the header; the IC search and the warnings above the
   // moves; the hardest stretch with the legend.
@@ -756,15 +768,15 @@ std::string PlanPage(const PageViewer& v, const app::RouteView& rec, const plan:
     if (!notes.search.empty())
       b += "<li class=\"search\" id=\"card-search\">" + E(notes.search) + "</li>";
     for (const std::string& w : notes.warnings) {
-      b += "<li class=\"warning\"><span aria-label=\"warning\">⚠</span> " + E(w) + "</li>";
+      b += "<li class=\"warning\"><span aria-label=\"" + E(Tr(v, "warning")) + "\">⚠</span> " + E(w) + "</li>";
     }
     b += "</ul>\n";
   }
   const bool diff = plan::CardHasDifficulty(plan);
   b += "<table class=\"moves plan-moves card-moves\"><thead><tr><th class=\"num\">#</th>"
-       "<th class=\"mark\"><span class=\"sr\">mark</span></th><th>Hand</th><th>Move</th>" +
-       std::string(diff ? "<th class=\"diff\" title=\"difficulty estimate\">Diff.</th>" : "") +
-       "<th>From</th></tr></thead><tbody>\n";
+       "<th class=\"mark\"><span class=\"sr\">" + Tr(v, "mark") + "</span></th><th>" + Tr(v, "Hand") + "</th><th>" + Tr(v, "Move") + "</th>" +
+       (diff ? "<th class=\"diff\" title=\"" + E(Tr(v, "difficulty estimate")) + "\">" + Tr(v, "Diff.") + "</th>" : std::string()) +
+       "<th>" + Tr(v, "From") + "</th></tr></thead><tbody>\n";
   for (const plan::CardRow& r : rows) {
     const bool sug = r.kind == plan::CardRow::Kind::kSuggestion;
     std::string cls = sug ? "suggested" : r.mark == plan::kMarkAdded ? "added"
@@ -778,7 +790,7 @@ std::string PlanPage(const PageViewer& v, const app::RouteView& rec, const plan:
     if (diff) {
       b += std::string("<td class=\"diff") + (r.hardest ? " hardest" : "") + "\">";
       if (r.crux)
-        b += "<span class=\"crux-mark\" title=\"crux\">" + std::string(plan::kMarkCrux) + "</span>";
+        b += "<span class=\"crux-mark\" title=\"" + E(Tr(v, "crux")) + "\">" + std::string(plan::kMarkCrux) + "</span>";
       if (r.difficulty >= 0) {
         char pct[32];
         std::snprintf(pct, sizeof pct, "%.0f", 100.0 * std::clamp(r.difficulty, 0.0, 1.0));
@@ -796,67 +808,69 @@ std::string PlanPage(const PageViewer& v, const app::RouteView& rec, const plan:
   b += "<p class=\"summary\">" + E(plan::CardSummary(plan)) + "." +
        (legend.empty() ? "" : " <span class=\"legend\">" + E(legend) + "</span>") + "</p>\n";
   if (!card.notes.empty()) {
-    b += "<section class=\"notes\"><h2>Notes</h2>";
+    b += "<section class=\"notes\"><h2>" + Tr(v, "Notes") + "</h2>";
     for (std::string_view line : SplitLines(card.notes)) b += "<p>" + E(line) + "</p>";
     b += "</section>\n";
   }
   b += std::string("<figure class=\"trajectory") + (rows.size() > 18 ? " no-print" : "") +
        "\">" + plan::RenderTrajectorySvg(plan) +
-       "<figcaption>Reference trajectory (black), variation (blue), association lines "
-       "(grey); x–z projection.</figcaption></figure>\n";
+       "<figcaption>" + Tr(v, "Reference trajectory (black), variation (blue), association lines "
+       "(grey); x–z projection.") + "</figcaption></figure>\n";
   b += "<p class=\"params-line\">" + E(plan::CardParameters(plan)) + "</p>\n";
   // The setter's annotations (issues 13, 15): grade estimate, IC search,
   // warnings, change summary, hardest stretch (plan::PlanNotes).
   if (std::vector<std::string> notes = plan::PlanNotes(plan); !notes.empty()) {
     // Screen only: the printed sheet is the card's layout (one page).
-    b += "<div class=\"plan-notes no-print\"><h2>Setter's notes</h2><ul>";
+    b += "<div class=\"plan-notes no-print\"><h2>" + Tr(v, "Setter's notes") + "</h2><ul>";
     for (const std::string& n : notes) b += "<li>" + E(n) + "</li>";
     b += "</ul></div>\n";
   }
-  b += "<section class=\"params no-print\"><h2>Smoothing</h2><p>";
+  b += "<section class=\"params no-print\"><h2>" + Tr(v, "Smoothing") + "</h2><p>";
   if (!plan.smoothing.empty()) {
-    b += std::to_string(plan.smoothing.size()) + " suggestion(s) from " + E(plan.smoothing_model) +
-         " (rows marked + in the table).";
+    b += Fmt(TrN(v, "{1} suggestion from {2} (rows marked + in the table).",
+                 "{1} suggestions from {2} (rows marked + in the table).",
+                 static_cast<long long>(plan.smoothing.size())),
+             std::to_string(plan.smoothing.size()), E(plan.smoothing_model));
   } else if (!smoothing_note.empty()) {
     b += E(smoothing_note);
   } else {
-    b += "Not requested.";
+    b += Tr(v, "Not requested.");
   }
   b += "</p></section>\n</article>\n";
-  b += "<p class=\"actions no-print\"><button type=\"button\" id=\"print\">Print the card</button> "
+  b += "<p class=\"actions no-print\"><button type=\"button\" id=\"print\">" + Tr(v, "Print the card") + "</button> "
        "<a class=\"button\" id=\"pdf-link\" href=\"/variations/" + id +
-       ".pdf\">PDF (A4)</a> <a class=\"button\" id=\"pdf-letter\" href=\"/variations/" + id +
-       ".pdf?paper=letter\">PDF (Letter)</a> <a class=\"button\" id=\"svg-link\" "
-       "href=\"/variations/" + id + ".svg\">SVG</a> <a href=\"/api/variations/" + id +
-       "\">JSON</a> <a class=\"button\" href=\"/vary?routes=" + id + "\">Vary this variation</a>"
-       " <a class=\"button\" id=\"tag-link\" href=\"/routes/" + id + "/tag\">Tag</a>";
+       ".pdf\">" + Tr(v, "PDF (A4)") + "</a> <a class=\"button\" id=\"pdf-letter\" href=\"/variations/" + id +
+       ".pdf?paper=letter\">" + Tr(v, "PDF (Letter)") + "</a> <a class=\"button\" id=\"svg-link\" "
+       "href=\"/variations/" + id + ".svg\">SVG</a> <a href=\"/api/variations/" + id +  // i18n: format names
+       "\">JSON</a> <a class=\"button\" href=\"/vary?routes=" + id + "\">" + Tr(v, "Vary this variation") + "</a>"  // i18n: a format's name
+       " <a class=\"button\" id=\"tag-link\" href=\"/routes/" + id + "/tag\">" + Tr(v, "Tag") + "</a>";
   if (can_change) {
-    b += " <a class=\"button\" id=\"edit\" href=\"/routes/" + id + "/edit\">Edit moves and "
-         "details</a>";
+    b += " <a class=\"button\" id=\"edit\" href=\"/routes/" + id + "/edit\">" + Tr(v, "Edit moves and "
+         "details") + "</a>";
   }
   b += "</p>\n";
   return Layout(v, rec.name, b, "page-plan");
 }
 
 std::string ImportPage(const PageViewer& v) {
-  std::string b = "<h1>Import and export</h1>\n";
+  std::string b = "<h1>" + Tr(v, "Import and export") + "</h1>\n";
   if (v.logged_in) {
-    b += "<section class=\"card\"><h2>Import CRDL files</h2><input type=\"file\" id=\"crdl-files\" "
-         "accept=\".crdl,.txt\" multiple> <button type=\"button\" id=\"import-crdl\">Import"
+    b += "<section class=\"card\"><h2>" + Tr(v, "Import CRDL files") + "</h2><input type=\"file\" id=\"crdl-files\" "
+         "accept=\".crdl,.txt\" multiple> <button type=\"button\" id=\"import-crdl\">" + Tr(v, "Import") +
          "</button><p class=\"msg\" id=\"crdl-msg\"></p></section>\n";
-    b += "<section class=\"card\"><h2>Import the original site's CSV export</h2>"
-         "<label>routes CSV <input type=\"file\" id=\"routes-csv\" accept=\".csv\"></label>"
-         "<label>moves CSV <input type=\"file\" id=\"moves-csv\" accept=\".csv\"></label>"
-         "<button type=\"button\" id=\"import-csv\">Import</button><p class=\"msg\" "
+    b += "<section class=\"card\"><h2>" + Tr(v, "Import the original site's CSV export") + "</h2>"
+         "<label>" + Tr(v, "routes CSV") + " <input type=\"file\" id=\"routes-csv\" accept=\".csv\"></label>"
+         "<label>" + Tr(v, "moves CSV") + " <input type=\"file\" id=\"moves-csv\" accept=\".csv\"></label>"
+         "<button type=\"button\" id=\"import-csv\">" + Tr(v, "Import") + "</button><p class=\"msg\" "
          "id=\"csv-msg\"></p><ul class=\"notes\" id=\"csv-notes\" hidden></ul></section>\n";
   } else {
-    b += "<p><a href=\"/login\">Log in</a> to import routes.</p>\n";
+    b += "<p>" + Fmt(Tr(v, "{1} to import routes."), "<a href=\"/login\">" + Tr(v, "Log in") + "</a>") + "</p>\n";
   }
-  b += "<section class=\"card\"><h2>Export</h2><p>The routes you can see, in the original "
-       "site's CSV format: <a href=\"/api/export/routes.csv\">routes.csv</a> and <a "
-       "href=\"/api/export/moves.csv\">moves.csv</a>. Each route page has its CRDL "
-       "download.</p></section>\n";
-  return Layout(v, "Import and export", b);
+  b += "<section class=\"card\"><h2>" + Tr(v, "Export") + "</h2><p>" +
+       Fmt(Tr(v, "The routes you can see, in the original site's CSV format: {1} and {2}. Each route page has its CRDL download."),
+           "<a href=\"/api/export/routes.csv\">routes.csv</a>", "<a href=\"/api/export/moves.csv\">moves.csv</a>") +  // i18n: file names
+       "</p></section>\n";
+  return Layout(v, Tr(v, "Import and export"), b);
 }
 
 std::string PageLayout(const PageViewer& v, const std::string& title, const std::string& body,

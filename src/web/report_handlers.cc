@@ -137,60 +137,59 @@ std::string RouteLink(const app::ReportRoute& r) {
 }  // namespace
 
 std::string ReportPageHtml(const PageViewer& v, const app::GymReport& r) {
-  const std::string title = r.scope == "wall" ? "Report: " + r.wall_name
-                                              : "Report: setting day " + r.date;
+  const std::string title = r.scope == "wall" ? Fmt(Tr(v, "Report: {1}"), r.wall_name)
+                                              : Fmt(Tr(v, "Report: setting day {1}"), FormatDate(v, r.date));
   std::string b = "<link rel=\"stylesheet\" href=\"/static/climbers.css\">\n";
   b += "<p><a href=\"/gyms/" + Id(r.gym_id) + "\">" + E(r.gym_name) + "</a>" +
        (r.wall_id ? " · <a href=\"/walls/" + Id(*r.wall_id) + "\">" + E(r.wall_name) + "</a>"
                   : std::string()) +
        " · <a href=\"/api/gyms/" + Id(r.gym_id) + "/report?" +
        (r.scope == "wall" ? "wall=" + Id(r.wall_id.value_or(0)) : "date=" + E(r.date)) +
-       "\" id=\"report-json\">JSON</a></p>\n";
+       "\" id=\"report-json\">JSON</a></p>\n";  // i18n: a format's name
   b += "<h1 id=\"report-title\">" + E(title) + "</h1>\n";
   if (r.capped) b += "<p class=\"msg bad\" id=\"report-capped\">" + E(r.capped_note) + "</p>\n";
   b += "<p id=\"report-totals\" data-routes=\"" + std::to_string(r.routes.size()) +
        "\" data-ticks=\"" + std::to_string(r.ticks) + "\" data-climbers=\"" +
-       std::to_string(r.climbers) + "\">" + std::to_string(r.routes.size()) + " route" +
-       (r.routes.size() == 1 ? "" : "s") + ", " + std::to_string(r.ticks) + " tick" +
-       (r.ticks == 1 ? "" : "s") + " from " + std::to_string(r.climbers) + " climber" +
-       (r.climbers == 1 ? "" : "s") + ". ";
+       std::to_string(r.climbers) + "\">" +
+       Fmt(Tr(v, "{1}, {2} from {3}."),
+           Fmt(TrN(v, "{1} route", "{1} routes", static_cast<long long>(r.routes.size())), std::to_string(r.routes.size())),
+           Fmt(TrN(v, "{1} tick", "{1} ticks", r.ticks), std::to_string(r.ticks)),
+           Fmt(TrN(v, "{1} climber", "{1} climbers", r.climbers), std::to_string(r.climbers))) + " ";
   if (r.stars_n > 0) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.2f", r.stars_mean);
-    b += "Stars: " + std::string(buf) + " on average from " + std::to_string(r.stars_n) +
-         " rating" + (r.stars_n == 1 ? "" : "s") + ". ";
+    b += Fmt(TrN(v, "Stars: {1} on average from {2} rating.", "Stars: {1} on average from {2} ratings.", r.stars_n),
+             FormatNumber(v.lang, r.stars_mean, 2), std::to_string(r.stars_n)) + " ";
   }
   if (r.felt_n > 0) {
-    b += "Grade opinions against the setters' grades: " + std::to_string(r.felt_harder) +
-         " felt harder, " + std::to_string(r.felt_same) + " the same band, " +
-         std::to_string(r.felt_softer) + " softer (" + std::to_string(r.felt_n) + " in all).";
+    b += Fmt(Tr(v, "Grade opinions against the setters' grades: {1} felt harder, {2} the same band, {3} softer"),
+             std::to_string(r.felt_harder), std::to_string(r.felt_same), std::to_string(r.felt_softer)) +
+         " " + Fmt(Tr(v, "({1} in all)."), std::to_string(r.felt_n));
   }
-  b += "</p>\n<p class=\"msg\">Held ticks (bursts waiting for a setter) count nowhere here; "
-       "stars and felt grades count once per climber and route (their latest).</p>\n";
+  b += "</p>\n<p class=\"msg\">" + Tr(v, "Held ticks (bursts waiting for a setter) count nowhere here; "
+       "stars and felt grades count once per climber and route (their latest).") + "</p>\n";
 
   // The paper's question.
   const app::VariationComparison& c = r.comparison;
-  b += "<h2>Variations against hand-set routes</h2>\n<section id=\"report-comparison\" "
+  b += "<h2>" + Tr(v, "Variations against hand-set routes") + "</h2>\n<section id=\"report-comparison\" "
        "data-enough=\"" + std::string(c.enough ? "1" : "0") + "\" data-variation-ratings=\"" +
        std::to_string(c.variation_stars.size()) + "\" data-hand-ratings=\"" +
        std::to_string(c.hand_stars.size()) + "\">\n<p id=\"report-verdict\" class=\"" +
        (c.enough ? "msg ok" : "msg") + "\">" + E(c.verdict) + "</p>\n";
-  b += "<div class=\"scroll\"><table class=\"stats\" id=\"report-tests\"><tr><th>Test</th>"
-       "<th>Statistic</th><th>p</th><th>Ratings (variations / hand-set)</th></tr>\n";
+  b += "<div class=\"scroll\"><table class=\"stats\" id=\"report-tests\"><tr><th>" + Tr(v, "Test") + "</th>"
+       "<th>" + Tr(v, "Statistic") + "</th><th>p</th><th>" + Tr(v, "Ratings (variations / hand-set)") + "</th></tr>\n";
   const std::string counts = "<td class=\"n\">" + std::to_string(c.variation_stars.size()) +
                              " / " + std::to_string(c.hand_stars.size()) + "</td>";
-  b += "<tr><th>Wilcoxon rank-sum (U)</th>" + Cell(c.wilcoxon_u, 1) +
+  b += "<tr><th>" + Tr(v, "Wilcoxon rank-sum (U)") + "</th>" + Cell(c.wilcoxon_u, 1) +
        Cell(c.wilcoxon_p, 3, "wilcoxon-p") + counts + "</tr>\n";
-  b += "<tr><th>Welch's t</th>" + Cell(c.welch_t, 3) + Cell(c.welch_p, 3, "welch-p") + counts +
+  b += "<tr><th>" + Tr(v, "Welch's t") + "</th>" + Cell(c.welch_t, 3) + Cell(c.welch_p, 3, "welch-p") + counts +
        "</tr>\n</table></div>\n";
   if (!c.bands.empty()) {
-    b += "<div class=\"scroll\"><table class=\"stats\" id=\"report-bands\"><tr><th>Grade</th>"
-         "<th>Variations: ratings</th><th>stars</th><th>Hand-set: ratings</th><th>stars</th>"
+    b += "<div class=\"scroll\"><table class=\"stats\" id=\"report-bands\"><tr><th>" + Tr(v, "Grade") + "</th>"
+         "<th>" + Tr(v, "Variations: ratings") + "</th><th>" + Tr(v, "stars") + "</th><th>" + Tr(v, "Hand-set: ratings") + "</th><th>" + Tr(v, "stars") + "</th>"
          "</tr>\n";
     for (const app::BandStars& s : c.bands) {
       const bool matched = s.variation_n > 0 && s.hand_n > 0;
-      b += "<tr" + std::string(matched ? "" : " class=\"dropped\" title=\"not compared: one "
-                                              "kind has no ratings in this band\"") +
+      b += "<tr" + (matched ? std::string() : " class=\"dropped\" title=\"" + E(Tr(v, "not compared: one "
+                                              "kind has no ratings in this band")) + "\"") +
            "><th>" + E(s.band) + "</th><td class=\"n\">" + std::to_string(s.variation_n) +
            "</td>" + Cell(s.variation_n ? s.variation_mean : NAN, 2) + "<td class=\"n\">" +
            std::to_string(s.hand_n) + "</td>" + Cell(s.hand_n ? s.hand_mean : NAN, 2) +
@@ -198,44 +197,44 @@ std::string ReportPageHtml(const PageViewer& v, const app::GymReport& r) {
     }
     b += "</table></div>\n";
   }
-  b += "<p class=\"msg\">Only grade bands with ratings of both kinds enter the tests; each "
-       "rests on the ratings counted above.</p>\n</section>\n";
-  b += PredictionCheckHtml(r.predictions);
+  b += "<p class=\"msg\">" + Tr(v, "Only grade bands with ratings of both kinds enter the tests; each "
+       "rests on the ratings counted above.") + "</p>\n</section>\n";
+  b += PredictionCheckHtml(r.predictions, v.lang);
 
   // The routes.
-  b += "<h2>Routes</h2>\n";
+  b += "<h2>" + Tr(v, "Routes") + "</h2>\n";
   if (r.routes.empty()) {
-    b += "<p class=\"empty\" id=\"report-empty\">No routes here.</p>\n";
+    b += "<p class=\"empty\" id=\"report-empty\">" + Tr(v, "No routes here.") + "</p>\n";
   } else {
-    b += "<div class=\"scroll\"><table class=\"list\" id=\"report-routes\"><thead><tr><th>Route"
-         "</th><th>Setter's grade</th><th>Ascent grade</th><th class=\"num\">Ticks</th><th>"
-         "Flash / send / tries</th><th class=\"num\">Stars</th><th>Felt</th></tr></thead>"
+    b += "<div class=\"scroll\"><table class=\"list\" id=\"report-routes\"><thead><tr><th>" + Tr(v, "Route") +
+         "</th><th>" + Tr(v, "Setter's grade") + "</th><th>" + Tr(v, "Ascent grade") + "</th><th class=\"num\">" + Tr(v, "Ticks") + "</th><th>" +
+         Tr(v, "Flash / send / tries") + "</th><th class=\"num\">" + Tr(v, "Stars") + "</th><th>" + Tr(v, "Felt") + "</th></tr></thead>"
          "<tbody>\n";
     for (const app::ReportRoute& rr : r.routes) {
       b += "<tr class=\"report-route\" data-route=\"" + Id(rr.id) + "\"><td>" + RouteLink(rr) +
-           (rr.is_variation ? " <span class=\"tag\">variation</span>" : "") + "</td><td>" +
+           (rr.is_variation ? " <span class=\"tag\">" + Tr(v, "variation") + "</span>" : std::string()) + "</td><td>" +
            E(rr.grade) + "</td>" + AscentCell(rr.ascent) + "<td class=\"num\">" +
            std::to_string(rr.ticks) + "</td><td>" + std::to_string(rr.flashes) + " / " +
            std::to_string(rr.sends) + " / " + std::to_string(rr.attempts) + "</td>" +
            Cell(rr.stars_n ? rr.stars_mean : NAN, 2) + "<td>" +
-           (rr.felt_n ? E(rr.felt_median) + " <small>(" + std::to_string(rr.felt_n) + ": " +
-                            std::to_string(rr.felt_harder) + " harder, " +
-                            std::to_string(rr.felt_same) + " same, " +
-                            std::to_string(rr.felt_softer) + " softer)</small>"
+           (rr.felt_n ? E(rr.felt_median) + " <small>(" +
+                            Fmt(Tr(v, "{1}: {2} harder, {3} same"), std::to_string(rr.felt_n),
+                                std::to_string(rr.felt_harder), std::to_string(rr.felt_same)) + ", " +
+                            Fmt(Tr(v, "{1} softer"), std::to_string(rr.felt_softer)) + ")</small>"
                       : std::string("—")) +
            "</td></tr>\n";
     }
     b += "</tbody></table></div>\n";
   }
   if (r.can_set) {
-    b += "<h2>Comments</h2>\n";
+    b += "<h2>" + Tr(v, "Comments") + "</h2>\n";
     if (r.comments.empty()) {
-      b += "<p class=\"empty\">No comments.</p>\n";
+      b += "<p class=\"empty\">" + Tr(v, "No comments.") + "</p>\n";
     } else {
       b += "<ul class=\"comments\" id=\"report-comments\">\n";
       for (const app::ReportComment& cm : r.comments) {
-        b += "<li><p>" + E(cm.text) + "</p><small>" + E(cm.day) + " · " + E(cm.route_name) +
-             " · " + E(cm.outcome) + "</small></li>\n";
+        b += "<li><p>" + E(cm.text) + "</p><small>" + E(FormatDate(v, cm.day)) + " · " + E(cm.route_name) +
+             " · " + E(Tr(v, cm.outcome.c_str())) + "</small></li>\n";
       }
       b += "</ul>\n";
     }

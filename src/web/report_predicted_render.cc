@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "base/text.h"
+#include "web/i18n.h"
 
 namespace sb::web {
 
@@ -11,12 +12,6 @@ namespace {
 using json = nlohmann::json;
 
 std::string E(std::string_view s) { return XmlEscape(s); }
-
-std::string Fixed(double v, int d) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.*f", d, v);
-  return buf;
-}
 
 }  // namespace
 
@@ -54,27 +49,28 @@ json PredictionCheckJson(const app::PredictionCheck& c) {
   return json{{"min_ticks", c.min_ticks}, {"verdict", c.verdict}, {"days", days}};
 }
 
-std::string PredictionCheckHtml(const app::PredictionCheck& c) {
-  std::string b = "<h2>Predicted grades against ascent grades</h2>\n<section "
+std::string PredictionCheckHtml(const app::PredictionCheck& c, std::string_view lang) {
+  std::string b = "<h2>" + Tr(lang, "Predicted grades against ascent grades") + "</h2>\n<section "
                   "id=\"report-predicted\"><p class=\"msg\" id=\"report-predicted-verdict\">" +
                   E(c.verdict) + "</p>\n";
   if (!c.days.empty()) {
-    b += "<div class=\"scroll\"><table class=\"stats\" id=\"report-predicted-table\"><tr><th>"
-         "Setting day</th><th>Variation</th><th>Predicted (80%)</th><th>Ascent grade</th><th "
-         "class=\"num\">Ticks</th><th>Difference</th></tr>\n";
+    b += "<div class=\"scroll\"><table class=\"stats\" id=\"report-predicted-table\"><tr><th>" +
+         Tr(lang, "Setting day") + "</th><th>" + Tr(lang, "Variation") + "</th><th>" + Tr(lang, "Predicted (80%)") + "</th><th>" + Tr(lang, "Ascent grade") + "</th><th "
+         "class=\"num\">" + Tr(lang, "Ticks") + "</th><th>" + Tr(lang, "Difference") + "</th></tr>\n";
     for (const app::PredictionDay& d : c.days) {
       for (const app::PredictedAgainstAscent& r : d.routes) {
         const bool checked =
             r.predicted.known && r.ascent.fitted && r.ascent.ticks >= c.min_ticks;
-        b += "<tr data-route=\"" + std::to_string(r.id) + "\"><td>" + E(d.day) +
+        b += "<tr data-route=\"" + std::to_string(r.id) + "\"><td>" + E(FormatDate(lang, d.day)) +
              "</td><td><a href=\"/routes/" + std::to_string(r.id) + "\">" + E(r.name) +
              "</a></td><td>" +
              E(r.predicted.known ? app::PredictedGradeText(r.predicted) : "—") + "</td><td>" +
              E(r.ascent.fitted ? r.ascent.grade : "—") + "</td><td class=\"num\">" +
              std::to_string(r.ascent.ticks) + "</td><td>" +
-             (checked ? E((r.error >= 0 ? "+" : "") + Fixed(r.error, 1) +
-                          (r.inside ? " (inside)" : " (outside)"))
-                      : E("fewer than " + std::to_string(c.min_ticks) + " ticks")) +
+             (checked ? E((r.error >= 0 ? "+" : "") + FormatNumber(lang, r.error, 1) + " " +
+                          (r.inside ? Tr(lang, "(inside)") : Tr(lang, "(outside)")))
+                      : E(Fmt(TrN(lang, "fewer than {1} tick", "fewer than {1} ticks", c.min_ticks),
+                              std::to_string(c.min_ticks)))) +
              "</td></tr>\n";
       }
     }

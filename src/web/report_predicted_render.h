@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 #include <string>
+#include <string_view>
 
 #include "app/report_predicted.h"
 
@@ -19,7 +20,7 @@ namespace sb::web {
 nlohmann::json PredictionCheckJson(const app::PredictionCheck& c);
 // A <section id="report-predicted"> with the verdict and one table row per
 // variation. Pure.
-std::string PredictionCheckHtml(const app::PredictionCheck& c);
+std::string PredictionCheckHtml(const app::PredictionCheck& c, std::string_view lang = "en");
 
 }  // namespace sb::web
 

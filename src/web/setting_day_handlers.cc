@@ -8,6 +8,7 @@
 #include "base/date.h"
 #include "base/number.h"
 #include "base/text.h"
+#include "web/script_messages.h"
 
 namespace sb::web {
 
@@ -143,24 +144,18 @@ json ProposalJson(const app::SettingDayProposal& p) {
 
 // Issue 33: the candidate's predicted grade with its interval and what it
 // rests on, and its style in words (a card's line).
-std::string DayPredictedLine(const app::DayCandidate& c) {
+std::string DayPredictedLine(const app::DayCandidate& c, std::string_view lang) {
   std::string h = "<p class=\"day-predicted\">";
   if (c.score.predicted.known) {
-    h += "Predicted grade <b>" + E(app::PredictedGradeText(c.score.predicted)) +
-         "</b> <small>(" + E(c.score.predicted.basis) + ")</small>";
+    h += Fmt(Tr(lang, "Predicted grade {1}"), "<b>" + E(app::PredictedGradeText(c.score.predicted)) + "</b>") +
+         " <small>(" + E(c.score.predicted.basis) + ")</small>";
   } else {
-    h += "No predicted grade" + (c.score.predicted.note.empty()
+    h += Tr(lang, "No predicted grade") + (c.score.predicted.note.empty()
                                      ? std::string()
                                      : ": " + E(c.score.predicted.note));
   }
-  if (!c.score.style_words.empty()) h += "<br>Style: " + E(c.score.style_words);
+  if (!c.score.style_words.empty()) h += "<br>" + Fmt(Tr(lang, "Style: {1}"), E(c.score.style_words));
   return h + "</p>\n";
-}
-
-std::string Fixed1(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.1f", v);
-  return buf;
 }
 
 // The walls of the query: walls=1,2 or walls=1&walls=2.
@@ -279,41 +274,50 @@ void PageSettingDay(Exchange& x) {
   }
   const std::string g = std::to_string(*gid);
 
-  std::string b = "<h1 id=\"day-title\">Setting day · " + E(gym->name) + "</h1>\n";
-  b += "<p><a href=\"/gyms/" + g + "\">Back to the gym</a>";
+  const std::string_view lang = x.caller.lang;
+  [[maybe_unused]] static constexpr const char* kNovelties[] = {
+      N_("close to its inputs"), N_("a mix of its inputs and new moves"), N_("mostly new")};
+  [[maybe_unused]] static constexpr const char* kStyles[] = {
+      N_("crimp"), N_("sloper"), N_("pinch"), N_("pocket"), N_("heel hook"), N_("toe hook"),
+      N_("gaston"), N_("undercling"), N_("dyno"), N_("mantle")};
+  std::string b = "<h1 id=\"day-title\">" + Tr(lang, "Setting day") + " · " + E(gym->name) + "</h1>\n";
+  b += "<p><a href=\"/gyms/" + g + "\">" + Tr(lang, "Back to the gym") + "</a>";
   if (!date.empty()) {
     b += " · <a id=\"day-sheet\" href=\"/gyms/" + g + "/setting-day/sheet?date=" + E(date) +
-         "\">The day's sheet</a>";
+         "\">" + Tr(lang, "The day's sheet") + "</a>";
   }
-  b += "</p>\n<form method=\"get\" id=\"day-form\" class=\"no-print\"><label>Date <input "
+  b += "</p>\n<form method=\"get\" id=\"day-form\" class=\"no-print\"><label>" + Tr(lang, "Date") + " <input "
        "type=\"date\" name=\"date\" id=\"day-date\" required value=\"" +
-       E(date) + "\"></label>\n<fieldset><legend>Walls to reset</legend>\n";
+       E(date) + "\"></label>\n<fieldset><legend>" + Tr(lang, "Walls to reset") + "</legend>\n";
   for (const app::Wall& w : *walls) {
     const bool on = std::find(chosen.begin(), chosen.end(), w.id) != chosen.end();
     b += "<label class=\"inline\"><input type=\"checkbox\" name=\"walls\" value=\"" +
          std::to_string(w.id) + "\"" + (on ? " checked" : "") + "> " + E(w.name) + "</label>\n";
   }
-  if (walls->empty()) b += "<p class=\"empty\">This gym has no walls yet.</p>\n";
+  if (walls->empty()) b += "<p class=\"empty\">" + Tr(lang, "This gym has no walls yet.") + "</p>\n";
   std::string novelty = x.req.Query("novelty").value_or("mix");
-  b += "</fieldset><label>Novelty <select name=\"novelty\" id=\"day-novelty\">";
+  b += "</fieldset><label>" + Tr(lang, "Novelty") + " <select name=\"novelty\" id=\"day-novelty\">";
   for (app::Novelty n : {app::Novelty::kClose, app::Novelty::kMix, app::Novelty::kNew}) {
     b += "<option value=\"" + std::string(app::NoveltyName(n)) + "\"" +
-         (novelty == app::NoveltyName(n) ? " selected" : "") + ">" + app::NoveltyWords(n) +
+         (novelty == app::NoveltyName(n) ? " selected" : "") + ">" + Tr(lang, app::NoveltyWords(n)) +
          "</option>";
   }
-  b += "</select></label>\n<label>Candidates per slot <input type=\"number\" name=\"k\" "
+  b += "</select></label>\n<label>" + Tr(lang, "Candidates per slot") + " <input type=\"number\" name=\"k\" "
        "min=\"1\" max=\"" +
        std::to_string(app::kMaxDayCandidates) + "\" value=\"" + std::to_string(k) +
-       "\"></label>\n<button type=\"submit\" id=\"day-propose\">Propose</button></form>\n";
+       "\"></label>\n<button type=\"submit\" id=\"day-propose\">" + Tr(lang, "Propose") + "</button></form>\n";
 
   // Issue 33: a setting day is planned for today or later.
   const std::string today = UtcDateText(app::SystemClock().Now());
   const bool past = !date.empty() && IsIsoDate(date) && date < today;
   if (past) {
-    b += "<p class=\"msg bad\" role=\"alert\" id=\"day-past\">" + E(date) +
-         " is in the past (today is " + E(today) +
-         "): choose today or a later date to plan a setting day; its sheet stays at <a "
-         "href=\"/gyms/" + g + "/setting-day/sheet?date=" + E(date) + "\">the day's sheet</a>.</p>\n";
+    b += "<p class=\"msg bad\" role=\"alert\" id=\"day-past\">" +
+         Fmt(Tr(lang, "{1} is in the past (today is {2}): choose today or a later date to plan a "
+                      "setting day; its sheet stays at {3}."),
+             E(FormatDate(lang, date)), E(FormatDate(lang, today)),
+             "<a href=\"/gyms/" + g + "/setting-day/sheet?date=" + E(date) + "\">" +
+                 Tr(lang, "the day's sheet") + "</a>") +
+         "</p>\n";
   }
   if (!date.empty() && !chosen.empty() && !past) {
     app::SettingDayRequest r;
@@ -365,16 +369,16 @@ void PageSettingDay(Exchange& x) {
              (s.accepted_route ? " data-accepted=\"" + std::to_string(s.accepted_route) + "\""
                                : std::string()) +
              "><h2>" + E(s.wall_name) + ": " +
-             E(s.slot.band.empty() ? "any grade" : s.slot.band) + " · " +
-             E(s.slot.style.empty() ? "any style" : s.slot.style) + " · " +
-             E(app::NoveltyWords(s.novelty)) + "</h2>\n";
+             E(s.slot.band.empty() ? Tr(lang, "any grade") : s.slot.band) + " · " +
+             E(s.slot.style.empty() ? Tr(lang, "any style") : Tr(lang, s.slot.style.c_str())) + " · " +
+             E(Tr(lang, app::NoveltyWords(s.novelty))) + "</h2>\n";
         if (!s.note.empty()) b += "<p class=\"note\">" + E(s.note) + "</p>\n";
         if (!s.style_note.empty()) b += "<p class=\"note\">" + E(s.style_note) + "</p>\n";
         if (s.accepted_route) {
           const std::string id = std::to_string(s.accepted_route);
-          b += "<p class=\"day-accepted\">Accepted: <a href=\"/routes/" + id + "\">route " + id +
-               "</a> · <a href=\"/variations/" + id + ".pdf\">card</a> · <a href=\"/routes/" + id +
-               "/tag.pdf\">tag</a></p>\n";
+          b += "<p class=\"day-accepted\">" + Tr(lang, "Accepted:") + " <a href=\"/routes/" + id + "\">" + Fmt(Tr(lang, "route {1}"), id) +
+               "</a> · <a href=\"/variations/" + id + ".pdf\">" + Tr(lang, "card") + "</a> · <a href=\"/routes/" + id +
+               "/tag.pdf\">" + Tr(lang, "tag") + "</a></p>\n";
         }
         std::vector<const app::DayCandidate*> kept, rejected;
         for (const app::DayCandidate& c : s.candidates) {
@@ -384,53 +388,52 @@ void PageSettingDay(Exchange& x) {
           std::string h = "<article class=\"day-candidate" +
                            std::string(c.score.rejected ? " rejected" : "") +
                            (c.accepted_route ? " accepted" : "") + "\" data-id=\"" + E(c.id) +
-                           "\"><h3>" + std::to_string(rank) + ". score " + Fixed1(c.score.score) +
-                           " / 100" +
-                           (c.score.rejected ? " <span class=\"bad\">(rejected)</span>" : "") +
+                           "\"><h3>" + std::to_string(rank) + ". " + Fmt(Tr(lang, "score {1} / 100"), FormatNumber(lang, c.score.score, 1)) +
+                           (c.score.rejected ? " <span class=\"bad\">" + Tr(lang, "(rejected)") + "</span>" : std::string()) +
                            (c.score.predicted.known
-                                ? " · predicted <span class=\"predicted\">" +
-                                      E(c.score.predicted.grade) + "</span>"
+                                ? " · " + Fmt(Tr(lang, "predicted {1}"), "<span class=\"predicted\">" +
+                                      E(c.score.predicted.grade) + "</span>")
                             : c.score.estimated_band.empty()
-                                ? ""
-                                : " · estimated " + E(c.score.estimated_band)) +
-                           " · " + std::to_string(c.score.new_moves) + " of " +
-                           std::to_string(c.moves.size()) + " moves new</h3>\n";
+                                ? std::string()
+                                : " · " + Fmt(Tr(lang, "estimated {1}"), E(c.score.estimated_band))) +
+                           " · " + Fmt(TrN(lang, "{1} of {2} move new", "{1} of {2} moves new", static_cast<long long>(c.moves.size())),
+                                       std::to_string(c.score.new_moves), std::to_string(c.moves.size())) + "</h3>\n";
           // Why, in a setter's words (the technical reasons in the fold).
           std::string why;
           for (const std::string& r : c.score.reasons) {
             if (r.find("bits") != std::string::npos || r.rfind("novelty ", 0) == 0) continue;
             why += (why.empty() ? "" : "; ") + r;
           }
-          h += "<p class=\"why\">" + std::string(rank == 1 && !c.score.rejected
-                                                       ? "Why it ranks first: "
-                                                       : "Why: ") +
-               E(why) + "</p>\n" + DayPredictedLine(c) + "<p class=\"inputs\">From: ";
+          h += "<p class=\"why\">" + (rank == 1 && !c.score.rejected
+                                                       ? Tr(lang, "Why it ranks first:")
+                                                       : Tr(lang, "Why:")) + " " +
+               E(why) + "</p>\n" + DayPredictedLine(c, lang) + "<p class=\"inputs\">" + Tr(lang, "From:") + " ";
           for (size_t i = 0; i < c.inputs.size(); ++i) {
             h += (i ? ", " : "") + std::string("<a href=\"/routes/") +
                  std::to_string(c.inputs[i]) + "\">" + E(c.input_names[i]) + "</a>";
           }
           h += "</p>\n<ol class=\"moves\">";
           for (const std::string& m : c.moves) h += "<li>" + E(m) + "</li>";
-          h += "</ol>\n<details class=\"no-print\"><summary>Details</summary><ul "
+          h += "</ol>\n<details class=\"no-print\"><summary>" + Tr(lang, "Details") + "</summary><ul "
                "class=\"reasons\">";
           for (const std::string& r2 : c.score.reasons) h += "<li>" + E(r2) + "</li>";
           h += "</ul>";
           if (!c.score.warnings.empty()) {
-            h += "<p>Warnings:</p><ul class=\"warnings\">";
+            h += "<p>" + Tr(lang, "Warnings:") + "</p><ul class=\"warnings\">";
             for (const std::string& w : c.score.warnings) h += "<li>" + E(w) + "</li>";
             h += "</ul>";
           }
           h += "</details>\n";
           if (c.accepted_route) {
-            h += "<p class=\"msg\">Accepted as <a href=\"/routes/" +
-                 std::to_string(c.accepted_route) + "\">route " +
-                 std::to_string(c.accepted_route) + "</a></p>\n";
+            h += "<p class=\"msg\">" + Fmt(Tr(lang, "Accepted as {1}"), "<a href=\"/routes/" +
+                 std::to_string(c.accepted_route) + "\">" + Fmt(Tr(lang, "route {1}"),
+                 std::to_string(c.accepted_route)) + "</a>") + "</p>\n";
           } else if (offer) {
             json accept{{"date", date}, {"wall", s.slot.wall}, {"candidate", CandidateJson(c)}};
             h += "<form class=\"day-accept no-print\" data-accept=\"" + E(accept.dump()) +
                  "\" data-url=\"/api/gyms/" + g +
-                 "/setting-days/accept\"><label>Setter <select name=\"setter\">" + setters +
-                 "</select></label> <button type=\"submit\">Accept</button><p class=\"msg\" "
+                 "/setting-days/accept\"><label>" + Tr(lang, "Setter") + " <select name=\"setter\">" + setters +
+                 "</select></label> <button type=\"submit\">" + Tr(lang, "Accept") + "</button><p class=\"msg\" "
                  "role=\"status\"></p></form>";
           }
           return h + "</article>\n";
@@ -450,25 +453,26 @@ void PageSettingDay(Exchange& x) {
         }
         if (!others.empty()) {
           b += "<details class=\"day-others no-print\"><summary>" +
-               std::string(filled ? "The slot's other candidates" : "Other candidates") +
+               (filled ? Tr(lang, "The slot's other candidates") : Tr(lang, "Other candidates")) +
                "</summary>\n" + others + "</details>\n";
         }
         if (!rejected.empty()) {
-          b += "<details class=\"day-rejected no-print\"><summary>Rejected (" +
-               std::to_string(rejected.size()) +
-               "): not offered, see why</summary>\n";
+          b += "<details class=\"day-rejected no-print\"><summary>" +
+               Fmt(Tr(lang, "Rejected ({1}): not offered, see why"), std::to_string(rejected.size())) +
+               "</summary>\n";
           for (const app::DayCandidate* c : rejected) b += card(*c, ++rank, false);
           b += "</details>\n";
         }
         if (kept.empty() && !filled) {
-          b += "<p class=\"msg bad\">No candidate to offer for this slot" +
-               std::string(s.note.empty() ? "." : ": see the note above.") + "</p>\n";
+          b += "<p class=\"msg bad\">" +
+               (s.note.empty() ? Tr(lang, "No candidate to offer for this slot.")
+                               : Tr(lang, "No candidate to offer for this slot: see the note above.")) + "</p>\n";
         }
         b += "</section>\n";
       }
       // The slots, editable: band and style per slot, proposed again.
-      b += "<form method=\"get\" id=\"day-slots\" class=\"no-print\"><h2>Change the "
-           "slots</h2><input type=\"hidden\" name=\"date\" value=\"" + E(date) + "\">";
+      b += "<form method=\"get\" id=\"day-slots\" class=\"no-print\"><h2>" + Tr(lang, "Change the "
+           "slots") + "</h2><input type=\"hidden\" name=\"date\" value=\"" + E(date) + "\">";
       for (int64_t w : chosen) {
         b += "<input type=\"hidden\" name=\"walls\" value=\"" + std::to_string(w) + "\">";
       }
@@ -478,48 +482,48 @@ void PageSettingDay(Exchange& x) {
       for (const app::DaySlotProposal& s : p->slots) {
         ++n_slot;
         const std::string no = std::to_string(n_slot);
-        b += "<fieldset class=\"slot-edit\"><legend>Slot " + no + ": " + E(s.wall_name) +
+        b += "<fieldset class=\"slot-edit\"><legend>" + Fmt(Tr(lang, "Slot {1}: {2}"), no, E(s.wall_name)) +
              "</legend><input type=\"hidden\" name=\"sw\" value=\"" +
-             std::to_string(s.slot.wall) + "\"><label>Band <input name=\"sb\" id=\"slot-band-" +
+             std::to_string(s.slot.wall) + "\"><label>" + Tr(lang, "Band") + " <input name=\"sb\" id=\"slot-band-" +
              no + "\" size=\"6\" value=\"" + E(s.slot.band) +
-             "\"></label> <label>Style <select name=\"ss\" id=\"slot-style-" + no +
-             "\"><option value=\"\">any style</option>";
+             "\"></label> <label>" + Tr(lang, "Style") + " <select name=\"ss\" id=\"slot-style-" + no +
+             "\"><option value=\"\">" + Tr(lang, "any style") + "</option>";
         std::vector<std::string> styles = app::kDefaultSlotStyles;
         if (!s.slot.style.empty() &&
             std::find(styles.begin(), styles.end(), s.slot.style) == styles.end()) {
           styles.push_back(s.slot.style);
         }
         for (const std::string& st : styles) {
-          b += "<option" + std::string(st == s.slot.style ? " selected" : "") + ">" + E(st) +
+          b += "<option value=\"" + E(st) + "\"" + std::string(st == s.slot.style ? " selected" : "") + ">" + E(Tr(lang, st.c_str())) +
                "</option>";
         }
         b += "</select></label></fieldset>\n";
       }
-      b += "<button type=\"submit\" id=\"day-slots-propose\">Propose these slots</button>"
+      b += "<button type=\"submit\" id=\"day-slots-propose\">" + Tr(lang, "Propose these slots") + "</button>"
            "</form>\n";
       b += "<p class=\"no-print\"><button type=\"button\" onclick=\"window.print()\" "
-           "id=\"day-print\">Print the day</button></p>\n";
+           "id=\"day-print\">" + Tr(lang, "Print the day") + "</button></p>\n";
     }
   }
-  b += "<script src=\"/static/setting_day.js\" defer></script>\n";
-  Html(x, PageLayout(x.caller.page(), "Setting day · " + gym->name, b));
+  b += SettingDayScriptMessages(lang) + "<script src=\"/static/setting_day.js\" defer></script>\n";
+  Html(x, PageLayout(x.caller.page(), Tr(lang, "Setting day") + " · " + gym->name, b));
 }
 
 namespace {
 
 // The sheet's state column and buttons (issue 31), its words in one place.
-const char kSheetState[] = "State";
-std::string SheetStateName(const std::string& s) {
-  if (s == "set") return "on the wall";
-  if (s == "stripped") return "stripped";
-  return s;
+const char kSheetState[] = N_("State");
+std::string SheetStateName(std::string_view lang, const std::string& s) {
+  if (s == "set") return Tr(lang, "on the wall");
+  if (s == "stripped") return Tr(lang, "stripped");
+  return Tr(lang, s.c_str());
 }
 // The plan / set / strip buttons a route's state allows (app::CheckTransition;
 // POST /api/routes/{id}/state, sent by gyms.js, which reloads the sheet).
 // `copy` tells the rows of a route under two setters apart (0 for the first).
-std::string SheetButtons(const app::DayRoute& r, int copy) {
+std::string SheetButtons(const app::DayRoute& r, int copy, std::string_view lang) {
   static const std::pair<const char*, const char*> kButtons[] = {
-      {"planned", "Plan"}, {"set", "Set on the wall"}, {"stripped", "Strip"}};
+      {"planned", N_("Plan")}, {"set", N_("Set on the wall")}, {"stripped", N_("Strip")}};
   const std::optional<app::RouteState> from = app::RouteStateOf(r.state);
   if (!from) return "";
   std::string h;
@@ -530,7 +534,7 @@ std::string SheetButtons(const app::DayRoute& r, int copy) {
     h += " <form class=\"gym-form inline-form no-print\" id=\"" + id + "\" data-api=\"POST "
          "/api/routes/" + std::to_string(r.id) + "/state\"><input type=\"hidden\" name=\"state\" "
          "value=\"" + std::string(to) + "\"><button type=\"submit\" class=\"sheet-" +
-         std::string(to) + "\">" + label + "</button><span class=\"msg\" role=\"status\">"
+         std::string(to) + "\">" + Tr(lang, label) + "</button><span class=\"msg\" role=\"status\">"
          "</span></form>";
   }
   return h;
@@ -548,49 +552,50 @@ void PageSettingDaySheet(Exchange& x) {
       x.services.setting_days.Planned(x.caller.viewer, *gid, date);
   if (!routes.ok()) return PageError(x, routes.status());
   const std::string g = std::to_string(*gid);
-  std::string b = "<h1 id=\"sheet-title\">Setting day " + E(date.empty() ? "(every date)" : date) +
+  const std::string_view lang = x.caller.lang;
+  std::string b = "<h1 id=\"sheet-title\">" + Tr(lang, "Setting day") + " " + E(date.empty() ? Tr(lang, "(every date)") : FormatDate(lang, date)) +
                   " · " + E(gym->name) + "</h1>\n";
   // The day's tags: the sheet of tags of exactly these routes (/tags.pdf?ids=,
   // at most app::Limits::max_tag_sheet_routes, as Planned lists).
   std::string ids;
   for (const app::DayRoute& r : *routes) ids += (ids.empty() ? "" : ",") + std::to_string(r.id);
   b += "<p class=\"no-print\"><a href=\"/gyms/" + g + "/setting-day?date=" + E(date) +
-       "\">Plan this day</a>" +
+       "\">" + Tr(lang, "Plan this day") + "</a>" +
        (ids.empty() ? std::string()
                     : " · <a id=\"sheet-tags\" href=\"/tags.pdf?ids=" + ids +
-                          "\">The day's tags (PDF)</a>") +
+                          "\">" + Tr(lang, "The day's tags (PDF)") + "</a>") +
        "</p>\n";
   if (routes->empty()) {
-    b += "<p class=\"empty\">Nothing planned for this day yet.</p>\n";
+    b += "<p class=\"empty\">" + Tr(lang, "Nothing planned for this day yet.") + "</p>\n";
   } else {
     // By setter: what each sets where.
     std::map<std::string, std::vector<const app::DayRoute*>> by_setter;
     for (const app::DayRoute& r : *routes) {
-      if (r.setters.empty()) by_setter["(no setter)"].push_back(&r);
+      if (r.setters.empty()) by_setter[Tr(lang, "(no setter)")].push_back(&r);
       for (const std::string& s : r.setters) by_setter[s].push_back(&r);
     }
     const bool can_set = app::CanSet(gym->role);
     std::map<int64_t, int> copies;  // rows of each route so far
     for (const auto& [setter, list] : by_setter) {
       b += "<h2>" + E(setter) + "</h2>\n<div class=\"table-wrap\"><table class=\"list "
-           "day-sheet\"><thead><tr><th>Wall</th><th>Route</th><th>Grade</th><th class=\"num\">"
-           "Moves</th><th>" + std::string(kSheetState) + "</th><th class=\"no-print\">Card · "
-           "tag</th></tr></thead><tbody>\n";
+           "day-sheet\"><thead><tr><th>" + Tr(lang, "Wall") + "</th><th>" + Tr(lang, "Route") + "</th><th>" + Tr(lang, "Grade") + "</th><th class=\"num\">" +
+           Tr(lang, "Moves") + "</th><th>" + Tr(lang, kSheetState) + "</th><th class=\"no-print\">" + Tr(lang, "Card · "
+           "tag") + "</th></tr></thead><tbody>\n";
       for (const app::DayRoute* r : list) {
         const std::string id = std::to_string(r->id);
         b += "<tr data-route=\"" + id + "\"><td>" + E(r->wall_name) +
              "</td><td><a href=\"/variations/" + id + "\">" + E(r->name) + "</a></td><td>" +
              E(r->grade) + "</td><td class=\"num\">" + std::to_string(r->move_count) +
-             "</td><td class=\"sheet-state\">" + E(SheetStateName(r->state)) +
-             (can_set ? SheetButtons(*r, copies[r->id]++) : std::string()) +
+             "</td><td class=\"sheet-state\">" + E(SheetStateName(lang, r->state)) +
+             (can_set ? SheetButtons(*r, copies[r->id]++, lang) : std::string()) +
              "</td><td class=\"no-print\"><a href=\"/variations/" + id +
-             ".pdf\">card</a> · <a href=\"/routes/" + id + "/tag.pdf\">tag</a></td></tr>\n";
+             ".pdf\">" + Tr(lang, "card") + "</a> · <a href=\"/routes/" + id + "/tag.pdf\">" + Tr(lang, "tag") + "</a></td></tr>\n";
       }
       b += "</tbody></table></div>\n";
     }
-    if (can_set) b += "<script src=\"/static/gyms.js\" defer></script>\n";
+    if (can_set) b += GymsScriptMessages(lang) + "<script src=\"/static/gyms.js\" defer></script>\n";
   }
-  Html(x, PageLayout(x.caller.page(), "Setting day sheet · " + gym->name, b));
+  Html(x, PageLayout(x.caller.page(), Tr(lang, "Setting day sheet") + " · " + gym->name, b));
 }
 
 }  // namespace sb::web

@@ -2,10 +2,13 @@
 // as a page and a PDF for every route the viewer can see, and a sheet of tags
 // for a list of routes. The content is plan/tag.h; app/tags.h maps a route to
 // it and bounds a sheet.
+#include <map>
+
 #include "app/tags.h"
 #include "base/text.h"
 #include "plan/tag.h"
 #include "web/handlers.h"
+#include "web/i18n.h"
 #include "web/tag_pages.h"
 
 namespace sb::web {
@@ -17,12 +20,29 @@ plan::Paper TagPaperOf(const Request& req) {
                                                               : plan::Paper::kA4;
 }
 
+// The language a tag of `r` prints in (issue 32): its gym's default language
+// when the gym has one (the wall's words are the gym's, not the printer's),
+// else the caller's. `seen` caches the gyms' languages over a sheet.
+std::string TagLanguage(Exchange& x, const app::RouteView& r,
+                        std::map<int64_t, std::string>* seen = nullptr) {
+  if (!r.gym_id) return x.caller.lang;
+  auto it = seen ? seen->find(*r.gym_id) : std::map<int64_t, std::string>::iterator{};
+  std::string lang;
+  if (seen && it != seen->end()) {
+    lang = it->second;
+  } else {
+    if (Result<std::string> l = x.services.profiles.GymLanguage(*r.gym_id); l.ok()) lang = *l;
+    if (seen) (*seen)[*r.gym_id] = lang;
+  }
+  return IsUiLanguage(lang) ? lang : x.caller.lang;
+}
+
 // The route of the path's id, visible to the caller, and its tag.
 Result<std::pair<app::RouteView, plan::TagInfo>> TagOfPath(Exchange& x) {
   SB_ASSIGN_OR_RETURN(int64_t id, PathId(x.req, "No such route."));
   SB_ASSIGN_OR_RETURN(app::RouteView r, x.services.routes.Get(x.caller.viewer, id));
   plan::TagInfo tag = app::TagInfoOf(r, ShortLink(x, r.id));
-  LocaliseTag(x.caller.lang, &tag);
+  LocaliseTag(TagLanguage(x, r), &tag);
   return std::make_pair(std::move(r), std::move(tag));
 }
 
@@ -74,9 +94,10 @@ void GetTagSheetPdf(Exchange& x) {
   if (!slot) return;
   std::vector<plan::TagInfo> tags;
   tags.reserve(routes->size());
+  std::map<int64_t, std::string> gym_langs;
   for (const app::RouteView& r : *routes) {
     tags.push_back(app::TagInfoOf(r, ShortLink(x, r.id)));
-    LocaliseTag(x.caller.lang, &tags.back());
+    LocaliseTag(TagLanguage(x, r, &gym_langs), &tags.back());
   }
   const plan::Paper paper = TagPaperOf(x.req);
   Result<std::string> pdf = plan::RenderTagSheetPdf(tags, paper);
@@ -100,9 +121,10 @@ void GetGymTagSheetPdf(Exchange& x) {
   if (!slot) return;
   std::vector<plan::TagInfo> tags;
   tags.reserve(routes->size());
+  std::map<int64_t, std::string> gym_langs;
   for (const app::RouteView& r : *routes) {
     tags.push_back(app::TagInfoOf(r, ShortLink(x, r.id)));
-    LocaliseTag(x.caller.lang, &tags.back());
+    LocaliseTag(TagLanguage(x, r, &gym_langs), &tags.back());
   }
   const plan::Paper paper = TagPaperOf(x.req);
   Result<std::string> pdf = plan::RenderTagSheetPdf(tags, paper);

@@ -77,16 +77,17 @@ module.exports = async (t) => {
   await page.reload();
   await page.fill('#import-data', changed);
   await page.click('#import-read');
-  await page.waitForFunction(() => document.querySelector('#import-summary').textContent.includes('2 new'));
+  // The head setter reads German now: the page's script speaks it too.
+  await page.waitForFunction(() => document.querySelector('#import-summary').textContent.includes('2 neu'));
   const s2 = await page.textContent('#import-summary');
-  check(s2.startsWith('2 new, 3 changed, 3 no longer in the list: strip them?'), 'the changed list previews (' + s2 + ')');
+  check(s2.startsWith('2 neu, 3 geändert, 3 nicht mehr in der Liste: abschrauben?'), 'the changed list previews (' + s2 + ')');
   const changes = await page.$$eval('#import-rows tr.import-changed td:last-child', (tds) => tds.map((td) => td.textContent));
   check(changes.join('|') === 'name: Gelber Riss -> Gelbe Rinne|name: Blaue Platte -> Blauer Traum|grade: 6 -> 5',
     'exactly those changes (' + changes.join('|') + ')');
   await page.check('#import-strip');
   await page.click('#import-confirm');
   await page.waitForSelector('#import-done.ok');
-  check((await page.textContent('#import-done')).startsWith('2 created, 3 updated, 3 stripped'), 'confirmed with strip');
+  check((await page.textContent('#import-done')).startsWith('2 angelegt, 3 aktualisiert, 3 abgeschraubt'), 'confirmed with strip');
   await shot('94-import-changed');
   const set = (await api('GET', '/api/routes?gym=' + gym + '&state=set&sort=name')).data.routes.map((r) => r.name);
   check(set.join(',') === 'Blauer Traum,Gelbe Rinne,Lila Laune,Schwarzes Dach,Türkis', 'on the wall now: ' + set.join(','));

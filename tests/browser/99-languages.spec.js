@@ -1,7 +1,8 @@
 // The UI's languages (issue 32): an account set to German sees German pages (html lang, labels,
 // dates as 28.11.2026) and ticks a route on a phone in German; a browser asking for French
 // (Accept-Language) sees French pages without an account, and a tag sheet printed from it is in
-// French (pdftotext: "Ouverte par", "jaune"); a gym's default language is set over the API.
+// French (pdftotext: "Ouverte par", "jaune"); a gym's default language is set over the API and
+// on the gym page, whose dashboard and setting day a German head setter sees in German.
 'use strict';
 const fs = require('fs');
 const path = require('path');
@@ -62,6 +63,26 @@ module.exports = async (t) => {
   check((await text('h1')).includes('Dein Logbuch') && /^\d{2}\.\d{2}\.\d{4}$/.test(day.trim()),
         'the logbook is German, its day ' + day.trim());
   await page.setViewportSize({ width: 1200, height: 900 });
+
+  // The German head setter's gym page, dashboard and setting day are German too; the gym's
+  // language is chosen on its page (the form sends PUT /api/gyms/{gym} {"language"}).
+  const gp = base + '/gyms/' + gym.data.id;
+  await page.goto(gp);
+  check((await text('main')).includes('Wände') && (await text('#gym-language')).includes('Sprache der Halle'),
+        'the gym page is German, with the gym-language form');
+  await page.selectOption('#gym-language-select', 'de');
+  await Promise.all([page.waitForNavigation(), page.click('#gym-language button[type="submit"]')]);
+  check((await api('GET', '/api/gyms/' + gym.data.id)).data.language === 'de' &&
+        await page.inputValue('#gym-language-select') === 'de', 'the form sets the gym\'s language');
+  await shot('99-gym-german');
+  await page.goto(gp + '/dashboard');
+  check((await text('#dashboard-title')).includes('was hängt, was fehlt') && (await text('main')).includes('Grundriss'),
+        'the dashboard is German (' + (await text('#dashboard-title')) + ')');
+  await page.goto(gp + '/setting-day');
+  check((await text('#day-title')).startsWith('Schraubtag') && (await text('#day-propose')).includes('Vorschlagen'),
+        'the setting-day page is German');
+  await shot('99-setting-day-german');
+  await api('PUT', '/api/gyms/' + gym.data.id, { language: 'fr' });
 
   // French, from the browser's Accept-Language (no account).
   await ctx.clearCookies();
