@@ -6,6 +6,7 @@
 // kept alive. Only complete requests reach a worker.
 #include "web/http_transport.h"
 
+#include <malloc.h>
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -25,6 +26,7 @@
 
 #include "base/log.h"
 #include "base/text.h"
+#include "web/worker_lanes.h"
 
 namespace sb::web {
 
@@ -87,30 +89,43 @@ void ParseTarget(std::string_view target, Request* r) {
   }
 }
 
-// A fixed pool of worker threads with a bounded queue.
+// WorkerWaitMillis of the request this thread handles (-1: none).
+thread_local double t_waited_ms = -1;
+
+// A fixed pool of worker threads with a bounded queue in three lanes
+// (issue 34, docs/web.md "Transport limits"): quick requests, and costly
+// ones of signed-in and of anonymous callers. At most `max_costly` costly
+// requests run at once (signed-in callers' first, each lane first come,
+// first served); the other workers are left to quick requests, so a page
+// served from what is kept never waits behind a report or a PDF. When no
+// costly request waits, quick ones may use every worker.
 class WorkerPool {
  public:
-  void Start(int threads, size_t max_queue) {
+  void Start(int threads, size_t max_queue, int max_costly, int max_writes) {
     max_queue_ = max_queue;
+    max_costly_ = std::max(1, std::min(max_costly, threads));
+    max_writes_ = std::max(1, std::min(max_writes, threads));
     for (int i = 0; i < threads; ++i) threads_.emplace_back([this] { Work(); });
   }
-  // Queues `task`; false when the queue is full or the pool stopped.
-  bool Submit(std::function<void()> task) {
+  // Queues `task` in `lane`; false when the queue is full or the pool stopped.
+  bool Submit(RequestLane lane, std::function<void()> task) {
     {
       std::lock_guard<std::mutex> lock(mu_);
-      if (stopping_ || queue_.size() >= max_queue_) return false;
-      queue_.push_back(std::move(task));
+      if (stopping_ || queued_ >= max_queue_) return false;
+      queue_[static_cast<int>(lane)].push_back(std::move(task));
+      ++queued_;
     }
     cv_.notify_one();
     return true;
   }
   // Finishes running tasks, drops queued ones, joins the threads.
   void Stop() {
-    std::deque<std::function<void()>> dropped;
+    std::deque<std::function<void()>> dropped[kLanes];
     {
       std::lock_guard<std::mutex> lock(mu_);
       stopping_ = true;
-      dropped.swap(queue_);
+      for (int i = 0; i < kLanes; ++i) dropped[i].swap(queue_[i]);
+      queued_ = 0;
     }
     cv_.notify_all();
     for (std::thread& t : threads_) t.join();
@@ -119,25 +134,86 @@ class WorkerPool {
   ~WorkerPool() { Stop(); }
 
  private:
+  static constexpr int kLanes = 4;
+  static constexpr int kQuick = static_cast<int>(RequestLane::kQuick);
+  static constexpr int kCostlyMember = static_cast<int>(RequestLane::kCostlySignedIn);
+  static constexpr int kCostlyOther = static_cast<int>(RequestLane::kCostlyAnonymous);
+  static constexpr int kWrite = static_cast<int>(RequestLane::kWrite);
+
+  // The lane the next task comes from, or -1 when none may start: a costly
+  // one while fewer than max_costly_ run (the signed-in and anonymous lanes
+  // taking turns, so neither starves), else a write while fewer than
+  // max_writes_ run, else a quick one. Under mu_.
+  int Next() const {
+    if (costly_running_ < max_costly_) {
+      const bool member = !queue_[kCostlyMember].empty(), other = !queue_[kCostlyOther].empty();
+      if (member && (!other || !member_last_)) return kCostlyMember;
+      if (other) return kCostlyOther;
+    }
+    if (writes_running_ < max_writes_ && !queue_[kWrite].empty()) return kWrite;
+    if (!queue_[kQuick].empty()) return kQuick;
+    return -1;
+  }
+
   void Work() {
     for (;;) {
       std::function<void()> task;
+      bool costly = false, write = false;
       {
         std::unique_lock<std::mutex> lock(mu_);
-        cv_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
+        int lane = -1;
+        cv_.wait(lock, [&] { return stopping_ || (lane = Next()) >= 0; });
         if (stopping_) return;
-        task = std::move(queue_.front());
-        queue_.pop_front();
+        task = std::move(queue_[lane].front());
+        queue_[lane].pop_front();
+        --queued_;
+        costly = lane == kCostlyMember || lane == kCostlyOther;
+        write = lane == kWrite;
+        if (costly) {
+          ++costly_running_;
+          member_last_ = lane == kCostlyMember;
+        }
+        if (write) ++writes_running_;
       }
       task();
+      if (costly || write) {
+        {
+          std::lock_guard<std::mutex> lock(mu_);
+          if (costly) --costly_running_;
+          if (write) --writes_running_;
+        }
+        cv_.notify_one();  // a costly task or write may start now
+        if (costly) TrimHeap();
+      }
     }
   }
 
+  // A costly request's buffers (a PDF, a report's rows) are freed into the
+  // worker thread's malloc arena, which keeps them: at most every 2 s after
+  // one, the free pages of every arena go back to the system, so the
+  // server's memory stays near what it holds rather than the sum of its
+  // arenas' peaks (issue 34).
+  void TrimHeap() {
+    const int64_t now = std::chrono::duration_cast<std::chrono::milliseconds>(
+                            std::chrono::steady_clock::now().time_since_epoch())
+                            .count();
+    int64_t last = last_trim_ms_.load();
+    if (now - last < 2000 || !last_trim_ms_.compare_exchange_strong(last, now)) return;
+    malloc_trim(0);
+  }
+
+  std::atomic<int64_t> last_trim_ms_{0};
   std::mutex mu_;
   std::condition_variable cv_;
-  std::deque<std::function<void()>> queue_;
+  std::deque<std::function<void()>> queue_[kLanes];
+  size_t queued_ = 0;
   std::vector<std::thread> threads_;
   size_t max_queue_ = 0;
+  int max_costly_ = 1;
+  int costly_running_ = 0;
+  bool member_last_ = false;  // the last costly task started was a member's
+  int max_writes_ = 1;
+  int writes_running_ = 0;
   bool stopping_ = false;
 };
 
@@ -145,6 +221,7 @@ class WorkerPool {
 
 struct HttpTransport::Impl {
   TransportOptions options;
+  LanePolicy lanes;  // taken when Run() starts
   RequestHandler handler;
   ErrorHandler on_error;
 
@@ -289,7 +366,12 @@ class HttpTransport::Impl::Session : public std::enable_shared_from_this<Session
     auto request = std::make_shared<Request>(Convert());
     parser_.reset();
     auto self = shared_from_this();
-    bool queued = impl_->pool.Submit([self, request] {
+    const RequestLane lane = impl_->lanes.lane ? impl_->lanes.lane(*request) : RequestLane::kQuick;
+    const auto queued_at = std::chrono::steady_clock::now();
+    bool queued = impl_->pool.Submit(lane, [self, request, queued_at] {
+      t_waited_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() -
+                                                              queued_at)
+                        .count();
       auto out = std::make_shared<Response>();
       try {
         self->impl_->handler(*request, out.get());
@@ -302,6 +384,7 @@ class HttpTransport::Impl::Session : public std::enable_shared_from_this<Session
         *out = Response();
         self->impl_->on_error(*request, 500, out.get());
       }
+      t_waited_ms = -1;
       net::post(self->stream_.get_executor(), [self, out] { self->Write(*out, false); });
     });
     if (!queued) {
@@ -484,13 +567,41 @@ Result<int> HttpTransport::Bind(const std::string& host, int port) {
   return static_cast<int>(a.local_endpoint().port());
 }
 
+double WorkerWaitMillis() { return t_waited_ms; }
+
+namespace {
+std::mutex g_lanes_mu;
+LanePolicy& Lanes() {
+  static LanePolicy policy;
+  return policy;
+}
+}  // namespace
+
+void SetLanePolicy(LanePolicy policy) {
+  std::lock_guard<std::mutex> lock(g_lanes_mu);
+  Lanes() = std::move(policy);
+}
+
+LanePolicy CurrentLanePolicy() {
+  std::lock_guard<std::mutex> lock(g_lanes_mu);
+  return Lanes();
+}
+
 Status HttpTransport::Run() {
   if (!impl_->bound) return Status::Internal("HttpTransport::Run before Bind");
   const TransportOptions& o = impl_->options;
   int cores = std::max(1u, std::thread::hardware_concurrency());
   int workers = o.threads > 0 ? o.threads : std::max(8, 4 * cores);
   int io = o.io_threads > 0 ? o.io_threads : 2;
-  impl_->pool.Start(workers, o.max_queued_requests);
+  impl_->lanes = CurrentLanePolicy();
+  // Costly: as many as the render budget's slots (2 public + 2 member by
+  // default, app::BudgetPolicy), so its admission (429 with Retry-After)
+  // stays the rule that refuses, and the rest of the workers stay quick.
+  int costly = impl_->lanes.max_costly_running > 0 ? impl_->lanes.max_costly_running
+                                                    : std::max(4, 2 * cores);
+  int writes = impl_->lanes.max_writes_running > 0 ? impl_->lanes.max_writes_running
+                                                    : std::max(2, cores);
+  impl_->pool.Start(workers, o.max_queued_requests, costly, writes);
   impl_->Accept();
   std::vector<std::thread> extra;
   for (int i = 1; i < io; ++i) extra.emplace_back([this] { impl_->ioc.run(); });

@@ -1,6 +1,8 @@
 #include "web/server.h"
 
 #include <algorithm>
+#include <chrono>
+#include <cstdio>
 #include <thread>
 
 #include "app/services.h"
@@ -15,6 +17,7 @@
 #include "web/report_handlers.h"
 #include "web/router.h"
 #include "web/setting_day_handlers.h"
+#include "web/worker_lanes.h"
 
 namespace sb::web {
 
@@ -22,11 +25,16 @@ std::string DefaultStaticDir() { return FindBundled(Bundle::kWeb, "", PathKind::
 
 namespace {
 
-// The routing table: every path the web app answers, and its handler.
+// The routing table: every path the web app answers, its handler, and
+// whether its work grows with the data it reads or renders (reports, PDFs,
+// exports, imports, generation: the costly lane of the worker pool, issue
+// 34; RequestLane).
+constexpr bool kCostly = true;
 struct Endpoint {
   const char* method;
   const char* pattern;
   Handler handler;
+  bool costly = false;
 };
 const Endpoint kEndpoints[] = {
     // JSON API (docs/web.md).
@@ -37,8 +45,8 @@ const Endpoint kEndpoints[] = {
     {"GET", "/api/account", GetAccount},
     {"PUT", "/api/account", PutAccount},
     {"DELETE", "/api/account", DeleteAccount},
-    {"GET", "/api/account/ticks.csv", GetAccountTicksCsv},
-    {"GET", "/api/account/routes.tar", GetAccountRoutesTar},
+    {"GET", "/api/account/ticks.csv", GetAccountTicksCsv, kCostly},
+    {"GET", "/api/account/routes.tar", GetAccountRoutesTar, kCostly},
     {"GET", "/account", PageAccount},
     {"GET", "/api/routes", ListRoutes},
     {"POST", "/api/routes", PostRoute},
@@ -46,14 +54,14 @@ const Endpoint kEndpoints[] = {
     {"GET", "/api/routes/{id}", GetRoute},
     {"PUT", "/api/routes/{id}", PutRoute},
     {"DELETE", "/api/routes/{id}", DeleteRoute},
-    {"POST", "/api/variations", PostVariation},
+    {"POST", "/api/variations", PostVariation, kCostly},
     {"GET", "/api/variations/{id}", GetVariation},
-    {"GET", "/api/landscape", GetLandscape},
-    {"GET", "/api/pick", GetPick},
+    {"GET", "/api/landscape", GetLandscape, kCostly},
+    {"GET", "/api/pick", GetPick, kCostly},
     {"POST", "/api/feedback", PostFeedback},
-    {"POST", "/api/import/csv", PostImportCsv},
-    {"GET", "/api/export/routes.csv", GetExportRoutes},
-    {"GET", "/api/export/moves.csv", GetExportMoves},
+    {"POST", "/api/import/csv", PostImportCsv, kCostly},
+    {"GET", "/api/export/routes.csv", GetExportRoutes, kCostly},
+    {"GET", "/api/export/moves.csv", GetExportMoves, kCostly},
     // Gyms (api_gyms.cc, issue 21).
     {"POST", "/api/gyms", PostGym},
     {"GET", "/api/gyms", ListGyms},
@@ -76,12 +84,12 @@ const Endpoint kEndpoints[] = {
     {"GET", "/api/gyms/{id}/circuits", ListCircuits},
     {"POST", "/api/gyms/{id}/scales", PostGymScale},
     {"GET", "/api/gyms/{id}/scales", ListGymScales},
-    {"POST", "/api/gyms/{id}/import", PostGymImport},
-    {"POST", "/api/import/crdl", PostImportCrdl},
+    {"POST", "/api/gyms/{id}/import", PostGymImport, kCostly},
+    {"POST", "/api/import/crdl", PostImportCrdl, kCostly},
     {"GET", "/gyms/{id}/import", PageGymImport},
-    {"GET", "/api/gyms/{id}/tags.pdf", GetGymTagSheetPdf},
+    {"GET", "/api/gyms/{id}/tags.pdf", GetGymTagSheetPdf, kCostly},
     // Setting days (setting_day_handlers.cc, issue 22).
-    {"POST", "/api/gyms/{id}/setting-days", PostSettingDay},
+    {"POST", "/api/gyms/{id}/setting-days", PostSettingDay, kCostly},
     {"POST", "/api/gyms/{id}/setting-days/accept", PostSettingDayAccept},
     {"GET", "/gyms/{id}/setting-day", PageSettingDay},
     {"GET", "/gyms/{id}/setting-day/sheet", PageSettingDaySheet},
@@ -111,19 +119,19 @@ const Endpoint kEndpoints[] = {
     {"POST", "/api/routes/{id}/ticks/{tick}/accept", PostTickAccept},
     {"POST", "/api/routes/{id}/ticks/{tick}/discard", PostTickDiscard},
     {"GET", "/api/routes/{id}/ascent", GetRouteAscent},
-    {"GET", "/api/logbook", GetLogbook},
-    {"GET", "/logbook", PageLogbook},
+    {"GET", "/api/logbook", GetLogbook, kCostly},
+    {"GET", "/logbook", PageLogbook, kCostly},
     // The wall and setting-day reports (report_handlers.cc, issue 23).
-    {"GET", "/api/gyms/{id}/report", GetGymReport},
-    {"GET", "/gyms/{id}/report", PageGymReport},
+    {"GET", "/api/gyms/{id}/report", GetGymReport, kCostly},
+    {"GET", "/gyms/{id}/report", PageGymReport, kCostly},
     {"GET", "/studies", PageStudies},
     {"GET", "/studies/new", PageNewStudy},
     {"GET", "/studies/{id}/edit", PageEditStudy},
-    {"GET", "/studies/{id}/responses.csv", GetStudyResponsesCsv},
+    {"GET", "/studies/{id}/responses.csv", GetStudyResponsesCsv, kCostly},
     {"GET", "/studies/{id}/instrument.json", GetStudyInstrument},
-    {"GET", "/studies/{id}/demographics.csv", GetStudyDemographicsCsv},
-    {"GET", "/studies/{id}/analysis.json", GetStudyAnalysis},
-    {"GET", "/studies/{id}/boxplot.svg", GetStudyBoxPlot},
+    {"GET", "/studies/{id}/demographics.csv", GetStudyDemographicsCsv, kCostly},
+    {"GET", "/studies/{id}/analysis.json", GetStudyAnalysis, kCostly},
+    {"GET", "/studies/{id}/boxplot.svg", GetStudyBoxPlot, kCostly},
     {"GET", "/studies/{id}", PageStudyResults},
     {"GET", "/s/{id}", PageStudyForm},
     // Pages.
@@ -132,13 +140,13 @@ const Endpoint kEndpoints[] = {
     {"GET", "/signup", PageSignup},
     {"GET", "/routes/new", PageNewRoute},
     {"GET", "/routes/{id}/edit", PageEditRoute},
-    {"GET", "/routes/{id}/tag.pdf", PageTagPdf},
+    {"GET", "/routes/{id}/tag.pdf", PageTagPdf, kCostly},
     {"GET", "/routes/{id}/tag", PageTag},
-    {"GET", "/tags.pdf", GetTagSheetPdf},
+    {"GET", "/tags.pdf", GetTagSheetPdf, kCostly},
     {"GET", "/routes/{id}", PageRoute},
     {"GET", "/vary", PageVary},
     {"GET", "/import", PageImport},
-    {"GET", "/variations/{id}.pdf", PagePlanPdf},
+    {"GET", "/variations/{id}.pdf", PagePlanPdf, kCostly},
     {"GET", "/variations/{id}.svg", PagePlanSvg},
     {"GET", "/variations/{id}", PagePlan},
     {"GET", "/static/{file}", GetStatic},
@@ -233,6 +241,28 @@ bool IsLoopbackName(const std::string& h) {
   return dots == 3;
 }
 
+// The lane of a request (worker_lanes.h): costly endpoints of the table
+// in the costly lane of signed-in callers (a session cookie) or of
+// anonymous ones; other writes (ticks, edits) in the write lane;
+// everything else quick. Stateless: the table only.
+RequestLane LaneOf(const Request& q) {
+  static const Router<bool> costly = [] {
+    Router<bool> r;
+    for (const Endpoint& e : kEndpoints) r.Add(e.method, e.pattern, e.costly);
+    return r;
+  }();
+  Request probe;
+  probe.method = q.method;
+  probe.path = q.path;
+  bool mismatch = false;
+  const bool* is_costly = costly.Find(&probe, &mismatch);
+  if (!is_costly || !*is_costly) {
+    return IsStateChanging(q.method) ? RequestLane::kWrite : RequestLane::kQuick;
+  }
+  return q.Cookie(kSessionCookie).empty() ? RequestLane::kCostlyAnonymous
+                                          : RequestLane::kCostlySignedIn;
+}
+
 }  // namespace
 
 std::string HostOfUrl(const std::string& url) {
@@ -307,6 +337,7 @@ struct Server::Impl {
             TransportFor(options), [this](const Request& q, Response* s) { Handle(q, s); },
             [this](const Request& q, int status, Response* s) { TransportError(q, status, s); }) {
     for (const Endpoint& e : kEndpoints) router.Add(e.method, e.pattern, e.handler);
+    SetLanePolicy(LanePolicy{LaneOf, 0});  // the transport's default caps
     for (const std::string& h : options.allowed_hosts) AllowHost(h);
     if (!options.base_url.empty()) AllowHost(HostOfUrl(options.base_url));
   }
@@ -402,11 +433,12 @@ struct Server::Impl {
   }
 
   void Handle(const Request& in, Response* res) {
+    const auto started = std::chrono::steady_clock::now();
     if (!HostAllowed(in.Header("host"), hosts)) {
       Caller nobody;  // no session lookup for a request to another host
       Exchange x{services, options, in, nobody, *res};
       Failure(x, 421, "this server does not answer for that host name");
-      return Finish(in, res);
+      return Finish(in, res, started);
     }
     Request req = in;
     Caller caller = CallerOf(req);
@@ -423,7 +455,7 @@ struct Server::Impl {
         } else {
           ApiError(x, s);
         }
-        return Finish(req, res);
+        return Finish(req, res, started);
       }
     }
     if (h) {
@@ -433,7 +465,7 @@ struct Server::Impl {
     } else {
       Failure(x, 404, "not found");
     }
-    Finish(req, res);
+    Finish(req, res, started);
   }
 
   // An error the router or transport decided (no Status behind it).
@@ -451,13 +483,25 @@ struct Server::Impl {
     Exchange x{services, options, req, caller, *res};
     Failure(x, status, TransportMessage(status));
     if (status == 503) res->SetHeader("Retry-After", "1");
-    Finish(req, res);
+    Finish(req, res, std::chrono::steady_clock::now());
   }
 
-  void Finish(const Request& req, Response* res) {
+  // The security headers; with --log, the line "METHOD PATH STATUS" and,
+  // for a request that came through the transport, the milliseconds it
+  // waited for a worker and its handler took ("wait 1.2 ms, took 3.4 ms").
+  void Finish(const Request& req, Response* res, std::chrono::steady_clock::time_point started) {
     SecurityHeaders(res);
     if (options.access_log) {
-      LogInfo(LogSafe(req.method) + " " + LogSafe(req.path) + " " + std::to_string(res->status));
+      std::string line =
+          LogSafe(req.method) + " " + LogSafe(req.path) + " " + std::to_string(res->status);
+      if (const double wait = WorkerWaitMillis(); wait >= 0) {
+        const std::chrono::duration<double, std::milli> took =
+            std::chrono::steady_clock::now() - started;
+        char buf[64];
+        std::snprintf(buf, sizeof buf, " wait %.1f ms, took %.1f ms", wait, took.count());
+        line += buf;
+      }
+      LogInfo(line);
     }
   }
 };

@@ -2,6 +2,7 @@
 // handler (the whole server is tested in api_test.cc, the attacks under
 // load in tests/abuse.py).
 #include "web/http_transport.h"
+#include "web/worker_lanes.h"
 
 #include <arpa/inet.h>
 #include <gtest/gtest.h>
@@ -10,7 +11,10 @@
 #include <sys/time.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
+#include <condition_variable>
+#include <mutex>
 #include <memory>
 #include <string>
 #include <thread>
@@ -21,13 +25,9 @@ namespace {
 
 class Running {
  public:
-  explicit Running(TransportOptions o) {
+  explicit Running(TransportOptions o, RequestHandler handler = Echo) {
     transport_ = std::make_unique<HttpTransport>(
-        o,
-        [](const Request& q, Response* s) {
-          s->SetBody(200, q.method + " " + q.path + " " + std::to_string(q.body.size()),
-                     "text/plain");
-        },
+        o, std::move(handler),
         [](const Request&, int status, Response* s) {
           s->SetBody(status, "refused " + std::to_string(status), "text/plain");
         });
@@ -42,6 +42,10 @@ class Running {
     thread_.join();
   }
   int port() const { return port_; }
+
+  static void Echo(const Request& q, Response* s) {
+    s->SetBody(200, q.method + " " + q.path + " " + std::to_string(q.body.size()), "text/plain");
+  }
 
  private:
   std::unique_ptr<HttpTransport> transport_;
@@ -209,6 +213,68 @@ TEST(TransportTest, ATakenPortIsRefused) {
   Result<int> port = second.Bind("127.0.0.1", r.port());
   EXPECT_FALSE(port.ok());
   EXPECT_EQ(port.status().code(), Status::Code::kIoError);
+}
+
+// Issue 34: costly requests run at most max_costly_running at once and
+// leave the other workers to quick ones: with every costly request held, a
+// quick one is still answered, and the held ones all finish once released.
+TEST(TransportTest, CostlyRequestsLeaveWorkersToQuickOnes) {
+  std::mutex mu;
+  std::condition_variable cv;
+  bool open = false;
+  std::atomic<int> running{0}, most{0};
+  TransportOptions o;
+  o.threads = 3;
+  const LanePolicy before = CurrentLanePolicy();
+  SetLanePolicy(LanePolicy{[](const Request& q) {
+                             return q.path.rfind("/costly", 0) == 0 ? RequestLane::kCostlyAnonymous
+                                                                    : RequestLane::kQuick;
+                           },
+                           1});
+  Running r(o, [&](const Request& q, Response* s) {
+    if (q.path.rfind("/costly", 0) == 0) {
+      int now = ++running;
+      for (int m = most; now > m && !most.compare_exchange_weak(m, now);) {
+      }
+      std::unique_lock<std::mutex> lock(mu);
+      cv.wait(lock, [&] { return open; });
+      --running;
+    }
+    Running::Echo(q, s);
+  });
+  std::vector<std::thread> costly;
+  std::vector<int> statuses(3, 0);
+  for (int i = 0; i < 3; ++i) {
+    costly.emplace_back([&, i] {
+      statuses[i] = StatusOf(Exchange(r.port(), "GET /costly/" + std::to_string(i) +
+                                                    " HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n"));
+    });
+  }
+  for (int i = 0; i < 200 && running == 0; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  EXPECT_EQ(running, 1);
+  // Two quick requests at once: the two workers the costly lane cannot take.
+  std::vector<std::thread> quick;
+  std::vector<int> quick_status(2, 0);
+  for (int i = 0; i < 2; ++i) {
+    quick.emplace_back([&, i] {
+      quick_status[i] = StatusOf(
+          Exchange(r.port(), "GET /quick HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n"));
+    });
+  }
+  for (std::thread& t : quick) t.join();
+  EXPECT_EQ(quick_status, (std::vector<int>{200, 200}));
+  EXPECT_EQ(running, 1);  // the other costly requests still wait
+  {
+    std::lock_guard<std::mutex> lock(mu);
+    open = true;
+  }
+  cv.notify_all();
+  for (std::thread& t : costly) t.join();
+  EXPECT_EQ(statuses, (std::vector<int>{200, 200, 200}));
+  EXPECT_EQ(most, 1);
+  SetLanePolicy(before);
 }
 
 }  // namespace

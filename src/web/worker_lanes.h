@@ -1,0 +1,46 @@
+// The worker lanes of the HTTP transport (issue 34, docs/web.md "Transport
+// limits"): quick requests (pages served from what is kept, small API
+// calls) never wait behind costly ones (reports, PDFs, exports), which run
+// at most `max_costly_running` at a time (signed-in and anonymous callers'
+// lanes taking turns), nor behind writes (ticks), which the database runs
+// one at a time anyway and which run at most `max_writes_running` at once.
+//
+// The lanes are a process-wide policy: the web server registers its
+// classifier (stateless: the endpoint table) once; each HttpTransport takes
+// the policy registered when its Run() starts.
+#ifndef SB_WEB_WORKER_LANES_H_
+#define SB_WEB_WORKER_LANES_H_
+
+#include <functional>
+
+#include "web/http.h"
+
+namespace sb::web {
+
+enum class RequestLane { kQuick = 0, kCostlySignedIn = 1, kCostlyAnonymous = 2, kWrite = 3 };
+
+struct LanePolicy {
+  // The lane of a request, decided on an I/O thread before it is queued
+  // (must be quick and stateless: the method, path and headers only);
+  // empty: every request is quick.
+  std::function<RequestLane(const Request&)> lane;
+  // Costly requests running at once (0 = twice the cores, at least 4: the
+  // render budget's public and member slots, app::BudgetPolicy); the other
+  // workers are kept for quick requests while costly ones wait.
+  int max_costly_running = 0;
+  // Writes (kWrite) running at once (0 = the cores, at least 2).
+  int max_writes_running = 0;
+};
+
+// Registers the policy transports started from now on use. Thread-safe.
+void SetLanePolicy(LanePolicy policy);
+// The policy registered now (a copy). Thread-safe.
+LanePolicy CurrentLanePolicy();
+
+// On a worker thread handling a request: the milliseconds it waited for a
+// worker since it was read whole (the access log's "wait"); -1 elsewhere.
+double WorkerWaitMillis();
+
+}  // namespace sb::web
+
+#endif  // SB_WEB_WORKER_LANES_H_
