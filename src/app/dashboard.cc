@@ -14,6 +14,7 @@
 #include "base/text.h"
 #include "crdl/route.h"
 #include "grades/scale.h"
+#include "gym/rules.h"
 #include "language/styles.h"
 #include "store/target_store.h"
 #include "store/tick_store.h"
@@ -363,8 +364,8 @@ Result<std::vector<WallDashboard>> Dashboard::Build(const Viewer& v, int64_t gym
                                                     const std::vector<Wall>& walls,
                                                     std::map<std::string, double>* archive,
                                                     std::vector<std::string>* circuit_words) {
-  SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> set, GymRoutes(store_, v, gym, "set"));
-  SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> gone, GymRoutes(store_, v, gym, "stripped"));
+  SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> set, GymRoutes(store_, v, gym, gym::NameOf(gym::RouteState::kSet)));
+  SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> gone, GymRoutes(store_, v, gym, gym::NameOf(gym::RouteState::kStripped)));
   std::vector<store::TargetRecord> targets;
   if (targets_) {
     SB_ASSIGN_OR_RETURN(targets, targets_->GymTargets(gym));
@@ -377,7 +378,7 @@ Result<std::vector<WallDashboard>> Dashboard::Build(const Viewer& v, int64_t gym
   if (targets_) {
     // Only the routes on the wall are shown with their ticks.
     SB_ASSIGN_OR_RETURN(std::vector<store::RouteTickSum> sums,
-                        targets_->StateTickSums(gym, "set"));
+                        targets_->StateTickSums(gym, gym::NameOf(gym::RouteState::kSet)));
     for (const store::RouteTickSum& t : sums) {
       climbed[t.route_id] = {static_cast<int>(t.ticks), static_cast<int>(t.star_votes),
                              static_cast<int>(t.star_sum)};
@@ -634,7 +635,7 @@ Result<std::vector<WallDashboard>> Dashboard::Build(const Viewer& v, int64_t gym
 Result<GymDashboard> Dashboard::Get(const Viewer& v, int64_t gym) {
   GymDashboard g;
   SB_ASSIGN_OR_RETURN(g.gym, gyms_.Get(v, gym));
-  g.can_edit = g.gym.role == "head";
+  g.can_edit = gym::IsHead(g.gym.role);
   SB_ASSIGN_OR_RETURN(std::vector<Wall> walls, gyms_.Walls(v, gym));
   // The version is read before building: a write while building leaves the
   // entry at the older version, so the next request builds again.
@@ -678,7 +679,7 @@ Result<std::string> Dashboard::WallScale(const Viewer& v, const Wall& w,
                                          const std::vector<std::string>& fallback) {
   SB_ASSIGN_OR_RETURN(WallGradeScale ws, LoadWallScale(store_, w.gym_id, w.id));
   if (ws.builtin) return std::string(grades::ScaleName(*ws.builtin));
-  SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> set, GymRoutes(store_, v, w.gym_id, "set"));
+  SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> set, GymRoutes(store_, v, w.gym_id, gym::NameOf(gym::RouteState::kSet)));
   std::vector<const store::RouteRecord*> on;
   for (const store::RouteRecord& r : set) {
     if (r.wall_id && *r.wall_id == w.id) on.push_back(&r);
@@ -705,7 +706,7 @@ Status Dashboard::SetTargets(const Viewer& v, int64_t gym, int64_t wall, const W
   SB_ASSIGN_OR_RETURN(Gym g, gyms_.Get(v, gym));
   SB_ASSIGN_OR_RETURN(Wall w, gyms_.GetWall(v, wall));
   if (w.gym_id != gym) return Status::NotFound("no wall " + std::to_string(wall));
-  if (g.role != "head") return Status::Permission("only the gym's head setters may set targets");
+  if (!gym::IsHead(g.role)) return Status::Permission("only the gym's head setters may set targets");
   SB_RETURN_IF_ERROR(t.Validate(w.discipline));
   if (!targets_) return Status::Internal("the store keeps no targets");
   // Bands as the wall writes them: in its own scale when it has one (issue
