@@ -73,6 +73,14 @@ std::optional<int64_t> DayNumber(const std::string& text) {
   return DaysFromCivil(y, static_cast<unsigned>(m), static_cast<unsigned>(d));
 }
 
+// The age in days at `today` (days since the epoch) of a route set on
+// `set_on`; nullopt when undated. The dashboard and WallAgeOf read this.
+std::optional<int> AgeDays(const std::string& set_on, int64_t today) {
+  std::optional<int64_t> day = DayNumber(set_on);
+  if (!day) return std::nullopt;
+  return static_cast<int>(std::max<int64_t>(0, today - *day));
+}
+
 std::string KindOf(const std::string& style) {
   const auto& holds = language::HoldStyleNames();
   if (std::find(holds.begin(), holds.end(), style) != holds.end()) return "hold";
@@ -108,6 +116,19 @@ std::string BandKey(double value, const std::string& discipline, const std::stri
   const int band = std::clamp(grades::Band(value), grades::MinBand(d), grades::MaxBand(d));
   if (s == grades::DefaultScale(d)) return grades::BandName(d, band);
   return grades::FormatValue(value, d, s);
+}
+
+WallAge WallAgeOf(const Wall& wall, const std::vector<RouteView>& routes, int64_t now) {
+  WallAge age;
+  const int64_t today = now / 86400;
+  for (const RouteView& r : routes) {
+    if (!gym::Is(r.state, gym::kOnTheWall)) continue;
+    ++age.on_wall;
+    std::optional<int> days = AgeDays(r.set_on, today);
+    if (days && (!age.oldest_days || *days > *age.oldest_days)) age.oldest_days = days;
+  }
+  age.due = gym::DueForReset(wall.reset_weeks, age.oldest_days);
+  return age;
 }
 
 Result<BandRow> BandOfText(const std::string& text, const std::string& discipline,
@@ -499,9 +520,7 @@ Result<std::vector<WallDashboard>> Dashboard::Build(const Viewer& v, int64_t gym
       dr.colour = r->colour;
       if (auto it = readings.find(r->id); it != readings.end()) dr.setters = it->second->setters;
       if (dr.setters.empty() && !r->setter.empty()) dr.setters.push_back(r->setter);
-      if (std::optional<int64_t> day = DayNumber(r->set_on)) {
-        dr.age_days = static_cast<int>(std::max<int64_t>(0, today - *day));
-      }
+      dr.age_days = AgeDays(r->set_on, today);
       if (auto it = climbed.find(r->id); it != climbed.end()) {
         dr.ticks = it->second.ticks;
         dr.star_votes = it->second.votes;
@@ -525,14 +544,14 @@ Result<std::vector<WallDashboard>> Dashboard::Build(const Viewer& v, int64_t gym
       } else {
         ++w.ungraded;
       }
-      if (wall.reset_weeks && dr.age_days && *dr.age_days >= *wall.reset_weeks * 7) dr.due = true;
+      dr.due = gym::DueForReset(wall.reset_weeks, dr.age_days);
       if (dr.age_days && (!w.oldest_days || *dr.age_days > *w.oldest_days)) {
         w.oldest_days = dr.age_days;
       }
       w.routes.push_back(std::move(dr));
     }
     w.stars = votes ? static_cast<double>(stars) / votes : 0;
-    w.due = wall.reset_weeks && w.oldest_days && *w.oldest_days >= *wall.reset_weeks * 7;
+    w.due = gym::DueForReset(wall.reset_weeks, w.oldest_days);
     std::stable_sort(w.routes.begin(), w.routes.end(),
                      [](const DashboardRoute& a, const DashboardRoute& b) {
                        return std::make_tuple(a.ticks, a.stars, -a.age_days.value_or(-1), a.id) <

@@ -82,10 +82,9 @@ void PageWall(Exchange& x) {
   if (ascents.ok()) {
     for (const auto& [id, a] : *ascents) ascent[id] = AscentCell(a);
   }
-  std::vector<std::pair<std::string, std::string>> dates;  // (state, set date) for the status line
-  for (const auto& r : routes->routes) dates.emplace_back(r.state, r.set_on);
-  std::string tables = WallRoutesHtml(*gym, *wall, routes->routes, &ascent,
-                                      WallStatus(*wall, dates, app::SystemClock().Now()));
+  const app::WallAge age = app::WallAgeOf(*wall, routes->routes, app::SystemClock().Now());
+  std::string tables =
+      WallRoutesHtml(*gym, *wall, routes->routes, &ascent, WallStatus(*wall, age));
   // A page without its ascent grades (the fit failed) is not kept.
   if (*stamp && ascents.ok()) {
     return Html(x, WallPage(x.caller.page(), *gym, *wall,
