@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "base/number.h"
+#include "gym/rules.h"
 
 namespace sb::app {
 
@@ -33,7 +34,7 @@ WorkBudget::Slot::~Slot() {
 WorkBudget::Share WorkBudget::ShareOf(const Viewer& viewer, std::optional<int64_t> gym) const {
   if (policy_.member_parallel <= 0 || !viewer.logged_in()) return Share::kPublic;
   for (const GymRole& g : viewer.gyms) {
-    if (gym ? g.gym_id == *gym : (g.role == "head" || g.role == "setter")) return Share::kMembers;
+    if (gym ? g.gym_id == *gym : gym::CanSet(g.role)) return Share::kMembers;
   }
   return Share::kPublic;
 }

@@ -14,6 +14,7 @@
 #include "base/text.h"
 #include "crdl/route.h"
 #include "grades/scale.h"
+#include "gym/rules.h"
 #include "language/styles.h"
 #include "store/target_store.h"
 #include "store/tick_store.h"
@@ -72,6 +73,14 @@ std::optional<int64_t> DayNumber(const std::string& text) {
   return DaysFromCivil(y, static_cast<unsigned>(m), static_cast<unsigned>(d));
 }
 
+// The age in days at `today` (days since the epoch) of a route set on
+// `set_on`; nullopt when undated. The dashboard and WallAgeOf read this.
+std::optional<int> AgeDays(const std::string& set_on, int64_t today) {
+  std::optional<int64_t> day = DayNumber(set_on);
+  if (!day) return std::nullopt;
+  return static_cast<int>(std::max<int64_t>(0, today - *day));
+}
+
 std::string KindOf(const std::string& style) {
   const auto& holds = language::HoldStyleNames();
   if (std::find(holds.begin(), holds.end(), style) != holds.end()) return "hold";
@@ -107,6 +116,19 @@ std::string BandKey(double value, const std::string& discipline, const std::stri
   const int band = std::clamp(grades::Band(value), grades::MinBand(d), grades::MaxBand(d));
   if (s == grades::DefaultScale(d)) return grades::BandName(d, band);
   return grades::FormatValue(value, d, s);
+}
+
+WallAge WallAgeOf(const Wall& wall, const std::vector<RouteView>& routes, int64_t now) {
+  WallAge age;
+  const int64_t today = now / 86400;
+  for (const RouteView& r : routes) {
+    if (!gym::Is(r.state, gym::kOnTheWall)) continue;
+    ++age.on_wall;
+    std::optional<int> days = AgeDays(r.set_on, today);
+    if (days && (!age.oldest_days || *days > *age.oldest_days)) age.oldest_days = days;
+  }
+  age.due = gym::DueForReset(wall.reset_weeks, age.oldest_days);
+  return age;
 }
 
 Result<BandRow> BandOfText(const std::string& text, const std::string& discipline,
@@ -363,8 +385,8 @@ Result<std::vector<WallDashboard>> Dashboard::Build(const Viewer& v, int64_t gym
                                                     const std::vector<Wall>& walls,
                                                     std::map<std::string, double>* archive,
                                                     std::vector<std::string>* circuit_words) {
-  SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> set, GymRoutes(store_, v, gym, "set"));
-  SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> gone, GymRoutes(store_, v, gym, "stripped"));
+  SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> set, GymRoutes(store_, v, gym, gym::NameOf(gym::RouteState::kSet)));
+  SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> gone, GymRoutes(store_, v, gym, gym::NameOf(gym::RouteState::kStripped)));
   std::vector<store::TargetRecord> targets;
   if (targets_) {
     SB_ASSIGN_OR_RETURN(targets, targets_->GymTargets(gym));
@@ -377,7 +399,7 @@ Result<std::vector<WallDashboard>> Dashboard::Build(const Viewer& v, int64_t gym
   if (targets_) {
     // Only the routes on the wall are shown with their ticks.
     SB_ASSIGN_OR_RETURN(std::vector<store::RouteTickSum> sums,
-                        targets_->StateTickSums(gym, "set"));
+                        targets_->StateTickSums(gym, gym::NameOf(gym::RouteState::kSet)));
     for (const store::RouteTickSum& t : sums) {
       climbed[t.route_id] = {static_cast<int>(t.ticks), static_cast<int>(t.star_votes),
                              static_cast<int>(t.star_sum)};
@@ -498,9 +520,7 @@ Result<std::vector<WallDashboard>> Dashboard::Build(const Viewer& v, int64_t gym
       dr.colour = r->colour;
       if (auto it = readings.find(r->id); it != readings.end()) dr.setters = it->second->setters;
       if (dr.setters.empty() && !r->setter.empty()) dr.setters.push_back(r->setter);
-      if (std::optional<int64_t> day = DayNumber(r->set_on)) {
-        dr.age_days = static_cast<int>(std::max<int64_t>(0, today - *day));
-      }
+      dr.age_days = AgeDays(r->set_on, today);
       if (auto it = climbed.find(r->id); it != climbed.end()) {
         dr.ticks = it->second.ticks;
         dr.star_votes = it->second.votes;
@@ -524,14 +544,14 @@ Result<std::vector<WallDashboard>> Dashboard::Build(const Viewer& v, int64_t gym
       } else {
         ++w.ungraded;
       }
-      if (wall.reset_weeks && dr.age_days && *dr.age_days >= *wall.reset_weeks * 7) dr.due = true;
+      dr.due = gym::DueForReset(wall.reset_weeks, dr.age_days);
       if (dr.age_days && (!w.oldest_days || *dr.age_days > *w.oldest_days)) {
         w.oldest_days = dr.age_days;
       }
       w.routes.push_back(std::move(dr));
     }
     w.stars = votes ? static_cast<double>(stars) / votes : 0;
-    w.due = wall.reset_weeks && w.oldest_days && *w.oldest_days >= *wall.reset_weeks * 7;
+    w.due = gym::DueForReset(wall.reset_weeks, w.oldest_days);
     std::stable_sort(w.routes.begin(), w.routes.end(),
                      [](const DashboardRoute& a, const DashboardRoute& b) {
                        return std::make_tuple(a.ticks, a.stars, -a.age_days.value_or(-1), a.id) <
@@ -634,7 +654,7 @@ Result<std::vector<WallDashboard>> Dashboard::Build(const Viewer& v, int64_t gym
 Result<GymDashboard> Dashboard::Get(const Viewer& v, int64_t gym) {
   GymDashboard g;
   SB_ASSIGN_OR_RETURN(g.gym, gyms_.Get(v, gym));
-  g.can_edit = g.gym.role == "head";
+  g.can_edit = gym::IsHead(g.gym.role);
   SB_ASSIGN_OR_RETURN(std::vector<Wall> walls, gyms_.Walls(v, gym));
   // The version is read before building: a write while building leaves the
   // entry at the older version, so the next request builds again.
@@ -678,7 +698,7 @@ Result<std::string> Dashboard::WallScale(const Viewer& v, const Wall& w,
                                          const std::vector<std::string>& fallback) {
   SB_ASSIGN_OR_RETURN(WallGradeScale ws, LoadWallScale(store_, w.gym_id, w.id));
   if (ws.builtin) return std::string(grades::ScaleName(*ws.builtin));
-  SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> set, GymRoutes(store_, v, w.gym_id, "set"));
+  SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> set, GymRoutes(store_, v, w.gym_id, gym::NameOf(gym::RouteState::kSet)));
   std::vector<const store::RouteRecord*> on;
   for (const store::RouteRecord& r : set) {
     if (r.wall_id && *r.wall_id == w.id) on.push_back(&r);
@@ -705,7 +725,7 @@ Status Dashboard::SetTargets(const Viewer& v, int64_t gym, int64_t wall, const W
   SB_ASSIGN_OR_RETURN(Gym g, gyms_.Get(v, gym));
   SB_ASSIGN_OR_RETURN(Wall w, gyms_.GetWall(v, wall));
   if (w.gym_id != gym) return Status::NotFound("no wall " + std::to_string(wall));
-  if (g.role != "head") return Status::Permission("only the gym's head setters may set targets");
+  if (!gym::IsHead(g.role)) return Status::Permission("only the gym's head setters may set targets");
   SB_RETURN_IF_ERROR(t.Validate(w.discipline));
   if (!targets_) return Status::Internal("the store keeps no targets");
   // Bands as the wall writes them: in its own scale when it has one (issue

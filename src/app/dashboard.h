@@ -27,6 +27,7 @@
 #include "app/gyms.h"
 #include "app/options.h"
 #include "app/render_cache.h"
+#include "app/types.h"
 #include "base/status.h"
 #include "store/store.h"
 
@@ -197,6 +198,17 @@ struct SettingSlot {
   std::string style;
   bool operator==(const SettingSlot&) const = default;
 };
+
+// Issue 31: the age of what is on a wall, read once for the dashboard and the
+// wall page; `due` is the one "due for a reset" rule, gym::DueForReset.
+struct WallAge {
+  int on_wall = 0;                 // routes in state "set"
+  std::optional<int> oldest_days;  // the oldest dated one's age; nullopt: none dated
+  bool due = false;                // gym::DueForReset(wall.reset_weeks, oldest_days)
+};
+// The age at `now` (unix seconds) of `routes` of `wall` (any states; only
+// those on the wall count, undated ones only in on_wall). Pure.
+WallAge WallAgeOf(const Wall& wall, const std::vector<RouteView>& routes, int64_t now);
 
 // The band of a grade value (on `discipline`'s axis) as the gym writes it in
 // `scale`: "V3" / "5.10" for the V and YDS scales (grades::BandName), else

@@ -177,6 +177,38 @@ TEST(ProposeSlotsTest, OnlyDueWallsUnlessChosenAndAChosenWallWithNothingDueIsStr
   EXPECT_TRUE(ProposeSlots({over}, {}, 20).empty());
 }
 
+// Issue 31: the wall page's and the dashboard's age of a wall: only routes
+// on the wall count, the oldest dated one gives the age, and "due" is
+// gym::DueForReset of the wall's cycle.
+TEST(WallAgeTest, OnlyTheWallCountsAndDueIsTheOneRule) {
+  auto route = [](const char* state, const char* set_on) {
+    RouteView r;
+    r.state = state;
+    r.set_on = set_on;
+    return r;
+  };
+  const int64_t now = 20'000 * int64_t{86400} + 3600;  // day 20000 = 2024-10-04
+  const std::vector<RouteView> routes = {
+      route("set", "2024-09-04"),      // 30 days
+      route("set", "2024-08-23"),      // 42 days: the oldest on the wall
+      route("set", ""),                // undated: counted, no age
+      route("stripped", "2020-01-01"), // gone: not counted
+      route("planned", "2019-01-01"),  // not up yet
+  };
+  struct Wall wall;  // (the fixture below has a function Wall)
+  WallAge age = WallAgeOf(wall, routes, now);
+  EXPECT_EQ(age.on_wall, 3);
+  ASSERT_TRUE(age.oldest_days);
+  EXPECT_EQ(*age.oldest_days, 42);
+  EXPECT_FALSE(age.due);  // no reset cycle: never due
+  wall.reset_weeks = 6;
+  EXPECT_TRUE(WallAgeOf(wall, routes, now).due);  // 42 days = 6 weeks
+  wall.reset_weeks = 7;
+  EXPECT_FALSE(WallAgeOf(wall, routes, now).due);
+  EXPECT_EQ(WallAgeOf(wall, {}, now).on_wall, 0);
+  EXPECT_FALSE(WallAgeOf(wall, {}, now).oldest_days);
+}
+
 TEST(WallTargetsTest, ValidateNamesTheField) {
   WallTargets t;
   t.grades = {{"V3", 2}, {"V6", 1}};

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <tuple>
 
+#include "gym/rules.h"
 #include "language/styles.h"
 #include "store/target_store.h"
 
@@ -133,7 +134,7 @@ Result<std::vector<DisciplineTargets>> Dashboard::GymDisciplineTargets(const Vie
 Status Dashboard::SetDisciplineTargets(const Viewer& v, int64_t gym, const DisciplineTargets& t) {
   if (!v.logged_in()) return Status::Unauthenticated("log in first");
   SB_ASSIGN_OR_RETURN(Gym g, gyms_.Get(v, gym));
-  if (g.role != "head") return Status::Permission("only the gym's head setters may set targets");
+  if (!gym::IsHead(g.role)) return Status::Permission("only the gym's head setters may set targets");
   SB_RETURN_IF_ERROR(t.Validate());
   if (!targets_) return Status::Internal("the store keeps no targets");
   // Bands in the discipline's scale: that of its first wall with one.

@@ -16,6 +16,7 @@
 #include "base/text.h"
 #include "crdl/route.h"
 #include "grades/gym_scale.h"
+#include "gym/rules.h"
 #include "plan/colour.h"
 #include "store/gym_store.h"
 #include "store/import_store.h"
@@ -382,7 +383,7 @@ Result<GymImport::Plan> GymImport::Read(const Viewer& v, int64_t gym, const Impo
   if (!v.logged_in()) return Status::Unauthenticated("log in first");
   SB_ASSIGN_OR_RETURN(std::string role, gyms_->RoleIn(v, gym));
   if (role.empty()) return Status::NotFound("no gym " + std::to_string(gym));
-  if (role != "head") {
+  if (!gym::IsHead(role)) {
     return Status::Permission("only the gym's head setters may import its route list");
   }
   if (req.data.size() > ImportLimits::kMaxBytes) {
@@ -445,7 +446,9 @@ Result<GymImport::Plan> GymImport::Read(const Viewer& v, int64_t gym, const Impo
   // Candidates for a match: on the wall or planned, and the viewer's own drafts.
   std::map<int64_t, const store::RouteRecord*> candidates;
   for (const store::RouteRecord& r : routes) {
-    if (r.state == "set" || r.state == "planned" || (r.state == "draft" && r.owner_id == v.user_id)) {
+    const std::optional<gym::RouteState> s = gym::RouteStateOf(r.state);
+    if (s == gym::RouteState::kSet || s == gym::RouteState::kPlanned ||
+        (s == gym::RouteState::kDraft && r.owner_id == v.user_id)) {
       candidates[r.id] = &r;
     }
   }
@@ -696,7 +699,7 @@ Result<GymImport::Plan> GymImport::Read(const Viewer& v, int64_t gym, const Impo
       out.action = "new";
       item.crdl = crdl;
       item.fields.gym = gym;
-      item.fields.state = "set";
+      item.fields.state = gym::NameOf(gym::RouteState::kSet);
       if (!out.wall.empty()) item.fields.wall = out.wall;
       if (!out.setters.empty()) item.fields.setters = out.setters;
       if (!out.set_on.empty()) item.fields.set_on = out.set_on;
@@ -773,7 +776,7 @@ Result<GymImport::Plan> GymImport::Read(const Viewer& v, int64_t gym, const Impo
 
   // What left the list: the routes on the wall no row matched.
   for (const store::RouteRecord& r : routes) {
-    if (r.state != "set" || matched.count(r.id)) continue;
+    if (!gym::Is(r.state, gym::RouteState::kSet) || matched.count(r.id)) continue;
     ImportRow out;
     out.action = "missing";
     out.route = r.id;
@@ -846,7 +849,7 @@ Result<ImportOutcome> GymImport::Confirm(const Viewer& v, int64_t gym, const Imp
       continue;
     }
     StateChange sc;
-    sc.state = "stripped";
+    sc.state = gym::NameOf(gym::RouteState::kStripped);
     SB_RETURN_IF_ERROR(routes_->ChangeState(v, id, sc));
     if (gs) SB_RETURN_IF_ERROR(gs->AddHistory(id, v.user_id, "import " + req.file + ": no longer in the list"));
     ++out.stripped;
@@ -877,7 +880,7 @@ Result<std::pair<int64_t, Viewer>> GymImport::HeadSetterOf(const std::string& gy
   if (!id) return Status::NotFound("gym: no gym \"" + gym + "\" (an id or a name)");
   SB_ASSIGN_OR_RETURN(std::vector<store::MemberRecord> members, gs->ListMembers(*id));
   for (const store::MemberRecord& m : members) {
-    if (m.role != "head" || (!username.empty() && !EqualsIgnoreCase(m.username, username))) {
+    if (!gym::IsHead(m.role) || (!username.empty() && !EqualsIgnoreCase(m.username, username))) {
       continue;
     }
     Viewer v;

@@ -31,43 +31,6 @@ Status CheckName(const std::string& field, const std::string& name, size_t max) 
 
 }  // namespace
 
-bool IsRole(const std::string& role) {
-  return role == "head" || role == "setter" || role == "climber";
-}
-
-bool IsRouteState(const std::string& s) {
-  return s == "draft" || s == "planned" || s == "set" || s == "stripped";
-}
-
-std::optional<RouteState> RouteStateOf(const std::string& name) {
-  if (name == "draft") return RouteState::kDraft;
-  if (name == "planned") return RouteState::kPlanned;
-  if (name == "set") return RouteState::kSet;
-  if (name == "stripped") return RouteState::kStripped;
-  return std::nullopt;
-}
-
-const char* NameOf(RouteState s) {
-  switch (s) {
-    case RouteState::kDraft: return "draft";
-    case RouteState::kPlanned: return "planned";
-    case RouteState::kSet: return "set";
-    case RouteState::kStripped: return "stripped";
-  }
-  return "draft";
-}
-
-Status CheckTransition(RouteState from, RouteState to) {
-  using S = RouteState;
-  const bool ok = (from == S::kDraft && (to == S::kPlanned || to == S::kSet)) ||
-                  (from == S::kPlanned && (to == S::kSet || to == S::kDraft)) ||
-                  (from == S::kSet && to == S::kStripped);
-  if (ok) return Status::Ok();
-  if (from == to) return Status::Conflict(std::string("state: the route is ") + NameOf(to) + " already");
-  return Status::Conflict(std::string("state: a ") + NameOf(from) + " route cannot become " +
-                          NameOf(to) + " (plan → set → strip)");
-}
-
 namespace {
 
 // "circuit red (V0–V2)" for the history.
@@ -148,7 +111,7 @@ Status Gyms::Welcome(int64_t user_id) {
   if (all.empty()) return Status::Ok();
   SB_ASSIGN_OR_RETURN(std::vector<store::MemberRecord> members, gyms_->ListMembers(all[0].id));
   if (!members.empty()) return Status::Ok();
-  return gyms_->PutMember(all[0].id, user_id, "head");
+  return gyms_->PutMember(all[0].id, user_id, NameOf(Role::kHead));
 }
 
 Result<int64_t> Gyms::Create(const Viewer& v, const std::string& name) {
@@ -157,7 +120,7 @@ Result<int64_t> Gyms::Create(const Viewer& v, const std::string& name) {
   SB_RETURN_IF_ERROR(CheckName("name", name, GymLimits::kMaxNameBytes));
   SB_ASSIGN_OR_RETURN(std::vector<store::GymRecord> mine, gyms_->GymsOf(*v.user_id));
   size_t heads = std::count_if(mine.begin(), mine.end(),
-                               [](const store::GymRecord& g) { return g.role == "head"; });
+                               [](const store::GymRecord& g) { return gym::IsHead(g.role); });
   if (heads >= GymLimits::kMaxGymsPerAccount) {
     return Status::ResourceExhausted("at most " + std::to_string(GymLimits::kMaxGymsPerAccount) +
                                      " gyms per account");
@@ -195,9 +158,9 @@ Result<store::MemberRecord> Gyms::FindMember(int64_t gym, const std::string& use
 Status Gyms::SetRole(const Viewer& v, int64_t gym, const std::string& username,
                      const std::string& role) {
   SB_RETURN_IF_ERROR(RequireHead(v, gym));
-  if (!IsRole(role)) return Status::InvalidInput("role: expected head, setter or climber");
+  SB_ASSIGN_OR_RETURN(const Role new_role, gym::ParseRole(role));
   SB_ASSIGN_OR_RETURN(store::MemberRecord m, FindMember(gym, username));
-  if (m.user_id == *v.user_id && role != "head") {
+  if (m.user_id == *v.user_id && new_role != Role::kHead) {
     return Status::InvalidInput("role: a head setter cannot demote themselves");
   }
   if (m.role == role) return Status::Ok();
@@ -258,7 +221,7 @@ Result<std::string> Gyms::MemberRole(const Viewer& v, int64_t gym) {
 Status Gyms::RequireHead(const Viewer& v, int64_t gym) {
   if (!v.logged_in()) return Status::Unauthenticated("log in first");
   SB_ASSIGN_OR_RETURN(std::string role, MemberRole(v, gym));
-  if (role != "head") return Status::Permission("only the gym's head setters may do this");
+  if (!gym::IsHead(role)) return Status::Permission("only the gym's head setters may do this");
   return Status::Ok();
 }
 
@@ -301,7 +264,7 @@ Result<Gym> Gyms::Get(const Viewer& v, int64_t gym) {
 Status Gyms::AddMember(const Viewer& v, int64_t gym, const std::string& username,
                        const std::string& role) {
   SB_RETURN_IF_ERROR(RequireHead(v, gym));
-  if (!IsRole(role)) return Status::InvalidInput("role: expected head, setter or climber");
+  SB_ASSIGN_OR_RETURN(const Role new_role, gym::ParseRole(role));
   Result<store::User> u = store_->FindUserByName(std::string(Trim(username)));
   if (!u.ok()) {
     if (u.status().code() == Status::Code::kNotFound) {
@@ -310,7 +273,7 @@ Status Gyms::AddMember(const Viewer& v, int64_t gym, const std::string& username
     }
     return u.status();
   }
-  if (u->id == *v.user_id && role != "head") {
+  if (u->id == *v.user_id && new_role != Role::kHead) {
     return Status::InvalidInput("role: a head setter cannot demote themselves");
   }
   SB_RETURN_IF_ERROR(gyms_->PutMember(gym, u->id, role));

@@ -16,10 +16,12 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "app/options.h"
 #include "base/status.h"
+#include "gym/rules.h"
 #include "store/gym_store.h"
 #include "store/store.h"
 
@@ -100,22 +102,19 @@ struct GymLimits {
   static constexpr size_t kMaxGymsPerAccount = 50;
 };
 
-// The roles and route states by name.
-bool IsRole(const std::string& role);
-bool IsRouteState(const std::string& state);  // draft, planned, set, stripped
-
-// Issue 31: the route states and the one rule of their changes (plan → set
-// → strip). The names are those of IsRouteState.
-enum class RouteState { kDraft, kPlanned, kSet, kStripped };
-std::optional<RouteState> RouteStateOf(const std::string& name);
-const char* NameOf(RouteState s);
-// Whether a route may change from `from` to `to` by a state change: draft →
-// planned or set; planned → set or back to draft; set → stripped. Nothing
-// leaves the archive (stripped), and no state changes to itself.
-// kConflict "state: ..." otherwise.
-Status CheckTransition(RouteState from, RouteState to);
-// Whether `role` may create and edit a gym's routes (head or setter).
-inline bool CanSet(const std::string& role) { return role == "head" || role == "setter"; }
+// The roles and route states, their names and the cycle's one rule (plan →
+// set → strip) live in gym/rules.h (issue 31, one home for the gym's
+// rules); the app and its callers name them through these.
+using gym::CanSet;
+using gym::CheckTransition;
+using gym::NameOf;
+using gym::Role;
+using gym::RouteState;
+using gym::RouteStateOf;
+// Whether `role` names a role ("head", "setter", "climber").
+inline bool IsRole(std::string_view role) { return gym::RoleOf(role).has_value(); }
+// Whether `state` names a route state (draft, planned, set, stripped).
+inline bool IsRouteState(std::string_view state) { return gym::RouteStateOf(state).has_value(); }
 
 // Checks a wall's fields; kInvalidInput naming the field.
 Status ValidateWall(const Wall& w);

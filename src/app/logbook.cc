@@ -22,6 +22,7 @@
 #include "grades/consensus.h"
 #include "grades/ratings.h"
 #include "grades/scale.h"
+#include "gym/rules.h"
 #include "store/auth.h"
 #include "store/gym_store.h"
 
@@ -415,7 +416,7 @@ Status Logbook::RequireSetter(const Viewer& v, const store::RouteRecord& route) 
   if (gyms != nullptr && route.gym_id) {
     SB_ASSIGN_OR_RETURN(std::vector<store::GymRecord> mine, gyms->GymsOf(*v.user_id));
     for (const store::GymRecord& g : mine) {
-      if (g.id == *route.gym_id && (g.role == "head" || g.role == "setter")) return Status::Ok();
+      if (g.id == *route.gym_id && gym::CanSet(g.role)) return Status::Ok();
     }
   }
   return Status::Permission("only the route's setters review its ticks");
@@ -1155,7 +1156,7 @@ Result<LogbookView> Logbook::Mine(const Viewer& v, std::string_view participant_
     store::RouteFilter f;
     f.viewer = v.user_id;
     f.gym_id = gym;
-    f.state = "set";
+    f.state = gym::NameOf(gym::RouteState::kSet);
     f.limit = 2000;
     SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> set, store_->ListRoutes(f));
     for (const store::RouteRecord& r : set) {

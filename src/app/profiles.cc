@@ -7,6 +7,7 @@
 #include "app/logbook.h"
 #include "base/csv.h"
 #include "base/text.h"
+#include "gym/rules.h"
 #include "store/auth.h"
 #include "store/profile_store.h"
 #include "store/tick_store.h"
@@ -128,7 +129,7 @@ Result<std::string> Profiles::GymLanguage(int64_t gym) {
 Status Profiles::SetGymLanguage(const Viewer& v, const std::string& role, int64_t gym,
                                 const std::string& language) {
   if (!v.logged_in()) return NotLoggedIn();
-  if (role != "head") return Status::Permission("only the gym's head setters may do this");
+  if (!gym::IsHead(role)) return Status::Permission("only the gym's head setters may do this");
   if (!language.empty() && !IsLanguage(language)) {
     return Status::InvalidInput("language: one of en, de, fr");
   }

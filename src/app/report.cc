@@ -14,6 +14,7 @@
 #include "base/text.h"
 #include "grades/consensus.h"
 #include "grades/scale.h"
+#include "gym/rules.h"
 #include "store/tick_store.h"
 #include "studies/stats.h"
 
@@ -157,7 +158,7 @@ Result<ReportPlan> Reports::Plan(const Viewer& v, int64_t gym, const ReportQuery
     // seconds), and its planned routes planned for the day.
     f.sort = store::RouteSort::kSetNewest;
     store::RouteFilter planned = f;
-    planned.state = "planned";
+    planned.state = gym::NameOf(gym::RouteState::kPlanned);
     planned.limit = kPage;
     SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> plans, store_->ListRoutes(planned));
     plan.listed += static_cast<int64_t>(plans.size());

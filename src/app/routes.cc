@@ -13,6 +13,7 @@
 #include "base/date.h"
 #include "base/number.h"
 #include "base/text.h"
+#include "gym/rules.h"
 #include "store/gym_store.h"
 #include "grades/evaluate.h"
 #include "chaos/variation.h"
@@ -362,7 +363,7 @@ Status Routes::CheckDisciplineRole(const Viewer& v, const store::RouteRecord& re
     SB_ASSIGN_OR_RETURN(std::string role, gyms_.RoleIn(v, *rec.gym_id));
     // The owner who is no member of the gym (a climber's own route put in
     // the install's first gym) counts as the owner of a gym-less route.
-    if (role != "head" && !(role.empty() && IsOwner(rec, v))) {
+    if (!gym::IsHead(role) && !(role.empty() && IsOwner(rec, v))) {
       return Status::Permission("only the gym's head setters may set a route's discipline");
     }
   } else if (!IsOwner(rec, v)) {
@@ -421,7 +422,7 @@ Result<store::RouteRecord> Routes::GetOwnedRow(const Viewer& v, int64_t id) {
 
 Status Routes::CheckChange(const Viewer& v, const store::RouteRecord& r) {
   if (IsOwner(r, v)) return Status::Ok();
-  if (r.gym_id && r.state != "draft") {  // a draft stays its owner's
+  if (r.gym_id && !gym::Is(r.state, gym::RouteState::kDraft)) {  // a draft stays its owner's
     SB_ASSIGN_OR_RETURN(std::string role, gyms_.RoleIn(v, *r.gym_id));
     if (CanSet(role)) return Status::Ok();
     if (!role.empty()) return Status::Permission("only the gym's setters may change its routes");
@@ -573,12 +574,12 @@ Status Routes::ApplyGymFields(const Viewer& v, const GymFields& g, store::RouteR
       rec->state = *g.state;
       // The day it happened, unless the request or the route has it
       // (issue 31: a typed date is kept; only an empty one becomes today).
-      if (rec->state == "set" && !g.set_on && rec->set_on.empty()) rec->set_on = Today();
-      if (rec->state == "stripped" && !g.strip_on && rec->strip_on.empty()) {
+      if (gym::Is(rec->state, gym::RouteState::kSet) && !g.set_on && rec->set_on.empty()) rec->set_on = Today();
+      if (gym::Is(rec->state, gym::RouteState::kStripped) && !g.strip_on && rec->strip_on.empty()) {
         rec->strip_on = Today();
       }
     }
-    if (rec->state == "planned") rec->planned_on = rec->set_on;
+    if (gym::Is(rec->state, gym::RouteState::kPlanned)) rec->planned_on = rec->set_on;
   }
   if (g.setters) {
     if (g.setters->size() > GymLimits::kMaxSetters) {
@@ -626,7 +627,7 @@ Result<int64_t> Routes::Create(const Viewer& v, std::string_view crdl,
     if (CanSet(role)) gym_of_setter = rec.gym_id;
   }
   rec.is_public = is_public.value_or(DefaultInLibrary(gym_of_setter));
-  rec.state = "draft";
+  rec.state = gym::NameOf(gym::RouteState::kDraft);
   std::vector<std::string> changes;
   std::optional<std::vector<store::RouteSetter>> setters;
   SB_RETURN_IF_ERROR(ApplyGymFields(v, g, &rec, &changes, &setters));
@@ -775,7 +776,7 @@ Result<std::vector<int64_t>> Routes::ChangeWallState(const Viewer& v, int64_t gy
   std::vector<int64_t> changed;
   for (const store::RouteRecord& r : rows) {
     if (change.day && !change.day->empty() && r.set_on != *change.day) continue;
-    if (r.state == "draft" && !IsOwner(r, v)) continue;  // a draft stays its owner's
+    if (gym::Is(r.state, gym::RouteState::kDraft) && !IsOwner(r, v)) continue;  // a draft stays its owner's
     StateChange one{NameOf(*to), change.on, std::nullopt};
     SB_RETURN_IF_ERROR(ChangeState(v, r.id, one));
     changed.push_back(r.id);
@@ -806,7 +807,7 @@ Status Routes::Delete(const Viewer& v, int64_t id) {
     // Setters edit the gym's routes together; only a head setter deletes
     // someone else's (strip it to keep it in the archive instead).
     SB_ASSIGN_OR_RETURN(std::string role, gyms_.RoleIn(v, r.gym_id.value_or(0)));
-    if (role != "head") {
+    if (!gym::IsHead(role)) {
       return Status::Permission("only the route's owner or a head setter may delete it");
     }
   }
@@ -925,7 +926,7 @@ Result<ImportSummary> Routes::ImportCsv(const Viewer& v, std::string_view routes
     rec.created_at = sr.created_at;
     rec.gym_id = gym;
     rec.original_id = sr.id;
-    rec.state = "draft";
+    rec.state = gym::NameOf(gym::RouteState::kDraft);
     if (std::optional<std::string> st = sr.route.Meta("state"); st && CanSet(role)) {
       if (IsRouteState(ToLower(Trim(*st)))) rec.state = ToLower(Trim(*st));
     }
@@ -1071,7 +1072,7 @@ Result<CsvFiles> Routes::ExportCsv(const Viewer& v, bool mine) {
     sr.route.SetMeta("name", rec.name);
     // The gym fields travel in the header (docs/formats.md), so an import
     // of this export restores them.
-    if (rec.state != "draft" || sr.route.Meta("state")) sr.route.SetMeta("state", rec.state);
+    if (!gym::Is(rec.state, gym::RouteState::kDraft) || sr.route.Meta("state")) sr.route.SetMeta("state", rec.state);
     if (!rec.strip_on.empty()) sr.route.SetMeta("strip", rec.strip_on);
     if (!rec.set_on.empty() && !sr.route.Meta("date")) sr.route.SetMeta("set", rec.set_on);
     if (!rec.wall_name.empty() && !sr.route.Meta("wall")) sr.route.SetMeta("wall", rec.wall_name);

@@ -1,6 +1,7 @@
 #include "app/scales.h"
 
 #include "base/text.h"
+#include "gym/rules.h"
 #include "store/scale_store.h"
 
 namespace sb::app {
@@ -100,7 +101,7 @@ Result<int64_t> Scales::Add(const Viewer& v, int64_t gym, std::string_view name,
   if (!v.logged_in()) return Status::Unauthenticated("log in first");
   SB_ASSIGN_OR_RETURN(std::string role, gyms_->RoleIn(v, gym));
   if (role.empty()) return Status::NotFound("no gym " + std::to_string(gym));
-  if (role != "head") return Status::Permission("only the gym's head setters may add scales");
+  if (!gym::IsHead(role)) return Status::Permission("only the gym's head setters may add scales");
   SB_ASSIGN_OR_RETURN(grades::GymScale s, grades::MakeGymScale(name, labels));
   store::ScaleStore* ss = store::ScaleStoreOf(store_);
   if (ss == nullptr) return Status::Internal("this store keeps no scales");
@@ -127,7 +128,7 @@ Result<std::vector<GymScaleView>> Scales::List(const Viewer& v, int64_t gym) {
 Status Scales::SetWallScale(const Viewer& v, int64_t gym, int64_t wall, std::string_view scale) {
   SB_ASSIGN_OR_RETURN(std::string role, gyms_->RoleIn(v, gym));
   if (role.empty()) return Status::NotFound("no gym " + std::to_string(gym));
-  if (role != "head") return Status::Permission("only the gym's head setters may change walls");
+  if (!gym::IsHead(role)) return Status::Permission("only the gym's head setters may change walls");
   SB_ASSIGN_OR_RETURN(Wall w, gyms_->GetWall(v, wall));
   if (w.gym_id != gym) return Status::NotFound("no wall " + std::to_string(wall));
   store::ScaleStore* ss = store::ScaleStoreOf(store_);

@@ -9,6 +9,7 @@
 #include "base/files.h"
 #include "crdl/route.h"
 #include "base/text.h"
+#include "gym/rules.h"
 #include "store/auth.h"
 #include "store/gym_store.h"
 
@@ -109,7 +110,7 @@ Result<int> SeedExamples(store::Store* store, const std::string& dir, int64_t ow
     rec.is_public = true;
     if (gym) {
       rec.gym_id = gym;
-      rec.state = "set";
+      rec.state = gym::NameOf(gym::RouteState::kSet);
       if (!Trim(rec.wall).empty()) {
         SB_ASSIGN_OR_RETURN(int64_t wall, WallFor(gs, *gym, std::string(Trim(rec.wall)), &walls));
         rec.wall_id = wall;

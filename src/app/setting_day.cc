@@ -18,6 +18,7 @@
 #include "crdl/route.h"
 #include "grades/estimator.h"
 #include "grades/scale.h"
+#include "gym/rules.h"
 #include "language/styles.h"
 #include "language/symbols.h"
 #include "plan/plan.h"
@@ -111,7 +112,7 @@ Result<std::map<CandidateKey, AcceptedRoute>> AcceptedOf(Routes* routes, store::
                                                         int limit) {
   RouteQuery q;
   q.gym = gym;
-  q.state = "planned";
+  q.state = gym::NameOf(gym::RouteState::kPlanned);
   q.limit = limit;
   SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> list, routes->ListRows(v, q));
   std::map<CandidateKey, AcceptedRoute> out;
@@ -292,7 +293,7 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
     RouteQuery q;
     q.gym = req.gym;
     q.wall = std::to_string(w.id);
-    q.state = "set";
+    q.state = gym::NameOf(gym::RouteState::kSet);
     SB_ASSIGN_OR_RETURN(on_wall[w.id], routes_->ListRows(v, q));
   }
   std::vector<DaySlot> slots = req.slots;
@@ -392,10 +393,10 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
     q.grade_from = from;
     q.grade_to = to;
     std::vector<store::RouteRecord> gym_rows;
-    for (const char* state : {"set", "stripped"}) {
+    for (gym::RouteState state : {gym::RouteState::kSet, gym::RouteState::kStripped}) {
       RouteQuery gq = q;
       gq.gym = req.gym;
-      gq.state = state;
+      gq.state = gym::NameOf(state);
       SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> list, routes_->ListRows(v, gq));
       for (store::RouteRecord& r : list) gym_rows.push_back(std::move(r));
     }
@@ -770,7 +771,7 @@ Result<int64_t> SettingDays::Accept(const Viewer& v, const AcceptRequest& req) {
   SB_ASSIGN_OR_RETURN(CreatedVariation created, variations_->Create(v, vr));
   RouteEdit edit;
   edit.gym.wall = std::to_string(wall->id);
-  edit.gym.state = "planned";
+  edit.gym.state = gym::NameOf(gym::RouteState::kPlanned);
   edit.gym.set_on = req.date;
   edit.gym.setters = std::vector<std::string>{setter};
   SB_RETURN_IF_ERROR(routes_->Update(v, created.id, edit));
@@ -784,13 +785,14 @@ Result<std::vector<DayRoute>> SettingDays::Planned(const Viewer& v, int64_t gym,
   // Issue 31: a day's sheet keeps every route planned for that day whatever
   // its state now (set, stripped, back to draft); all dates: what is planned.
   std::vector<store::RouteRecord> list;
-  for (const char* state : {"planned", "set", "stripped", "draft"}) {
-    if (date.empty() && std::string(state) != "planned") break;
+  for (gym::RouteState state : {gym::RouteState::kPlanned, gym::RouteState::kSet,
+                                gym::RouteState::kStripped, gym::RouteState::kDraft}) {
+    if (date.empty() && state != gym::RouteState::kPlanned) break;
     RouteQuery q;
     q.gym = gym;
-    q.state = state;
-    q.sort = std::string(state) == "planned" ? "" : "set";  // the day's routes come first
-    q.limit = std::string(state) == "planned"
+    q.state = gym::NameOf(state);
+    q.sort = state == gym::RouteState::kPlanned ? "" : "set";  // the day's routes come first
+    q.limit = state == gym::RouteState::kPlanned
                   ? static_cast<int>(options_.limits.max_tag_sheet_routes)
                   : options_.limits.max_list_rows;
     SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> rows, routes_->ListRows(v, q));

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "base/text.h"
+#include "gym/rules.h"
 
 namespace sb::app {
 
@@ -23,7 +24,7 @@ plan::TagInfo TagInfoOf(const RouteView& r, const std::string& url) {
     }
   }
   if (t.setters.empty() && !r.owner_name.empty()) t.setters.push_back(r.owner_name);
-  t.planned = r.state == "planned";
+  t.planned = gym::Is(r.state, gym::RouteState::kPlanned);
   if (t.planned) {  // the planned date, never the day it was added
     t.set_on = r.set_on.empty() ? r.planned_on : r.set_on;
   } else {
@@ -57,7 +58,7 @@ Result<std::vector<RouteView>> GymTagSheetRoutes(Routes& routes, const Viewer& v
                                                           const Limits& limits) {
   std::vector<std::string> states;
   if (Trim(state).empty()) {
-    states = {"planned", "set"};
+    states = {gym::NameOf(gym::RouteState::kPlanned), gym::NameOf(gym::RouteState::kSet)};
   } else {
     states = {std::string(Trim(state))};
   }

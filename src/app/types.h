@@ -19,6 +19,8 @@
 #include <utility>
 #include <vector>
 
+#include "gym/rules.h"
+
 namespace sb::store {
 class Store;  // the database: every kind of record (declared by the store)
 }  // namespace sb::store
@@ -88,7 +90,7 @@ struct RouteView {
   std::optional<int64_t> gym_id;
   std::optional<int64_t> wall_id;
   std::string wall_name;  // the wall row's name ("" without wall_id)
-  std::string state = "draft";  // "draft", "planned", "set", "stripped"
+  std::string state = gym::NameOf(gym::RouteState::kDraft);  // gym::RouteState's names
   std::string planned_on;
   std::string strip_on;
   std::optional<int64_t> original_id;  // the original site's id of an import

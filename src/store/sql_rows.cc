@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "base/date.h"
+#include "gym/rules.h"
 
 namespace sb::store::sql_rows {
 
@@ -32,7 +33,7 @@ void AppendRouteRow(const RouteRecord& r, const std::string& now, std::string se
                                     r.grade_discipline, sql::Nullable(r.grade_value),
                                     int64_t{r.meta_version}, r.request_key,
                                     sql::Nullable(r.gym_id), sql::Nullable(r.wall_id),
-                                    r.state.empty() ? std::string("draft") : r.state,
+                                    r.state.empty() ? std::string(gym::NameOf(gym::RouteState::kDraft)) : r.state,
                                     r.planned_on, r.strip_on, sql::Nullable(r.original_id),
                                     std::move(search_text), int64_t{search_version}};
   for (sql::Value& v : vals) out->push_back(std::move(v));

@@ -12,6 +12,7 @@
 
 #include "base/fold.h"
 #include "base/log.h"
+#include "gym/rules.h"
 #include "store/bulk_sql.h"
 #include "store/bulk_store.h"
 #include "store/gym_store.h"
@@ -1033,7 +1034,8 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
       if (head) {
         Violation v;
         Result<Rows> m = c->Query(
-            "INSERT INTO gym_members(gym_id, user_id, role) VALUES(?, ?, 'head')", {id, *head},
+            "INSERT INTO gym_members(gym_id, user_id, role) VALUES(?, ?, ?)",
+            {id, *head, std::string(gym::NameOf(gym::Role::kHead))},
             &v);
         if (!m.ok() && v == Violation::kForeignKey) {
           return Status::NotFound("no user " + std::to_string(*head));
@@ -1197,8 +1199,8 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
       SB_ASSIGN_OR_RETURN(Rows w, c->Query("SELECT name FROM walls WHERE id = ?", {id}));
       if (w.empty()) return Status::NotFound("no wall " + std::to_string(id));
       SB_ASSIGN_OR_RETURN(Rows n, c->Query("SELECT count(*) FROM routes WHERE wall_id = ? AND "
-                                           "state <> 'stripped'",
-                                           {id}));
+                                           "state <> ?",
+                                           {id, std::string(gym::NameOf(gym::RouteState::kStripped))}));
       if (n.Int(0, 0) > 0) {
         return Status::Conflict(std::to_string(n.Int(0, 0)) +
                                 (n.Int(0, 0) == 1 ? " route is" : " routes are") +

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "base/status.h"
+#include "gym/rules.h"
 
 namespace sb::store {
 
@@ -119,7 +120,7 @@ struct RouteRecord {
   std::optional<int64_t> gym_id;
   std::optional<int64_t> wall_id;
   std::string wall_name;  // the wall row's name (read only; "" without wall_id)
-  std::string state = "draft";
+  std::string state = gym::NameOf(gym::RouteState::kDraft);
   std::string planned_on;
   std::string strip_on;
   std::optional<int64_t> original_id;

@@ -1,35 +1,13 @@
 #include "store/visibility.h"
 
+#include "gym/rules.h"
+
 namespace sb::store {
 
-namespace {
-
-// The members' part of the rule: which states of its gym's routes each role
-// sees. Sees and SeesSql both read this table (and nothing else names it).
-struct RoleSight {
-  std::string_view role;
-  std::string_view states[4];
-};
-constexpr RoleSight kRoleSight[] = {
-    {"head", {"draft", "planned", "set", "stripped"}},
-    {"setter", {"draft", "planned", "set", "stripped"}},
-    {"climber", {"set", "stripped"}},
-};
-
-// The state a route on the wall has (Reach::kOnTheWall).
-constexpr std::string_view kOnTheWallState = "set";
-
-}  // namespace
-
 bool MemberSees(std::string_view role, std::string_view state) {
-  if (role.empty() || state.empty()) return false;
-  for (const RoleSight& r : kRoleSight) {
-    if (r.role != role) continue;
-    for (std::string_view s : r.states) {
-      if (!s.empty() && s == state) return true;
-    }
-  }
-  return false;
+  const std::optional<gym::Role> r = gym::RoleOf(role);
+  const std::optional<gym::RouteState> s = gym::RouteStateOf(state);
+  return r && s && gym::MemberSees(*r, *s);
 }
 
 bool Sees(const RouteSight& r, std::optional<int64_t> viewer, std::string_view role_in_gym,
@@ -38,20 +16,25 @@ bool Sees(const RouteSight& r, std::optional<int64_t> viewer, std::string_view r
   if (viewer && r.owner_id && *viewer == *r.owner_id) return true;
   if (!r.gym_id) return false;
   if (MemberSees(role_in_gym, r.state)) return true;
-  return reach == Reach::kOnTheWall && r.state == kOnTheWallState;
+  return reach == Reach::kOnTheWall && gym::Is(r.state, gym::kOnTheWall);
 }
 
 std::string SeesSql(std::string_view t_view, int* params) {
   const std::string t(t_view);
+  // One term per role: the states gym::MemberSees gives it (its table is
+  // the only place that says which).
   std::string roles;
-  for (const RoleSight& r : kRoleSight) {
+  for (gym::Role role : gym::kRoles) {
     std::string states;
-    for (std::string_view s : r.states) {
-      if (!s.empty()) states += (states.empty() ? "'" : ", '") + std::string(s) + "'";
+    for (gym::RouteState state : gym::kRouteStates) {
+      if (!gym::MemberSees(role, state)) continue;
+      states += (states.empty() ? "'" : ", '") + std::string(gym::NameOf(state)) + "'";
     }
-    roles += (roles.empty() ? "" : " OR ") + std::string("(m.role = '") + std::string(r.role) +
+    if (states.empty()) continue;
+    roles += (roles.empty() ? "" : " OR ") + std::string("(m.role = '") + gym::NameOf(role) +
              "' AND " + t + ".state IN (" + states + "))";
   }
+  if (roles.empty()) roles = "1 = 0";
   *params = 2;
   // Never NULL (a NULL owner would make NOT of it NULL, and a variation
   // of an orphaned private route pass the sources' test).

@@ -2,6 +2,7 @@
 // and history (issue 21, docs/web.md "Gyms").
 #include <cmath>
 
+#include "gym/rules.h"
 #include "web/handlers.h"
 
 namespace sb::web {
@@ -265,7 +266,7 @@ void PostMember(Exchange& x) {
   if (!body.ok()) return ApiError(x, body.status());
   Result<std::string> user = StringField(*body, "username");
   if (!user.ok()) return ApiError(x, user.status());
-  std::string role = "setter";
+  std::string role = gym::NameOf(gym::Role::kSetter);
   if (body->contains("role")) {
     Result<std::string> r = StringField(*body, "role");
     if (!r.ok()) return ApiError(x, r.status());

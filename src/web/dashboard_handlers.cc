@@ -3,7 +3,6 @@
 #include "web/dashboard_handlers.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -487,29 +486,11 @@ std::string PlanSvg(const app::GymDashboard& d, std::string_view lang) {
   return s + "</svg>";
 }
 
-std::string WallStatus(const app::Wall& wall,
-                       const std::vector<std::pair<std::string, std::string>>& routes,
-                       int64_t now, std::string_view lang) {
-  int on = 0;
-  std::optional<int64_t> oldest;
-  const int64_t today = now / 86400;
-  for (const auto& [state, set_on] : routes) {
-    if (state != "set") continue;
-    ++on;
-    int y = 0;
-    unsigned m = 0, d = 0;
-    if (set_on.size() != 10 || std::sscanf(set_on.c_str(), "%4d-%2u-%2u", &y, &m, &d) != 3) {
-      continue;
-    }
-    const std::chrono::year_month_day ymd{std::chrono::year{y}, std::chrono::month{m},
-                                          std::chrono::day{d}};
-    if (!ymd.ok()) continue;
-    const int64_t age =
-        std::max<int64_t>(0, today - std::chrono::sys_days{ymd}.time_since_epoch().count());
-    if (!oldest || age > *oldest) oldest = age;
-  }
+std::string WallStatus(const app::Wall& wall, const app::WallAge& age, std::string_view lang) {
+  const int on = age.on_wall;
+  const std::optional<int> oldest = age.oldest_days;
+  const bool due = age.due;
   if (on == 0) return "";
-  const bool due = wall.reset_weeks && oldest && *oldest >= *wall.reset_weeks * 7;
   return "<p id=\"wall-status\">" + Fmt(TrN(lang, "{1} on the wall", "{1} on the wall", on), std::to_string(on)) +
          (oldest ? ", " + Fmt(TrN(lang, "the oldest {1} day", "the oldest {1} days", *oldest), std::to_string(*oldest)) : std::string()) +
          (due ? " — <strong class=\"tag due\">" + Tr(lang, "due for a reset") + "</strong>" : std::string()) +

@@ -42,14 +42,12 @@ std::string DashboardBody(const app::GymDashboard& d, int64_t only_wall,
 // of what is on them, each a link to /walls/{id}; "" when no wall has a
 // rectangle. Pure.
 std::string PlanSvg(const app::GymDashboard& d, std::string_view lang = "en");
-// The wall page's line from the routes it lists, each as (state, set date
-// "YYYY-MM-DD"): how many are on the wall (state "set"), the oldest one's age
-// in days at `now` (unix seconds) and whether the wall is due for a reset
-// (app::Dashboard's rule), with a link to the gym's dashboard; "" when
-// nothing is on the wall. Pure.
-std::string WallStatus(const app::Wall& wall,
-                       const std::vector<std::pair<std::string, std::string>>& routes,
-                       int64_t now, std::string_view lang = "en");
+// The wall page's line from the age of what is on it (app::WallAgeOf: how
+// many routes are on the wall, the oldest one's age in days, whether the
+// wall is due for a reset by the one rule, gym::DueForReset), with a link to
+// the gym's dashboard; "" when nothing is on the wall. Pure.
+std::string WallStatus(const app::Wall& wall, const app::WallAge& age,
+                       std::string_view lang = "en");
 
 }  // namespace sb::web
 

@@ -2,6 +2,7 @@
 // a route page. Each asks app::Gyms / app::Routes and renders (gym_pages.h).
 #include "app/clock.h"
 #include "base/date.h"
+#include "gym/rules.h"
 #include "web/dashboard_handlers.h"
 #include "web/gym_pages.h"
 #include "web/handlers.h"
@@ -83,11 +84,9 @@ void PageWall(Exchange& x) {
   if (ascents.ok()) {
     for (const auto& [id, a] : *ascents) ascent[id] = AscentCell(a);
   }
-  std::vector<std::pair<std::string, std::string>> dates;  // (state, set date) for the status line
-  for (const auto& r : routes->routes) dates.emplace_back(r.state, r.set_on);
+  const app::WallAge age = app::WallAgeOf(*wall, routes->routes, app::SystemClock().Now());
   std::string tables = WallRoutesHtml(*gym, *wall, routes->routes, &ascent,
-                                      WallStatus(*wall, dates, app::SystemClock().Now(), x.caller.lang),
-                                      x.caller.lang);
+                                      WallStatus(*wall, age, x.caller.lang), x.caller.lang);
   // A page without its ascent grades (the fit failed) is not kept.
   if (*stamp && ascents.ok()) {
     return Html(x, WallPage(x.caller.page(), *gym, *wall,
@@ -100,14 +99,14 @@ std::string GymBlock(Exchange& x, const app::RouteView& r) {
   if (!r.gym_id) return "";
   Result<std::string> role = x.services.gyms.RoleIn(x.caller.viewer, *r.gym_id);
   const bool member = role.ok() && !role->empty();
-  if (!member && r.state == "draft") return "";  // nothing to say to outsiders about a draft
+  if (!member && gym::Is(r.state, gym::RouteState::kDraft)) return "";  // nothing to say to outsiders about a draft
   std::vector<app::HistoryEntry> history;
   if (member) {
     Result<std::vector<app::HistoryEntry>> h = x.services.routes.History(x.caller.viewer, r.id);
     if (h.ok()) history = std::move(h).value();
   }
   const bool can_set =
-      role.ok() && (app::CanSet(*role) && (r.state != "draft" || app::IsOwner(r, x.caller.viewer)));
+      role.ok() && (app::CanSet(*role) && (!gym::Is(r.state, gym::RouteState::kDraft) || app::IsOwner(r, x.caller.viewer)));
   return RouteGymBlock(r, history, can_set, x.caller.lang);
 }
 

@@ -5,6 +5,7 @@
 #include "app/discipline.h"
 #include "base/number.h"
 #include "base/text.h"
+#include "gym/rules.h"
 #include "web/pages.h"
 #include "web/script_messages.h"
 
@@ -94,7 +95,7 @@ std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<
                     const std::vector<app::GymHistoryEntry>& history,
                     const std::string& language) {
   const std::string gid = std::to_string(gym.id);
-  const bool head = gym.role == "head";
+  const bool head = gym::IsHead(gym.role);
   [[maybe_unused]] static constexpr const char* kRoles[] = {N_("head"), N_("setter"),
                                                             N_("climber")};
   std::string b = "<h1 id=\"gym-title\">" + E(gym.name) + "</h1>\n<p>" +
@@ -299,13 +300,14 @@ std::string WallRoutesHtml(const app::Gym& gym, const app::Wall& wall,
                            const std::string& status, std::string_view lang) {
   std::string b = status + "<p><a id=\"wall-report\" href=\"/gyms/" + std::to_string(gym.id) +
                   "/report?wall=" + std::to_string(wall.id) + "\">" + Tr(lang, "What climbers said") + "</a></p>\n";
-  for (const char* state : {"set", "planned", "draft", "stripped"}) {
+  for (gym::RouteState state : {gym::RouteState::kSet, gym::RouteState::kPlanned,
+                                gym::RouteState::kDraft, gym::RouteState::kStripped}) {
     std::string rows;
     for (const app::RouteView& r : routes) {
-      if (r.state != state) continue;
+      if (!gym::Is(r.state, state)) continue;
       rows += "<tr><td><a href=\"/routes/" + std::to_string(r.id) + "\">" + E(r.name) +
               "</a></td><td>" + E(r.grade) + GradeNoteHtml(r) + "</td><td>" + ColourHtml(r.colour, lang) + "</td><td>" +
-              E(FormatDate(lang, r.state == "stripped" ? r.strip_on : r.set_on)) + "</td>";
+              E(FormatDate(lang, gym::Is(r.state, gym::RouteState::kStripped) ? r.strip_on : r.set_on)) + "</td>";
       if (ascent_cells) {
         auto it = ascent_cells->find(r.id);
         rows += it == ascent_cells->end() ? "<td></td>" : it->second;
@@ -313,8 +315,8 @@ std::string WallRoutesHtml(const app::Gym& gym, const app::Wall& wall,
       rows += "</tr>\n";
     }
     if (rows.empty()) continue;
-    b += "<h2>" + E(StateName(lang, state)) + "</h2>\n<div class=\"table-wrap\"><table class=\"list\" "
-         "id=\"wall-" + std::string(state) + "\"><thead><tr><th>" + Tr(lang, "Route") + "</th><th>" + Tr(lang, "Grade") + "</th><th>" +
+    b += "<h2>" + E(StateName(lang, gym::NameOf(state))) + "</h2>\n<div class=\"table-wrap\"><table class=\"list\" "
+         "id=\"wall-" + std::string(gym::NameOf(state)) + "\"><thead><tr><th>" + Tr(lang, "Route") + "</th><th>" + Tr(lang, "Grade") + "</th><th>" +
          Tr(lang, "Colour") + "</th><th>" + Tr(lang, "Date") + "</th>" + (ascent_cells ? "<th>" + Tr(lang, "Ascent grade") + "</th>" : std::string()) +
          "</tr></thead><tbody>\n" + rows + "</tbody></table></div>\n";
   }
@@ -349,10 +351,12 @@ std::string WallPage(const PageViewer& v, const app::Gym& gym, const app::Wall& 
                               std::to_string(wall.id) + "/state";
       b += "<p class=\"wall-actions no-print\">" +
            ButtonForm("wall-set-today", "POST", url,
-                      Hidden("from", "planned") + Hidden("to", "set") + Hidden("day", today),
+                      Hidden("from", gym::NameOf(gym::RouteState::kPlanned)) +
+                          Hidden("to", gym::NameOf(gym::RouteState::kSet)) + Hidden("day", today),
                       Fmt(Tr(v, "Set all planned routes of today ({1})"), FormatDate(v, today))) +
            " " +
-           ButtonForm("wall-strip", "POST", url, Hidden("from", "set") + Hidden("to", "stripped"),
+           ButtonForm("wall-strip", "POST", url, Hidden("from", gym::NameOf(gym::RouteState::kSet)) +
+                                      Hidden("to", gym::NameOf(gym::RouteState::kStripped)),
                       Tr(v, "Strip this wall"), Fmt(Tr(v, "Strip every route on {1}?"), wall.name)) +
            "</p>\n";
     }

@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "base/text.h"
+#include "gym/rules.h"
 #include "web/handlers.h"
 #include "web/script_messages.h"
 
@@ -104,7 +105,7 @@ void PostGymImport(Exchange& x) {
   if (!role.ok()) return ApiError(x, role.status());
   if (!x.caller.viewer.logged_in()) return ApiError(x, Status::Unauthenticated("log in first"));
   if (role->empty()) return ApiError(x, Status::NotFound("no gym " + std::to_string(*gym)));
-  if (*role != "head") {
+  if (!gym::IsHead(*role)) {
     return ApiError(x, Status::Permission("only the gym's head setters may import its route list"));
   }
   const size_t rows = std::min(app::GymImport::EstimateRows(*req), app::ImportLimits::kMaxRows + 1);
@@ -185,7 +186,7 @@ void PageGymImport(Exchange& x) {
   if (!id.ok()) return PageError(x, id.status());
   Result<app::Gym> gym = x.services.gyms.Get(x.caller.viewer, *id);
   if (!gym.ok()) return PageError(x, gym.status());
-  if (gym->role != "head") {
+  if (!gym::IsHead(gym->role)) {
     return PageError(x, Status::Permission("Only the gym's head setters import its route list."));
   }
   const std::string gid = std::to_string(gym->id);

@@ -9,6 +9,7 @@
 #include "app/discipline.h"
 #include "app/routes.h"
 #include "base/text.h"
+#include "gym/rules.h"
 #include "plan/colour.h"
 #include "plan/qr.h"
 #include "crdl/route.h"
@@ -124,7 +125,7 @@ std::string RouteRows(const PageViewer& v, const std::vector<app::RouteView>& ro
       h += r.gym_id ? " <span class=\"tag private\">" + Tr(v, "gym only") + "</span>"
                     : " <span class=\"tag private\">" + Tr(v, "private") + "</span>";
     }
-    if (r.state == "planned" || r.state == "stripped") {
+    if (gym::Is(r.state, gym::RouteState::kPlanned) || gym::Is(r.state, gym::RouteState::kStripped)) {
       h += " <span class=\"tag state\">" + E(Tr(v, r.state.c_str())) + "</span>";
     }
     h += "</td><td>" + E(r.grade) + "</td><td>" + E(r.setter.empty() ? r.owner_name : r.setter) +
@@ -437,16 +438,17 @@ std::string EditorPage(const PageViewer& v, const std::optional<app::RouteView>&
        " <input id=\"f-colour\" name=\"colour\" maxlength=\"60\" autocomplete=\"off\">" +
        msg("colour") + "</label>\n";
   if (in_gym) {
-    const std::string cur = route ? route->state : "draft";
+    const std::string cur = route ? route->state : gym::NameOf(gym::RouteState::kDraft);
     b += "<label>" + Tr(v, t::kState) + " <select id=\"f-state\" name=\"state\">";
-    for (const char* s : {"draft", "planned", "set", "stripped"}) {
+    for (gym::RouteState state : gym::kRouteStates) {
+      const std::string s = gym::NameOf(state);
       // A new route starts as a draft, planned or set (app::CheckTransition);
       // an edit offers its own state and those the cycle allows from it.
       bool offer = s == cur;
-      std::optional<app::RouteState> from = app::RouteStateOf(cur), to = app::RouteStateOf(s);
-      if (!offer && from && to) offer = app::CheckTransition(*from, *to).ok();
+      std::optional<app::RouteState> from = app::RouteStateOf(cur);
+      if (!offer && from) offer = gym::MayChange(*from, state);
       if (!offer) continue;
-      b += "<option value=\"" + std::string(s) + "\"" + (s == cur ? " selected" : "") + ">" +
+      b += "<option value=\"" + s + "\"" + (s == cur ? " selected" : "") + ">" +
            E(Tr(v, StateLabel(s).c_str())) + "</option>";
     }
     b += "</select>" + msg("state") + "</label>\n";
@@ -466,7 +468,7 @@ std::string EditorPage(const PageViewer& v, const std::optional<app::RouteView>&
     if (!member) others += (others.empty() ? "" : ", ") + c;
   }
   for (const app::Member& m : form.members) {
-    if (m.role == "climber") continue;
+    if (gym::Is(m.role, gym::Role::kClimber)) continue;
     bool on = false;
     for (const std::string& c : chosen) on = on || ToLower(c) == ToLower(m.username);
     b += "<label class=\"inline\"><input type=\"checkbox\" class=\"f-setter\" value=\"" +
