@@ -286,6 +286,7 @@ TEST_F(PredictionChainTest, EverySlotsBestCandidateIsPredictedWithinOneBandOfThe
   for (const Wall& w : *walls) {
     if (w.discipline != "bouldering" || proposals >= max_walls) continue;
     ++proposals;
+    ids.clear();  // one candidate in one slot of a proposal (walls may share inputs)
     SettingDayRequest r;
     r.gym = gym;
     r.date = "2023-11-20";
