@@ -11,6 +11,9 @@
 
 #include "app/variations.h"
 #include "base/number.h"
+#include "chaos/constraints.h"
+#include "chaos/search.h"
+#include "chaos/tokens.h"
 #include "grades/scale.h"
 #include "language/styles.h"
 #include "language/symbols.h"
@@ -55,6 +58,138 @@ constexpr int kNewSkip = 100;
 
 std::string Plural(int n, const char* one, const char* many) {
   return std::to_string(n) + " " + (n == 1 ? one : many);
+}
+
+
+// The IC picker's reach around a level's centre, in grid steps (3 units at
+// the default spacing of 0.1: the reference IC is inside the close level's
+// scan, the mix level's covers 0 to 5 units from it): 2,821 ICs per level.
+constexpr int kPickRadius = 30;
+// At most this many variations made per level's scan (nearest the centre
+// first): about 0.1 s.
+constexpr int kMaxPickVaried = 4000;
+
+// The IC picker (issue 33; the paper's section 7: "finds candidate ICs,
+// given a desired amount of change or effect"). A scan of the grid around a
+// level's centre with the setter's constraints (chaos::IcEvaluator, the IC
+// search's own evaluation), and for each IC meeting them the variation it
+// gives (chaos::Vary at that IC, exactly what the IC search returns when it
+// starts there) with its share of new moves, warnings and filter.
+struct ScanPoint {
+  chaos::State ic{};
+  int skip = 0;
+  long order = 0;        // nearest first within its level's scan, levels in order
+  int new_moves = 0, moves = 0;
+  bool kept = false;     // the gallery's filter (RejectedByFilter, kMinNewMoves, same as input)
+  int warnings = 0;
+};
+struct PickerScan {
+  long scanned = 0;      // ICs evaluated
+  long meeting = 0;      // of them, meeting the setter's constraints (or all but alternate-hands, swapped)
+  bool swapped = false;  // no IC alternated hands by itself: hands swapped as the search does
+  std::vector<ScanPoint> points;  // distinct move sequences, nearest first
+};
+
+// Scans `centre`'s grid (the request's spacing and plane, kPickRadius steps)
+// and appends its distinct variations (not already in `seen`) to `*out`.
+// Stops once `enough` in-band (`level`) kept points without warnings were
+// found. Errors: the request's (CheckRequestForInputs, InputFacts, the
+// evaluator's).
+Status ScanLevel(const std::vector<chaos::InputRoute>& inputs_in, const chaos::VaryParams& centre,
+                 const SettingRequest& setting, Novelty level, int enough,
+                 std::set<std::vector<std::pair<Hand, std::string>>>* seen, PickerScan* out) {
+  std::vector<chaos::InputRoute> inputs = inputs_in;
+  SB_RETURN_IF_ERROR(chaos::CheckInputKinds(inputs));
+  if (setting.drop_inner_finishes) DropInnerFinishes(&inputs);
+  if (setting.drop_inner_starts) DropInnerStarts(&inputs);
+  SB_RETURN_IF_ERROR(CheckRequestForInputs(setting, inputs));
+  std::vector<bool> is_match;
+  SB_ASSIGN_OR_RETURN(chaos::MoveFacts facts,
+                      InputFacts(inputs, setting.match_grammar, &is_match, nullptr));
+  SB_ASSIGN_OR_RETURN(chaos::IcEvaluator ev, chaos::IcEvaluator::Make(inputs, centre, facts,
+                                                                        setting.constraints,
+                                                                        is_match));
+  const uint32_t requested = ev.requested();
+  const uint32_t alt = chaos::ConstraintBit(chaos::Constraint::kAlternateHands);
+  chaos::SearchGrid grid = setting.grid;
+  // The search's own reach when larger (the CLI's 100 steps): an IC the
+  // search would find is one the picker sees.
+  grid.radius = std::max(kPickRadius, setting.grid.radius);
+  const std::vector<std::array<int, 3>> offsets = chaos::SearchOffsets(grid);
+  std::vector<chaos::State> ics(offsets.size());
+  for (size_t i = 0; i < offsets.size(); ++i) {
+    ics[i] = centre.var_ic;
+    for (int a = 0; a < 3; ++a) {
+      if (offsets[i][a] != 0) ics[i][a] = centre.var_ic[a] + offsets[i][a] * grid.spacing;
+    }
+  }
+  std::vector<uint32_t> fails(ics.size());
+  ev.Evaluate(ics.data(), ics.size(), fails.data());
+  const long base = out->scanned;
+  out->scanned += static_cast<long>(ics.size());
+  std::vector<size_t> meets, fallback;
+  for (size_t i = 0; i < ics.size(); ++i) {
+    if (fails[i] == 0) meets.push_back(i);
+    else if ((requested & alt) && (fails[i] & ~alt) == 0) fallback.push_back(i);
+  }
+  // As the IC search: ICs meeting every constraint, else (none) the ones
+  // failing alternate-hands only, their hands swapped.
+  const bool swap = meets.empty() && !fallback.empty();
+  const std::vector<size_t>& use = swap ? fallback : meets;
+  out->meeting += static_cast<long>(use.size());
+  out->swapped |= swap;
+  int found = 0;
+  int varied = 0;
+  for (size_t i : use) {
+    if (found >= enough || ++varied > kMaxPickVaried) break;
+    chaos::VaryParams p = centre;
+    p.var_ic = ics[i];
+    auto v = chaos::Vary(inputs, p, is_match);
+    if (!v.ok()) continue;
+    int same_hand_at = -1;
+    if (swap) {
+      chaos::AlternateHands(&v->moves, setting.constraints.keep_start,
+                            setting.constraints.keep_finish, &same_hand_at);
+      // A kept end whose hand was swapped is not held: rejected, as the
+      // search reports it.
+      if (same_hand_at < 0 && !v->moves.empty() &&
+          ((setting.constraints.keep_start && !v->moves.front().notes.empty() &&
+            std::find(v->moves.front().notes.begin(), v->moves.front().notes.end(),
+                      "(hand swapped)") != v->moves.front().notes.end()) ||
+           (setting.constraints.keep_finish &&
+            std::find(v->moves.back().notes.begin(), v->moves.back().notes.end(),
+                      "(hand swapped)") != v->moves.back().notes.end()))) {
+        continue;
+      }
+    }
+    std::vector<std::pair<Hand, std::string>> key;
+    for (const chaos::VariedMove& m : v->moves) key.push_back({m.hand, m.text});
+    if (!seen->insert(key).second) continue;
+    const plan::PlanWarnings w = plan::Warn(*v, facts);
+    const MoveChange change = plan::NewMoveCount(v->moves, v->inputs);
+    ScanPoint pt;
+    pt.ic = ics[i];
+    pt.skip = centre.skip;
+    pt.order = base + static_cast<long>(i);
+    pt.new_moves = change.new_moves;
+    pt.moves = change.moves;
+    pt.warnings = static_cast<int>(w.warnings.size());
+    pt.kept = change.same_as.empty() && change.new_moves >= kMinNewMoves &&
+              !RejectedByFilter(w, nullptr, swap && same_hand_at > 0);
+    if (pt.kept && pt.warnings == 0 && NoveltyOf(pt.new_moves, pt.moves) == level) ++found;
+    out->points.push_back(std::move(pt));
+  }
+  return Status::Ok();
+}
+
+// How far a share of new moves is from a level's band, in moves (0 inside).
+int MovesOutside(int new_moves, int moves, Novelty level) {
+  // close: 3·new < moves; mix: moves <= 3·new <= 2·moves; new: 3·new > 2·moves.
+  int lo = 0, hi = moves;
+  if (level == Novelty::kClose) hi = (moves - 1) / 3;
+  if (level == Novelty::kMix) { lo = (moves + 2) / 3; hi = (2 * moves) / 3; }
+  if (level == Novelty::kNew) lo = (2 * moves) / 3 + 1;
+  return new_moves < lo ? lo - new_moves : new_moves > hi ? new_moves - hi : 0;
 }
 
 }  // namespace
@@ -145,10 +280,6 @@ struct CandidateScorer::Impl {
   language::MoveLanguage symbols;  // the model's own reading of moves
   markov::TokenModel model;
   int symbol_set = 0;  // 0..3 (k1..k4)
-  // The inputs' moves-model means (MovesModelDelta), for the inputs of
-  // `means_key` (their names and move counts).
-  std::string means_key;
-  std::vector<std::optional<double>> input_means;
   Impl(CandidateSlot s, language::MoveLanguage st, language::MoveLanguage sy, markov::TokenModel m,
        int set)
       : slot(std::move(s)),
@@ -257,7 +388,7 @@ CandidateScore CandidateScorer::Score(const plan::RoutePlan& p) {
   }
 
   // The predicted grade (issue 33): the inputs' grades weighted by the moves
-  // taken from each, plus the moves model's part for the new moves.
+  // taken from each.
   if (p.grades) s.estimated_band = p.grades->estimate;
   if (p.grades && !p.grades->discipline.empty()) {
     auto d = grades::ParseDiscipline(p.grades->discipline);
@@ -270,18 +401,7 @@ CandidateScore CandidateScorer::Score(const plan::RoutePlan& p) {
           basis.push_back(SetterGradeBasis(in, *d));
         }
       }
-      std::string key;
-      for (const chaos::InputRoute& in : p.variation.inputs) {
-        key += in.name + "\n" + std::to_string(in.route.moves.size()) + "\n";
-      }
-      if (key != impl_->means_key) {
-        impl_->means_key = key;
-        impl_->input_means.clear();
-      }
-      const double delta =
-          MovesModelDelta(p.variation, p.profile ? p.profile->difficulty : std::vector<double>{},
-                          *d, impl_->styles, &impl_->input_means);
-      s.predicted = PredictGrade(p.variation, basis, *d, *sc, delta);
+      s.predicted = PredictGrade(p.variation, basis, *d, *sc);
     }
   }
   // The grade against the band: the predicted one, else the estimate.
@@ -407,27 +527,77 @@ Result<std::vector<Candidate>> MakeGallery(const std::vector<chaos::InputRoute>&
   std::set<std::pair<chaos::State, int>> used;
   Status first_error;
   SmoothingRequest no_smoothing;
-  int index = 0;
   // The level asked first, then the others, nearest first (mix before the
-  // far end), only while no kept candidate is in the level asked.
+  // far end).
   std::vector<Novelty> order = {options.novelty};
   if (options.novelty == Novelty::kMix) order.insert(order.end(), {Novelty::kClose, Novelty::kNew});
   if (options.novelty == Novelty::kClose) order.insert(order.end(), {Novelty::kMix, Novelty::kNew});
   if (options.novelty == Novelty::kNew) order.insert(order.end(), {Novelty::kMix, Novelty::kClose});
-  auto met = [&] {
-    return std::any_of(out.begin(), out.end(), [&](const Candidate& c) {
-      return !c.score.rejected && c.score.novelty == options.novelty;
-    });
-  };
   if (options.max_levels < 1 || options.max_levels > 3) {
     return Status::InvalidInput("max_levels: between 1 and 3");
   }
   const size_t levels = std::min(order.size(), static_cast<size_t>(options.max_levels));
-  for (size_t level = 0; level < levels && (level == 0 || !met()); ++level) {
-    const chaos::VaryParams centre = NoveltyCentre(params, order[level]);
+  const int want = 1 + 8 * options.rings;
+  auto clean_in_level = [&](const ScanPoint& pt) {
+    return pt.kept && pt.warnings == 0 && NoveltyOf(pt.new_moves, pt.moves) == options.novelty;
+  };
+  // The IC picker (with the setter's constraints asked): the level's grid
+  // scanned for ICs whose variation lands in the level without a warning;
+  // while none does, the other levels' grids too (no plan is built for a
+  // scan: the gallery builds `want` plans whatever the levels scanned).
+  PickerScan scan;
+  size_t scanned_levels = 0;
+  bool picker = setting.Search();
+  if (picker) {
+    std::set<std::vector<std::pair<Hand, std::string>>> seen;
+    for (size_t level = 0; level < levels; ++level) {
+      if (level > 0 && std::any_of(scan.points.begin(), scan.points.end(), clean_in_level)) break;
+      Status st = ScanLevel(inputs, NoveltyCentre(params, order[level]), setting, options.novelty,
+                            want, &seen, &scan);
+      if (!st.ok()) {
+        picker = false;  // BuildPlan below says why
+        break;
+      }
+      ++scanned_levels;
+    }
+  }
+  struct Start {
+    chaos::State ic;
+    int skip;
+  };
+  std::vector<Start> starts;
+  if (picker) {
+    // In the level without a warning, then in it with warnings, then the
+    // nearest to its band, then the rest; nearest their level's centre first.
+    std::vector<const ScanPoint*> pts;
+    for (const ScanPoint& pt : scan.points) pts.push_back(&pt);
+    auto tier = [&](const ScanPoint& pt) {
+      const bool in = NoveltyOf(pt.new_moves, pt.moves) == options.novelty;
+      return !pt.kept ? 3 : in && pt.warnings == 0 ? 0 : in ? 1 : 2;
+    };
+    std::stable_sort(pts.begin(), pts.end(), [&](const ScanPoint* a, const ScanPoint* b) {
+      const int ta = tier(*a), tb = tier(*b);
+      if (ta != tb) return ta < tb;
+      if (ta == 2) {
+        const int oa = MovesOutside(a->new_moves, a->moves, options.novelty);
+        const int ob = MovesOutside(b->new_moves, b->moves, options.novelty);
+        if (oa != ob) return oa < ob;
+        if (a->warnings != b->warnings) return a->warnings < b->warnings;
+      }
+      return a->order < b->order;
+    });
+    for (const ScanPoint* pt : pts) {
+      if (static_cast<int>(starts.size()) >= want) break;
+      starts.push_back({pt->ic, pt->skip});
+    }
+  }
+  // The level's rings fill what the picker did not (and are the gallery
+  // without a search).
+  {
+    const chaos::VaryParams centre = NoveltyCentre(params, options.novelty);
     std::vector<chaos::State> ics = {centre.var_ic};
     const double step =
-        options.ring_step * (order[level] == Novelty::kClose ? kCloseStep : 1.0);
+        options.ring_step * (options.novelty == Novelty::kClose ? kCloseStep : 1.0);
     for (int r = 1; r <= options.rings; ++r) {
       for (const auto& d : kDirs) {
         chaos::State ic = centre.var_ic;
@@ -436,27 +606,41 @@ Result<std::vector<Candidate>> MakeGallery(const std::vector<chaos::InputRoute>&
         ics.push_back(ic);
       }
     }
-    for (size_t i = 0; i < ics.size(); ++i, ++index) {
-      chaos::VaryParams p = centre;
-      p.var_ic = ics[i];
-      SmoothingOutcome outcome;
-      Result<plan::RoutePlan> plan = BuildPlan(inputs, p, setting, no_smoothing, &outcome);
-      if (!plan.ok()) {
-        if (first_error.ok()) first_error = plan.status();
-        continue;
-      }
-      const chaos::State at = plan->search ? plan->search->used_ic : ics[i];
-      if (!used.insert({at, p.skip}).second) continue;
-      Candidate c;
-      c.score = scorer.Score(*plan);
-      c.score.in_novelty = c.score.novelty == options.novelty;
-      c.plan = std::move(plan).value();
-      c.searched_from = ics[i];
-      c.skip = p.skip;
-      c.index = index;
-      out.push_back(std::move(c));
+    for (size_t i = 0; i < ics.size() && static_cast<int>(starts.size()) < want; ++i) {
+      starts.push_back({ics[i], centre.skip});
     }
   }
+  int index = 0;
+  for (const Start& st : starts) {
+    chaos::VaryParams p = params;
+    p.var_ic = st.ic;
+    p.skip = st.skip;
+    SmoothingOutcome outcome;
+    Result<plan::RoutePlan> plan = BuildPlan(inputs, p, setting, no_smoothing, &outcome);
+    if (!plan.ok()) {
+      if (first_error.ok()) first_error = plan.status();
+      ++index;
+      continue;
+    }
+    const chaos::State at = plan->search ? plan->search->used_ic : st.ic;
+    if (!used.insert({at, p.skip}).second) {
+      ++index;
+      continue;
+    }
+    Candidate c;
+    c.score = scorer.Score(*plan);
+    c.score.in_novelty = c.score.novelty == options.novelty;
+    c.plan = std::move(plan).value();
+    c.searched_from = st.ic;
+    c.skip = p.skip;
+    c.index = index++;
+    out.push_back(std::move(c));
+  }
+  auto met = [&] {
+    return std::any_of(out.begin(), out.end(), [&](const Candidate& c) {
+      return !c.score.rejected && c.score.novelty == options.novelty;
+    });
+  };
   if (out.empty()) return first_error;
   RankCandidates(&out);
   const Candidate& best = out.front();
@@ -474,32 +658,64 @@ Result<std::vector<Candidate>> MakeGallery(const std::vector<chaos::InputRoute>&
     }
     const std::string level = std::string(NoveltyWords(options.novelty)) + " (novelty " +
                               NoveltyName(options.novelty) + ")";
+    // What the IC picker saw, checkable: how many ICs it scanned, how many
+    // met the constraints, and the share of new moves the kept variations
+    // reach.
+    std::string seen;
+    if (picker) {
+      int kept = 0, lo = -1, hi = -1, in_band = 0, clean = 0, moves = 0;
+      for (const ScanPoint& pt : scan.points) {
+        if (!pt.kept) continue;
+        ++kept;
+        moves = std::max(moves, pt.moves);
+        lo = lo < 0 ? pt.new_moves : std::min(lo, pt.new_moves);
+        hi = std::max(hi, pt.new_moves);
+        const bool in = NoveltyOf(pt.new_moves, pt.moves) == options.novelty;
+        in_band += in;
+        clean += in && pt.warnings == 0;
+      }
+      seen = "the IC picker scanned " + std::to_string(scan.scanned) + " ICs (" +
+             std::to_string(std::max(kPickRadius, setting.grid.radius)) +
+             " grid steps around the centre of " +
+             (scanned_levels == 1 ? std::string("the level asked")
+                                  : std::to_string(scanned_levels) + " novelty levels") +
+             "): " + std::to_string(scan.meeting) + " meet the setter's constraints" +
+             (scan.swapped ? " once hands are swapped (no IC alternates hands by itself)" : "") +
+             ", giving " + std::to_string(scan.points.size()) + " different variations, " +
+             std::to_string(kept) + " of them pass the filter" +
+             (kept ? " with " + std::to_string(lo) + " to " + std::to_string(hi) + " of " +
+                         std::to_string(moves) + " moves new"
+                   : std::string()) +
+             (in_band ? "; " + std::to_string(in_band) + " of those are " +
+                            NoveltyWords(options.novelty) + ", " +
+                            (clean ? std::to_string(clean) + " without a warning"
+                                   : std::string("each with a warning"))
+                      : "; none is " + std::string(NoveltyWords(options.novelty)));
+    }
     if (met()) {
       *note = "every candidate " + level + " carries a warning (" + best.score.warnings.front() +
-              "): check it at the wall, or try another novelty or other inputs";
+              "): check it at the wall, or try another novelty or other inputs" +
+              (seen.empty() ? "" : " (" + seen + ")");
     } else {
       *note = "no candidate " + level + " passes the filter: " +
-              (in_level == 0 ? "none of the " + std::to_string(out.size()) +
-                                   " candidates made lands there with these inputs"
-                             : std::to_string(in_level) + " land there but are rejected (" +
-                                   rejected_why + ")") +
+              (!seen.empty() ? seen
+               : in_level == 0
+                   ? "none of the " + std::to_string(out.size()) +
+                         " candidates made lands there with these inputs"
+                   : std::to_string(in_level) + " land there but are rejected (" + rejected_why +
+                         ")") +
               "; the best shown is " + NoveltyWords(best.score.novelty) + " (" +
               std::to_string(best.score.new_moves) + " of " + std::to_string(best.score.moves) +
               " moves new): try novelty " + NoveltyName(best.score.novelty) + " or other inputs";
-      if (levels < order.size()) {
-        *note += " (the other novelty levels' ICs were not tried: the request's work budget "
-                 "pays for " + std::to_string(levels) + " of 3 levels; ask fewer slots or "
-                 "candidates)";
-      }
     }
   }
   return out;
 }
 
 int GalleryPlanCount(const GalleryOptions& options) {
-  // Issue 33: a level not met by its own ICs tries the other levels'
-  // (MakeGallery, up to max_levels), so the worst case is charged in full.
-  return std::clamp(options.max_levels, 1, 3) * (1 + 8 * options.rings);
+  // Issue 33: the other levels are scanned by the IC picker, not built: a
+  // gallery builds one plan per IC it shows, whatever the levels scanned.
+  return 1 + 8 * options.rings;
 }
 
 Result<GalleryChoice> ChooseFromGallery(const std::vector<chaos::InputRoute>& inputs,

@@ -177,20 +177,24 @@ void RankCandidates(std::vector<Candidate>* candidates);
 
 // How a gallery is made.
 struct GalleryOptions {
-  // Candidate ICs: the level's centre (NoveltyCentre of params.var_ic), then
-  // the 8 points of each ring at `ring_step`, 2·`ring_step`, ... (half
-  // that at `close`; x-y plane, ring by ring, each ring from +x
-  // counter-clockwise), `rings` rings.
+  // How many candidates: 1 + 8·`rings` ICs (the ICs of the rings below, and
+  // with a search the IC picker's, MakeGallery).
   int rings = 1;
   double ring_step = 1.0;
-  std::string model = "default";  // for the smoothness part
-  // The level asked: its ICs are tried first; when none of their candidates
-  // is kept in the level, the other levels' ICs are tried too (nearest level
-  // first) and the note says so.
+  std::string model = "default";  // for the smoothing part
+  // The level asked. With the setter's constraints (a search), its ICs are
+  // picked as the paper's IC picker does (section 7: ICs chosen for the
+  // effect asked): the grid around the level's centre (NoveltyCentre) is
+  // scanned with the constraints, and the ICs whose variation lands in the
+  // level without a warning are taken, nearest the centre first; while none
+  // does, the other levels' grids are scanned too (nearest level first), and
+  // the ICs nearest the level's band are taken. What the picker did not fill
+  // (and the whole gallery without a search): the level's centre and the 8
+  // points of each ring at `ring_step`, 2·`ring_step`, ... (half that at
+  // `close`; x-y plane, ring by ring, each ring from +x counter-clockwise).
   Novelty novelty = Novelty::kMix;
-  // Levels whose ICs may be tried, the level asked first (1..3): what the
-  // caller's work budget pays for (GalleryPlanCount); fewer than 3 and the
-  // level not met, the note says the others were not tried.
+  // Levels whose grids the picker may scan, the level asked first (1..3).
+  // A scan builds no plan (about 10 ms), so it is not charged.
   int max_levels = 3;
 };
 // Where a level's ICs are centred, the way the paper's picker moves away
@@ -211,7 +215,10 @@ inline constexpr int kMaxGalleryRings = 4;
 // Errors: bad options (kInvalidInput), the scorer's, and when no candidate
 // could be made, the first candidate's error. Deterministic.
 // `*note` (optional) says, in words, when the level asked could not be met
-// and why ("" otherwise).
+// without a warning and why ("" otherwise): with the IC picker, how many ICs
+// it scanned, how many meet the constraints, and the share of new moves the
+// variations passing the filter reach (so a setter sees the inputs cannot
+// give the level, and a reader can check it with the same scan).
 Result<std::vector<Candidate>> MakeGallery(const std::vector<chaos::InputRoute>& inputs,
                                            const chaos::VaryParams& params,
                                            const SettingRequest& setting,
@@ -228,10 +235,9 @@ struct GalleryChoice {
   int kept = 0;                       // of them, kept by the filter
   std::string note;                   // MakeGallery's (the level not met, why)
 };
-// The plans a gallery with `options` builds at most (its ICs: 1 + 8 per ring,
-// for each of the max_levels novelty levels MakeGallery may try), what a
-// caller charges to a work budget before the work starts (issue 33: 27 plans
-// were charged as 9). Pure.
+// The plans a gallery with `options` builds at most (its ICs: 1 + 8 per
+// ring; the IC picker's scans of other levels build none), what a caller
+// charges to a work budget before the work starts. Pure.
 int GalleryPlanCount(const GalleryOptions& options);
 // Makes the gallery (MakeGallery with `slot` and `options`) from `*params`
 // and sets params->var_ic (and skip) to the IC the best candidate's search

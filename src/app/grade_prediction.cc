@@ -11,16 +11,6 @@
 
 namespace sb::app {
 
-namespace {
-
-std::string Fixed1(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.1f", x);
-  return buf;
-}
-
-}  // namespace
-
 InputGradeBasis SetterGradeBasis(const chaos::InputRoute& in, grades::Discipline d) {
   InputGradeBasis b;
   b.name = in.name;
@@ -52,7 +42,7 @@ InputGradeBasis AscentGradeBasis(const AscentGrade& a, const std::string& name,
 }
 
 PredictedGrade PredictGrade(const chaos::Variation& v, const std::vector<InputGradeBasis>& inputs,
-                            grades::Discipline d, grades::Scale scale, double moves_model_delta) {
+                            grades::Discipline d, grades::Scale scale) {
   PredictedGrade g;
   g.discipline = grades::DisciplineName(d);
   g.scale = grades::ScaleName(scale);
@@ -102,11 +92,12 @@ PredictedGrade PredictGrade(const chaos::Variation& v, const std::vector<InputGr
   }
   const double new_share =
       g.moves > 0 ? static_cast<double>(g.new_moves) / static_cast<double>(g.moves) : 0.0;
+  g.inputs_sd = std::sqrt(var);
+  var *= kInputsSdScale * kInputsSdScale;
   var += (new_share * kNewMovesSd) * (new_share * kNewMovesSd);
   g.known = true;
   g.from_inputs = mean;
-  g.moves_model = std::isfinite(moves_model_delta) ? moves_model_delta : 0.0;
-  g.value = mean + g.moves_model;
+  g.value = mean;
   g.sd = std::sqrt(var);
   g.lo = g.value - grades::kZ80 * g.sd;
   g.hi = g.value + grades::kZ80 * g.sd;
@@ -115,44 +106,8 @@ PredictedGrade PredictGrade(const chaos::Variation& v, const std::vector<InputGr
   g.lo_grade = grades::FormatValue(g.lo, d, scale);
   g.hi_grade = grades::FormatValue(g.hi, d, scale);
   g.basis += "; " + std::to_string(g.new_moves) + " of " + std::to_string(g.moves) +
-             " moves new, the moves model adds " + (g.moves_model >= 0 ? "+" : "") +
-             Fixed1(g.moves_model);
+             " moves new (they widen the interval)";
   return g;
-}
-
-double MovesModelDelta(const chaos::Variation& v, const std::vector<double>& move_difficulty,
-                       grades::Discipline d, language::MoveLanguage& lang,
-                       std::vector<std::optional<double>>* input_means) {
-  if (v.moves.empty()) return 0.0;
-  const plan::MoveChange change = plan::NewMoveCount(v.moves, v.inputs);
-  if (change.new_moves == 0) return 0.0;
-  if (input_means->size() != v.inputs.size()) {
-    input_means->assign(v.inputs.size(), std::nullopt);
-    for (size_t i = 0; i < v.inputs.size(); ++i) {
-      (*input_means)[i] = EstimatedGradeMean(v.inputs[i].route, {}, d, lang);
-    }
-  }
-  Route mine;
-  for (const chaos::VariedMove& m : v.moves) mine.moves.push_back(Move{m.hand, m.text, 0, m.crux});
-  std::optional<double> own = EstimatedGradeMean(mine, move_difficulty, d, lang);
-  if (!own) return 0.0;
-  std::vector<int> from(v.inputs.size(), 0);
-  int total = 0;
-  for (const chaos::VariedMove& m : v.moves) {
-    if (!m.source || m.source->route < 0 || m.source->route >= static_cast<int>(from.size()) ||
-        !(*input_means)[static_cast<size_t>(m.source->route)]) {
-      continue;
-    }
-    ++from[static_cast<size_t>(m.source->route)];
-    ++total;
-  }
-  if (total == 0) return 0.0;
-  double inputs_mean = 0;
-  for (size_t i = 0; i < from.size(); ++i) {
-    if (from[i]) inputs_mean += static_cast<double>(from[i]) / total * *(*input_means)[i];
-  }
-  const double share = static_cast<double>(change.new_moves) / static_cast<double>(change.moves);
-  return share * (*own - inputs_mean);
 }
 
 std::string PredictedGradeText(const PredictedGrade& g) {

@@ -10,7 +10,9 @@
 #include "chaos/variation.h"
 #include "crdl/route.h"
 #include "grades/scale.h"
+#include "base/number.h"
 #include "plan/plan.h"
+#include "store/prediction_store.h"
 
 namespace sb::app {
 
@@ -71,11 +73,7 @@ PredictedGrade PredictStored(store::Store* store, Logbook* logbook, int64_t gym,
     if (!b.known) b = SetterGradeBasis(in, *d);
     basis.push_back(std::move(b));
   }
-  std::vector<std::optional<double>> means;
-  const double delta = MovesModelDelta(
-      plan->variation, plan->profile ? plan->profile->difficulty : std::vector<double>{}, *d,
-      *lang, &means);
-  return PredictGrade(plan->variation, basis, *d, *sc, delta);
+  return PredictGrade(plan->variation, basis, *d, *sc);
 }
 
 std::string Fixed2(double x) {
@@ -85,6 +83,46 @@ std::string Fixed2(double x) {
 }
 
 }  // namespace
+
+std::string PredictionText(const PredictedGrade& g) {
+  if (!g.known) return "";
+  char buf[320];
+  std::snprintf(buf, sizeof buf, "1 %s %s %.17g %.17g %.17g %.17g %d %d", g.discipline.c_str(),
+                g.scale.c_str(), g.value, g.lo, g.hi, g.sd, g.new_moves, g.moves);
+  return buf;
+}
+
+Result<PredictedGrade> PredictionFromText(const std::string& text) {
+  std::vector<std::string> f;
+  for (size_t i = 0; i < text.size();) {
+    const size_t j = std::min(text.find(' ', i), text.size());
+    f.push_back(text.substr(i, j - i));
+    i = j + 1;
+  }
+  if (f.size() != 9 || f[0] != "1") {
+    return Status::InvalidInput("predicted_grade: expected \"1 DISCIPLINE SCALE VALUE LO HI SD "
+                                "NEW MOVES\", got \"" + text + "\"");
+  }
+  PredictedGrade g;
+  Result<grades::Discipline> d = grades::ParseDiscipline(f[1]);
+  if (!d.ok()) return Status::InvalidInput("predicted_grade: discipline: " + d.status().message());
+  Result<grades::Scale> sc = grades::ParseScale(f[2]);
+  if (!sc.ok()) return Status::InvalidInput("predicted_grade: scale: " + sc.status().message());
+  if (!ParseDouble(f[3], &g.value) || !ParseDouble(f[4], &g.lo) || !ParseDouble(f[5], &g.hi) ||
+      !ParseDouble(f[6], &g.sd) || !ParseInt(f[7], &g.new_moves) || !ParseInt(f[8], &g.moves)) {
+    return Status::InvalidInput("predicted_grade: a number cannot be read in \"" + text + "\"");
+  }
+  g.known = true;
+  g.discipline = grades::DisciplineName(*d);
+  g.scale = grades::ScaleName(*sc);
+  g.from_inputs = g.value;
+  g.band = grades::Band(g.value);
+  g.grade = grades::FormatValue(g.value, *d, *sc);
+  g.lo_grade = grades::FormatValue(g.lo, *d, *sc);
+  g.hi_grade = grades::FormatValue(g.hi, *d, *sc);
+  g.basis = "stored when the candidate was accepted";
+  return g;
+}
 
 std::vector<PredictionInput> PredictionInputsOf(const std::vector<ReportRoute>& routes) {
   std::vector<PredictionInput> out;
@@ -111,8 +149,22 @@ PredictionCheck CheckPredictedGrades(store::Store* store, Logbook* logbook, int6
     p.name = r.name;
     p.day = r.day;
     p.ascent = r.ascent;
-    if (lang.ok()) {
+    // The prediction made when it was accepted (issue 33), else made again.
+    if (store::PredictionStore* ps = store::PredictionStoreOf(store)) {
+      if (Result<std::string> t = ps->PredictedGrade(r.id); t.ok() && !t->empty()) {
+        if (Result<PredictedGrade> g = PredictionFromText(*t); g.ok()) {
+          p.predicted = std::move(g).value();
+          p.stored = true;
+        }
+      }
+    }
+    if (p.stored) {
+    } else if (lang.ok()) {
       p.predicted = PredictStored(store, logbook, gym, r.id, &*lang);
+      if (p.predicted.known) {
+        p.predicted.basis = "made again today (accepted before predictions were stored); " +
+                            p.predicted.basis;
+      }
     } else {
       p.predicted.note = "the grammar cannot be loaded";
     }

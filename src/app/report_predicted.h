@@ -1,9 +1,10 @@
 // The report's "variations vs hand-set" comparison, issue 33's part
 // (docs/studies.md "The wall and setting-day report", docs/setting.md "The
 // predicted grade"): for each setting day of the report, the grade predicted
-// for its variations (app/grade_prediction.h, made again from each
-// variation's stored parameters and inputs) against their ascent grade once
-// they have at least kMinTicksForPredictionCheck ticks.
+// for its variations (app/grade_prediction.h: the one stored when the
+// candidate was accepted, schema 21; for a variation accepted before, made
+// again from its stored parameters and inputs, and said so) against their
+// ascent grade once they have at least kMinTicksForPredictionCheck ticks.
 #ifndef SB_APP_REPORT_PREDICTED_H_
 #define SB_APP_REPORT_PREDICTED_H_
 
@@ -24,11 +25,21 @@ namespace sb::app {
 // as the ticks).
 inline constexpr int kMinTicksForPredictionCheck = 5;
 
+// The stored form of a prediction (routes.predicted_grade, schema 21):
+// "1 DISCIPLINE SCALE VALUE LO HI SD NEW MOVES", numbers as %.17g; "" for an
+// unknown prediction. Pure.
+std::string PredictionText(const PredictedGrade& g);
+// Reads PredictionText back (the grades in words made again from the
+// values; the basis "stored when accepted"). kInvalidInput naming the part
+// that cannot be read. Pure.
+Result<PredictedGrade> PredictionFromText(const std::string& text);
+
 // One variation of the report: its prediction and its ascent grade.
 struct PredictedAgainstAscent {
   int64_t id = 0;
   std::string name, day;  // day: planned_on, else set_on
   PredictedGrade predicted;
+  bool stored = false;           // the prediction stored at accept time (else made again)
   AscentGrade ascent;
   double error = 0;              // ascent value - predicted value (grades)
   bool within_one_band = false;  // their bands at most one apart
@@ -66,7 +77,8 @@ struct ReportRoute;  // app/report.h
 std::vector<PredictionInput> PredictionInputsOf(const std::vector<ReportRoute>& routes);
 
 // The check for `routes` of gym `gym` (the variations among them): each
-// rebuilt from its stored parameters and inputs (store->GetRoute), its
+// with the prediction stored when it was accepted (store::PredictionStore),
+// else rebuilt from its stored parameters and inputs (store->GetRoute), its
 // inputs graded by their ascent grade in the gym where it has ticks
 // (`logbook`, may be null), else their setter's grade. A variation that
 // cannot be rebuilt is listed without a prediction. Errors: none (never

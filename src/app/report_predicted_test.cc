@@ -72,8 +72,12 @@ TEST_F(ReportPredictedTest, ASettingDaysVariationIsSetAgainstItsAscentGradeAfter
   const PredictedAgainstAscent& pr = before->predictions.days[0].routes.at(0);
   EXPECT_EQ(pr.id, *id);
   ASSERT_TRUE(pr.predicted.known) << pr.predicted.note;
-  // Made again from its parameters and inputs: the prediction the gallery showed.
+  // Stored when it was accepted (schema 21): the prediction the gallery showed.
+  EXPECT_TRUE(pr.stored);
+  EXPECT_EQ(pr.predicted.basis, "stored when the candidate was accepted");
   EXPECT_DOUBLE_EQ(pr.predicted.value, c.score.predicted.value);
+  EXPECT_DOUBLE_EQ(pr.predicted.lo, c.score.predicted.lo);
+  EXPECT_DOUBLE_EQ(pr.predicted.hi, c.score.predicted.hi);
 
   // Set on its day, five climbers send it: its ascent grade is set against
   // the prediction.
@@ -105,6 +109,35 @@ TEST_F(ReportPredictedTest, ASettingDaysVariationIsSetAgainstItsAscentGradeAfter
   EXPECT_NE(after->predictions.verdict.find("1 of 1 variations with at least 5 ticks"),
             std::string::npos)
       << after->predictions.verdict;
+}
+
+// The stored form reads back to the same prediction; a damaged one names the
+// field.
+TEST(PredictionTextTest, RoundTripsAndNamesTheField) {
+  PredictedGrade g;
+  g.known = true;
+  g.discipline = "bouldering";
+  g.scale = "v";
+  g.value = 3.123456789;
+  g.lo = 2.1;
+  g.hi = 4.2;
+  g.sd = 0.8;
+  g.new_moves = 7;
+  g.moves = 20;
+  const std::string text = PredictionText(g);
+  Result<PredictedGrade> back = PredictionFromText(text);
+  ASSERT_TRUE(back.ok()) << back.status().message();
+  EXPECT_TRUE(back->known);
+  EXPECT_EQ(back->value, g.value);
+  EXPECT_EQ(back->lo, g.lo);
+  EXPECT_EQ(back->hi, g.hi);
+  EXPECT_EQ(back->new_moves, 7);
+  EXPECT_EQ(back->moves, 20);
+  EXPECT_EQ(back->grade, "V3");
+  EXPECT_EQ(PredictionText(PredictedGrade{}), "");
+  Result<PredictedGrade> bad = PredictionFromText("1 bouldering v x 1 2 3 4 5");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.status().message().rfind("predicted_grade:", 0), 0u) << bad.status().message();
 }
 
 }  // namespace

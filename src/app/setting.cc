@@ -117,10 +117,20 @@ int DropInnerFinishes(std::vector<chaos::InputRoute>* inputs) {
   int dropped = 0;
   for (size_t i = 0; i + 1 < inputs->size(); ++i) {
     std::vector<Move>& moves = (*inputs)[i].route.moves;
-    while (moves.size() > 1 && plan::IsFinishMoveText(moves.back().text)) {
-      moves.pop_back();
-      ++dropped;
+    // The trailing finish moves, and a match on the finish hold after them
+    // ("dyno to finishing jug", "match": the warning's rule, plan::Warn,
+    // counts that finish as mid-route when only the match was dropped).
+    size_t keep = moves.size();
+    for (size_t k = moves.size(); k > 1; --k) {
+      const std::string& t = moves[k - 1].text;
+      if (plan::IsFinishMoveText(t)) {
+        keep = k - 1;
+      } else if (!plan::IsMatchOnlyText(t)) {
+        break;
+      }
     }
+    dropped += static_cast<int>(moves.size() - keep);
+    moves.resize(keep);
   }
   return dropped;
 }

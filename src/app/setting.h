@@ -84,8 +84,9 @@ Result<chaos::MoveFacts> InputFacts(const std::vector<chaos::InputRoute>& inputs
                                     language::MoveLanguage* lang = nullptr);
 
 // Removes from every input but the last the finish moves that end it
-// (plan::IsFinishMoveText: "jug finish", "top out", "match finish"...),
-// keeping at least one move of each input; token sequences are left alone.
+// (plan::IsFinishMoveText: "jug finish", "top out", "match finish"...) and
+// a match on the finish hold after them (plan::IsMatchOnlyText: "dyno to
+// finishing jug" then "match"), keeping at least one move of each input; token sequences are left alone.
 // Returns the number of moves removed. VaryWithSetting calls it when the
 // request asks drop_inner_finishes. Pure.
 int DropInnerFinishes(std::vector<chaos::InputRoute>* inputs);

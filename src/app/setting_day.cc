@@ -22,6 +22,8 @@
 #include "language/styles.h"
 #include "language/symbols.h"
 #include "plan/plan.h"
+#include "app/report_predicted.h"
+#include "store/prediction_store.h"
 #include "store/target_store.h"
 #include "store/tick_store.h"
 
@@ -356,16 +358,13 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
     }
   }
   // The budget, before the work (issue 33: charged for every plan built).
-  // A slot's gallery builds 9 plans for its level (charged day_candidate per
-  // candidate, as measured: docs/BENCHMARKS.md), and 9 more for each other
-  // novelty level it may try when its own is not met: as many levels (up to
-  // 3, the same for every slot, so the proposal stays deterministic) as the
-  // request's cap on signed-in work (options.renders.user_max_cost) pays for.
-  const double per_level = options_.render_costs.day_candidate *
-                           static_cast<double>(slots.size()) * req.candidates;
-  int levels = 1;
-  while (levels < 3 && per_level * (levels + 1) <= options_.renders.user_max_cost) ++levels;
-  const double cost = per_level * levels;
+  // A slot's gallery builds 9 plans (charged day_candidate per candidate, as
+  // measured: docs/BENCHMARKS.md); the other novelty levels it may need are
+  // scanned by the IC picker (app::MakeGallery), which builds no plan, so
+  // every slot may try all three levels whatever the proposal's size.
+  const int levels = 3;
+  const double cost = options_.render_costs.day_candidate *
+                      static_cast<double>(slots.size()) * req.candidates;
   int retry = 0;
   Result<WorkBudget::Slot> admitted = budget_->Admit(v, cost, &retry);
   if (retry_after_seconds) *retry_after_seconds = retry;
@@ -686,12 +685,7 @@ Result<PredictedGrade> SettingDays::Predict(int64_t gym, const std::vector<int64
     if (!b.known) b = SetterGradeBasis(in, d);
     basis.push_back(std::move(b));
   }
-  SB_ASSIGN_OR_RETURN(language::MoveLanguage lang, language::MoveLanguage::LoadDefault());
-  std::vector<std::optional<double>> means;
-  const double delta = MovesModelDelta(
-      plan.variation, plan.profile ? plan.profile->difficulty : std::vector<double>{}, d, lang,
-      &means);
-  return PredictGrade(plan.variation, basis, d, sc, delta);
+  return PredictGrade(plan.variation, basis, d, sc);
 }
 
 Result<int64_t> SettingDays::Accept(const Viewer& v, const AcceptRequest& req) {
@@ -763,12 +757,19 @@ Result<int64_t> SettingDays::Accept(const Viewer& v, const AcceptRequest& req) {
   // inputs' grades (issue 33: the one the gallery scored it by; the estimate
   // from its moves when no input has a grade).
   if (plan.grades) vr.meta.grade = plan.grades->estimate;
-  if (Result<PredictedGrade> pg = Predict(req.gym, req.inputs, plan); pg.ok() && pg->known) {
+  const Result<PredictedGrade> pg = Predict(req.gym, req.inputs, plan);
+  if (pg.ok() && pg->known) {
     Result<grades::Discipline> d = grades::ParseDiscipline(pg->discipline);
     Result<grades::Scale> sc = grades::ParseScale(pg->scale);
     if (d.ok() && sc.ok()) vr.meta.grade = grades::FormatBand(*d, pg->band, *sc);
   }
   SB_ASSIGN_OR_RETURN(CreatedVariation created, variations_->Create(v, vr));
+  // The prediction as made today, kept for the report (issue 33, schema 21).
+  if (pg.ok() && pg->known) {
+    if (store::PredictionStore* ps = store::PredictionStoreOf(store_)) {
+      SB_RETURN_IF_ERROR(ps->SetPredictedGrade(created.id, PredictionText(*pg)));
+    }
+  }
   RouteEdit edit;
   edit.gym.wall = std::to_string(wall->id);
   edit.gym.state = gym::NameOf(gym::RouteState::kPlanned);

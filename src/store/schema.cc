@@ -681,6 +681,17 @@ ALTER TABLE routes ADD COLUMN import_key TEXT NOT NULL DEFAULT '';
 CREATE INDEX routes_import_key ON routes(gym_id, import_key);
 )sql"},
        }},
+      // Schema 21 (issue 33, the setting day): the grade predicted for a
+      // variation when its candidate was accepted (app::PredictionText:
+      // discipline, scale, value, the 80% interval; "" = none), so the
+      // report sets the prediction made that day, not one made again with
+      // today's ascent grades, against the ascent grade. store/prediction_store.h.
+      {"a variation's predicted grade at accept time (issue 33)",
+       {
+           {Only::kBoth, R"sql(
+ALTER TABLE routes ADD COLUMN predicted_grade TEXT NOT NULL DEFAULT '';
+)sql"},
+       }},
   };
   return kMigrations;
 }

@@ -17,6 +17,7 @@
 #include "store/bulk_store.h"
 #include "store/gym_store.h"
 #include "store/import_store.h"
+#include "store/prediction_store.h"
 #include "store/open.h"
 #include "store/profile_store.h"
 #include "store/scale_store.h"
@@ -183,7 +184,8 @@ VariationInput ReadInput(const Rows& s, size_t i, size_t first) {
 
 class SqlStore final : public Store, public GymStore, public TickStore, public TargetStore,
                        public BulkStore, public ProfileStore, public ScaleStore,
-                       public ImportStore {
+                       public ImportStore,
+                       public PredictionStore {
  public:
   explicit SqlStore(std::unique_ptr<sql::Pool> pool)
       : pool_(std::move(pool)), pg_(pool_->dialect() == sql::Dialect::kPostgres) {}
@@ -344,6 +346,25 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
       out.push_back({r.Int(i, 0), r.Int(i, 1), r.Text(i, 2), r.Text(i, 3)});
     }
     return out;
+  }
+
+  // -- predicted grades (issue 33) ------------------------------------------
+
+  Status SetPredictedGrade(int64_t route_id, const std::string& text) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(
+        Rows r, c->Query("UPDATE routes SET predicted_grade = ? WHERE id = ? RETURNING id",
+                         {text, route_id}));
+    if (r.empty()) return Status::NotFound("no route " + std::to_string(route_id));
+    return Status::Ok();
+  }
+
+  Result<std::string> PredictedGrade(int64_t route_id) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(Rows r, c->Query("SELECT predicted_grade FROM routes WHERE id = ?",
+                                         {route_id}));
+    if (r.empty()) return Status::NotFound("no route " + std::to_string(route_id));
+    return r.Text(0, 0);
   }
 
   // -- import keys (issue 32) -----------------------------------------------
@@ -1730,6 +1751,9 @@ BulkStore* BulkStoreOf(Store* store) { return dynamic_cast<BulkStore*>(store); }
 ProfileStore* ProfileStoreOf(Store* store) { return dynamic_cast<ProfileStore*>(store); }
 ScaleStore* ScaleStoreOf(Store* store) { return dynamic_cast<ScaleStore*>(store); }
 ImportStore* ImportStoreOf(Store* store) { return dynamic_cast<ImportStore*>(store); }
+PredictionStore* PredictionStoreOf(Store* store) {
+  return dynamic_cast<PredictionStore*>(store);
+}
 
 bool IsDatabaseUrl(std::string_view db) {
   size_t colon = db.find(':');

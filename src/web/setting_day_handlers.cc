@@ -98,7 +98,6 @@ json PredictedGradeJson(const app::PredictedGrade& g) {
               {"level", 0.8},
               {"discipline", g.discipline},
               {"from_inputs", g.from_inputs},
-              {"moves_model", g.moves_model},
               {"basis", g.basis}};
 }
 
