@@ -75,7 +75,9 @@ const std::vector<std::string>& AddedColumns(const std::string& table) {
       "gym_id",      "wall_id", "state", "planned_on", "strip_on", "original_id",
       "search_text", "search_version", "revision",
       // Schema 20 (issue 32): the import key.
-      "import_key"};
+      "import_key",
+      // Schema 21 (issue 31): the route's circuit.
+      "circuit_id"};
   static const std::vector<std::string> kStudies = {"gym_id"};
   // Schema 14 (issue 31): the revisions.
   static const std::vector<std::string> kRevision = {"revision"};

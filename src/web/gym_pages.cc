@@ -340,14 +340,14 @@ std::string WallPage(const PageViewer& v, const app::Gym& gym, const app::Wall& 
 }
 
 std::string RouteGymBlock(const app::RouteView& r, const std::vector<app::HistoryEntry>& history,
-                          bool can_set) {
+                          bool can_set, const std::string& circuit_row) {
   std::string b = "<section class=\"gym-block\" id=\"route-gym\"><h2>On the wall</h2>\n<dl>";
   b += "<dt>State</dt><dd id=\"route-state\">" + E(StateName(r.state)) + "</dd>";
   b += "<dt>Wall</dt><dd id=\"route-wall\">" +
        (r.wall_id ? "<a href=\"/walls/" + std::to_string(*r.wall_id) + "\">" + E(r.wall_name) +
                         "</a>"
                   : E(r.wall.empty() ? "—" : r.wall)) +
-       "</dd>";
+       "</dd>" + circuit_row;
   std::string setters;
   for (const app::RouteSetter& s : r.setters) setters += (setters.empty() ? "" : ", ") + s.name;
   b += "<dt>Setters</dt><dd id=\"route-setters\">" + E(setters.empty() ? "—" : setters) + "</dd>";
