@@ -193,10 +193,15 @@
         }
         $('#f-setters-other').value = others.join(', ');
       }
+      // The circuit follows the colour (issue 31: the one chosen stays while its colour does).
       const circ = $('#f-circuit');
       if (circ) {
-        const c = Array.from(circ.options).find((o) => o.value && o.value.toLowerCase() === val('#f-colour').toLowerCase());
-        circ.value = c ? c.value : '';
+        const colour = val('#f-colour').toLowerCase();
+        const cur = circ.selectedOptions[0];
+        if (!(cur && cur.value && cur.dataset.colour.toLowerCase() === colour)) {
+          const c = Array.from(circ.options).find((o) => o.value && o.dataset.colour.toLowerCase() === colour);
+          circ.value = c ? c.value : '';
+        }
       }
       scaleHint();
     }
@@ -310,7 +315,10 @@
     $('#route-form').addEventListener('change', later);
     if ($('#f-wall')) $('#f-wall').addEventListener('change', scaleHint);
     if ($('#f-circuit')) {
-      $('#f-circuit').addEventListener('change', () => { if ($('#f-circuit').value) $('#f-colour').value = $('#f-circuit').value; });
+      $('#f-circuit').addEventListener('change', () => {
+        const o = $('#f-circuit').selectedOptions[0];
+        if (o && o.value) $('#f-colour').value = o.dataset.colour;
+      });
     }
     $('#view-form').addEventListener('click', () => showView('form'));
     $('#view-text').addEventListener('click', () => showView('text'));
@@ -355,6 +363,7 @@
         // A route's state changes only when asked (the cycle's rule, app::CheckTransition).
         if (!routeId || val('#f-state') !== editor.dataset.state) body.state = val('#f-state');
         body.set_on = val('#f-date');
+        if ($('#f-circuit')) body.circuit = val('#f-circuit');  // issue 31: its id, "" = none
       } else if (!routeId) {
         body.gym = null;  // a personal route, in no gym's lists
       }

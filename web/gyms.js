@@ -55,6 +55,14 @@
   // again applies theirs over it.
   function showConflict(form, msg, data) {
     const cur = data.current || {};
+    if (typeof cur.summary === 'string') {
+      // Several records at once (a setting day's routes): say what they are now; the page
+      // must be read again before acting on them.
+      msg.textContent = 'Not done: someone changed these routes first. They are now: ' +
+        (cur.summary || 'none') + '. Reload the page to see them, then try again.';
+      msg.classList.add('bad', 'conflict');
+      return;
+    }
     const parts = [];
     for (const el of form.elements) {
       if (!el.name || el.type === 'hidden' || el.name.indexOf('.') > 0) continue;

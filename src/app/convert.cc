@@ -106,6 +106,8 @@ RouteView ToView(const store::RouteRecord& r) {
   v.original_id = r.original_id;
   v.setters = ToViews(r.setters);
   v.revision = r.revision;
+  v.circuit_id = r.circuit_id;
+  v.circuit_colour = r.circuit_colour;
   return v;
 }
 
@@ -144,6 +146,8 @@ store::RouteRecord ToRecord(const RouteView& v) {
   r.original_id = v.original_id;
   r.setters = ToRecords(v.setters);
   r.revision = v.revision;
+  r.circuit_id = v.circuit_id;
+  r.circuit_colour = v.circuit_colour;
   return r;
 }
 

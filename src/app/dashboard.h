@@ -154,6 +154,11 @@ struct DisciplineTargets {
   std::string discipline;  // "bouldering" or "roped"
   std::map<std::string, int> grades;
   std::map<std::string, double> styles;
+  // Issue 31: the revision of the gym's discipline targets read
+  // (GymDisciplineTargets) or written over (SetDisciplineTargets: > 0 is
+  // checked, kConflict when stale; 0 writes as before). One for both
+  // disciplines.
+  int64_t revision = 0;
   // The discipline is one of kTargetDisciplines ("discipline: ..."), then
   // WallTargets::Validate (the wall targets' one validation: counts, bands
   // of the discipline, style names, shares), errors naming the field
@@ -175,6 +180,7 @@ struct DisciplineDashboard {
   std::vector<StyleRow> styles;  // styles with a share or a target, by name
   std::vector<Gap> gaps;         // GradeGaps, then StyleGaps of the targeted styles
   std::vector<std::string> gap_words;  // "bouldering: 3 × V4 missing", ...
+  int64_t targets_revision = 0;  // issue 31: DisciplineTargets::revision
 };
 
 // A gym's dashboard.

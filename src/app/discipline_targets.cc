@@ -45,6 +45,7 @@ std::vector<DisciplineDashboard> DisciplineDashboards(
     }
     DisciplineDashboard d;
     d.discipline = name;
+    if (target) d.targets_revision = target->revision;
     std::map<std::string, BandRow> bands;
     std::map<std::string, double> style_moves;  // moves having the style
     for (const WallDashboard& w : walls) {
@@ -118,9 +119,11 @@ Result<std::vector<DisciplineTargets>> Dashboard::GymDisciplineTargets(const Vie
   if (!targets_) return out;
   SB_ASSIGN_OR_RETURN(std::vector<store::DisciplineTargetRecord> rows,
                       targets_->DisciplineTargets(gym));
+  SB_ASSIGN_OR_RETURN(int64_t revision, targets_->DisciplineTargetsRevision(gym));
   for (const char* name : kTargetDisciplines) {
     DisciplineTargets t;
     t.discipline = name;
+    t.revision = revision;
     for (const store::DisciplineTargetRecord& r : rows) {
       if (r.discipline != name) continue;
       if (r.kind == "grade") t.grades[r.name] = static_cast<int>(std::lround(r.value));
@@ -153,7 +156,7 @@ Status Dashboard::SetDisciplineTargets(const Viewer& v, int64_t gym, const Disci
   for (const auto& [style, share] : t.styles) {
     rows.push_back({gym, t.discipline, "style", style, share});
   }
-  return targets_->SetDisciplineTargets(gym, t.discipline, rows);
+  return targets_->SetDisciplineTargets(gym, t.discipline, rows, t.revision);
 }
 
 }  // namespace sb::app

@@ -415,8 +415,31 @@ Status Gyms::EditCircuit(const Viewer& v, const Circuit& c) {
 Status Gyms::DeleteCircuit(const Viewer& v, int64_t gym, int64_t circuit) {
   SB_RETURN_IF_ERROR(RequireHead(v, gym));
   SB_ASSIGN_OR_RETURN(Circuit stored, FindCircuit(gym, circuit));
-  SB_RETURN_IF_ERROR(gyms_->DeleteCircuit(circuit));
-  return Record(v, gym, CircuitText(stored) + " removed");
+  int64_t cleared = 0;
+  SB_RETURN_IF_ERROR(gyms_->DeleteCircuit(
+      circuit, v.user_id, CircuitText(stored) + " removed: no circuit now (colour kept)",
+      &cleared));
+  return Record(v, gym,
+                CircuitText(stored) + " removed" +
+                    (cleared == 0 ? std::string()
+                                  : "; " + std::to_string(cleared) +
+                                        (cleared == 1 ? " route keeps its colour"
+                                                      : " routes keep their colour") +
+                                        ", in no circuit now"));
+}
+
+Result<Circuit> Gyms::ResolveCircuit(int64_t gym, const std::string& id_or_colour) {
+  const std::string key(Trim(id_or_colour));
+  if (!gyms_) return Status::InvalidInput("circuit: no circuit '" + key + "' in this gym");
+  SB_ASSIGN_OR_RETURN(std::vector<store::CircuitRecord> all, gyms_->ListCircuits(gym));
+  int64_t id = 0;
+  const bool by_id = ParseInt(key, &id) && id > 0;
+  for (const store::CircuitRecord& r : all) {
+    if (by_id ? r.id == id : ToLower(r.colour) == ToLower(key)) {
+      return Circuit{r.id, r.gym_id, r.colour, r.grade_from, r.grade_to, r.revision};
+    }
+  }
+  return Status::InvalidInput("circuit: no circuit '" + key + "' in this gym");
 }
 
 Result<std::vector<Circuit>> Gyms::Circuits(const Viewer& v, int64_t gym) {

@@ -203,7 +203,13 @@ class Gyms {
   // Head setters only (issue 31): replaces circuit c.id of c.gym_id
   // (kNotFound for another gym's; kConflict as EditWall) or removes it.
   Status EditCircuit(const Viewer& v, const Circuit& c);
+  // Removing a circuit clears it from the routes set in it (they keep their
+  // colour; each one's history and the gym's say so).
   Status DeleteCircuit(const Viewer& v, int64_t gym, int64_t circuit);
+  // A circuit of `gym` by id ("12") or colour (ignoring case), with no role
+  // check (the caller has checked the role). "circuit: ..." when
+  // the gym has none such (kInvalidInput, issue 31).
+  Result<Circuit> ResolveCircuit(int64_t gym, const std::string& id_or_colour);
   // Members only.
   Result<std::vector<Circuit>> Circuits(const Viewer& v, int64_t gym);
 

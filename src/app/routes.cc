@@ -520,7 +520,28 @@ void SyncHeader(store::RouteRecord* rec) {
   put({"date", "set"}, "set", rec->set_on);
   put({"strip"}, "strip", rec->strip_on);
   put({"state"}, nullptr, rec->state);
+  put({"colour", "color"}, "colour", rec->colour);  // issue 31: a circuit's colour
   if (changed) rec->crdl = PrintCrdl(*r);
+}
+
+// Issue 31: a gym route whose colour changed without a circuit being chosen
+// takes the gym's circuit of that colour, or none (the circuit is a tape
+// colour: a route of another colour is not in it).
+void CircuitOfColour(Gyms& gyms, store::RouteRecord* rec, std::vector<std::string>* changes) {
+  if (!rec->gym_id) return;
+  std::optional<int64_t> id;
+  std::string colour;
+  if (!Trim(rec->colour).empty()) {
+    if (Result<Circuit> c = gyms.ResolveCircuit(*rec->gym_id, rec->colour);
+        c.ok() && std::to_string(c->id) != std::string(Trim(rec->colour))) {
+      id = c->id;
+      colour = c->colour;
+    }
+  }
+  if (id == rec->circuit_id) return;
+  if (changes) changes->push_back("circuit: " + (colour.empty() ? std::string("none") : colour));
+  rec->circuit_id = id;
+  rec->circuit_colour = colour;
 }
 
 std::string Joined(const std::vector<store::RouteSetter>& setters) {
@@ -534,7 +555,9 @@ std::string Joined(const std::vector<store::RouteSetter>& setters) {
 Status Routes::ApplyGymFields(const Viewer& v, const GymFields& g, store::RouteRecord* rec,
                               std::vector<std::string>* changes,
                               std::optional<std::vector<store::RouteSetter>>* setters) {
-  if (!g.wall && !g.state && !g.setters && !g.set_on && !g.strip_on) return Status::Ok();
+  if (!g.wall && !g.state && !g.setters && !g.set_on && !g.strip_on && !g.circuit) {
+    return Status::Ok();
+  }
   if (!rec->gym_id) return Status::InvalidInput("gym: this route belongs to no gym");
   SB_ASSIGN_OR_RETURN(std::string role, gyms_.RoleIn(v, *rec->gym_id));
   if (!CanSet(role)) {
@@ -553,6 +576,26 @@ Status Routes::ApplyGymFields(const Viewer& v, const GymFields& g, store::RouteR
       changes->push_back("wall: " + (name.empty() ? std::string("none") : name));
       rec->wall_id = wall_id;
       rec->wall_name = name;
+    }
+  }
+  if (g.circuit) {
+    // Issue 31: the route keeps the circuit it is set in; its colour is the
+    // circuit's (the text's "colour:" line follows, SyncHeader).
+    std::optional<int64_t> circuit_id;
+    std::string colour;
+    if (!Trim(*g.circuit).empty()) {
+      SB_ASSIGN_OR_RETURN(Circuit c, gyms_.ResolveCircuit(*rec->gym_id, *g.circuit));
+      circuit_id = c.id;
+      colour = c.colour;
+    }
+    if (circuit_id != rec->circuit_id) {
+      changes->push_back("circuit: " + (colour.empty() ? std::string("none") : colour));
+      rec->circuit_id = circuit_id;
+      rec->circuit_colour = colour;
+    }
+    if (circuit_id && ToLower(rec->colour) != ToLower(colour)) {
+      changes->push_back("colour: " + colour);
+      rec->colour = colour;
     }
   }
   if (g.set_on) {
@@ -631,6 +674,7 @@ Result<int64_t> Routes::Create(const Viewer& v, std::string_view crdl,
   std::vector<std::string> changes;
   std::optional<std::vector<store::RouteSetter>> setters;
   SB_RETURN_IF_ERROR(ApplyGymFields(v, g, &rec, &changes, &setters));
+  if (!g.circuit) CircuitOfColour(gyms_, &rec, &changes);
   if (!g.wall && rec.gym_id && !rec.wall.empty()) {
     // The CRDL's free-text wall names a wall of the gym: the route is on it.
     if (Result<Wall> w = gyms_.ResolveWall(*rec.gym_id, rec.wall); w.ok()) rec.wall_id = w->id;
@@ -664,6 +708,7 @@ Status Routes::Update(const Viewer& v, int64_t id, const RouteEdit& edit) {
                             std::to_string(r.revision) + ")");
   }
   const bool was_public = r.is_public;
+  const std::string colour_before = ToLower(r.colour);  // issue 31: the circuit follows it
   std::vector<std::string> changes;
   if (edit.crdl) {
     // A variation whose moves the setter edits is no longer what its request
@@ -713,6 +758,7 @@ Status Routes::Update(const Viewer& v, int64_t id, const RouteEdit& edit) {
     }
   }
   SB_RETURN_IF_ERROR(ApplyGymFields(v, g, &r, &changes, &setters));
+  if (!g.circuit && ToLower(r.colour) != colour_before) CircuitOfColour(gyms_, &r, &changes);
   if (edit.discipline) SB_RETURN_IF_ERROR(SetDiscipline(v, *edit.discipline, &r, &changes));
   if (r.gym_id) SyncHeader(&r);
   SB_RETURN_IF_ERROR(ApplyWallDiscipline(&r));

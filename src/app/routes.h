@@ -80,7 +80,10 @@ struct GymFields {
   std::optional<std::vector<std::string>> setters;  // user names (or names)
   std::optional<std::string> set_on;    // ISO date; the planned date while planned
   std::optional<std::string> strip_on;  // ISO date
-  bool any() const { return gym || wall || state || setters || set_on || strip_on; }
+  // Issue 31: a circuit id or colour of the gym; "" = none. Choosing one
+  // keeps its id on the route and makes its colour the route's.
+  std::optional<std::string> circuit;
+  bool any() const { return gym || wall || state || setters || set_on || strip_on || circuit; }
 };
 
 // What an edit changes (unset fields stay).

@@ -813,6 +813,7 @@ Result<std::vector<DayRoute>> SettingDays::Planned(const Viewer& v, int64_t gym,
     d.planned_on = r.planned_on;
     d.wall_name = r.wall_name;
     d.move_count = r.move_count;
+    d.revision = r.revision;
     if (Result<store::RouteRecord> full = routes_->GetRow(v, r.id); full.ok()) {
       for (const store::RouteSetter& s : full->setters) d.setters.push_back(s.name);
     }
@@ -822,6 +823,45 @@ Result<std::vector<DayRoute>> SettingDays::Planned(const Viewer& v, int64_t gym,
     return std::tie(a.wall_name, a.name, a.id) < std::tie(b.wall_name, b.name, b.id);
   });
   return out;
+}
+
+Result<std::vector<int64_t>> SettingDays::ChangeDayState(const Viewer& v, int64_t gym,
+                                                       const DayStateChange& change) {
+  SB_RETURN_IF_ERROR(RequireSetter(v, gym));
+  if (change.date.empty()) return Status::InvalidInput("date: expected the day (YYYY-MM-DD)");
+  SB_RETURN_IF_ERROR(CheckDayDate(change.date));
+  std::optional<RouteState> from = RouteStateOf(ToLower(Trim(change.from)));
+  if (!from) return Status::InvalidInput("from: expected draft, planned, set or stripped");
+  std::optional<RouteState> to = RouteStateOf(ToLower(Trim(change.to)));
+  if (!to) return Status::InvalidInput("to: expected draft, planned, set or stripped");
+  SB_RETURN_IF_ERROR(CheckTransition(*from, *to));
+  if (change.on && !change.on->empty() && !IsIsoDate(*change.on)) {
+    return Status::InvalidInput("on: expected a date YYYY-MM-DD");
+  }
+  SB_ASSIGN_OR_RETURN(std::vector<DayRoute> day, Planned(v, gym, change.date));
+  std::map<int64_t, int64_t> now;
+  std::string names;
+  for (const DayRoute& r : day) {
+    if (r.state != NameOf(*from) || now.count(r.id)) continue;
+    now[r.id] = r.revision;
+    names += (names.empty() ? "" : ", ") + r.name;
+  }
+  if (change.seen && *change.seen != now) {
+    return Status::Conflict("revision: the day's routes changed meanwhile (" +
+                            std::string(NameOf(*from)) + " now: " + (names.empty() ? "none" : names) + ")");
+  }
+  std::vector<int64_t> changed;
+  for (const DayRoute& r : day) {
+    if (r.state != NameOf(*from) ||
+        std::find(changed.begin(), changed.end(), r.id) != changed.end()) {
+      continue;
+    }
+    StateChange one{NameOf(*to), change.on, r.revision};
+    if (one.on && one.on->empty()) one.on.reset();
+    SB_RETURN_IF_ERROR(routes_->ChangeState(v, r.id, one));
+    changed.push_back(r.id);
+  }
+  return changed;
 }
 
 }  // namespace sb::app

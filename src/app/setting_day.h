@@ -151,6 +151,19 @@ struct DayRoute {
   std::string name, grade, colour, state, planned_on, wall_name;
   std::vector<std::string> setters;
   int move_count = 0;
+  int64_t revision = 0;  // issue 31: the route's revision (the sheet's buttons carry it)
+};
+
+// Issue 31: every route of a setting day in one state changes to another
+// ("Set all planned routes of this day" on the sheet). `seen`: the day's
+// routes in `from` as the caller's page showed them (route id -> revision);
+// when given, the change is refused unless they are exactly the day's routes
+// in `from` now, at those revisions.
+struct DayStateChange {
+  std::string date;  // ISO date of the day (required)
+  std::string from = "planned", to = "set";
+  std::optional<std::string> on;  // the day it happens (default: each route's date)
+  std::optional<std::map<int64_t, int64_t>> seen;
 };
 
 // The slots a setting day proposes when none are given: one per wall, band =
@@ -211,6 +224,15 @@ class SettingDays {
   // when `date` is "", by wall and name, for the sheet. Members only
   // (kNotFound otherwise).
   Result<std::vector<DayRoute>> Planned(const Viewer& v, int64_t gym, const std::string& date);
+
+  // Issue 31: DayStateChange for the gym's day, route by route through
+  // Routes::ChangeState (app::CheckTransition, each route's history, its
+  // revision checked). Setters and head setters (kPermission; kNotFound for
+  // a non-member); kInvalidInput naming "date", "from", "to" or "on";
+  // kConflict "revision: ..." when `seen` is not what the day holds now (the
+  // message says what it holds). Returns the ids changed, by wall and name.
+  Result<std::vector<int64_t>> ChangeDayState(const Viewer& v, int64_t gym,
+                                              const DayStateChange& change);
 
  private:
   Status RequireSetter(const Viewer& v, int64_t gym);

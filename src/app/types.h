@@ -96,6 +96,8 @@ struct RouteView {
   std::optional<int64_t> original_id;  // the original site's id of an import
   std::vector<RouteSetter> setters;    // in order
   int64_t revision = 0;                // one more on every change (issue 31)
+  std::optional<int64_t> circuit_id;   // the gym circuit it is set in (issue 31)
+  std::string circuit_colour;          // that circuit's colour ("" without one)
 };
 
 // An account. `password_hash` is only filled inside the app's services

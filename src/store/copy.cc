@@ -77,7 +77,9 @@ const std::vector<std::string>& AddedColumns(const std::string& table) {
       // Schema 20 (issue 32): the import key.
       "import_key",
       // Schema 21 (issue 33): the grade predicted at accept time.
-      "predicted_grade"};
+      "predicted_grade",
+      // Schema 22 (issue 31): the route's circuit.
+      "circuit_id"};
   static const std::vector<std::string> kStudies = {"gym_id"};
   // Schema 14 (issue 31): the revisions.
   static const std::vector<std::string> kRevision = {"revision"};

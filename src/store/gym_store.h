@@ -153,7 +153,13 @@ class GymStore {
   // for a taken colour or (revision > 0) a revision not the stored one.
   virtual Status UpdateCircuit(const CircuitRecord& circuit) = 0;
   // Removes a circuit; kNotFound when absent. Routes keep their colour.
-  virtual Status DeleteCircuit(int64_t id) = 0;
+  // Issue 31: in the same transaction the routes set in it lose their
+  // circuit_id (their revision moves by one), each gets `route_note` in its
+  // history by `user_id` (none when empty), and `*cleared` (if given) is how
+  // many they were.
+  virtual Status DeleteCircuit(int64_t id, std::optional<int64_t> user_id = std::nullopt,
+                               const std::string& route_note = "",
+                               int64_t* cleared = nullptr) = 0;
 
   // The gym's history (issue 31): appends one row (at = now); lists them,
   // oldest first.

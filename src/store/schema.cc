@@ -692,6 +692,18 @@ CREATE INDEX routes_import_key ON routes(gym_id, import_key);
 ALTER TABLE routes ADD COLUMN predicted_grade TEXT NOT NULL DEFAULT '';
 )sql"},
        }},
+      // Schema 22 (issue 31, "a route keeps its circuit"): the gym circuit a
+      // route was set in (NULL: none, as every existing route). Removing the
+      // circuit clears it (the app does so first and says it in the routes'
+      // history; ON DELETE SET NULL is the backstop) and the route keeps its
+      // colour.
+      {"a route's circuit (issue 31)",
+       {
+           {Only::kBoth, R"sql(
+ALTER TABLE routes ADD COLUMN circuit_id {int64} REFERENCES circuits(id) ON DELETE SET NULL;
+CREATE INDEX routes_circuit ON routes(circuit_id);
+)sql"},
+       }},
   };
   return kMigrations;
 }

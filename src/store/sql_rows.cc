@@ -35,7 +35,8 @@ void AppendRouteRow(const RouteRecord& r, const std::string& now, std::string se
                                     sql::Nullable(r.gym_id), sql::Nullable(r.wall_id),
                                     r.state.empty() ? std::string(gym::NameOf(gym::RouteState::kDraft)) : r.state,
                                     r.planned_on, r.strip_on, sql::Nullable(r.original_id),
-                                    std::move(search_text), int64_t{search_version}};
+                                    std::move(search_text), int64_t{search_version},
+                                    sql::Nullable(r.circuit_id)};
   for (sql::Value& v : vals) out->push_back(std::move(v));
 }
 

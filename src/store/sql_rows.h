@@ -24,7 +24,7 @@ std::string NowText();
 std::string Placeholders(int columns, size_t rows);
 
 // The number of columns of kRouteInsert, and of each RouteRow.
-inline constexpr int kRouteColumns = 28;
+inline constexpr int kRouteColumns = 29;
 // "INSERT INTO routes(...) VALUES " (the column list RouteRow fills); the
 // caller appends Placeholders(kRouteColumns, n) and any RETURNING clause.
 inline constexpr std::string_view kRouteInsert =
@@ -32,7 +32,7 @@ inline constexpr std::string_view kRouteInsert =
     "is_variation, params_json, plan_json, smooth, created_at, updated_at, colour, "
     "wall, set_on, grade_discipline, grade_value, meta_version, request_key, "
     "gym_id, wall_id, state, planned_on, strip_on, original_id, search_text, "
-    "search_version) VALUES ";
+    "search_version, circuit_id) VALUES ";
 
 // Appends the kRouteColumns parameters of route `r` to `out`, in
 // kRouteInsert's order: created_at and updated_at are `now` where

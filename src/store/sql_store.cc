@@ -54,9 +54,9 @@ std::string SelectRoutes(bool full) {
          ", r.smooth, r.created_at, r.updated_at, r.move_count, r.colour, r.wall, r.set_on, "
          "r.grade_discipline, r.grade_value, r.meta_version, r.request_key, "
          "r.gym_id, r.wall_id, coalesce(w.name, ''), r.state, r.planned_on, r.strip_on, "
-         "r.original_id, r.revision "
+         "r.original_id, r.revision, r.circuit_id, coalesce(ci.colour, '') "
          "FROM routes r LEFT JOIN users u ON u.id = r.owner_id "
-         "LEFT JOIN walls w ON w.id = r.wall_id";
+         "LEFT JOIN walls w ON w.id = r.wall_id LEFT JOIN circuits ci ON ci.id = r.circuit_id";
 }
 
 // The version of the search text the store writes (routes.search_version):
@@ -101,6 +101,8 @@ RouteRecord ReadRoute(const Rows& s, size_t i) {
   r.strip_on = s.Text(i, 27);
   r.original_id = s.OptInt(i, 28);
   r.revision = s.Int(i, 29);
+  r.circuit_id = s.OptInt(i, 30);
+  r.circuit_colour = s.Text(i, 31);
   return r;
 }
 
@@ -539,7 +541,8 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
         route.grade_discipline, sql::Nullable(route.grade_value), int64_t{route.meta_version},
         route.request_key, sql::Nullable(route.gym_id), sql::Nullable(route.wall_id),
         route.state, route.planned_on, route.strip_on, sql::Nullable(route.original_id),
-        SearchText(route.name, route.crdl), int64_t{kSearchVersion}, route.id};
+        SearchText(route.name, route.crdl), int64_t{kSearchVersion},
+        sql::Nullable(route.circuit_id), route.id};
     // Issue 31: the revision is checked and bumped in the one statement.
     if (route.revision > 0) params.push_back(route.revision);
     SB_ASSIGN_OR_RETURN(
@@ -549,7 +552,8 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
                              "wall = ?, set_on = ?, grade_discipline = ?, grade_value = ?, "
                              "meta_version = ?, request_key = ?, gym_id = ?, wall_id = ?, "
                              "state = ?, planned_on = ?, strip_on = ?, original_id = ?, "
-                             "search_text = ?, search_version = ?, revision = revision + 1 "
+                             "search_text = ?, search_version = ?, circuit_id = ?, "
+                             "revision = revision + 1 "
                              "WHERE id = ?") +
                      (route.revision > 0 ? " AND revision = ?" : "") + " RETURNING id",
                  params));
@@ -1021,9 +1025,14 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
     return targets_sql::GymTargets(*c, gym_id);
   }
   Status SetDisciplineTargets(int64_t gym_id, const std::string& discipline,
-                              const std::vector<DisciplineTargetRecord>& targets) override {
+                              const std::vector<DisciplineTargetRecord>& targets,
+                              int64_t revision) override {
     SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
-    return targets_sql::SetDisciplineTargets(*c, gym_id, discipline, targets);
+    return targets_sql::SetDisciplineTargets(*c, gym_id, discipline, targets, revision);
+  }
+  Result<int64_t> DisciplineTargetsRevision(int64_t gym_id) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return targets_sql::DisciplineTargetsRevision(*c, gym_id);
   }
   Result<std::vector<DisciplineTargetRecord>> DisciplineTargets(int64_t gym_id) override {
     SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
@@ -1263,12 +1272,26 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
     return Status::Ok();
   }
 
-  Status DeleteCircuit(int64_t id) override {
+  Status DeleteCircuit(int64_t id, std::optional<int64_t> user_id, const std::string& route_note,
+                       int64_t* cleared) override {
     SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
-    SB_ASSIGN_OR_RETURN(Rows r,
-                        c->Query("DELETE FROM circuits WHERE id = ? RETURNING id", {id}));
-    if (r.empty()) return Status::NotFound("no circuit " + std::to_string(id));
-    return Status::Ok();
+    return sql::RunInTransaction(*c, [&]() -> Status {
+      // Issue 31: its routes keep their colour and lose the circuit, saying so.
+      SB_ASSIGN_OR_RETURN(Rows routes,
+                          c->Query("UPDATE routes SET circuit_id = NULL, revision = revision + 1 "
+                                   "WHERE circuit_id = ? RETURNING id",
+                                   {id}));
+      if (!route_note.empty()) {
+        for (size_t i = 0; i < routes.size(); ++i) {
+          SB_RETURN_IF_ERROR(InsertHistory(*c, routes.Int(i, 0), user_id, route_note));
+        }
+      }
+      if (cleared) *cleared = static_cast<int64_t>(routes.size());
+      SB_ASSIGN_OR_RETURN(Rows r,
+                          c->Query("DELETE FROM circuits WHERE id = ? RETURNING id", {id}));
+      if (r.empty()) return Status::NotFound("no circuit " + std::to_string(id));
+      return Status::Ok();
+    });
   }
 
   Status AddGymHistory(int64_t gym_id, std::optional<int64_t> user_id,

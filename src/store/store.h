@@ -132,6 +132,11 @@ struct RouteRecord {
   // stored revision is that one (kConflict otherwise): two writers who read
   // the same revision cannot both win.
   int64_t revision = 0;
+  // Schema 22 (issue 31): the gym circuit the route was set in (nullopt:
+  // none; cleared when the circuit is removed, the colour stays), and that
+  // circuit's colour (read only; "" without circuit_id).
+  std::optional<int64_t> circuit_id;
+  std::string circuit_colour;
 };
 
 // The orders a route list can have.

@@ -102,15 +102,33 @@ Result<std::vector<TargetRecord>> GymTargets(sql::Connection& c, int64_t gym_id)
 }
 
 Status SetDisciplineTargets(sql::Connection& c, int64_t gym_id, const std::string& discipline,
-                            const std::vector<DisciplineTargetRecord>& targets) {
+                            const std::vector<DisciplineTargetRecord>& targets, int64_t revision) {
   if (discipline != "bouldering" && discipline != "roped") {
     return Status::InvalidInput("discipline: expected \"bouldering\" or \"roped\", got \"" +
                                 discipline + "\"");
   }
   SB_RETURN_IF_ERROR(CheckKindsAndNames(targets));
   return sql::RunInTransaction(c, [&]() -> Status {
-    SB_ASSIGN_OR_RETURN(Rows g, c.Query("SELECT id FROM gyms WHERE id = ?", {gym_id}));
-    if (g.empty()) return Status::NotFound("no gym " + std::to_string(gym_id));
+    // Issue 31: the targets' revision, checked and bumped in one UPDATE; the
+    // gym's data version moves too (gyms has no version trigger), so a kept
+    // dashboard never offers a form at the old revision.
+    SB_ASSIGN_OR_RETURN(
+        Rows g, c.Query(std::string("UPDATE gyms SET targets_revision = targets_revision + 1 "
+                                    "WHERE id = ?") +
+                            (revision > 0 ? " AND targets_revision = ?" : "") + " RETURNING id",
+                        revision > 0 ? std::vector<sql::Value>{gym_id, revision}
+                                     : std::vector<sql::Value>{gym_id}));
+    if (g.empty()) {
+      SB_ASSIGN_OR_RETURN(Rows e, c.Query("SELECT targets_revision FROM gyms WHERE id = ?",
+                                          {gym_id}));
+      if (e.empty()) return Status::NotFound("no gym " + std::to_string(gym_id));
+      return Status::Conflict("revision: the gym's targets were changed meanwhile (now "
+                              "revision " + std::to_string(e.Int(0, 0)) + ")");
+    }
+    SB_ASSIGN_OR_RETURN(Rows bumped, c.Query("UPDATE gym_versions SET data_version = "
+                                             "data_version + 1 WHERE gym_id = ? RETURNING gym_id",
+                                             {gym_id}));
+    (void)bumped;
     SB_ASSIGN_OR_RETURN(Rows gone, c.Query("DELETE FROM discipline_targets WHERE gym_id = ? AND "
                                            "discipline = ? RETURNING id",
                                            {gym_id, discipline}));
@@ -128,6 +146,12 @@ Status SetDisciplineTargets(sql::Connection& c, int64_t gym_id, const std::strin
     }
     return Status::Ok();
   });
+}
+
+Result<int64_t> DisciplineTargetsRevision(sql::Connection& c, int64_t gym_id) {
+  SB_ASSIGN_OR_RETURN(Rows r, c.Query("SELECT targets_revision FROM gyms WHERE id = ?", {gym_id}));
+  if (r.empty()) return Status::NotFound("no gym " + std::to_string(gym_id));
+  return r.Int(0, 0);
 }
 
 Result<std::vector<DisciplineTargetRecord>> DisciplineTargets(sql::Connection& c, int64_t gym_id) {

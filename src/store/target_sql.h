@@ -17,7 +17,8 @@ Status SetWallTargets(sql::Connection& c, int64_t wall_id,
 Result<std::vector<TargetRecord>> WallTargets(sql::Connection& c, int64_t wall_id);
 Result<std::vector<TargetRecord>> GymTargets(sql::Connection& c, int64_t gym_id);
 Status SetDisciplineTargets(sql::Connection& c, int64_t gym_id, const std::string& discipline,
-                            const std::vector<DisciplineTargetRecord>& targets);
+                            const std::vector<DisciplineTargetRecord>& targets, int64_t revision);
+Result<int64_t> DisciplineTargetsRevision(sql::Connection& c, int64_t gym_id);
 Result<std::vector<DisciplineTargetRecord>> DisciplineTargets(sql::Connection& c, int64_t gym_id);
 Result<std::vector<RouteTickSum>> GymTickSums(sql::Connection& c, int64_t gym_id);
 Result<std::vector<RouteTickSum>> RouteTickSums(sql::Connection& c,

@@ -75,10 +75,18 @@ class TargetStore {
   // gym_id and discipline are ignored) in one transaction. kNotFound for an
   // unknown gym; kInvalidInput for a discipline other than
   // "bouldering"/"roped", a kind other than "grade"/"style" or a name twice.
+  // Issue 31: moves the gym's targets revision (gyms.targets_revision, one
+  // for both disciplines) by one in the same transaction, and its data
+  // version (the dashboard's cache key); with `revision` > 0, kConflict
+  // ("revision: ...") unless that is the stored one.
   virtual Status SetDisciplineTargets(int64_t gym_id, const std::string& discipline,
-                                      const std::vector<DisciplineTargetRecord>& targets) = 0;
+                                      const std::vector<DisciplineTargetRecord>& targets,
+                                      int64_t revision = 0) = 0;
   // The gym's targets per discipline, by discipline, kind, name (byte order).
   virtual Result<std::vector<DisciplineTargetRecord>> DisciplineTargets(int64_t gym_id) = 0;
+  // The revision of the gym's discipline targets (issue 31); kNotFound for
+  // an unknown gym.
+  virtual Result<int64_t> DisciplineTargetsRevision(int64_t gym_id) = 0;
   // The tick sums of every ticked route of `gym_id`, by route id (one
   // aggregate query: a gym has up to ~250,000 ticks).
   virtual Result<std::vector<RouteTickSum>> GymTickSums(int64_t gym_id) = 0;

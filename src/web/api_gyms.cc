@@ -155,6 +155,18 @@ Result<app::GymFields> GymFieldsOf(const json& body) {
       return Status::InvalidInput("wall: expected a wall id or name");
     }
   }
+  if (body.contains("circuit")) {  // issue 31: the gym circuit, by id or colour
+    const json& c = body["circuit"];
+    if (c.is_null()) {
+      g.circuit = "";
+    } else if (c.is_number_integer()) {
+      g.circuit = std::to_string(c.get<int64_t>());
+    } else if (c.is_string()) {
+      g.circuit = c.get<std::string>();
+    } else {
+      return Status::InvalidInput("circuit: expected a circuit id or colour");
+    }
+  }
   for (auto [field, out] : {std::pair<const char*, std::optional<std::string>*>{"state", &g.state},
                             {"set_on", &g.set_on},
                             {"strip_on", &g.strip_on}}) {

@@ -173,6 +173,9 @@ json RouteSummaryJson(const app::RouteView& r) {
               {"set_on", r.set_on},
               {"strip_on", r.strip_on},
               {"revision", r.revision},  // issue 31
+              // Issue 31: the gym circuit it is set in (null: none).
+              {"circuit", r.circuit_id ? json(*r.circuit_id) : json()},
+              {"circuit_colour", r.circuit_colour},
               // The route's discipline by the one rule (app/discipline.h) and
               // "grade in another discipline's scale" or "".
               {"discipline", r.grade_discipline},

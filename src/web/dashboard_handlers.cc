@@ -346,7 +346,8 @@ std::string DisciplineSection(const app::GymDashboard& d, const app::DisciplineD
     b += "<details class=\"no-print\"><summary>" + E(Fmt(Tr(lang, "Set targets: {1}"), Tr(lang, name.c_str()))) + "</summary><form "
          "class=\"gym-form targets-form\" id=\"targets-" + E(name) + "\" data-api=\"PUT " +
          E(url) + "\"><input type=\"hidden\" name=\"discipline\" value=\"" + E(name) +
-         "\"><label>" + Tr(lang, "Routes per band") + " <input name=\"grades\" data-map value=\"" +
+         "\"><input type=\"hidden\" name=\"revision\" data-int value=\"" +
+         std::to_string(t.targets_revision) + "\"><label>" + Tr(lang, "Routes per band") + " <input name=\"grades\" data-map value=\"" +
          E(MapText(t, true)) + "\" placeholder=\"" +
          (name == "roped" ? "5.9: 4, 5.10: 6" : "V2: 6, V3: 8, V4: 6") +
          "\"></label> <label>" + Tr(lang, "Share of moves per style") + " <input name=\"styles\" data-map value=\"" +
@@ -371,7 +372,8 @@ json DisciplineJson(const app::DisciplineDashboard& t) {
   return json{{"discipline", t.discipline}, {"scale", t.scale},      {"walls", t.walls},
               {"on_wall", t.on_wall},       {"ungraded", t.ungraded}, {"grades", grades},
               {"targets", targets},         {"moves", t.moves},       {"styles", styles},
-              {"style_targets", style_targets}, {"gaps", gaps},       {"gap_words", t.gap_words}};
+              {"style_targets", style_targets}, {"gaps", gaps},       {"gap_words", t.gap_words},
+              {"targets_revision", t.targets_revision}};  // issue 31
 }
 
 Result<int64_t> WallIdOf(const Request& req) {
@@ -629,18 +631,27 @@ void PutDisciplineTargets(Exchange& x) {
   if (!styles.ok()) return ApiError(x, styles.status());
   t.grades = std::move(grades).value();
   t.styles = std::move(styles).value();
+  // Issue 31: the revision the form was read at (none: no check, as before).
+  Result<std::optional<int64_t>> revision = RevisionField(*body);
+  if (!revision.ok()) return ApiError(x, revision.status());
+  t.revision = revision->value_or(0);
+  auto stored_json = [&]() -> json {
+    Result<std::vector<app::DisciplineTargets>> stored =
+        x.services.dashboard.GymDisciplineTargets(x.caller.viewer, *gym);
+    if (!stored.ok()) return json();
+    for (const app::DisciplineTargets& s : *stored) {
+      if (s.discipline != t.discipline) continue;
+      return json{{"gym", *gym},         {"discipline", s.discipline}, {"grades", s.grades},
+                  {"styles", s.styles}, {"revision", s.revision}};
+    }
+    return json();
+  };
   if (Status s = x.services.dashboard.SetDisciplineTargets(x.caller.viewer, *gym, t); !s.ok()) {
-    return ApiError(x, s);
+    return ApiConflict(x, s, stored_json());
   }
-  Result<std::vector<app::DisciplineTargets>> stored =
-      x.services.dashboard.GymDisciplineTargets(x.caller.viewer, *gym);
-  if (!stored.ok()) return ApiError(x, stored.status());
-  for (const app::DisciplineTargets& s : *stored) {
-    if (s.discipline != t.discipline) continue;
-    return ReplyJson(x.res, 200, json{{"gym", *gym}, {"discipline", s.discipline},
-                                      {"grades", s.grades}, {"styles", s.styles}});
-  }
-  ApiError(x, Status::Internal("targets not stored"));
+  json stored = stored_json();
+  if (stored.is_null()) return ApiError(x, Status::Internal("targets not stored"));
+  ReplyJson(x.res, 200, stored);
 }
 
 void PageDashboard(Exchange& x) {

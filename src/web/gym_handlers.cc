@@ -2,6 +2,7 @@
 // a route page. Each asks app::Gyms / app::Routes and renders (gym_pages.h).
 #include "app/clock.h"
 #include "base/date.h"
+#include "base/text.h"
 #include "gym/rules.h"
 #include "web/dashboard_handlers.h"
 #include "web/gym_pages.h"
@@ -107,7 +108,12 @@ std::string GymBlock(Exchange& x, const app::RouteView& r) {
   }
   const bool can_set =
       role.ok() && (app::CanSet(*role) && (!gym::Is(r.state, gym::RouteState::kDraft) || app::IsOwner(r, x.caller.viewer)));
-  return RouteGymBlock(r, history, can_set, x.caller.lang);
+  // Issue 31: the circuit the route is set in.
+  const std::string circuit_row =
+      r.circuit_id ? "<dt>" + Tr(x.caller.page(), "Circuit") + "</dt><dd id=\"route-circuit\">" +
+                         XmlEscape(r.circuit_colour) + "</dd>"
+                   : std::string();
+  return RouteGymBlock(r, history, can_set, x.caller.lang, circuit_row);
 }
 
 }  // namespace sb::web

@@ -365,14 +365,15 @@ std::string WallPage(const PageViewer& v, const app::Gym& gym, const app::Wall& 
 }
 
 std::string RouteGymBlock(const app::RouteView& r, const std::vector<app::HistoryEntry>& history,
-                          bool can_set, std::string_view lang) {
+                          bool can_set, std::string_view lang,
+                          const std::string& circuit_row) {
   std::string b = "<section class=\"gym-block\" id=\"route-gym\"><h2>" + Tr(lang, "On the wall") + "</h2>\n<dl>";
   b += "<dt>" + Tr(lang, "State") + "</dt><dd id=\"route-state\">" + E(StateName(lang, r.state)) + "</dd>";
   b += "<dt>" + Tr(lang, "Wall") + "</dt><dd id=\"route-wall\">" +
        (r.wall_id ? "<a href=\"/walls/" + std::to_string(*r.wall_id) + "\">" + E(r.wall_name) +
                         "</a>"
                   : E(r.wall.empty() ? "—" : r.wall)) +
-       "</dd>";
+       "</dd>" + circuit_row;
   std::string setters;
   for (const app::RouteSetter& s : r.setters) setters += (setters.empty() ? "" : ", ") + s.name;
   b += "<dt>" + Tr(lang, "Setters") + "</dt><dd id=\"route-setters\">" + E(setters.empty() ? "—" : setters) + "</dd>";

@@ -55,8 +55,10 @@ std::string WallPage(const PageViewer& v, const app::Gym& gym, const app::Wall& 
 // set / strip dates and history; with `can_set`, a form to change them
 // (carrying the route's revision, issue 31) and the plan / set / strip
 // buttons its state allows (an empty date keeps the route's, or is today).
+// `circuit_row` (issue 31): the rendered <dt>/<dd> of the route's circuit, after its wall.
 std::string RouteGymBlock(const app::RouteView& r, const std::vector<app::HistoryEntry>& history,
-                          bool can_set, std::string_view lang = "en");
+                          bool can_set, std::string_view lang = "en",
+                          const std::string& circuit_row = "");
 
 }  // namespace sb::web
 

@@ -239,7 +239,9 @@ void PagePlan(Exchange& x) {
   Html(x, WithBlock(PlanPage(x.caller.page(), p->record, *p->plan, p->smoothing_note,
                              CardInfoOf(x, p->record),
                              x.services.routes.CanChange(x.caller.viewer, p->record)),
-                    ConsensusBlock(x, p->record)));
+                    // Issue 31: a variation accepted on a setting day is a route of
+                    // the gym: its page has the "On the wall" block too.
+                    GymBlock(x, p->record) + ConsensusBlock(x, p->record)));
 }
 
 void PagePlanSvg(Exchange& x) {

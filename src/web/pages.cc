@@ -424,15 +424,18 @@ std::string EditorPage(const PageViewer& v, const std::optional<app::RouteView>&
        E(Tr(v, t::kGradeAny)) + "\">" + E(Tr(v, t::kGradeAny)) + "</small>" + msg("grade") +
        "</label><datalist id=\"grade-labels\"></datalist>\n";
   if (in_gym && !form.circuits.empty()) {
-    b += "<label>" + Tr(v, t::kCircuit) + " <select id=\"f-circuit\"><option value=\"\">" +
-         Tr(v, t::kNoCircuit) + "</option>";
+    // Issue 31: the route keeps the circuit chosen (its id; its colour becomes the route's).
+    b += "<label>" + Tr(v, t::kCircuit) + " <select id=\"f-circuit\" name=\"circuit\">"
+         "<option value=\"\">" + Tr(v, t::kNoCircuit) + "</option>";
     for (const app::Circuit& c : form.circuits) {
       std::string range = c.grade_from.empty() && c.grade_to.empty()
                               ? ""
                               : " (" + c.grade_from + "–" + c.grade_to + ")";
-      b += "<option value=\"" + E(c.colour) + "\">" + E(c.colour + range) + "</option>";
+      const bool chosen = route && route->circuit_id == c.id;
+      b += "<option value=\"" + std::to_string(c.id) + "\" data-colour=\"" + E(c.colour) + "\"" +
+           (chosen ? " selected" : "") + ">" + E(c.colour + range) + "</option>";
     }
-    b += "</select></label>\n";
+    b += "</select>" + msg("circuit") + "</label>\n";
   }
   b += "<label>" + Tr(v, t::kColour) +
        " <input id=\"f-colour\" name=\"colour\" maxlength=\"60\" autocomplete=\"off\">" +

@@ -91,6 +91,7 @@ const Endpoint kEndpoints[] = {
     // Setting days (setting_day_handlers.cc, issue 22).
     {"POST", "/api/gyms/{id}/setting-days", PostSettingDay, kCostly},
     {"POST", "/api/gyms/{id}/setting-days/accept", PostSettingDayAccept},
+    {"POST", "/api/gyms/{id}/setting-days/state", PostSettingDayState},
     {"GET", "/gyms/{id}/setting-day", PageSettingDay},
     {"GET", "/gyms/{id}/setting-day/sheet", PageSettingDaySheet},
     {"GET", "/api/routes/{id}/history", GetRouteHistory},

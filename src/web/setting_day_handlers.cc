@@ -189,6 +189,64 @@ void PostSettingDay(Exchange& x) {
   ReplyJson(x.res, 200, ProposalJson(*p));
 }
 
+// Issue 31: every route of a day in one state to another (the sheet's "Set
+// all planned routes of this day"): {"date", "from"?, "to"?, "on"?,
+// "routes"?: {"<id>": revision}}; 409 {"error", "current": {"date", "from",
+// "routes", "summary"}} when the day's routes in "from" are not those seen.
+void PostSettingDayState(Exchange& x) {
+  Result<int64_t> gym = PathId(x.req, "no such gym");
+  if (!gym.ok()) return ApiError(x, gym.status());
+  Result<json> body = BodyObject(x.req);
+  if (!body.ok()) return ApiError(x, body.status());
+  const json& b = *body;
+  app::DayStateChange c;
+  std::string on;
+  for (const auto& [k, out] : {std::pair<const char*, std::string*>{"date", &c.date},
+                               {"from", &c.from}, {"to", &c.to}, {"on", &on}}) {
+    if (!b.contains(k) || b[k].is_null()) continue;
+    if (!b[k].is_string()) return ApiError(x, Status::InvalidInput(std::string(k) + ": expected text"));
+    *out = b[k].get<std::string>();
+  }
+  if (!on.empty()) c.on = on;
+  if (b.contains("routes") && !b["routes"].is_null()) {
+    if (!b["routes"].is_object()) {
+      return ApiError(x, Status::InvalidInput(
+                             "routes: expected an object of route id: revision, as the page showed"));
+    }
+    std::map<int64_t, int64_t> seen;
+    for (const auto& [k, rev] : b["routes"].items()) {
+      std::optional<int64_t> id = ParseId(k);
+      if (!id || !rev.is_number_integer()) {
+        return ApiError(x, Status::InvalidInput("routes." + k +
+                                                ": expected a route id and its revision"));
+      }
+      seen[*id] = rev.get<int64_t>();
+    }
+    c.seen = std::move(seen);
+  }
+  Result<std::vector<int64_t>> changed =
+      x.services.setting_days.ChangeDayState(x.caller.viewer, *gym, c);
+  if (!changed.ok()) {
+    json current;
+    if (changed.status().code() == Status::Code::kConflict) {
+      Result<std::vector<app::DayRoute>> day =
+          x.services.setting_days.Planned(x.caller.viewer, *gym, c.date);
+      if (day.ok()) {
+        json routes = json::object();
+        std::string summary;
+        for (const app::DayRoute& r : *day) {
+          summary += (summary.empty() ? "" : ", ") + r.name + " (" + r.state + ")";
+          if (r.state == c.from) routes[std::to_string(r.id)] = r.revision;
+        }
+        current = json{{"date", c.date}, {"from", c.from}, {"routes", routes},
+                       {"summary", summary}};
+      }
+    }
+    return ApiConflict(x, changed.status(), current);
+  }
+  ReplyJson(x.res, 200, json{{"changed", *changed}, {"count", changed->size()}});
+}
+
 void PostSettingDayAccept(Exchange& x) {
   Result<int64_t> gym = PathId(x.req, "no such gym");
   if (!gym.ok()) return ApiError(x, gym.status());
@@ -532,7 +590,8 @@ std::string SheetButtons(const app::DayRoute& r, int copy, std::string_view lang
                            (copy ? "-" + std::to_string(copy + 1) : std::string());
     h += " <form class=\"gym-form inline-form no-print\" id=\"" + id + "\" data-api=\"POST "
          "/api/routes/" + std::to_string(r.id) + "/state\"><input type=\"hidden\" name=\"state\" "
-         "value=\"" + std::string(to) + "\"><button type=\"submit\" class=\"sheet-" +
+         "value=\"" + std::string(to) + "\"><input type=\"hidden\" name=\"revision\" data-int "
+         "value=\"" + std::to_string(r.revision) + "\"><button type=\"submit\" class=\"sheet-" +
          std::string(to) + "\">" + Tr(lang, label) + "</button><span class=\"msg\" role=\"status\">"
          "</span></form>";
   }
@@ -564,6 +623,23 @@ void PageSettingDaySheet(Exchange& x) {
                     : " · <a id=\"sheet-tags\" href=\"/tags.pdf?ids=" + ids +
                           "\">" + Tr(lang, "The day's tags (PDF)") + "</a>") +
        "</p>\n";
+  // Issue 31: one button sets every route still planned for the day, as the
+  // sheet shows them (their revisions: a change meanwhile is refused).
+  std::string planned_fields;
+  for (const app::DayRoute& r : *routes) {
+    if (r.state != "planned" || date.empty()) continue;
+    const std::string f = "<input type=\"hidden\" name=\"routes." + std::to_string(r.id) +
+                          "\" data-int value=\"" + std::to_string(r.revision) + "\">";
+    if (planned_fields.find(f) == std::string::npos) planned_fields += f;
+  }
+  if (!planned_fields.empty() && app::CanSet(gym->role)) {
+    b += "<form class=\"gym-form no-print\" id=\"sheet-set-day\" data-api=\"POST /api/gyms/" + g +
+         "/setting-days/state\"><input type=\"hidden\" name=\"date\" value=\"" + E(date) +
+         "\"><input type=\"hidden\" name=\"from\" value=\"planned\"><input type=\"hidden\" "
+         "name=\"to\" value=\"set\">" + planned_fields + "<button type=\"submit\">" +
+         Tr(x.caller.page(), "Set all planned routes of this day") +
+         "</button> <span class=\"msg\" role=\"status\"></span></form>\n";
+  }
   if (routes->empty()) {
     b += "<p class=\"empty\">" + Tr(lang, "Nothing planned for this day yet.") + "</p>\n";
   } else {
@@ -583,7 +659,7 @@ void PageSettingDaySheet(Exchange& x) {
       for (const app::DayRoute* r : list) {
         const std::string id = std::to_string(r->id);
         b += "<tr data-route=\"" + id + "\"><td>" + E(r->wall_name) +
-             "</td><td><a href=\"/variations/" + id + "\">" + E(r->name) + "</a></td><td>" +
+             "</td><td><a href=\"/routes/" + id + "\">" + E(r->name) + "</a></td><td>" +
              E(r->grade) + "</td><td class=\"num\">" + std::to_string(r->move_count) +
              "</td><td class=\"sheet-state\">" + E(SheetStateName(lang, r->state)) +
              (can_set ? SheetButtons(*r, copies[r->id]++, lang) : std::string()) +

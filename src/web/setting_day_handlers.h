@@ -10,6 +10,7 @@ namespace sb::web {
 
 void PostSettingDay(Exchange& x);        // POST /api/gyms/{id}/setting-days
 void PostSettingDayAccept(Exchange& x);  // POST /api/gyms/{id}/setting-days/accept
+void PostSettingDayState(Exchange& x);   // POST /api/gyms/{id}/setting-days/state (issue 31)
 void PageSettingDay(Exchange& x);        // GET /gyms/{id}/setting-day?date=&walls=
 void PageSettingDaySheet(Exchange& x);   // GET /gyms/{id}/setting-day/sheet?date=
 
