@@ -76,6 +76,7 @@ const Endpoint kEndpoints[] = {
     {"GET", "/api/gyms/{id}/circuits", ListCircuits},
     {"POST", "/api/gyms/{id}/scales", PostGymScale},
     {"GET", "/api/gyms/{id}/scales", ListGymScales},
+    {"GET", "/api/gyms/{id}/scales/{scale}/suggest", SuggestGymScale},
     {"POST", "/api/gyms/{id}/import", PostGymImport},
     {"POST", "/api/import/crdl", PostImportCrdl},
     {"GET", "/gyms/{id}/import", PageGymImport},
