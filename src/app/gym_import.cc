@@ -807,9 +807,22 @@ Result<ImportOutcome> GymImport::Confirm(const Viewer& v, int64_t gym, const Imp
                                 (n > 1 ? " (and " + std::to_string(n - 1) + " more)" : "") +
                                 "; nothing was imported");
   }
+  // One transaction: a failure half-way (the store refusing a row) leaves
+  // nothing of the import written.
+  ImportOutcome out;
+  Status st = store::RunAtomically(store_, [&]() -> Status {
+    out = ImportOutcome();
+    return Write(v, gym, req, plan, &out);
+  });
+  if (!st.ok()) return st.WithPrefix(req.file + ": nothing was imported");
+  return out;
+}
+
+Status GymImport::Write(const Viewer& v, int64_t gym, const ImportRequest& req, Plan& plan,
+                        ImportOutcome* result) {
   store::GymStore* gs = store::GymStoreOf(store_);
   store::ImportStore* is = store::ImportStoreOf(store_);
-  ImportOutcome out;
+  ImportOutcome& out = *result;
   // Sectors first: the routes name them.
   for (const Plan::NewWall& nw : plan.new_walls) {
     Wall w;
@@ -865,7 +878,7 @@ Result<ImportOutcome> GymImport::Confirm(const Viewer& v, int64_t gym, const Imp
     }
     SB_RETURN_IF_ERROR(gs->AddGymHistory(gym, v.user_id, what));
   }
-  return out;
+  return Status::Ok();
 }
 
 Result<std::pair<int64_t, Viewer>> GymImport::HeadSetterOf(const std::string& gym,
@@ -927,18 +940,22 @@ Result<CrdlImportSummary> GymImport::ImportCrdlFiles(const Viewer& v,
   GymFields g;
   g.gym = target;
   g.personal = !target;
-  for (size_t i = 0; i < files.size(); ++i) {
-    const std::string name = files[i].name.empty() ? "route.crdl" : files[i].name;
-    if (auto k = known.find(keys[i]); k != known.end()) {
-      out.skipped.push_back(name + ": already imported as route " + std::to_string(k->second) +
-                            " (same content)");
-      continue;
+  // One transaction: all the new files, or none.
+  SB_RETURN_IF_ERROR(store::RunAtomically(store_, [&]() -> Status {
+    for (size_t i = 0; i < files.size(); ++i) {
+      const std::string name = files[i].name.empty() ? "route.crdl" : files[i].name;
+      if (auto k = known.find(keys[i]); k != known.end()) {
+        out.skipped.push_back(name + ": already imported as route " +
+                              std::to_string(k->second) + " (same content)");
+        continue;
+      }
+      SB_ASSIGN_OR_RETURN(int64_t id, routes_->Create(v, files[i].crdl, std::nullopt, g));
+      if (is) SB_RETURN_IF_ERROR(is->SetImportKey(id, keys[i]));
+      known.emplace(keys[i], id);
+      out.ids.push_back(id);
     }
-    SB_ASSIGN_OR_RETURN(int64_t id, routes_->Create(v, files[i].crdl, std::nullopt, g));
-    if (is) SB_RETURN_IF_ERROR(is->SetImportKey(id, keys[i]));
-    known.emplace(keys[i], id);
-    out.ids.push_back(id);
-  }
+    return Status::Ok();
+  }));
   return out;
 }
 

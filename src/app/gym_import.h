@@ -147,8 +147,11 @@ class GymImport {
   // their scale, new routes (state set), changed routes (Routes::Update:
   // history rows), the import key of every row with an id, the missing
   // routes stripped when req.strip_missing, and one line in the gym's
-  // history. Errors as Preview, and kInvalidInput with the first bad row's
-  // `file:line: field: reason` (nothing written; *errors gets all of them).
+  // history, all in one transaction (store::RunAtomically): a write the
+  // store refuses half-way leaves nothing of the import written. Errors as
+  // Preview, kInvalidInput with the first bad row's `file:line: field:
+  // reason` (nothing written; *errors gets all of them), and the store's
+  // error prefixed "file: nothing was imported".
   Result<ImportOutcome> Confirm(const Viewer& v, int64_t gym, const ImportRequest& req,
                                 std::vector<ImportError>* errors = nullptr);
 
@@ -176,6 +179,9 @@ class GymImport {
  private:
   struct Plan;
   Result<Plan> Read(const Viewer& v, int64_t gym, const ImportRequest& req);
+  // Confirm's writes (inside one transaction).
+  Status Write(const Viewer& v, int64_t gym, const ImportRequest& req, Plan& plan,
+               ImportOutcome* out);
 
   store::Store* store_;
   const Options options_;

@@ -9,6 +9,7 @@
 
 #include "app/app_test_util.h"
 #include "crdl/route.h"
+#include "store/sql.h"
 
 namespace sb::app {
 namespace {
@@ -194,6 +195,64 @@ TEST_F(GymImportTest, AChangedListChangesExactlyWhatChanged) {
   Result<std::vector<GymHistoryEntry>> gh = services_->gyms.GymHistory(head_, gym_);
   ASSERT_TRUE(gh.ok());
   EXPECT_EQ(gh->back().what, "imported liste.csv: 0 new, 0 changed, 3 stripped");
+}
+
+// A row the store itself refuses half-way through a confirmed import (a
+// trigger here, as a full disk or a lost connection would): the sector made
+// before it, the routes renamed, regraded and created before it and the
+// history are all rolled back with it.
+TEST_F(GymImportTest, AStoreFailureHalfWayLeavesNothingOfTheImport) {
+  ASSERT_TRUE(services_->imports.Confirm(head_, gym_, Csv(kList)).ok());
+  Result<std::vector<GymHistoryEntry>> before = services_->gyms.GymHistory(head_, gym_);
+  ASSERT_TRUE(before.ok());
+  {
+    const bool pg = db_->backend() == store::testing::Backend::kPostgres;
+    Result<std::unique_ptr<store::sql::Connection>> c =
+        pg ? store::sql::OpenPostgres(db_->locator(), {}) : store::sql::OpenSqlite(db_->locator());
+    ASSERT_TRUE(c.ok()) << c.status().message();
+    Status st = (*c)->Exec(
+        pg ? "CREATE FUNCTION sb_refuse() RETURNS trigger LANGUAGE plpgsql AS $$ BEGIN "
+             "IF NEW.name = 'Kaputter Griff' THEN RAISE EXCEPTION 'disk full'; END IF; "
+             "RETURN NEW; END $$; CREATE TRIGGER sb_refuse BEFORE INSERT ON routes "
+             "FOR EACH ROW EXECUTE FUNCTION sb_refuse();"
+           : "CREATE TRIGGER sb_refuse BEFORE INSERT ON routes "
+             "WHEN NEW.name = 'Kaputter Griff' BEGIN SELECT RAISE(ABORT, 'disk full'); END;");
+    ASSERT_TRUE(st.ok()) << st.message();
+  }
+  // kChanged with its last new route refused by the store: the new sector,
+  // three changed routes and one new route come first.
+  std::string changed = kChanged;
+  changed.replace(changed.find("Türkiser Traum"), std::string("Türkiser Traum").size(),
+                  "Kaputter Griff");
+  ImportRequest req = Csv(changed);
+  req.strip_missing = true;
+  Result<ImportOutcome> o = services_->imports.Confirm(head_, gym_, req);
+  ASSERT_FALSE(o.ok());
+  EXPECT_NE(o.status().message().find("liste.csv: nothing was imported"), std::string::npos)
+      << o.status().message();
+  EXPECT_EQ(Names(GymRoutes("")),
+            (std::vector<std::string>{"Blaue Platte", "Gelber Riss", "Grüne Welle",
+                                      "Rote Kante", "Schwarzes Dach", "Weißer Hai"}));
+  EXPECT_EQ(GymRoutes("set").size(), 6u);
+  for (const RouteView& r : GymRoutes("")) {
+    if (r.name == "Schwarzes Dach") EXPECT_EQ(r.grade, "6");
+  }
+  Result<std::vector<Wall>> walls = services_->gyms.Walls(head_, gym_);
+  ASSERT_TRUE(walls.ok());
+  EXPECT_EQ(walls->size(), 3u);  // no Sektor D
+  Result<std::vector<GymHistoryEntry>> after = services_->gyms.GymHistory(head_, gym_);
+  ASSERT_TRUE(after.ok());
+  EXPECT_EQ(after->size(), before->size());
+  // The store still works, and the same list without the refused row goes in.
+  changed.replace(changed.find("Kaputter Griff"), std::string("Kaputter Griff").size(),
+                  "Türkiser Traum");
+  req = Csv(changed);
+  req.strip_missing = true;
+  o = services_->imports.Confirm(head_, gym_, req);
+  ASSERT_TRUE(o.ok()) << o.status().message();
+  EXPECT_EQ(o->created, 2);
+  EXPECT_EQ(o->updated, 3);
+  EXPECT_EQ(o->stripped, 3);
 }
 
 TEST_F(GymImportTest, BadRowsAreNamedAndNothingIsWritten) {

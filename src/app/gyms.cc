@@ -5,6 +5,7 @@
 
 #include "app/convert.h"
 #include "app/discipline.h"
+#include "app/scales.h"
 #include "base/number.h"
 #include "base/text.h"
 #include "crdl/route.h"
@@ -43,17 +44,13 @@ std::string CircuitText(const Circuit& c) {
 }
 
 // A circuit's fields checked and trimmed; kInvalidInput naming the field.
-Result<store::CircuitRecord> CircuitRow(const Circuit& c) {
+// Issue 32: the range is read in the scales of the gym's walls (a gym
+// scale's labels where its walls use one) and must ascend.
+Result<store::CircuitRecord> CircuitRow(const Circuit& c,
+                                        const std::vector<WallGradeScale>& scales) {
   SB_RETURN_IF_ERROR(CheckName("colour", c.colour, GymLimits::kMaxColourBytes));
   SB_RETURN_IF_ERROR(plan::CheckColour("colour", c.colour));  // issue 32
-  for (const auto& [field, g] : {std::pair<const char*, const std::string*>{"grade_from", &c.grade_from},
-                                 {"grade_to", &c.grade_to}}) {
-    if (Trim(*g).empty()) continue;
-    Result<grades::Grade> parsed = grades::ParseGrade(std::string(Trim(*g)), {}, field);
-    if (!parsed.ok()) {
-      return Status::InvalidInput(std::string(field) + ": '" + *g + "' is not a grade");
-    }
-  }
+  SB_RETURN_IF_ERROR(ReadCircuitRange(scales, c.grade_from, c.grade_to).status());
   store::CircuitRecord r;
   r.id = c.id;
   r.gym_id = c.gym_id;
@@ -381,7 +378,8 @@ Result<Wall> Gyms::ResolveWall(int64_t gym, const std::string& id_or_name) {
 
 Result<int64_t> Gyms::AddCircuit(const Viewer& v, const Circuit& c) {
   SB_RETURN_IF_ERROR(RequireHead(v, c.gym_id));
-  SB_ASSIGN_OR_RETURN(store::CircuitRecord r, CircuitRow(c));
+  SB_ASSIGN_OR_RETURN(std::vector<WallGradeScale> scales, GymWallScales(store_, c.gym_id));
+  SB_ASSIGN_OR_RETURN(store::CircuitRecord r, CircuitRow(c, scales));
   SB_ASSIGN_OR_RETURN(int64_t id, gyms_->InsertCircuit(r));
   Circuit added = c;
   added.colour = r.colour;
@@ -406,7 +404,8 @@ Status Gyms::EditCircuit(const Viewer& v, const Circuit& c) {
   }
   Circuit edited = c;
   edited.revision = stored.revision;
-  SB_ASSIGN_OR_RETURN(store::CircuitRecord r, CircuitRow(edited));
+  SB_ASSIGN_OR_RETURN(std::vector<WallGradeScale> scales, GymWallScales(store_, c.gym_id));
+  SB_ASSIGN_OR_RETURN(store::CircuitRecord r, CircuitRow(edited, scales));
   SB_RETURN_IF_ERROR(gyms_->UpdateCircuit(r));
   edited.colour = r.colour;
   return Record(v, c.gym_id, CircuitText(stored) + " edited: now " + CircuitText(edited));

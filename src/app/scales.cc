@@ -1,7 +1,11 @@
 #include "app/scales.h"
 
+#include <tuple>
+#include <utility>
+
 #include "base/text.h"
 #include "gym/rules.h"
+#include "store/gym_store.h"
 #include "store/scale_store.h"
 
 namespace sb::app {
@@ -67,6 +71,117 @@ std::string WallGradeScale::Format(double value) const {
   if (custom) return custom->Format(value);
   if (builtin) return grades::FormatValue(value, grades::ScaleDiscipline(*builtin), *builtin);
   return "";
+}
+
+Result<std::vector<WallGradeScale>> GymWallScales(store::Store* store, int64_t gym_id) {
+  std::vector<WallGradeScale> out;
+  store::GymStore* gs = store::GymStoreOf(store);
+  if (gs == nullptr) return out;
+  SB_ASSIGN_OR_RETURN(std::vector<store::WallRecord> walls, gs->ListWalls(gym_id));
+  for (const store::WallRecord& w : walls) {
+    SB_ASSIGN_OR_RETURN(WallGradeScale ws, LoadWallScale(store, gym_id, w.id));
+    if (!ws.any()) continue;
+    bool seen = false;
+    for (const WallGradeScale& o : out) seen = seen || EqualsIgnoreCase(o.name, ws.name);
+    if (!seen) out.push_back(std::move(ws));
+  }
+  return out;
+}
+
+namespace {
+
+// A circuit bound read in any of `scales`: (value, index of the scale), or
+// the error naming them all.
+Result<std::pair<double, size_t>> ReadBound(const std::vector<WallGradeScale>& scales,
+                                            std::string_view text, std::string_view field) {
+  std::string why;
+  for (size_t i = 0; i < scales.size(); ++i) {
+    Result<double> v = scales[i].Read(text, field);
+    if (v.ok()) return std::make_pair(*v, i);
+    if (scales.size() == 1) return v.status();
+    const std::string accepts = scales[i].custom ? scales[i].custom->Accepts()
+                                                 : BuiltInAccepts(*scales[i].builtin);
+    why += (why.empty() ? "" : "; ") + ("\"" + scales[i].name + "\" accepts " + accepts);
+  }
+  return Status::InvalidInput(std::string(field) + ": \"" + std::string(Trim(text)) +
+                              "\" is not a grade of the gym's walls' scales (" + why + ")");
+}
+
+}  // namespace
+
+Result<std::string> ReadCircuitRange(const std::vector<WallGradeScale>& scales,
+                                     std::string_view from, std::string_view to) {
+  from = Trim(from);
+  to = Trim(to);
+  if (scales.empty()) {
+    std::optional<grades::Grade> a, b;
+    for (const auto& [field, text, out] :
+         {std::tuple{"grade_from", from, &a}, std::tuple{"grade_to", to, &b}}) {
+      if (text.empty()) continue;
+      Result<grades::Grade> g = grades::ParseGrade(std::string(text), {}, field);
+      if (!g.ok()) {
+        return Status::InvalidInput(std::string(field) + ": '" + std::string(text) +
+                                    "' is not a grade");
+      }
+      *out = *g;
+    }
+    if (a && b && grades::ScaleDiscipline(a->scale) == grades::ScaleDiscipline(b->scale) &&
+        b->value < a->value) {
+      return Status::InvalidInput("grade_to: " + std::string(to) + " is below grade_from " +
+                                  std::string(from) + " (a range ascends)");
+    }
+    return std::string();
+  }
+  std::optional<std::pair<double, size_t>> a, b;
+  if (!from.empty()) {
+    SB_ASSIGN_OR_RETURN(auto r, ReadBound(scales, from, "grade_from"));
+    a = r;
+  }
+  if (!to.empty()) {
+    SB_ASSIGN_OR_RETURN(auto r, ReadBound(scales, to, "grade_to"));
+    b = r;
+  }
+  if (a && b) {
+    if (a->second != b->second) {
+      // Both may read in several scales: the first scale `to` reads in that
+      // `from` reads in too.
+      bool same = false;
+      for (size_t i = 0; i < scales.size() && !same; ++i) {
+        Result<double> fa = scales[i].Read(from, "grade_from");
+        Result<double> fb = scales[i].Read(to, "grade_to");
+        if (fa.ok() && fb.ok()) a = {*fa, i}, b = {*fb, i}, same = true;
+      }
+      if (!same) {
+        return Status::InvalidInput("grade_to: \"" + std::string(to) + "\" is of the scale \"" +
+                                    scales[b->second].name + "\", grade_from \"" +
+                                    std::string(from) + "\" of \"" + scales[a->second].name +
+                                    "\" (a range is read in one scale)");
+      }
+    }
+    if (b->first < a->first) {
+      return Status::InvalidInput("grade_to: " + std::string(to) + " is below grade_from " +
+                                  std::string(from) + " in the scale \"" +
+                                  scales[a->second].name + "\" (a range ascends)");
+    }
+  }
+  if (a) return scales[a->second].name;
+  if (b) return scales[b->second].name;
+  return std::string();
+}
+
+std::optional<double> CircuitBoundValue(const WallGradeScale* wall_scale, std::string_view text,
+                                        grades::Discipline d) {
+  if (wall_scale && wall_scale->any()) {
+    if (Result<double> v = wall_scale->Read(text); v.ok()) {
+      const grades::Discipline wd = *wall_scale->discipline();
+      return wd == d ? *v : grades::ConvertAxis(*v, wd, d);
+    }
+  }
+  grades::GradeContext ctx;
+  ctx.discipline = d;
+  Result<grades::Grade> g = grades::ParseGrade(std::string(text), ctx);
+  if (!g.ok()) return std::nullopt;
+  return grades::Difficulty(*g, d);
 }
 
 Result<WallGradeScale> LoadWallScale(store::Store* store, int64_t gym_id, int64_t wall_id) {

@@ -164,7 +164,8 @@ Status SettingDayRequest::Validate() const {
 std::vector<DaySlot> DefaultSlots(
     const std::vector<Wall>& walls, const std::vector<Circuit>& circuits,
     const std::map<int64_t, std::vector<store::RouteRecord>>& on_wall,
-    const std::map<int64_t, std::map<std::string, double>>& style_share) {
+    const std::map<int64_t, std::map<std::string, double>>& style_share,
+    const std::map<int64_t, WallGradeScale>& wall_scales) {
   std::vector<DaySlot> out;
   for (const Wall& w : walls) {
     const grades::Discipline d = DisciplineOfWall(w);
@@ -177,9 +178,16 @@ std::vector<DaySlot> DefaultSlots(
       lo = lo ? std::min(*lo, b) : b;
       hi = hi ? std::max(*hi, b) : b;
     };
+    auto ws = wall_scales.find(w.id);
+    const WallGradeScale* scale = ws == wall_scales.end() ? nullptr : &ws->second;
+    auto band_of = [&](const std::string& text) -> std::optional<int> {
+      std::optional<double> v = CircuitBoundValue(scale, text, d);
+      if (!v) return std::nullopt;
+      return grades::Band(*v);
+    };
     for (const Circuit& c : circuits) {
-      std::optional<int> a = c.grade_from.empty() ? std::nullopt : BandOfText(c.grade_from, d);
-      std::optional<int> b = c.grade_to.empty() ? a : BandOfText(c.grade_to, d);
+      std::optional<int> a = c.grade_from.empty() ? std::nullopt : band_of(c.grade_from);
+      std::optional<int> b = c.grade_to.empty() ? a : band_of(c.grade_to);
       if (a) widen(*a);
       if (b) widen(*b);
     }
@@ -326,7 +334,13 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
       const language::StyleMix mix = language::MixOf(lang, texts);
       for (const std::string& s : kDefaultSlotStyles) shares[id][s] = mix.Share(s);
     }
-    for (const DaySlot& s : DefaultSlots(unslotted, circuits, on_wall, shares)) {
+    std::map<int64_t, WallGradeScale> wall_scales;
+    for (const Wall& w : unslotted) {
+      if (Result<WallGradeScale> ws = LoadWallScale(store_, req.gym, w.id); ws.ok()) {
+        wall_scales[w.id] = std::move(ws).value();
+      }
+    }
+    for (const DaySlot& s : DefaultSlots(unslotted, circuits, on_wall, shares, wall_scales)) {
       if (slots.size() < kMaxDaySlots) slots.push_back(s);
     }
   }

@@ -31,6 +31,7 @@
 #include "app/logbook.h"
 #include "app/options.h"
 #include "app/routes.h"
+#include "app/scales.h"
 #include "app/variations.h"
 #include "base/status.h"
 #include "store/store.h"
@@ -174,13 +175,16 @@ struct DayStateChange {
 // routes on each wall (wall id -> routes, state set), `style_share` each
 // wall's share of moves by style. Pure; deterministic.
 // (Issue 22's dashboard replaces it by its gap-based ProposeSlots.)
+// `wall_scales`: each wall's scale (issue 32), in which a circuit's range
+// is read first (a gym scale's labels), else as built-in grades.
 inline const std::vector<std::string> kDefaultSlotStyles = {
     "crimp", "sloper", "pinch", "pocket", "heel hook", "toe hook", "gaston", "undercling",
     "dyno", "mantle"};
 std::vector<DaySlot> DefaultSlots(const std::vector<Wall>& walls,
                                   const std::vector<Circuit>& circuits,
                                   const std::map<int64_t, std::vector<store::RouteRecord>>& on_wall,
-                                  const std::map<int64_t, std::map<std::string, double>>& style_share);
+                                  const std::map<int64_t, std::map<std::string, double>>& style_share,
+                                  const std::map<int64_t, WallGradeScale>& wall_scales = {});
 
 // The candidate digest of params, inputs and moves (16 hex digits). Pure.
 std::string CandidateId(const std::string& params_json, const std::vector<int64_t>& inputs,

@@ -28,6 +28,8 @@ const Command kCommands[] = {
     {"db", "database operations: info, migrate, copy between SQLite and PostgreSQL", RunDb},
     {"synth", "fill a fresh database with a synthetic gym chain (benchmarks at scale)", RunSynth},
     {"import", "import a gym's own route list (CSV or JSON; --dry-run previews)", RunImport},
+    {"scale-suggest", "suggest a gym scale's mapping from a season's ascents (--synthetic: measure)",
+     RunScaleSuggest},
 };
 
 void PrintUsage(std::FILE* out) {

@@ -42,6 +42,7 @@ int RunDifficulty(const std::vector<std::string>& args);
 int RunRatings(const std::vector<std::string>& args);
 int RunSynth(const std::vector<std::string>& args);  // cmd_synth.cc (issue 22)
 int RunImport(const std::vector<std::string>& args);  // cmd_import.cc (issue 32)
+int RunScaleSuggest(const std::vector<std::string>& args);  // cmd_scale_suggest.cc (issue 32)
 
 }  // namespace sb::cli
 

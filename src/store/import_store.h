@@ -10,6 +10,7 @@
 #define SB_STORE_IMPORT_STORE_H_
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <utility>
@@ -38,6 +39,16 @@ class ImportStore {
 // The ImportStore of a store opened by store::OpenStore (both backends);
 // nullptr for a Store that does not implement it. Not owned.
 ImportStore* ImportStoreOf(Store* store);
+
+// Runs `body` in one transaction of `store`: every call `body` makes on
+// `store` (any of its interfaces: Store, GymStore, ImportStore, ...) from the
+// calling thread goes to one connection, committed when `body` returns OK and
+// rolled back when it (or the commit) fails, so nothing it wrote stays;
+// returns that error. A store call's own transaction nests as a savepoint.
+// Other threads' writes wait meanwhile (SQLite) or see nothing until the
+// commit (PostgreSQL). A store not opened by store::OpenStore runs `body` as
+// it is. `body` must not hand store work to other threads.
+Status RunAtomically(Store* store, const std::function<Status()>& body);
 
 }  // namespace sb::store
 

@@ -2,6 +2,7 @@
 
 #include <charconv>
 
+#include "base/log.h"
 #include "base/text.h"
 
 namespace sb::store::sql {
@@ -94,7 +95,93 @@ Result<std::unique_ptr<Pool>> Pool::Create(Factory factory, int size,
   return pool;
 }
 
+namespace {
+
+// The connection of a Pool::RunAtomically call, as its body's store calls
+// see it: statements go to the pinned connection; a store call's own
+// transaction is a savepoint of the outer one.
+class NestedConnection final : public Connection {
+ public:
+  explicit NestedConnection(Connection* outer) : outer_(outer) {}
+  Dialect dialect() const override { return outer_->dialect(); }
+  Result<Rows> Query(std::string_view sql, const std::vector<Value>& params,
+                     Violation* violated) override {
+    // PostgreSQL ends a transaction at its first failed statement; a store
+    // call that handles a failure (a unique violation read as kConflict)
+    // must keep the outer transaction usable, as autocommit would.
+    if (depth_ > 0 || outer_->dialect() != Dialect::kPostgres) {
+      return outer_->Query(sql, params, violated);
+    }
+    SB_RETURN_IF_ERROR(outer_->Exec("SAVEPOINT sb_stmt"));
+    Result<Rows> r = outer_->Query(sql, params, violated);
+    SB_RETURN_IF_ERROR(outer_->Exec(r.ok() ? "RELEASE SAVEPOINT sb_stmt"
+                                           : "ROLLBACK TO SAVEPOINT sb_stmt; "
+                                             "RELEASE SAVEPOINT sb_stmt"));
+    return r;
+  }
+  Status Exec(std::string_view script) override { return outer_->Exec(script); }
+  Status Begin() override {
+    SB_RETURN_IF_ERROR(outer_->Exec("SAVEPOINT sb_nested_" + std::to_string(depth_ + 1)));
+    ++depth_;
+    return Status::Ok();
+  }
+  Status Commit() override {
+    if (depth_ == 0) return Status::Internal("commit outside a transaction");
+    Status st = outer_->Exec("RELEASE SAVEPOINT sb_nested_" + std::to_string(depth_));
+    if (st.ok()) --depth_;
+    return st;
+  }
+  void Rollback() override {
+    if (depth_ == 0) return;
+    const std::string sp = "sb_nested_" + std::to_string(depth_);
+    Status st = outer_->Exec("ROLLBACK TO SAVEPOINT " + sp + "; RELEASE SAVEPOINT " + sp);
+    if (!st.ok()) LogError("rollback to savepoint: " + st.message());
+    --depth_;
+  }
+  Status LockKeys(const std::vector<std::string>& keys) override {
+    return outer_->LockKeys(keys);
+  }
+  Result<int> SchemaVersion() override { return outer_->SchemaVersion(); }
+  Status SetSchemaVersion(int version) override { return outer_->SetSchemaVersion(version); }
+  Status BeforeMigrations() override { return outer_->BeforeMigrations(); }
+  Status CheckMigration() override { return outer_->CheckMigration(); }
+  Status AfterMigrations() override { return outer_->AfterMigrations(); }
+  Result<int64_t> NextId(const std::string& table) override { return outer_->NextId(table); }
+  Status SetNextId(const std::string& table, int64_t next) override {
+    return outer_->SetNextId(table, next);
+  }
+  bool broken() const override { return outer_->broken(); }
+
+ private:
+  Connection* outer_;
+  int depth_ = 0;
+};
+
+// The pinned connection of the calling thread's RunAtomically, per pool.
+struct Pinned {
+  const Pool* pool = nullptr;
+  NestedConnection* conn = nullptr;
+};
+thread_local Pinned t_pinned;
+
+}  // namespace
+
+Status Pool::RunAtomically(const std::function<Status()>& body) {
+  if (t_pinned.pool == this) return body();
+  SB_ASSIGN_OR_RETURN(Lease lease, Acquire());
+  NestedConnection nested(&*lease);
+  SB_RETURN_IF_ERROR(lease->Begin());
+  const Pinned saved = t_pinned;
+  t_pinned = {this, &nested};
+  Status st = body();
+  t_pinned = saved;
+  if (st.ok()) st = lease->Commit();
+  if (!st.ok()) lease->Rollback();
+  return st;
+}
+
 Result<Pool::Lease> Pool::Acquire() {
+  if (t_pinned.pool == this) return Lease(t_pinned.conn);
   std::unique_lock<std::mutex> lock(mu_);
   const auto deadline = std::chrono::steady_clock::now() + wait_;
   for (;;) {

@@ -149,20 +149,24 @@ class Pool {
   using Factory = std::function<Result<std::unique_ptr<Connection>>()>;
 
   // A connection lent to one caller; returned to the pool when destroyed.
+  // Inside RunAtomically a lease borrows the thread's pinned connection
+  // (owns nothing).
   class Lease {
    public:
     Lease(Pool* pool, std::unique_ptr<Connection> conn) : pool_(pool), conn_(std::move(conn)) {}
+    explicit Lease(Connection* borrowed) : pool_(nullptr), borrowed_(borrowed) {}
     Lease(Lease&&) = default;
     Lease& operator=(Lease&&) = delete;
     ~Lease() {
       if (conn_) pool_->Release(std::move(conn_));
     }
-    Connection* operator->() { return conn_.get(); }
-    Connection& operator*() { return *conn_; }
+    Connection* operator->() { return borrowed_ ? borrowed_ : conn_.get(); }
+    Connection& operator*() { return *operator->(); }
 
    private:
     Pool* pool_;
     std::unique_ptr<Connection> conn_;
+    Connection* borrowed_ = nullptr;
   };
 
   // Errors: the factory's, for the first connection.
@@ -170,8 +174,18 @@ class Pool {
                                               std::chrono::milliseconds wait);
   Dialect dialect() const { return dialect_; }
   // A free connection, waiting up to `wait` for one. Errors: kIoError when
-  // none frees up in time or a new one cannot be opened.
+  // none frees up in time or a new one cannot be opened. On a thread inside
+  // RunAtomically: that call's connection, whose Begin/Commit/Rollback are
+  // savepoints (a store call's own transaction nests in the outer one).
   Result<Lease> Acquire();
+  // Runs `body` with every Acquire of this pool on the calling thread
+  // lending one connection in one transaction: committed when `body`
+  // succeeds, rolled back (nothing `body` wrote stays) when it or the commit
+  // fails, returning that error. On PostgreSQL each statement outside a
+  // store call's own transaction runs in a savepoint, so a statement that
+  // fails (and is handled) does not end the transaction. Not reentrant: a
+  // nested call runs `body` inside the outer transaction.
+  Status RunAtomically(const std::function<Status()>& body);
 
  private:
   Pool(Factory factory, int size, std::chrono::milliseconds wait)

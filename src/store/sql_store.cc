@@ -192,6 +192,9 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
   explicit SqlStore(std::unique_ptr<sql::Pool> pool)
       : pool_(std::move(pool)), pg_(pool_->dialect() == sql::Dialect::kPostgres) {}
 
+  // store::RunAtomically (store/import_store.h).
+  Status Atomically(const std::function<Status()>& body) { return pool_->RunAtomically(body); }
+
   Status Migrate() {
     SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
     SB_RETURN_IF_ERROR(sql::Migrate(*c));
@@ -1776,6 +1779,11 @@ ScaleStore* ScaleStoreOf(Store* store) { return dynamic_cast<ScaleStore*>(store)
 ImportStore* ImportStoreOf(Store* store) { return dynamic_cast<ImportStore*>(store); }
 PredictionStore* PredictionStoreOf(Store* store) {
   return dynamic_cast<PredictionStore*>(store);
+}
+
+Status RunAtomically(Store* store, const std::function<Status()>& body) {
+  if (auto* sql = dynamic_cast<SqlStore*>(store)) return sql->Atomically(body);
+  return body();
 }
 
 bool IsDatabaseUrl(std::string_view db) {

@@ -126,6 +126,7 @@ void PageAccount(Exchange& x);
 // scale_handlers.cc (issue 32)
 void PostGymScale(Exchange& x);
 void ListGymScales(Exchange& x);
+void SuggestGymScale(Exchange& x);
 // import_handlers.cc (issue 32: route lists as gyms have them)
 void PostGymImport(Exchange& x);
 void PostImportCrdl(Exchange& x);

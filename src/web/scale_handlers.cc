@@ -1,6 +1,7 @@
 // Issue 32: a gym's own grade scales, POST/GET /api/gyms/{gym}/scales
-// (docs/web.md, "A gym's own grade scale"). A wall's "scale" is read and
-// written with the wall (api_gyms.cc).
+// (docs/web.md, "A gym's own grade scale"), and the mapping a season's
+// ascents suggest, GET /api/gyms/{gym}/scales/{scale}/suggest. A wall's
+// "scale" is read and written with the wall (api_gyms.cc).
 #include "web/handlers.h"
 
 namespace sb::web {
@@ -52,6 +53,35 @@ void ListGymScales(Exchange& x) {
   }
   json builtin = json::array({"V", "Font", "YDS", "French", "UIAA"});
   ReplyJson(x.res, 200, json{{"scales", arr}, {"builtin", builtin}});
+}
+
+void SuggestGymScale(Exchange& x) {
+  Result<int64_t> gym = PathId(x.req, "no such gym");
+  if (!gym.ok()) return ApiError(x, gym.status());
+  Result<app::ScaleSuggestView> s = x.services.scales.Suggest(
+      x.caller.viewer, *gym, x.req.PathParam("scale"), &x.services.routes, &x.services.logbook,
+      x.services.options.limits.max_list_rows);
+  if (!s.ok()) return ApiError(x, s.status());
+  json labels = json::array();
+  for (const grades::SuggestedLabel& l : s->labels) {
+    labels.push_back({{"label", l.spec.label},
+                      {"from", l.spec.from},
+                      {"to", l.spec.to},
+                      {"given_from", l.given.from},
+                      {"given_to", l.given.to},
+                      {"routes", l.routes},
+                      {"median", l.routes > 0 ? json(l.median) : json(nullptr)},
+                      {"kept", l.kept}});
+  }
+  ReplyJson(x.res, 200,
+            json{{"scale", s->scale},
+                 {"discipline", s->discipline},
+                 {"walls", s->walls},
+                 {"routes", s->routes},
+                 {"ticks", s->ticks},
+                 {"min_ticks", app::kMinTicksForScaleSuggestion},
+                 {"min_routes", grades::kMinRoutesPerSuggestedLabel},
+                 {"labels", labels}});
 }
 
 }  // namespace sb::web

@@ -84,6 +84,7 @@ const Endpoint kEndpoints[] = {
     {"GET", "/api/gyms/{id}/circuits", ListCircuits},
     {"POST", "/api/gyms/{id}/scales", PostGymScale},
     {"GET", "/api/gyms/{id}/scales", ListGymScales},
+    {"GET", "/api/gyms/{id}/scales/{scale}/suggest", SuggestGymScale, kCostly},
     {"POST", "/api/gyms/{id}/import", PostGymImport, kCostly},
     {"POST", "/api/import/crdl", PostImportCrdl, kCostly},
     {"GET", "/gyms/{id}/import", PageGymImport},

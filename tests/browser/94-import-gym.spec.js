@@ -1,12 +1,14 @@
 // Issue 32, route lists as gyms have them: a head setter imports a German gym's list (gym scale
 // 1-6, colour names, sectors, setters with accents and spaces, no moves) on the import page
 // (columns prefilled from the German header, preview, confirm), prints a sector's tags (the
-// colour names in pdftotext), sets targets in the gym scale, imports a changed list (2 renamed,
-// 1 regraded, 3 removed, 2 new) and sees exactly those changes; then a French gym, shorter.
+// colour names in pdftotext, a tag's QR decoded by zbarimg), sets targets in the gym scale,
+// imports a changed list (2 renamed, 1 regraded, 3 removed, 2 new) and sees exactly those
+// changes; then a French gym through the import page in a French browser (locale fr-FR).
 'use strict';
 const fs = require('fs');
 const path = require('path');
 const { execFileSync } = require('child_process');
+const { chromium } = require('playwright-core');
 
 module.exports = async (t) => {
   const { page, base, check, shot, api, out } = t;
@@ -62,10 +64,30 @@ module.exports = async (t) => {
   const text = execFileSync('pdftotext', [file, '-']).toString();
   check(['Gelber Riss', 'gelb', 'blau', 'schwarz', 'Simon Räss'].every((s) => text.includes(s)),
     'the tags show the names, colour names and setters (' + text.replace(/\s+/g, ' ').slice(0, 200) + ')');
+  // A tag's QR code, decoded from the printed page (zbarimg, scripts/setup.sh), leads to a route
+  // of the sector.
+  execFileSync('pdftoppm', ['-r', '150', '-f', '1', '-l', '1', '-png', file, path.join(out, '94-sektor-a')]);
+  const png = fs.readdirSync(out).find((f) => f.startsWith('94-sektor-a') && f.endsWith('.png'));
+  let qr = '';
+  try {
+    qr = execFileSync('zbarimg', ['-q', '--raw', path.join(out, png)]).toString().trim().split('\n')[0];
+  } catch (e) { qr = 'zbarimg failed: ' + e.message; }
+  const onA = (await api('GET', '/api/routes?gym=' + gym + '&wall=' + a.id)).data.routes.map((r) => r.id);
+  const qrId = Number((qr.match(/\/r\/(\d+)$/) || [])[1]);
+  check(onA.includes(qrId), 'a tag\'s QR decodes to a route of the sector (' + qr + ')');
   const tg = await api('PUT', gp + '/walls/' + a.id + '/targets', { grades: { '3': 2, '6': 1 } });
   check(tg.status === 200, 'targets in the gym scale are accepted (' + tg.status + ')');
   const bad = await api('PUT', gp + '/walls/' + a.id + '/targets', { grades: { 'V4': 1 } });
   check(bad.status === 400, 'a V grade is refused on the 1-6 sector (' + bad.status + ')');
+  // Circuits in the gym scale's labels, refused otherwise; the mapping a season would suggest
+  // (no ticks yet: every label kept as it is).
+  const circ = await api('POST', gp + '/circuits', { colour: 'gelb', grade_from: '2', grade_to: '4' });
+  check(circ.status === 201, 'a circuit 2-4 in the gym scale (' + circ.status + ')');
+  const circBad = await api('POST', gp + '/circuits', { colour: 'rot', grade_from: 'V2', grade_to: '4' });
+  check(circBad.status === 400 && /Halle 1-6/.test(circBad.data.error), 'a V grade circuit is refused naming the scale');
+  const sug = await api('GET', gp + '/scales/' + encodeURIComponent('Halle 1-6') + '/suggest');
+  check(sug.status === 200 && sug.data.labels.length === 6 && sug.data.labels.every((l) => l.kept) &&
+    sug.data.labels[3].from === 'V4' && sug.data.walls === 2, 'the suggestion keeps every label without ticks');
 
   // The changed list: 1 and 2 renamed, 3 regraded, 4-6 gone, 7 and 8 new.
   const changed = 'Nr,Name,Grad,Sektor,Farbe,Schrauber\n' +
@@ -94,15 +116,48 @@ module.exports = async (t) => {
   const gone = (await api('GET', '/api/routes?gym=' + gym + '&state=stripped&sort=name')).data.routes.map((r) => r.name);
   check(gone.join(',') === 'Grüne Welle,Rote Kante,Weißer Hai', 'stripped: ' + gone.join(','));
 
-  // A French gym (the API, as a chain's script would): its header understood too.
-  const fr = (await api('POST', '/api/gyms', { name: 'Salle de bloc ' + n })).data.id;
-  const frList = 'Réf,Nom,Cotation,Secteur,Couleur,Ouvreur\n' +
-    'F1,Dalle jaune,6a,Mur Est,jaune,Élodie Garçon\nF2,Toit noir,7b,Mur Est,noir,Élodie Garçon\n';
-  const fp = await api('POST', '/api/gyms/' + fr + '/import', { format: 'csv', data: frList, file: 'liste.csv' });
-  check(fp.status === 200 && fp.data.new === 2 && fp.data.mapping.colour === 'Couleur', 'the French list previews');
-  const fc = await api('POST', '/api/gyms/' + fr + '/import',
-    { format: 'csv', data: frList, file: 'liste.csv', confirm: true, mapping: { scale: '' } });
-  check(fc.status === 201 && fc.data.created === 2, 'the French list is imported (' + fc.status + ')');
-  const again = await api('POST', '/api/gyms/' + fr + '/import', { format: 'csv', data: frList, confirm: true });
-  check(again.status === 201 && again.data.created === 0 && again.data.skipped === 2, 'importing it twice duplicates nothing');
+  // A French gym, its head setter in a French browser (locale fr-FR: Accept-Language): the page
+  // answers in French, the import page reads the French header, previews and imports.
+  const browser = await chromium.launch({ executablePath: process.env.SB_CHROMIUM || '/usr/bin/chromium',
+    headless: true, args: ['--headless', '--no-sandbox', '--disable-gpu', '--no-first-run'] });
+  try {
+    const frCtx = await browser.newContext({ locale: 'fr-FR', viewport: { width: 1200, height: 900 } });
+    const fp = await frCtx.newPage();
+    const frApi = async (method, url, body) => fp.evaluate(async ([method, url, body]) => {
+      const m = document.querySelector('meta[name="csrf-token"]');
+      const headers = { 'Accept': 'application/json', 'Content-Type': 'application/json' };
+      if (m) headers['X-CSRF-Token'] = m.content;
+      const r = await fetch(url, { method, headers, body: body == null ? undefined : JSON.stringify(body) });
+      return { status: r.status, data: await r.json().catch(() => null) };
+    }, [method, url, body === undefined ? null : body]);
+    await fp.goto(base + '/signup');
+    await fp.fill('#username', 'salle' + n);
+    await fp.fill('#password', password);
+    await Promise.all([fp.waitForURL(base + '/'), fp.click('#submit')]);
+    check(await fp.getAttribute('html', 'lang') === 'fr', 'the French browser gets French pages');
+    const fr = (await frApi('POST', '/api/gyms', { name: 'Salle de bloc ' + n })).data.id;
+    const frList = 'Réf,Nom,Cotation,Secteur,Couleur,Ouvreur\n' +
+      'F1,Dalle jaune,6a,Mur Est,jaune,Élodie Garçon\nF2,Toit noir,7b,Mur Est,noir,Élodie Garçon\n';
+    await fp.goto(base + '/gyms/' + fr + '/import');
+    check(await fp.getAttribute('html', 'lang') === 'fr', 'the import page answers in French');
+    await fp.fill('#import-data', frList);
+    await fp.click('#import-read');
+    await fp.waitForSelector('#import-preview:not([hidden])');
+    const frMapped = await fp.$$eval('.import-map', (ss) => ss.map((s) => s.dataset.field + '=' + s.value).join(','));
+    check(['id=Réf', 'name=Nom', 'grade=Cotation', 'wall=Secteur', 'colour=Couleur', 'setters=Ouvreur']
+      .every((m) => frMapped.includes(m)), 'the columns are prefilled from the French header (' + frMapped + ')');
+    const frSummary = await fp.textContent('#import-summary');
+    check(/^2\D/.test(frSummary), 'the French list previews 2 new (' + frSummary + ')');
+    await fp.screenshot({ path: path.join(out, '94-import-fr.png'), fullPage: true });
+    await fp.click('#import-confirm');
+    await fp.waitForSelector('#import-done.ok');
+    const frRoutes = (await frApi('GET', '/api/routes?gym=' + fr + '&sort=name')).data.routes;
+    check(frRoutes.map((r) => r.name + ':' + r.grade + ':' + r.colour).join(',') ===
+      'Dalle jaune:6a:jaune,Toit noir:7b:noir', 'the French list is imported (' +
+      frRoutes.map((r) => r.name).join(',') + ')');
+    const again = await frApi('POST', '/api/gyms/' + fr + '/import', { format: 'csv', data: frList, confirm: true });
+    check(again.status === 201 && again.data.created === 0 && again.data.skipped === 2, 'importing it twice duplicates nothing');
+  } finally {
+    await browser.close();
+  }
 };
