@@ -963,6 +963,20 @@ Result<FitSnapshot> Logbook::Snapshot(int64_t gym_id, const std::string& discipl
   return out;
 }
 
+Result<int64_t> Logbook::ReaderFitTicks(const store::RouteRecord& route) {
+  if (ticks_ == nullptr || !route.gym_id) return int64_t{0};
+  SB_ASSIGN_OR_RETURN(store::TickVersion version, ticks_->GymTickVersion(*route.gym_id));
+  const Key key(*route.gym_id, DisciplineOf(route));
+  std::lock_guard<std::mutex> lock(mu_);
+  if (flights_.count(key)) return int64_t{0};
+  if (auto it = cache_.find(key); it != cache_.end()) {
+    const CachedFit& e = it->second;
+    if (e.version.ticks == version.ticks) return int64_t{0};
+    if (e.fitted_ticks >= policy_.fit_background_min_ticks && e.fit) return int64_t{0};
+  }
+  return std::max<int64_t>(0, version.ticks);
+}
+
 uint64_t Logbook::FullFits() {
   std::lock_guard<std::mutex> lock(mu_);
   return full_fits_;
@@ -1042,7 +1056,7 @@ Result<std::vector<Tick>> Logbook::ForSetters(const Viewer& v, int64_t route_id,
     // Why each held tick was held, worked out again as Log decided it: the
     // rush rule (new identities on the route from anywhere), else the burst
     // rule (new identities from one address), else an edit of a held tick.
-    constexpr int kMaxExplained = 100;
+    constexpr int kMaxExplained = kMaxHeldReasons;
     int explained = 0;
     for (const store::TickRecord& t : ticks) {
       if (t.state != "held") continue;
@@ -1157,7 +1171,7 @@ Result<LogbookView> Logbook::Mine(const Viewer& v, std::string_view participant_
     f.viewer = v.user_id;
     f.gym_id = gym;
     f.state = gym::NameOf(gym::RouteState::kSet);
-    f.limit = 2000;
+    f.limit = kUntriedRoutesPerGym;
     SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> set, store_->ListRoutes(f));
     for (const store::RouteRecord& r : set) {
       if (tried.count(r.id) || !IsVisible(r, v)) continue;

@@ -37,6 +37,13 @@ namespace logbook_internal {
 struct FitState;  // logbook.cc
 }  // namespace logbook_internal
 
+// Routes a logbook's "not tried yet" list reads per gym (Logbook::Mine):
+// a gym holds a few hundred routes on its walls; the list is cut here.
+inline constexpr int kUntriedRoutesPerGym = 2000;
+// Held ticks whose reason is worked out again per request
+// (Logbook::ForSetters); the others are listed "reason not worked out".
+inline constexpr int kMaxHeldReasons = 100;
+
 // The logbook's limits, each with its reason.
 struct LogbookPolicy {
   // The window of the budgets below.
@@ -256,6 +263,15 @@ class Logbook {
 
   // The logbook of the signed-in climber, or of the device cookie.
   Result<LogbookView> Mine(const Viewer& v, std::string_view participant_token);
+
+  // Issue 34, costs before the work (app/read_costs.h): how many ticks a
+  // reader of `route`'s ascent grade (anonymous or not) would fit itself:
+  // 0 when the kept fit of its gym and discipline is current, is refitted in
+  // the background or by a flight under way (the reader waits, reads
+  // nothing), or the route is in no gym; else the gym's tick writes (an
+  // upper bound of its ticks; one row read). Changes nothing. Errors: the
+  // store's.
+  Result<int64_t> ReaderFitTicks(const store::RouteRecord& route);
 
   // How many full fits (FitGym refits of a gym and discipline) this logbook
   // has run: for tests and benchmarks of the single-route update.

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "app/climber_policy.h"
+#include "base/status.h"
 
 namespace sb::app {
 
@@ -210,8 +211,37 @@ struct RenderCosts {
   // and counts (~5 us: a row of text fields, stars and felt grades).
   double report_per_route = 100;
   double report_per_tick = 5;
-  // A climber's logbook, a study's CSV rows: per row read and written.
+  // Issue 34, the other reads that grow with the data (app/read_costs.h),
+  // each costed from counts before the reading (docs/web.md, "Work
+  // budgets"). A tick row read and written (a logbook's table, the account's
+  // ticks CSV, a route's ticks for its setters, a climber's own ticks for
+  // the chances): about a report tick's.
   double row_per_read = 5;
+  // A route read whole by id (its CRDL, metadata and inputs): the logbook
+  // reads one per ticked route for its name and grade (~50 us on SQLite).
+  double route_read = 50;
+  // A tick fitted by a reader (the ascent grade's fit of a gym and
+  // discipline, when the reader is the one who fits it): 250,000 ticks took
+  // ~2.3 s on the reference machine (issue 34), ~9 us a tick.
+  double fit_per_tick = 10;
+  // A held tick whose reason is worked out again for the setters (the
+  // climber's ticks and a count of the route's new identities: two indexed
+  // queries, ~0.3-0.5 ms on PostgreSQL).
+  double held_reason = 500;
+  // One answer row of a study (a participant's answers about one route),
+  // read, tabulated and analysed or written: a few dozen items each.
+  double study_per_answer = 20;
+  // Issue 33's part of the report (predicted_grades): each variation's
+  // grade predicted again from its stored parameters (its transient, plan
+  // and the moves model rebuilt: ~10-20 ms for a route of the corpus) plus
+  // plan_per_move per move, and the move grammar loaded once per report
+  // that has variations (~25 ms).
+  double predict_per_variation = 20e3;
+  double predict_grammar = 30e3;
+
+  // Every cost finite and >= 0; kInvalidInput naming the field otherwise.
+  // Pure (app/read_costs.cc).
+  Status Validate() const;
 };
 
 struct Options {

@@ -118,6 +118,7 @@ Result<GymReport> Reports::Report(const Viewer& v, int64_t gym, const ReportQuer
 }
 
 Result<ReportPlan> Reports::Plan(const Viewer& v, int64_t gym, const ReportQuery& q) {
+  SB_RETURN_IF_ERROR(costs_.Validate());
   store::TickStore* ticks = store::TickStoreOf(store_);
   if (ticks == nullptr) return Status::Internal("this store keeps no ticks");
   SB_ASSIGN_OR_RETURN(Gym g, gyms_->Get(v, gym));
@@ -211,6 +212,14 @@ Result<ReportPlan> Reports::Plan(const Viewer& v, int64_t gym, const ReportQuery
   plan.cost = static_cast<double>(plan.listed) * costs_.list_per_row +
               static_cast<double>(plan.routes.size()) * costs_.report_per_route +
               static_cast<double>(plan.ticks) * costs_.report_per_tick;
+  // The predicted_grades section (app/report_predicted.h): each variation in
+  // scope rebuilt and predicted again, the grammar loaded once (issue 34).
+  for (const store::RouteRecord& r : plan.routes) {
+    if (!r.is_variation) continue;
+    if (plan.variations++ == 0) plan.cost += costs_.predict_grammar;
+    plan.cost += costs_.predict_per_variation +
+                 static_cast<double>(r.move_count) * costs_.plan_per_move;
+  }
   return plan;
 }
 

@@ -127,8 +127,10 @@ struct ReportPlan {
   std::map<int64_t, AscentGrade> ascents;  // from the gym's kept fits (no rows read)
   int64_t listed = 0;  // route rows read to find them (at most max_routes + 1)
   int64_t ticks = 0;   // unheld ticks of those routes by the kept fits (an estimate)
+  int64_t variations = 0;  // of the routes, variations (their grades predicted again)
   // The work in render units (app::RenderCosts): listed rows, one tick query
-  // per route in scope and the ticks it reads. See Reports::Cost.
+  // per route in scope and the ticks it reads, and the predicted_grades
+  // section's (the grammar once, each variation and its moves).
   double cost = 0;
 };
 

@@ -69,6 +69,28 @@ TEST_F(ReportPredictedTest, ASettingDaysVariationIsSetAgainstItsAscentGradeAfter
   EXPECT_NE(before->predictions.verdict.find("none of the 1 variations has 5 ticks"),
             std::string::npos)
       << before->predictions.verdict;
+  // Issue 34: the plan's cost counts the predicted_grades section (the
+  // grammar once, the variation and its moves) before any of it is made.
+  Result<ReportPlan> plan = services_->reports.Plan(setter_, gym_, q);
+  ASSERT_TRUE(plan.ok()) << plan.status().message();
+  EXPECT_EQ(plan->variations, 1);
+  int variation_moves = -1;
+  for (const store::RouteRecord& rr : plan->routes) {
+    if (rr.is_variation) variation_moves = rr.move_count;
+  }
+  ASSERT_GT(variation_moves, 0);
+  RenderCosts unpredicted;
+  unpredicted.predict_grammar = 0;
+  unpredicted.predict_per_variation = 0;
+  unpredicted.plan_per_move = 0;
+  Reports without(store_.get(), &services_->gyms, &services_->logbook, ReportLimits::kMaxRoutes,
+                  unpredicted);
+  Result<ReportPlan> plain = without.Plan(setter_, gym_, q);
+  ASSERT_TRUE(plain.ok()) << plain.status().message();
+  const RenderCosts costs;
+  EXPECT_NEAR(plan->cost - plain->cost,
+              costs.predict_grammar + costs.predict_per_variation + variation_moves * costs.plan_per_move,
+              1e-6);
   const PredictedAgainstAscent& pr = before->predictions.days[0].routes.at(0);
   EXPECT_EQ(pr.id, *id);
   ASSERT_TRUE(pr.predicted.known) << pr.predicted.note;

@@ -16,6 +16,7 @@ Services::Services(Database* store, const Options& opts, Clock* clock)
       renders(opts.renders),
       gyms(store, opts),
       logbook(store, clock),
+      read_costs(store, &logbook, opts.render_costs, opts.renders),
       chances(store, &logbook, clock),
       dashboard(store, opts, clock),
       reports(store, &gyms, &logbook, ReportLimits::kMaxRoutes, opts.render_costs),

@@ -18,6 +18,7 @@
 #include "app/maps.h"
 #include "app/options.h"
 #include "app/profiles.h"
+#include "app/read_costs.h"
 #include "app/render_cache.h"
 #include "app/report.h"
 #include "app/routes.h"
@@ -48,6 +49,10 @@ struct Services {
   Gyms gyms;
   // The climbers' logbook and ascent grades (issue 23).
   Logbook logbook;
+  // What reading a logbook, a route's ticks, an ascent grade or a study
+  // costs, from counts before the reading (issue 34; options.render_costs,
+  // charged through `renders` by the web layer).
+  ReadCosts read_costs;
   // A climber's chances on a route and the gym's likely projects, from
   // the logbook's cached fits (issue 35).
   Chances chances;

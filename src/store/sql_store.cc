@@ -992,6 +992,14 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
     SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
     return ticks_sql::ClimberTicks(*c, climber);
   }
+  Result<TickCounts> CountClimberTicks(const std::string& climber) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return ticks_sql::CountClimberTicks(*c, climber);
+  }
+  Result<TickCounts> CountRouteTicks(int64_t route_id) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return ticks_sql::CountRouteTicks(*c, route_id);
+  }
   Result<TickVersion> GymTickVersion(int64_t gym_id) override {
     SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
     return ticks_sql::GymTickVersion(*c, gym_id);

@@ -101,6 +101,33 @@ Result<std::vector<TickRecord>> ClimberTicks(sql::Connection& c, const std::stri
   return Read(r);
 }
 
+namespace {
+TickCounts ReadCounts(const Rows& r) {
+  TickCounts n;
+  if (r.empty()) return n;
+  n.ticks = r.OptInt(0, 0).value_or(0);
+  n.routes = r.OptInt(0, 1).value_or(0);
+  n.gyms = r.OptInt(0, 2).value_or(0);
+  n.held = r.OptInt(0, 3).value_or(0);
+  return n;
+}
+constexpr const char* kCounts =
+    "SELECT COUNT(*), COUNT(DISTINCT route_id), COUNT(DISTINCT gym_id), "
+    "COALESCE(SUM(CASE WHEN state = 'held' THEN 1 ELSE 0 END), 0) FROM ticks";
+}  // namespace
+
+Result<TickCounts> CountClimberTicks(sql::Connection& c, const std::string& climber) {
+  SB_ASSIGN_OR_RETURN(Rows r, c.Query(std::string(kCounts) +
+                                          " WHERE climber = ? AND state <> 'discarded'",
+                                      {climber}));
+  return ReadCounts(r);
+}
+
+Result<TickCounts> CountRouteTicks(sql::Connection& c, int64_t route_id) {
+  SB_ASSIGN_OR_RETURN(Rows r, c.Query(std::string(kCounts) + " WHERE route_id = ?", {route_id}));
+  return ReadCounts(r);
+}
+
 Result<TickVersion> GymTickVersion(sql::Connection& c, int64_t gym_id) {
   SB_ASSIGN_OR_RETURN(Rows r, c.Query("SELECT tick_version, data_version FROM gym_versions "
                                       "WHERE gym_id = ?",

@@ -18,6 +18,8 @@ Result<TickRecord> GetTick(sql::Connection& c, int64_t id);
 Result<std::vector<TickRecord>> RouteTicks(sql::Connection& c, int64_t route_id);
 Result<std::vector<TickRecord>> GymTicks(sql::Connection& c, int64_t gym_id);
 Result<std::vector<TickRecord>> ClimberTicks(sql::Connection& c, const std::string& climber);
+Result<TickCounts> CountClimberTicks(sql::Connection& c, const std::string& climber);
+Result<TickCounts> CountRouteTicks(sql::Connection& c, int64_t route_id);
 Result<TickVersion> GymTickVersion(sql::Connection& c, int64_t gym_id);
 Status SetTickState(sql::Connection& c, int64_t id, const std::string& state,
                     const std::string& updated_at);

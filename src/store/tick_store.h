@@ -53,6 +53,15 @@ struct TickVersion {
   bool operator==(const TickVersion&) const = default;
 };
 
+// What a page that reads a climber's or a route's ticks will read, counted
+// before the reading (issue 34: costs from counts; app/read_costs.h).
+struct TickCounts {
+  int64_t ticks = 0;   // rows the read returns (see each method)
+  int64_t routes = 0;  // distinct routes among them
+  int64_t gyms = 0;    // distinct gyms among them
+  int64_t held = 0;    // of them, in state "held"
+};
+
 // Thread-safe like Store. Errors: kNotFound for unknown ids, kIoError for
 // storage failures.
 class TickStore {
@@ -72,6 +81,12 @@ class TickStore {
   virtual Result<std::vector<TickRecord>> GymTicks(int64_t gym_id) = 0;
   // A climber's ticks (every state but "discarded"), newest day first, then id.
   virtual Result<std::vector<TickRecord>> ClimberTicks(const std::string& climber) = 0;
+  // Counts of what ClimberTicks(climber) returns (every state but
+  // "discarded"): one indexed COUNT query, no rows read.
+  virtual Result<TickCounts> CountClimberTicks(const std::string& climber) = 0;
+  // Counts of what RouteTicks(route_id) returns (every state; routes and
+  // gyms are 1 when it has any): one indexed COUNT query.
+  virtual Result<TickCounts> CountRouteTicks(int64_t route_id) = 0;
   // The gym's data versions (one row; see TickVersion).
   virtual Result<TickVersion> GymTickVersion(int64_t gym_id) = 0;
   // Sets a tick's state (and updated_at); kNotFound when absent.

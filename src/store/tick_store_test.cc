@@ -89,6 +89,23 @@ TEST_P(TickStoreTest, OneTickPerRouteClimberAndDayASecondEditsIt) {
   EXPECT_EQ(ticks_->RouteTicks(route_)->size(), 2u);
   EXPECT_EQ((*ticks_->ClimberTicks("d:aa"))[0].day, "2026-11-21");  // newest first
   EXPECT_GT(ticks_->GymTickVersion(gym_)->ticks, 1);
+  // Issue 34: the counts a page's cost is made from, before the reading.
+  TickRecord held = Tick(route_, "d:bb", "2026-11-21", "send", "2026-11-21 10:00:00");
+  held.state = "held";
+  ASSERT_TRUE(ticks_->PutTick(held).ok());
+  Result<TickCounts> by_route = ticks_->CountRouteTicks(route_);
+  ASSERT_TRUE(by_route.ok()) << by_route.status().message();
+  EXPECT_EQ(by_route->ticks, 3);
+  EXPECT_EQ(by_route->held, 1);
+  EXPECT_EQ(by_route->routes, 1);
+  Result<TickCounts> by_climber = ticks_->CountClimberTicks("d:aa");
+  ASSERT_TRUE(by_climber.ok()) << by_climber.status().message();
+  EXPECT_EQ(by_climber->ticks, static_cast<int64_t>(ticks_->ClimberTicks("d:aa")->size()));
+  EXPECT_EQ(by_climber->routes, 1);
+  EXPECT_EQ(by_climber->gyms, 1);
+  EXPECT_EQ(by_climber->held, 0);
+  EXPECT_EQ(ticks_->CountClimberTicks("d:nobody")->ticks, 0);
+  EXPECT_EQ(ticks_->CountRouteTicks(99999)->ticks, 0);
 
   // Unknown route: kNotFound.
   Result<TickRecord> bad = ticks_->PutTick(Tick(99999, "d:aa", "2026-11-21", "flash", "x"));

@@ -78,6 +78,11 @@ void DeleteAccount(Exchange& x) {
 }
 
 void GetAccountTicksCsv(Exchange& x) {
+  // Issue 34: the account's logbook is read; its cost from the counts first.
+  Result<double> cost = x.services.read_costs.LogbookCost(x.caller.viewer, "");
+  if (!cost.ok()) return ApiError(x, cost.status());
+  auto slot = AdmitWork(x, *cost);
+  if (!slot) return;
   Result<std::string> csv = x.services.profiles.TicksCsv(x.caller.viewer, x.services.logbook);
   if (!csv.ok()) return ApiError(x, csv.status());
   x.res.SetHeader("Content-Disposition", "attachment; filename=\"ticks.csv\"");
@@ -85,6 +90,17 @@ void GetAccountTicksCsv(Exchange& x) {
 }
 
 void GetAccountRoutesTar(Exchange& x) {
+  // Issue 34: every route of the account is read whole; counted first.
+  std::optional<app::WorkBudget::Slot> slot;
+  if (x.caller.viewer.logged_in()) {
+    app::RouteQuery q;
+    q.mine = true;
+    q.limit = 1;
+    Result<app::RoutePage> count = x.services.routes.Search(x.caller.viewer, q);
+    if (!count.ok()) return ApiError(x, count.status());
+    slot = AdmitWork(x, count->total * x.services.options.render_costs.export_per_route);
+    if (!slot) return;
+  }
   Result<std::string> tar = x.services.profiles.RoutesTar(x.caller.viewer);
   if (!tar.ok()) return ApiError(x, tar.status());
   x.res.SetHeader("Content-Disposition", "attachment; filename=\"routes.tar\"");

@@ -10,6 +10,7 @@
 #include <httplib.h>
 
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -27,7 +28,9 @@ using nlohmann::json;
 // One running server over a database file.
 class Running {
  public:
-  explicit Running(const std::string& db, size_t max_body = 256 * 1024) {
+  // `tune`, when set, changes the server's options before it starts.
+  explicit Running(const std::string& db, size_t max_body = 256 * 1024,
+                   const std::function<void(ServerOptions&)>& tune = {}) {
     Result<std::unique_ptr<app::Database>> s = app::OpenDatabase(db);
     EXPECT_TRUE(s.ok()) << s.status().message();
     store_ = std::move(s).value();
@@ -35,6 +38,7 @@ class Running {
     o.app.fast_password_hashing = true;
     o.app.limits.max_body_bytes = max_body;
     o.threads = 4;
+    if (tune) tune(o);
     server_ = std::make_unique<Server>(store_.get(), o);
     Result<int> port = server_->Bind("127.0.0.1", 0);
     EXPECT_TRUE(port.ok());
@@ -123,9 +127,10 @@ class ApiFixture : public ::testing::Test {
     server_.reset();
     database_.reset();
   }
-  void Restart(size_t max_body = 256 * 1024) {
+  void Restart(size_t max_body = 256 * 1024,
+               const std::function<void(ServerOptions&)>& tune = {}) {
     server_.reset();
-    server_ = std::make_unique<Running>(db_, max_body);
+    server_ = std::make_unique<Running>(db_, max_body, tune);
   }
   Client NewClient() { return Client(server_->port()); }
   int64_t AddRoute(Client& c, const std::string& crdl, bool pub = true) {

@@ -165,6 +165,22 @@ Result<app::StudyResults> ResultsOf(Exchange& x, const studies::AnalysisOptions&
   return x.services.studies.Results(x.caller.viewer, id, o);
 }
 
+// Issue 34: a study's answers are read by its results, CSVs, analysis, box
+// plot and held list; their cost (app::ReadCosts::StudyCost, from the
+// study's counts) is charged first. nullopt when refused or the study is
+// not the viewer's (the reply written: JSON under /api/, else a page).
+std::optional<app::WorkBudget::Slot> AdmitStudy(Exchange& x) {
+  const bool api = x.req.path.rfind("/api/", 0) == 0;
+  Result<int64_t> id = PathId(x.req, "no such study");
+  Result<app::Study> st = id.ok() ? x.services.studies.Owned(x.caller.viewer, *id)
+                                  : Result<app::Study>(id.status());
+  if (!st.ok()) {
+    api ? ApiError(x, st.status()) : PageError(x, st.status());
+    return std::nullopt;
+  }
+  return AdmitWork(x, x.services.read_costs.StudyCost(*st));
+}
+
 }  // namespace
 
 std::string ConsensusBlock(Exchange& x, const app::RouteView& route) {
@@ -181,6 +197,13 @@ std::string ConsensusBlock(Exchange& x, const app::RouteView& route) {
 void PageFeedback(Exchange& x) {
   Result<int64_t> id = PathId(x.req, "No such route.");
   if (!id.ok()) return PageError(x, id.status());
+  // Issue 34: the ascent section (the fit this reader would make, the
+  // chances' own ticks, the held ticks for setters), costed first.
+  std::optional<int64_t> gym;
+  Result<double> cost = x.services.read_costs.AscentCost(x.caller.viewer, *id, true, &gym);
+  if (!cost.ok()) return PageError(x, cost.status());
+  auto slot = AdmitWork(x, *cost, gym);
+  if (!slot) return;
   Result<app::FeedbackPage> p = x.services.climber_feedback.Page(x.caller.viewer, *id, Token(x));
   if (!p.ok()) return PageError(x, p.status());
   Html(x, FeedbackPageHtml(x.caller.page(), *p, app::IsOwner(p->route, x.caller.viewer),
@@ -228,6 +251,8 @@ void PageEditStudy(Exchange& x) {
 }
 
 void PageStudyResults(Exchange& x) {
+  auto slot = AdmitStudy(x);
+  if (!slot) return;
   std::string drop;
   bool censor = false;
   studies::AnalysisOptions o = AnalysisOf(x, &drop, &censor);
@@ -251,6 +276,8 @@ void PageStudyForm(Exchange& x) {
 }
 
 void GetStudyResponsesCsv(Exchange& x) {
+  auto slot = AdmitStudy(x);
+  if (!slot) return;
   Result<int64_t> id = PathId(x.req, "No such study.");
   if (!id.ok()) return PageError(x, id.status());
   Result<std::string> csv = x.services.studies.ResponsesCsv(x.caller.viewer, *id);
@@ -267,6 +294,8 @@ void GetStudyInstrument(Exchange& x) {
 }
 
 void GetStudyDemographicsCsv(Exchange& x) {
+  auto slot = AdmitStudy(x);
+  if (!slot) return;
   Result<int64_t> id = PathId(x.req, "No such study.");
   if (!id.ok()) return PageError(x, id.status());
   Result<std::string> csv = x.services.studies.DemographicsCsv(x.caller.viewer, *id);
@@ -276,6 +305,8 @@ void GetStudyDemographicsCsv(Exchange& x) {
 }
 
 void GetStudyAnalysis(Exchange& x) {
+  auto slot = AdmitStudy(x);
+  if (!slot) return;
   std::string drop;
   bool censor = false;
   Result<app::StudyResults> r = ResultsOf(x, AnalysisOf(x, &drop, &censor));
@@ -286,6 +317,8 @@ void GetStudyAnalysis(Exchange& x) {
 }
 
 void GetStudyBoxPlot(Exchange& x) {
+  auto slot = AdmitStudy(x);
+  if (!slot) return;
   std::string drop;
   bool censor = false;
   Result<app::StudyResults> r = ResultsOf(x, AnalysisOf(x, &drop, &censor));
@@ -400,6 +433,8 @@ void PostStudyResponse(Exchange& x) {
 }
 
 void GetStudyHeld(Exchange& x) {
+  auto slot = AdmitStudy(x);
+  if (!slot) return;
   Result<app::StudyResults> r = ResultsOf(x, {});
   if (!r.ok()) return ApiError(x, r.status());
   json held = json::array();

@@ -191,6 +191,12 @@ void PostTick(Exchange& x) {
 void GetRouteTicks(Exchange& x) {
   Result<int64_t> id = PathId(x.req, "no such route");
   if (!id.ok()) return ApiError(x, id.status());
+  // Issue 34: every tick of the route is read; its cost from their count.
+  std::optional<int64_t> gym;
+  Result<double> cost = x.services.read_costs.RouteTicksCost(x.caller.viewer, *id, &gym);
+  if (!cost.ok()) return ApiError(x, cost.status());
+  auto slot = AdmitWork(x, *cost, gym);
+  if (!slot) return;
   std::map<int64_t, std::string> reasons;
   Result<std::vector<app::Tick>> ticks =
       x.services.logbook.ForSetters(x.caller.viewer, *id, &reasons);
@@ -210,6 +216,12 @@ void PostTickDiscard(Exchange& x) { Decide(x, false); }
 void GetRouteAscent(Exchange& x) {
   Result<int64_t> id = PathId(x.req, "no such route");
   if (!id.ok()) return ApiError(x, id.status());
+  // Issue 34: the fit this reader would make and the chances' own ticks.
+  std::optional<int64_t> gym;
+  Result<double> cost = x.services.read_costs.AscentCost(x.caller.viewer, *id, false, &gym);
+  if (!cost.ok()) return ApiError(x, cost.status());
+  auto slot = AdmitWork(x, *cost, gym);
+  if (!slot) return;
   Result<app::AscentGrade> a = x.services.logbook.Ascent(x.caller.viewer, *id);
   if (!a.ok()) return ApiError(x, a.status());
   json j = AscentJson(*a);
@@ -224,6 +236,11 @@ void GetRouteAscent(Exchange& x) {
 }
 
 void GetLogbook(Exchange& x) {
+  // Issue 34: the climber's ticks, routes and gyms, counted first.
+  Result<double> cost = x.services.read_costs.LogbookCost(x.caller.viewer, Token(x));
+  if (!cost.ok()) return ApiError(x, cost.status());
+  auto slot = AdmitWork(x, *cost);
+  if (!slot) return;
   Result<app::LogbookView> v = x.services.logbook.Mine(x.caller.viewer, Token(x));
   if (!v.ok()) return ApiError(x, v.status());
   json ticks = json::array();
@@ -246,6 +263,10 @@ void GetLogbook(Exchange& x) {
 }
 
 void PageLogbook(Exchange& x) {
+  Result<double> cost = x.services.read_costs.LogbookCost(x.caller.viewer, Token(x));
+  if (!cost.ok()) return PageError(x, cost.status());
+  auto slot = AdmitWork(x, *cost);
+  if (!slot) return;
   Result<app::LogbookView> v = x.services.logbook.Mine(x.caller.viewer, Token(x));
   if (!v.ok()) return PageError(x, v.status());
   const PageViewer pv = x.caller.page();

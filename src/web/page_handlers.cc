@@ -121,8 +121,11 @@ void PageRoute(Exchange& x) {
     x.res.SetHeader("Location", "/variations/" + std::to_string(*id));
     return;
   }
-  auto slot =
-      AdmitWork(x, r->move_count * x.services.options.render_costs.page_per_move, r->gym_id);
+  // Issue 34: the page's ascent section (app::ReadCosts::AscentCost) too.
+  Result<double> ascent = x.services.read_costs.AscentCost(x.caller.viewer, *id, true);
+  if (!ascent.ok()) return PageError(x, ascent.status());
+  auto slot = AdmitWork(
+      x, r->move_count * x.services.options.render_costs.page_per_move + *ascent, r->gym_id);
   if (!slot) return;
   std::vector<std::string> readings;
   if (Result<Route> parsed = ParseCrdl(r->crdl, "route"); parsed.ok()) {
@@ -168,7 +171,8 @@ struct AdmittedPlan {
   app::PlanView view;
   app::WorkBudget::Slot slot;
 };
-std::optional<AdmittedPlan> AdmittedPlanOf(Exchange& x, double base, double per_move) {
+std::optional<AdmittedPlan> AdmittedPlanOf(Exchange& x, double base, double per_move,
+                                           bool with_ascent = false) {
   Result<int64_t> id = PathId(x.req, "No such variation.");
   if (!id.ok()) {
     PageError(x, id.status());
@@ -179,6 +183,15 @@ std::optional<AdmittedPlan> AdmittedPlanOf(Exchange& x, double base, double per_
   if (!r.ok() || !r->is_variation) {
     PageError(x, r.ok() ? Status::NotFound("No such variation.") : r.status());
     return std::nullopt;
+  }
+  if (with_ascent) {
+    // Issue 34: the page's ascent section (app::ReadCosts::AscentCost).
+    Result<double> ascent = x.services.read_costs.AscentCost(x.caller.viewer, *id, true);
+    if (!ascent.ok()) {
+      PageError(x, ascent.status());
+      return std::nullopt;
+    }
+    base += *ascent;
   }
   std::optional<app::WorkBudget::Slot> slot =
       AdmitWork(x, base + r->move_count * per_move, r->gym_id);
@@ -233,7 +246,7 @@ std::string ShortLink(Exchange& x, int64_t id) {
 
 void PagePlan(Exchange& x) {
   const app::RenderCosts& c = x.services.options.render_costs;
-  std::optional<AdmittedPlan> a = AdmittedPlanOf(x, 0, c.plan_per_move);
+  std::optional<AdmittedPlan> a = AdmittedPlanOf(x, 0, c.plan_per_move, /*with_ascent=*/true);
   if (!a) return;
   const app::PlanView* p = &a->view;
   Html(x, WithBlock(PlanPage(x.caller.page(), p->record, *p->plan, p->smoothing_note,

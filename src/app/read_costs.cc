@@ -1,0 +1,144 @@
+#include "app/read_costs.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "app/routes.h"
+
+namespace sb::app {
+
+Status RenderCosts::Validate() const {
+  const std::pair<const char*, double> fields[] = {
+      {"page_per_move", page_per_move},
+      {"plan_per_move", plan_per_move},
+      {"card_base", card_base},
+      {"card_per_move", card_per_move},
+      {"list_per_row", list_per_row},
+      {"export_per_route", export_per_route},
+      {"editor_per_byte", editor_per_byte},
+      {"tag_base", tag_base},
+      {"tag_each", tag_each},
+      {"day_candidate", day_candidate},
+      {"report_per_route", report_per_route},
+      {"report_per_tick", report_per_tick},
+      {"row_per_read", row_per_read},
+      {"route_read", route_read},
+      {"fit_per_tick", fit_per_tick},
+      {"held_reason", held_reason},
+      {"study_per_answer", study_per_answer},
+      {"predict_per_variation", predict_per_variation},
+      {"predict_grammar", predict_grammar},
+  };
+  for (const auto& [name, v] : fields) {
+    if (!std::isfinite(v) || v < 0) {
+      return Status::InvalidInput(std::string("render_costs.") + name +
+                                  ": expected a finite cost >= 0");
+    }
+  }
+  return Status::Ok();
+}
+
+ReadCosts::ReadCosts(store::Store* store, app::Logbook* logbook, RenderCosts costs,
+                     BudgetPolicy budget)
+    : store_(store),
+      ticks_(store::TickStoreOf(store)),
+      logbook_(logbook),
+      costs_(costs),
+      budget_(budget) {}
+
+Result<double> ReadCosts::LogbookCost(const Viewer& v, std::string_view participant_token) {
+  SB_RETURN_IF_ERROR(costs_.Validate());
+  if (ticks_ == nullptr) return 0.0;
+  std::optional<std::string> key = ClimberKey(v, participant_token);
+  store::TickCounts n;
+  if (key) {
+    SB_ASSIGN_OR_RETURN(n, ticks_->CountClimberTicks(*key));
+  }
+  // The gyms listed: those ticked and the viewer's own (an upper bound:
+  // some are both).
+  const double gyms = static_cast<double>(n.gyms) + static_cast<double>(v.gyms.size());
+  return static_cast<double>(n.ticks) * costs_.row_per_read +
+         static_cast<double>(n.routes) * costs_.route_read +
+         gyms * kUntriedRoutesPerGym * costs_.list_per_row;
+}
+
+Result<std::optional<store::RouteRecord>> ReadCosts::Seen(const Viewer& v, int64_t route_id) {
+  Result<store::RouteRecord> route = store_->GetRoute(route_id);
+  if (!route.ok()) {
+    if (route.status().code() == Status::Code::kNotFound) {
+      return std::optional<store::RouteRecord>();
+    }
+    return route.status();
+  }
+  if (!route->gym_id || !IsVisible(*route, v, store::Reach::kOnTheWall)) {
+    return std::optional<store::RouteRecord>();
+  }
+  return std::optional<store::RouteRecord>(std::move(route).value());
+}
+
+namespace {
+
+// Whether `v` may read every tick of `r` (Logbook::ForSetters' rule).
+bool SetsRoute(const Viewer& v, const store::RouteRecord& r) {
+  if (!v.user_id) return false;
+  if (r.owner_id && *r.owner_id == *v.user_id) return true;
+  for (const GymRole& g : v.gyms) {
+    if (r.gym_id && g.gym_id == *r.gym_id && (g.role == "head" || g.role == "setter")) {
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+Result<double> ReadCosts::RouteTicksCost(const Viewer& v, int64_t route_id,
+                                         std::optional<int64_t>* gym) {
+  SB_RETURN_IF_ERROR(costs_.Validate());
+  if (gym) gym->reset();
+  if (ticks_ == nullptr) return 0.0;
+  SB_ASSIGN_OR_RETURN(std::optional<store::RouteRecord> route, Seen(v, route_id));
+  if (route && gym) *gym = route->gym_id;
+  if (!route || !SetsRoute(v, *route)) return 0.0;
+  SB_ASSIGN_OR_RETURN(store::TickCounts n, ticks_->CountRouteTicks(route_id));
+  return static_cast<double>(n.ticks) * costs_.row_per_read +
+         static_cast<double>(std::min<int64_t>(n.held, kMaxHeldReasons)) * costs_.held_reason;
+}
+
+Result<double> ReadCosts::AscentCost(const Viewer& v, int64_t route_id, bool with_held,
+                                     std::optional<int64_t>* gym) {
+  SB_RETURN_IF_ERROR(costs_.Validate());
+  if (gym) gym->reset();
+  if (ticks_ == nullptr) return 0.0;
+  SB_ASSIGN_OR_RETURN(std::optional<store::RouteRecord> route, Seen(v, route_id));
+  if (!route) return 0.0;
+  if (gym) *gym = route->gym_id;
+  double cost = 0;
+  if (v.user_id) {
+    // The chances read the climber's own ticks (app/chances.h).
+    SB_ASSIGN_OR_RETURN(store::TickCounts mine,
+                        ticks_->CountClimberTicks("u:" + std::to_string(*v.user_id)));
+    cost += static_cast<double>(mine.ticks) * costs_.row_per_read;
+    if (with_held && SetsRoute(v, *route)) {
+      SB_ASSIGN_OR_RETURN(store::TickCounts n, ticks_->CountRouteTicks(route_id));
+      cost += static_cast<double>(n.ticks) * costs_.row_per_read +
+              static_cast<double>(std::min<int64_t>(n.held, kMaxHeldReasons)) * costs_.held_reason;
+    }
+  }
+  // The fit this reader would make, bounded by what is left of the
+  // reader's per-request cap: a gym's first fit after a start must be made
+  // by someone (later refits of a big gym run in the background, costing
+  // readers nothing), so it is charged the reader's whole allowance rather
+  // than refused for ever.
+  SB_ASSIGN_OR_RETURN(int64_t fit, logbook_->ReaderFitTicks(*route));
+  const double cap = v.logged_in() ? budget_.user_max_cost : budget_.anonymous_max_cost;
+  cost += std::min(static_cast<double>(fit) * costs_.fit_per_tick, std::max(0.0, cap - cost));
+  return cost;
+}
+
+double ReadCosts::StudyCost(const Study& s) const {
+  return static_cast<double>(s.responses) *
+         static_cast<double>(std::max<size_t>(1, s.routes.size())) * costs_.study_per_answer;
+}
+
+}  // namespace sb::app

@@ -1,0 +1,197 @@
+// Issue 34, costs before the work: every page and API answer that reads a
+// climber's, a route's or a study's rows (logbooks, the account's ticks CSV
+// and routes archive, a route's ticks for its setters, ascent grades on the
+// API, /r/{id}, the route page, studies' results and CSVs) is costed from
+// counts before the reading (app::ReadCosts) and refused with 429 and
+// Retry-After when the caller's budget cannot pay, while a caller with less
+// to read passes. Run on a real server over SQLite, or PostgreSQL when
+// $SB_TEST_BACKEND is "postgresql" (ctest runs both).
+#include <gtest/gtest.h>
+#include <httplib.h>
+
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "web/api_test_util.h"
+
+namespace sb::web {
+namespace {
+
+using nlohmann::json;
+using testing::Client;
+
+std::string Crdl(int i) {
+  return "name: Cost Route " + std::to_string(i) +
+         "\ngrade: V3\n---\nR small crimp\nL small crimp\nR jug\nL jug finish\n";
+}
+
+class CostApiTest : public testing::ApiFixture {
+ protected:
+  Client* LoggedIn(const std::string& name) {
+    all_.push_back(std::make_unique<Client>(server_->port()));
+    all_.back()->SignUp(name);
+    EXPECT_TRUE(all_.back()->LogIn(name));
+    return all_.back().get();
+  }
+  Client* Again(const std::string& name) {
+    all_.push_back(std::make_unique<Client>(server_->port()));
+    EXPECT_TRUE(all_.back()->LogIn(name));
+    return all_.back().get();
+  }
+  // A tick of route `r` (keeps a phone's device cookie).
+  void Tick(Client& c, int64_t r) {
+    auto res = c.Send("POST", "/api/routes/" + std::to_string(r) + "/ticks",
+                      json{{"outcome", "send"}, {"attempts", 2}}.dump());
+    ASSERT_TRUE(res);
+    ASSERT_EQ(res->status, 201) << res->body;
+    const std::string sc = res->get_header_value("Set-Cookie");
+    if (sc.rfind("sb_climber=", 0) == 0) c.cookie() = sc.substr(0, sc.find(';'));
+  }
+  // 429 with a Retry-After of at least a second.
+  static void Refused(Client& c, const std::string& path) {
+    auto r = c.Send("GET", path);
+    ASSERT_TRUE(r) << path;
+    EXPECT_EQ(r->status, 429) << path << " -> " << r->body;
+    EXPECT_GE(std::atoi(r->get_header_value("Retry-After").c_str()), 1) << path;
+  }
+  // Every caller may spend 1e6 units a minute (a fresh one has them all),
+  // with no per-request cap: a request costing more waits (Retry-After).
+  static void TightBudgets(ServerOptions& o) {
+    o.app.renders.anonymous_max_cost = 1e12;
+    o.app.renders.user_max_cost = 1e12;
+    o.app.renders.anonymous_cost_per_minute = 1e6;
+    o.app.renders.user_cost_per_minute = 1e6;
+  }
+  std::vector<std::unique_ptr<Client>> all_;
+};
+
+TEST_F(CostApiTest, ReadsOfTicksStudiesAndAccountsAreCostedFromTheirCountsFirst) {
+  Client& head = *LoggedIn("head");
+  LoggedIn("setter");
+  Client& heavy = *LoggedIn("heavy");
+  LoggedIn("light");
+  const int64_t g = head.Json("POST", "/api/gyms", R"({"name":"Cost Gym"})", 201)["id"];
+  const std::string gp = "/api/gyms/" + std::to_string(g);
+  ASSERT_EQ(head.Status("POST", gp + "/members", R"({"username":"setter","role":"setter"})"), 201);
+  ASSERT_EQ(head.Status("POST", gp + "/walls", R"({"name":"Cave"})"), 201);
+  std::vector<int64_t> r;
+  for (int i = 0; i < 3; ++i) {
+    json body{{"crdl", Crdl(i)}, {"gym", g}, {"wall", "cave"}, {"state", "set"}};
+    r.push_back(head.Json("POST", "/api/routes", body.dump(), 201)["id"]);
+  }
+  // heavy ticks the three routes; two phones tick the first too.
+  for (int64_t id : r) Tick(heavy, id);
+  Client p1(server_->port()), p2(server_->port());
+  Tick(p1, r[0]);
+  Tick(p2, r[0]);
+  // A study of head's with one response (3 routes: 3 answer rows), and an
+  // empty one of setter's.
+  json made = head.Json(
+      "POST", "/api/studies",
+      json{{"name", "Pilot"}, {"routes", r}, {"instrument", "pilot"}, {"demographics", false}}
+          .dump(),
+      201);
+  const std::string sid = std::to_string(made["id"].get<int64_t>());
+  json response{{"routes", json::array()}};
+  for (int i = 1; i <= 3; ++i) {
+    response["routes"].push_back({{"answers", {3, 3, 3, 3, 3}}, {"rank", i}, {"order", i}});
+  }
+  ASSERT_EQ(NewClient().Status("POST", "/api/s/" + sid + "/responses", response.dump()), 201);
+  Client& setter0 = *Again("setter");
+  json empty = setter0.Json(
+      "POST", "/api/studies",
+      json{{"name", "Empty"}, {"routes", {r[1], r[2]}}, {"instrument", "pilot"}}.dump(), 201);
+  const std::string eid = std::to_string(empty["id"].get<int64_t>());
+
+  // A row read costs 0.4 s: three rows are over a fresh caller's minute,
+  // one is not; the fits cost nothing here.
+  Restart(256 * 1024, [](ServerOptions& o) {
+    TightBudgets(o);
+    o.app.render_costs.row_per_read = 400e3;
+    o.app.render_costs.study_per_answer = 400e3;
+    o.app.render_costs.export_per_route = 400e3;
+    o.app.render_costs.fit_per_tick = 0;
+    o.app.render_costs.list_per_row = 0;
+    o.app.render_costs.report_per_route = 400e3;
+  });
+  Client& h = *Again("head");
+  Client& s = *Again("setter");
+  Client& hv = *Again("heavy");
+  Client& lt = *Again("light");
+  const std::string r0 = "/api/routes/" + std::to_string(r[0]);
+  const std::string r1 = "/api/routes/" + std::to_string(r[1]);
+
+  // Logbooks: 3 ticks refused, none passes (page, API, account CSV).
+  Refused(hv, "/api/logbook");
+  Refused(hv, "/logbook");
+  Refused(hv, "/api/account/ticks.csv");
+  EXPECT_EQ(lt.Status("GET", "/api/logbook"), 200);
+  EXPECT_EQ(lt.Status("GET", "/logbook"), 200);
+  EXPECT_EQ(lt.Status("GET", "/api/account/ticks.csv"), 200);
+  // The account's routes archive: head's 3 routes refused, light's none passes.
+  Refused(h, "/api/account/routes.tar");
+  EXPECT_EQ(lt.Status("GET", "/api/account/routes.tar"), 200);
+  // A route's ticks for its setters: 3 refused, 1 passes.
+  Refused(h, r0 + "/ticks");
+  EXPECT_EQ(s.Status("GET", r1 + "/ticks"), 200);
+  // Ascent grades: heavy's chances read its 3 ticks; light has none.
+  Refused(hv, r1 + "/ascent");
+  Refused(hv, "/r/" + std::to_string(r[1]));
+  EXPECT_EQ(lt.Status("GET", r1 + "/ascent"), 200);
+  EXPECT_EQ(lt.Status("GET", "/r/" + std::to_string(r[1])), 200);
+  // The held-ticks section of /r/{id} and of the route page for a setter
+  // reads the route's ticks.
+  Refused(h, "/r/" + std::to_string(r[0]));
+  Refused(h, "/routes/" + std::to_string(r[0]));  // the route page's ascent section
+  // Studies: one response of 3 routes refused; an empty study passes.
+  for (const char* p :
+       {"", "/responses.csv", "/demographics.csv", "/analysis.json", "/boxplot.svg"}) {
+    Refused(h, "/studies/" + sid + p);
+  }
+  Refused(h, "/api/studies/" + sid + "/held");
+  EXPECT_EQ(s.Status("GET", "/studies/" + eid + "/responses.csv"), 200);
+  EXPECT_EQ(s.Status("GET", "/api/studies/" + eid + "/held"), 200);
+  EXPECT_EQ(s.Status("GET", "/studies/" + eid), 200);
+  // The report (costed by its plan, app::Reports::Plan): the wall's 3
+  // routes refused, a day with none passes.
+  Refused(h, gp + "/report?wall=cave");
+  Refused(h, "/gyms/" + std::to_string(g) + "/report?wall=cave");
+  EXPECT_EQ(s.Status("GET", gp + "/report?date=2001-01-01"), 200);
+}
+
+TEST_F(CostApiTest, AReaderWhoWouldFitAGymIsChargedForItsTicksBeforeTheFit) {
+  Client& head = *LoggedIn("head");
+  const int64_t g = head.Json("POST", "/api/gyms", R"({"name":"Fit Gym"})", 201)["id"];
+  ASSERT_EQ(head.Status("POST", "/api/gyms/" + std::to_string(g) + "/walls", R"({"name":"Cave"})"),
+            201);
+  json body{{"crdl", Crdl(0)}, {"gym", g}, {"wall", "cave"}, {"state", "set"}};
+  const int64_t route = head.Json("POST", "/api/routes", body.dump(), 201)["id"];
+  std::vector<std::unique_ptr<Client>> phones;
+  for (int i = 0; i < 4; ++i) {
+    phones.push_back(std::make_unique<Client>(server_->port()));
+    Tick(*phones.back(), route);
+  }
+  // A fresh start: no fit kept. A tick fitted costs 0.3 s, so the gym's 4
+  // ticks cost more than an anonymous caller's minute: refused before the
+  // fit; a signed-in reader's fit is charged at most its per-request cap
+  // (a gym's first fit must be made by someone) and passes; then the fit
+  // is current and costs the anonymous reader nothing.
+  Restart(256 * 1024, [](ServerOptions& o) {
+    TightBudgets(o);
+    o.app.renders.user_max_cost = 500e3;
+    o.app.render_costs.fit_per_tick = 300e3;
+  });
+  const std::string ascent = "/api/routes/" + std::to_string(route) + "/ascent";
+  Client anon(server_->port());
+  Refused(anon, ascent);
+  Client& h = *Again("head");
+  json a = h.Json("GET", ascent, "", 200);
+  EXPECT_TRUE(a["fitted"].get<bool>());
+  EXPECT_EQ(a["ticks"], 4);
+  EXPECT_EQ(anon.Status("GET", ascent), 200);
+}
+
+}  // namespace
+}  // namespace sb::web
