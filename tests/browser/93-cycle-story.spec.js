@@ -9,40 +9,19 @@
 // setters' navigation; another gym's head setter and a logged-out visitor see nothing of the
 // gym's plans. 91-cycle and 92-visibility check the single pieces in depth.
 'use strict';
+const { gymPeople, makeGym } = require('./gym_people');
 
 module.exports = async (t) => {
   const { page, base, check, shot, api, context, pdfPages } = t;
   const n = Date.now() % 100000;
-  const head = 'sthead' + n, setter = 'stset' + n, climber = 'stclimb' + n, rival = 'strival' + n;
-  const password = 'correct horse battery';
   const day = '2027-03-0' + (1 + (n % 8));
+  // The four people's sessions, made once outside the page; `as(user)` switches the browser to
+  // one of them.
+  const { head, setter, climber, rival, as, submit, done } = await gymPeople(t, 'st', n);
 
-  // The four people's sessions, made once outside the page (password hashing is the slow part);
-  // `as(user)` switches the browser to one of them.
-  const sessions = {};
-  async function account(user) {
-    const post = (path) => fetch(base + path, { method: 'POST', headers: { 'Content-Type': 'application/json' },
-                                                body: JSON.stringify({ username: user, password }) });
-    await post('/api/users');
-    const r = await post('/api/sessions');
-    sessions[user] = (r.headers.get('set-cookie') || '').split(';')[0].split('=')[1];
-  }
-  async function as(user) {
-    await page.context().clearCookies();
-    if (user) await page.context().addCookies([{ name: 'sb_session', value: sessions[user], url: base }]);
-    await page.goto(base + '/');
-  }
-  async function submit(sel, p = page) {
-    await Promise.all([p.waitForNavigation(), p.click(sel + ' button[type="submit"]')]);
-  }
-  // Confirmations accepted (another spec's handler may have accepted one already).
-  const accept = (d) => d.accept().catch(() => {});
-  page.on('dialog', accept);
-
-  await Promise.all([head, setter, climber, rival].map(account));
   await as(head);
-  const gymA = (await api('POST', '/api/gyms', { name: 'Story A ' + n })).data.id;
-  const gymB = (await api('POST', '/api/gyms', { name: 'Story B ' + n })).data.id;
+  const gymA = (await makeGym(api, 'Story A ' + n)).id;
+  const gymB = (await makeGym(api, 'Story B ' + n)).id;
 
   // The header's switcher: the head setter's pages write to the gym chosen there.
   await page.goto(base + '/routes/new');
@@ -214,6 +193,6 @@ module.exports = async (t) => {
   seen = await outsiders();
   check(seen.length === 0 && page.url().includes('/login?next='),
         'a logged-out visitor sees nothing and is asked to log in (' + seen.join(', ') + ')');
-  page.off('dialog', accept);
+  done();
   void gymA;
 };

@@ -7,41 +7,22 @@
 // page, JSON, history, search, CSV, /tags.pdf?ids=, the day's sheet, the wall page) while the
 // routes on the wall stay at /r/{id}. 93-cycle-story walks the rest of the cycle.
 'use strict';
+const { gymPeople, makeGym } = require('./gym_people');
 
 module.exports = async (t) => {
   const { page, base, check, shot, api, context } = t;
   const n = Date.now() % 100000;
-  const head = 'gphead' + n, setter = 'gpset' + n, climber = 'gpclimb' + n, rival = 'gprival' + n;
-  const password = 'correct horse battery';
   const day = '2027-04-1' + (n % 9);
+  const { head, setter, climber, rival, as, submit, done } = await gymPeople(t, 'gp', n);
 
-  const sessions = {};
-  async function account(user) {
-    const post = (path) => fetch(base + path, { method: 'POST', headers: { 'Content-Type': 'application/json' },
-                                                body: JSON.stringify({ username: user, password }) });
-    await post('/api/users');
-    const r = await post('/api/sessions');
-    sessions[user] = (r.headers.get('set-cookie') || '').split(';')[0].split('=')[1];
-  }
-  async function as(user) {
-    await page.context().clearCookies();
-    if (user) await page.context().addCookies([{ name: 'sb_session', value: sessions[user], url: base }]);
-    await page.goto(base + '/');
-  }
-  async function submit(sel, p = page) {
-    await Promise.all([p.waitForNavigation(), p.click(sel + ' button[type="submit"]')]);
-  }
-  const accept = (d) => d.accept().catch(() => {});
-  page.on('dialog', accept);
-
-  await Promise.all([head, setter, climber, rival].map(account));
   await as(head);
-  const gym = (await api('POST', '/api/gyms', { name: 'Gaps ' + n })).data.id;
-  await api('POST', '/api/gyms/' + gym + '/members', { username: setter, role: 'setter' });
-  await api('POST', '/api/gyms/' + gym + '/members', { username: climber, role: 'climber' });
-  const wall = (await api('POST', '/api/gyms/' + gym + '/walls', { name: 'Slab' })).data.id;
-  const red = (await api('POST', '/api/gyms/' + gym + '/circuits', { colour: 'Red', grade_from: 'V2', grade_to: 'V4' })).data.id;
-  const blue = (await api('POST', '/api/gyms/' + gym + '/circuits', { colour: 'Blue' })).data.id;
+  const made = await makeGym(api, 'Gaps ' + n, {
+    members: { [setter]: 'setter', [climber]: 'climber' },
+    walls: ['Slab'],
+    circuits: [{ colour: 'Red', grade_from: 'V2', grade_to: 'V4' }, { colour: 'Blue' }],
+  });
+  const gym = made.id, wall = made.walls[0];
+  const [red, blue] = made.circuits;
 
   // The setter: a new route with a circuit chosen in the form.
   await as(setter);
@@ -174,5 +155,5 @@ module.exports = async (t) => {
   await as(null);
   seen = await hidden('visitor');
   check(seen.length === 0, 'a logged-out visitor sees no draft or plan (' + seen.join(', ') + ')');
-  page.off('dialog', accept);
+  done();
 };
