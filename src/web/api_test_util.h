@@ -1,8 +1,9 @@
 // What the web module's API tests share: a real server on an ephemeral
 // loopback port over a real database (a SQLite file in a temporary
 // directory, or PostgreSQL when $SB_TEST_BACKEND is "postgresql"), a client
-// with one cookie and the CSRF token, and a fixture that starts both.
-// Tests only.
+// with one cookie and the CSRF token (with the gym set-up its tests repeat:
+// gyms, members, walls, circuits, a phone's tick), and a fixture that starts
+// both and keeps signed-in clients. Tests only.
 #ifndef SB_WEB_API_TEST_UTIL_H_
 #define SB_WEB_API_TEST_UTIL_H_
 
@@ -15,6 +16,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "app/database.h"
 #include "app/test_database_test_util.h"
@@ -24,6 +26,33 @@ namespace sb::web::testing {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
+
+// A route of four moves the API tests write.
+inline constexpr char kLadderRoute[] =
+    "name: Crimp Ladder\n"
+    "grade: V4\n"
+    "---\n"
+    "R small crimp\n"
+    "L small crimp\n"
+    "R jug\n"
+    "L jug finish\n";
+
+// The gym scale "Halle 1-6" (six labels over VB to V12) as
+// POST /api/gyms/{id}/scales takes it.
+inline json HalleScale() {
+  return {{"name", "Halle 1-6"},
+          {"labels",
+           {{{"label", "1"}, {"from", "VB"}, {"to", "V0"}},
+            {{"label", "2"}, {"from", "V1"}, {"to", "V2"}},
+            {{"label", "3"}, {"from", "V3"}, {"to", "V3"}},
+            {{"label", "4"}, {"from", "V4"}, {"to", "V5"}},
+            {{"label", "5"}, {"from", "V6"}, {"to", "V7"}},
+            {{"label", "6"}, {"from", "V8"}, {"to", "V12"}}}}};
+}
+
+// The API paths of a gym and of a route.
+inline std::string Gp(int64_t gym) { return "/api/gyms/" + std::to_string(gym); }
+inline std::string Rp(int64_t route) { return "/api/routes/" + std::to_string(route); }
 
 // One running server over a database file.
 class Running {
@@ -102,6 +131,41 @@ class Client {
     csrf_ = json::parse(r->body)["csrf"];
     return true;
   }
+  // A tick of `route` (201 new, 200 the same day's edited, ...); a caller
+  // without an account keeps the device cookie the answer sets.
+  json Tick(int64_t route, const json& body, int expect) {
+    auto r = Send("POST", Rp(route) + "/ticks", body.dump());
+    EXPECT_TRUE(r) << route;
+    if (!r) return json();
+    EXPECT_EQ(r->status, expect) << r->body;
+    const std::string sc = r->get_header_value("Set-Cookie");
+    if (sc.rfind("sb_climber=", 0) == 0) cookie_ = sc.substr(0, sc.find(';'));
+    return json::parse(r->body, nullptr, false);
+  }
+
+  // The gym set-up (the caller a head setter; each expects success): the
+  // first gym listed (the install's, for its first account), a new gym, a
+  // member with a role, a wall named `name`, a circuit: the new ids (0 on
+  // failure).
+  int64_t FirstGym() {
+    json j = Json("GET", "/api/gyms", "", 200);
+    if (!j.contains("gyms") || j["gyms"].empty()) return 0;
+    return j["gyms"][0].value("id", int64_t{0});
+  }
+  int64_t NewGym(const std::string& name) {
+    return Json("POST", "/api/gyms", json{{"name", name}}.dump(), 201).value("id", int64_t{0});
+  }
+  void AddMember(int64_t gym, const std::string& user, const std::string& role) {
+    Json("POST", Gp(gym) + "/members", json{{"username", user}, {"role", role}}.dump(), 201);
+  }
+  int64_t AddWall(int64_t gym, const std::string& name) {
+    return Json("POST", Gp(gym) + "/walls", json{{"name", name}}.dump(), 201)
+        .value("id", int64_t{0});
+  }
+  int64_t AddCircuit(int64_t gym, const json& circuit) {
+    return Json("POST", Gp(gym) + "/circuits", circuit.dump(), 201).value("id", int64_t{0});
+  }
+
   const std::string& set_cookie() const { return set_cookie_; }
   std::string& cookie() { return cookie_; }
   std::string& csrf() { return csrf_; }
@@ -112,7 +176,8 @@ class Client {
 };
 
 // A fresh database and a server over it for each test; Restart() starts
-// the server again over the same database.
+// the server again over the same database. Signed-in clients live as long
+// as the test.
 class ApiFixture : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -124,6 +189,7 @@ class ApiFixture : public ::testing::Test {
     server_ = std::make_unique<Running>(db_);
   }
   void TearDown() override {
+    clients_.clear();
     server_.reset();
     database_.reset();
   }
@@ -133,6 +199,24 @@ class ApiFixture : public ::testing::Test {
     server_ = std::make_unique<Running>(db_, max_body, tune);
   }
   Client NewClient() { return Client(server_->port()); }
+  // A client of a new account `name`, signed up and logged in.
+  Client& SignedIn(const std::string& name) {
+    Client& c = Kept();
+    c.SignUp(name);
+    EXPECT_TRUE(c.LogIn(name)) << name;
+    return c;
+  }
+  // Another client of the account `name`, logged in.
+  Client& LoggedInAgain(const std::string& name) {
+    Client& c = Kept();
+    EXPECT_TRUE(c.LogIn(name)) << name;
+    return c;
+  }
+  // A new client kept until the test ends (a phone without an account).
+  Client& Kept() {
+    clients_.push_back(std::make_unique<Client>(server_->port()));
+    return *clients_.back();
+  }
   int64_t AddRoute(Client& c, const std::string& crdl, bool pub = true) {
     json j = c.Json("POST", "/api/routes", json{{"crdl", crdl}, {"public", pub}}.dump(), 201);
     return j.value("id", int64_t{0});
@@ -142,6 +226,7 @@ class ApiFixture : public ::testing::Test {
   fs::path dir_;
   std::string db_;  // the database's locator
   std::unique_ptr<Running> server_;
+  std::vector<std::unique_ptr<Client>> clients_;
 };
 
 }  // namespace sb::web::testing

@@ -23,12 +23,6 @@ using testing::Client;
 
 class ChanceApiTest : public testing::ApiFixture {
  protected:
-  Client* LoggedIn(const std::string& name) {
-    all_.push_back(std::make_unique<Client>(server_->port()));
-    all_.back()->SignUp(name);
-    EXPECT_TRUE(all_.back()->LogIn(name));
-    return all_.back().get();
-  }
   std::string Page(Client& c, const std::string& path) {
     auto r = c.Send("GET", path);
     EXPECT_TRUE(r && r->status == 200) << path;
@@ -49,13 +43,11 @@ class ChanceApiTest : public testing::ApiFixture {
               {"state", "set"}};
     return head.Json("POST", "/api/routes", body.dump(), 201)["id"];
   }
-
-  std::vector<std::unique_ptr<Client>> all_;
 };
 
 TEST_F(ChanceApiTest, ChancesForClimbersWithTicksOnlyInJsonAndPages) {
-  Client& head = *LoggedIn("head");
-  Client& ann = *LoggedIn("ann");
+  Client& head = SignedIn("head");
+  Client& ann = SignedIn("ann");
   const int64_t g = Gym(head, "ann");
   ASSERT_EQ(head.Status("POST", "/api/gyms/" + std::to_string(g) + "/walls",
                         R"({"name":"Cave"})"),
@@ -122,17 +114,11 @@ TEST_F(ChanceApiTest, ChancesForClimbersWithTicksOnlyInJsonAndPages) {
 }
 
 TEST_F(ChanceApiTest, AscentGradesOfAGymScaleRouteAreInItsLabels) {
-  Client& head = *LoggedIn("head");
-  Client& ann = *LoggedIn("ann");
+  Client& head = SignedIn("head");
+  Client& ann = SignedIn("ann");
   const int64_t g = Gym(head, "ann");
   const std::string gp = "/api/gyms/" + std::to_string(g);
-  const json halle = {{"name", "Halle 1-6"},
-                      {"labels", {{{"label", "1"}, {"from", "VB"}, {"to", "V0"}},
-                                  {{"label", "2"}, {"from", "V1"}, {"to", "V2"}},
-                                  {{"label", "3"}, {"from", "V3"}, {"to", "V3"}},
-                                  {{"label", "4"}, {"from", "V4"}, {"to", "V5"}},
-                                  {{"label", "5"}, {"from", "V6"}, {"to", "V7"}},
-                                  {{"label", "6"}, {"from", "V8"}, {"to", "V12"}}}}};
+  const json halle = testing::HalleScale();
   ASSERT_EQ(head.Status("POST", gp + "/scales", halle.dump()), 201);
   ASSERT_EQ(head.Status("POST", gp + "/walls", R"({"name":"Sektor A","scale":"Halle 1-6"})"), 201);
   const int64_t four = Route(head, g, "Sektor A", "4");

@@ -21,6 +21,7 @@ namespace {
 
 using nlohmann::json;
 using testing::Client;
+using testing::Gp, testing::Rp;
 
 std::string Crdl(int i) {
   return "name: Cost Route " + std::to_string(i) +
@@ -29,25 +30,9 @@ std::string Crdl(int i) {
 
 class CostApiTest : public testing::ApiFixture {
  protected:
-  Client* LoggedIn(const std::string& name) {
-    all_.push_back(std::make_unique<Client>(server_->port()));
-    all_.back()->SignUp(name);
-    EXPECT_TRUE(all_.back()->LogIn(name));
-    return all_.back().get();
-  }
-  Client* Again(const std::string& name) {
-    all_.push_back(std::make_unique<Client>(server_->port()));
-    EXPECT_TRUE(all_.back()->LogIn(name));
-    return all_.back().get();
-  }
-  // A tick of route `r` (keeps a phone's device cookie).
-  void Tick(Client& c, int64_t r) {
-    auto res = c.Send("POST", "/api/routes/" + std::to_string(r) + "/ticks",
-                      json{{"outcome", "send"}, {"attempts", 2}}.dump());
-    ASSERT_TRUE(res);
-    ASSERT_EQ(res->status, 201) << res->body;
-    const std::string sc = res->get_header_value("Set-Cookie");
-    if (sc.rfind("sb_climber=", 0) == 0) c.cookie() = sc.substr(0, sc.find(';'));
+  // A sent tick of route `r` (keeps a phone's device cookie).
+  static void Tick(Client& c, int64_t r) {
+    c.Tick(r, json{{"outcome", "send"}, {"attempts", 2}}, 201);
   }
   // 429 with a Retry-After of at least a second.
   static void Refused(Client& c, const std::string& path) {
@@ -64,18 +49,17 @@ class CostApiTest : public testing::ApiFixture {
     o.app.renders.anonymous_cost_per_minute = 1e6;
     o.app.renders.user_cost_per_minute = 1e6;
   }
-  std::vector<std::unique_ptr<Client>> all_;
 };
 
 TEST_F(CostApiTest, ReadsOfTicksStudiesAndAccountsAreCostedFromTheirCountsFirst) {
-  Client& head = *LoggedIn("head");
-  LoggedIn("setter");
-  Client& heavy = *LoggedIn("heavy");
-  LoggedIn("light");
-  const int64_t g = head.Json("POST", "/api/gyms", R"({"name":"Cost Gym"})", 201)["id"];
-  const std::string gp = "/api/gyms/" + std::to_string(g);
-  ASSERT_EQ(head.Status("POST", gp + "/members", R"({"username":"setter","role":"setter"})"), 201);
-  ASSERT_EQ(head.Status("POST", gp + "/walls", R"({"name":"Cave"})"), 201);
+  Client& head = SignedIn("head");
+  SignedIn("setter");
+  Client& heavy = SignedIn("heavy");
+  SignedIn("light");
+  const int64_t g = head.NewGym("Cost Gym");
+  const std::string gp = Gp(g);
+  head.AddMember(g, "setter", "setter");
+  head.AddWall(g, "Cave");
   std::vector<int64_t> r;
   for (int i = 0; i < 3; ++i) {
     json body{{"crdl", Crdl(i)}, {"gym", g}, {"wall", "cave"}, {"state", "set"}};
@@ -99,7 +83,7 @@ TEST_F(CostApiTest, ReadsOfTicksStudiesAndAccountsAreCostedFromTheirCountsFirst)
     response["routes"].push_back({{"answers", {3, 3, 3, 3, 3}}, {"rank", i}, {"order", i}});
   }
   ASSERT_EQ(NewClient().Status("POST", "/api/s/" + sid + "/responses", response.dump()), 201);
-  Client& setter0 = *Again("setter");
+  Client& setter0 = LoggedInAgain("setter");
   json empty = setter0.Json(
       "POST", "/api/studies",
       json{{"name", "Empty"}, {"routes", {r[1], r[2]}}, {"instrument", "pilot"}}.dump(), 201);
@@ -116,12 +100,12 @@ TEST_F(CostApiTest, ReadsOfTicksStudiesAndAccountsAreCostedFromTheirCountsFirst)
     o.app.render_costs.list_per_row = 0;
     o.app.render_costs.report_per_route = 400e3;
   });
-  Client& h = *Again("head");
-  Client& s = *Again("setter");
-  Client& hv = *Again("heavy");
-  Client& lt = *Again("light");
-  const std::string r0 = "/api/routes/" + std::to_string(r[0]);
-  const std::string r1 = "/api/routes/" + std::to_string(r[1]);
+  Client& h = LoggedInAgain("head");
+  Client& s = LoggedInAgain("setter");
+  Client& hv = LoggedInAgain("heavy");
+  Client& lt = LoggedInAgain("light");
+  const std::string r0 = Rp(r[0]);
+  const std::string r1 = Rp(r[1]);
 
   // Logbooks: 3 ticks refused, none passes (page, API, account CSV).
   Refused(hv, "/api/logbook");
@@ -162,17 +146,12 @@ TEST_F(CostApiTest, ReadsOfTicksStudiesAndAccountsAreCostedFromTheirCountsFirst)
 }
 
 TEST_F(CostApiTest, AReaderWhoWouldFitAGymIsChargedForItsTicksBeforeTheFit) {
-  Client& head = *LoggedIn("head");
-  const int64_t g = head.Json("POST", "/api/gyms", R"({"name":"Fit Gym"})", 201)["id"];
-  ASSERT_EQ(head.Status("POST", "/api/gyms/" + std::to_string(g) + "/walls", R"({"name":"Cave"})"),
-            201);
+  Client& head = SignedIn("head");
+  const int64_t g = head.NewGym("Fit Gym");
+  head.AddWall(g, "Cave");
   json body{{"crdl", Crdl(0)}, {"gym", g}, {"wall", "cave"}, {"state", "set"}};
   const int64_t route = head.Json("POST", "/api/routes", body.dump(), 201)["id"];
-  std::vector<std::unique_ptr<Client>> phones;
-  for (int i = 0; i < 4; ++i) {
-    phones.push_back(std::make_unique<Client>(server_->port()));
-    Tick(*phones.back(), route);
-  }
+  for (int i = 0; i < 4; ++i) Tick(Kept(), route);
   // A fresh start: no fit kept. A tick fitted costs 0.3 s, so the gym's 4
   // ticks cost more than an anonymous caller's minute: refused before the
   // fit; a signed-in reader's fit is charged at most its per-request cap
@@ -183,10 +162,10 @@ TEST_F(CostApiTest, AReaderWhoWouldFitAGymIsChargedForItsTicksBeforeTheFit) {
     o.app.renders.user_max_cost = 500e3;
     o.app.render_costs.fit_per_tick = 300e3;
   });
-  const std::string ascent = "/api/routes/" + std::to_string(route) + "/ascent";
+  const std::string ascent = Rp(route) + "/ascent";
   Client anon(server_->port());
   Refused(anon, ascent);
-  Client& h = *Again("head");
+  Client& h = LoggedInAgain("head");
   json a = h.Json("GET", ascent, "", 200);
   EXPECT_TRUE(a["fitted"].get<bool>());
   EXPECT_EQ(a["ticks"], 4);

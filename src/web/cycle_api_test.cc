@@ -14,37 +14,18 @@ namespace {
 
 using nlohmann::json;
 using testing::Client;
+using testing::Gp, testing::Rp;
+constexpr auto& kRoute = testing::kLadderRoute;
 
-const char kRoute[] =
-    "name: Crimp Ladder\n"
-    "grade: V4\n"
-    "---\n"
-    "R small crimp\n"
-    "L small crimp\n"
-    "R jug\n"
-    "L jug finish\n";
-
-class CycleApiTest : public testing::ApiFixture {
- protected:
-  Client* LoggedIn(const std::string& name) {
-    all_.push_back(std::make_unique<Client>(server_->port()));
-    all_.back()->SignUp(name);
-    EXPECT_TRUE(all_.back()->LogIn(name));
-    return all_.back().get();
-  }
-  std::vector<std::unique_ptr<Client>> all_;
-};
-
-std::string Gp(int64_t g) { return "/api/gyms/" + std::to_string(g); }
-std::string Rp(int64_t r) { return "/api/routes/" + std::to_string(r); }
+using CycleApiTest = testing::ApiFixture;
 
 TEST_F(CycleApiTest, EveryWriteNamesItsGym) {
-  Client& head = *LoggedIn("head");  // head of the install's first gym
-  Client& climber = *LoggedIn("climber");
-  Client& loner = *LoggedIn("loner");  // a member of no gym
-  const int64_t first = head.Json("GET", "/api/gyms", "", 200)["gyms"][0]["id"];
-  const int64_t second = head.Json("POST", "/api/gyms", R"({"name":"Second"})", 201)["id"];
-  head.Json("POST", Gp(second) + "/members", R"({"username":"climber","role":"climber"})", 201);
+  Client& head = SignedIn("head");  // head of the install's first gym
+  Client& climber = SignedIn("climber");
+  Client& loner = SignedIn("loner");  // a member of no gym
+  const int64_t first = head.FirstGym();
+  const int64_t second = head.NewGym("Second");
+  head.AddMember(second, "climber", "climber");
 
   // A member of two gyms names the gym.
   json r = head.Json("POST", "/api/routes", json{{"crdl", kRoute}}.dump(), 400);
@@ -93,11 +74,11 @@ TEST_F(CycleApiTest, EveryWriteNamesItsGym) {
 
 
 TEST_F(CycleApiTest, AStaleRevisionIsRefusedWithTheCurrentRecord) {
-  Client& head = *LoggedIn("head");
-  Client& setter = *LoggedIn("setter");
-  const int64_t g = head.Json("GET", "/api/gyms", "", 200)["gyms"][0]["id"];
-  head.Json("POST", Gp(g) + "/members", R"({"username":"setter","role":"setter"})", 201);
-  const int64_t wall = head.Json("POST", Gp(g) + "/walls", R"({"name":"Cave"})", 201)["id"];
+  Client& head = SignedIn("head");
+  Client& setter = SignedIn("setter");
+  const int64_t g = head.FirstGym();
+  head.AddMember(g, "setter", "setter");
+  const int64_t wall = head.AddWall(g, "Cave");
   const int64_t r = setter.Json("POST", "/api/routes",
                                 json{{"crdl", kRoute}, {"state", "planned"}, {"wall", "Cave"}}.dump(),
                                 201)["id"];
@@ -145,7 +126,7 @@ TEST_F(CycleApiTest, AStaleRevisionIsRefusedWithTheCurrentRecord) {
 }
 
 TEST_F(CycleApiTest, DatesAreWhatTheUserTypedAndTheTextAgrees) {
-  Client& head = *LoggedIn("head");
+  Client& head = SignedIn("head");
   std::string crdl = std::string(kRoute);
   crdl.insert(crdl.find("---"), "set: 2026-09-15\n");
   const int64_t r =
@@ -177,11 +158,11 @@ TEST_F(CycleApiTest, DatesAreWhatTheUserTypedAndTheTextAgrees) {
 }
 
 TEST_F(CycleApiTest, StateChangesFollowPlanSetStripAndRecordHistory) {
-  Client& head = *LoggedIn("head");
-  Client& climber = *LoggedIn("climber");
-  const int64_t g = head.Json("GET", "/api/gyms", "", 200)["gyms"][0]["id"];
-  head.Json("POST", Gp(g) + "/members", R"({"username":"climber","role":"climber"})", 201);
-  const int64_t wall = head.Json("POST", Gp(g) + "/walls", R"({"name":"Cave"})", 201)["id"];
+  Client& head = SignedIn("head");
+  Client& climber = SignedIn("climber");
+  const int64_t g = head.FirstGym();
+  head.AddMember(g, "climber", "climber");
+  const int64_t wall = head.AddWall(g, "Cave");
   const int64_t r = head.Json("POST", "/api/routes", json{{"crdl", kRoute}}.dump(), 201)["id"];
   EXPECT_EQ(head.Status("POST", Rp(r) + "/state", R"({"state":"stripped"})"), 409);
   EXPECT_EQ(head.Status("POST", Rp(r) + "/state", R"({"state":"gone"})"), 400);
@@ -218,13 +199,13 @@ TEST_F(CycleApiTest, StateChangesFollowPlanSetStripAndRecordHistory) {
 }
 
 TEST_F(CycleApiTest, HeadSettersEditAndRemoveAndEveryChangeIsInTheGymsHistory) {
-  Client& head = *LoggedIn("head");
-  Client& setter = *LoggedIn("setter");
-  Client& other = *LoggedIn("other");
-  const int64_t g = head.Json("POST", "/api/gyms", R"({"name":"Second"})", 201)["id"];
-  head.Json("POST", Gp(g) + "/members", R"({"username":"setter","role":"setter"})", 201);
-  const int64_t wall = head.Json("POST", Gp(g) + "/walls", R"({"name":"Cave"})", 201)["id"];
-  const int64_t empty = head.Json("POST", Gp(g) + "/walls", R"({"name":"Slab"})", 201)["id"];
+  Client& head = SignedIn("head");
+  Client& setter = SignedIn("setter");
+  Client& other = SignedIn("other");
+  const int64_t g = head.NewGym("Second");
+  head.AddMember(g, "setter", "setter");
+  const int64_t wall = head.AddWall(g, "Cave");
+  const int64_t empty = head.AddWall(g, "Slab");
   const std::string wp = Gp(g) + "/walls/" + std::to_string(wall);
   json edited = head.Json("PUT", wp,
                           R"({"name":"Big Cave","discipline":"roped","angle":25,"reset_weeks":8,
@@ -283,9 +264,9 @@ TEST_F(CycleApiTest, HeadSettersEditAndRemoveAndEveryChangeIsInTheGymsHistory) {
 }
 
 TEST_F(CycleApiTest, UnreadableTargetsAreRefusedAndTheStoredOnesStay) {
-  Client& head = *LoggedIn("head");
-  const int64_t g = head.Json("GET", "/api/gyms", "", 200)["gyms"][0]["id"];
-  const int64_t wall = head.Json("POST", Gp(g) + "/walls", R"({"name":"Cave"})", 201)["id"];
+  Client& head = SignedIn("head");
+  const int64_t g = head.FirstGym();
+  const int64_t wall = head.AddWall(g, "Cave");
   const std::string tp = Gp(g) + "/walls/" + std::to_string(wall) + "/targets";
   json set = head.Json("PUT", tp, R"({"grades":"V3: 2, V4: 3"})", 200);
   EXPECT_EQ(set["grades"]["V3"], 2);
@@ -306,9 +287,9 @@ TEST_F(CycleApiTest, UnreadableTargetsAreRefusedAndTheStoredOnesStay) {
 // same cycle as POST .../state; the text's stale "state:" line cannot
 // un-strip a route either.
 TEST_F(CycleApiTest, APutsStateFollowsTheCycle) {
-  Client& head = *LoggedIn("head");
-  const int64_t g = head.Json("GET", "/api/gyms", "", 200)["gyms"][0]["id"];
-  head.Json("POST", Gp(g) + "/walls", R"({"name":"Cave"})", 201);
+  Client& head = SignedIn("head");
+  const int64_t g = head.FirstGym();
+  head.AddWall(g, "Cave");
   const int64_t r = head.Json("POST", "/api/routes",
                               json{{"crdl", kRoute}, {"gym", g}, {"state", "planned"},
                                    {"wall", "Cave"}, {"set_on", "2026-09-15"}}.dump(),
@@ -336,14 +317,14 @@ TEST_F(CycleApiTest, APutsStateFollowsTheCycle) {
 // gyms, the choice kept in ?gym= or the switcher's cookie; a climber's form
 // is a personal route's.
 TEST_F(CycleApiTest, TheRouteFormOffersTheChosenGymsRecords) {
-  Client& head = *LoggedIn("head");
-  Client& climber = *LoggedIn("climber");
-  const int64_t first = head.Json("GET", "/api/gyms", "", 200)["gyms"][0]["id"];
-  const int64_t second = head.Json("POST", "/api/gyms", R"({"name":"Second Gym"})", 201)["id"];
-  head.Json("POST", Gp(first) + "/walls", R"({"name":"First Wall"})", 201);
+  Client& head = SignedIn("head");
+  Client& climber = SignedIn("climber");
+  const int64_t first = head.FirstGym();
+  const int64_t second = head.NewGym("Second Gym");
+  head.AddWall(first, "First Wall");
   head.Json("POST", Gp(second) + "/walls", R"({"name":"Boulder Cave","scale":"Font"})", 201);
   head.Json("POST", Gp(second) + "/circuits", R"({"colour":"teal"})", 201);
-  head.Json("POST", Gp(second) + "/members", R"({"username":"climber","role":"climber"})", 201);
+  head.AddMember(second, "climber", "climber");
   auto page = [](Client& c, const std::string& path) {
     auto r = c.Send("GET", path, "");
     EXPECT_TRUE(r && r->status == 200) << path;
@@ -399,8 +380,8 @@ TEST_F(CycleApiTest, TheRouteFormOffersTheChosenGymsRecords) {
 // A logged-out visitor of a gym page is sent to log in and back to the same
 // page, query included (issue 31).
 TEST_F(CycleApiTest, TheLogInRedirectKeepsTheQuery) {
-  Client& head = *LoggedIn("head");
-  const int64_t g = head.Json("GET", "/api/gyms", "", 200)["gyms"][0]["id"];
+  Client& head = SignedIn("head");
+  const int64_t g = head.FirstGym();
   Client anon(server_->port());
   const std::string path = "/gyms/" + std::to_string(g) + "/setting-day/sheet";
   auto r = anon.Send("GET", path + "?date=2026-10-01&walls=1,2", "");
@@ -417,9 +398,9 @@ TEST_F(CycleApiTest, TheLogInRedirectKeepsTheQuery) {
 // A setting day's sheet keeps every route of the day whatever its state,
 // with the buttons its state allows (setters).
 TEST_F(CycleApiTest, ASettingDaysSheetKeepsEveryRouteOfTheDay) {
-  Client& head = *LoggedIn("head");
-  const int64_t g = head.Json("GET", "/api/gyms", "", 200)["gyms"][0]["id"];
-  head.Json("POST", Gp(g) + "/walls", R"({"name":"Cave"})", 201);
+  Client& head = SignedIn("head");
+  const int64_t g = head.FirstGym();
+  head.AddWall(g, "Cave");
   auto make = [&](const std::string& name) {
     return head.Json("POST", "/api/routes",
                      json{{"crdl", "name: " + name + "\n---\nR crimp\nL jug\n"}, {"gym", g},

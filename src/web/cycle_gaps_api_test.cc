@@ -15,6 +15,7 @@ namespace {
 
 using nlohmann::json;
 using testing::Client;
+using testing::Gp, testing::Rp;
 
 const char kRoute[] =
     "name: Crimp Ladder\n"
@@ -23,19 +24,7 @@ const char kRoute[] =
     "R small crimp\n"
     "L jug finish\n";
 
-class CycleGapsApiTest : public testing::ApiFixture {
- protected:
-  Client* LoggedIn(const std::string& name) {
-    all_.push_back(std::make_unique<Client>(server_->port()));
-    all_.back()->SignUp(name);
-    EXPECT_TRUE(all_.back()->LogIn(name));
-    return all_.back().get();
-  }
-  std::vector<std::unique_ptr<Client>> all_;
-};
-
-std::string Gp(int64_t g) { return "/api/gyms/" + std::to_string(g); }
-std::string Rp(int64_t r) { return "/api/routes/" + std::to_string(r); }
+using CycleGapsApiTest = testing::ApiFixture;
 
 json Discipline(const json& dashboard, const std::string& name) {
   for (const json& d : dashboard["disciplines"]) {
@@ -45,11 +34,11 @@ json Discipline(const json& dashboard, const std::string& name) {
 }
 
 TEST_F(CycleGapsApiTest, DisciplineTargetsCarryARevision) {
-  Client& head = *LoggedIn("head");
-  Client& other = *LoggedIn("other");
-  const int64_t g = head.Json("GET", "/api/gyms", "", 200)["gyms"][0]["id"];
-  head.Json("POST", Gp(g) + "/members", R"({"username":"other","role":"head"})", 201);
-  head.Json("POST", Gp(g) + "/walls", R"({"name":"Cave"})", 201);
+  Client& head = SignedIn("head");
+  Client& other = SignedIn("other");
+  const int64_t g = head.FirstGym();
+  head.AddMember(g, "other", "head");
+  head.AddWall(g, "Cave");
   json d = Discipline(head.Json("GET", Gp(g) + "/dashboard", "", 200), "bouldering");
   ASSERT_TRUE(d.contains("targets_revision")) << d.dump();
   const int64_t rev = d["targets_revision"];
@@ -91,11 +80,11 @@ TEST_F(CycleGapsApiTest, DisciplineTargetsCarryARevision) {
 }
 
 TEST_F(CycleGapsApiTest, ARouteKeepsItsCircuit) {
-  Client& head = *LoggedIn("head");
-  Client& setter = *LoggedIn("setter");
-  const int64_t g = head.Json("GET", "/api/gyms", "", 200)["gyms"][0]["id"];
-  head.Json("POST", Gp(g) + "/members", R"({"username":"setter","role":"setter"})", 201);
-  head.Json("POST", Gp(g) + "/walls", R"({"name":"Cave"})", 201);
+  Client& head = SignedIn("head");
+  Client& setter = SignedIn("setter");
+  const int64_t g = head.FirstGym();
+  head.AddMember(g, "setter", "setter");
+  head.AddWall(g, "Cave");
   const int64_t red =
       head.Json("POST", Gp(g) + "/circuits", R"({"colour":"Red","grade_from":"V2","grade_to":"V4"})",
                 201)["id"];
@@ -145,13 +134,13 @@ TEST_F(CycleGapsApiTest, ARouteKeepsItsCircuit) {
 }
 
 TEST_F(CycleGapsApiTest, ASettingDaysPlannedRoutesAreSetAtOnceUnlessStale) {
-  Client& head = *LoggedIn("head");
-  Client& setter = *LoggedIn("setter");
-  Client& climber = *LoggedIn("climber");
-  const int64_t g = head.Json("GET", "/api/gyms", "", 200)["gyms"][0]["id"];
-  head.Json("POST", Gp(g) + "/members", R"({"username":"setter","role":"setter"})", 201);
-  head.Json("POST", Gp(g) + "/members", R"({"username":"climber","role":"climber"})", 201);
-  head.Json("POST", Gp(g) + "/walls", R"({"name":"Cave"})", 201);
+  Client& head = SignedIn("head");
+  Client& setter = SignedIn("setter");
+  Client& climber = SignedIn("climber");
+  const int64_t g = head.FirstGym();
+  head.AddMember(g, "setter", "setter");
+  head.AddMember(g, "climber", "climber");
+  head.AddWall(g, "Cave");
   const std::string day = "2026-12-01";
   auto planned = [&](const std::string& name) -> int64_t {
     return setter.Json("POST", "/api/routes",

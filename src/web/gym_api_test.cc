@@ -21,35 +21,19 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-const char kRoute[] =
-    "name: Crimp Ladder\n"
-    "grade: V4\n"
-    "---\n"
-    "R small crimp\n"
-    "L small crimp\n"
-    "R jug\n"
-    "L jug finish\n";
+constexpr auto& kRoute = testing::kLadderRoute;
 
 using testing::Client;
 using testing::Running;
 
 class GymApiTest : public testing::ApiFixture {};
 
-// A logged-in client.
-Client* LoggedIn(std::vector<std::unique_ptr<Client>>& all, int port, const std::string& name) {
-  all.push_back(std::make_unique<Client>(port));
-  all.back()->SignUp(name);
-  EXPECT_TRUE(all.back()->LogIn(name));
-  return all.back().get();
-}
-
 TEST_F(GymApiTest, TwoGymsSeeNothingOfEachOtherAndRolesAreEnforced) {
-  std::vector<std::unique_ptr<Client>> all;
   const int port = server_->port();
-  Client& head = *LoggedIn(all, port, "head");  // the first account: head of the install's gym
-  Client& setter = *LoggedIn(all, port, "setter");
-  Client& climber = *LoggedIn(all, port, "climber");
-  Client& rival = *LoggedIn(all, port, "rival");
+  Client& head = SignedIn("head");  // the first account: head of the install's gym
+  Client& setter = SignedIn("setter");
+  Client& climber = SignedIn("climber");
+  Client& rival = SignedIn("rival");
   Client anon(port);
 
   json mine = head.Json("GET", "/api/gyms", "", 200);
@@ -168,10 +152,8 @@ TEST_F(GymApiTest, TwoGymsSeeNothingOfEachOtherAndRolesAreEnforced) {
 }
 
 TEST_F(GymApiTest, ADraftStaysItsOwnersAndNonMembersKeepTodaysRules) {
-  std::vector<std::unique_ptr<Client>> all;
-  const int port = server_->port();
-  Client& head = *LoggedIn(all, port, "head");
-  Client& visitor = *LoggedIn(all, port, "visitor");  // a member of no gym
+  Client& head = SignedIn("head");
+  Client& visitor = SignedIn("visitor");  // a member of no gym
   json body{{"crdl", kRoute}, {"public", false}};
   const int64_t draft = head.Json("POST", "/api/routes", body.dump(), 201)["id"];
   json got = head.Json("GET", "/api/routes/" + std::to_string(draft), "", 200);

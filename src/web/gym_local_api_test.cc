@@ -254,13 +254,7 @@ TEST_F(GymLocalApiTest, AGymsOwnScaleReadsGradesAndTargets) {
   climber.SignUp("climber");
   ASSERT_TRUE(climber.LogIn("climber"));
   ASSERT_EQ(head.Status("POST", gp + "/members", R"({"username":"climber","role":"climber"})"), 201);
-  const json halle = {{"name", "Halle 1-6"},
-                      {"labels", {{{"label", "1"}, {"from", "VB"}, {"to", "V0"}},
-                                  {{"label", "2"}, {"from", "V1"}, {"to", "V2"}},
-                                  {{"label", "3"}, {"from", "V3"}, {"to", "V3"}},
-                                  {{"label", "4"}, {"from", "V4"}, {"to", "V5"}},
-                                  {{"label", "5"}, {"from", "V6"}, {"to", "V7"}},
-                                  {{"label", "6"}, {"from", "V8"}, {"to", "V12"}}}}};
+  const json halle = testing::HalleScale();
   EXPECT_EQ(climber.Status("POST", gp + "/scales", halle.dump()), 403);
   const int64_t sid = head.Json("POST", gp + "/scales", halle.dump(), 201)["id"];
   EXPECT_GT(sid, 0);

@@ -19,81 +19,53 @@ namespace {
 
 using nlohmann::json;
 using testing::Client;
+using testing::Gp, testing::Rp;
+using testing::kLadderRoute;
 
-const char kRoute[] =
-    "name: Crimp Ladder\n"
-    "grade: V4\n"
-    "---\n"
-    "R small crimp\n"
-    "L small crimp\n"
-    "R jug\n"
-    "L jug finish\n";
-
-class LogbookApiTest : public testing::ApiFixture {
- protected:
-  // A logged-in client.
-  Client* LoggedIn(const std::string& name) {
-    all_.push_back(std::make_unique<Client>(server_->port()));
-    all_.back()->SignUp(name);
-    EXPECT_TRUE(all_.back()->LogIn(name));
-    return all_.back().get();
-  }
-  // A phone without an account: ticks `path` and keeps the device cookie.
-  json Tick(Client& phone, const std::string& path, const json& body, int expect) {
-    auto r = phone.Send("POST", path, body.dump());
-    EXPECT_TRUE(r);
-    if (!r) return json();
-    EXPECT_EQ(r->status, expect) << r->body;
-    const std::string sc = r->get_header_value("Set-Cookie");
-    if (sc.rfind("sb_climber=", 0) == 0) phone.cookie() = sc.substr(0, sc.find(';'));
-    return json::parse(r->body, nullptr, false);
-  }
-
-  std::vector<std::unique_ptr<Client>> all_;
-};
+using LogbookApiTest = testing::ApiFixture;
 
 TEST_F(LogbookApiTest, TicksEditsBurstsReviewMergeAndGymIsolation) {
-  Client& head = *LoggedIn("head");
-  Client& setter = *LoggedIn("setter");
-  Client& climber = *LoggedIn("climber");
-  Client& rival = *LoggedIn("rival");
-  const int64_t g = head.Json("POST", "/api/gyms", R"({"name":"Boulder Barn"})", 201)["id"];
+  Client& head = SignedIn("head");
+  Client& setter = SignedIn("setter");
+  Client& climber = SignedIn("climber");
+  Client& rival = SignedIn("rival");
+  const int64_t g = head.NewGym("Boulder Barn");
   ASSERT_EQ(rival.Status("POST", "/api/gyms", R"({"name":"Rival Rocks"})"), 201);
-  const std::string gp = "/api/gyms/" + std::to_string(g);
-  ASSERT_EQ(head.Status("POST", gp + "/members", R"({"username":"setter","role":"setter"})"), 201);
-  ASSERT_EQ(head.Status("POST", gp + "/members", R"({"username":"climber","role":"climber"})"),
-            201);
-  const int64_t wall = head.Json("POST", gp + "/walls", R"({"name":"Cave"})", 201)["id"];
-  json body{{"crdl", kRoute}, {"gym", g}, {"wall", "cave"}, {"state", "set"}};
+  const std::string gp = Gp(g);
+  head.AddMember(g, "setter", "setter");
+  head.AddMember(g, "climber", "climber");
+  const int64_t wall = head.AddWall(g, "Cave");
+  json body{{"crdl", kLadderRoute}, {"gym", g}, {"wall", "cave"}, {"state", "set"}};
   const int64_t route = setter.Json("POST", "/api/routes", body.dump(), 201)["id"];
   const int64_t other = setter.Json("POST", "/api/routes", body.dump(), 201)["id"];
-  const std::string rp = "/api/routes/" + std::to_string(route);
+  const std::string rp = Rp(route);
 
   // A tick, then a second one the same day edits it.
   Client ann(server_->port());
-  json first = Tick(ann, rp + "/ticks",
-                    {{"outcome", "send"}, {"attempts", 3}, {"stars", 4}, {"felt_grade", "V5"},
-                     {"comment", "sharp crimps"}},
-                    201);
+  json first = ann.Tick(route,
+                        {{"outcome", "send"},
+                         {"attempts", 3},
+                         {"stars", 4},
+                         {"felt_grade", "V5"},
+                         {"comment", "sharp crimps"}},
+                        201);
   ASSERT_FALSE(ann.cookie().empty());
   EXPECT_FALSE(first["edited"].get<bool>());
   EXPECT_FALSE(first["held"].get<bool>());
   EXPECT_EQ(first["ascent"]["ticks"], 1);
-  json again = Tick(ann, rp + "/ticks",
-                    {{"outcome", "flash"}, {"stars", 5}, {"comment", "sharp crimps"}}, 200);
+  json again =
+      ann.Tick(route, {{"outcome", "flash"}, {"stars", 5}, {"comment", "sharp crimps"}}, 200);
   EXPECT_TRUE(again["edited"].get<bool>());
   EXPECT_EQ(again["id"], first["id"]);
   EXPECT_EQ(again["outcome"], "flash");
-  EXPECT_NE(Tick(ann, rp + "/ticks", {{"outcome", "onsight"}}, 400)["error"].get<std::string>()
-                .find("outcome"),
-            std::string::npos);
+  EXPECT_NE(
+      ann.Tick(route, {{"outcome", "onsight"}}, 400)["error"].get<std::string>().find("outcome"),
+      std::string::npos);
 
   // Four more phones on the same address pass; from the sixth new identity on, held.
-  std::vector<std::unique_ptr<Client>> phones;
   for (int i = 0; i < 6; ++i) {
-    phones.push_back(std::make_unique<Client>(server_->port()));
-    json t = Tick(*phones.back(), rp + "/ticks",
-                  {{"outcome", "attempt"}, {"attempts", 9}, {"felt_grade", "V9"}}, 201);
+    json t =
+        Kept().Tick(route, {{"outcome", "attempt"}, {"attempts", 9}, {"felt_grade", "V9"}}, 201);
     EXPECT_EQ(t["held"].get<bool>(), i >= 4) << i;
   }
   json ascent = ann.Json("GET", rp + "/ascent", "", 200);
@@ -116,11 +88,9 @@ TEST_F(LogbookApiTest, TicksEditsBurstsReviewMergeAndGymIsolation) {
   EXPECT_EQ(head.Json("POST", rp + "/ticks/" + std::to_string(held[1]) + "/discard", "{}",
                       200)["state"],
             "discarded");
-  EXPECT_EQ(setter.Status("POST",
-                          "/api/routes/" + std::to_string(other) + "/ticks/" +
-                              std::to_string(held[0]) + "/accept",
-                          "{}"),
-            404);
+  EXPECT_EQ(
+      setter.Status("POST", Rp(other) + "/ticks/" + std::to_string(held[0]) + "/accept", "{}"),
+      404);
   EXPECT_EQ(ann.Json("GET", rp + "/ascent", "", 200)["ticks"], 6);
 
   // Sign-in merges the phone's ticks into the account's logbook.

@@ -25,20 +25,11 @@ using testing::Client;
 
 class SettingDayApiTest : public testing::ApiFixture {};
 
-Client* LoggedIn(std::vector<std::unique_ptr<Client>>& all, int port, const std::string& name) {
-  all.push_back(std::make_unique<Client>(port));
-  all.back()->SignUp(name);
-  EXPECT_TRUE(all.back()->LogIn(name));
-  return all.back().get();
-}
-
 TEST_F(SettingDayApiTest, ProposeAcceptAndTheRoles) {
-  std::vector<std::unique_ptr<Client>> all;
-  const int port = server_->port();
-  Client& head = *LoggedIn(all, port, "head");
-  Client& setter = *LoggedIn(all, port, "sam");
-  Client& climber = *LoggedIn(all, port, "climber");
-  Client& rival = *LoggedIn(all, port, "rival");
+  Client& head = SignedIn("head");
+  Client& setter = SignedIn("sam");
+  Client& climber = SignedIn("climber");
+  Client& rival = SignedIn("rival");
   const int64_t g = head.Json("GET", "/api/gyms", "", 200)["gyms"][0]["id"];
   const std::string gp = "/api/gyms/" + std::to_string(g);
   ASSERT_EQ(head.Status("POST", gp + "/members", R"({"username":"sam","role":"setter"})"), 201);

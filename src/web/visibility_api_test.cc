@@ -12,6 +12,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "web/api_test_util.h"
@@ -22,14 +23,19 @@ namespace {
 using nlohmann::json;
 using testing::Client;
 
-class VisibilityApiTest : public testing::ApiFixture {};
-
-Client* LoggedIn(std::vector<std::unique_ptr<Client>>& all, int port, const std::string& name) {
-  all.push_back(std::make_unique<Client>(port));
-  all.back()->SignUp(name);
-  EXPECT_TRUE(all.back()->LogIn(name));
-  return all.back().get();
-}
+class VisibilityApiTest : public testing::ApiFixture {
+ protected:
+  // head's gym "Boulder Barn" with "setter" its setter, "climber" its
+  // climber and a bouldering wall "Cave": the gym's id and the wall's.
+  static std::pair<int64_t, int64_t> BoulderBarn(Client& head) {
+    const int64_t g = head.NewGym("Boulder Barn");
+    head.AddMember(g, "setter", "setter");
+    head.AddMember(g, "climber", "climber");
+    json wall = head.Json("POST", testing::Gp(g) + "/walls",
+                          R"({"name":"Cave","discipline":"bouldering"})", 201);
+    return {g, wall.value("id", int64_t{0})};
+  }
+};
 
 // A route text whose name and one move are unique to `tag` (found or not in
 // lists, search and both export files).
@@ -48,23 +54,18 @@ bool Lists(Client& c, const std::string& path, int64_t id) {
 }
 
 TEST_F(VisibilityApiTest, EachStateIsSeenByTheRolesTheRuleNamesAndNobodyElse) {
-  std::vector<std::unique_ptr<Client>> all;
   const int port = server_->port();
-  Client& head = *LoggedIn(all, port, "head");
-  Client& setter = *LoggedIn(all, port, "setter");
-  Client& climber = *LoggedIn(all, port, "climber");
-  Client& rival = *LoggedIn(all, port, "rival");  // head setter of another gym
-  Client& loner = *LoggedIn(all, port, "loner");  // in no gym
+  Client& head = SignedIn("head");
+  Client& setter = SignedIn("setter");
+  Client& climber = SignedIn("climber");
+  Client& rival = SignedIn("rival");  // head setter of another gym
+  Client& loner = SignedIn("loner");  // in no gym
   Client anon(port);
 
-  const int64_t g = head.Json("POST", "/api/gyms", R"({"name":"Boulder Barn"})", 201)["id"];
-  rival.Json("POST", "/api/gyms", R"({"name":"Rival Rocks"})", 201);
-  const std::string gp = "/api/gyms/" + std::to_string(g);
-  ASSERT_EQ(head.Status("POST", gp + "/members", R"({"username":"setter","role":"setter"})"), 201);
-  ASSERT_EQ(head.Status("POST", gp + "/members", R"({"username":"climber","role":"climber"})"),
-            201);
-  const int64_t wall =
-      head.Json("POST", gp + "/walls", R"({"name":"Cave","discipline":"bouldering"})", 201)["id"];
+  const std::pair<int64_t, int64_t> barn = BoulderBarn(head);
+  const int64_t g = barn.first, wall = barn.second;
+  rival.NewGym("Rival Rocks");
+  const std::string gp = testing::Gp(g);
 
   // One route of the gym per state, by its head setter, not published.
   std::map<std::string, int64_t> id;
@@ -188,20 +189,15 @@ TEST_F(VisibilityApiTest, EachStateIsSeenByTheRolesTheRuleNamesAndNobodyElse) {
 // page and the gym page link the wall's tag sheet; a planned route's tag
 // says "planned for".
 TEST_F(VisibilityApiTest, PagesFollowTheRoles) {
-  std::vector<std::unique_ptr<Client>> all;
   const int port = server_->port();
-  Client& head = *LoggedIn(all, port, "head");
-  Client& setter = *LoggedIn(all, port, "setter");
-  Client& climber = *LoggedIn(all, port, "climber");
-  Client& loner = *LoggedIn(all, port, "loner");
+  Client& head = SignedIn("head");
+  Client& setter = SignedIn("setter");
+  Client& climber = SignedIn("climber");
+  Client& loner = SignedIn("loner");
   Client anon(port);
-  const int64_t g = head.Json("POST", "/api/gyms", R"({"name":"Boulder Barn"})", 201)["id"];
-  const std::string gp = "/api/gyms/" + std::to_string(g);
-  ASSERT_EQ(head.Status("POST", gp + "/members", R"({"username":"setter","role":"setter"})"), 201);
-  ASSERT_EQ(head.Status("POST", gp + "/members", R"({"username":"climber","role":"climber"})"),
-            201);
-  const int64_t wall =
-      head.Json("POST", gp + "/walls", R"({"name":"Cave","discipline":"bouldering"})", 201)["id"];
+  const std::pair<int64_t, int64_t> barn = BoulderBarn(head);
+  const int64_t g = barn.first, wall = barn.second;
+  const std::string gp = testing::Gp(g);
   const int64_t set =
       head.Json("POST", "/api/routes",
                 json{{"crdl", Crdl("a")}, {"gym", g}, {"state", "set"}, {"wall", "Cave"}}.dump(),
