@@ -8,13 +8,13 @@
 #include <algorithm>
 
 #include "app/app_test_util.h"
+#include "app/scale_gym_test_util.h"
 #include "crdl/route.h"
 #include "store/sql.h"
 
 namespace sb::app {
 namespace {
 
-using testing::AppTest;
 using testing::kCrimpLadder;
 using testing::kSlabDance;
 using Code = Status::Code;
@@ -37,24 +37,8 @@ const char kChanged[] =
     "7,Lila Laune,2,Sektor D,lila,Anna Meier,\n"
     "8,Türkiser Traum,4,Sektor A,türkis,Simon Räss,\n";
 
-class GymImportTest : public AppTest {
+class GymImportTest : public testing::ScaleGymTest {
  protected:
-  void SetUp() override {
-    AppTest::SetUp();
-    if (IsSkipped()) return;
-    head_ = User("head");
-    Result<int64_t> g = services_->gyms.Create(head_, "Kletterhalle");
-    ASSERT_TRUE(g.ok()) << g.status().message();
-    gym_ = *g;
-    Result<int64_t> s = services_->scales.Add(head_, gym_, "Halle 1-6",
-                                              {{"1", "VB", "V0"},
-                                               {"2", "V1", "V2"},
-                                               {"3", "V3", "V3"},
-                                               {"4", "V4", "V5"},
-                                               {"5", "V6", "V7"},
-                                               {"6", "V8", "V12"}});
-    ASSERT_TRUE(s.ok()) << s.status().message();
-  }
   ImportRequest Csv(const std::string& data) {
     ImportRequest r;
     r.format = "csv";
@@ -76,8 +60,6 @@ class GymImportTest : public AppTest {
     for (const RouteView& r : rs) out.push_back(r.name);
     return out;
   }
-  Viewer head_;
-  int64_t gym_ = 0;
 };
 
 TEST_F(GymImportTest, PreviewWritesNothingThenConfirmCreatesSectorsAndRoutes) {

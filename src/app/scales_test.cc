@@ -8,6 +8,7 @@
 
 #include "app/app_test_util.h"
 #include "app/gym_import.h"
+#include "app/scale_gym_test_util.h"
 #include "app/setting_day.h"
 #include "store/bulk_store.h"
 #include "store/tick_store.h"
@@ -15,24 +16,11 @@
 namespace sb::app {
 namespace {
 
-using testing::AppTest;
+using testing::kHalle;
 using Code = Status::Code;
 
-const std::vector<grades::LabelSpec> kHalle = {{"1", "VB", "V0"}, {"2", "V1", "V2"},
-                                               {"3", "V3", "V3"}, {"4", "V4", "V5"},
-                                               {"5", "V6", "V7"}, {"6", "V8", "V12"}};
-
-class ScalesTest : public AppTest {
+class ScalesTest : public testing::ScaleGymTest {
  protected:
-  void SetUp() override {
-    AppTest::SetUp();
-    if (IsSkipped()) return;
-    head_ = User("head");
-    Result<int64_t> g = services_->gyms.Create(head_, "Kletterhalle");
-    ASSERT_TRUE(g.ok()) << g.status().message();
-    gym_ = *g;
-    ASSERT_TRUE(services_->scales.Add(head_, gym_, "Halle 1-6", kHalle).ok());
-  }
   int64_t AddWall(const std::string& name, const std::string& scale) {
     Wall w;
     w.gym_id = gym_;
@@ -54,8 +42,6 @@ class ScalesTest : public AppTest {
     c.grade_to = to;
     return services_->gyms.AddCircuit(head_, c);
   }
-  Viewer head_;
-  int64_t gym_ = 0;
 };
 
 TEST_F(ScalesTest, CircuitsOnAGymScaleAreReadInItsLabelsAndMustAscend) {
