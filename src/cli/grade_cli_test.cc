@@ -10,33 +10,15 @@
 #include <vector>
 
 #include "base/files.h"
+#include "cli/cli_test_util.h"
 #include "cli/commands.h"
 
 namespace sb::cli {
 namespace {
 
-class GradeCli : public ::testing::Test {
+class GradeCli : public CliFixture {
  protected:
-  void SetUp() override {
-    dir_ = std::filesystem::temp_directory_path() /
-           ("sb_grade_cli_" + std::to_string(getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    std::filesystem::create_directories(dir_);
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-
-  int Grade(const std::vector<std::string>& args) {
-    ::testing::internal::CaptureStderr();
-    ::testing::internal::CaptureStdout();
-    int rc = RunGrade(args);
-    err_ = ::testing::internal::GetCapturedStderr();
-    out_ = ::testing::internal::GetCapturedStdout();
-    return rc;
-  }
-  std::string P(const std::string& name) const { return (dir_ / name).string(); }
-  void Write(const std::string& name, const std::string& text) {
-    ASSERT_TRUE(WriteFileAtomic(P(name), text).ok());
-  }
+  int Grade(const std::vector<std::string>& args) { return Capture(RunGrade, args); }
   static std::string Example(const std::string& name) {
     return std::string(SB_SOURCE_DIR) + "/data/examples/" + name;
   }
@@ -58,9 +40,6 @@ class GradeCli : public ::testing::Test {
     Write("public_routes.csv", routes);
     Write("public_moves.csv", moves);
   }
-
-  std::filesystem::path dir_;
-  std::string out_, err_;
 };
 
 TEST_F(GradeCli, ConvertPrintsOneScaleOrAll) {

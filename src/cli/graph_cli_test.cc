@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/cli_test_util.h"
 #include "cli/commands.h"
 #include "graph/graph.h"
 #include "graph/search.h"
@@ -18,31 +19,9 @@
 namespace sb::cli {
 namespace {
 
-class GraphCli : public ::testing::Test {
+class GraphCli : public CliFixture {
  protected:
-  void SetUp() override {
-    dir_ = std::filesystem::path(::testing::TempDir()) /
-           ("sb_graph_cli_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
-            std::to_string(::getpid()));
-    std::filesystem::remove_all(dir_);
-    std::filesystem::create_directories(dir_);
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-  void Write(const std::string& name, const std::string& text) {
-    std::ofstream(dir_ / name, std::ios::binary) << text;
-  }
-  std::string P(const std::string& name) const { return (dir_ / name).string(); }
-  int Run(const std::vector<std::string>& args) {
-    ::testing::internal::CaptureStderr();
-    ::testing::internal::CaptureStdout();
-    int rc = RunGraph(args);
-    err_ = ::testing::internal::GetCapturedStderr();
-    out_ = ::testing::internal::GetCapturedStdout();
-    return rc;
-  }
-  std::filesystem::path dir_;
-  std::string out_, err_;
+  int Run(const std::vector<std::string>& args) { return Capture(RunGraph, args); }
 };
 
 // A melody as pitch|duration tokens, one phrase a line.

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "base/files.h"
+#include "cli/cli_test_util.h"
 #include "cli/commands.h"
 
 namespace sb::cli {
@@ -141,43 +142,20 @@ std::vector<std::string> SplitTabs(const std::string& s) {
   return out;
 }
 
-class LanguageCli : public ::testing::Test {
+class LanguageCli : public CliFixture {
  protected:
   void SetUp() override {
-    // One directory per test and process: ctest runs tests in parallel.
-    dir_ = std::filesystem::path(::testing::TempDir()) /
-           ("sb_language_cli_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
-            std::to_string(::getpid()));
-    std::filesystem::remove_all(dir_);
-    std::filesystem::create_directories(dir_);
+    CliFixture::SetUp();
     Write("moves.gra", kGra);
     Write("holds.gra", kHolds);
     Write("frames", kFrames);
     Write("moves.txt", kMovesIn);
   }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-
-  void Write(const std::string& name, const std::string& text) {
-    std::ofstream(dir_ / name, std::ios::binary) << text;
-  }
-  std::string P(const std::string& name) const { return (dir_ / name).string(); }
 
   // Runs `fn(args)` with `stdin_text` as standard input (std::cin), capturing
   // stdout into out_ and stderr into err_.
-  int Run(int (*fn)(const std::vector<std::string>&), const std::vector<std::string>& args,
-          const std::string& stdin_text = "") {
-    std::istringstream in(stdin_text);
-    std::streambuf* old = std::cin.rdbuf(in.rdbuf());
-    std::cin.clear();
-    ::testing::internal::CaptureStderr();
-    ::testing::internal::CaptureStdout();
-    int rc = fn(args);
-    err_ = ::testing::internal::GetCapturedStderr();
-    out_ = ::testing::internal::GetCapturedStdout();
-    std::cin.rdbuf(old);
-    std::cin.clear();
-    return rc;
+  int Run(CliCommand fn, const std::vector<std::string>& args, const std::string& stdin_text = "") {
+    return Capture(fn, args, stdin_text);
   }
   int Parse(const std::vector<std::string>& args, const std::string& in = "") {
     return Run(&RunParse, args, in);
@@ -193,9 +171,6 @@ class LanguageCli : public ::testing::Test {
     a.insert(a.end(), more.begin(), more.end());
     return a;
   }
-
-  std::filesystem::path dir_;
-  std::string out_, err_;
 };
 
 TEST_F(LanguageCli, PhoenixOutputIsExactFromStdinAndFromAFile) {

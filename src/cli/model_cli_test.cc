@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "base/files.h"
+#include "cli/cli_test_util.h"
 #include "cli/commands.h"
 #include "crdl/route.h"
 #include "markov/token_model.h"
@@ -77,40 +78,18 @@ std::string TrainingText() {
   return s;
 }
 
-class ModelCli : public ::testing::Test {
+class ModelCli : public CliFixture {
  protected:
   void SetUp() override {
-    // One directory per test and process: ctest runs tests in parallel.
-    dir_ = std::filesystem::path(::testing::TempDir()) /
-           ("sb_model_cli_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
-            std::to_string(::getpid()));
-    std::filesystem::remove_all(dir_);
-    std::filesystem::create_directories(dir_);
+    CliFixture::SetUp();
     Write("train.txt", TrainingText());
     Write("score.txt", "a b c\na b c a b c d\nd d d a\nc\nb a\n");
   }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-
-  void Write(const std::string& name, const std::string& text) {
-    std::ofstream(dir_ / name, std::ios::binary) << text;
-  }
-  std::string P(const std::string& name) const { return (dir_ / name).string(); }
 
   // Runs `strangebeta model args...` with `stdin_text` as standard input
   // (std::cin), capturing stdout into out_ and stderr into err_.
   int Run(const std::vector<std::string>& args, const std::string& stdin_text = "") {
-    std::istringstream in(stdin_text);
-    std::streambuf* old = std::cin.rdbuf(in.rdbuf());
-    std::cin.clear();
-    ::testing::internal::CaptureStderr();
-    ::testing::internal::CaptureStdout();
-    int rc = RunModel(args);
-    err_ = ::testing::internal::GetCapturedStderr();
-    out_ = ::testing::internal::GetCapturedStdout();
-    std::cin.rdbuf(old);
-    std::cin.clear();
-    return rc;
+    return Capture(RunModel, args, stdin_text);
   }
   // Trains `model` from the file `data` and asserts success.
   void Train(const std::string& alg, const std::string& data, const std::string& model,
@@ -130,9 +109,6 @@ class ModelCli : public ::testing::Test {
     for (const std::string& l : Lines(out_)) v.push_back(Num(l));
     return v;
   }
-
-  std::filesystem::path dir_;
-  std::string out_, err_;
 };
 
 TEST_F(ModelCli, ScorePrintsOneExactNumberPerLineForEveryAlgorithm) {

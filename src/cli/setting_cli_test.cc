@@ -10,41 +10,26 @@
 #include <sstream>
 
 #include "base/files.h"
+#include "cli/cli_test_util.h"
 #include "cli/commands.h"
 #include "cli/setting_options.h"
 
 namespace sb::cli {
 namespace {
 
-class SettingCli : public ::testing::Test {
+class SettingCli : public CliFixture {
  protected:
-  void SetUp() override {
-    dir_ = std::filesystem::path(::testing::TempDir()) /
-           ("sb_setting_cli_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
-            std::to_string(::getpid()));
-    std::filesystem::remove_all(dir_);
-    std::filesystem::create_directories(dir_);
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
   std::string Example(const std::string& name) const {
     return std::string(SB_SOURCE_DIR) + "/data/examples/" + name + ".crdl";
   }
   std::vector<std::string> Three() const {
     return {Example("edge-crack"), Example("pocket-traverse"), Example("slab-dance")};
   }
-  int Run(int (*cmd)(const std::vector<std::string>&), std::vector<std::string> args,
-          std::string* err = nullptr) {
-    ::testing::internal::CaptureStderr();
-    ::testing::internal::CaptureStdout();
-    int rc = cmd(args);
-    std::string e = ::testing::internal::GetCapturedStderr();
-    out_ = ::testing::internal::GetCapturedStdout();
-    if (err) *err = e;
+  int Run(CliCommand cmd, const std::vector<std::string>& args, std::string* err = nullptr) {
+    int rc = Capture(cmd, args);
+    if (err) *err = err_;
     return rc;
   }
-  std::filesystem::path dir_;
-  std::string out_;
 };
 
 TEST_F(SettingCli, SearchReportsTheIcConstraintsAndWarningsDeterministically) {

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "cli/cli_test_util.h"
 #include "cli/commands.h"
 #include "studies/analysis.h"
 #include "studies/simulate.h"
@@ -14,37 +15,15 @@
 namespace sb::cli {
 namespace {
 
-class StudyCli : public ::testing::Test {
+class StudyCli : public CliFixture {
  protected:
-  void SetUp() override {
-    dir_ = std::filesystem::path(::testing::TempDir()) /
-           ("sb_study_cli_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
-            std::to_string(::getpid()));
-    std::filesystem::remove_all(dir_);
-    std::filesystem::create_directories(dir_);
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-  void Write(const std::string& name, const std::string& text) {
-    std::ofstream(dir_ / name) << text;
-  }
-  std::string P(const std::string& name) const { return (dir_ / name).string(); }
   std::string Slurp(const std::string& name) const {
     std::ifstream in(dir_ / name);
     std::stringstream ss;
     ss << in.rdbuf();
     return ss.str();
   }
-  int Run(std::vector<std::string> args) {
-    ::testing::internal::CaptureStderr();
-    ::testing::internal::CaptureStdout();
-    int rc = RunStudy(args);
-    err_ = ::testing::internal::GetCapturedStderr();
-    out_ = ::testing::internal::GetCapturedStdout();
-    return rc;
-  }
-  std::filesystem::path dir_;
-  std::string out_, err_;
+  int Run(const std::vector<std::string>& args) { return Capture(RunStudy, args); }
 };
 
 TEST_F(StudyCli, SimulateThenAnalyzeJsonIsCompleteAndByteIdentical) {

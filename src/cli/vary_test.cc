@@ -1,13 +1,13 @@
 // Command-line tests of `strangebeta vary` and `strangebeta check`.
+#include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
-#include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
-
+#include "cli/cli_test_util.h"
 #include "cli/commands.h"
 
 namespace sb::cli {
@@ -20,35 +20,19 @@ std::string Slurp(const std::string& path) {
   return ss.str();
 }
 
-class VaryCli : public ::testing::Test {
+class VaryCli : public CliFixture {
  protected:
   void SetUp() override {
-    // One directory per test and process: ctest runs tests in parallel.
-    dir_ = std::filesystem::path(::testing::TempDir()) /
-           ("sb_vary_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
-            "_" + std::to_string(::getpid()));
-    std::filesystem::remove_all(dir_);
-    std::filesystem::create_directories(dir_);
+    CliFixture::SetUp();
     Write("a.crdl", "name: Alpha\ngrade: V3\n---\nR jug\nL match\nR crimp\nL sloper\nR pinch\n");
     Write("b.crdl", "---\nL pocket\nR edge\nL gaston\nR undercling\nL match\n");
     Write("bad.crdl", "name: Bad\n---\nR jug\nL crimp\nQ sloper\n");
   }
-  void Write(const std::string& name, const std::string& text) {
-    std::ofstream(dir_ / name) << text;
-  }
-  std::string P(const std::string& name) const { return (dir_ / name).string(); }
-  int Run(std::vector<std::string> args, std::string* err = nullptr) {
-    ::testing::internal::CaptureStderr();
-    ::testing::internal::CaptureStdout();
-    int rc = RunVary(args);
-    std::string e = ::testing::internal::GetCapturedStderr();
-    out_ = ::testing::internal::GetCapturedStdout();
-    if (err) *err = e;
+  int Run(const std::vector<std::string>& args, std::string* err = nullptr) {
+    int rc = Capture(RunVary, args);
+    if (err) *err = err_;
     return rc;
   }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-  std::filesystem::path dir_;
-  std::string out_;
 };
 
 TEST_F(VaryCli, JsonOutputFollowsTheSchemaAndIsByteIdentical) {
