@@ -42,6 +42,7 @@ ReadCosts::ReadCosts(store::Store* store, app::Logbook* logbook, RenderCosts cos
                      BudgetPolicy budget)
     : store_(store),
       ticks_(store::TickStoreOf(store)),
+      counts_(store::CountStoreOf(store)),
       logbook_(logbook),
       costs_(costs),
       budget_(budget) {}
@@ -62,7 +63,8 @@ Result<double> ReadCosts::LogbookCost(const Viewer& v, std::string_view particip
          gyms * kUntriedRoutesPerGym * costs_.list_per_row;
 }
 
-Result<std::optional<store::RouteRecord>> ReadCosts::Seen(const Viewer& v, int64_t route_id) {
+Result<std::optional<store::RouteRecord>> ReadCosts::Seen(const Viewer& v, int64_t route_id,
+                                                          bool in_gym) {
   Result<store::RouteRecord> route = store_->GetRoute(route_id);
   if (!route.ok()) {
     if (route.status().code() == Status::Code::kNotFound) {
@@ -70,7 +72,7 @@ Result<std::optional<store::RouteRecord>> ReadCosts::Seen(const Viewer& v, int64
     }
     return route.status();
   }
-  if (!route->gym_id || !IsVisible(*route, v, store::Reach::kOnTheWall)) {
+  if ((in_gym && !route->gym_id) || !IsVisible(*route, v, store::Reach::kOnTheWall)) {
     return std::optional<store::RouteRecord>();
   }
   return std::optional<store::RouteRecord>(std::move(route).value());
@@ -134,6 +136,91 @@ Result<double> ReadCosts::AscentCost(const Viewer& v, int64_t route_id, bool wit
   const double cap = v.logged_in() ? budget_.user_max_cost : budget_.anonymous_max_cost;
   cost += std::min(static_cast<double>(fit) * costs_.fit_per_tick, std::max(0.0, cap - cost));
   return cost;
+}
+
+namespace {
+
+// Whether `v` is a member of `gym` (any role); with `setter`, a setter or
+// head setter of it.
+bool MemberOf(const Viewer& v, int64_t gym, bool setter) {
+  if (!v.user_id) return false;
+  for (const GymRole& g : v.gyms) {
+    if (g.gym_id == gym && (!setter || g.role == "head" || g.role == "setter")) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+Result<double> ReadCosts::GymHistoryCost(const Viewer& v, int64_t gym) {
+  SB_RETURN_IF_ERROR(costs_.Validate());
+  if (counts_ == nullptr || !MemberOf(v, gym, true)) return 0.0;
+  SB_ASSIGN_OR_RETURN(int64_t n, counts_->CountGymHistory(gym));
+  return static_cast<double>(n) * (costs_.row_per_read + costs_.list_per_row);
+}
+
+Result<double> ReadCosts::RouteHistoryCost(const Viewer& v, int64_t route_id, bool members_only,
+                                           std::optional<int64_t>* gym) {
+  SB_RETURN_IF_ERROR(costs_.Validate());
+  if (gym) gym->reset();
+  if (counts_ == nullptr) return 0.0;
+  SB_ASSIGN_OR_RETURN(std::optional<store::RouteRecord> route, Seen(v, route_id, false));
+  if (route && gym) *gym = route->gym_id;
+  if (!route || (members_only && (!route->gym_id || !MemberOf(v, *route->gym_id, false)))) {
+    return 0.0;
+  }
+  SB_ASSIGN_OR_RETURN(int64_t n, counts_->CountRouteHistory(route_id));
+  return static_cast<double>(n) * (costs_.row_per_read + costs_.list_per_row);
+}
+
+Result<double> ReadCosts::ConsensusCost(const Viewer& v, int64_t route_id,
+                                        std::optional<int64_t>* gym) {
+  SB_RETURN_IF_ERROR(costs_.Validate());
+  if (gym) gym->reset();
+  if (counts_ == nullptr) return 0.0;
+  SB_ASSIGN_OR_RETURN(std::optional<store::RouteRecord> route, Seen(v, route_id, false));
+  if (!route) return 0.0;
+  if (gym) *gym = route->gym_id;
+  SB_ASSIGN_OR_RETURN(int64_t n, counts_->CountRouteFeedback(route_id));
+  return static_cast<double>(n) * costs_.row_per_read;
+}
+
+Result<double> ReadCosts::RouteBlocksCost(const Viewer& v, int64_t route_id) {
+  SB_RETURN_IF_ERROR(costs_.Validate());
+  if (counts_ == nullptr) return 0.0;
+  SB_ASSIGN_OR_RETURN(std::optional<store::RouteRecord> route, Seen(v, route_id, false));
+  if (!route) return 0.0;
+  SB_ASSIGN_OR_RETURN(int64_t feedback, counts_->CountRouteFeedback(route_id));
+  double cost = static_cast<double>(feedback) * costs_.row_per_read;
+  if (route->gym_id && MemberOf(v, *route->gym_id, false)) {
+    SB_ASSIGN_OR_RETURN(int64_t n, counts_->CountRouteHistory(route_id));
+    cost += static_cast<double>(n) * (costs_.row_per_read + costs_.list_per_row);
+  }
+  return cost;
+}
+
+Result<double> ReadCosts::FeedbackAnswersCost(const Viewer& v, int64_t route_id,
+                                              std::optional<int64_t>* gym) {
+  SB_RETURN_IF_ERROR(costs_.Validate());
+  if (gym) gym->reset();
+  if (counts_ == nullptr || !v.user_id) return 0.0;
+  Result<store::RouteRecord> route = store_->GetRoute(route_id);
+  if (!route.ok()) {
+    if (route.status().code() == Status::Code::kNotFound) return 0.0;
+    return route.status();
+  }
+  if (!IsOwner(*route, v)) return 0.0;
+  if (gym) *gym = route->gym_id;
+  SB_ASSIGN_OR_RETURN(int64_t n, counts_->CountRouteFeedback(route_id));
+  return static_cast<double>(n) * (costs_.study_per_answer + costs_.row_per_read);
+}
+
+Result<double> ReadCosts::DriftCost(const Viewer& v) {
+  SB_RETURN_IF_ERROR(costs_.Validate());
+  if (counts_ == nullptr || !v.user_id) return 0.0;
+  SB_ASSIGN_OR_RETURN(store::DriftCounts n, counts_->CountDrift(*v.user_id));
+  return static_cast<double>(n.routes) * costs_.route_read +
+         static_cast<double>(n.feedback) * costs_.row_per_read;
 }
 
 double ReadCosts::StudyCost(const Study& s) const {

@@ -20,6 +20,7 @@
 #include "app/options.h"
 #include "app/types.h"
 #include "base/status.h"
+#include "store/count_store.h"
 #include "store/store.h"
 
 namespace sb::app {
@@ -59,6 +60,40 @@ class ReadCosts {
   // the route's gym (the member share of the work). Errors: the store's.
   Result<double> AscentCost(const Viewer& v, int64_t route_id, bool with_held,
                             std::optional<int64_t>* gym = nullptr);
+  // Issue 34, the reads costed since (docs/web.md, "Work budgets"); each is
+  // one indexed COUNT (store/count_store.h) before the reading, and 0 when
+  // the service would refuse before reading.
+  //
+  // A gym's history (GET /api/gyms/{gym}/history, the history list of
+  // /gyms/{gym} for its setters): each row read with its author's name and
+  // listed (row_per_read + list_per_row). 0 unless `v` sets in `gym`.
+  Result<double> GymHistoryCost(const Viewer& v, int64_t gym);
+  // A route's history (GET /api/routes/{id}/history; the "on the wall"
+  // block of /routes/{id} and /variations/{id} for the gym's members,
+  // `members_only`): as a gym's history row. 0 when `v` does not see the
+  // route (or, with `members_only`, is not a member of its gym). `*gym`,
+  // when given, is set to the route's gym when it is seen (here and below).
+  Result<double> RouteHistoryCost(const Viewer& v, int64_t route_id, bool members_only,
+                                  std::optional<int64_t>* gym = nullptr);
+  // A route's feedback consensus (the consensus block of /routes/{id},
+  // /variations/{id} and /r/{id}): each feedback row read and summarised
+  // (row_per_read). 0 when `v` does not see the route.
+  Result<double> ConsensusCost(const Viewer& v, int64_t route_id,
+                               std::optional<int64_t>* gym = nullptr);
+  // The blocks under a route's and a variation's page (/routes/{id},
+  // /variations/{id}): RouteHistoryCost(members_only) + ConsensusCost, with
+  // the route read once.
+  Result<double> RouteBlocksCost(const Viewer& v, int64_t route_id);
+  // The climbers' answers for the route's owner (GET /r/{id}/responses):
+  // each feedback row read, tabulated and analysed like a study's answer
+  // (study_per_answer), and the consensus (row_per_read each). 0 unless
+  // `v` owns the route.
+  Result<double> FeedbackAnswersCost(const Viewer& v, int64_t route_id,
+                                     std::optional<int64_t>* gym = nullptr);
+  // A setter's drift (GET /drift): every route they own read whole
+  // (route_read) and each feedback row on them summarised (row_per_read).
+  // 0 signed out.
+  Result<double> DriftCost(const Viewer& v);
   // A study's answers read for its results, CSVs, analysis, box plot and
   // held list: responses x routes answer rows (study_per_answer each).
   // Pure.
@@ -67,11 +102,13 @@ class ReadCosts {
   const RenderCosts& costs() const { return costs_; }
 
  private:
-  // The route when `v` sees it (on the wall) and it is in a gym; nullopt
-  // otherwise.
-  Result<std::optional<store::RouteRecord>> Seen(const Viewer& v, int64_t route_id);
+  // The route when `v` sees it (on the wall) and, with `in_gym`, it is in a
+  // gym; nullopt otherwise.
+  Result<std::optional<store::RouteRecord>> Seen(const Viewer& v, int64_t route_id,
+                                                 bool in_gym = true);
   store::Store* store_;
   store::TickStore* ticks_;
+  store::CountStore* counts_;
   app::Logbook* logbook_;
   const RenderCosts costs_;
   const BudgetPolicy budget_;

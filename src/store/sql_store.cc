@@ -15,6 +15,7 @@
 #include "gym/rules.h"
 #include "store/bulk_sql.h"
 #include "store/bulk_store.h"
+#include "store/count_store.h"
 #include "store/gym_store.h"
 #include "store/import_store.h"
 #include "store/prediction_store.h"
@@ -187,7 +188,7 @@ VariationInput ReadInput(const Rows& s, size_t i, size_t first) {
 class SqlStore final : public Store, public GymStore, public TickStore, public TargetStore,
                        public BulkStore, public ProfileStore, public ScaleStore,
                        public ImportStore,
-                       public PredictionStore {
+                       public PredictionStore, public CountStore {
  public:
   explicit SqlStore(std::unique_ptr<sql::Pool> pool)
       : pool_(std::move(pool)), pg_(pool_->dialect() == sql::Dialect::kPostgres) {}
@@ -1000,6 +1001,27 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
     SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
     return ticks_sql::CountRouteTicks(*c, route_id);
   }
+  // -- counts before the work (store/count_store.h, issue 34) -----------------
+
+  Result<int64_t> CountGymHistory(int64_t gym_id) override {
+    return CountOf("SELECT count(*) FROM gym_history WHERE gym_id = ?", gym_id);
+  }
+  Result<int64_t> CountRouteHistory(int64_t route_id) override {
+    return CountOf("SELECT count(*) FROM route_history WHERE route_id = ?", route_id);
+  }
+  Result<int64_t> CountRouteFeedback(int64_t route_id) override {
+    return CountOf("SELECT count(*) FROM feedback WHERE route_id = ?", route_id);
+  }
+  Result<DriftCounts> CountDrift(int64_t owner_id) override {
+    DriftCounts n;
+    SB_ASSIGN_OR_RETURN(n.routes, CountOf("SELECT count(*) FROM routes WHERE owner_id = ?", owner_id));
+    SB_ASSIGN_OR_RETURN(n.feedback,
+                        CountOf("SELECT count(*) FROM feedback WHERE route_id IN "
+                                "(SELECT id FROM routes WHERE owner_id = ?)",
+                                owner_id));
+    return n;
+  }
+
   Result<TickVersion> GymTickVersion(int64_t gym_id) override {
     SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
     return ticks_sql::GymTickVersion(*c, gym_id);
@@ -1420,6 +1442,12 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
   }
 
  private:
+  // The count of `query` (one "?" bound to `id`).
+  Result<int64_t> CountOf(const char* query, int64_t id) {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    SB_ASSIGN_OR_RETURN(Rows r, c->Query(query, {id}));
+    return r.empty() ? 0 : r.Int(0, 0);
+  }
   static std::vector<GymRecord> ReadGyms(const Rows& r) {
     std::vector<GymRecord> out;
     for (size_t i = 0; i < r.size(); ++i) {
@@ -1788,6 +1816,7 @@ ImportStore* ImportStoreOf(Store* store) { return dynamic_cast<ImportStore*>(sto
 PredictionStore* PredictionStoreOf(Store* store) {
   return dynamic_cast<PredictionStore*>(store);
 }
+CountStore* CountStoreOf(Store* store) { return dynamic_cast<CountStore*>(store); }
 
 Status RunAtomically(Store* store, const std::function<Status()>& body) {
   if (auto* sql = dynamic_cast<SqlStore*>(store)) return sql->Atomically(body);

@@ -521,6 +521,11 @@ void DeleteMember(Exchange& x) {
 void GetGymHistory(Exchange& x) {
   Result<int64_t> id = GymId(x.req);
   if (!id.ok()) return ApiError(x, id.status());
+  // Issue 34: every history row of the gym is read; its cost from their count.
+  Result<double> cost = x.services.read_costs.GymHistoryCost(x.caller.viewer, *id);
+  if (!cost.ok()) return ApiError(x, cost.status());
+  auto slot = AdmitWork(x, *cost, *id);
+  if (!slot) return;
   Result<std::vector<app::GymHistoryEntry>> h = x.services.gyms.GymHistory(x.caller.viewer, *id);
   if (!h.ok()) return ApiError(x, h.status());
   json arr = json::array();
@@ -543,6 +548,12 @@ void ListCircuits(Exchange& x) {
 void GetRouteHistory(Exchange& x) {
   Result<int64_t> id = PathId(x.req, "no such route");
   if (!id.ok()) return ApiError(x, id.status());
+  // Issue 34: every history row of the route is read; its cost from their count.
+  std::optional<int64_t> gym;
+  Result<double> cost = x.services.read_costs.RouteHistoryCost(x.caller.viewer, *id, false, &gym);
+  if (!cost.ok()) return ApiError(x, cost.status());
+  auto slot = AdmitWork(x, *cost, gym);
+  if (!slot) return;
   Result<std::vector<app::HistoryEntry>> h = x.services.routes.History(x.caller.viewer, *id);
   if (!h.ok()) return ApiError(x, h.status());
   json arr = json::array();

@@ -202,7 +202,10 @@ void PageFeedback(Exchange& x) {
   std::optional<int64_t> gym;
   Result<double> cost = x.services.read_costs.AscentCost(x.caller.viewer, *id, true, &gym);
   if (!cost.ok()) return PageError(x, cost.status());
-  auto slot = AdmitWork(x, *cost, gym);
+  // ...and the consensus over the route's feedback rows.
+  Result<double> consensus = x.services.read_costs.ConsensusCost(x.caller.viewer, *id);
+  if (!consensus.ok()) return PageError(x, consensus.status());
+  auto slot = AdmitWork(x, *cost + *consensus, gym);
   if (!slot) return;
   Result<app::FeedbackPage> p = x.services.climber_feedback.Page(x.caller.viewer, *id, Token(x));
   if (!p.ok()) return PageError(x, p.status());
@@ -213,12 +216,25 @@ void PageFeedback(Exchange& x) {
 void PageFeedbackAnswers(Exchange& x) {
   Result<int64_t> id = PathId(x.req, "No such route.");
   if (!id.ok()) return PageError(x, id.status());
+  // Issue 34: every feedback row of the route is read and analysed; its
+  // cost from their count first.
+  std::optional<int64_t> gym;
+  Result<double> cost = x.services.read_costs.FeedbackAnswersCost(x.caller.viewer, *id, &gym);
+  if (!cost.ok()) return PageError(x, cost.status());
+  auto slot = AdmitWork(x, *cost, gym);
+  if (!slot) return;
   Result<app::SetterView> v = x.services.climber_feedback.ForSetter(x.caller.viewer, *id);
   if (!v.ok()) return PageError(x, v.status());
   Html(x, SetterFeedbackHtml(x.caller.page(), *v, Policy(x).min_votes_shown));
 }
 
 void PageDrift(Exchange& x) {
+  // Issue 34: every route of the setter's and the feedback on them, counted
+  // first.
+  Result<double> cost = x.services.read_costs.DriftCost(x.caller.viewer);
+  if (!cost.ok()) return PageError(x, cost.status());
+  auto slot = AdmitWork(x, *cost);
+  if (!slot) return;
   Result<app::DriftReport> d = x.services.climber_feedback.Drift(x.caller.viewer);
   if (!d.ok()) return PageError(x, d.status());
   Html(x, DriftPageHtml(x.caller.page(), *d));

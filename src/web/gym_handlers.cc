@@ -42,7 +42,13 @@ void PageGym(Exchange& x) {
   Result<std::vector<app::Member>> members = x.services.gyms.Members(x.caller.viewer, *id);
   if (!members.ok()) return PageError(x, members.status());
   std::vector<app::GymHistoryEntry> history;  // setters' (issue 31)
+  std::optional<app::WorkBudget::Slot> slot;
   if (app::CanSet(gym->role)) {
+    // Issue 34: the history rows, counted first.
+    Result<double> cost = x.services.read_costs.GymHistoryCost(x.caller.viewer, *id);
+    if (!cost.ok()) return PageError(x, cost.status());
+    slot = AdmitWork(x, *cost, *id);
+    if (!slot) return;
     Result<std::vector<app::GymHistoryEntry>> h = x.services.gyms.GymHistory(x.caller.viewer, *id);
     if (!h.ok()) return PageError(x, h.status());
     history = std::move(h).value();

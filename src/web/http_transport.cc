@@ -99,32 +99,54 @@ thread_local double t_waited_ms = -1;
 // first served); the other workers are left to quick requests, so a page
 // served from what is kept never waits behind a report or a PDF. When no
 // costly request waits, quick ones may use every worker.
+//
+// Per-caller fairness (issue 34): a caller has at most `per_caller` costly
+// requests queued or running in each costly lane, and anonymous callers fill
+// at most `max_anonymous` of the queue; both refusals are 429 (come back
+// later), the full queue alone is 503.
 class WorkerPool {
  public:
-  void Start(int threads, size_t max_queue, int max_costly, int max_writes) {
+  // Submit's answer.
+  enum class Queued { kYes, kCallerBusy, kAnonymousFull, kFull };
+
+  void Start(int threads, size_t max_queue, int max_costly, int max_writes, int per_caller,
+             size_t max_anonymous) {
     max_queue_ = max_queue;
     max_costly_ = std::max(1, std::min(max_costly, threads));
     max_writes_ = std::max(1, std::min(max_writes, threads));
+    per_caller_ = std::max(1, per_caller);
+    max_anonymous_ = std::min(max_anonymous, max_queue);
     for (int i = 0; i < threads; ++i) threads_.emplace_back([this] { Work(); });
   }
-  // Queues `task` in `lane`; false when the queue is full or the pool stopped.
-  bool Submit(RequestLane lane, std::function<void()> task) {
+  // Queues `task` in `lane` for `caller`; kYes, or why not (nothing queued).
+  Queued Submit(RequestLane lane, const RequestCaller& caller, std::function<void()> task) {
+    const int l = static_cast<int>(lane);
+    const bool costly = l == kCostlyMember || l == kCostlyOther;
     {
       std::lock_guard<std::mutex> lock(mu_);
-      if (stopping_ || queued_ >= max_queue_) return false;
-      queue_[static_cast<int>(lane)].push_back(std::move(task));
+      if (stopping_ || queued_ >= max_queue_) return Queued::kFull;
+      if (!caller.signed_in && queued_ >= max_anonymous_) return Queued::kAnonymousFull;
+      if (costly && !caller.key.empty()) {
+        int& mine = in_flight_[l][caller.key];
+        if (mine >= per_caller_) return Queued::kCallerBusy;
+        ++mine;
+      }
+      queue_[l].push_back({std::move(task), costly ? caller.key : std::string()});  // "" uncounted
       ++queued_;
     }
     cv_.notify_one();
-    return true;
+    return Queued::kYes;
   }
   // Finishes running tasks, drops queued ones, joins the threads.
   void Stop() {
-    std::deque<std::function<void()>> dropped[kLanes];
+    std::deque<Task> dropped[kLanes];
     {
       std::lock_guard<std::mutex> lock(mu_);
       stopping_ = true;
-      for (int i = 0; i < kLanes; ++i) dropped[i].swap(queue_[i]);
+      for (int i = 0; i < kLanes; ++i) {
+        dropped[i].swap(queue_[i]);
+        in_flight_[i].clear();
+      }
       queued_ = 0;
     }
     cv_.notify_all();
@@ -157,11 +179,11 @@ class WorkerPool {
 
   void Work() {
     for (;;) {
-      std::function<void()> task;
+      Task task;
       bool costly = false, write = false;
+      int lane = -1;
       {
         std::unique_lock<std::mutex> lock(mu_);
-        int lane = -1;
         cv_.wait(lock, [&] { return stopping_ || (lane = Next()) >= 0; });
         if (stopping_) return;
         task = std::move(queue_[lane].front());
@@ -175,11 +197,16 @@ class WorkerPool {
         }
         if (write) ++writes_running_;
       }
-      task();
+      task.run();
       if (costly || write) {
         {
           std::lock_guard<std::mutex> lock(mu_);
-          if (costly) --costly_running_;
+          if (costly) {
+            --costly_running_;
+            auto& m = in_flight_[lane];
+            auto it = task.caller.empty() ? m.end() : m.find(task.caller);
+            if (it != m.end() && --it->second <= 0) m.erase(it);
+          }
           if (write) --writes_running_;
         }
         cv_.notify_one();  // a costly task or write may start now
@@ -205,7 +232,15 @@ class WorkerPool {
   std::atomic<int64_t> last_trim_ms_{0};
   std::mutex mu_;
   std::condition_variable cv_;
-  std::deque<std::function<void()>> queue_[kLanes];
+  struct Task {
+    std::function<void()> run;
+    std::string caller;  // costly lanes: the caller counted in in_flight_
+  };
+  std::deque<Task> queue_[kLanes];
+  // Costly lanes: requests queued or running per caller key.
+  std::map<std::string, int> in_flight_[kLanes];
+  int per_caller_ = 2;
+  size_t max_anonymous_ = 0;
   size_t queued_ = 0;
   std::vector<std::thread> threads_;
   size_t max_queue_ = 0;
@@ -367,8 +402,10 @@ class HttpTransport::Impl::Session : public std::enable_shared_from_this<Session
     parser_.reset();
     auto self = shared_from_this();
     const RequestLane lane = impl_->lanes.lane ? impl_->lanes.lane(*request) : RequestLane::kQuick;
+    const RequestCaller caller = impl_->lanes.caller ? impl_->lanes.caller(*request)
+                                                     : RequestCaller{"", true};
     const auto queued_at = std::chrono::steady_clock::now();
-    bool queued = impl_->pool.Submit(lane, [self, request, queued_at] {
+    const WorkerPool::Queued queued = impl_->pool.Submit(lane, caller, [self, request, queued_at] {
       t_waited_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() -
                                                               queued_at)
                         .count();
@@ -387,11 +424,18 @@ class HttpTransport::Impl::Session : public std::enable_shared_from_this<Session
       t_waited_ms = -1;
       net::post(self->stream_.get_executor(), [self, out] { self->Write(*out, false); });
     });
-    if (!queued) {
+    if (queued == WorkerPool::Queued::kFull) {
       Response busy;
       impl_->on_error(*request, 503, &busy);
       busy.SetHeader("Retry-After", "1");
       keep_alive_ = false;
+      Write(busy, false);
+    } else if (queued != WorkerPool::Queued::kYes) {
+      // Issue 34: this caller's share is full (its costly requests in
+      // flight, or the anonymous part of the queue), not the server: 429.
+      Response busy;
+      impl_->on_error(*request, 429, &busy);
+      busy.SetHeader("Retry-After", "1");
       Write(busy, false);
     }
   }
@@ -601,7 +645,12 @@ Status HttpTransport::Run() {
                                                     : std::max(4, 2 * cores);
   int writes = impl_->lanes.max_writes_running > 0 ? impl_->lanes.max_writes_running
                                                     : std::max(2, cores);
-  impl_->pool.Start(workers, o.max_queued_requests, costly, writes);
+  const int per_caller =
+      impl_->lanes.max_costly_per_caller > 0 ? impl_->lanes.max_costly_per_caller : 2;
+  const size_t anonymous = impl_->lanes.max_anonymous_queued > 0
+                               ? impl_->lanes.max_anonymous_queued
+                               : o.max_queued_requests - o.max_queued_requests / 4;
+  impl_->pool.Start(workers, o.max_queued_requests, costly, writes, per_caller, anonymous);
   impl_->Accept();
   std::vector<std::thread> extra;
   for (int i = 1; i < io; ++i) extra.emplace_back([this] { impl_->ioc.run(); });

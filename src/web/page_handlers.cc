@@ -121,11 +121,15 @@ void PageRoute(Exchange& x) {
     x.res.SetHeader("Location", "/variations/" + std::to_string(*id));
     return;
   }
-  // Issue 34: the page's ascent section (app::ReadCosts::AscentCost) too.
+  // Issue 34: the page's ascent section (app::ReadCosts::AscentCost) too,
+  // and its history and consensus blocks (RouteBlocksCost).
   Result<double> ascent = x.services.read_costs.AscentCost(x.caller.viewer, *id, true);
   if (!ascent.ok()) return PageError(x, ascent.status());
+  Result<double> blocks = x.services.read_costs.RouteBlocksCost(x.caller.viewer, *id);
+  if (!blocks.ok()) return PageError(x, blocks.status());
   auto slot = AdmitWork(
-      x, r->move_count * x.services.options.render_costs.page_per_move + *ascent, r->gym_id);
+      x, r->move_count * x.services.options.render_costs.page_per_move + *ascent + *blocks,
+      r->gym_id);
   if (!slot) return;
   std::vector<std::string> readings;
   if (Result<Route> parsed = ParseCrdl(r->crdl, "route"); parsed.ok()) {
@@ -185,13 +189,19 @@ std::optional<AdmittedPlan> AdmittedPlanOf(Exchange& x, double base, double per_
     return std::nullopt;
   }
   if (with_ascent) {
-    // Issue 34: the page's ascent section (app::ReadCosts::AscentCost).
+    // Issue 34: the page's ascent section (app::ReadCosts::AscentCost),
+    // and its history and consensus blocks (RouteBlocksCost).
     Result<double> ascent = x.services.read_costs.AscentCost(x.caller.viewer, *id, true);
     if (!ascent.ok()) {
       PageError(x, ascent.status());
       return std::nullopt;
     }
-    base += *ascent;
+    Result<double> blocks = x.services.read_costs.RouteBlocksCost(x.caller.viewer, *id);
+    if (!blocks.ok()) {
+      PageError(x, blocks.status());
+      return std::nullopt;
+    }
+    base += *ascent + *blocks;
   }
   std::optional<app::WorkBudget::Slot> slot =
       AdmitWork(x, base + r->move_count * per_move, r->gym_id);

@@ -265,6 +265,17 @@ RequestLane LaneOf(const Request& q) {
                                           : RequestLane::kCostlySignedIn;
 }
 
+// The caller of a request for the transport's per-caller fairness
+// (worker_lanes.h): a session cookie's holder, else the address. The
+// session is not looked up here (an I/O thread); a made-up cookie only
+// moves its sender into a share of its own, still bounded per caller, and
+// the render budget charges the account once the session is resolved.
+RequestCaller TransportCallerOf(const Request& q) {
+  const std::string session = q.Cookie(kSessionCookie);
+  if (session.empty()) return {"addr:" + q.remote_address, false};
+  return {"session:" + session, true};
+}
+
 }  // namespace
 
 std::string HostOfUrl(const std::string& url) {
@@ -314,6 +325,10 @@ const char* TransportMessage(int status) {
   switch (status) {
     case 400: return "bad request";
     case 413: return "request body too large";
+    case 429:
+      return "too many requests at once: at most 2 costly requests per caller in flight "
+             "(max_costly_per_caller), and signed-out callers fill at most three quarters of "
+             "the queue; try again";
     case 415: return "compressed request bodies are not accepted";
     case 417: return "expectation not supported";
     case 431: return "request header fields too large";
@@ -339,7 +354,11 @@ struct Server::Impl {
             TransportFor(options), [this](const Request& q, Response* s) { Handle(q, s); },
             [this](const Request& q, int status, Response* s) { TransportError(q, status, s); }) {
     for (const Endpoint& e : kEndpoints) router.Add(e.method, e.pattern, e.handler);
-    SetLanePolicy(LanePolicy{LaneOf, 0});  // the transport's default caps
+    LanePolicy lanes;  // the transport's default caps
+    lanes.lane = LaneOf;
+    lanes.caller = TransportCallerOf;
+    lanes.max_costly_per_caller = 2;  // TransportMessage(429) names it
+    SetLanePolicy(std::move(lanes));
     for (const std::string& h : options.allowed_hosts) AllowHost(h);
     if (!options.base_url.empty()) AllowHost(HostOfUrl(options.base_url));
   }
@@ -484,7 +503,7 @@ struct Server::Impl {
     Caller caller;  // no session lookup for a request the transport refused
     Exchange x{services, options, req, caller, *res};
     Failure(x, status, TransportMessage(status));
-    if (status == 503) res->SetHeader("Retry-After", "1");
+    if (status == 503 || status == 429) res->SetHeader("Retry-After", "1");
     Finish(req, res, std::chrono::steady_clock::now());
   }
 

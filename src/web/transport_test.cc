@@ -11,9 +11,11 @@
 #include <sys/time.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
+#include <functional>
 #include <mutex>
 #include <memory>
 #include <string>
@@ -274,6 +276,118 @@ TEST(TransportTest, CostlyRequestsLeaveWorkersToQuickOnes) {
   for (std::thread& t : costly) t.join();
   EXPECT_EQ(statuses, (std::vector<int>{200, 200, 200}));
   EXPECT_EQ(most, 1);
+  SetLanePolicy(before);
+}
+
+// Issue 34, per-caller fairness: one caller cannot hold every slot of the
+// costly lane (past max_costly_per_caller in flight it gets 429 with
+// Retry-After at once, and another caller's costly request runs), and an
+// anonymous flood that fills its part of the queue is refused 429 while a
+// signed-in caller's requests are still queued and answered, never 503.
+TEST(TransportTest, OneCallerCannotHoldTheCostlyLaneNorAFloodTheMembersQueue) {
+  std::mutex mu;
+  std::condition_variable cv;
+  bool open = false;
+  std::atomic<int> costly_running{0}, held{0};
+  TransportOptions o;
+  o.threads = 3;
+  o.max_queued_requests = 8;
+  const LanePolicy before = CurrentLanePolicy();
+  LanePolicy lanes;
+  // The caller is named by a header; "member..." callers are signed in.
+  lanes.caller = [](const Request& q) {
+    const std::string who = q.Header("x-caller");
+    return RequestCaller{who, who.rfind("member", 0) == 0};
+  };
+  lanes.lane = [](const Request& q) {
+    if (q.path.rfind("/costly", 0) != 0) return RequestLane::kQuick;
+    return q.Header("x-caller").rfind("member", 0) == 0 ? RequestLane::kCostlySignedIn
+                                                        : RequestLane::kCostlyAnonymous;
+  };
+  lanes.max_costly_running = 2;
+  lanes.max_costly_per_caller = 1;
+  lanes.max_anonymous_queued = 4;
+  SetLanePolicy(lanes);
+  Running r(o, [&](const Request& q, Response* s) {
+    const bool costly = q.path.rfind("/costly", 0) == 0;
+    if (costly || q.path == "/hold") {
+      if (costly) ++costly_running;
+      ++held;
+      std::unique_lock<std::mutex> lock(mu);
+      cv.wait(lock, [&] { return open; });
+      if (costly) --costly_running;
+    }
+    Running::Echo(q, s);
+  });
+  auto get = [&](const std::string& path, const std::string& who) {
+    return Exchange(r.port(), "GET " + path + " HTTP/1.1\r\nHost: x\r\nX-Caller: " + who +
+                                  "\r\nConnection: close\r\n\r\n");
+  };
+  auto wait_for = [](const std::function<bool()>& done) {
+    for (int i = 0; i < 300 && !done(); ++i) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+  };
+  std::mutex out_mu;
+  std::vector<std::string> answers;  // "who status"
+  std::vector<std::thread> callers;
+  auto send = [&](const std::string& path, const std::string& who) {
+    callers.emplace_back([&, path, who] {
+      std::string res = get(path, who);
+      std::lock_guard<std::mutex> lock(out_mu);
+      answers.push_back(who + " " + std::to_string(StatusOf(res)));
+      if (StatusOf(res) == 429) {
+        EXPECT_NE(res.find("Retry-After: 1"), std::string::npos) << res;
+      }
+    });
+  };
+  auto count = [&](const std::string& answer) {
+    std::lock_guard<std::mutex> lock(out_mu);
+    return static_cast<int>(std::count(answers.begin(), answers.end(), answer));
+  };
+  // One anonymous caller asks for three costly things at once: one runs,
+  // the two others are refused at once; another caller's then runs too.
+  for (int i = 0; i < 3; ++i) send("/costly/" + std::to_string(i), "anon-a");
+  wait_for([&] { return count("anon-a 429") == 2 && costly_running == 1; });
+  EXPECT_EQ(count("anon-a 429"), 2);
+  EXPECT_EQ(costly_running, 1);
+  send("/costly/b", "anon-b");
+  wait_for([&] { return costly_running == 2; });
+  EXPECT_EQ(costly_running, 2);
+  // The third worker held too: from now on everything queues.
+  send("/hold", "member-setter");
+  wait_for([&] { return held == 3; });
+  ASSERT_EQ(held, 3);
+  // Eight anonymous addresses flood the quick lane: four are queued (their
+  // part of the queue of eight), four refused 429.
+  for (int i = 0; i < 8; ++i) send("/quick", "anon-flood-" + std::to_string(i));
+  wait_for([&] {
+    std::lock_guard<std::mutex> lock(out_mu);
+    return std::count_if(answers.begin(), answers.end(), [](const std::string& a) {
+             return a.rfind("anon-flood", 0) == 0;
+           }) == 4;
+  });
+  // A member's quick and costly requests still queue, and are answered.
+  send("/quick", "member-setter");
+  send("/costly/sheet", "member-setter");
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  {
+    std::lock_guard<std::mutex> lock(out_mu);
+    for (const std::string& a : answers) EXPECT_EQ(a.rfind("member", 0), std::string::npos) << a;
+    open = true;
+  }
+  cv.notify_all();
+  for (std::thread& t : callers) t.join();
+  int floods_answered = 0, floods_refused = 0;
+  for (const std::string& a : answers) {
+    EXPECT_EQ(a.find(" 503"), std::string::npos) << a;
+    if (a.rfind("anon-flood", 0) == 0) (a.ends_with(" 200") ? floods_answered : floods_refused)++;
+  }
+  EXPECT_EQ(floods_answered, 4);
+  EXPECT_EQ(floods_refused, 4);
+  EXPECT_EQ(count("member-setter 200"), 3);
+  EXPECT_EQ(count("anon-a 200"), 1);
+  EXPECT_EQ(count("anon-b 200"), 1);
   SetLanePolicy(before);
 }
 
