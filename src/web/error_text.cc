@@ -96,6 +96,12 @@ struct Shape {
   int args = 0;
 };
 
+// The shapes whose {1} is a style's name.
+bool StyleFirst(const char* msgid) {
+  static const std::string kOn1 = "{1} on {2} move", kOn2 = "{1} on {2} moves", kNo = "no {1} move";
+  return msgid == kOn1 || msgid == kOn2 || msgid == kNo;
+}
+
 // A message's regex: its text literally, each "{n}" any text (in order).
 Shape Compile(const char* msgid) {
   static const std::string kSpecial = "\\^$.|?*+()[]{}";
@@ -148,6 +154,9 @@ std::string Translate(std::string_view lang, const std::string& text, int depth)
     // A part that is itself a sentence ("{5}" of a verdict: the counts) is
     // translated too; names and numbers match no shape and stay.
     for (size_t i = 1; i < m.size(); ++i) args.push_back(Translate(lang, m[i].str(), depth + 1));
+    // A style's name (a catalog message of its own: "heel hook") in the
+    // reasons that start with it.
+    if (StyleFirst(s.msgid) && !args.empty()) args[0] = Tr(lang, m[1].str().c_str());
     return FillIn(Tr(lang, s.msgid), args);
   }
   // "field: rest" (field names are the API's: kept) and "line N: rest".

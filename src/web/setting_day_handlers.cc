@@ -147,7 +147,9 @@ json ProposalJson(const app::SettingDayProposal& p) {
 std::string DayPredictedLine(const app::DayCandidate& c, std::string_view lang) {
   std::string h = "<p class=\"day-predicted\">";
   if (c.score.predicted.known) {
-    h += Fmt(Tr(lang, "Predicted grade {1}"), "<b>" + E(app::PredictedGradeText(c.score.predicted)) + "</b>") +
+    const app::PredictedGrade& g = c.score.predicted;  // app::PredictedGradeText, translated
+    h += Fmt(Tr(lang, "Predicted grade {1}"),
+             "<b>" + E(g.grade) + " (" + E(Fmt(Tr(lang, "80%: {1} to {2}"), g.lo_grade, g.hi_grade)) + ")</b>") +
          " <small>(" + E(c.score.predicted.basis) + ")</small>";
   } else {
     h += Tr(lang, "No predicted grade") + (c.score.predicted.note.empty()
