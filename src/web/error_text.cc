@@ -94,6 +94,7 @@ struct Shape {
   std::regex re;
   const char* msgid;
   int args = 0;
+  std::string head, tail;  // the literal text before the first and after the last "{n}"
 };
 
 // The shapes whose {1} is a style's name.
@@ -117,7 +118,11 @@ Shape Compile(const char* msgid) {
     if (kSpecial.find(*p) != std::string::npos) re += '\\';
     re += *p;
   }
-  return {std::regex(re + "$"), msgid, args};
+  const std::string text(msgid);
+  const size_t first = text.find('{'), last = text.rfind('}');
+  std::string head = first == std::string::npos ? text : text.substr(0, first);
+  std::string tail = last == std::string::npos ? text : text.substr(last + 1);
+  return {std::regex(re + "$"), msgid, args, std::move(head), std::move(tail)};
 }
 
 const std::vector<Shape>& Shapes() {
@@ -149,6 +154,8 @@ std::string Translate(std::string_view lang, const std::string& text, int depth)
   if (depth > 4) return text;
   std::smatch m;
   for (const Shape& s : Shapes()) {
+    // The literal ends first: most sentences match no shape, and the regex is slow.
+    if (!text.starts_with(s.head) || !text.ends_with(s.tail)) continue;
     if (!std::regex_match(text, m, s.re)) continue;
     std::vector<std::string> args;
     // A part that is itself a sentence ("{5}" of a verdict: the counts) is
