@@ -10,6 +10,17 @@ the message catalogs.
    (`"<h1>Your logbook</h1>"`, `"Please <a href=...>"`) that is not wrapped in
    Tr() fails with file:line. A line meant to stay as it is (a brand name, a
    language's own name) says so with a comment `// i18n: <why>`.
+3. The static scripts (web/*.js): every message a script shows is written
+   `tr('English text', arg1, ...)` -- one single-quoted literal, "{1}".. for
+   the arguments -- and listed under the script's array in
+   src/web/script_messages.cc (app.js -> kAppJs, gym_import.js -> kGymImportJs:
+   `N_("English text")`), which the page renders translated into its JSON
+   message block. The check fails for a tr() message the array lacks (it would
+   stay English) and, with file:line, for a string literal that looks shown to
+   the user outside tr(): one with two words ("not saved"), a capitalised word
+   ("Discarded."), or any word on a line that writes to the user (textContent,
+   innerText, title, placeholder, alert, confirm, say, aria-label). Code strings
+   (headers, selectors) on such a line say so with `// i18n: <why>`.
 
   i18n_check.py SOURCE_ROOT            run both checks (the CTest i18n_catalogs)
   i18n_check.py --self-test SOURCE_ROOT
@@ -32,6 +43,100 @@ import tempfile
 KEYWORDS = ["--keyword=Tr:2", "--keyword=TrN:2,3", "--keyword=N_"]
 LITERAL = re.compile(r'"((?:[^"\\\n]|\\.)*)"')
 WORD = re.compile(r"[A-Za-z]{2,}")
+
+
+JS_TR = re.compile(r"\btr\(\s*'((?:[^'\\\n]|\\.)*)'")
+JS_LITERAL = re.compile(r"'((?:[^'\\\n]|\\.)*)'|\"((?:[^\"\\\n]|\\.)*)\"|`([^`]*)`")
+JS_SHOWN = re.compile(r"textContent|innerText|\.title\s*=|placeholder|\balert\(|\bconfirm\(|"
+                      r"\bsay\(|aria-label")
+JS_PROSE = re.compile(r"[A-Za-z]{2,}[,.:;!?]?\s+[A-Za-z(]{2,}|^[A-Z][a-z]+\b")
+JS_CODE = re.compile(r"^(?:[#.\[][\w\-.#\[\]=\"' ]*|[a-z]+(?:-[a-z]+)+|[A-Za-z]+(?:-[A-Za-z]+)+:?|"
+                     r"/[\w/.\-?=&:]*|use strict)$")
+JS_IDENTIFIER = re.compile(r"^[a-z_]+$")
+# Code on a line that also shows text: element names, classes, comparisons.
+JS_NOT_TEXT = re.compile(r"(?:createElement|closest|querySelector(?:All)?|classList\.\w+|\$)\(\s*'[^']*'|"
+                         r"(?:className|type)\s*=\s*'[^']*'|[!=]==\s*'[^']*'|'[^']*'\s*[!=]==|'[^']*'\[")
+
+
+def js_sources(root):
+    return sorted(glob.glob(os.path.join(root, "web", "*.js")))
+
+
+def js_unescape(text):
+    return re.sub(r"\\(.)", r"\1", text)
+
+
+def js_messages(path):
+    """The tr('...') message ids of a script, in order."""
+    with open(path, encoding="utf-8") as f:
+        return [js_unescape(m.group(1)) for m in JS_TR.finditer(f.read())]
+
+
+def script_array_name(path):
+    stem = os.path.basename(path)[:-3]
+    return "k" + "".join(p.capitalize() for p in stem.split("_")) + "Js"
+
+
+def listed_script_messages(root, name):
+    """The N_() ids of array `name` in src/web/script_messages.cc (None: no array)."""
+    path = os.path.join(root, "src", "web", "script_messages.cc")
+    if not os.path.exists(path):
+        return None
+    with open(path, encoding="utf-8") as f:
+        text = f.read()
+    m = re.search(r"\b" + name + r"\[\]\s*=\s*\{(.*?)\n\};", text, re.S)
+    if not m:
+        return None
+    ids = set()
+    for n in re.finditer(r'N_\(((?:\s*"(?:[^"\\]|\\.)*")+)\s*\)', m.group(1)):
+        parts = re.findall(r'"((?:[^"\\]|\\.)*)"', n.group(1))
+        ids.add(re.sub(r"\\(.)", r"\1", "".join(parts)))
+    return ids
+
+
+def check_scripts(root):
+    """tr() messages of web/*.js missing from their script's array."""
+    failures = []
+    for js in js_sources(root):
+        rel = os.path.relpath(js, root)
+        ids = js_messages(js)
+        if not ids:
+            continue
+        name = script_array_name(js)
+        listed = listed_script_messages(root, name)
+        if listed is None:
+            failures.append(f"{rel}: tr() messages but no array {name} in src/web/script_messages.cc")
+            continue
+        for msg in ids:
+            if msg not in listed:
+                failures.append(f"{rel}: tr('{msg}') is not listed in {name} "
+                                f"(src/web/script_messages.cc): it would stay English")
+    return failures
+
+
+def js_unwrapped_text(path, rel):
+    """file:line messages for script strings shown to the user outside tr()."""
+    out = []
+    with open(path, encoding="utf-8") as f:
+        lines = f.read().split("\n")
+    for n, line in enumerate(lines, 1):
+        stripped = line.lstrip()
+        if "// i18n:" in line or stripped.startswith("//") or stripped.startswith("*") or \
+                stripped.startswith("/*"):
+            continue
+        code = re.sub(r"\s//\s.*$", "", line)
+        code = JS_TR.sub("tr(", code)
+        code = JS_NOT_TEXT.sub("", code)
+        shown = JS_SHOWN.search(code) is not None
+        for m in JS_LITERAL.finditer(code):
+            text = next(g for g in m.groups() if g is not None)
+            if not WORD.search(text) or JS_CODE.match(text.strip()):
+                continue
+            if not shown and JS_IDENTIFIER.match(text.strip()):
+                continue
+            if shown or JS_PROSE.search(text):
+                out.append((rel, n, text.strip()))
+    return out
 
 
 def page_sources(root):
@@ -133,6 +238,8 @@ def found_unwrapped(root):
     found = []
     for f in page_sources(root):
         found += unwrapped_text(f, os.path.relpath(f, root))
+    for f in js_sources(root):
+        found += js_unwrapped_text(f, os.path.relpath(f, root))
     return found
 
 
@@ -165,7 +272,7 @@ def write_pending(root):
 
 
 def run(root):
-    failures = check_catalogs(root) + scan(root)
+    failures = check_catalogs(root) + scan(root) + check_scripts(root)
     for f in failures:
         print(f)
     if failures:
@@ -181,6 +288,7 @@ def self_test(root):
         os.makedirs(os.path.join(copy, "src"))
         shutil.copytree(os.path.join(root, "src", "web"), os.path.join(copy, "src", "web"))
         shutil.copytree(os.path.join(root, "po"), os.path.join(copy, "po"))
+        shutil.copytree(os.path.join(root, "web"), os.path.join(copy, "web"))
         os.makedirs(os.path.join(copy, "tests"))
         if os.path.exists(os.path.join(root, PENDING)):
             shutil.copy(os.path.join(root, PENDING), os.path.join(copy, PENDING))
@@ -204,7 +312,20 @@ def self_test(root):
         if not any("A message no catalog has" in s for s in cat_fail):
             print("self-test: the message missing from the catalogs was not reported")
             return 1
-    print("self-test: an unwrapped string and an untranslated one both fail the check")
+        # The scripts: a message shown outside tr(), and a tr() message the
+        # script's array in script_messages.cc lacks.
+        script = os.path.join(copy, "web", "app.js")
+        with open(script, "a", encoding="utf-8") as f:
+            f.write("el.textContent = 'Unwrapped script words';\n"
+                    "say(msg, tr('A script message nobody listed'));\n")
+        if not any("app.js:" in s and "Unwrapped script words" in s for s in scan(copy)):
+            print("self-test: the unwrapped script string was not found")
+            return 1
+        if not any("A script message nobody listed" in s for s in check_scripts(copy)):
+            print("self-test: the script message missing from kAppJs was not reported")
+            return 1
+    print("self-test: unwrapped strings (page and script), an untranslated message and an "
+          "unlisted script message all fail the check")
     return 0
 
 

@@ -3,6 +3,14 @@
 
 (function () {
   const $ = (sel) => document.querySelector(sel);
+  // Issue 32: the page's messages in its language (src/web/script_messages.cc), by their
+  // English text; the server's refusals in it too ("message" beside the English "error").
+  const MSG = {};
+  for (const el of document.querySelectorAll('script.sb-messages')) {
+    try { Object.assign(MSG, JSON.parse(el.textContent)); } catch (e) { /* English */ }
+  }
+  const tr = (s, ...args) => (MSG[s] || s).replace(/\{(\d)\}/g, (m, i) => (args[i - 1] !== undefined ? String(args[i - 1]) : m));
+  const errorOf = (r) => (r.data && (r.data.message || r.data.error)) || tr('error {1}', r.status);
   const csrf = () => {
     const m = document.querySelector('meta[name="csrf-token"]');
     return m ? m.content : '';
@@ -10,7 +18,7 @@
 
   // Calls the JSON API; resolves to {status, data}.
   async function api(method, url, body) {
-    const headers = { 'Accept': 'application/json' };
+    const headers = { 'Accept': 'application/json' };  // i18n: HTTP headers
     if (body !== undefined) headers['Content-Type'] = 'application/json';
     if (csrf()) headers['X-CSRF-Token'] = csrf();
     const res = await fetch(url, {
@@ -24,13 +32,13 @@
   }
 
   // Error messages name form fields by their labels, not internal names.
-  const LABELS = { var_ic: 'Variation IC', ref_ic: 'Reference IC', max_repeat: 'Max repeat', skip: 'Skip',
-    step: 'Step', params: 'System parameters', mask: 'Mask', system: 'System', integrator: 'Integrator',
-    mapping: 'Mapping', preset: 'Preset', routes: 'Routes', public: 'Visibility',
-    keep_start: 'Keep start', keep_finish: 'Keep finish', crux_window: 'Crux window',
-    alternate_hands: 'Alternate hands', match: 'Match moves', target_effect: 'Target effect',
-    target_change: 'Target change', smooth_method: 'Smoothing method',
-    effect: 'Target effect', change: 'Target change' };
+  const LABELS = { var_ic: tr('Variation IC'), ref_ic: tr('Reference IC'), max_repeat: tr('Max repeat'),
+    skip: tr('Skip'), step: tr('Step'), params: tr('System parameters'), mask: tr('Mask'), system: tr('System'),
+    integrator: tr('Integrator'), mapping: tr('Mapping'), preset: tr('Preset'), routes: tr('Routes'),
+    public: tr('Visibility'), keep_start: tr('Keep start'), keep_finish: tr('Keep finish'),
+    crux_window: tr('Crux window'), alternate_hands: tr('Alternate hands'), match: tr('Match moves'),
+    target_effect: tr('Target effect'), target_change: tr('Target change'),
+    smooth_method: tr('Smoothing method'), effect: tr('Target effect'), change: tr('Target change') };
   // The IC search names constraints as options ("crux-window"): the same labels.
   const label = (k) => LABELS[k.replace(/-/g, '_')] || k;
   function humane(msg) {
@@ -39,8 +47,8 @@
     // could not be met (failed most often; ...)": say it as a setter would.
     const m = msg.match(/^no variation IC within (\d+) grid steps .* meets every constraint: ([a-z-]+) could not be met/);
     if (m) {
-      return 'No variation IC within ' + m[1] + ' grid steps of your variation IC meets every constraint: "' +
-        label(m[2]) + '" could not be met. Try a wider crux window, fewer constraints or another variation IC.';
+      return tr('No variation IC within {1} grid steps of your variation IC meets every constraint: "{2}" could not be met. Try a wider crux window, fewer constraints or another variation IC.',
+        m[1], label(m[2]));
     }
     return msg.replace(/^([a-z_]+):/, (x, k) => label(k) + ':');
   }
@@ -85,9 +93,9 @@
       ev.preventDefault();
       const u = $('#username').value, p = $('#password').value;
       const r = await api('POST', '/api/users', { username: u, password: p });
-      if (r.status !== 201) return say($('#form-msg'), (r.data && r.data.error) || 'Sign-up failed');
+      if (r.status !== 201) return say($('#form-msg'), (r.data && (r.data.message || r.data.error)) || tr('Sign-up failed'));
       const l = await login(u, p);
-      if (l.status !== 200) return say($('#form-msg'), 'Account made; please log in.');
+      if (l.status !== 200) return say($('#form-msg'), tr('Account made; please log in.'));
       location.href = '/';
     });
   }
@@ -96,7 +104,7 @@
     loginForm.addEventListener('submit', async (ev) => {
       ev.preventDefault();
       const r = await login($('#username').value, $('#password').value);
-      if (r.status !== 200) return say($('#form-msg'), (r.data && r.data.error) || 'Log-in failed');
+      if (r.status !== 200) return say($('#form-msg'), (r.data && (r.data.message || r.data.error)) || tr('Log-in failed'));
       // Back to the page that sent here (issue 31: a gym page), on this site only.
       const next = new URLSearchParams(location.search).get('next') || '';
       // Its query too (?date=...): letters, digits and the URL's own punctuation only.
@@ -147,7 +155,7 @@
       const scale = opt ? opt.dataset.scale : '';
       if (!scale) { hint.textContent = hint.dataset.any; return; }
       const labels = (opt.dataset.labels || '').split('|').filter(Boolean);
-      hint.textContent = 'in the wall\'s scale "' + scale + '"' + (labels.length ? ': ' + labels.join(', ') : '');
+      hint.textContent = tr('in the wall\'s scale "{1}"', scale) + (labels.length ? ': ' + labels.join(', ') : '');
       for (const l of labels) { const o = document.createElement('option'); o.value = l; dl.appendChild(o); }
     }
     // The text -> the form. `all`: the gym fields too (a switch from the text view);
@@ -275,26 +283,26 @@
         if (l.kind === 'move') {
           // The climbing part of the reading ("jug (big, good-hold)"), not the parser's internals.
           const climbing = (l.reading || '').split(' — ')[0];
-          note.textContent = (l.hand === 'L' ? 'left hand' : 'right hand') + (l.crux ? ' · crux' : '') +
-            ' · ' + (r.data.language ? (l.parsed ? climbing : 'not understood as a move') : l.move) +
-            (r.data.language && l.parsed && l.style ? ' · style: ' + l.style : '');
+          note.textContent = (l.hand === 'L' ? tr('left hand') : tr('right hand')) + (l.crux ? ' · ' + tr('crux') : '') +
+            ' · ' + (r.data.language ? (l.parsed ? climbing : tr('not understood as a move')) : l.move) +
+            (r.data.language && l.parsed && l.style ? ' · ' + tr('style: {1}', l.style) : '');
           for (const d of (l.did_you_mean || [])) {
             const dy = document.createElement('span');
             dy.className = 'did-you-mean';
-            dy.textContent = ' · unknown word "' + d.word + '": did you mean "' + d.suggestion + '"?';
+            dy.textContent = ' · ' + tr('unknown word "{1}": did you mean "{2}"?', d.word, d.suggestion);
             note.appendChild(dy);
             li.classList.add('unparsed');
           }
         } else if (l.kind === 'error') {
-          note.textContent = l.error || 'not a move: start with L or R';
+          note.textContent = l.error || tr('not a move: start with L or R');
         } else if (l.kind === 'meta') {
-          note.textContent = 'metadata';
+          note.textContent = tr('metadata');
         } else if (l.kind === 'separator') {
-          note.textContent = 'moves follow';
+          note.textContent = tr('moves follow');
         } else if (l.kind === 'comment') {
-          note.textContent = 'comment';
+          note.textContent = tr('comment');
         } else {
-          note.textContent = 'description';
+          note.textContent = tr('description');
         }
         li.appendChild(note);
         list.appendChild(li);
@@ -302,9 +310,9 @@
       const msg = $('#save-msg');
       if (holdMsg) return;
       if (!r.data.ok && r.data.error) {
-        say(msg, 'line ' + r.data.error.line + ': ' + r.data.error.message);
+        say(msg, tr('line {1}: {2}', r.data.error.line, r.data.error.message));
       } else {
-        say(msg, r.data.moves + ' moves', true);
+        say(msg, tr('{1} moves', r.data.moves), true);
       }
     }
     const later = () => { clearTimeout(timer); timer = setTimeout(refresh, 200); };
@@ -334,7 +342,7 @@
       if (line && view === 'form' && lineMap[line - 1]) {
         field = lineMap[line - 1];
         const mv = field.match(/^moves:(\d+)$/);
-        if (mv) { field = 'moves'; text = 'line ' + mv[1] + ' of the moves: ' + err.replace(/^[^:]*:\d+:\d+: /, ''); }
+        if (mv) { field = 'moves'; text = tr('line {1} of the moves: {2}', mv[1], err.replace(/^[^:]*:\d+:\d+: /, '')); }
       } else if (line) {
         field = 'crdl';
       } else {
@@ -346,7 +354,7 @@
       if (box && !(view === 'text' && field !== 'crdl' && box.closest('#route-form'))) {
         box.textContent = text;
         box.classList.add('bad');
-        say($('#save-msg'), 'not saved: see ' + (field === 'crdl' ? 'the text' : 'the field "' + field + '"'));
+        say($('#save-msg'), field === 'crdl' ? tr('not saved: see the text') : tr('not saved: see the field "{1}"', field));
       } else {
         say($('#save-msg'), text);
       }
@@ -385,17 +393,16 @@
         }
         box.textContent = '';
         const p = document.createElement('p');
-        p.textContent = 'Someone else saved this route first (now revision ' + cur.revision +
-          ', state ' + cur.state + '). Their text is below; yours is still in the editor: ' +
-          'Save again to apply yours over theirs.';
+        p.textContent = tr('Someone else saved this route first (now revision {1}, state {2}). Their text is below; yours is still in the editor: Save again to apply yours over theirs.',
+          cur.revision, tr(cur.state));
         const pre = document.createElement('pre');
         pre.id = 'conflict-current';
         pre.textContent = cur.crdl;
         box.append(p, pre);
-        say($('#save-msg'), 'not saved: changed meanwhile');
+        say($('#save-msg'), tr('not saved: changed meanwhile'));
         holdMsg = true;
       } else {
-        fieldMessage((r.data && r.data.error) || ('error ' + r.status), r.data && r.data.line);
+        fieldMessage(errorOf(r), r.data && r.data.line);
       }
     });
   }
@@ -409,7 +416,7 @@
         location.reload();
       } else {
         lib.checked = !lib.checked;
-        say($('#library-msg'), humane((r.data && r.data.error) || ('error ' + r.status)));
+        say($('#library-msg'), humane(errorOf(r)));
       }
     });
   }
@@ -417,7 +424,7 @@
   const del = $('#delete-route');
   if (del) {
     del.addEventListener('click', async () => {
-      if (!confirm('Delete this route?')) return;
+      if (!confirm(tr('Delete this route?'))) return;
       const r = await api('DELETE', '/api/routes/' + del.dataset.id);
       if (r.status === 204) location.href = '/';
     });
@@ -475,9 +482,9 @@
       const li = document.createElement('li');
       li.dataset.id = id; li.dataset.moves = moves; li.dataset.name = name;
       const n = document.createElement('span'); n.className = 'pick-name'; n.textContent = name;
-      const small = document.createElement('small'); small.textContent = ' (' + moves + ' moves' + extra + ') ';
+      const small = document.createElement('small'); small.textContent = ' (' + tr('{1} moves', moves) + extra + ') ';
       const btns = document.createElement('span'); btns.className = 'pick-buttons';
-      for (const [cls, label, text] of [['up', 'Move up', '↑'], ['down', 'Move down', '↓'], ['remove', 'Remove', '✕']]) {
+      for (const [cls, label, text] of [['up', tr('Move up'), '↑'], ['down', tr('Move down'), '↓'], ['remove', tr('Remove'), '✕']]) {
         const b = document.createElement('button'); b.type = 'button'; b.className = cls;
         b.textContent = text; b.setAttribute('aria-label', label + ' ' + name); btns.appendChild(b);
       }
@@ -488,7 +495,10 @@
       const e = $('#chosen-empty');
       if (e) e.hidden = selectedRoutes().length > 0;
       const names = Array.from(chosen.querySelectorAll('li')).map((li) => li.dataset.name);
-      $('#name').placeholder = names.length ? 'Variation of ' + (names.length <= 3 ? names.slice(0, -1).join(', ') + (names.length > 1 ? ' and ' : '') + names[names.length - 1] : names[0] + ', ' + names[1] + ' and ' + (names.length - 2) + ' more') : 'Variation of the chosen routes';
+      $('#name').placeholder = !names.length ? tr('Variation of the chosen routes')
+        : names.length === 1 ? tr('Variation of {1}', names[0])
+          : names.length <= 3 ? tr('Variation of {1} and {2}', names.slice(0, -1).join(', '), names[names.length - 1])
+            : tr('Variation of {1}, {2} and {3} more', names[0], names[1], names.length - 2);
       saveState();
       loadMap();
     }
@@ -506,9 +516,9 @@
       li.dataset.id = r.id; li.dataset.moves = r.moves; li.dataset.name = r.name;
       const n = document.createElement('span'); n.className = 'pick-name'; n.textContent = r.name;
       const small = document.createElement('small');
-      small.textContent = ' (' + r.moves + ' moves' + (r.grade ? ', ' + r.grade : '') + (r.public ? '' : ', private') + ') ';
-      const b = document.createElement('button'); b.type = 'button'; b.className = 'add'; b.textContent = 'Add';
-      b.setAttribute('aria-label', 'Add ' + r.name);
+      small.textContent = ' (' + tr('{1} moves', r.moves) + (r.grade ? ', ' + r.grade : '') + (r.public ? '' : ', ' + tr('private')) + ') ';
+      const b = document.createElement('button'); b.type = 'button'; b.className = 'add'; b.textContent = tr('Add');
+      b.setAttribute('aria-label', tr('Add {1}', r.name));
       li.append(n, small, b);
       return li;
     }
@@ -529,11 +539,11 @@
       if (!more) { $('#found').innerHTML = ''; foundOffset = 0; }
       for (const x of r.data.routes) $('#found').appendChild(foundItem(x));
       foundOffset += r.data.routes.length;
-      $('#found-count').textContent = r.data.total + ' routes';
+      $('#found-count').textContent = tr('{1} routes', r.data.total);
       $('#found-more').hidden = foundOffset >= r.data.total;
     }
     $('#route-find').addEventListener('input', () => { clearTimeout(findTimer); findTimer = setTimeout(() => { find(false); saveState(); }, 200); });
-    $('#route-find').addEventListener('keydown', (ev) => { if (ev.key === 'Enter') { ev.preventDefault(); find(false); } });
+    $('#route-find').addEventListener('keydown', (ev) => { if (ev.key === 'Enter') { ev.preventDefault(); find(false); } });  // i18n: a key's name
     $('#found-more').addEventListener('click', () => find(true));
 
     function params() {
@@ -572,13 +582,13 @@
         const row = document.createElement('div'); row.className = 'legend-row';
         const lo = document.createElement('span'); lo.textContent = m + ' 0';
         const bar = document.createElement('span'); bar.className = 'legend-bar';
-        bar.style.background = 'linear-gradient(to right,' + [0, .2, .4, .6, .8, 1].map(colour).join(',') + ')';
+        bar.style.background = 'linear-gradient(to right,' + [0, .2, .4, .6, .8, 1].map(colour).join(',') + ')';  // i18n: CSS
         const hi = document.createElement('span');
-        hi.textContent = (m === 'effect' ? max + ' of ' + map.length + ' moves change' : Math.round(max * 100) / 100 + ' (mean distance)');
+        hi.textContent = (m === 'effect' ? tr('{1} of {2} moves change', max, map.length) : tr('{1} (mean distance)', Math.round(max * 100) / 100));
         row.append(lo, bar, hi); el.appendChild(row);
       }
       const note = document.createElement('div'); note.className = 'hint';
-      note.textContent = 'warm = little variation, cold = much';
+      note.textContent = tr('warm = little variation, cold = much');
       el.appendChild(note);
     }
     function cellOf(ic) {  // grid cell of an IC in the map's plane, or null when outside
@@ -619,9 +629,9 @@
         const cur = $('#var_ic').value.split(',').map(Number);
         if (picked) mark(picked, 'dot', '#fff');
         else if (cur.length === 3 && cur.every(Number.isFinite)) mark(cellOf(cur), 'dot', '#fff');
-        if (both) { ctx.fillStyle = '#000'; ctx.font = '12px sans-serif'; ctx.fillText(m, x0 + 4, 14); }
+        if (both) { ctx.fillStyle = '#000'; ctx.font = '12px sans-serif'; ctx.fillText(m, x0 + 4, 14); }  // i18n: a CSS font
       });
-      $('#map-info').textContent = map.length + ' moves; axes ' + 'xyz'[map.axes[0]] + ' (right), ' + 'xyz'[map.axes[1]] + ' (up)';
+      $('#map-info').textContent = tr('{1} moves; axes {2} (right), {3} (up)', map.length, 'xyz'[map.axes[0]], 'xyz'[map.axes[1]]);
       legend();
     }
     function cellAt(ev) {
@@ -641,8 +651,8 @@
     }
     function readout(c, prefix) {
       const k = c[1] * map.grid + c[0];
-      $('#map-readout').textContent = prefix + ' IC ' + icOf(c).join(', ') + ': ' + map.effect[k] + ' of ' +
-        map.length + ' moves change; change ' + (Math.round(map.change[k] * 100) / 100);
+      $('#map-readout').textContent = prefix + ' ' + tr('IC {1}: {2} of {3} moves change; change {4}', icOf(c).join(', '),
+        map.effect[k], map.length, Math.round(map.change[k] * 100) / 100);
     }
     async function loadMap() {
       if (!canvas) return;
@@ -651,22 +661,22 @@
       const ids = selectedRoutes();
       const q = new URLSearchParams({ params: JSON.stringify(p), plane: 'xy', grid: '41', spacing: '0.2' });
       if (ids.length) q.set('routes', ids.join(','));
-      $('#map-info').textContent = 'computing…';
+      $('#map-info').textContent = tr('computing…');
       const r = await api('GET', '/api/landscape?' + q.toString());
-      if (r.status !== 200) { $('#map-info').textContent = (r.data && r.data.error) || 'no map'; return; }
+      if (r.status !== 200) { $('#map-info').textContent = (r.data && (r.data.message || r.data.error)) || tr('no map'); return; }
       map = r.data;
       canvas.width = $('#metric').value === 'both' ? 820 : 410;
       canvas.dataset.ready = '1';
       draw();
     }
     if (canvas) {
-      canvas.addEventListener('mousemove', (ev) => { if (map) readout(cellAt(ev), 'Hover:'); });
+      canvas.addEventListener('mousemove', (ev) => { if (map) readout(cellAt(ev), tr('Hover:')); });
       canvas.addEventListener('click', (ev) => {
         if (!map) return;
         ev.preventDefault();
         picked = cellAt(ev);
         $('#var_ic').value = icOf(picked).join(',');
-        readout(picked, 'Chosen:');
+        readout(picked, tr('Chosen:'));
         draw();
         saveState();
       });
@@ -681,17 +691,17 @@
         const r = await api('GET', '/api/pick?' + q.toString());
         const list = $('#candidates');
         list.innerHTML = '';
-        if (r.status !== 200) { list.textContent = (r.data && r.data.error) || 'no candidates'; return; }
+        if (r.status !== 200) { list.textContent = (r.data && (r.data.message || r.data.error)) || tr('no candidates'); return; }
         suggested = r.data.candidates.map((c) => c.index);
         for (const c of r.data.candidates) {
           const li = document.createElement('li');
           const b = document.createElement('button');
           b.type = 'button';
           b.className = 'link-dark';
-          b.textContent = c.ic.map(round).join(', ') + ' — ' + c.effect + ' moves change, change ' + c.change;
+          b.textContent = c.ic.map(round).join(', ') + ' — ' + tr('{1} moves change, change {2}', c.effect, c.change);
           b.addEventListener('click', () => {
             $('#var_ic').value = c.ic.map(round).join(',');
-            if (map) { picked = [c.index % map.grid, Math.floor(c.index / map.grid)]; readout(picked, 'Chosen:'); }
+            if (map) { picked = [c.index % map.grid, Math.floor(c.index / map.grid)]; readout(picked, tr('Chosen:')); }
             draw();
             saveState();
           });
@@ -711,15 +721,15 @@
     varyForm.addEventListener('submit', async (ev) => {
       ev.preventDefault();
       const ids = selectedRoutes();
-      if (!csrf()) return say($('#vary-msg'), 'Log in first to generate a variation.');
-      if (!ids.length) return say($('#vary-msg'), 'Choose at least one route.');
+      if (!csrf()) return say($('#vary-msg'), tr('Log in first to generate a variation.'));
+      if (!ids.length) return say($('#vary-msg'), tr('Choose at least one route.'));
       saveState();
       const body = Object.assign(params(), { routes: ids, smooth: $('#smooth').checked });
       for (const k of ['name', 'grade', 'colour', 'wall', 'setter', 'date', 'notes']) if ($('#' + k).value.trim()) body[k] = $('#' + k).value.trim();
       if ($('#visibility').value) body.public = $('#visibility').value === 'public';
       if ($('#duplicate').checked) body.duplicate = true;
       Object.assign(body, setterFields());
-      say($('#vary-msg'), 'Generating…', true);
+      say($('#vary-msg'), tr('Generating…'), true);
       if (pageGym() !== undefined && body.gym === undefined) body.gym = pageGym();
       const r = await api('POST', '/api/variations', body);
       if (r.status === 201 || r.status === 200) {
@@ -730,8 +740,8 @@
         location.href = '/variations/' + r.data.id + (r.data.existing ? '?existing=1' : '');
         return;
       }
-      const err = (r.data && r.data.error) || ('error ' + r.status);
-      say($('#vary-msg'), humane(err));
+      const err = (r.data && r.data.error) || tr('error {1}', r.status);
+      say($('#vary-msg'), humane((r.data && r.data.message) || err));
       // An error about a constraint: show the panel that has the field.
       if (/^(keep_|crux_|alternate_|match|target_|smooth_method|max_repeat)|no variation IC within/.test(err)) $('#advanced').open = true;
     });
@@ -745,8 +755,7 @@
     const p = document.createElement('p');
     p.className = 'notice no-print';
     p.id = 'existing';
-    p.textContent = 'You made this variation before from the same routes and parameters: here it is. ' +
-      'Tick "Make a new copy" on the vary page for a second one.';
+    p.textContent = tr('You made this variation before from the same routes and parameters: here it is. Tick "Make a new copy" on the vary page for a second one.');
     plan.parentNode.insertBefore(p, plan);
   }
 
@@ -759,8 +768,8 @@
     const p = document.createElement('p');
     p.className = 'notice no-print';
     p.id = 'gallery-note';
-    p.textContent = "The setter's preset: the best of " + gallery.count + ' candidates (' + gallery.kept +
-      ' kept by the filter), score ' + gallery.score + ': ' + gallery.reasons.join('; ') + '.';
+    p.textContent = tr('The setter\'s preset: the best of {1} candidates ({2} kept by the filter), score {3}: {4}.',
+      gallery.count, gallery.kept, gallery.score, gallery.reasons.join('; '));
     plan.parentNode.insertBefore(p, plan);
   }
 
@@ -779,9 +788,9 @@
         const r = await api('POST', '/api/import/crdl', { files: list, gym: pageGym() });
         if (r.status === 201) {
           const skipped = r.data.skipped || [];
-          say($('#crdl-msg'), r.data.imported + ' imported' + (skipped.length ? '; ' + skipped.join('; ') : ''), true);
+          say($('#crdl-msg'), tr('{1} imported', r.data.imported) + (skipped.length ? '; ' + skipped.join('; ') : ''), true);
         } else {
-          say($('#crdl-msg'), (r.data && r.data.error) || String(r.status), false);
+          say($('#crdl-msg'), errorOf(r), false);
         }
       } finally {
         importCrdl.disabled = false;
@@ -793,18 +802,18 @@
     importCsv.addEventListener('click', async () => {
       if (importCsv.disabled) return;  // one import at a time
       const rf = $('#routes-csv').files[0], mf = $('#moves-csv').files[0];
-      if (!rf || !mf) return say($('#csv-msg'), 'Choose both files.');
+      if (!rf || !mf) return say($('#csv-msg'), tr('Choose both files.'));
       const notes = $('#csv-notes');
       notes.textContent = '';
       notes.hidden = true;
       importCsv.disabled = true;
-      say($('#csv-msg'), 'Importing…', true);
+      say($('#csv-msg'), tr('Importing…'), true);
       try {
         const r = await api('POST', '/api/import/csv', { routes_csv: await rf.text(), moves_csv: await mf.text(),
                                                           gym: pageGym() });
         if (r.status === 201) {
           const skipped = r.data.skipped || [];
-          say($('#csv-msg'), r.data.imported + ' routes imported, ' + skipped.length + ' notes', true);
+          say($('#csv-msg'), tr('{1} routes imported, {2} notes', r.data.imported, skipped.length), true);
           for (const n of skipped) {
             const li = document.createElement('li');
             li.textContent = n;
@@ -812,7 +821,7 @@
           }
           notes.hidden = skipped.length === 0;
         } else {
-          say($('#csv-msg'), (r.data && r.data.error) || ('error ' + r.status));
+          say($('#csv-msg'), errorOf(r));
         }
       } finally {
         importCsv.disabled = false;

@@ -3,6 +3,14 @@
 // sent as JSON (the server refuses other bodies); docs/web.md lists the API.
 'use strict';
 (function () {
+  // Issue 32: the page's messages in its language (src/web/script_messages.cc), by their
+  // English text; the server's refusals in it too ("message" beside the English "error").
+  const MSG = {};
+  for (const el of document.querySelectorAll('script.sb-messages')) {
+    try { Object.assign(MSG, JSON.parse(el.textContent)); } catch (e) { /* English */ }
+  }
+  const tr = (s, ...args) => (MSG[s] || s).replace(/\{(\d)\}/g, (m, i) => (args[i - 1] !== undefined ? String(args[i - 1]) : m));
+  const errorOf = (r) => (r.data && (r.data.message || r.data.error)) || tr('error {1}', r.status);
   const csrf = () => {
     const m = document.querySelector('meta[name="csrf-token"]');
     return m ? m.content : '';
@@ -46,10 +54,10 @@
         comment: document.getElementById('comment').value,
       });
       if (r.ok) {
-        say(msg, 'Thank you! Saved. You can change your answers any time.', true);
-        document.getElementById('feedback-submit').textContent = 'Save changes';
+        say(msg, tr('Thank you! Saved. You can change your answers any time.'), true);
+        document.getElementById('feedback-submit').textContent = tr('Save changes');
       } else {
-        say(msg, r.data.error || ('error ' + r.status), false);
+        say(msg, errorOf(r), false);
       }
     });
   }
@@ -78,10 +86,10 @@
       const r = await send('POST', '/api/s/' + sr.dataset.id + '/responses',
                            { routes, demographics });
       if (r.ok) {
-        say(msg, 'Thank you! Your answers are saved.', true);
+        say(msg, tr('Thank you! Your answers are saved.'), true);
         document.getElementById('study-submit').disabled = true;
       } else {
-        say(msg, r.data.error || ('error ' + r.status), false);
+        say(msg, errorOf(r), false);
       }
     });
   }
@@ -129,7 +137,7 @@
         box.type = 'checkbox'; box.className = 'study-route'; box.value = String(r.id);
         l.append(box, ' ' + r.name);
         if (r.is_variation) {
-          const t = document.createElement('span'); t.className = 'tag'; t.textContent = 'variation';
+          const t = document.createElement('span'); t.className = 'tag'; t.textContent = tr('variation');
           l.append(' ', t);
         }
         const g = document.createElement('small'); g.textContent = r.grade || '';
@@ -158,11 +166,11 @@
         const present = new Set([...picks.querySelectorAll('input.study-route')].map((el) => el.value));
         for (const r of data.routes) if (!present.has(String(r.id))) picks.appendChild(label(r));
         offset += data.routes.length;
-        found.textContent = data.total + ' routes';
+        found.textContent = tr('{1} routes', data.total);
         more.hidden = offset >= data.total;
       };
       find.addEventListener('input', () => { clearTimeout(timer); timer = setTimeout(() => load(false), 200); });
-      find.addEventListener('keydown', (ev) => { if (ev.key === 'Enter') { ev.preventDefault(); load(false); } });
+      find.addEventListener('keydown', (ev) => { if (ev.key === 'Enter') { ev.preventDefault(); load(false); } });  // i18n: a key's name
       more.addEventListener('click', () => load(true));
     }
     show();
@@ -175,7 +183,7 @@
         const choice = sf.querySelector('input[name="instrument"]:checked').value;
         if (choice === 'file') {
           const f = document.getElementById('instrument-file').files[0];
-          if (!f) { say(msg, 'instrument: choose a file', false); return; }
+          if (!f) { say(msg, tr('instrument: choose a file'), false); return; }
           body.instrument = { file: f.name, json: await f.text() };
         } else if (choice !== 'keep') {
           body.instrument = choice;
@@ -192,7 +200,7 @@
       if (r.ok) {
         window.location.href = r.data.url;
       } else {
-        say(msg, r.data.error || ('error ' + r.status), false);
+        say(msg, errorOf(r), false);
       }
     });
   }
@@ -203,7 +211,7 @@
       const r = await send('POST', '/api/studies/' + heldResponses.dataset.study + '/responses/' +
                                    li.dataset.response + '/' + what, {});
       if (r.ok) {
-        li.textContent = what === 'accept' ? 'Accepted (reload to see the numbers).' : 'Discarded.';
+        li.textContent = what === 'accept' ? tr('Accepted (reload to see the numbers).') : tr('Discarded.');
         li.className = 'decided';
       }
       return r.ok;

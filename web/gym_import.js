@@ -10,7 +10,7 @@
   for (const el of document.querySelectorAll('script.sb-messages')) {
     try { Object.assign(MSG, JSON.parse(el.textContent)); } catch (e) { /* English */ }
   }
-  const tx = (s, ...args) => (MSG[s] || s).replace(/\{(\d)\}/g, (m, i) => (args[i - 1] !== undefined ? String(args[i - 1]) : m));
+  const tr = (s, ...args) => (MSG[s] || s).replace(/\{(\d)\}/g, (m, i) => (args[i - 1] !== undefined ? String(args[i - 1]) : m));
   const root = $('#import-gym');
   if (!root) return;
   const gym = root.dataset.gym;
@@ -21,14 +21,14 @@
   async function post(body) {
     const res = await fetch('/api/gyms/' + gym + '/import', {
       method: 'POST', credentials: 'same-origin',
-      headers: { 'Content-Type': 'application/json', 'Accept': 'application/json', 'X-CSRF-Token': csrf() },
+      headers: { 'Content-Type': 'application/json', 'Accept': 'application/json', 'X-CSRF-Token': csrf() },  // i18n: HTTP headers
       body: JSON.stringify(body),
     });
     let data = null;
     try { data = await res.json(); } catch (e) { data = { error: String(res.status) }; }
     return { status: res.status, data };
   }
-  const say = (el, text, ok) => { el.textContent = text; el.className = 'msg ' + (ok ? 'ok' : 'error'); };
+  const say = (el, text, ok) => { el.textContent = text; el.className = 'msg ' + (ok ? 'ok' : 'error'); };  // i18n: classes
   let fileName = '';
   let mappingShown = false;
 
@@ -63,7 +63,7 @@
     for (const s of document.querySelectorAll('.import-map')) {
       s.textContent = '';
       const none = document.createElement('option');
-      none.value = ''; none.textContent = tx('(none)');
+      none.value = ''; none.textContent = tr('(none)');
       s.appendChild(none);
       for (const c of columns) {
         const o = document.createElement('option');
@@ -76,17 +76,17 @@
     mappingShown = true;
   }
 
-  function cell(tr, text) {
+  function cell(row, text) {
     const td = document.createElement('td');
     td.textContent = text;
-    tr.appendChild(td);
+    row.appendChild(td);
     return td;
   }
 
   function showPreview(d) {
-    const summary = tx('{1} new, {2} changed, {3} no longer in the list', d.new, d.changed, d.missing) +
-      (d.missing ? tx(': strip them?') : '.') + (d.same ? ' ' + tx('({1} unchanged)', d.same) : '') +
-      (d.new_walls && d.new_walls.length ? ' ' + tx('New sectors: {1}.', d.new_walls.join(', ')) : '');
+    const summary = tr('{1} new, {2} changed, {3} no longer in the list', d.new, d.changed, d.missing) +
+      (d.missing ? tr(': strip them?') : '.') + (d.same ? ' ' + tr('({1} unchanged)', d.same) : '') +
+      (d.new_walls && d.new_walls.length ? ' ' + tr('New sectors: {1}.', d.new_walls.join(', ')) : '');
     $('#import-summary').textContent = summary;
     $('#import-strip-label').hidden = !d.missing;
     const errs = $('#import-errors');
@@ -100,29 +100,29 @@
     const body = $('#import-rows');
     body.textContent = '';
     for (const r of d.rows) {
-      const tr = document.createElement('tr');
-      tr.className = 'import-' + r.action;
-      cell(tr, r.line ? String(r.line) : '');
-      cell(tr, tx(r.action));
-      cell(tr, r.name);
-      cell(tr, r.grade);
-      cell(tr, r.wall);
-      cell(tr, r.colour);
-      cell(tr, (r.setters || []).join(', '));
-      cell(tr, (r.changes || []).join('; '));
-      body.appendChild(tr);
+      const row = document.createElement('tr');
+      row.className = 'import-' + r.action;
+      cell(row, r.line ? String(r.line) : '');
+      cell(row, tr(r.action));
+      cell(row, r.name);
+      cell(row, r.grade);
+      cell(row, r.wall);
+      cell(row, r.colour);
+      cell(row, (r.setters || []).join(', '));
+      cell(row, (r.changes || []).join('; '));
+      body.appendChild(row);
     }
     $('#import-preview').hidden = false;
   }
 
   async function preview() {
     const msg = $('#import-msg');
-    if (!$('#import-data').value.trim()) return say(msg, tx('Paste a list or choose a file.'));
-    say(msg, tx('Reading…'), true);
+    if (!$('#import-data').value.trim()) return say(msg, tr('Paste a list or choose a file.'));
+    say(msg, tr('Reading…'), true);
     const r = await post(request(false));
     if (r.status !== 200) {
       $('#import-preview').hidden = true;
-      return say(msg, (r.data && r.data.error) || String(r.status));
+      return say(msg, (r.data && (r.data.message || r.data.error)) || String(r.status));
     }
     say(msg, '', true);
     if (!mappingShown) fillMapping(r.data.columns, r.data.mapping);
@@ -140,10 +140,10 @@
       const r = await post(request(true));
       if (r.status === 201) {
         const d = r.data;
-        say($('#import-done'), tx('{1} created, {2} updated, {3} stripped, {4} left as they were',
+        say($('#import-done'), tr('{1} created, {2} updated, {3} stripped, {4} left as they were',
           d.created, d.updated, d.stripped, d.skipped), true);
       } else {
-        say($('#import-done'), (r.data && r.data.error) || String(r.status));
+        say($("#import-done"), (r.data && (r.data.message || r.data.error)) || String(r.status));
       }
     } finally {
       btn.disabled = false;

@@ -17,7 +17,7 @@
   };
 
   async function api(method, url, body) {
-    const headers = { 'Accept': 'application/json', 'Content-Type': 'application/json' };
+    const headers = { 'Accept': 'application/json', 'Content-Type': 'application/json' };  // i18n: HTTP headers
     if (csrf()) headers['X-CSRF-Token'] = csrf();
     const res = await fetch(url, { method, headers, credentials: 'same-origin',
                                    body: JSON.stringify(body) });
@@ -58,8 +58,8 @@
     if (typeof cur.summary === 'string') {
       // Several records at once (a setting day's routes): say what they are now; the page
       // must be read again before acting on them.
-      msg.textContent = 'Not done: someone changed these routes first. They are now: ' +
-        (cur.summary || 'none') + '. Reload the page to see them, then try again.';
+      msg.textContent = tr('Not done: someone changed these routes first. They are now: {1}. Reload the page to see them, then try again.',
+        cur.summary || tr('none'));
       msg.classList.add('bad', 'conflict');
       return;
     }
@@ -81,8 +81,7 @@
     }
     const rev = form.querySelector('input[name="revision"]');
     if (rev && cur.revision !== undefined) rev.value = cur.revision;
-    msg.textContent = tr('Someone else saved this first (now revision {1}). It is now: {2}. Your changes ' +
-      'are still here: save again to apply yours over theirs, or reload to take theirs.', cur.revision, parts.join('; '));
+    msg.textContent = tr('Someone else saved this first (now revision {1}). It is now: {2}. Your changes are still here: save again to apply yours over theirs, or reload to take theirs.', cur.revision, parts.join('; '));
     msg.classList.add('bad', 'conflict');
   }
 
@@ -105,7 +104,7 @@
       if (msg && r.status === 409 && r.data && r.data.current) {
         showConflict(form, msg, r.data);
       } else if (msg) {
-        msg.textContent = (r.data && r.data.error) || tr('Failed ({1})', r.status);
+        msg.textContent = (r.data && (r.data.message || r.data.error)) || tr('Failed ({1})', r.status);
         msg.classList.add('bad');
       }
     });

@@ -3,6 +3,14 @@
 // setters' accept/discard of held ticks. JSON API in docs/web.md ("Logbook").
 'use strict';
 (function () {
+  // Issue 32: the page's messages in its language (src/web/script_messages.cc), by their
+  // English text; the server's refusals in it too ("message" beside the English "error").
+  const MSG = {};
+  for (const el of document.querySelectorAll('script.sb-messages')) {
+    try { Object.assign(MSG, JSON.parse(el.textContent)); } catch (e) { /* English */ }
+  }
+  const tr = (s, ...args) => (MSG[s] || s).replace(/\{(\d)\}/g, (m, i) => (args[i - 1] !== undefined ? String(args[i - 1]) : m));
+  const errorOf = (r) => (r.data && (r.data.message || r.data.error)) || tr('error {1}', r.status);
   const csrf = () => {
     const m = document.querySelector('meta[name="csrf-token"]');
     return m ? m.content : '';
@@ -34,7 +42,6 @@
     sync();
     // Issue 32: the page's language — the server puts the translated
     // messages on the form (data-msg-*, "{1}" the outcome's label).
-    const t = (key, english) => form.dataset[key] || english;
     const label = (o) => {
       const span = o.parentElement.querySelector('span');
       return span ? span.textContent : o.value;
@@ -43,7 +50,7 @@
       ev.preventDefault();
       const msg = document.getElementById('tick-msg');
       const o = form.querySelector('input[name="outcome"]:checked');
-      if (!o) { say(msg, t('msgPick', 'Tap flash, send or attempt first.'), false); return; }
+      if (!o) { say(msg, tr('Tap flash, send or attempt first.'), false); return; }
       const body = { outcome: o.value };
       const a = document.getElementById('tick-attempts').value;
       if (o.value !== 'flash' && a !== '') body.attempts = parseInt(a, 10);
@@ -54,11 +61,9 @@
       const c = document.getElementById('tick-comment').value.trim();
       if (c) body.comment = c;
       const r = await send('POST', '/api/routes/' + form.dataset.route + '/ticks', body);
-      if (!r.ok) { say(msg, r.data.error || ('error ' + r.status), false); return; }
-      const done = r.data.edited ? t('msgUpdated', 'Tick updated: {1}')
-                                 : t('msgTicked', 'Ticked: {1}');
-      say(msg, done.replace('{1}', label(o)) +
-               (r.data.held ? ' ' + t('msgHeld', '(held for the setters to check)') : '') + '.',
+      if (!r.ok) { say(msg, errorOf(r), false); return; }
+      const done = r.data.edited ? tr('Tick updated: {1}', label(o)) : tr('Ticked: {1}', label(o));
+      say(msg, done + (r.data.held ? ' ' + tr('(held for the setters to check)') : '') + '.',
           true);
       const g = r.data.ascent;
       const p = document.getElementById('ascent-ticks');
@@ -66,8 +71,7 @@
         p.textContent = g.ticks;
         document.getElementById('ascent-value').textContent = g.grade;
         document.getElementById('ascent-interval').textContent =
-            '(' + t('msgInterval', '80%: {1} to {2}').replace('{1}', g.lo_grade)
-                .replace('{2}', g.hi_grade) + ')';
+            '(' + tr('80%: {1} to {2}', g.lo_grade, g.hi_grade) + ')';
       }
     });
   }
@@ -82,7 +86,7 @@
       const r = await send('POST', '/api/routes/' + held.dataset.route + '/ticks/' +
                                    li.dataset.tick + '/' + what, {});
       if (r.ok) {
-        li.textContent = what === 'accept' ? 'Accepted.' : 'Discarded.';
+        li.textContent = what === 'accept' ? tr('Accepted.') : tr('Discarded.');
         li.className = 'decided';
       }
     });

@@ -22,7 +22,7 @@
       body.setter = form.elements.setter.value;
       const button = form.querySelector('button[type="submit"]');
       button.disabled = true;
-      const headers = { 'Accept': 'application/json', 'Content-Type': 'application/json' };
+      const headers = { 'Accept': 'application/json', 'Content-Type': 'application/json' };  // i18n: HTTP headers
       if (csrf()) headers['X-CSRF-Token'] = csrf();
       const res = await fetch(form.dataset.url, { method: 'POST', headers,
                                                   credentials: 'same-origin',
@@ -45,7 +45,7 @@
         return;
       }
       button.disabled = false;
-      msg.textContent = (data && data.error) || tr('Failed ({1})', res.status);
+      msg.textContent = (data && (data.message || data.error)) || tr('Failed ({1})', res.status);
       msg.classList.add('bad');
     });
   }

@@ -1,4 +1,5 @@
 #include "web/climber_pages.h"
+#include "web/script_messages.h"
 
 #include <cmath>
 #include <cstdio>
@@ -156,7 +157,7 @@ std::string FeedbackPageHtml(const PageViewer& v, const app::FeedbackPage& page,
                              int min_votes_shown, const std::string& tick_block) {
   const app::RouteView& r = page.route;
   const studies::Instrument& in = page.instrument;
-  std::string b = kAssets;
+  std::string b = kAssets + ClimbersScriptMessages(v.lang);
   b += "<h1 id=\"route-name\">" + E(r.name) + "</h1>\n";
   b += GradeBlock(v.lang, page.grade, min_votes_shown);
   if (owner) {
@@ -198,7 +199,7 @@ std::string FeedbackPageHtml(const PageViewer& v, const app::FeedbackPage& page,
 std::string SetterFeedbackHtml(const PageViewer& v, const app::SetterView& view,
                                int min_votes_shown) {
   const app::RouteView& r = view.route;
-  std::string b = kAssets;
+  std::string b = kAssets + ClimbersScriptMessages(v.lang);
   b += "<h1>" + E(r.name) + " · " + Tr(v, "climbers' answers") + "</h1>\n";
   b += "<p><a href=\"/r/" + Id(r.id) + "\">" + Tr(v, "Feedback page") + "</a> " + Tr(v, "(the route card's QR code)") + "</p>\n";
   b += GradeBlock(v.lang, view.grade, min_votes_shown);
@@ -248,7 +249,7 @@ std::string SetterFeedbackHtml(const PageViewer& v, const app::SetterView& view,
 }
 
 std::string DriftPageHtml(const PageViewer& v, const app::DriftReport& report) {
-  std::string b = kAssets;
+  std::string b = kAssets + ClimbersScriptMessages(v.lang);
   b += "<h1>" + Tr(v, "Your grades and the climbers'") + "</h1>\n";
   b += "<p id=\"drift-summary\">" +
        Fmt(TrN(v, "{1} route compared, {2} flagged", "{1} routes compared, {2} flagged", report.compared),
@@ -276,7 +277,7 @@ std::string DriftPageHtml(const PageViewer& v, const app::DriftReport& report) {
 }
 
 std::string StudiesPageHtml(const PageViewer& v, const std::vector<app::Study>& studies) {
-  std::string b = kAssets;
+  std::string b = kAssets + ClimbersScriptMessages(v.lang);
   b += "<h1>" + Tr(v, "Studies") + "</h1>\n";
   if (!v.logged_in) {
     b += "<p>" + Fmt(Tr(v, "{1} to create and read your studies."), "<a href=\"/login\">" + Tr(v, "Log in") + "</a>") + "</p>\n";
@@ -298,7 +299,7 @@ std::string StudiesPageHtml(const PageViewer& v, const std::vector<app::Study>& 
 std::string StudyEditorHtml(const PageViewer& v, const std::vector<app::RouteView>& routes,
                             const std::optional<app::Study>& study, int64_t total,
                             const std::map<int64_t, std::string>& gym_names) {
-  std::string b = kAssets;
+  std::string b = kAssets + ClimbersScriptMessages(v.lang);
   b += "<h1>" + (study ? Tr(v, "Edit study") : Tr(v, "New study")) + "</h1>\n";
   if (!v.logged_in) {
     b += "<p>" + Fmt(Tr(v, "{1} to create a study."), "<a href=\"/login\">" + Tr(v, "Log in") + "</a>") + "</p>\n";
@@ -396,7 +397,7 @@ std::string StudyEditorHtml(const PageViewer& v, const std::vector<app::RouteVie
 }
 
 std::string StudyFormHtml(const PageViewer& v, const app::StudyForm& f) {
-  std::string b = kAssets;
+  std::string b = kAssets + ClimbersScriptMessages(v.lang);
   b += "<h1>" + E(f.name) + "</h1>\n";
   if (!f.open) {
     b += "<p class=\"error\" id=\"study-closed\">" + Tr(v, "This study is closed.") + "</p>\n";
@@ -467,7 +468,7 @@ std::string StudyResultsHtml(const PageViewer& v, const app::StudyResults& res,
                              const std::string& drop, bool censor, const std::string& error) {
   const app::Study& st = res.study;
   const std::string sid = Id(st.id);
-  std::string b = kAssets;
+  std::string b = kAssets + ClimbersScriptMessages(v.lang);
   b += "<h1 id=\"study-title\">" + E(st.name) + "</h1>\n";
   b += "<p>" + (st.is_open ? Tr(v, "Open") : Tr(v, "Closed")) + " · " +
        Fmt(TrN(v, "{1} response", "{1} responses", st.responses), std::to_string(st.responses)) + " · " +

@@ -11,6 +11,7 @@
 #include "base/number.h"
 #include "base/text.h"
 #include "web/chance_handlers.h"
+#include "web/error_text.h"
 #include "web/logbook_handlers.h"
 #include "web/pages.h"
 #include "web/script_messages.h"
@@ -294,6 +295,48 @@ std::string TargetForm(const app::GymDashboard& d, const app::WallDashboard& w,
          "targets") + "</button><p class=\"msg\" role=\"status\"></p></form></details>";
 }
 
+// Issue 32: the gap lines in the page's language, from the gaps themselves
+// (app::Gap: band or style, counts, shares) rather than app::GapWords'
+// English sentences; the same lines, the same order. `place` is the wall's
+// name (or the discipline's, `discipline`: its grade line has no "wall").
+std::string PercentText(double share, std::string_view lang) {
+  return Fmt(Tr(lang, "{1}%"), std::to_string(static_cast<int>(std::lround(share * 100))));
+}
+
+std::vector<std::string> GapLines(const std::string& place, bool discipline,
+                                  const std::vector<app::Gap>& gaps, std::string_view lang) {
+  std::vector<std::string> out;
+  std::string grades;
+  for (const app::Gap& g : gaps) {
+    if (g.kind != "grade") continue;
+    if (!grades.empty()) grades += ", ";
+    grades += g.missing > 0 ? Fmt(Tr(lang, "{1} × {2} missing"), std::to_string(g.missing), g.name)
+                            : Fmt(Tr(lang, "{1} × {2} over"), std::to_string(g.over), g.name);
+  }
+  if (!grades.empty()) {
+    out.push_back(discipline ? Fmt(Tr(lang, "{1}: {2}"), Tr(lang, place.c_str()), grades)
+                             : Fmt(Tr(lang, "wall {1}: {2}"), place, grades));
+  }
+  const std::string where = discipline ? Tr(lang, place.c_str()) : place;
+  for (const app::Gap& g : gaps) {
+    if (g.kind != "style") continue;
+    const std::string style = Tr(lang, g.name.c_str());
+    if (g.share == 0) {
+      out.push_back(Fmt(Tr(lang, "no {1} on {2}"), style, where));
+    } else if (g.share >= app::DashboardLimits::kDominantShare) {
+      out.push_back(Fmt(Tr(lang, "{1}: {2} {3}"), where, PercentText(g.share, lang), style));
+    } else {
+      // Fmt fills three: the fourth ("aim") first.
+      std::string line = Tr(lang, "{1}: {2} {3}, aim {4}");
+      if (size_t at = line.find("{4}"); at != std::string::npos) {
+        line.replace(at, 3, PercentText(g.reference, lang));
+      }
+      out.push_back(Fmt(line, where, style, PercentText(g.share, lang)));
+    }
+  }
+  return out;
+}
+
 std::string WallSection(const app::GymDashboard& d, const app::WallDashboard& w,
                         const DashboardAscents& ascents, std::string_view lang) {
   const std::string id = Id(w.wall.id);
@@ -309,7 +352,7 @@ std::string WallSection(const app::GymDashboard& d, const app::WallDashboard& w,
        "\">" + Tr(lang, "Only this wall") + "</a></p>\n";
   if (!w.gap_words.empty()) {
     b += "<ul class=\"gaps\" id=\"gaps-" + id + "\">";
-    for (const std::string& g : w.gap_words) b += "<li>" + E(g) + "</li>";
+    for (const std::string& g : GapLines(w.wall.name, false, w.gaps, lang)) b += "<li>" + E(g) + "</li>";
     b += "</ul>\n";
   } else {
     b += "<p class=\"gaps empty\" id=\"gaps-" + id + "\">" + Tr(lang, "No gaps.") + "</p>\n";
@@ -334,7 +377,7 @@ std::string DisciplineSection(const app::GymDashboard& d, const app::DisciplineD
                       std::to_string(t.walls)) + ".</p>\n";
   if (!t.gap_words.empty()) {
     b += "<ul class=\"gaps\" id=\"gaps-" + E(name) + "\">";
-    for (const std::string& g : t.gap_words) b += "<li>" + E(g) + "</li>";
+    for (const std::string& g : GapLines(name, true, t.gaps, lang)) b += "<li>" + E(g) + "</li>";
     b += "</ul>\n";
   } else {
     b += "<p class=\"gaps empty\" id=\"gaps-" + E(name) + "\">" + Tr(lang, "No gaps against a target.") + "</p>\n";

@@ -245,7 +245,7 @@ std::string ColourLabelIn(std::string_view lang, const std::string& colour) {
 
 std::string CatalogDir() { return TheLocales().dir; }
 
-std::string ScriptMessages(std::string_view lang, std::initializer_list<const char*> msgids) {
+std::string ScriptMessages(std::string_view lang, std::span<const char* const> msgids) {
   if (lang.empty() || lang == "en") return "";
   nlohmann::json m = nlohmann::json::object();
   for (const char* id : msgids) m[id] = Tr(lang, id);
@@ -253,27 +253,6 @@ std::string ScriptMessages(std::string_view lang, std::initializer_list<const ch
   std::string safe;
   for (char c : text) safe += c == '<' ? std::string("\\u003c") : std::string(1, c);
   return "<script type=\"application/json\" class=\"sb-messages\">" + safe + "</script>\n";
-}
-
-std::string GymsScriptMessages(std::string_view lang) {
-  return ScriptMessages(
-      lang, {N_("Failed ({1})"),
-             N_("Someone else saved this first (now revision {1}). It is now: {2}. Your changes "
-                "are still here: save again to apply yours over theirs, or reload to take theirs.")});
-}
-
-std::string SettingDayScriptMessages(std::string_view lang) {
-  return ScriptMessages(lang, {N_("Failed ({1})"), N_("Planned:"), N_("route {1}"), N_("card"),
-                               N_("tag")});
-}
-
-std::string ImportScriptMessages(std::string_view lang) {
-  return ScriptMessages(
-      lang, {N_("(none)"), N_("Paste a list or choose a file."), N_("Reading…"),
-             N_("{1} new, {2} changed, {3} no longer in the list"), N_(": strip them?"),
-             N_("({1} unchanged)"), N_("New sectors: {1}."),
-             N_("{1} created, {2} updated, {3} stripped, {4} left as they were"), N_("new"),
-             N_("changed"), N_("missing"), N_("same"), N_("error")});
 }
 
 }  // namespace sb::web

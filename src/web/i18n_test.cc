@@ -13,7 +13,9 @@
 #include <string>
 
 #include "web/api_test_util.h"
+#include "web/error_text.h"
 #include "web/pages.h"
+#include "web/script_messages.h"
 
 namespace sb::web {
 namespace {
@@ -69,6 +71,50 @@ TEST(I18nTest, DatesNumbersAndColoursInTheLanguage) {
   EXPECT_EQ(ColourLabelIn("de", "#ffdd00"), "gelb (#ffdd00)");
   EXPECT_EQ(ColourLabelIn("fr", "light blue"), "light blue");
   EXPECT_EQ(ColourLabelIn("de", "gelbb"), "gelbb");
+}
+
+// Issue 32: the app's English sentences in the page's language by their
+// shapes in the catalogs; the field's name and line, grades and names kept.
+TEST(I18nTest, AppSentencesAndRefusalsInTheLanguage) {
+  const std::string grade = "grade: \"V99\" is not a grade of the scale \"V\" (it accepts V0..V17)";
+  EXPECT_EQ(TrText("en", grade), grade);
+  EXPECT_EQ(TrText("de", grade),
+            "grade: „V99“ ist kein Grad der Skala „V“ (sie kennt V0..V17)");
+  EXPECT_EQ(TrText("fr", "targets: line 2: expected a count from 1 to 50"),
+            "targets: ligne 2 : nombre attendu de 1 à 50");
+  EXPECT_EQ(TrText("de", "targets: line 2: expected a count from 1 to 50"),
+            "targets: Zeile 2: erwartet wird eine Anzahl von 1 bis 50");
+  EXPECT_EQ(TrText("de", "revision: the route was changed meanwhile (now revision 7)"),
+            "revision: die Route wurde inzwischen geändert (jetzt Revision 7)");
+  EXPECT_EQ(TrText("fr", "colour: \"gelbb\" is not a colour name or #rgb/#rrggbb code (did you "
+                         "mean gelb, gold?)"),
+            "colour: « gelbb » n'est ni un nom de couleur ni un code #rgb/#rrggbb (vouliez-vous "
+            "dire gelb, gold ?)");
+  EXPECT_EQ(TrText("de", "work budget spent: 600 units per minute; retry in 12 s"),
+            "Arbeitsbudget aufgebraucht: 600 Einheiten pro Minute; erneut versuchen in 12 s");
+  // A verdict whose counts are a sentence of their own: both translated.
+  EXPECT_EQ(TrText("de", "No difference shown: variations get 3.10 stars on average, hand-set "
+                         "routes of the same grades 3.00 (Wilcoxon rank-sum p = 0.41, Welch's t p "
+                         "= 0.39; 12 star ratings of variations and 14 of hand-set routes)."),
+            "Kein Unterschied nachgewiesen: Variationen erhalten im Mittel 3.10 Sterne, geschraubte "
+            "Routen derselben Grade 3.00 (Wilcoxon-Rangsummentest p = 0.41, Welch-t-Test p = 0.39; "
+            "12 Sternebewertungen von Variationen und 14 von geschraubten Routen).");
+  EXPECT_EQ(TrText("fr", "no warnings"), "aucun avertissement");
+  // No shape: as written.
+  EXPECT_EQ(TrText("de", "grade: something new the app says"), "grade: something new the app says");
+}
+
+// The scripts' messages (web/*.js tr('...')) in the page's JSON block.
+TEST(I18nTest, ScriptMessagesCarryTheScriptsMessagesTranslated) {
+  EXPECT_EQ(AppScriptMessages("en"), "");
+  const std::string de = AppScriptMessages("de");
+  EXPECT_NE(de.find("class=\"sb-messages\""), std::string::npos);
+  EXPECT_NE(de.find("\"Delete this route?\":\"Diese Route löschen?\""), std::string::npos) << de;
+  const std::string fr = ClimbersScriptMessages("fr");
+  EXPECT_NE(fr.find("\"Thank you! Your answers are saved.\":\"Merci ! Vos réponses sont "
+                    "enregistrées.\""),
+            std::string::npos);
+  EXPECT_NE(LogbookScriptMessages("de").find("Angenommen."), std::string::npos);
 }
 
 class I18nApiTest : public testing::ApiFixture {};
@@ -157,6 +203,33 @@ TEST_F(I18nApiTest, TagsPrintInTheGymsLanguage) {
     EXPECT_NE(text.find("gelb"), std::string::npos) << text;
     EXPECT_EQ(text.find("jaune"), std::string::npos) << text;
   }
+}
+
+// Issue 32: a refusal keeps "error" in English and carries "message" in the
+// caller's language (the browser's Accept-Language, or the account's).
+TEST_F(I18nApiTest, RefusalsCarryATranslatedMessage) {
+  testing::Client head = NewClient();
+  head.SignUp("head");
+  ASSERT_TRUE(head.LogIn("head"));
+  json gyms = head.Json("GET", "/api/gyms", "", 200);
+  const std::string report =
+      "/api/gyms/" + std::to_string(gyms["gyms"][0]["id"].get<int64_t>()) + "/report?date=xx";
+  auto r = head.Send("GET", report, "", true, "application/json", {{"Accept-Language", "de"}});
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 400);
+  json body = json::parse(r->body);
+  EXPECT_EQ(body["error"], "date: expected a date YYYY-MM-DD, got 'xx'");
+  EXPECT_EQ(body["message"], "date: erwartet wird ein Datum JJJJ-MM-TT, nicht „xx“");
+  // English: no "message".
+  r = head.Send("GET", report, "", true, "application/json", {{"Accept-Language", "en"}});
+  ASSERT_TRUE(r);
+  EXPECT_FALSE(json::parse(r->body).contains("message"));
+  // The account's language before the browser's.
+  head.Json("PUT", "/api/account", json{{"language", "fr"}}.dump(), 200);
+  r = head.Send("GET", report, "", true, "application/json", {{"Accept-Language", "de"}});
+  ASSERT_TRUE(r);
+  EXPECT_EQ(json::parse(r->body)["message"],
+            "date: date attendue au format AAAA-MM-JJ, reçu « xx »");
 }
 
 }  // namespace

@@ -1,4 +1,5 @@
 #include "web/logbook_handlers.h"
+#include "web/script_messages.h"
 
 #include <algorithm>
 #include <cmath>
@@ -338,7 +339,8 @@ std::string AscentBlock(Exchange& x, const app::RouteView& route) {
     LogError("ascent grade of route " + std::to_string(route.id) + ": " + a.status().message());
     return "";
   }
-  std::string b = "<script src=\"/static/logbook.js\" defer></script>\n" +
+  std::string b = LogbookScriptMessages(x.caller.lang) +
+                  "<script src=\"/static/logbook.js\" defer></script>\n" +
                   AscentHtml(x.caller.lang, *a) + ChanceBlock(x, route);  // issue 35
   if (x.caller.viewer.logged_in()) {
     std::map<int64_t, std::string> reasons;
@@ -354,12 +356,7 @@ std::string TickBlock(Exchange& x, const app::RouteView& route) {
   const std::string_view lang = x.caller.lang;
   std::string b = AscentBlock(x, route);
   // The script's messages in the page's language (web/logbook.js).
-  b += "<form id=\"tick-form\" class=\"climber-form\" data-route=\"" + Id(route.id) +
-       "\" data-msg-pick=\"" + E(Tr(lang, "Tap flash, send or attempt first.")) +
-       "\" data-msg-ticked=\"" + E(Tr(lang, "Ticked: {1}")) + "\" data-msg-updated=\"" +
-       E(Tr(lang, "Tick updated: {1}")) + "\" data-msg-held=\"" +
-       E(Tr(lang, "(held for the setters to check)")) + "\" data-msg-interval=\"" +
-       E(Tr(lang, "80%: {1} to {2}")) + "\">\n";
+  b += "<form id=\"tick-form\" class=\"climber-form\" data-route=\"" + Id(route.id) + "\">\n";
   b += "<h2>" + Tr(lang, "Tick it") + "</h2>\n<div class=\"outcomes\" role=\"radiogroup\">";
   for (const char* o : {N_("flash"), N_("send"), N_("attempt")}) {
     b += "<label class=\"outcome\"><input type=\"radio\" name=\"outcome\" value=\"" +
@@ -405,11 +402,14 @@ std::string AscentText(const app::AscentGrade& a, bool with_ids, std::string_vie
                     std::to_string(a.felt_votes));
   }
   if (!a.verdict.empty()) {
-    b += " <span class=\"tag ascent-verdict\"" + id("ascent-verdict") + ">" + E(a.verdict) +
+    b += " <span class=\"tag ascent-verdict\"" + id("ascent-verdict") + ">" + E(Tr(lang, a.verdict.c_str())) +
          "</span>";
   }
   return b;
 }
+
+// The verdicts of app::AscentGrade, translated where shown (issue 32).
+[[maybe_unused]] const char* const kVerdicts[] = {N_("soft"), N_("sandbagged")};
 
 std::string AscentCell(const app::AscentGrade& a, std::string_view lang) {
   return "<td class=\"ascent\" data-ticks=\"" + std::to_string(a.ticks) + "\"" +

@@ -1,4 +1,5 @@
 #include "web/pages.h"
+#include "web/script_messages.h"
 
 #include <algorithm>
 #include <cmath>
@@ -80,7 +81,7 @@ std::string Layout(const PageViewer& v, const std::string& title, const std::str
   }
   h += "<link rel=\"icon\" href=\"/static/favicon.svg\" type=\"image/svg+xml\">\n";
   h += "<link rel=\"stylesheet\" href=\"/static/app.css\">\n";
-  h += "<script src=\"/static/app.js\" defer></script>\n</head>\n";
+  h += AppScriptMessages(v.lang) + "<script src=\"/static/app.js\" defer></script>\n</head>\n";
   h += "<body class=\"" + E(page_class) + "\">\n<header class=\"top no-print\">\n";
   h += "<a class=\"brand\" href=\"/\">Strange Beta</a>\n<nav>\n";  // i18n: name
   h += "<a href=\"/\">" + Tr(v, "Routes") + "</a>\n";

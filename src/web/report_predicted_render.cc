@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "base/text.h"
+#include "web/error_text.h"
 #include "web/i18n.h"
 
 namespace sb::web {
@@ -52,7 +53,7 @@ json PredictionCheckJson(const app::PredictionCheck& c) {
 std::string PredictionCheckHtml(const app::PredictionCheck& c, std::string_view lang) {
   std::string b = "<h2>" + Tr(lang, "Predicted grades against ascent grades") + "</h2>\n<section "
                   "id=\"report-predicted\"><p class=\"msg\" id=\"report-predicted-verdict\">" +
-                  E(c.verdict) + "</p>\n";
+                  E(TrText(lang, c.verdict)) + "</p>\n";
   if (!c.days.empty()) {
     b += "<div class=\"scroll\"><table class=\"stats\" id=\"report-predicted-table\"><tr><th>" +
          Tr(lang, "Setting day") + "</th><th>" + Tr(lang, "Variation") + "</th><th>" + Tr(lang, "Predicted (80%)") + "</th><th>" + Tr(lang, "Ascent grade") + "</th><th "

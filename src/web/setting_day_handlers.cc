@@ -8,6 +8,7 @@
 #include "base/date.h"
 #include "base/number.h"
 #include "base/text.h"
+#include "web/error_text.h"
 #include "web/script_messages.h"
 
 namespace sb::web {
@@ -146,7 +147,9 @@ json ProposalJson(const app::SettingDayProposal& p) {
 std::string DayPredictedLine(const app::DayCandidate& c, std::string_view lang) {
   std::string h = "<p class=\"day-predicted\">";
   if (c.score.predicted.known) {
-    h += Fmt(Tr(lang, "Predicted grade {1}"), "<b>" + E(app::PredictedGradeText(c.score.predicted)) + "</b>") +
+    const app::PredictedGrade& g = c.score.predicted;  // app::PredictedGradeText, translated
+    h += Fmt(Tr(lang, "Predicted grade {1}"),
+             "<b>" + E(g.grade) + " (" + E(Fmt(Tr(lang, "80%: {1} to {2}"), g.lo_grade, g.hi_grade)) + ")</b>") +
          " <small>(" + E(c.score.predicted.basis) + ")</small>";
   } else {
     h += Tr(lang, "No predicted grade") + (c.score.predicted.note.empty()
@@ -459,7 +462,7 @@ void PageSettingDay(Exchange& x) {
           std::string why;
           for (const std::string& r : c.score.reasons) {
             if (r.find("bits") != std::string::npos || r.rfind("novelty ", 0) == 0) continue;
-            why += (why.empty() ? "" : "; ") + r;
+            why += (why.empty() ? "" : "; ") + TrText(lang, r);
           }
           h += "<p class=\"why\">" + (rank == 1 && !c.score.rejected
                                                        ? Tr(lang, "Why it ranks first:")
@@ -473,7 +476,7 @@ void PageSettingDay(Exchange& x) {
           for (const std::string& m : c.moves) h += "<li>" + E(m) + "</li>";
           h += "</ol>\n<details class=\"no-print\"><summary>" + Tr(lang, "Details") + "</summary><ul "
                "class=\"reasons\">";
-          for (const std::string& r2 : c.score.reasons) h += "<li>" + E(r2) + "</li>";
+          for (const std::string& r2 : c.score.reasons) h += "<li>" + E(TrText(lang, r2)) + "</li>";
           h += "</ul>";
           if (!c.score.warnings.empty()) {
             h += "<p>" + Tr(lang, "Warnings:") + "</p><ul class=\"warnings\">";

@@ -2,7 +2,9 @@
 // dates as 28.11.2026) and ticks a route on a phone in German; a browser asking for French
 // (Accept-Language) sees French pages without an account, and a tag sheet printed from it is in
 // French (pdftotext: "Ouverte par", "jaune"); a gym's default language is set over the API and
-// on the gym page, whose dashboard and setting day a German head setter sees in German.
+// on the gym page, whose dashboard and setting day a German head setter sees in German; the
+// scripts and the app's sentences too: a wall's gap lines, the editor's readings and a refused
+// grade at its field in German, the tick form's script in French.
 'use strict';
 const fs = require('fs');
 const path = require('path');
@@ -82,6 +84,30 @@ module.exports = async (t) => {
   check((await text('#day-title')).startsWith('Schraubtag') && (await text('#day-propose')).includes('Vorschlagen'),
         'the setting-day page is German');
   await shot('99-setting-day-german');
+
+  // The scripts and the app's sentences in German too: a wall's grade targets give gap lines
+  // in German; the route editor's readings of moves and a refused grade are German, the
+  // field's name and the scale as typed.
+  const wall = (await api('POST', '/api/gyms/' + gym.data.id + '/walls', { name: 'Höhle ' + n, scale: 'V' })).data.id;
+  await page.goto(gp + '/dashboard');
+  await page.click('#wall-' + wall + ' details summary');
+  await page.fill('#targets-' + wall + ' input[name="grades"]', 'V3: 2, V5: 1');
+  await Promise.all([page.waitForNavigation(), page.click('#targets-' + wall + ' button[type="submit"]')]);
+  const gaps = (await text('#gaps-' + wall)).trim();
+  check(gaps.includes('Wand Höhle ' + n + ': 2 × V3 fehlen, 1 × V5 fehlen'), 'the gap line is German (' + gaps + ')');
+  await shot('99-dashboard-german');
+  await page.goto(base + '/routes/' + rid + '/edit');
+  await page.selectOption('#f-wall', String(wall));
+  await page.fill('#f-grade', '6B+');
+  await page.fill('#f-moves', 'R small crimp');
+  await page.waitForFunction(() => document.querySelectorAll('#feedback li.fb-move').length === 1);
+  check((await text('#feedback')).includes('rechte Hand'), 'the editor reads the move in German (' + (await text('#feedback')).trim() + ')');
+  await page.click('#save');
+  await page.waitForFunction(() => document.querySelector('.field-msg[data-for="grade"]').textContent !== '');
+  const refused = await text('.field-msg[data-for="grade"]');
+  check(refused.startsWith('grade: „6B+“ ist kein Grad der Skala „V“') && (await text('#save-msg')).includes('nicht gespeichert'),
+        'a refused grade is German at its field (' + refused + ')');
+  await shot('99-editor-german');
   await api('PUT', '/api/gyms/' + gym.data.id, { language: 'fr' });
 
   // French, from the browser's Accept-Language (no account).
@@ -93,6 +119,10 @@ module.exports = async (t) => {
     await page.goto(base + '/r/' + rid);
     check(await lang() === 'fr' && (await text('#tick-form h2')).includes('Cocher') &&
           (await text('#tick-submit')).includes('Enregistrer la croix'), '/r/{id} is French');
+    await page.click('#tick-submit');
+    await page.waitForFunction(() => document.getElementById('tick-msg').textContent !== '');
+    const pick = await text('#tick-msg');
+    check(pick.includes('Touchez d\'abord flash'), 'the tick form\'s script speaks French (' + pick + ')');
     await shot('99-route-french');
     const sheet = await page.request.get(base + '/tags.pdf?ids=' + rid,
                                          { headers: { 'Accept-Language': 'fr-FR,fr;q=0.9' } });
