@@ -263,7 +263,12 @@ class Dashboard {
   Dashboard(store::Store* store, const Options& options, Clock* clock);
 
   // A gym's dashboard for a member (kNotFound "no gym N" otherwise).
-  // Errors: the store's.
+  // Issue 34: what the routes decide (walls, bands, styles, gaps, the
+  // archive's mix, circuits) is kept (built_) while the gym's data other
+  // than ticks stays; the ticks and stars are read again each time (one
+  // grouped read of the ticks of the routes on the wall) and the routes and
+  // walls re-sorted by them, so a tick shows on the next GET without every
+  // route of the gym being read again. Errors: the store's.
   Result<GymDashboard> Get(const Viewer& v, int64_t gym);
   // One wall's dashboard (kNotFound for a wall the viewer cannot see).
   Result<WallDashboard> GetWall(const Viewer& v, int64_t wall);
@@ -300,9 +305,12 @@ class Dashboard {
     std::vector<std::vector<std::string>> moves;
   };
 
-  // A built dashboard kept while the gym's data version (store::TickVersion
-  // .data, bumped by every write the dashboard shows) and the day stay; one
-  // per gym and viewer (what a viewer sees differs by account).
+  // A built dashboard's route-derived part (ticks and stars zero, routes
+  // and walls in no particular order), kept while the gym's data version
+  // without its ticks (store::TickVersion .data - .ticks: every write the
+  // dashboard shows moves .data by one, a tick also .ticks by one) and the
+  // day stay; one per gym and viewer (what a viewer sees differs by
+  // account). app/dashboard_builds.h counts the builds.
   struct Built {
     std::vector<WallDashboard> walls;
     std::map<std::string, double> archive_styles;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "app/app_test_util.h"
+#include "app/dashboard_builds.h"
 #include "app/discipline_targets.h"
 #include "grades/scale.h"
 #include "store/gym_store.h"
@@ -413,6 +414,54 @@ TEST_F(DashboardTest, TheCacheNeverServesAPageOlderThanTheLastWrite) {
   bool renamed = false;
   for (const auto& r : cave_of().routes) renamed = renamed || r.name == "Renamed";
   EXPECT_TRUE(renamed);
+}
+
+// Issue 34: a tick fills the ticks and stars again and re-sorts, but does
+// not read every route again (the route-derived part is kept at the gym's
+// data version without ticks); a route's change does build it again.
+TEST_F(DashboardTest, ATickDoesNotRebuildTheRoutesButARouteChangeDoes) {
+  Dashboard& dash = services_->dashboard;
+  auto wall_of = [&](int64_t id) -> WallDashboard {
+    Result<GymDashboard> d = dash.Get(head_, gym_);
+    EXPECT_TRUE(d.ok()) << d.status().message();
+    for (const WallDashboard& w : d->walls) {
+      if (w.wall.id == id) return w;
+    }
+    ADD_FAILURE() << "no wall " << id;
+    return {};
+  };
+  const int64_t mid = wall_of(cave_).routes.at(0).id;  // unticked: first
+  const int64_t builds = DashboardRouteBuilds();
+  EXPECT_EQ(wall_of(cave_).routes.size(), 2u);
+  EXPECT_EQ(DashboardRouteBuilds(), builds);  // kept
+  // Two ticks with stars on Mid: shown at once, Mid now sorted after Old.
+  store::TickRecord t;
+  t.route_id = mid;
+  t.gym_id = gym_;
+  t.day = "2023-11-13";
+  t.outcome = "send";
+  t.created_at = t.updated_at = "2023-11-13 10:00:00";
+  for (const char* who : {"u:7", "u:8"}) {
+    t.climber = who;
+    t.stars = 5;
+    ASSERT_TRUE(store::TickStoreOf(store_.get())->PutTick(t).ok());
+  }
+  WallDashboard cave = wall_of(cave_);
+  EXPECT_EQ(DashboardRouteBuilds(), builds);  // a tick: no route read again
+  ASSERT_EQ(cave.routes.size(), 2u);
+  EXPECT_EQ(cave.routes[1].id, mid);
+  EXPECT_EQ(cave.routes[1].ticks, 2);
+  EXPECT_EQ(cave.routes[1].star_votes, 2);
+  EXPECT_DOUBLE_EQ(cave.routes[1].stars, 5.0);
+  EXPECT_EQ(cave.ticks, 2);
+  EXPECT_DOUBLE_EQ(cave.stars, 5.0);
+  // A route set on Slab: the route-derived part is built again.
+  Route(slab_, "Newer", "V4", "2023-11-13", "green", {"small crimp"});
+  EXPECT_EQ(wall_of(slab_).on_wall, 2);
+  EXPECT_EQ(DashboardRouteBuilds(), builds + 1);
+  // And the ticks are still there after the rebuild.
+  EXPECT_EQ(wall_of(cave_).ticks, 2);
+  EXPECT_EQ(DashboardRouteBuilds(), builds + 1);
 }
 
 TEST_F(DashboardTest, OnlyHeadSettersSetTargetsAndAnotherGymsIdsAreNotFound) {

@@ -702,18 +702,29 @@ Status Logbook::DoFlight(const Key& key, Flight* flight) {
   const int64_t gym_id = key.first;
   const std::string& discipline = key.second;
   SB_ASSIGN_OR_RETURN(Discipline d, grades::ParseDiscipline(discipline));
-  // The ticks and their version read under the gym's tick lock (a tick waits
-  // for the read, never for the fit); ticks written after it are recorded
-  // for the replay below.
+  // The version read and the recording started under the gym's tick lock:
+  // ticks written from then on are recorded for the replay below. The
+  // ticks themselves are read after the lock is let go (issue 34: reading a
+  // big gym's 250,000 ticks took seconds under load, and every tick of the
+  // gym waited for it in the write lane); the read may hold some of the
+  // recorded ticks already, which the replay skips (same id, revision at
+  // least the recorded one).
   std::mutex& tick_lock = TickLock(gym_id);
   std::unique_lock<std::mutex> tlock(tick_lock);
   SB_ASSIGN_OR_RETURN(store::TickVersion version, ticks_->GymTickVersion(gym_id));
-  SB_ASSIGN_OR_RETURN(std::vector<store::TickRecord> all, ticks_->GymTicks(gym_id));
   {
     std::lock_guard<std::mutex> lock(mu_);
     flight->recording = true;
   }
   tlock.unlock();
+  Result<std::vector<store::TickRecord>> read = ticks_->GymTicks(gym_id);
+  if (!read.ok()) {
+    std::lock_guard<std::mutex> lock(mu_);
+    flight->recording = false;
+    flight->replay.clear();
+    return read.status();
+  }
+  const std::vector<store::TickRecord> all = std::move(read).value();  // by id
   bool kept_class = false;
   if (store::GymStore* gyms = store::GymStoreOf(store_)) {
     Result<std::vector<store::MemberRecord>> members = gyms->ListMembers(gym_id);
@@ -812,6 +823,11 @@ Status Logbook::DoFlight(const Key& key, Flight* flight) {
   for (const Replay& r : flight->replay) {
     version = r.after;
     if (DisciplineOf(r.route) != discipline) continue;
+    // Already in the read (written after the recording began, before the
+    // read's snapshot): counted once.
+    auto seen = std::lower_bound(all.begin(), all.end(), r.saved.id,
+                                 [](const store::TickRecord& t, int64_t id) { return t.id < id; });
+    if (seen != all.end() && seen->id == r.saved.id && seen->revision >= r.saved.revision) continue;
     std::optional<Counted> add = CountedOf(r.saved, d, r.young), remove;
     if (r.old) remove = CountedOf(*r.old, d, r.young);
     if (!add && !remove) continue;

@@ -41,6 +41,9 @@ using sql::Value;
 using sql::Violation;
 using sql_rows::NowText;
 
+// Connections to a SQLite file (OpenSqliteStore): four readers at once
+// (the worker lanes' costly slots), one of them writing at a time.
+constexpr int kSqliteConnections = 4;
 // How long throttling attempts are kept (longer than any window).
 constexpr int64_t kAttemptRetentionSeconds = 24 * 3600;
 // How often (in the callers' clock) a process sweeps every key's old attempts.
@@ -1842,9 +1845,19 @@ std::string DisplayName(const std::string& db) {
 }
 
 Result<std::unique_ptr<Store>> OpenSqliteStore(const std::string& path) {
-  // One connection: SQLite has one writer at a time anyway, and callers
-  // queue for it (up to a minute, as long as any import may take).
-  auto pool = sql::Pool::Create([path] { return sql::OpenSqlite(path); }, 1,
+  // Issue 34: a file database gets a few connections. With one, every
+  // query of the server queued for it: a tick's one-row write waited for a
+  // busy gym's fit reading its 250,000 ticks (seconds), and so did every
+  // page. In WAL mode (sqlite_conn.cc) readers do not block the writer nor
+  // each other; writers still take turns, in SQLite's own lock (a
+  // transaction begins IMMEDIATE, so none upgrades a read lock), waiting up
+  // to its busy timeout. An in-memory database is private to its
+  // connection, so it keeps one. Callers queue for a connection up to a
+  // minute, as long as any import may take.
+  const bool in_memory = path.empty() || path == ":memory:" ||
+                         (path.rfind("file:", 0) == 0 && path.find("memory") != std::string::npos);
+  auto pool = sql::Pool::Create([path] { return sql::OpenSqlite(path); },
+                                in_memory ? 1 : kSqliteConnections,
                                 std::chrono::milliseconds(60000));
   return StoreOver(std::move(pool), path);
 }

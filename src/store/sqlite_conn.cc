@@ -10,8 +10,10 @@ namespace sb::store::sql {
 
 namespace {
 
-// How long a writer waits for another process's write lock.
-constexpr int kBusyTimeoutMs = 5000;
+// How long a writer waits for another connection's write lock (another
+// process's, or since issue 34 another of this store's connections, which
+// before queued up to a minute for the store's one connection): a minute.
+constexpr int kBusyTimeoutMs = 60000;
 
 class SqliteConnection final : public Connection {
  public:
