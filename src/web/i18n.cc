@@ -259,7 +259,9 @@ std::string GymsScriptMessages(std::string_view lang) {
   return ScriptMessages(
       lang, {N_("Failed ({1})"),
              N_("Someone else saved this first (now revision {1}). It is now: {2}. Your changes "
-                "are still here: save again to apply yours over theirs, or reload to take theirs.")});
+                "are still here: save again to apply yours over theirs, or reload to take theirs."),
+             N_("Not done: someone changed these routes first. They are now: {1}. Reload the "
+                "page to see them, then try again.")});
 }
 
 std::string SettingDayScriptMessages(std::string_view lang) {
