@@ -334,6 +334,78 @@
     editor.classList.add('form-view');
     refresh();
 
+    // Issue 31: the form as the record was when this page drew it (then as the other save
+    // left it): a save refused as stale keeps what the user changed and takes every other
+    // field from the record as stored now, so saving again loses nobody's edit.
+    const FIELDS = { '#f-name': tr('name'), '#f-grade': tr('grade'), '#f-colour': tr('hold colour'),
+                     '#f-wall': tr('wall'), '#f-circuit': tr('circuit'), '#f-state': tr('state'),
+                     '#f-date': tr('date'), '#f-notes': tr('notes'), '#f-moves': tr('moves'), '#public': tr('who can see it'),
+                     other: tr('other header lines') };
+    function snapshot() {
+      const s = {};
+      for (const f of Object.keys(FIELDS)) if ($(f)) s[f] = $(f).value;
+      if (inGym || document.querySelector('.f-setter')) s.setters = settersOfForm().join(', ');
+      s.other = extra.join('\n');  // the text's header lines the form does not show
+      return s;
+    }
+    function setSetters(names) {
+      const boxes = Array.from(document.querySelectorAll('.f-setter'));
+      const others = [];
+      for (const b of boxes) b.checked = false;
+      for (const n of names) {
+        const b = boxes.find((x) => x.value.toLowerCase() === n.toLowerCase());
+        if (b) b.checked = true; else others.push(n);
+      }
+      $('#f-setters-other').value = others.join(', ');
+    }
+    function setSelect(sel, value) {
+      const el = $(sel);
+      if (!el) return;
+      if (!Array.from(el.options).some((o) => o.value === value)) el.add(new Option(value, value));
+      el.value = value;
+    }
+    function restore(s) {
+      for (const f of Object.keys(FIELDS)) {
+        if (!$(f) || !(f in s)) continue;
+        if ($(f).tagName === 'SELECT') setSelect(f, s[f]); else $(f).value = s[f];
+      }
+      if ('setters' in s) setSetters(s.setters.split(',').map((x) => x.trim()).filter(Boolean));
+      if ('other' in s) extra = s.other ? s.other.split('\n') : [];
+    }
+    let loaded = snapshot();
+    // The record as stored now (the 409's "current") in the form's terms.
+    function theirsOf(cur) {
+      textToForm(cur.crdl || '', true);
+      if (inGym) {
+        if ($('#f-wall')) setSelect('#f-wall', cur.wall_id == null ? '' : String(cur.wall_id));
+        if ($('#f-circuit')) setSelect('#f-circuit', cur.circuit == null ? '' : String(cur.circuit));
+        if (typeof cur.state === 'string') setSelect('#f-state', cur.state);
+        if ($('#f-date')) $('#f-date').value = cur.set_on || '';
+        if (Array.isArray(cur.setters)) setSetters(cur.setters);
+      }
+      const lib = 'library' in cur ? cur.library : cur.public;
+      if ($('#public') && typeof lib === 'boolean') setSelect('#public', lib ? '1' : '0');
+      return snapshot();
+    }
+    function mergeConflict(cur) {
+      const mine = snapshot();
+      const theirs = theirsOf(cur);
+      const merged = {}, taken = [], kept = [], both = [];
+      for (const k of Object.keys(mine)) {
+        const name = FIELDS[k] || k;
+        const mineChanged = mine[k] !== loaded[k], theirsChanged = theirs[k] !== loaded[k];
+        merged[k] = mineChanged ? mine[k] : theirs[k];
+        if (mineChanged && theirsChanged && mine[k] !== theirs[k]) both.push(name);
+        else if (mineChanged) kept.push(name);
+        else if (theirsChanged) taken.push(name);
+      }
+      restore(merged);
+      loaded = theirs;
+      if (view === 'text') ta.value = formToText();
+      scaleHint();
+      return { taken, kept, both };
+    }
+
     // A refusal next to the field it names ("grade: ...", or a located error's line).
     function fieldMessage(err, line) {
       holdMsg = true;
@@ -392,9 +464,15 @@
           $('#save-msg').after(box);
         }
         box.textContent = '';
+        const m = mergeConflict(cur);
         const p = document.createElement('p');
-        p.textContent = tr('Someone else saved this route first (now revision {1}, state {2}). Their text is below; yours is still in the editor: Save again to apply yours over theirs.',
-          cur.revision, tr(cur.state));
+        p.textContent = tr('Someone else saved this route first (now revision {1}, state {2}).',
+            cur.revision, tr(cur.state)) + ' ' +
+          (m.taken.length ? tr('Their changes are now in the form: {1}.', m.taken.join(', ')) + ' ' : '') +
+          (m.kept.length ? tr('Yours are kept: {1}.', m.kept.join(', ')) + ' ' : '') +
+          (m.both.length ? tr('Changed by both, yours kept (theirs below): {1}.', m.both.join(', ')) + ' ' : '') +
+          tr('Their text is below. Save again to save the form as it is now.');
+        p.id = 'conflict-merge';
         const pre = document.createElement('pre');
         pre.id = 'conflict-current';
         pre.textContent = cur.crdl;

@@ -73,6 +73,20 @@
         : (v !== null && typeof v === 'object') ? Object.entries(v).map(([k, x]) => k + ': ' + x).join(', ')
         : (v === null || v === '' ? '—' : v);
       parts.push(el.name + ': ' + text);
+      // A field the user did not change takes the value stored now (so saving again
+      // applies only what they changed, not the page's old values over the other save).
+      if (el.type === 'checkbox' || (v !== null && typeof v === 'object' && !Array.isArray(v))) continue;
+      const now = Array.isArray(v) ? v.join(', ') : (v === null ? '' : String(v));
+      if (el.tagName === 'SELECT') {
+        const def = Array.from(el.options).find((o) => o.defaultSelected) || el.options[0];
+        const opt = Array.from(el.options).find((o) => o.value === now);
+        if (!opt) continue;
+        if (!def || el.value === def.value) el.value = now;
+        for (const o of el.options) o.defaultSelected = o === opt;
+      } else {
+        if (el.value === el.defaultValue) el.value = now;
+        el.defaultValue = now;
+      }
     }
     for (const name of ['state', 'set_on', 'strip_on']) {
       if (name in cur && !parts.some((p) => p.startsWith(name + ':'))) {

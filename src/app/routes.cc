@@ -14,7 +14,9 @@
 #include "base/number.h"
 #include "base/text.h"
 #include "gym/rules.h"
+#include "store/circuit_filter.h"
 #include "store/gym_store.h"
+#include "store/import_store.h"
 #include "grades/evaluate.h"
 #include "chaos/variation.h"
 #include "crdl/route.h"
@@ -273,7 +275,13 @@ Result<store::RouteFilter> Routes::FilterOf(const Viewer& v, const RouteQuery& q
   if (!f.state.empty() && !IsRouteState(f.state)) {
     return Status::InvalidInput("state: expected draft, planned, set or stripped");
   }
+  // Issue 31: a circuit id (of the gym given: 400 for another's) matches the
+  // routes set in that circuit; any other text is a colour, as before.
   f.colour = std::string(Trim(q.circuit));
+  if (int64_t circuit = 0; ParseInt(f.colour, &circuit) && circuit > 0) {
+    if (f.gym_id) SB_RETURN_IF_ERROR(gyms_.ResolveCircuit(*f.gym_id, f.colour).status());
+    f.colour = store::CircuitIdFilter(circuit);
+  }
   f.is_variation = q.variations;
   f.public_only = q.public_only;
   f.not_gym_id = q.not_gym;
@@ -798,35 +806,79 @@ Status Routes::ChangeState(const Viewer& v, int64_t id, const StateChange& chang
   return Update(v, id, edit);
 }
 
-Result<std::vector<int64_t>> Routes::ChangeWallState(const Viewer& v, int64_t gym, int64_t wall,
-                                                     const WallStateChange& change) {
+Result<std::vector<store::RouteRecord>> Routes::WallTargets(const Viewer& v, int64_t gym,
+                                                            int64_t wall,
+                                                            const WallStateChange& change,
+                                                            std::optional<RouteState>* to) {
   if (!v.logged_in()) return Status::Unauthenticated("log in first");
   SB_ASSIGN_OR_RETURN(std::string role, gyms_.RoleIn(v, gym));
   if (role.empty()) return Status::NotFound("no gym " + std::to_string(gym));
   if (!CanSet(role)) return Status::Permission("only the gym's setters may change its routes");
   SB_ASSIGN_OR_RETURN(Wall w, gyms_.ResolveWall(gym, std::to_string(wall)));
-  std::optional<RouteState> from = RouteStateOf(ToLower(Trim(change.from)));
-  if (!from) return Status::InvalidInput("from: expected draft, planned, set or stripped");
-  std::optional<RouteState> to = RouteStateOf(ToLower(Trim(change.to)));
-  if (!to) return Status::InvalidInput("to: expected draft, planned, set or stripped");
-  SB_RETURN_IF_ERROR(CheckTransition(*from, *to));
+  SB_ASSIGN_OR_RETURN(RouteState from, gym::ParseRouteState(ToLower(Trim(change.from)), "from"));
+  SB_ASSIGN_OR_RETURN(RouteState target, gym::ParseRouteState(ToLower(Trim(change.to)), "to"));
+  SB_RETURN_IF_ERROR(CheckTransition(from, target));
   if (change.on) SB_RETURN_IF_ERROR(CheckDate("on", *change.on));
   if (change.day) SB_RETURN_IF_ERROR(CheckDate("day", *change.day));
+  *to = target;
   store::RouteFilter f;
   f.viewer = v.user_id;
   f.gym_id = gym;
   f.wall_id = w.id;
-  f.state = NameOf(*from);
+  f.state = NameOf(from);
   f.limit = options_.limits.max_list_rows;
   SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> rows, store_->ListRoutes(f));
-  std::vector<int64_t> changed;
-  for (const store::RouteRecord& r : rows) {
+  std::vector<store::RouteRecord> out;
+  for (store::RouteRecord& r : rows) {
     if (change.day && !change.day->empty() && r.set_on != *change.day) continue;
-    if (gym::Is(r.state, gym::RouteState::kDraft) && !IsOwner(r, v)) continue;  // a draft stays its owner's
-    StateChange one{NameOf(*to), change.on, std::nullopt};
-    SB_RETURN_IF_ERROR(ChangeState(v, r.id, one));
-    changed.push_back(r.id);
+    // A draft stays its owner's (the editing rule, CheckChange; the role is
+    // checked above for the others).
+    if (gym::Is(r.state, gym::RouteState::kDraft) && !IsOwner(r, v)) continue;
+    out.push_back(std::move(r));
   }
+  return out;
+}
+
+Result<std::vector<RouteView>> Routes::WallStateRoutes(const Viewer& v, int64_t gym, int64_t wall,
+                                                       const WallStateChange& change) {
+  std::optional<RouteState> to;
+  SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> rows, WallTargets(v, gym, wall, change, &to));
+  std::vector<RouteView> out;
+  out.reserve(rows.size());
+  for (const store::RouteRecord& r : rows) out.push_back(ToView(r));
+  return out;
+}
+
+Result<std::vector<int64_t>> Routes::ChangeWallState(const Viewer& v, int64_t gym, int64_t wall,
+                                                     const WallStateChange& change) {
+  std::vector<int64_t> changed;
+  // Issue 31: one transaction, the list read inside it: a route refused in
+  // the middle (changed meanwhile) leaves the wall as it was.
+  SB_RETURN_IF_ERROR(store::RunAtomically(store_, [&]() -> Status {
+    changed.clear();
+    std::optional<RouteState> to;
+    SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> rows, WallTargets(v, gym, wall, change, &to));
+    if (change.seen) {
+      std::map<int64_t, int64_t> now;
+      std::string names;
+      for (const store::RouteRecord& r : rows) {
+        now[r.id] = r.revision;
+        names += (names.empty() ? "" : ", ") + r.name;
+      }
+      if (now != *change.seen) {
+        return Status::Conflict("revision: the wall's routes changed meanwhile (" +
+                                std::string(Trim(change.from)) + " now: " +
+                                (names.empty() ? "none" : names) + ")");
+      }
+    }
+    for (const store::RouteRecord& r : rows) {
+      StateChange one{NameOf(*to), change.on, r.revision};
+      if (one.on && one.on->empty()) one.on.reset();
+      SB_RETURN_IF_ERROR(ChangeState(v, r.id, one));
+      changed.push_back(r.id);
+    }
+    return Status::Ok();
+  }));
   return changed;
 }
 

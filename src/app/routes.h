@@ -4,6 +4,7 @@
 #define SB_APP_ROUTES_H_
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -117,6 +118,10 @@ struct WallStateChange {
   std::string from, to;
   std::optional<std::string> on;
   std::optional<std::string> day;
+  // The routes the page showed for the change (route id -> revision): when
+  // given, the change is refused (kConflict "revision: ...") unless the wall
+  // holds exactly these routes at these revisions (nullopt: no check).
+  std::optional<std::map<int64_t, int64_t>> seen;
 };
 
 struct ImportSummary {
@@ -242,9 +247,17 @@ class Routes {
   // Every route of wall `wall` (of `gym`) matching `change`; returns the
   // ids changed (each with a history row). Head setters and setters of the
   // gym; kNotFound for another gym's wall; kConflict when CheckTransition
-  // refuses from → to.
+  // refuses from → to, and "revision: ..." (naming what the wall holds now)
+  // when `change.seen` is not what it holds. One transaction
+  // (store::RunAtomically): a route refused in the middle leaves every
+  // route as it was.
   Result<std::vector<int64_t>> ChangeWallState(const Viewer& v, int64_t gym, int64_t wall,
                                                const WallStateChange& change);
+  // The routes ChangeWallState would change now (their ids and revisions
+  // are what a page sends as `seen`), by its checks and errors, in the
+  // order it changes them.
+  Result<std::vector<RouteView>> WallStateRoutes(const Viewer& v, int64_t gym, int64_t wall,
+                                                 const WallStateChange& change);
   // Deletes a route (variations made from it keep their input snapshots).
   // The route's discipline by the rule of app/discipline.h, with where it
   // comes from ("bouldering (from its wall)") and its grade note. Errors:
@@ -307,6 +320,10 @@ class Routes {
   Status ApplyGymFields(const Viewer& v, const GymFields& g, store::RouteRecord* rec,
                         std::vector<std::string>* changes,
                         std::optional<std::vector<store::RouteSetter>>* setters);
+  // ChangeWallState's checks and the rows it changes.
+  Result<std::vector<store::RouteRecord>> WallTargets(const Viewer& v, int64_t gym, int64_t wall,
+                                                      const WallStateChange& change,
+                                                      std::optional<RouteState>* to);
   // The store's filter for a query (Search's checks).
   Result<store::RouteFilter> FilterOf(const Viewer& v, const RouteQuery& q);
 

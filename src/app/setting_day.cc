@@ -23,6 +23,7 @@
 #include "language/symbols.h"
 #include "plan/plan.h"
 #include "app/report_predicted.h"
+#include "store/import_store.h"
 #include "store/prediction_store.h"
 #include "store/target_store.h"
 #include "store/tick_store.h"
@@ -852,29 +853,37 @@ Result<std::vector<int64_t>> SettingDays::ChangeDayState(const Viewer& v, int64_
   if (change.on && !change.on->empty() && !IsIsoDate(*change.on)) {
     return Status::InvalidInput("on: expected a date YYYY-MM-DD");
   }
-  SB_ASSIGN_OR_RETURN(std::vector<DayRoute> day, Planned(v, gym, change.date));
-  std::map<int64_t, int64_t> now;
-  std::string names;
-  for (const DayRoute& r : day) {
-    if (r.state != NameOf(*from) || now.count(r.id)) continue;
-    now[r.id] = r.revision;
-    names += (names.empty() ? "" : ", ") + r.name;
-  }
-  if (change.seen && *change.seen != now) {
-    return Status::Conflict("revision: the day's routes changed meanwhile (" +
-                            std::string(NameOf(*from)) + " now: " + (names.empty() ? "none" : names) + ")");
-  }
   std::vector<int64_t> changed;
-  for (const DayRoute& r : day) {
-    if (r.state != NameOf(*from) ||
-        std::find(changed.begin(), changed.end(), r.id) != changed.end()) {
-      continue;
+  // Issue 31: one transaction, the day read inside it: a route refused in
+  // the middle (changed meanwhile, someone else's draft) leaves the whole
+  // day as it was.
+  SB_RETURN_IF_ERROR(store::RunAtomically(store_, [&]() -> Status {
+    changed.clear();
+    SB_ASSIGN_OR_RETURN(std::vector<DayRoute> day, Planned(v, gym, change.date));
+    std::map<int64_t, int64_t> now;
+    std::string names;
+    for (const DayRoute& r : day) {
+      if (r.state != NameOf(*from) || now.count(r.id)) continue;
+      now[r.id] = r.revision;
+      names += (names.empty() ? "" : ", ") + r.name;
     }
-    StateChange one{NameOf(*to), change.on, r.revision};
-    if (one.on && one.on->empty()) one.on.reset();
-    SB_RETURN_IF_ERROR(routes_->ChangeState(v, r.id, one));
-    changed.push_back(r.id);
-  }
+    if (change.seen && *change.seen != now) {
+      return Status::Conflict("revision: the day's routes changed meanwhile (" +
+                              std::string(NameOf(*from)) + " now: " +
+                              (names.empty() ? "none" : names) + ")");
+    }
+    for (const DayRoute& r : day) {
+      if (r.state != NameOf(*from) ||
+          std::find(changed.begin(), changed.end(), r.id) != changed.end()) {
+        continue;
+      }
+      StateChange one{NameOf(*to), change.on, r.revision};
+      if (one.on && one.on->empty()) one.on.reset();
+      SB_RETURN_IF_ERROR(routes_->ChangeState(v, r.id, one));
+      changed.push_back(r.id);
+    }
+    return Status::Ok();
+  }));
   return changed;
 }
 

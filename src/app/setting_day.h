@@ -34,6 +34,7 @@
 #include "app/scales.h"
 #include "app/variations.h"
 #include "base/status.h"
+#include "gym/rules.h"
 #include "store/store.h"
 
 namespace sb::app {
@@ -162,7 +163,8 @@ struct DayRoute {
 // in `from` now, at those revisions.
 struct DayStateChange {
   std::string date;  // ISO date of the day (required)
-  std::string from = "planned", to = "set";
+  std::string from = gym::NameOf(gym::RouteState::kPlanned);
+  std::string to = gym::NameOf(gym::RouteState::kSet);
   std::optional<std::string> on;  // the day it happens (default: each route's date)
   std::optional<std::map<int64_t, int64_t>> seen;
 };
@@ -234,7 +236,9 @@ class SettingDays {
   // revision checked). Setters and head setters (kPermission; kNotFound for
   // a non-member); kInvalidInput naming "date", "from", "to" or "on";
   // kConflict "revision: ..." when `seen` is not what the day holds now (the
-  // message says what it holds). Returns the ids changed, by wall and name.
+  // message says what it holds). One transaction (store::RunAtomically): a
+  // route refused in the middle leaves the whole day as it was. Returns the
+  // ids changed, by wall and name.
   Result<std::vector<int64_t>> ChangeDayState(const Viewer& v, int64_t gym,
                                               const DayStateChange& change);
 

@@ -13,6 +13,7 @@
 #include "base/fold.h"
 #include "base/log.h"
 #include "gym/rules.h"
+#include "store/circuit_filter.h"
 #include "store/bulk_sql.h"
 #include "store/bulk_store.h"
 #include "store/count_store.h"
@@ -1580,7 +1581,10 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
       w += " AND r.state = ?";
       params->push_back(f.state);
     }
-    if (!f.colour.empty()) {
+    if (std::optional<int64_t> circuit = CircuitIdOfFilter(f.colour)) {  // store/circuit_filter.h
+      w += " AND r.circuit_id = ?";
+      params->push_back(*circuit);
+    } else if (!f.colour.empty()) {
       w += " AND lower(r.colour) = lower(?)";
       params->push_back(f.colour);
     }

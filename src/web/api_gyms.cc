@@ -408,9 +408,31 @@ void PostWallState(Exchange& x) {
     if (!v.ok()) return ApiError(x, v.status());
     *out = *v;
   }
+  Result<std::optional<std::map<int64_t, int64_t>>> seen = SeenRoutesField(*body);
+  if (!seen.ok()) return ApiError(x, seen.status());
+  change.seen = std::move(seen).value();
   Result<std::vector<int64_t>> changed =
       x.services.routes.ChangeWallState(x.caller.viewer, *gym, *wall_id, change);
-  if (!changed.ok()) return ApiError(x, changed.status());
+  if (!changed.ok()) {
+    // Issue 31: a stale page (409) gets what the wall holds now: the routes
+    // the change would apply to (send them back as "routes") and in words.
+    json current;
+    if (changed.status().code() == Status::Code::kConflict) {
+      Result<std::vector<app::RouteView>> now =
+          x.services.routes.WallStateRoutes(x.caller.viewer, *gym, *wall_id, change);
+      if (now.ok()) {
+        json routes = json::object();
+        std::string summary;
+        for (const app::RouteView& r : *now) {
+          routes[std::to_string(r.id)] = r.revision;
+          summary += (summary.empty() ? "" : ", ") + r.name + " (" + r.state + ")";
+        }
+        current = json{{"wall", *wall_id}, {"from", change.from}, {"to", change.to},
+                       {"routes", routes}, {"summary", summary}};
+      }
+    }
+    return ApiConflict(x, changed.status(), current);
+  }
   ReplyJson(x.res, 200, json{{"changed", *changed}, {"count", changed->size()}});
 }
 

@@ -64,6 +64,22 @@ Result<std::string> StringField(const json& body, const char* field) {
   return body[field].get<std::string>();
 }
 
+Result<std::optional<std::map<int64_t, int64_t>>> SeenRoutesField(const json& body) {
+  if (!body.contains("routes") || body["routes"].is_null()) return std::optional<std::map<int64_t, int64_t>>();
+  if (!body["routes"].is_object()) {
+    return Status::InvalidInput("routes: expected an object of route id: revision, as the page showed");
+  }
+  std::map<int64_t, int64_t> seen;
+  for (const auto& [k, rev] : body["routes"].items()) {
+    std::optional<int64_t> id = ParseId(k);
+    if (!id || !rev.is_number_integer()) {
+      return Status::InvalidInput("routes." + k + ": expected a route id and its revision");
+    }
+    seen[*id] = rev.get<int64_t>();
+  }
+  return std::optional<std::map<int64_t, int64_t>>(std::move(seen));
+}
+
 Result<bool> BoolField(const json& body, const char* field, bool fallback) {
   if (!body.contains(field)) return fallback;
   if (!body[field].is_boolean()) {

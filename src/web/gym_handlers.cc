@@ -73,7 +73,7 @@ void PageWall(Exchange& x) {
   const app::RenderKey key{"wall/" + x.caller.lang, wall->id, x.caller.viewer.user_id.value_or(0)};
   if (*stamp) {
     if (auto hit = x.services.rendered.Find(key, **stamp)) {
-      return Html(x, WallPage(x.caller.page(), *gym, *wall, *hit, Today()));
+      return Html(x, WallPage(x.caller.page(), *gym, *wall, *hit));
     }
   }
   app::RouteQuery q;
@@ -93,13 +93,13 @@ void PageWall(Exchange& x) {
   }
   const app::WallAge age = app::WallAgeOf(*wall, routes->routes, app::SystemClock().Now());
   std::string tables = WallRoutesHtml(*gym, *wall, routes->routes, &ascent,
-                                      WallStatus(*wall, age, x.caller.lang), x.caller.lang);
+                                      WallStatus(*wall, age, x.caller.lang), x.caller.lang, Today());
   // A page without its ascent grades (the fit failed) is not kept.
   if (*stamp && ascents.ok()) {
     return Html(x, WallPage(x.caller.page(), *gym, *wall,
-                            *x.services.rendered.Keep(key, **stamp, std::move(tables)), Today()));
+                            *x.services.rendered.Keep(key, **stamp, std::move(tables))));
   }
-  Html(x, WallPage(x.caller.page(), *gym, *wall, tables, Today()));
+  Html(x, WallPage(x.caller.page(), *gym, *wall, tables));
 }
 
 std::string GymBlock(Exchange& x, const app::RouteView& r) {
@@ -112,8 +112,9 @@ std::string GymBlock(Exchange& x, const app::RouteView& r) {
     Result<std::vector<app::HistoryEntry>> h = x.services.routes.History(x.caller.viewer, r.id);
     if (h.ok()) history = std::move(h).value();
   }
-  const bool can_set =
-      role.ok() && (app::CanSet(*role) && (!gym::Is(r.state, gym::RouteState::kDraft) || app::IsOwner(r, x.caller.viewer)));
+  // The editing rule is app's (Routes::CanChange: the owner; the gym's
+  // setters unless a draft), as the state change's.
+  const bool can_set = x.services.routes.CanChange(x.caller.viewer, r);
   // Issue 31: the circuit the route is set in.
   const std::string circuit_row =
       r.circuit_id ? "<dt>" + Tr(x.caller.page(), "Circuit") + "</dt><dd id=\"route-circuit\">" +

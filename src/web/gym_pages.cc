@@ -58,13 +58,6 @@ std::string WallTagsUrl(const app::Gym& gym, int64_t wall) {
   return "/api/gyms/" + std::to_string(gym.id) + "/tags.pdf?wall=" + std::to_string(wall);
 }
 
-std::string StateName(std::string_view lang, const std::string& s) {
-  if (s == "set") return Tr(lang, "on the wall");
-  if (s == "stripped") return Tr(lang, "stripped (archive)");
-  [[maybe_unused]] static constexpr const char* kStates[] = {N_("draft"), N_("planned")};
-  return Tr(lang, s.c_str());
-}
-
 }  // namespace
 
 std::string GymsPage(const PageViewer& v, const std::vector<app::Gym>& gyms) {
@@ -189,7 +182,7 @@ std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<
   } else {
     b += "<ul id=\"circuit-list\">";
     for (const app::Circuit& c : circuits) {
-      b += "<li><a href=\"/?gym=" + gid + "&amp;circuit=" + E(c.colour) + "\">" + ColourHtml(c.colour, v.lang) +
+      b += "<li><a href=\"/?gym=" + gid + "&amp;circuit=" + std::to_string(c.id) + "\">" + ColourHtml(c.colour, v.lang) +
            "</a>";
       if (!c.grade_from.empty() || !c.grade_to.empty()) {
         b += " = " + E(c.grade_from) + "–" + E(c.grade_to);
@@ -288,6 +281,53 @@ std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<
   return PageLayout(v, gym.name, b + Script(v.lang));
 }
 
+// The wall page's buttons for several routes at once (issue 31): "set all
+// planned routes of today" and "strip this wall", each carrying the routes
+// the page shows for it with their revisions (POST
+// /api/gyms/{gym}/walls/{wall}/state refuses the change with 409 when the
+// wall holds others by then); a button with nothing to do is disabled.
+std::string WallActions(const app::Gym& gym, const app::Wall& wall,
+                        const std::vector<app::RouteView>& routes, std::string_view lang,
+                        const std::string& today) {
+  const std::string url = "/api/gyms/" + std::to_string(gym.id) + "/walls/" +
+                          std::to_string(wall.id) + "/state";
+  auto seen = [&](gym::RouteState state, const std::string& day, int* n) {
+    std::string fields;
+    for (const app::RouteView& r : routes) {
+      if (!gym::Is(r.state, state) || (!day.empty() && r.set_on != day)) continue;
+      fields += "<input type=\"hidden\" name=\"routes." + std::to_string(r.id) +
+                "\" data-int value=\"" + std::to_string(r.revision) + "\">";
+      ++*n;
+    }
+    return fields;
+  };
+  auto button = [&](const std::string& id, const std::string& hidden, int n,
+                    const std::string& label, const std::string& confirm) {
+    std::string f = ButtonForm(id, "POST", url, hidden, label, confirm);
+    if (n == 0) {  // nothing to do: shown, not clickable
+      const std::string tag = "<button type=\"submit\"";
+      f.replace(f.find(tag), tag.size(), tag + " disabled");
+    }
+    return f;
+  };
+  int planned = 0, on_wall = 0;
+  const std::string planned_fields = seen(gym::RouteState::kPlanned, today, &planned);
+  const std::string set_fields = seen(gym::RouteState::kSet, "", &on_wall);
+  return "<p class=\"wall-actions no-print\">" +
+         button("wall-set-today",
+                Hidden("from", gym::NameOf(gym::RouteState::kPlanned)) +
+                    Hidden("to", gym::NameOf(gym::RouteState::kSet)) + Hidden("day", today) +
+                    planned_fields,
+                planned, Fmt(Tr(lang, "Set all planned routes of today ({1})"), FormatDate(lang, today)),
+                "") +
+         " " +
+         button("wall-strip",
+                Hidden("from", gym::NameOf(gym::RouteState::kSet)) +
+                    Hidden("to", gym::NameOf(gym::RouteState::kStripped)) + set_fields,
+                on_wall, Tr(lang, "Strip this wall"), Fmt(Tr(lang, "Strip every route on {1}?"), wall.name)) +
+         "</p>\n";
+}
+
 // " (grade in another discipline's scale)" after a route's grade, or "".
 std::string GradeNoteHtml(const app::RouteView& r) {
   std::string note = app::GradeNote(r.grade, r.grade_discipline);
@@ -297,7 +337,8 @@ std::string GradeNoteHtml(const app::RouteView& r) {
 std::string WallRoutesHtml(const app::Gym& gym, const app::Wall& wall,
                            const std::vector<app::RouteView>& routes,
                            const std::map<int64_t, std::string>* ascent_cells,
-                           const std::string& status, std::string_view lang) {
+                           const std::string& status, std::string_view lang,
+                           const std::string& today) {
   std::string b = status + "<p><a id=\"wall-report\" href=\"/gyms/" + std::to_string(gym.id) +
                   "/report?wall=" + std::to_string(wall.id) + "\">" + Tr(lang, "What climbers said") + "</a></p>\n";
   for (gym::RouteState state : {gym::RouteState::kSet, gym::RouteState::kPlanned,
@@ -315,12 +356,13 @@ std::string WallRoutesHtml(const app::Gym& gym, const app::Wall& wall,
       rows += "</tr>\n";
     }
     if (rows.empty()) continue;
-    b += "<h2>" + E(StateName(lang, gym::NameOf(state))) + "</h2>\n<div class=\"table-wrap\"><table class=\"list\" "
+    b += "<h2>" + E(StateLabel(lang, gym::NameOf(state))) + "</h2>\n<div class=\"table-wrap\"><table class=\"list\" "
          "id=\"wall-" + std::string(gym::NameOf(state)) + "\"><thead><tr><th>" + Tr(lang, "Route") + "</th><th>" + Tr(lang, "Grade") + "</th><th>" +
          Tr(lang, "Colour") + "</th><th>" + Tr(lang, "Date") + "</th>" + (ascent_cells ? "<th>" + Tr(lang, "Ascent grade") + "</th>" : std::string()) +
          "</tr></thead><tbody>\n" + rows + "</tbody></table></div>\n";
   }
   if (routes.empty()) b += "<p class=\"empty\">" + Tr(lang, "Nothing on this wall yet.") + "</p>\n";
+  if (app::CanSet(gym.role) && !today.empty()) b += WallActions(gym, wall, routes, lang, today);
   return b;
 }
 
@@ -331,7 +373,7 @@ std::string WallPage(const PageViewer& v, const app::Gym& gym, const app::Wall& 
 }
 
 std::string WallPage(const PageViewer& v, const app::Gym& gym, const app::Wall& wall,
-                     const std::string& routes_html, const std::string& today) {
+                     const std::string& routes_html) {
   std::string b = "<p><a href=\"/gyms/" + std::to_string(gym.id) + "\">" + E(gym.name) +
                   "</a></p>\n<h1 id=\"wall-title\">" + E(wall.name) + "</h1>\n<p>" +
                   E(Tr(v, wall.discipline.c_str())) + ", " + FormatDouble(wall.angle) + "°" +
@@ -343,23 +385,11 @@ std::string WallPage(const PageViewer& v, const app::Gym& gym, const app::Wall& 
     b += "<p class=\"no-print\"><a class=\"button\" id=\"wall-tags\" href=\"" +
          WallTagsUrl(gym, wall.id) + "\">" + Tr(v, "Print this wall's tags") + "</a> " +
          Tr(v, "(its planned routes and those on the wall, 8 a page)") + "</p>\n";
-    b += "<p>" + Fmt(Tr(v, "{1} — then set its wall to {2} on its page."),
-                     "<a href=\"/routes/new\" id=\"plan-here\">" + Tr(v, "New route") + "</a>",
-                     "<strong>" + E(wall.name) + "</strong>") + "</p>\n";
-    if (!today.empty()) {
-      const std::string url = "/api/gyms/" + std::to_string(gym.id) + "/walls/" +
-                              std::to_string(wall.id) + "/state";
-      b += "<p class=\"wall-actions no-print\">" +
-           ButtonForm("wall-set-today", "POST", url,
-                      Hidden("from", gym::NameOf(gym::RouteState::kPlanned)) +
-                          Hidden("to", gym::NameOf(gym::RouteState::kSet)) + Hidden("day", today),
-                      Fmt(Tr(v, "Set all planned routes of today ({1})"), FormatDate(v, today))) +
-           " " +
-           ButtonForm("wall-strip", "POST", url, Hidden("from", gym::NameOf(gym::RouteState::kSet)) +
-                                      Hidden("to", gym::NameOf(gym::RouteState::kStripped)),
-                      Tr(v, "Strip this wall"), Fmt(Tr(v, "Strip every route on {1}?"), wall.name)) +
-           "</p>\n";
-    }
+    // Issue 31: the form of this wall's gym with the wall chosen (whatever
+    // gym the header's switcher is on).
+    b += "<p class=\"no-print\"><a href=\"/routes/new?gym=" + std::to_string(gym.id) + "&amp;wall=" +
+         std::to_string(wall.id) + "\" id=\"plan-here\">" + Tr(v, "New route on this wall") +
+         "</a></p>\n";
   }
   return PageLayout(v, wall.name, b + Script(v.lang));
 }
@@ -368,7 +398,7 @@ std::string RouteGymBlock(const app::RouteView& r, const std::vector<app::Histor
                           bool can_set, std::string_view lang,
                           const std::string& circuit_row) {
   std::string b = "<section class=\"gym-block\" id=\"route-gym\"><h2>" + Tr(lang, "On the wall") + "</h2>\n<dl>";
-  b += "<dt>" + Tr(lang, "State") + "</dt><dd id=\"route-state\">" + E(StateName(lang, r.state)) + "</dd>";
+  b += "<dt>" + Tr(lang, "State") + "</dt><dd id=\"route-state\">" + E(StateLabel(lang, r.state)) + "</dd>";
   b += "<dt>" + Tr(lang, "Wall") + "</dt><dd id=\"route-wall\">" +
        (r.wall_id ? "<a href=\"/walls/" + std::to_string(*r.wall_id) + "\">" + E(r.wall_name) +
                         "</a>"
@@ -378,17 +408,19 @@ std::string RouteGymBlock(const app::RouteView& r, const std::vector<app::Histor
   for (const app::RouteSetter& s : r.setters) setters += (setters.empty() ? "" : ", ") + s.name;
   b += "<dt>" + Tr(lang, "Setters") + "</dt><dd id=\"route-setters\">" + E(setters.empty() ? "—" : setters) + "</dd>";
   if (!r.set_on.empty()) {
-    b += "<dt>" + (r.state == "planned" ? Tr(lang, "Planned for") : Tr(lang, "Set")) +
+    b += "<dt>" + (gym::Is(r.state, gym::RouteState::kPlanned) ? Tr(lang, "Planned for") : Tr(lang, "Set")) +
          "</dt><dd id=\"route-set-on\">" + E(FormatDate(lang, r.set_on)) + "</dd>";
   }
   if (!r.strip_on.empty()) b += "<dt>" + Tr(lang, "Stripped") + "</dt><dd id=\"route-strip-on\">" + E(FormatDate(lang, r.strip_on)) + "</dd>";
   b += "</dl>\n";
   if (can_set) {
     const std::string url = "/api/routes/" + std::to_string(r.id);
-    auto opt = [&](const char* s) {
-      return "<option value=\"" + std::string(s) + "\"" + (r.state == s ? " selected" : "") + ">" +
-             E(StateName(lang, s)) + "</option>";
-    };
+    std::string states;
+    for (gym::RouteState s : gym::kRouteStates) {
+      const std::string name = gym::NameOf(s);
+      states += "<option value=\"" + name + "\"" + (r.state == name ? " selected" : "") + ">" +
+                E(StateLabel(lang, name)) + "</option>";
+    }
     // Issue 31: the buttons of the cycle (plan → set → strip), by the one
     // rule of app::CheckTransition; each carries the revision shown.
     std::string buttons;
@@ -407,8 +439,7 @@ std::string RouteGymBlock(const app::RouteView& r, const std::vector<app::Histor
     if (!buttons.empty()) b += "<p class=\"state-buttons\" id=\"route-state-buttons\">" + buttons + "</p>\n";
     b += ApiForm("route-gym-form", "PUT", url,
                  RevisionField(r.revision) +
-                 "<label>" + Tr(lang, "State") + " <select name=\"state\" id=\"route-state-select\">" + opt("draft") +
-                     opt("planned") + opt("set") + opt("stripped") +
+                 "<label>" + Tr(lang, "State") + " <select name=\"state\" id=\"route-state-select\">" + states +
                      "</select></label><label>" + Tr(lang, "Wall") + " <input name=\"wall\" id=\"route-wall-input\" "
                      "value=\"" + E(r.wall_name) + "\" placeholder=\"" + E(Tr(lang, "wall name or id")) + "\"></label>"
                      "<label>" + Tr(lang, "Setters") + " <input name=\"setters\" id=\"route-setters-input\" data-list "

@@ -40,17 +40,19 @@ std::string WallPage(const PageViewer& v, const app::Gym& gym, const app::Wall& 
                      const std::string& status = "");
 // The part of "/walls/{id}" made from the wall's routes (issue 22: kept by
 // app::RenderCache per gym data version, day and viewer): `status`, the
-// report link and the route tables, as WallPage above shows them. Pure.
+// report link and the route tables, as WallPage above shows them; for
+// setters with `today` given (issue 31) the buttons "set all planned routes
+// of today" and "strip this wall", each carrying the revisions of the routes
+// shown for it (disabled when there are none). Pure.
 std::string WallRoutesHtml(const app::Gym& gym, const app::Wall& wall,
                            const std::vector<app::RouteView>& routes,
                            const std::map<int64_t, std::string>* ascent_cells,
-                           const std::string& status, std::string_view lang = "en");
+                           const std::string& status, std::string_view lang = "en",
+                           const std::string& today = "");
 // "/walls/{id}" around `routes_html` (WallRoutesHtml): the gym link, the
-// title and the wall's line above, the setters' line below and (issue 31,
-// setters, `today` given) the buttons "set all planned routes of today" and
-// "strip this wall". Pure.
+// title and the wall's line above, the setters' line below. Pure.
 std::string WallPage(const PageViewer& v, const app::Gym& gym, const app::Wall& wall,
-                     const std::string& routes_html, const std::string& today = "");
+                     const std::string& routes_html);
 // The block a route page shows for a route of a gym: state, wall, setters,
 // set / strip dates and history; with `can_set`, a form to change them
 // (carrying the route's revision, issue 31) and the plan / set / strip

@@ -5,6 +5,7 @@
 #define SB_WEB_HANDLERS_H_
 
 #include <cstdint>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -105,6 +106,11 @@ nlohmann::json RouteSummaryJson(const app::RouteView& r);
 // Issue 31: the body's "revision" (nullopt when absent or null);
 // kInvalidInput "revision: ..." when not a whole number >= 1.
 Result<std::optional<int64_t>> RevisionField(const nlohmann::json& body);
+// Issue 31: the body's "routes" of a change of several routes at once (a
+// wall's or a setting day's): {"<route id>": revision, ...}, the routes the
+// page showed; nullopt when absent or null; kInvalidInput naming "routes"
+// (or "routes.<key>") otherwise.
+Result<std::optional<std::map<int64_t, int64_t>>> SeenRoutesField(const nlohmann::json& body);
 // A kConflict `s` as 409 {"error", "current": current} (the record as
 // stored now); any other status (or a null `current`) as ApiError.
 void ApiConflict(Exchange& x, const Status& s, const nlohmann::json& current);

@@ -90,7 +90,15 @@ RouteFormData FormDataOf(Exchange& x, std::optional<int64_t> gym) {
 }  // namespace
 
 void PageNewRoute(Exchange& x) {
-  Html(x, EditorPage(x.caller.page(), std::nullopt, FormDataOf(x, x.caller.gym)));
+  RouteFormData form = FormDataOf(x, x.caller.gym);
+  // Issue 31: "New route on this wall" (a wall page's link): that wall
+  // chosen, when it is one of the form's gym.
+  if (std::optional<int64_t> wall = ParseId(x.req.Query("wall").value_or(""))) {
+    for (const app::Wall& w : form.walls) {
+      if (w.id == *wall) form.wall = w.id;
+    }
+  }
+  Html(x, EditorPage(x.caller.page(), std::nullopt, form));
 }
 
 void PageEditRoute(Exchange& x) {

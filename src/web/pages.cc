@@ -224,6 +224,15 @@ std::string Option(const std::string& value, const std::string& label, const std
          E(label) + "</option>";
 }
 
+// An option per route state, `cur` selected.
+std::string StateOptions(std::string_view lang, const std::string& cur) {
+  std::string out;
+  for (gym::RouteState s : gym::kRouteStates) {
+    out += Option(gym::NameOf(s), StateLabel(lang, gym::NameOf(s)), cur);
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string RouteListPage(const PageViewer& v, const app::RoutePage& page,
@@ -244,10 +253,7 @@ std::string RouteListPage(const PageViewer& v, const app::RoutePage& page,
        "\"></label><label>" + Tr(v, "Wall") +
        " <input type=\"text\" name=\"wall\" size=\"10\" value=\"" + E(q.wall) +
        "\"></label><label>" + Tr(v, "State") + " <select name=\"state\" id=\"state-filter\">" +
-       Option("", Tr(v, "any"), q.state) + Option("draft", Tr(v, "draft"), q.state) +
-       Option("planned", Tr(v, "planned"), q.state) +
-       Option("set", Tr(v, "on the wall"), q.state) +
-       Option("stripped", Tr(v, "stripped (archive)"), q.state) + "</select></label>" +
+       Option("", Tr(v, "any"), q.state) + StateOptions(v.lang, q.state) + "</select></label>" +
        (q.gym ? "<input type=\"hidden\" name=\"gym\" value=\"" + std::to_string(*q.gym) + "\">"
               : std::string()) +
        "<label>" + Tr(v, "Show") + " <select name=\"variations\">" +
@@ -355,13 +361,19 @@ const char* const kSave = N_("Save route");
 const char* const kReads = N_("How it reads");
 }  // namespace form_text
 
-std::string StateLabel(const std::string& s) {
-  if (s == "set") return "on the wall";
-  if (s == "stripped") return "stripped (archive)";
-  return s;
-}
-
 }  // namespace
+
+std::string StateLabel(std::string_view lang, std::string_view state) {
+  static constexpr std::pair<gym::RouteState, const char*> kLabels[] = {
+      {gym::RouteState::kDraft, N_("draft")},
+      {gym::RouteState::kPlanned, N_("planned")},
+      {gym::RouteState::kSet, N_("on the wall")},
+      {gym::RouteState::kStripped, N_("stripped (archive)")}};
+  for (const auto& [s, label] : kLabels) {
+    if (gym::Is(state, s)) return Tr(lang, label);
+  }
+  return std::string(state);
+}
 
 std::string EditorPage(const PageViewer& v, const std::optional<app::RouteView>& route,
                        const RouteFormData& form) {
@@ -412,7 +424,7 @@ std::string EditorPage(const PageViewer& v, const std::optional<app::RouteView>&
       if (auto l = form.scale_labels.find(scale); l != form.scale_labels.end()) {
         for (const std::string& x : l->second) labels += (labels.empty() ? "" : "|") + x;
       }
-      const bool chosen = route && route->wall_id == w.id;
+      const bool chosen = route ? route->wall_id == w.id : form.wall == w.id;
       b += "<option value=\"" + std::to_string(w.id) + "\" data-name=\"" + E(w.name) +
            "\" data-scale=\"" + E(scale) + "\" data-labels=\"" + E(labels) + "\"" +
            (chosen ? " selected" : "") + ">" + E(w.name) + "</option>";
@@ -453,7 +465,7 @@ std::string EditorPage(const PageViewer& v, const std::optional<app::RouteView>&
       if (!offer && from) offer = gym::MayChange(*from, state);
       if (!offer) continue;
       b += "<option value=\"" + s + "\"" + (s == cur ? " selected" : "") + ">" +
-           E(Tr(v, StateLabel(s).c_str())) + "</option>";
+           E(StateLabel(v.lang, s)) + "</option>";
     }
     b += "</select>" + msg("state") + "</label>\n";
     b += "<label>" + Tr(v, t::kDate) + " <input type=\"date\" id=\"f-date\" name=\"set_on\" "

@@ -57,6 +57,9 @@ struct RouteFormData {
   std::map<std::string, std::vector<std::string>> scale_labels;
   std::vector<app::Circuit> circuits;
   std::vector<app::Member> members;
+  // A new route's wall chosen beforehand (issue 31: "/routes/new?wall=" from
+  // a wall page); nullopt: none.
+  std::optional<int64_t> wall;
 };
 // "/routes/new" and "/routes/{id}/edit" (`route` = nullopt for a new route):
 // the route form (name, wall, grade, circuit/colour, setters, state, date,
@@ -100,6 +103,10 @@ std::string PageLayout(const PageViewer& v, const std::string& title, const std:
 // `lang`: the page's language (a known single colour word and a hex code's
 // nearest name in it, web/i18n.h ColourLabelIn).
 std::string ColourHtml(const std::string& colour, std::string_view lang = "en");
+// A route state's words on every page (issue 31, one place): "draft",
+// "planned", "on the wall", "stripped (archive)", in `lang`; any other text
+// as it is.
+std::string StateLabel(std::string_view lang, std::string_view state);
 // An error page for `status` with a message (escaped).
 std::string ErrorPage(const PageViewer& v, int status, const std::string& message);
 

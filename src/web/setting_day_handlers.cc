@@ -8,6 +8,7 @@
 #include "base/date.h"
 #include "base/number.h"
 #include "base/text.h"
+#include "gym/rules.h"
 #include "web/error_text.h"
 #include "web/script_messages.h"
 
@@ -211,22 +212,9 @@ void PostSettingDayState(Exchange& x) {
     *out = b[k].get<std::string>();
   }
   if (!on.empty()) c.on = on;
-  if (b.contains("routes") && !b["routes"].is_null()) {
-    if (!b["routes"].is_object()) {
-      return ApiError(x, Status::InvalidInput(
-                             "routes: expected an object of route id: revision, as the page showed"));
-    }
-    std::map<int64_t, int64_t> seen;
-    for (const auto& [k, rev] : b["routes"].items()) {
-      std::optional<int64_t> id = ParseId(k);
-      if (!id || !rev.is_number_integer()) {
-        return ApiError(x, Status::InvalidInput("routes." + k +
-                                                ": expected a route id and its revision"));
-      }
-      seen[*id] = rev.get<int64_t>();
-    }
-    c.seen = std::move(seen);
-  }
+  Result<std::optional<std::map<int64_t, int64_t>>> seen = SeenRoutesField(b);
+  if (!seen.ok()) return ApiError(x, seen.status());
+  c.seen = std::move(seen).value();
   Result<std::vector<int64_t>> changed =
       x.services.setting_days.ChangeDayState(x.caller.viewer, *gym, c);
   if (!changed.ok()) {
@@ -573,22 +561,20 @@ namespace {
 
 // The sheet's state column and buttons (issue 31), its words in one place.
 const char kSheetState[] = N_("State");
-std::string SheetStateName(std::string_view lang, const std::string& s) {
-  if (s == "set") return Tr(lang, "on the wall");
-  if (s == "stripped") return Tr(lang, "stripped");
-  return Tr(lang, s.c_str());
-}
 // The plan / set / strip buttons a route's state allows (app::CheckTransition;
 // POST /api/routes/{id}/state, sent by gyms.js, which reloads the sheet).
 // `copy` tells the rows of a route under two setters apart (0 for the first).
 std::string SheetButtons(const app::DayRoute& r, int copy, std::string_view lang) {
-  static const std::pair<const char*, const char*> kButtons[] = {
-      {"planned", N_("Plan")}, {"set", N_("Set on the wall")}, {"stripped", N_("Strip")}};
+  static constexpr std::pair<gym::RouteState, const char*> kButtons[] = {
+      {gym::RouteState::kPlanned, N_("Plan")},
+      {gym::RouteState::kSet, N_("Set on the wall")},
+      {gym::RouteState::kStripped, N_("Strip")}};
   const std::optional<app::RouteState> from = app::RouteStateOf(r.state);
   if (!from) return "";
   std::string h;
-  for (const auto& [to, label] : kButtons) {
-    if (!app::CheckTransition(*from, *app::RouteStateOf(to)).ok()) continue;
+  for (const auto& [state, label] : kButtons) {
+    if (!app::CheckTransition(*from, state).ok()) continue;
+    const char* to = gym::NameOf(state);
     const std::string id = "sheet-" + std::string(to) + "-" + std::to_string(r.id) +
                            (copy ? "-" + std::to_string(copy + 1) : std::string());
     h += " <form class=\"gym-form inline-form no-print\" id=\"" + id + "\" data-api=\"POST "
@@ -630,7 +616,7 @@ void PageSettingDaySheet(Exchange& x) {
   // sheet shows them (their revisions: a change meanwhile is refused).
   std::string planned_fields;
   for (const app::DayRoute& r : *routes) {
-    if (r.state != "planned" || date.empty()) continue;
+    if (!gym::Is(r.state, gym::RouteState::kPlanned) || date.empty()) continue;
     const std::string f = "<input type=\"hidden\" name=\"routes." + std::to_string(r.id) +
                           "\" data-int value=\"" + std::to_string(r.revision) + "\">";
     if (planned_fields.find(f) == std::string::npos) planned_fields += f;
@@ -638,8 +624,9 @@ void PageSettingDaySheet(Exchange& x) {
   if (!planned_fields.empty() && app::CanSet(gym->role)) {
     b += "<form class=\"gym-form no-print\" id=\"sheet-set-day\" data-api=\"POST /api/gyms/" + g +
          "/setting-days/state\"><input type=\"hidden\" name=\"date\" value=\"" + E(date) +
-         "\"><input type=\"hidden\" name=\"from\" value=\"planned\"><input type=\"hidden\" "
-         "name=\"to\" value=\"set\">" + planned_fields + "<button type=\"submit\">" +
+         "\"><input type=\"hidden\" name=\"from\" value=\"" +
+         gym::NameOf(gym::RouteState::kPlanned) + "\"><input type=\"hidden\" name=\"to\" value=\"" +
+         gym::NameOf(gym::RouteState::kSet) + "\">" + planned_fields + "<button type=\"submit\">" +
          Tr(x.caller.page(), "Set all planned routes of this day") +
          "</button> <span class=\"msg\" role=\"status\"></span></form>\n";
   }
@@ -664,7 +651,7 @@ void PageSettingDaySheet(Exchange& x) {
         b += "<tr data-route=\"" + id + "\"><td>" + E(r->wall_name) +
              "</td><td><a href=\"/routes/" + id + "\">" + E(r->name) + "</a></td><td>" +
              E(r->grade) + "</td><td class=\"num\">" + std::to_string(r->move_count) +
-             "</td><td class=\"sheet-state\">" + E(SheetStateName(lang, r->state)) +
+             "</td><td class=\"sheet-state\">" + E(StateLabel(lang, r->state)) +
              (can_set ? SheetButtons(*r, copies[r->id]++, lang) : std::string()) +
              "</td><td class=\"no-print\"><a href=\"/variations/" + id +
              ".pdf\">" + Tr(lang, "card") + "</a> · <a href=\"/routes/" + id + "/tag.pdf\">" + Tr(lang, "tag") + "</a></td></tr>\n";

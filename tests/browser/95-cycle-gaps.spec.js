@@ -97,6 +97,34 @@ module.exports = async (t) => {
         'the sheet shows them on the wall, with nothing left to set');
   await shot('95-gaps-sheet-set');
 
+  // Two tabs of the route form: the second save is refused; the fields its user did not
+  // change take the first's values, so saving again keeps both edits (nothing lost).
+  const editUrl = base + '/routes/' + second + '/edit';
+  await page.goto(editUrl);
+  const tab3 = await context.newPage();
+  await tab3.goto(editUrl);
+  await page.fill('#f-grade', 'V5');
+  await Promise.all([page.waitForURL(/\/routes\/\d+$/), page.click('#save')]);
+  await tab3.fill('#f-name', 'Gap Two Renamed ' + n);
+  await tab3.click('#save');
+  await tab3.waitForSelector('#conflict-merge');
+  check((await tab3.textContent('#conflict-merge')).includes('now in the form: grade') &&
+        (await tab3.inputValue('#f-grade')) === 'V5' && (await tab3.inputValue('#f-name')) === 'Gap Two Renamed ' + n,
+        'a stale route form takes the other save\'s change and keeps its own');
+  await Promise.all([tab3.waitForURL(/\/routes\/\d+$/), tab3.click('#save')]);
+  await tab3.close();
+  got = (await api('GET', '/api/routes/' + second)).data;
+  check(got.grade === 'V5' && got.name === 'Gap Two Renamed ' + n, 'saving again loses neither edit');
+
+  // The wall page's "Strip this wall" carries the routes it shows: stale, it strips nothing.
+  await page.goto(base + '/walls/' + wall);
+  await api('PUT', '/api/routes/' + first, { setters: [setter] });  // someone else, meanwhile
+  await page.click('#wall-strip button[type="submit"]');
+  await page.waitForFunction(() => document.querySelector('#wall-strip .msg').textContent !== '');
+  check((await page.textContent('#wall-strip .msg')).includes('Gap Red') &&
+        (await api('GET', '/api/routes/' + first)).data.state === 'set',
+        'a stale wall page strips nothing and says what the wall holds now');
+
   // Removing the circuit: the route keeps its colour, its history and the gym's say so.
   await page.goto(base + '/gyms/' + gym);
   await page.click('#circuit-edit-' + blue + ' summary');
