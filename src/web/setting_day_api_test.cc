@@ -230,7 +230,7 @@ TEST_F(SettingDayApiTest, TheSetterPresetStoresTheGallerysBest) {
   const chaos::State default_ic = params->var_ic;
   app::SettingRequest req;
   app::ApplySetterPreset(&*params, &req);
-  auto best = app::ChooseFromGallery(inputs, &*params, req, app::CandidateSlot{}, {});
+  auto best = app::ChooseFromGallery(inputs, &*params, &req, app::CandidateSlot{}, {});
   ASSERT_TRUE(best.ok()) << best.status().message();
   EXPECT_NE(params->var_ic, default_ic);
   EXPECT_EQ(g["count"], best->count);
