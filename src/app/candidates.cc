@@ -81,20 +81,28 @@ struct ScanPoint {
   long order = 0;        // nearest first within its level's scan, levels in order
   int new_moves = 0, moves = 0;
   bool kept = false;     // the gallery's filter (RejectedByFilter, kMinNewMoves, same as input)
+  bool swapped = false;  // hands swapped (the IC meets all but alternate-hands)
   int warnings = 0;
 };
 struct PickerScan {
   long scanned = 0;      // ICs evaluated
-  long meeting = 0;      // of them, meeting the setter's constraints (or all but alternate-hands, swapped)
-  bool swapped = false;  // no IC alternated hands by itself: hands swapped as the search does
+  long meeting = 0;      // of them, meeting the setter's constraints (hands swapped or not)
+  long swapped = 0;      // of those, the ones meeting them once hands are swapped
   std::vector<ScanPoint> points;  // distinct move sequences, nearest first
+  // The mappings (and whether hands were swapped) already made: the moves
+  // are a function of them, so an IC repeating one is not varied again.
+  std::set<std::pair<std::vector<int>, bool>> mappings;
 };
 
 // Scans `centre`'s grid (the request's spacing and plane, kPickRadius steps)
-// and appends its distinct variations (not already in `seen`) to `*out`.
-// Stops once `enough` in-band (`level`) kept points without warnings were
-// found. Errors: the request's (CheckRequestForInputs, InputFacts, the
-// evaluator's).
+// and appends its distinct variations (not already in `seen`) to `*out`:
+// at each IC meeting every constraint, the variation there; at each IC
+// meeting all but alternate-hands, the variation there with hands swapped
+// (chaos::AlternateHands, as the IC search does; the gallery builds a picked
+// IC with a search of radius 0, so exactly this variation is made, whether
+// or not another IC further away alternates by itself). Stops once `enough`
+// in-band (`level`) kept points without warnings were found. Errors: the
+// request's (CheckRequestForInputs, InputFacts, the evaluator's).
 Status ScanLevel(const std::vector<chaos::InputRoute>& inputs_in, const chaos::VaryParams& centre,
                  const SettingRequest& setting, Novelty level, int enough,
                  std::set<std::vector<std::pair<Hand, std::string>>>* seen, PickerScan* out) {
@@ -124,24 +132,29 @@ Status ScanLevel(const std::vector<chaos::InputRoute>& inputs_in, const chaos::V
     }
   }
   std::vector<uint32_t> fails(ics.size());
-  ev.Evaluate(ics.data(), ics.size(), fails.data());
+  const size_t n = static_cast<size_t>(ev.size());
+  std::vector<int> k(ics.size() * n);
+  ev.Evaluate(ics.data(), ics.size(), fails.data(), k.data());
   const long base = out->scanned;
   out->scanned += static_cast<long>(ics.size());
-  std::vector<size_t> meets, fallback;
+  // ICs meeting every constraint, and those failing alternate-hands only
+  // (their hands swapped), nearest first.
+  std::vector<size_t> use;
   for (size_t i = 0; i < ics.size(); ++i) {
-    if (fails[i] == 0) meets.push_back(i);
-    else if ((requested & alt) && (fails[i] & ~alt) == 0) fallback.push_back(i);
+    if (fails[i] == 0 || ((requested & alt) && (fails[i] & ~alt) == 0)) use.push_back(i);
+    if (fails[i] != 0 && (requested & alt) && (fails[i] & ~alt) == 0) ++out->swapped;
   }
-  // As the IC search: ICs meeting every constraint, else (none) the ones
-  // failing alternate-hands only, their hands swapped.
-  const bool swap = meets.empty() && !fallback.empty();
-  const std::vector<size_t>& use = swap ? fallback : meets;
   out->meeting += static_cast<long>(use.size());
-  out->swapped |= swap;
   int found = 0;
   int varied = 0;
   for (size_t i : use) {
-    if (found >= enough || ++varied > kMaxPickVaried) break;
+    if (found >= enough) break;
+    const bool swap = fails[i] != 0;
+    if (!out->mappings.insert({std::vector<int>(k.begin() + i * n, k.begin() + (i + 1) * n), swap})
+             .second) {
+      continue;
+    }
+    if (++varied > kMaxPickVaried) break;
     chaos::VaryParams p = centre;
     p.var_ic = ics[i];
     auto v = chaos::Vary(inputs, p, is_match);
@@ -174,6 +187,7 @@ Status ScanLevel(const std::vector<chaos::InputRoute>& inputs_in, const chaos::V
     pt.new_moves = change.new_moves;
     pt.moves = change.moves;
     pt.warnings = static_cast<int>(w.warnings.size());
+    pt.swapped = swap;
     pt.kept = change.same_as.empty() && change.new_moves >= kMinNewMoves &&
               !RejectedByFilter(w, nullptr, swap && same_hand_at > 0);
     if (pt.kept && pt.warnings == 0 && NoveltyOf(pt.new_moves, pt.moves) == level) ++found;
@@ -524,7 +538,8 @@ Result<std::vector<Candidate>> MakeGallery(const std::vector<chaos::InputRoute>&
   static constexpr int kDirs[8][2] = {{1, 0}, {1, 1}, {0, 1}, {-1, 1},
                                       {-1, 0}, {-1, -1}, {0, -1}, {1, -1}};
   std::vector<Candidate> out;
-  std::set<std::pair<chaos::State, int>> used;
+  // Two ICs giving the same moves are one candidate (the first kept).
+  std::set<std::vector<std::pair<Hand, std::string>>> made;
   Status first_error;
   SmoothingRequest no_smoothing;
   // The level asked first, then the others, nearest first (mix before the
@@ -564,11 +579,13 @@ Result<std::vector<Candidate>> MakeGallery(const std::vector<chaos::InputRoute>&
   struct Start {
     chaos::State ic;
     int skip;
+    int radius;  // the search's reach from `ic` (0: the IC picker's point, made as scanned)
   };
   std::vector<Start> starts;
   if (picker) {
     // In the level without a warning, then in it with warnings, then the
-    // nearest to its band, then the rest; nearest their level's centre first.
+    // nearest to its band, then the rest; hands alternating by themselves
+    // before hands swapped, then nearest their level's centre.
     std::vector<const ScanPoint*> pts;
     for (const ScanPoint& pt : scan.points) pts.push_back(&pt);
     auto tier = [&](const ScanPoint& pt) {
@@ -584,11 +601,12 @@ Result<std::vector<Candidate>> MakeGallery(const std::vector<chaos::InputRoute>&
         if (oa != ob) return oa < ob;
         if (a->warnings != b->warnings) return a->warnings < b->warnings;
       }
+      if (a->swapped != b->swapped) return !a->swapped;
       return a->order < b->order;
     });
     for (const ScanPoint* pt : pts) {
       if (static_cast<int>(starts.size()) >= want) break;
-      starts.push_back({pt->ic, pt->skip});
+      starts.push_back({pt->ic, pt->skip, 0});
     }
   }
   // The level's rings fill what the picker did not (and are the gallery
@@ -607,7 +625,7 @@ Result<std::vector<Candidate>> MakeGallery(const std::vector<chaos::InputRoute>&
       }
     }
     for (size_t i = 0; i < ics.size() && static_cast<int>(starts.size()) < want; ++i) {
-      starts.push_back({ics[i], centre.skip});
+      starts.push_back({ics[i], centre.skip, setting.grid.radius});
     }
   }
   int index = 0;
@@ -615,15 +633,18 @@ Result<std::vector<Candidate>> MakeGallery(const std::vector<chaos::InputRoute>&
     chaos::VaryParams p = params;
     p.var_ic = st.ic;
     p.skip = st.skip;
+    SettingRequest at = setting;
+    at.grid.radius = st.radius;
     SmoothingOutcome outcome;
-    Result<plan::RoutePlan> plan = BuildPlan(inputs, p, setting, no_smoothing, &outcome);
+    Result<plan::RoutePlan> plan = BuildPlan(inputs, p, at, no_smoothing, &outcome);
     if (!plan.ok()) {
       if (first_error.ok()) first_error = plan.status();
       ++index;
       continue;
     }
-    const chaos::State at = plan->search ? plan->search->used_ic : st.ic;
-    if (!used.insert({at, p.skip}).second) {
+    std::vector<std::pair<Hand, std::string>> key;
+    for (const chaos::VariedMove& m : plan->variation.moves) key.push_back({m.hand, m.text});
+    if (!made.insert(std::move(key)).second) {
       ++index;
       continue;
     }
@@ -633,6 +654,7 @@ Result<std::vector<Candidate>> MakeGallery(const std::vector<chaos::InputRoute>&
     c.plan = std::move(plan).value();
     c.searched_from = st.ic;
     c.skip = p.skip;
+    c.search_radius = st.radius;
     c.index = index++;
     out.push_back(std::move(c));
   }
@@ -680,7 +702,8 @@ Result<std::vector<Candidate>> MakeGallery(const std::vector<chaos::InputRoute>&
              (scanned_levels == 1 ? std::string("the level asked")
                                   : std::to_string(scanned_levels) + " novelty levels") +
              "): " + std::to_string(scan.meeting) + " meet the setter's constraints" +
-             (scan.swapped ? " once hands are swapped (no IC alternates hands by itself)" : "") +
+             (scan.swapped ? " (" + std::to_string(scan.swapped) + " of them once hands are swapped)"
+                           : std::string()) +
              ", giving " + std::to_string(scan.points.size()) + " different variations, " +
              std::to_string(kept) + " of them pass the filter" +
              (kept ? " with " + std::to_string(lo) + " to " + std::to_string(hi) + " of " +
@@ -720,16 +743,17 @@ int GalleryPlanCount(const GalleryOptions& options) {
 
 Result<GalleryChoice> ChooseFromGallery(const std::vector<chaos::InputRoute>& inputs,
                                         chaos::VaryParams* params,
-                                        const SettingRequest& setting,
+                                        SettingRequest* setting,
                                         const CandidateSlot& slot,
                                         const GalleryOptions& options) {
   GalleryChoice out;
   SB_ASSIGN_OR_RETURN(out.candidates,
-                      MakeGallery(inputs, *params, setting, slot, options, &out.note));
+                      MakeGallery(inputs, *params, *setting, slot, options, &out.note));
   out.count = static_cast<int>(out.candidates.size());
   for (const Candidate& c : out.candidates) out.kept += c.score.rejected ? 0 : 1;
   params->var_ic = out.candidates.front().searched_from;
   params->skip = out.candidates.front().skip;
+  setting->grid.radius = out.candidates.front().search_radius;
   return out;
 }
 

@@ -166,6 +166,11 @@ struct Candidate {
   CandidateScore score;
   chaos::State searched_from{};  // the IC its search started at
   int skip = 0;                  // the transient it was made with (its level's)
+  // The reach of the IC search it was made with, in grid steps: 0 for an
+  // IC the picker chose (the variation scanned there, exactly), the
+  // request's for the rings' ICs. app::BuildPlan from `searched_from` and
+  // `skip` with this radius makes it again.
+  int search_radius = 0;
   int index = 0;                 // its place in the order the ICs were tried
 };
 
@@ -209,9 +214,11 @@ chaos::VaryParams NoveltyCentre(const chaos::VaryParams& params, Novelty n);
 // IC search (about 0.1 s each on the project's 2-core machine).
 inline constexpr int kMaxGalleryRings = 4;
 
-// Builds a plan (app::BuildPlan with `setting`) at each candidate IC, drops
-// those whose IC search fails and duplicates (the same IC reached from two
-// starts), scores the rest for `slot` and ranks them (RankCandidates).
+// Builds a plan (app::BuildPlan with `setting`; at the picker's ICs with a
+// search radius of 0, Candidate::search_radius) at each candidate IC, drops
+// those whose IC search fails and duplicates (the same moves, hands
+// included, from two ICs: the first kept), scores the rest for `slot` and
+// ranks them (RankCandidates).
 // Errors: bad options (kInvalidInput), the scorer's, and when no candidate
 // could be made, the first candidate's error. Deterministic.
 // `*note` (optional) says, in words, when the level asked could not be met
@@ -240,14 +247,14 @@ struct GalleryChoice {
 // charges to a work budget before the work starts. Pure.
 int GalleryPlanCount(const GalleryOptions& options);
 // Makes the gallery (MakeGallery with `slot` and `options`) from `*params`
-// and sets params->var_ic (and skip) to the IC the best candidate's search
-// started at,
-// so app::BuildPlan with `*params` and `setting` rebuilds that candidate and
-// a stored variation with those parameters rebuilds the same. Errors:
-// MakeGallery's. Deterministic.
+// and `*setting`, sets params->var_ic (and skip) to the IC the best
+// candidate's search started at and setting->grid.radius to its search's
+// reach (Candidate::search_radius), so app::BuildPlan with `*params` and
+// `*setting` rebuilds that candidate and a stored variation with those
+// parameters rebuilds the same. Errors: MakeGallery's. Deterministic.
 Result<GalleryChoice> ChooseFromGallery(const std::vector<chaos::InputRoute>& inputs,
                                         chaos::VaryParams* params,
-                                        const SettingRequest& setting,
+                                        SettingRequest* setting,
                                         const CandidateSlot& slot,
                                         const GalleryOptions& options);
 

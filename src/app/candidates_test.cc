@@ -15,9 +15,10 @@ namespace sb::app {
 namespace {
 
 // Pair x level combinations of the 36 met with no warning at the setting
-// day's search radius, measured 2026-11-28 with the IC picker (docs/setting.md "Novelty the
-// setter chooses"): a floor against regressions, not the aim (every one).
-constexpr int kNoveltyMetAtLeast = 23;
+// day's search radius, measured 2026-11-28 with the IC picker, moves compared
+// hand-blind (docs/setting.md "Novelty the setter chooses": `new` is out of
+// reach on every pair, each saying why): a floor against regressions.
+constexpr int kNoveltyMetAtLeast = 20;
 
 Move M(Hand h, std::string text) {
   Move m;
@@ -178,15 +179,37 @@ TEST(CandidateChangeTest, RejectsAnInputOrAConcatenationAndSaysWhatChanged) {
   EXPECT_EQ(c.new_moves, 1);
   EXPECT_EQ(c.moves, 9);
   // Reordered: R pinch start, R small crimp, L small crimp, L sloper, R jug
-  // finish: three moves follow another than in A.
+  // finish: the two small crimps swapped are the same moves by text (hands
+  // ignored), so nothing follows another than in A.
   c = ChangeAgainstInputs(FromMapping(two, {0, 2, 1, 3, 4}).moves, two);
+  EXPECT_EQ(c.new_moves, 0);
+  // R pinch start, L sloper, R small crimp, L small crimp, R jug finish:
+  // sloper after the start, small crimp after sloper and jug finish after
+  // small crimp are new.
+  c = ChangeAgainstInputs(FromMapping(two, {0, 3, 2, 1, 4}).moves, two);
   EXPECT_EQ(c.new_moves, 3);
   EXPECT_EQ(c.moves, 5);
-  // A start no input has is new, and so is the move after it (hands count:
-  // L pinch start is not A's R pinch start).
+  // Moves compare by what the hand does, not by which hand (issue 33): a
+  // hand relabelled to alternate hands (the setters' own fix) is no new move
+  // (L pinch start is A's R pinch start), nor is a change of case or
+  // punctuation; a start no input has is new, and so is the move after it.
   chaos::Variation other = FromMapping(two, {0, 1, 2, 3, 4});
   other.moves[0].hand = Hand::kLeft;
+  other.moves[0].notes.push_back("(hand swapped)");
+  EXPECT_EQ(ChangeAgainstInputs(other.moves, two).new_moves, 0);
+  EXPECT_EQ(ChangeAgainstInputs(other.moves, two).same_as, "");  // not the input itself
+  other.moves[1].text = "Small crimp!";
+  EXPECT_EQ(ChangeAgainstInputs(other.moves, two).new_moves, 0);
+  other.moves[0].text = "gaston";
   EXPECT_EQ(ChangeAgainstInputs(other.moves, two).new_moves, 2);
+  // A match carried with its predecessor is not new: "match" after "jug"
+  // in the input, shown as "(match?)" with the other hand's move's text.
+  Route m;
+  m.moves = {M(Hand::kLeft, "jug"), M(Hand::kRight, "match"), M(Hand::kRight, "crimp")};
+  const std::vector<chaos::InputRoute> with_match = {{"M", m}};
+  chaos::Variation mv = FromMapping(with_match, {0, 1, 2});
+  ASSERT_EQ(mv.moves[1].notes, std::vector<std::string>{"(match?)"});
+  EXPECT_EQ(ChangeAgainstInputs(mv.moves, with_match).new_moves, 0);
 
   auto scorer = CandidateScorer::Make(CandidateSlot{});
   if (!scorer.ok()) GTEST_SKIP() << "grammar or model missing: " << scorer.status().message();
@@ -392,6 +415,23 @@ TEST(NoveltyTest, EachLevelsBestLandsInItsBandOnTheExamplePairs) {
         const Candidate& best = g->front();
         const bool ok = !best.score.rejected && best.score.novelty == level &&
                         best.score.warnings.empty();
+        // The best is made again from what is stored of it (its IC, skip and
+        // search radius: 0 at the picker's ICs), move for move.
+        {
+          chaos::VaryParams p = params;
+          p.var_ic = best.searched_from;
+          p.skip = best.skip;
+          SettingRequest at = req;
+          at.grid.radius = best.search_radius;
+          SmoothingOutcome outcome;
+          auto again = BuildPlan(in, p, at, SmoothingRequest{}, &outcome);
+          ASSERT_TRUE(again.ok()) << again.status().message();
+          ASSERT_EQ(again->variation.moves.size(), best.plan.variation.moves.size());
+          for (size_t j = 0; j < again->variation.moves.size(); ++j) {
+            EXPECT_EQ(again->variation.moves[j].text, best.plan.variation.moves[j].text);
+            EXPECT_EQ(again->variation.moves[j].hand, best.plan.variation.moves[j].hand);
+          }
+        }
         ++total;
         if (ok) {
           ++met;
@@ -419,6 +459,38 @@ TEST(NoveltyTest, EachLevelsBestLandsInItsBandOnTheExamplePairs) {
   std::printf("novelty levels met with no warnings: %d of %d (missed: %s)\n", met, total,
               misses.c_str());
   EXPECT_GE(met, kNoveltyMetAtLeast);
+}
+
+// Issue 33, "Must show": `make run`'s demo prints the `mix` level's
+// variation: scripts/run.sh varies crimp ladder + slab dance with
+// `--preset setter --novelty mix`, and that gallery's best (the CLI's search
+// radius) is a mix of its inputs and new moves without a warning.
+TEST(NoveltyTest, MakeRunsDemoPrintsTheMixLevel) {
+  const Result<std::string> run = ReadFile(std::string(SB_SOURCE_DIR) + "/scripts/run.sh");
+  ASSERT_TRUE(run.ok()) << run.status().message();
+  EXPECT_NE(run->find("vary --preset setter --novelty mix data/examples/crimp-ladder.crdl "
+                      "data/examples/slab-dance.crdl"),
+            std::string::npos);
+  if (!CandidateScorer::Make({}).ok()) GTEST_SKIP() << "grammar or model missing";
+  std::vector<chaos::InputRoute> in;
+  for (const char* f : {"crimp-ladder", "slab-dance"}) {
+    auto r = ReadCrdlFile(std::string(SB_SOURCE_DIR) + "/data/examples/" + f + ".crdl");
+    ASSERT_TRUE(r.ok()) << r.status().message();
+    in.push_back({r->Name("x"), *r});
+  }
+  SettingRequest req;
+  chaos::VaryParams params;
+  ApplySetterPreset(&params, &req);
+  GalleryOptions go;
+  go.novelty = Novelty::kMix;
+  auto choice = ChooseFromGallery(in, &params, &req, {}, go);
+  ASSERT_TRUE(choice.ok()) << choice.status().message();
+  const Candidate& best = choice->candidates.front();
+  EXPECT_FALSE(best.score.rejected);
+  EXPECT_EQ(best.score.novelty, Novelty::kMix)
+      << best.score.new_moves << " of " << best.score.moves;
+  EXPECT_TRUE(best.score.warnings.empty());
+  EXPECT_EQ(choice->note, "");
 }
 
 }  // namespace

@@ -627,7 +627,9 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
         chaos::VaryParams p = params;
         p.var_ic = c.searched_from;
         p.skip = c.skip;
-        dc.params_json = plan::ParametersJson(p, setting);
+        SettingRequest at = setting;  // its search's reach (0: the IC picker's point)
+        at.grid.radius = c.search_radius;
+        dc.params_json = plan::ParametersJson(p, at);
         dc.moves = std::move(moves);
         dc.score = c.score;
         dc.inputs = work[i].ids;

@@ -258,15 +258,16 @@ Result<CreatedVariation> Variations::Create(const Viewer& v, const VariationRequ
   SB_ASSIGN_OR_RETURN(bool is_public, VariationVisibility(recs, req.is_public, gym_of_setter));
   SB_RETURN_IF_ERROR(CheckRequestSearchBudget(req.setting, req.params, total_moves));
   chaos::VaryParams params = req.params;
+  SettingRequest setting = req.setting;  // the gallery's best: its search's reach
   std::optional<GalleryChoice> gallery;
   if (req.gallery) {  // the setter's preset: the IC of the gallery's best
     GalleryOptions go;
     go.novelty = req.novelty;
-    SB_ASSIGN_OR_RETURN(gallery, ChooseFromGallery(inputs, &params, req.setting, *req.gallery, go));
+    SB_ASSIGN_OR_RETURN(gallery, ChooseFromGallery(inputs, &params, &setting, *req.gallery, go));
   }
   // The parameters with the setter's request: one codec (plan::ParametersJson),
   // also the key of "the same request made again".
-  const std::string params_json = plan::ParametersJson(params, req.setting);
+  const std::string params_json = plan::ParametersJson(params, setting);
   const std::string key = RequestKey(params_json, req.smooth, recs, req.is_public, req.meta);
   if (!req.duplicate) {
     // The same request made before: that variation, not a second copy.
@@ -293,7 +294,7 @@ Result<CreatedVariation> Variations::Create(const Viewer& v, const VariationRequ
   CreatedVariation out;
   out.gallery = std::move(gallery);
   SB_ASSIGN_OR_RETURN(out.plan,
-                      BuildPlan(inputs, params, req.setting, smoothing, &out.smoothing));
+                      BuildPlan(inputs, params, setting, smoothing, &out.smoothing));
   if (!out.smoothing.status.ok()) {
     // The reason names server files: logged here, summarised for the client.
     LogError("smoothing: " + out.smoothing.status.message());

@@ -129,7 +129,7 @@ int RunVary(const std::vector<std::string>& args) {
     // The best again (BuildPlan below), from the IC its search started at,
     // with the smoothing asked.
     Result<app::GalleryChoice> gallery =
-        app::ChooseFromGallery(*inputs, &*params, *req, slot, gallery_options);
+        app::ChooseFromGallery(*inputs, &*params, &*req, slot, gallery_options);
     if (!gallery.ok()) return Fail(kCmd, gallery.status().WithPrefix("--preset setter"));
     gallery_report = "\nSetter preset: " + std::to_string(gallery->count) +
                      " candidates (max-repeat 1, keep-start, keep-finish, alternate-hands; "

@@ -1,6 +1,7 @@
 #include "plan/warnings.h"
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <cstdlib>
 #include <set>
@@ -289,16 +290,55 @@ PlanWarnings Warn(const chaos::Variation& v, const chaos::MoveFacts& facts) {
 
 MoveChange NewMoveCount(const std::vector<chaos::VariedMove>& moves,
                         const std::vector<chaos::InputRoute>& inputs) {
-  using Key = std::pair<Hand, std::string>;
-  std::set<Key> starts;
-  std::set<std::pair<Key, Key>> follows;
   MoveChange out;
-  out.moves = static_cast<int>(moves.size());
+  const int n = static_cast<int>(moves.size());
+  out.moves = n;
+  const bool tokens = chaos::AreTokens(inputs);
+  // Texts compared case- and punctuation-blind (tokens: exactly), hands
+  // ignored, through chaos's repeat classes: the varied moves, the raw input
+  // moves, the input moves as the match rule prepares them, then per varied
+  // move the raw text of its source when it is a match ("(match?)").
+  std::vector<chaos::VariedMove> texts(moves.begin(), moves.end());
+  int total = 0;
+  for (const chaos::InputRoute& in : inputs) {
+    for (const Move& m : in.route.moves) {
+      chaos::VariedMove x;
+      x.text = m.text;
+      texts.push_back(std::move(x));
+      ++total;
+    }
+  }
+  for (const chaos::VariedMove& m : chaos::PrepareMoves(inputs)) texts.push_back(m);
+  for (const chaos::VariedMove& m : moves) {
+    chaos::VariedMove x;
+    x.text = m.text;
+    const bool match = std::find(m.notes.begin(), m.notes.end(), "(match?)") != m.notes.end();
+    if (match && m.source && m.source->route >= 0 &&
+        m.source->route < static_cast<int>(inputs.size()) && m.source->move >= 0 &&
+        m.source->move < static_cast<int>(inputs[m.source->route].route.moves.size())) {
+      x.text = inputs[m.source->route].route.moves[m.source->move].text;
+    }
+    texts.push_back(std::move(x));
+  }
+  const std::vector<int> cls = chaos::RepeatClasses(texts, tokens);
+  // An input move reads as its own text or the match rule's; a varied move
+  // as its text or (a match) its source's.
+  auto input_keys = [&](int f) { return std::array<int, 2>{cls[n + f], cls[n + total + f]}; };
+  auto varied_keys = [&](int j) {
+    return std::array<int, 2>{cls[j], cls[n + 2 * total + j]};
+  };
+  std::set<int> starts;
+  std::set<std::pair<int, int>> follows;
+  int flat = 0;
   for (const chaos::InputRoute& in : inputs) {
     const std::vector<Move>& m = in.route.moves;
-    if (!m.empty()) starts.insert({m[0].hand, m[0].text});
-    for (size_t i = 1; i < m.size(); ++i) {
-      follows.insert({{m[i - 1].hand, m[i - 1].text}, {m[i].hand, m[i].text}});
+    for (size_t i = 0; i < m.size(); ++i, ++flat) {
+      for (int b : input_keys(flat)) {
+        if (i == 0) starts.insert(b);
+        for (int a : i > 0 ? input_keys(flat - 1) : std::array<int, 2>{-1, -1}) {
+          if (a >= 0) follows.insert({a, b});
+        }
+      }
     }
     if (out.same_as.empty() && m.size() == moves.size() &&
         std::equal(m.begin(), m.end(), moves.begin(),
@@ -308,10 +348,17 @@ MoveChange NewMoveCount(const std::vector<chaos::VariedMove>& moves,
       out.same_as = in.name;
     }
   }
-  for (size_t i = 0; i < moves.size(); ++i) {
-    const Key k{moves[i].hand, moves[i].text};
-    const bool known = i == 0 ? starts.count(k) > 0
-                              : follows.count({{moves[i - 1].hand, moves[i - 1].text}, k}) > 0;
+  for (int j = 0; j < n; ++j) {
+    bool known = false;
+    if (!moves[j].text.empty()) {
+      for (int b : varied_keys(j)) {
+        if (j == 0) {
+          known |= starts.count(b) > 0;
+        } else if (!moves[j - 1].text.empty()) {
+          for (int a : varied_keys(j - 1)) known |= follows.count({a, b}) > 0;
+        }
+      }
+    }
     out.new_moves += known ? 0 : 1;
   }
   return out;

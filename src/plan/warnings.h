@@ -36,9 +36,14 @@ struct Warning {
 
 // How much a variation changes its inputs, the one count every plan,
 // gallery and setting day shows (issue 33): a move is new when it does not
-// follow its predecessor in any input (the first move: when no input starts
-// with it); moves compare by hand and text. `same_as` names an input whose
-// moves the variation equals ("" = none). Pure.
+// follow its predecessor in any input, wherever the two stand there (the
+// first move: when no input starts with it). Moves compare by what the hand
+// does, not by which hand: their texts, case and punctuation ignored (token
+// sequences: exactly), a match also as the text the match rule gives it
+// ("(match?)"), so a hand relabelled to alternate hands ("(hand swapped)",
+// the setters' own fix) is not a new move (docs/setting.md, "What counts as
+// a new move"). A blank is new. `same_as` names an input whose moves the
+// variation equals, hands and texts exactly ("" = none). Pure.
 struct MoveChange {
   int new_moves = 0;
   int moves = 0;
