@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "app/convert.h"
 #include "base/log.h"
 #include "base/text.h"
 #include "store/auth.h"
@@ -97,7 +96,7 @@ Result<User> Accounts::SignUp(std::string_view username, std::string_view passwo
   if (!hash.ok()) return hash.status();
   SB_ASSIGN_OR_RETURN(int64_t id, store_->CreateUser(name, *hash));
   SB_ASSIGN_OR_RETURN(store::User created, store_->FindUser(id));
-  User out = ToView(created);
+  User out = created;
   out.password_hash.clear();  // never leaves the services
   return out;
 }
@@ -183,7 +182,7 @@ Result<NewSession> Accounts::LogIn(std::string_view username, std::string_view p
   out.session.username = user->username;
   out.session.csrf = store::RandomToken();
   out.session.expires_at = now + options_.session_seconds;
-  SB_RETURN_IF_ERROR(store_->CreateSession(ToRecord(out.session)));
+  SB_RETURN_IF_ERROR(store_->CreateSession(out.session));
   return out;
 }
 
@@ -191,7 +190,7 @@ Result<Session> Accounts::SessionOf(std::string_view token) {
   // Tokens are 64 hex digits; anything much longer is not one of ours.
   if (token.empty() || token.size() > 128) return Status::NotFound("no such session");
   SB_ASSIGN_OR_RETURN(store::Session s, store_->FindSession(store::HashToken(token), clock_->Now()));
-  return ToView(s);
+  return s;
 }
 
 Status Accounts::LogOut(std::string_view token) {

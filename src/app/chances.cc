@@ -4,7 +4,6 @@
 #include <tuple>
 #include <utility>
 
-#include "app/convert.h"
 #include "base/date.h"
 #include "grades/ratings.h"
 #include "grades/scale.h"
@@ -126,7 +125,7 @@ Result<Chance> Chances::For(const Viewer& v, int64_t route_id) {
     }
     return r.status();
   }
-  return For(v, ToView(*r));
+  return For(v, *r);
 }
 
 Result<ProjectList> Chances::Projects(int64_t gym, const std::vector<ProjectCandidate>& routes) {

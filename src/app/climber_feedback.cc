@@ -5,7 +5,6 @@
 #include <map>
 #include <span>
 
-#include "app/convert.h"
 #include "app/discipline.h"
 #include "app/routes.h"
 #include "base/text.h"
@@ -153,13 +152,13 @@ Result<FeedbackPage> ClimberFeedback::Page(const Viewer& v, int64_t route_id,
   if (std::optional<std::string> hash = ParticipantHash(participant_token)) {
     SB_ASSIGN_OR_RETURN(std::optional<store::FeedbackRecord> mine,
                         feedback_->FindFeedback(route_id, *hash));
-    if (mine) page.mine = ToView(*mine);
+    if (mine) page.mine = *mine;
     // Answers to an earlier questionnaire do not fit this one.
     if (page.mine && page.mine->instrument != page.instrument.name) page.mine->answers.clear();
   }
   SB_ASSIGN_OR_RETURN(std::vector<store::FeedbackRecord> all, feedback_->ListFeedback(route_id));
   SB_ASSIGN_OR_RETURN(page.grade, Summarise(route, all, IsOwner(route, v)));
-  page.route = ToView(route);
+  page.route = route;
   return page;
 }
 
@@ -211,7 +210,7 @@ Result<FeedbackSaved> ClimberFeedback::Submit(const Viewer& v, int64_t route_id,
   SB_ASSIGN_OR_RETURN(std::optional<store::FeedbackRecord> stored,
                       feedback_->FindFeedback(route_id, rec.participant));
   if (stored) rec = std::move(*stored);
-  out.record = ToView(rec);
+  out.record = rec;
   return out;
 }
 
@@ -269,7 +268,7 @@ Result<SetterView> ClimberFeedback::ForSetter(const Viewer& v, int64_t route_id)
     out.comments.push_back({f.comment, f.felt_grade, f.updated_at.substr(0, 10)});
   }
   out.instrument = std::move(instrument);
-  out.route = ToView(route);
+  out.route = route;
   return out;
 }
 

@@ -196,7 +196,7 @@ TEST(WallAgeTest, OnlyTheWallCountsAndDueIsTheOneRule) {
       route("stripped", "2020-01-01"), // gone: not counted
       route("planned", "2019-01-01"),  // not up yet
   };
-  struct Wall wall;  // (the fixture below has a function Wall)
+  app::Wall wall;  // (the fixture below has a function Wall)
   WallAge age = WallAgeOf(wall, routes, now);
   EXPECT_EQ(age.on_wall, 3);
   ASSERT_TRUE(age.oldest_days);

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "app/convert.h"
 #include "app/discipline.h"
 #include "app/scales.h"
 #include "base/number.h"
@@ -34,6 +33,12 @@ Status CheckName(const std::string& field, const std::string& name, size_t max) 
 
 namespace {
 
+// The wall as stored: its name trimmed.
+Wall Stored(Wall w) {
+  w.name = std::string(Trim(w.name));
+  return w;
+}
+
 // "circuit red (V0–V2)" for the history.
 std::string CircuitText(const Circuit& c) {
   std::string out = "circuit " + c.colour;
@@ -46,18 +51,14 @@ std::string CircuitText(const Circuit& c) {
 // A circuit's fields checked and trimmed; kInvalidInput naming the field.
 // Issue 32: the range is read in the scales of the gym's walls (a gym
 // scale's labels where its walls use one) and must ascend.
-Result<store::CircuitRecord> CircuitRow(const Circuit& c,
-                                        const std::vector<WallGradeScale>& scales) {
+Result<Circuit> CircuitRow(const Circuit& c, const std::vector<WallGradeScale>& scales) {
   SB_RETURN_IF_ERROR(CheckName("colour", c.colour, GymLimits::kMaxColourBytes));
   SB_RETURN_IF_ERROR(plan::CheckColour("colour", c.colour));  // issue 32
   SB_RETURN_IF_ERROR(ReadCircuitRange(scales, c.grade_from, c.grade_to).status());
-  store::CircuitRecord r;
-  r.id = c.id;
-  r.gym_id = c.gym_id;
+  Circuit r = c;
   r.colour = std::string(Trim(c.colour));
   r.grade_from = std::string(Trim(c.grade_from));
   r.grade_to = std::string(Trim(c.grade_to));
-  r.revision = c.revision;
   return r;
 }
 
@@ -280,16 +281,13 @@ Status Gyms::AddMember(const Viewer& v, int64_t gym, const std::string& username
 Result<std::vector<Member>> Gyms::Members(const Viewer& v, int64_t gym) {
   SB_ASSIGN_OR_RETURN(std::string role, MemberRole(v, gym));
   (void)role;
-  SB_ASSIGN_OR_RETURN(std::vector<store::MemberRecord> all, gyms_->ListMembers(gym));
-  std::vector<Member> out;
-  for (const store::MemberRecord& m : all) out.push_back({m.user_id, m.username, m.role, m.display_name});
-  return out;
+  return gyms_->ListMembers(gym);
 }
 
 Result<int64_t> Gyms::AddWall(const Viewer& v, const Wall& w) {
   SB_RETURN_IF_ERROR(RequireHead(v, w.gym_id));
   SB_RETURN_IF_ERROR(ValidateWall(w));
-  SB_ASSIGN_OR_RETURN(int64_t id, gyms_->InsertWall(ToRecord(w)));
+  SB_ASSIGN_OR_RETURN(int64_t id, gyms_->InsertWall(Stored(w)));
   SB_RETURN_IF_ERROR(Record(v, w.gym_id, "wall " + std::string(Trim(w.name)) + " added"));
   return id;
 }
@@ -312,14 +310,14 @@ Status Gyms::EditWall(const Viewer& v, const Wall& w) {
       (std::string(Trim(edited.name)) != stored.name ? " (now " + std::string(Trim(edited.name)) + ")"
                                                      : std::string());
   if (edited.discipline == stored.discipline) {
-    SB_RETURN_IF_ERROR(gyms_->UpdateWall(ToRecord(edited)));
+    SB_RETURN_IF_ERROR(gyms_->UpdateWall(Stored(edited)));
     return Record(v, stored.gym_id, what);
   }
   // A new discipline reaches the wall's routes in the same transaction: each
   // route's stored discipline and grade value by the rule of
   // app/discipline.h (a head setter's "discipline:" line still wins).
   const std::string discipline = edited.discipline;
-  SB_RETURN_IF_ERROR(gyms_->UpdateWall(ToRecord(edited), [&discipline](store::RouteAxis* a) {
+  SB_RETURN_IF_ERROR(gyms_->UpdateWall(Stored(edited), [&discipline](store::RouteAxis* a) {
     Result<Route> r = ParseCrdl(a->crdl, "route " + std::to_string(a->route_id));
     if (!r.ok()) return false;  // stored text always parses; nothing to derive otherwise
     RouteDiscipline d = DisciplineOfRoute(*r, discipline);
@@ -342,10 +340,7 @@ Status Gyms::DeleteWall(const Viewer& v, int64_t gym, int64_t wall) {
 Result<std::vector<Wall>> Gyms::Walls(const Viewer& v, int64_t gym) {
   SB_ASSIGN_OR_RETURN(std::string role, MemberRole(v, gym));
   (void)role;
-  SB_ASSIGN_OR_RETURN(std::vector<store::WallRecord> all, gyms_->ListWalls(gym));
-  std::vector<Wall> out;
-  for (const store::WallRecord& r : all) out.push_back(ToView(r));
-  return out;
+  return gyms_->ListWalls(gym);
 }
 
 Result<Wall> Gyms::GetWall(const Viewer& v, int64_t wall) {
@@ -357,7 +352,7 @@ Result<Wall> Gyms::GetWall(const Viewer& v, int64_t wall) {
   }
   SB_ASSIGN_OR_RETURN(std::string role, RoleIn(v, r->gym_id));
   if (role.empty()) return NoWall(std::to_string(wall));  // another gym's id: never its data
-  return ToView(*r);
+  return r;
 }
 
 Result<Wall> Gyms::ResolveWall(int64_t gym, const std::string& id_or_name) {
@@ -367,11 +362,11 @@ Result<Wall> Gyms::ResolveWall(int64_t gym, const std::string& id_or_name) {
   if (ParseInt(key, &id) && id > 0) {
     Result<store::WallRecord> r = gyms_->GetWall(id);
     if (!r.ok() || r->gym_id != gym) return NoWall(key);
-    return ToView(*r);
+    return r;
   }
   SB_ASSIGN_OR_RETURN(std::vector<store::WallRecord> all, gyms_->ListWalls(gym));
   for (const store::WallRecord& r : all) {
-    if (ToLower(r.name) == ToLower(key)) return ToView(r);
+    if (ToLower(r.name) == ToLower(key)) return r;
   }
   return NoWall("'" + key + "' in this gym");
 }
@@ -379,7 +374,7 @@ Result<Wall> Gyms::ResolveWall(int64_t gym, const std::string& id_or_name) {
 Result<int64_t> Gyms::AddCircuit(const Viewer& v, const Circuit& c) {
   SB_RETURN_IF_ERROR(RequireHead(v, c.gym_id));
   SB_ASSIGN_OR_RETURN(std::vector<WallGradeScale> scales, GymWallScales(store_, c.gym_id));
-  SB_ASSIGN_OR_RETURN(store::CircuitRecord r, CircuitRow(c, scales));
+  SB_ASSIGN_OR_RETURN(Circuit r, CircuitRow(c, scales));
   SB_ASSIGN_OR_RETURN(int64_t id, gyms_->InsertCircuit(r));
   Circuit added = c;
   added.colour = r.colour;
@@ -389,8 +384,8 @@ Result<int64_t> Gyms::AddCircuit(const Viewer& v, const Circuit& c) {
 
 Result<Circuit> Gyms::FindCircuit(int64_t gym, int64_t circuit) {
   SB_ASSIGN_OR_RETURN(std::vector<store::CircuitRecord> all, gyms_->ListCircuits(gym));
-  for (const store::CircuitRecord& r : all) {
-    if (r.id == circuit) return Circuit{r.id, r.gym_id, r.colour, r.grade_from, r.grade_to, r.revision};
+  for (const Circuit& r : all) {
+    if (r.id == circuit) return r;
   }
   return Status::NotFound("no circuit " + std::to_string(circuit));
 }
@@ -405,7 +400,7 @@ Status Gyms::EditCircuit(const Viewer& v, const Circuit& c) {
   Circuit edited = c;
   edited.revision = stored.revision;
   SB_ASSIGN_OR_RETURN(std::vector<WallGradeScale> scales, GymWallScales(store_, c.gym_id));
-  SB_ASSIGN_OR_RETURN(store::CircuitRecord r, CircuitRow(edited, scales));
+  SB_ASSIGN_OR_RETURN(Circuit r, CircuitRow(edited, scales));
   SB_RETURN_IF_ERROR(gyms_->UpdateCircuit(r));
   edited.colour = r.colour;
   return Record(v, c.gym_id, CircuitText(stored) + " edited: now " + CircuitText(edited));
@@ -433,10 +428,8 @@ Result<Circuit> Gyms::ResolveCircuit(int64_t gym, const std::string& id_or_colou
   SB_ASSIGN_OR_RETURN(std::vector<store::CircuitRecord> all, gyms_->ListCircuits(gym));
   int64_t id = 0;
   const bool by_id = ParseInt(key, &id) && id > 0;
-  for (const store::CircuitRecord& r : all) {
-    if (by_id ? r.id == id : ToLower(r.colour) == ToLower(key)) {
-      return Circuit{r.id, r.gym_id, r.colour, r.grade_from, r.grade_to, r.revision};
-    }
+  for (const Circuit& r : all) {
+    if (by_id ? r.id == id : ToLower(r.colour) == ToLower(key)) return r;
   }
   return Status::InvalidInput("circuit: no circuit '" + key + "' in this gym");
 }
@@ -444,12 +437,7 @@ Result<Circuit> Gyms::ResolveCircuit(int64_t gym, const std::string& id_or_colou
 Result<std::vector<Circuit>> Gyms::Circuits(const Viewer& v, int64_t gym) {
   SB_ASSIGN_OR_RETURN(std::string role, MemberRole(v, gym));
   (void)role;
-  SB_ASSIGN_OR_RETURN(std::vector<store::CircuitRecord> all, gyms_->ListCircuits(gym));
-  std::vector<Circuit> out;
-  for (const store::CircuitRecord& r : all) {
-    out.push_back({r.id, r.gym_id, r.colour, r.grade_from, r.grade_to, r.revision});
-  }
-  return out;
+  return gyms_->ListCircuits(gym);
 }
 
 Result<std::vector<HistoryEntry>> Gyms::History(int64_t route_id) {

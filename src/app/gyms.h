@@ -21,6 +21,7 @@
 
 #include "app/options.h"
 #include "base/status.h"
+#include "gym/records.h"
 #include "gym/rules.h"
 #include "store/gym_store.h"
 #include "store/store.h"
@@ -38,37 +39,14 @@ struct Gym {
   int64_t revision = 0;  // issue 31: one more on every rename
 };
 
-struct Member {
-  int64_t user_id = 0;
-  std::string username;
-  std::string role;
-  std::string display_name;  // issue 32: "" when not set (the user name is shown)
-};
-
-// A wall (or sector). The floor-plan rectangle is all set or all unset.
-struct Wall {
-  int64_t id = 0;
-  int64_t gym_id = 0;
-  std::string name;
-  std::string discipline = "bouldering";  // or "roped"
-  double angle = 0;                       // degrees past vertical; negative = slab
-  int position = 0;                       // the gym's order of walls
-  std::optional<int> reset_weeks;
-  std::optional<int> plan_x, plan_y, plan_w, plan_h;
-  // Issue 31: one more on every edit. An edit with revision > 0 is refused
-  // (kConflict) unless it is the stored one.
-  int64_t revision = 0;
-  int64_t targets_revision = 0;  // read only: the revision of its targets
-};
-
-// A circuit: a tape colour with an optional grade range.
-struct Circuit {
-  int64_t id = 0;
-  int64_t gym_id = 0;
-  std::string colour;
-  std::string grade_from, grade_to;
-  int64_t revision = 0;  // as Wall::revision
-};
+// A member (its role: "head", "setter", "climber"), a wall (or sector; the
+// floor-plan rectangle is all set or all unset) and a circuit (a tape colour
+// with an optional grade range): the gym's nouns of gym/records.h, the same
+// structs the store keeps. A wall or circuit edited with revision > 0 is
+// refused (kConflict) unless that is the stored one (issue 31).
+using Member = gym::Member;
+using Wall = gym::Wall;
+using Circuit = gym::Circuit;
 
 // One change of a gym's set-up (issue 31): who, when, what.
 struct GymHistoryEntry {

@@ -12,7 +12,6 @@
 #include <vector>
 
 #include "app/climber_policy.h"
-#include "app/convert.h"
 #include "app/discipline.h"
 #include "app/routes.h"
 #include "app/scales.h"
@@ -54,7 +53,6 @@ std::string DisciplineOf(const std::string& grade_discipline) {
   return grade_discipline.empty() ? "bouldering" : grade_discipline;
 }
 std::string DisciplineOf(const store::RouteRecord& r) { return DisciplineOf(r.grade_discipline); }
-std::string DisciplineOf(const RouteView& r) { return DisciplineOf(r.grade_discipline); }
 
 // The scale a route's grade is written in (the discipline's default when
 // unreadable).
@@ -518,7 +516,7 @@ Result<TickSaved> Logbook::Log(const Viewer& v, int64_t route_id,
   // 34): ticks of one gym are applied one at a time, so each updates the
   // cached fit whatever the concurrency.
   SB_ASSIGN_OR_RETURN(t, WriteTick(route, replaced, young, [&] { return ticks_->PutTick(t); }));
-  out.tick = ToView(t);
+  out.tick = t;
   return out;
 }
 
@@ -1100,7 +1098,7 @@ Result<std::vector<Tick>> Logbook::ForSetters(const Viewer& v, int64_t route_id,
                      std::to_string(policy_.burst_window_seconds / 60) + " min";
     }
   }
-  return ToViews(ticks);
+  return ticks;
 }
 
 Status Logbook::Decide(const Viewer& v, int64_t route_id, int64_t tick_id, bool accept) {
@@ -1133,7 +1131,7 @@ Result<LogbookView> Logbook::Mine(const Viewer& v, std::string_view participant_
   if (key) {
     out.climber = *key;
     SB_ASSIGN_OR_RETURN(std::vector<store::TickRecord> ticks, ticks_->ClimberTicks(*key));
-    out.ticks = ToViews(ticks);
+    out.ticks = ticks;
   }
   // (band value, band name) -> sends; a route on a wall with a gym scale
   // (issue 32) counts under its label, valued at the label's middle.

@@ -15,7 +15,6 @@
 #include <thread>
 #include <vector>
 
-#include "app/convert.h"
 #include "app/logbook_fixture.h"
 #include "grades/ratings.h"
 #include "grades/ratings_synth.h"
@@ -871,7 +870,7 @@ TEST_F(LogbookTest, AscentGradeHasAnIntervalAndFlagsOnlyOutsideTheBand) {
   // untried route and a route outside a gym are not fitted.
   const int64_t untried = Route("Untried", "V2");
   std::vector<RouteView> page;
-  for (int64_t id : {route_, easy, untried}) page.push_back(ToView(*store_->GetRoute(id)));
+  for (int64_t id : {route_, easy, untried}) page.push_back(*store_->GetRoute(id));
   RouteView loose;
   loose.id = 999999;
   page.push_back(loose);

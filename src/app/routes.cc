@@ -5,7 +5,6 @@
 #include <ctime>
 #include <map>
 
-#include "app/convert.h"
 #include "app/discipline.h"
 #include "app/limits.h"
 #include "app/scales.h"
@@ -144,10 +143,6 @@ Result<std::string> WithGivenStyles(std::string_view crdl, const std::vector<std
   return PrintCrdl(r);
 }
 
-bool IsOwner(const store::RouteRecord& r, const Viewer& v) {
-  return v.user_id && r.owner_id && *r.owner_id == *v.user_id;
-}
-
 bool IsOwner(const RouteView& r, const Viewer& v) {
   return v.user_id && r.owner_id && *r.owner_id == *v.user_id;
 }
@@ -234,8 +229,7 @@ Result<Viewer> Routes::WithGyms(const Viewer& v) {
 }
 
 Result<std::vector<RouteView>> Routes::List(const Viewer& v, const RouteQuery& q) {
-  SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> rows, ListRows(v, q));
-  return ToViews(rows);
+  return ListRows(v, q);
 }
 
 Result<std::vector<store::RouteRecord>> Routes::ListRows(const Viewer& v, const RouteQuery& q) {
@@ -248,8 +242,7 @@ Result<RoutePage> Routes::Search(const Viewer& v, const RouteQuery& q) {
   RoutePage page;
   page.offset = f.offset;
   page.limit = f.limit;
-  SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> rows, store_->ListRoutes(f));
-  page.routes = ToViews(rows);
+  SB_ASSIGN_OR_RETURN(page.routes, store_->ListRoutes(f));
   SB_ASSIGN_OR_RETURN(page.total, store_->CountRoutes(f));
   return page;
 }
@@ -335,11 +328,7 @@ Result<int> Routes::RefreshMetadata() {
   return changed;
 }
 
-Result<RouteDiscipline> Routes::DisciplineOf(const RouteView& r) {
-  return DisciplineOf(ToRecord(r));
-}
-
-Result<RouteDiscipline> Routes::DisciplineOf(const store::RouteRecord& rec) {
+Result<RouteDiscipline> Routes::DisciplineOf(const RouteView& rec) {
   std::string wall;
   if (store::GymStore* gs = store::GymStoreOf(store_); gs && rec.wall_id) {
     SB_ASSIGN_OR_RETURN(store::WallRecord w, gs->GetWall(*rec.wall_id));
@@ -403,13 +392,11 @@ Status Routes::SetDiscipline(const Viewer& v, const std::string& discipline,
 }
 
 Result<RouteView> Routes::Get(const Viewer& v, int64_t id) {
-  SB_ASSIGN_OR_RETURN(store::RouteRecord r, GetRow(v, id));
-  return ToView(r);
+  return GetRow(v, id);
 }
 
 Result<RouteView> Routes::GetOwned(const Viewer& v, int64_t id) {
-  SB_ASSIGN_OR_RETURN(store::RouteRecord r, GetOwnedRow(v, id));
-  return ToView(r);
+  return GetOwnedRow(v, id);
 }
 
 Result<store::RouteRecord> Routes::GetRow(const Viewer& viewer, int64_t id) {
@@ -439,7 +426,7 @@ Status Routes::CheckChange(const Viewer& v, const store::RouteRecord& r) {
 }
 
 bool Routes::CanChange(const Viewer& v, const RouteView& r) {
-  return v.logged_in() && CheckChange(v, ToRecord(r)).ok();
+  return v.logged_in() && CheckChange(v, r).ok();
 }
 
 Result<int64_t> Routes::Create(const Viewer& v, std::string_view crdl,

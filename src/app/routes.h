@@ -189,7 +189,6 @@ inline constexpr char kPrivateSourceMessage[] =
 
 // The ownership rule: only the owner (a logged-in user) may change a route.
 bool IsOwner(const RouteView& r, const Viewer& v);
-bool IsOwner(const store::RouteRecord& r, const Viewer& v);
 
 // Thread-safe. Does not own `store` or `plans`.
 class Routes {
@@ -263,7 +262,6 @@ class Routes {
   // comes from ("bouldering (from its wall)") and its grade note. Errors:
   // the wall's lookup, an unparsable stored CRDL.
   Result<RouteDiscipline> DisciplineOf(const RouteView& r);
-  Result<RouteDiscipline> DisciplineOf(const store::RouteRecord& r);
   // Errors as GetOwned.
   Status Delete(const Viewer& v, int64_t id);
 

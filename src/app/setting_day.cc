@@ -1,6 +1,5 @@
 #include "app/setting_day.h"
 
-#include "app/convert.h"
 #include "app/grade_prediction.h"
 
 #include <algorithm>

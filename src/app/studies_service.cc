@@ -1,6 +1,5 @@
 #include "app/studies_service.h"
 
-#include "app/convert.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -227,12 +226,12 @@ Status StudyService::Update(const Viewer& v, int64_t id, const StudySpec& spec,
 Result<std::vector<Study>> StudyService::Mine(const Viewer& v) {
   if (!v.logged_in()) return Status::Unauthenticated("log in first");
   SB_ASSIGN_OR_RETURN(std::vector<store::StudyRecord> mine, studies_->ListStudies(*v.user_id));
-  return ToViews(mine);
+  return mine;
 }
 
 Result<Study> StudyService::Owned(const Viewer& v, int64_t id) {
   SB_ASSIGN_OR_RETURN(store::StudyRecord st, OwnedRow(v, id));
-  return ToView(st);
+  return st;
 }
 
 Result<store::StudyRecord> StudyService::OwnedRow(const Viewer& v, int64_t id) {
@@ -361,7 +360,7 @@ Result<Participant> StudyService::Respond(const Viewer& v, int64_t id,
 Result<StudyResults> StudyService::Load(const Viewer& v, int64_t id) {
   StudyResults out;
   SB_ASSIGN_OR_RETURN(store::StudyRecord st, OwnedRow(v, id));
-  out.study = ToView(st);
+  out.study = st;
   SB_ASSIGN_OR_RETURN(out.instrument, StoredInstrument(st));
   SB_ASSIGN_OR_RETURN(std::vector<store::StudyResponseRecord> responses,
                       studies_->ListStudyResponses(id));

@@ -1,6 +1,5 @@
 #include "app/variations.h"
 
-#include "app/convert.h"
 
 #include <algorithm>
 
@@ -353,7 +352,7 @@ Result<PlanView> Variations::Plan(const Viewer& v, int64_t id) {
     plans_->Put(id, entry);
   }
   PlanView out;
-  out.record = ToView(*r);
+  out.record = *r;
   out.plan = std::shared_ptr<const plan::RoutePlan>(entry, &entry->plan);
   out.smoothing_note = entry->note;
   out.edits = entry->edits;

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "base/status.h"
+#include "gym/records.h"
 #include "store/store.h"
 
 namespace sb::store {
@@ -29,42 +30,11 @@ struct GymRecord {
   int64_t revision = 0;  // schema 14 (issue 31): one more on every rename
 };
 
-// A member of a gym: "head" (head setter), "setter" or "climber".
-struct MemberRecord {
-  int64_t gym_id = 0;
-  int64_t user_id = 0;
-  std::string username;
-  std::string role;
-  std::string display_name;  // issue 32: "" when not set
-};
-
-// A wall (or sector) of a gym. `position` orders a gym's walls; the floor
-// plan rectangle (grid units) is all set or all unset.
-struct WallRecord {
-  int64_t id = 0;
-  int64_t gym_id = 0;
-  std::string name;
-  std::string discipline = "bouldering";  // or "roped"
-  double angle = 0;                       // degrees from vertical (overhang > 0)
-  int position = 0;
-  std::optional<int> reset_weeks;
-  std::optional<int> plan_x, plan_y, plan_w, plan_h;
-  // Schema 14 (issue 31): one more on every UpdateWall; UpdateWall with
-  // revision > 0 writes only over that stored revision (kConflict else).
-  int64_t revision = 0;
-  // Read only: the revision of the wall's targets (TargetStore::SetWallTargets).
-  int64_t targets_revision = 0;
-};
-
-// A circuit: one of the gym's tape colours, with an optional grade range.
-struct CircuitRecord {
-  int64_t id = 0;
-  int64_t gym_id = 0;
-  std::string colour;
-  std::string grade_from;  // "" = open
-  std::string grade_to;
-  int64_t revision = 0;  // schema 14: as WallRecord::revision
-};
+// A member, a wall and a circuit of a gym: one struct each, shared with the
+// application layer (gym/records.h).
+using MemberRecord = gym::Member;
+using WallRecord = gym::Wall;
+using CircuitRecord = gym::Circuit;
 
 // One change of a gym's set-up (walls, circuits, members, its name) by a
 // head setter (schema 14, issue 31).

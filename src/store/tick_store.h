@@ -13,34 +13,14 @@
 #include <vector>
 
 #include "base/status.h"
+#include "gym/records.h"
 #include "store/store.h"
 
 namespace sb::store {
 
-// One tick: a climber's ascent (or tries) of a route on one day. `climber`
-// is the logbook's key: "u:ID" for a signed-in climber (user_id set), "d:HASH"
-// for a device (the participant token's hash). One tick per route, climber and
-// day. `origin` is a hash of the submitting address (burst detection only).
-struct TickRecord {
-  int64_t id = 0;
-  int64_t route_id = 0;
-  int64_t gym_id = 0;
-  std::string climber;
-  std::optional<int64_t> user_id;
-  std::string origin;
-  std::string day;      // "YYYY-MM-DD"
-  std::string outcome;  // "flash", "send" or "attempt"
-  std::optional<int> attempts;
-  std::optional<int> stars;  // 1..5
-  std::string felt_grade;    // as the climber typed it ("" = none)
-  std::string felt_discipline;
-  std::optional<double> felt_value;  // on felt_discipline's axis
-  std::string comment;
-  std::string state = "ok";  // "ok", "held" (a burst, for the setters) or "discarded"
-  std::string created_at;    // "YYYY-MM-DD HH:MM:SS" UTC, set by the caller
-  std::string updated_at;
-  int revision = 0;  // 1 on insert, +1 on every change (read only)
-};
+// One tick of the logbook: one struct, shared with the application layer
+// (gym/records.h).
+using TickRecord = gym::Tick;
 
 // A gym's data versions (table gym_versions, schema 13; one row read):
 // cache keys. `ticks` moves on every write of the gym's ticks (the fits over
