@@ -829,11 +829,7 @@ Result<std::vector<store::RouteRecord>> Routes::WallTargets(const Viewer& v, int
 Result<std::vector<RouteView>> Routes::WallStateRoutes(const Viewer& v, int64_t gym, int64_t wall,
                                                        const WallStateChange& change) {
   std::optional<RouteState> to;
-  SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> rows, WallTargets(v, gym, wall, change, &to));
-  std::vector<RouteView> out;
-  out.reserve(rows.size());
-  for (const store::RouteRecord& r : rows) out.push_back(ToView(r));
-  return out;
+  return WallTargets(v, gym, wall, change, &to);
 }
 
 Result<std::vector<int64_t>> Routes::ChangeWallState(const Viewer& v, int64_t gym, int64_t wall,
