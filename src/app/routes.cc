@@ -13,7 +13,6 @@
 #include "base/number.h"
 #include "base/text.h"
 #include "gym/rules.h"
-#include "store/circuit_filter.h"
 #include "store/gym_store.h"
 #include "store/import_store.h"
 #include "grades/evaluate.h"
@@ -273,7 +272,8 @@ Result<store::RouteFilter> Routes::FilterOf(const Viewer& v, const RouteQuery& q
   f.colour = std::string(Trim(q.circuit));
   if (int64_t circuit = 0; ParseInt(f.colour, &circuit) && circuit > 0) {
     if (f.gym_id) SB_RETURN_IF_ERROR(gyms_.ResolveCircuit(*f.gym_id, f.colour).status());
-    f.colour = store::CircuitIdFilter(circuit);
+    f.colour.clear();
+    f.circuit_id = circuit;
   }
   f.is_variation = q.variations;
   f.public_only = q.public_only;

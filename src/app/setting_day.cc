@@ -486,6 +486,9 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
     auto make_pool = [&](const std::vector<store::RouteRecord>& recs) {
       std::vector<Pool> pool;
       for (const store::RouteRecord& r : recs) {
+        // A route graded for the other discipline never feeds this wall: its
+        // grade would be read on the wrong axis (a roped 5.10 as a boulder).
+        if (!r.grade_discipline.empty() && r.grade_discipline != w.discipline) continue;
         // Lists carry no CRDL: each route is read once per proposal.
         auto cached = parsed.find(r.id);
         if (cached == parsed.end()) {

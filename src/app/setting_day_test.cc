@@ -282,5 +282,48 @@ TEST_F(SettingDayTest, NoCandidateIsOfferedInTwoSlots) {
   EXPECT_GT(offered, 3);
 }
 
+// A roped route of the library never feeds a bouldering wall's slot: its
+// grade would be read on the wrong axis (found by hand: a 5.10 "boulder").
+// The slot asks for pockets, which only the library's routes have, and its
+// roped routes are the older: without the rule they would be its inputs.
+TEST_F(SettingDayTest, ASlotTakesOnlyInputsOfItsWallsDiscipline) {
+  const std::vector<std::vector<std::string>> moves = {
+      {"R pocket", "L crimp", "R finger pocket", "L gaston", "R pocket", "L jug finish"},
+      {"L pocket", "R crimp", "L finger pocket", "R pinch", "L pocket", "R jug finish"}};
+  std::set<int64_t> roped, boulders;
+  for (const char* grade : {"5.10a", "V3"}) {
+    for (size_t i = 0; i < moves.size(); ++i) {
+      Result<int64_t> id = services_->routes.Create(
+          head_, RouteText(std::string(grade) + " " + std::to_string(i), grade, moves[i]), true,
+          GymFields{});
+      ASSERT_TRUE(id.ok()) << id.status().message();
+      (grade[0] == '5' ? roped : boulders).insert(*id);
+    }
+  }
+  Result<int64_t> g = services_->gyms.Create(head_, "Empty Barn");
+  ASSERT_TRUE(g.ok()) << g.status().message();
+  Wall w;
+  w.gym_id = *g;
+  w.name = "Slab";
+  Result<int64_t> wall = services_->gyms.AddWall(head_, w);
+  ASSERT_TRUE(wall.ok()) << wall.status().message();
+  SettingDayRequest r;
+  r.gym = *g;
+  r.date = "2026-12-01";
+  r.walls = {*wall};
+  r.slots = {{*wall, "", "pocket"}};
+  r.candidates = 3;
+  Result<SettingDayProposal> p = services_->setting_days.Propose(head_, r);
+  ASSERT_TRUE(p.ok()) << p.status().message();
+  ASSERT_EQ(p->slots.size(), 1u);
+  ASSERT_FALSE(p->slots[0].candidates.empty()) << p->slots[0].note;
+  for (const DayCandidate& c : p->slots[0].candidates) {
+    for (int64_t in : c.inputs) {
+      EXPECT_EQ(roped.count(in), 0u) << "roped input " << in;
+      EXPECT_EQ(boulders.count(in), 1u) << "input " << in;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace sb::app

@@ -13,7 +13,6 @@
 #include "base/fold.h"
 #include "base/log.h"
 #include "gym/rules.h"
-#include "store/circuit_filter.h"
 #include "store/bulk_sql.h"
 #include "store/bulk_store.h"
 #include "store/count_store.h"
@@ -1581,10 +1580,11 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
       w += " AND r.state = ?";
       params->push_back(f.state);
     }
-    if (std::optional<int64_t> circuit = CircuitIdOfFilter(f.colour)) {  // store/circuit_filter.h
+    if (f.circuit_id) {
       w += " AND r.circuit_id = ?";
-      params->push_back(*circuit);
-    } else if (!f.colour.empty()) {
+      params->push_back(*f.circuit_id);
+    }
+    if (!f.colour.empty()) {
       w += " AND lower(r.colour) = lower(?)";
       params->push_back(f.colour);
     }

@@ -67,6 +67,7 @@ struct RouteFilter {
   std::optional<int64_t> wall_id;
   std::string state;
   std::string colour;
+  std::optional<int64_t> circuit_id;  // issue 31: the routes set in this circuit
   std::optional<bool> is_variation;
   std::optional<int64_t> owner;  // only this owner's routes
   // Difficulty range: routes of `grade_discipline` whose grade_value lies in
