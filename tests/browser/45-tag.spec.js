@@ -10,7 +10,7 @@ const { execFileSync } = require('child_process');
 function decode(t, pdf, stem) {
   execFileSync('pdftoppm', ['-png', '-r', '200', '-f', '1', '-l', '1', '-singlefile', pdf, path.join(t.out, stem)]);
   try {
-    return execFileSync('zbarimg', ['-q', '--raw', path.join(t.out, stem + '.png')]).toString().trim();
+    return execFileSync('zbarimg', ['-q', '--raw', '-Sdatabar.disable', '-Sdatabar-exp.disable', path.join(t.out, stem + '.png')]).toString().trim();
   } catch (e) {
     return 'zbarimg failed: ' + e.message;
   }

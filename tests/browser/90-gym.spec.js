@@ -12,7 +12,7 @@ const { execFileSync } = require('child_process');
 function decode(out, pdf, stem) {
   execFileSync('pdftoppm', ['-png', '-r', '200', '-f', '1', '-l', '1', '-singlefile', pdf, path.join(out, stem)]);
   try {
-    return execFileSync('zbarimg', ['-q', '--raw', path.join(out, stem + '.png')]).toString().trim().split('\n')[0];
+    return execFileSync('zbarimg', ['-q', '--raw', '-Sdatabar.disable', '-Sdatabar-exp.disable', path.join(out, stem + '.png')]).toString().trim().split('\n')[0];
   } catch (e) {
     return 'zbarimg failed: ' + e.message;
   }

@@ -70,7 +70,7 @@ module.exports = async (t) => {
   const png = fs.readdirSync(out).find((f) => f.startsWith('94-sektor-a') && f.endsWith('.png'));
   let qr = '';
   try {
-    qr = execFileSync('zbarimg', ['-q', '--raw', path.join(out, png)]).toString().trim().split('\n')[0];
+    qr = execFileSync('zbarimg', ['-q', '--raw', '-Sdatabar.disable', '-Sdatabar-exp.disable', path.join(out, png)]).toString().trim().split('\n')[0];
   } catch (e) { qr = 'zbarimg failed: ' + e.message; }
   const onA = (await api('GET', '/api/routes?gym=' + gym + '&wall=' + a.id)).data.routes.map((r) => r.id);
   const qrId = Number((qr.match(/\/r\/(\d+)$/) || [])[1]);
