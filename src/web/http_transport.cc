@@ -118,8 +118,13 @@ class WorkerPool {
     max_anonymous_ = std::min(max_anonymous, max_queue);
     for (int i = 0; i < threads; ++i) threads_.emplace_back([this] { Work(); });
   }
+  // What a task gives back to run once its worker has released the task's
+  // place in its lane and its caller's count (sending the answer): a caller
+  // who sends the next request on reading the answer never finds the last
+  // one still counted against it.
+  using Then = std::function<void()>;
   // Queues `task` in `lane` for `caller`; kYes, or why not (nothing queued).
-  Queued Submit(RequestLane lane, const RequestCaller& caller, std::function<void()> task) {
+  Queued Submit(RequestLane lane, const RequestCaller& caller, std::function<Then()> task) {
     const int l = static_cast<int>(lane);
     const bool costly = l == kCostlyMember || l == kCostlyOther;
     {
@@ -197,7 +202,7 @@ class WorkerPool {
         }
         if (write) ++writes_running_;
       }
-      task.run();
+      Then then = task.run();
       if (costly || write) {
         {
           std::lock_guard<std::mutex> lock(mu_);
@@ -210,8 +215,9 @@ class WorkerPool {
           if (write) --writes_running_;
         }
         cv_.notify_one();  // a costly task or write may start now
-        if (costly) TrimHeap();
       }
+      if (then) then();
+      if (costly) TrimHeap();
     }
   }
 
@@ -233,7 +239,7 @@ class WorkerPool {
   std::mutex mu_;
   std::condition_variable cv_;
   struct Task {
-    std::function<void()> run;
+    std::function<Then()> run;
     std::string caller;  // costly lanes: the caller counted in in_flight_
   };
   std::deque<Task> queue_[kLanes];
@@ -422,7 +428,9 @@ class HttpTransport::Impl::Session : public std::enable_shared_from_this<Session
         self->impl_->on_error(*request, 500, out.get());
       }
       t_waited_ms = -1;
-      net::post(self->stream_.get_executor(), [self, out] { self->Write(*out, false); });
+      // Sent once the worker has released this request's counts (WorkerPool::Then).
+      return WorkerPool::Then(
+          [self, out] { net::post(self->stream_.get_executor(), [self, out] { self->Write(*out, false); }); });
     });
     if (queued == WorkerPool::Queued::kFull) {
       Response busy;

@@ -279,6 +279,32 @@ TEST(TransportTest, CostlyRequestsLeaveWorkersToQuickOnes) {
   SetLanePolicy(before);
 }
 
+// Issue 34, found by CI: a caller who sends its next costly request as soon
+// as it reads the answer to the last one never finds that one still counted
+// against it (the answer is sent after the worker releases the count), so
+// one costly request at a time is never refused, however quick the answers.
+TEST(TransportTest, ACallerOneCostlyRequestAtATimeIsNeverRefused) {
+  TransportOptions o;
+  o.threads = 2;
+  const LanePolicy before = CurrentLanePolicy();
+  LanePolicy lanes;
+  lanes.caller = [](const Request&) { return RequestCaller{"one", true}; };
+  lanes.lane = [](const Request&) { return RequestLane::kCostlySignedIn; };
+  lanes.max_costly_per_caller = 1;
+  SetLanePolicy(lanes);
+  {
+    Running r(o, [](const Request& q, Response* s) { Running::Echo(q, s); });
+    int refused = 0;
+    for (int i = 0; i < 200; ++i) {
+      const std::string res =
+          Exchange(r.port(), "GET /costly HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n");
+      refused += StatusOf(res) != 200;
+    }
+    EXPECT_EQ(refused, 0);
+  }
+  SetLanePolicy(before);
+}
+
 // Issue 34, per-caller fairness: one caller cannot hold every slot of the
 // costly lane (past max_costly_per_caller in flight it gets 429 with
 // Retry-After at once, and another caller's costly request runs), and an
