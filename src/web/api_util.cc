@@ -6,10 +6,27 @@
 #include "base/number.h"
 #include "crdl/route.h"
 #include "web/handlers.h"
+#include "web/model_reply.h"
 
 namespace sb::web {
 
 using nlohmann::json;
+
+namespace {
+
+// Issue 34: slots taken is the caller's share being full, not the server
+// failing: 429 with Retry-After like a spent budget (was 503).
+void RefuseWork(Exchange& x, const std::string& message, int retry_after) {
+  const int status = 429;
+  if (x.req.path.rfind("/api/", 0) == 0) {
+    ReplyJson(x.res, status, json{{"error", message}});
+  } else {
+    x.res.SetBody(status, ErrorPage(x.caller.page(), status, message), "text/html; charset=utf-8");
+  }
+  if (retry_after > 0) x.res.SetHeader("Retry-After", std::to_string(retry_after));
+}
+
+}  // namespace
 
 std::optional<app::WorkBudget::Slot> AdmitWork(Exchange& x, double cost,
                                                std::optional<int64_t> gym) {
@@ -18,17 +35,16 @@ std::optional<app::WorkBudget::Slot> AdmitWork(Exchange& x, double cost,
   Result<app::WorkBudget::Slot> slot =
       x.services.renders.Admit(x.caller.viewer, cost, &retry_after, &busy, gym);
   if (slot.ok()) return std::move(slot).value();
-  // Issue 34: slots taken is the caller's share being full, not the server
-  // failing: 429 with Retry-After like a spent budget (was 503).
-  const int status = 429;
-  const std::string message = slot.status().message();
-  if (x.req.path.rfind("/api/", 0) == 0) {
-    ReplyJson(x.res, status, json{{"error", message}});
-  } else {
-    x.res.SetBody(status, ErrorPage(x.caller.page(), status, message), "text/html; charset=utf-8");
-  }
-  if (retry_after > 0) x.res.SetHeader("Retry-After", std::to_string(retry_after));
+  RefuseWork(x, slot.status().message(), retry_after);
   return std::nullopt;
+}
+
+void ModelError(Exchange& x, const Status& s, int retry_after_seconds) {
+  if (s.code() == Status::Code::kResourceExhausted) {
+    return RefuseWork(x, s.message(), retry_after_seconds);
+  }
+  if (x.req.path.rfind("/api/", 0) == 0) return ApiError(x, s);
+  PageError(x, s);
 }
 
 PageViewer Caller::page() const {

@@ -60,16 +60,6 @@ void AddChanceJson(const app::Chance& c, json* j) {
   (*j)["chance_basis"] = c.basis;
 }
 
-Result<app::ProjectList> ProjectsOf(Exchange& x, const app::GymDashboard& d) {
-  std::vector<app::ProjectCandidate> routes;
-  for (const app::WallDashboard& w : d.walls) {
-    for (const app::DashboardRoute& r : w.routes) {
-      routes.push_back({r.id, r.name, r.grade, w.wall.name, w.wall.discipline});
-    }
-  }
-  return x.services.chances.Projects(d.gym.id, routes);
-}
-
 json ProjectsJson(const app::ProjectList& p) {
   json routes = json::array();
   for (const app::ProjectRoute& r : p.routes) {

@@ -27,9 +27,6 @@ std::string ChanceHtml(std::string_view lang, const app::Chance& c);
 // Adds "p_flash", "p_send" and "chance_basis" to `j` when `c` is shown. Pure.
 void AddChanceJson(const app::Chance& c, nlohmann::json* j);
 
-// The project list of a dashboard's routes on the wall (one cached fit per
-// discipline).
-Result<app::ProjectList> ProjectsOf(Exchange& x, const app::GymDashboard& d);
 // {"active_climbers": {DISCIPLINE: n}, "routes": [{"id","name","grade","wall",
 // "discipline","median_p_send","median_p_flash","projectors","climbers"}]}. Pure.
 nlohmann::json ProjectsJson(const app::ProjectList& p);

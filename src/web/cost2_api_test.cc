@@ -144,5 +144,45 @@ TEST_F(Cost2ApiTest, HistoriesConsensusAnswersAndDriftAreCostedFromTheirCountsFi
   EXPECT_EQ(h.Status("GET", "/routes/" + std::to_string(calm)), 200);
 }
 
+// Issue 34, "still not counted first": the wall page's ascent fit is costed
+// before the fit (app::WallPage): a member over budget gets 429 with
+// Retry-After, a wall with nothing to fit passes, and a kept page is free.
+TEST_F(Cost2ApiTest, TheWallPagesAscentFitIsCostedFirst) {
+  Client& head = *LoggedIn("head");
+  Client& light = *LoggedIn("light");
+  LoggedIn("climber");
+  const int64_t g = head.NewGym("Busy Gym");
+  const int64_t quiet = light.NewGym("Quiet Gym");
+  head.AddMember(g, "climber", "climber");
+  const int64_t cave = head.AddWall(g, "Cave");
+  const int64_t nook = light.AddWall(quiet, "Nook");
+  json body{{"crdl", "name: Ticked\ngrade: V3\n---\nR small crimp\nL jug\n"},
+            {"gym", g},
+            {"wall", "cave"},
+            {"state", "set"}};
+  const int64_t route = head.Json("POST", "/api/routes", body.dump(), 201)["id"];
+  for (int i = 0; i < 4; ++i) {
+    Client phone(server_->port());  // four climbers' phones
+    phone.Tick(route, json{{"outcome", "send"}, {"attempts", 2}}, 201);
+  }
+  // A fresh start: no fit kept. A tick fitted costs 0.3 s, so the gym's 4
+  // ticks are over a member's minute (1e6 units).
+  Restart(256 * 1024, [](ServerOptions& o) {
+    o.app.renders.anonymous_max_cost = 1e12;
+    o.app.renders.user_max_cost = 1e12;
+    o.app.renders.anonymous_cost_per_minute = 1e6;
+    o.app.renders.user_cost_per_minute = 1e6;
+    o.app.render_costs.list_per_row = 0;
+    o.app.render_costs.fit_per_tick = 300e3;
+  });
+  Client& c = *LoggedIn("climber", false);
+  Client& lt = *LoggedIn("light", false);
+  Refused(c, "/walls/" + std::to_string(cave));
+  EXPECT_EQ(lt.Status("GET", "/walls/" + std::to_string(nook)), 200);
+  EXPECT_EQ(lt.Status("GET", "/walls/" + std::to_string(nook)), 200);  // kept
+  // An outsider is told 404, not charged.
+  EXPECT_EQ(lt.Status("GET", "/walls/" + std::to_string(cave)), 404);
+}
+
 }  // namespace
 }  // namespace sb::web

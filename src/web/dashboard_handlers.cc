@@ -8,11 +8,13 @@
 #include <map>
 
 #include "app/discipline_targets.h"
+#include "app/page_models.h"
 #include "base/number.h"
 #include "base/text.h"
 #include "web/chance_handlers.h"
 #include "web/error_text.h"
 #include "web/logbook_handlers.h"
+#include "web/model_reply.h"
 #include "web/pages.h"
 #include "web/script_messages.h"
 
@@ -106,23 +108,6 @@ json WallJson(const app::WallDashboard& w, const DashboardAscents& ascents) {
               {"gaps", gaps},
               {"gap_words", w.gap_words},
               {"routes", routes}};
-}
-
-// The ascent grades of the dashboard's routes: one cached fit of the gym
-// (app::Logbook::Ascents), the wall page's numbers.
-Result<DashboardAscents> AscentsOf(Exchange& x, const app::GymDashboard& d) {
-  std::vector<int64_t> ids;
-  for (const app::WallDashboard& w : d.walls) {
-    for (const app::DashboardRoute& r : w.routes) ids.push_back(r.id);
-  }
-  return x.services.logbook.Ascents(d.gym.id, ids);
-}
-
-// The render units of a dashboard: a row per route on the walls.
-double Cost(Exchange& x, const app::GymDashboard& d) {
-  double rows = 0;
-  for (const app::WallDashboard& w : d.walls) rows += 1 + w.on_wall + w.bands.size() + w.styles.size();
-  return rows * x.services.options.render_costs.list_per_row;
 }
 
 // The fill of a wall on the plan: how far through its reset cycle (8 weeks
@@ -590,41 +575,29 @@ std::string DashboardBody(const app::GymDashboard& d, int64_t only_wall,
 void GetDashboard(Exchange& x) {
   Result<int64_t> id = PathId(x.req, "no such gym");
   if (!id.ok()) return ApiError(x, id.status());
-  // Issue 22: the JSON is kept per (gym, viewer) at the gym's data version
-  // and day (app::RenderCache); the stamp is read before the dashboard.
-  Result<std::optional<app::Stamp>> stamp = x.services.rendered.StampOf(*id);
-  if (!stamp.ok()) return ApiError(x, stamp.status());
-  const app::RenderKey key{"api_dashboard", *id, x.caller.viewer.user_id.value_or(0)};
-  if (*stamp) {
-    if (auto hit = x.services.rendered.Find(key, **stamp)) {
-      return x.res.SetBody(200, *hit, "application/json; charset=utf-8");
-    }
-  }
-  Result<app::GymDashboard> d = x.services.dashboard.Get(x.caller.viewer, *id);
-  if (!d.ok()) return ApiError(x, d.status());
-  auto slot = AdmitWork(x, Cost(x, *d), *id);
-  if (!slot) return;
-  json walls = json::array();
-  Result<DashboardAscents> ascents = AscentsOf(x, *d);
-  if (!ascents.ok()) return ApiError(x, ascents.status());
-  for (const app::WallDashboard& w : d->walls) walls.push_back(WallJson(w, *ascents));
-  json disciplines = json::array();
-  for (const app::DisciplineDashboard& t : d->disciplines) disciplines.push_back(DisciplineJson(t));
-  json body{{"gym", d->gym.id},
-            {"can_edit", d->can_edit},
-            {"walls", walls},
-            {"disciplines", disciplines},
-            {"circuit_words", d->circuit_words},
-            {"archive_styles", d->archive_styles}};
-  // Issue 35: the routes its climbers are most likely to project.
-  Result<app::ProjectList> projects = ProjectsOf(x, *d);
-  if (!projects.ok()) return ApiError(x, projects.status());
-  body["projects"] = ProjectsJson(*projects);
-  if (!*stamp) return ReplyJson(x.res, 200, body);
-  // ReplyJson's text: invalid UTF-8 replaced, never a throw.
-  std::shared_ptr<const std::string> text = x.services.rendered.Keep(
-      key, **stamp, body.dump(-1, ' ', false, json::error_handler_t::replace));
-  x.res.SetBody(200, *text, "application/json; charset=utf-8");
+  // Kept per (gym, viewer) at the gym's data version and day: app::DashboardJson.
+  auto render = [](const app::DashboardContent& c) {
+    const app::GymDashboard& d = *c.dashboard;
+    json walls = json::array();
+    for (const app::WallDashboard& w : d.walls) walls.push_back(WallJson(w, *c.ascents));
+    json disciplines = json::array();
+    for (const app::DisciplineDashboard& t : d.disciplines) disciplines.push_back(DisciplineJson(t));
+    json body{{"gym", d.gym.id},
+              {"can_edit", d.can_edit},
+              {"walls", walls},
+              {"disciplines", disciplines},
+              {"circuit_words", d.circuit_words},
+              {"archive_styles", d.archive_styles}};
+    // Issue 35: the routes its climbers are most likely to project.
+    body["projects"] = ProjectsJson(*c.projects);
+    // ReplyJson's text: invalid UTF-8 replaced, never a throw.
+    return body.dump(-1, ' ', false, json::error_handler_t::replace);
+  };
+  int retry = 0;
+  Result<std::shared_ptr<const std::string>> text =
+      app::DashboardJson(x.services, x.caller.viewer, *id, render, &retry);
+  if (!text.ok()) return ModelError(x, text.status(), retry);
+  x.res.SetBody(200, **text, "application/json; charset=utf-8");
 }
 
 void PutWallTargets(Exchange& x) {
@@ -703,39 +676,18 @@ void PageDashboard(Exchange& x) {
   int64_t only = 0;
   if (std::optional<std::string> w = x.req.Query("wall")) only = ParseId(*w).value_or(0);
   // Issue 22: the page's body is kept per (gym, viewer, wall shown, gym
-  // name) at the gym's data version and day (app::RenderCache); the gym is
-  // read each time (a rename moves no version), the stamp before the
-  // dashboard.
-  Result<app::Gym> gym = x.services.gyms.Get(x.caller.viewer, *id);
-  if (!gym.ok()) return PageError(x, gym.status());
-  Result<std::optional<app::Stamp>> stamp = x.services.rendered.StampOf(*id);
-  if (!stamp.ok()) return PageError(x, stamp.status());
-  const app::RenderKey key{"dashboard " + x.caller.lang + " " + std::to_string(only) + " " + gym->name, *id,
-                           x.caller.viewer.user_id.value_or(0)};
+  // name) at the gym's data version and day: app::DashboardPage.
+  auto render = [&x, only](const app::DashboardContent& c) {
+    const std::string projects = c.projects ? ProjectsHtml(*c.projects, x.caller.lang) : "";
+    return DashboardBody(*c.dashboard, only, *c.ascents, projects, x.caller.lang);
+  };
   x.res.SetHeader("Cache-Control", "no-store");
-  const std::string title = Fmt(Tr(x.caller.lang, "{1}: dashboard"), gym->name);
-  if (*stamp) {
-    if (auto hit = x.services.rendered.Find(key, **stamp)) {
-      return x.res.SetBody(200, PageLayout(x.caller.page(), title, *hit),
-                           "text/html; charset=utf-8");
-    }
-  }
-  Result<app::GymDashboard> d = x.services.dashboard.Get(x.caller.viewer, *id);
-  if (!d.ok()) return PageError(x, d.status());
-  auto slot = AdmitWork(x, Cost(x, *d), *id);
-  if (!slot) return;
-  Result<DashboardAscents> ascents = AscentsOf(x, *d);
-  if (!ascents.ok()) return PageError(x, ascents.status());
-  std::string projects;
-  if (!only) {
-    Result<app::ProjectList> p = ProjectsOf(x, *d);
-    if (!p.ok()) return PageError(x, p.status());
-    projects = ProjectsHtml(*p, x.caller.lang);
-  }
-  std::string body = DashboardBody(*d, only, *ascents, projects, x.caller.lang);
-  if (*stamp) body = *x.services.rendered.Keep(key, **stamp, std::move(body));
-  x.res.SetBody(200, PageLayout(x.caller.page(), title, body),
-                "text/html; charset=utf-8");
+  int retry = 0;
+  Result<app::DashboardPageModel> m =
+      app::DashboardPage(x.services, x.caller.viewer, *id, x.caller.lang, only, render, &retry);
+  if (!m.ok()) return ModelError(x, m.status(), retry);
+  const std::string title = Fmt(Tr(x.caller.lang, "{1}: dashboard"), m->gym.name);
+  x.res.SetBody(200, PageLayout(x.caller.page(), title, *m->body), "text/html; charset=utf-8");
 }
 
 }  // namespace sb::web
