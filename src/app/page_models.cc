@@ -126,11 +126,17 @@ Result<GymPageModel> GymPage(Services& s, const Viewer& v, int64_t gym,
   if (retry_after_seconds) *retry_after_seconds = 0;
   GymPageModel m;
   SB_ASSIGN_OR_RETURN(m.gym, s.gyms.Get(v, gym));
-  // Issue 34: the history (setters', issue 31), counted first.
-  const bool setter = CanSet(m.gym.role);
+  // Issue 34: the lists and (setters', issue 31) the history, counted first.
   double cost = 0;
+  for (ReadCosts::GymList list : {ReadCosts::GymList::kWalls, ReadCosts::GymList::kCircuits,
+                                  ReadCosts::GymList::kMembers}) {
+    SB_ASSIGN_OR_RETURN(double c, s.read_costs.GymListCost(v, gym, list));
+    cost += c;
+  }
+  const bool setter = CanSet(m.gym.role);
   if (setter) {
-    SB_ASSIGN_OR_RETURN(cost, s.read_costs.GymHistoryCost(v, gym));
+    SB_ASSIGN_OR_RETURN(double c, s.read_costs.GymHistoryCost(v, gym));
+    cost += c;
   }
   SB_ASSIGN_OR_RETURN(WorkBudget::Slot slot, AdmitPageWork(s, v, cost, gym, retry_after_seconds));
   SB_ASSIGN_OR_RETURN(m.walls, s.gyms.Walls(v, gym));

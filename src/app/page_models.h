@@ -112,9 +112,10 @@ struct GymPageModel {
 };
 
 // The gym page of gym `gym` for `v`. Members only (kNotFound "no gym N").
-// For setters, its history is counted first (ReadCosts::GymHistoryCost) and
-// charged to `v` on the gym's share before it is read (issue 34). Errors:
-// as above, kResourceExhausted (with *retry_after_seconds), the store's.
+// Its lists (walls, circuits, members: ReadCosts::GymListCost) and, for
+// setters, its history (GymHistoryCost) are counted first and charged to
+// `v` on the gym's share before they are read (issue 34). Errors: as above,
+// kResourceExhausted (with *retry_after_seconds), the store's.
 Result<GymPageModel> GymPage(Services& s, const Viewer& v, int64_t gym,
                              int* retry_after_seconds);
 

@@ -189,7 +189,7 @@ TEST_F(PageModelsTest, ARouteGymBlockShowsHistoryToMembersAndEditingToSetters) {
   EXPECT_FALSE(RouteGymBlock(*services_, setter_, personal));
 }
 
-TEST_F(PageModelsTest, AGymPageIsItsMembersWithTheHistoryForSettersCostedFirst) {
+TEST_F(PageModelsTest, AGymPageIsItsMembersWithTheHistoryForSettersAndIsCostedFirst) {
   int retry = 0;
   EXPECT_EQ(GymPage(*services_, outsider_, gym_, &retry).status().code(),
             Status::Code::kNotFound);
@@ -201,14 +201,22 @@ TEST_F(PageModelsTest, AGymPageIsItsMembersWithTheHistoryForSettersCostedFirst) 
   Result<GymPageModel> h = GymPage(*services_, head_, gym_, &retry);
   ASSERT_TRUE(h.ok()) << h.status().message();
   EXPECT_FALSE(h->history.empty());  // the members and the wall added
-  // Its history's rows counted first (issue 34): over budget, the head
-  // setter is refused; the climber, who reads no history, is not.
+  // Its lists' and history's rows counted first (issue 34): over budget,
+  // refused before reading.
   Reopen(Dear());
   Refresh();
-  Result<GymPageModel> refused = GymPage(*services_, head_, gym_, &retry);
+  Result<GymPageModel> refused = GymPage(*services_, climber_, gym_, &retry);
   EXPECT_EQ(refused.status().code(), Status::Code::kResourceExhausted);
   EXPECT_GE(retry, 1);
-  EXPECT_TRUE(GymPage(*services_, climber_, gym_, &retry).ok());
+  // The lists' costs, as the API charges them: a member's, not an outsider's.
+  Result<double> members =
+      services_->read_costs.GymListCost(climber_, gym_, ReadCosts::GymList::kMembers);
+  ASSERT_TRUE(members.ok()) << members.status().message();
+  EXPECT_EQ(*members, 3 * 2e6);
+  EXPECT_EQ(*services_->read_costs.GymListCost(climber_, gym_, ReadCosts::GymList::kWalls), 2e6);
+  EXPECT_EQ(*services_->read_costs.GymListCost(climber_, gym_, ReadCosts::GymList::kCircuits), 0);
+  EXPECT_EQ(*services_->read_costs.GymListCost(climber_, gym_, ReadCosts::GymList::kScales), 0);
+  EXPECT_EQ(*services_->read_costs.GymListCost(outsider_, gym_, ReadCosts::GymList::kMembers), 0);
 }
 
 TEST_F(PageModelsTest, TheDashboardIsKeptPerAskAndRefusedOverBudget) {

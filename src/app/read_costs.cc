@@ -223,6 +223,31 @@ Result<double> ReadCosts::DriftCost(const Viewer& v) {
          static_cast<double>(n.feedback) * costs_.row_per_read;
 }
 
+Result<double> ReadCosts::GymListCost(const Viewer& v, int64_t gym, GymList list) {
+  SB_RETURN_IF_ERROR(costs_.Validate());
+  if (counts_ == nullptr || !MemberOf(v, gym, false)) return 0.0;
+  int64_t n = 0;
+  switch (list) {
+    case GymList::kMembers: {
+      SB_ASSIGN_OR_RETURN(n, counts_->CountGymMembers(gym));
+      break;
+    }
+    case GymList::kWalls: {
+      SB_ASSIGN_OR_RETURN(n, counts_->CountGymWalls(gym));
+      break;
+    }
+    case GymList::kCircuits: {
+      SB_ASSIGN_OR_RETURN(n, counts_->CountGymCircuits(gym));
+      break;
+    }
+    case GymList::kScales: {
+      SB_ASSIGN_OR_RETURN(n, counts_->CountGymScales(gym));
+      break;
+    }
+  }
+  return static_cast<double>(n) * costs_.list_per_row;
+}
+
 double ReadCosts::StudyCost(const Study& s) const {
   return static_cast<double>(s.responses) *
          static_cast<double>(std::max<size_t>(1, s.routes.size())) * costs_.study_per_answer;

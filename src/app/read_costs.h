@@ -94,6 +94,13 @@ class ReadCosts {
   // (route_read) and each feedback row on them summarised (row_per_read).
   // 0 signed out.
   Result<double> DriftCost(const Viewer& v);
+  // The gym's lists (issue 34): GET /api/gyms/{gym}/members, /walls,
+  // /circuits and /scales, and the walls, circuits and members of
+  // /gyms/{gym}: each row read and listed (list_per_row). 0 unless `v` is a
+  // member of `gym` (the services answer others 404 before reading).
+  // Errors: the store's.
+  enum class GymList { kMembers, kWalls, kCircuits, kScales };
+  Result<double> GymListCost(const Viewer& v, int64_t gym, GymList list);
   // A study's answers read for its results, CSVs, analysis, box plot and
   // held list: responses x routes answer rows (study_per_answer each).
   // Pure.

@@ -1,6 +1,7 @@
 // Issue 34, costs before the work: counts of the rows a page will read,
 // taken before the reading (app/read_costs.h): a gym's and a route's
-// history, a route's feedback, and what the drift page reads for a setter.
+// history, a route's feedback, what the drift page reads for a setter, and
+// the gym's lists (members, walls, circuits, scales).
 // A separate interface over the same SQL layer (store/sql_store.cc
 // implements it in the same object as Store, as store/prediction_store.h),
 // so store/store.h stays as it is. Each count is one indexed COUNT query.
@@ -36,6 +37,12 @@ class CountStore {
   // Rows of RouteStore::AllRoutes(owner_id) and of
   // FeedbackStore::FeedbackOnRoutesOf(owner_id).
   virtual Result<DriftCounts> CountDrift(int64_t owner_id) = 0;
+  // Rows of the gym's lists (issue 34): GymStore::ListMembers, ListWalls,
+  // ListCircuits and ScaleStore::ListGymScales of `gym_id`.
+  virtual Result<int64_t> CountGymMembers(int64_t gym_id) = 0;
+  virtual Result<int64_t> CountGymWalls(int64_t gym_id) = 0;
+  virtual Result<int64_t> CountGymCircuits(int64_t gym_id) = 0;
+  virtual Result<int64_t> CountGymScales(int64_t gym_id) = 0;
 };
 
 // The CountStore of a store opened by store::OpenStore (both backends);

@@ -1024,6 +1024,18 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
                                 owner_id));
     return n;
   }
+  Result<int64_t> CountGymMembers(int64_t gym_id) override {
+    return CountOf("SELECT count(*) FROM gym_members WHERE gym_id = ?", gym_id);
+  }
+  Result<int64_t> CountGymWalls(int64_t gym_id) override {
+    return CountOf("SELECT count(*) FROM walls WHERE gym_id = ?", gym_id);
+  }
+  Result<int64_t> CountGymCircuits(int64_t gym_id) override {
+    return CountOf("SELECT count(*) FROM circuits WHERE gym_id = ?", gym_id);
+  }
+  Result<int64_t> CountGymScales(int64_t gym_id) override {
+    return CountOf("SELECT count(*) FROM gym_scales WHERE gym_id = ?", gym_id);
+  }
 
   Result<TickVersion> GymTickVersion(int64_t gym_id) override {
     SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());

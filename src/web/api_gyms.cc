@@ -293,6 +293,12 @@ void PostMember(Exchange& x) {
 void ListMembers(Exchange& x) {
   Result<int64_t> id = GymId(x.req);
   if (!id.ok()) return ApiError(x, id.status());
+  // Issue 34: the list's rows, counted first.
+  Result<double> cost = x.services.read_costs.GymListCost(x.caller.viewer, *id,
+                                                          app::ReadCosts::GymList::kMembers);
+  if (!cost.ok()) return ApiError(x, cost.status());
+  auto slot = AdmitWork(x, *cost, *id);
+  if (!slot) return;
   Result<std::vector<app::Member>> m = x.services.gyms.Members(x.caller.viewer, *id);
   if (!m.ok()) return ApiError(x, m.status());
   json arr = json::array();
@@ -439,6 +445,12 @@ void PostWallState(Exchange& x) {
 void ListWalls(Exchange& x) {
   Result<int64_t> id = GymId(x.req);
   if (!id.ok()) return ApiError(x, id.status());
+  // Issue 34: the list's rows, counted first.
+  Result<double> cost = x.services.read_costs.GymListCost(x.caller.viewer, *id,
+                                                          app::ReadCosts::GymList::kWalls);
+  if (!cost.ok()) return ApiError(x, cost.status());
+  auto slot = AdmitWork(x, *cost, *id);
+  if (!slot) return;
   Result<std::vector<app::Wall>> walls = x.services.gyms.Walls(x.caller.viewer, *id);
   if (!walls.ok()) return ApiError(x, walls.status());
   json arr = json::array();
@@ -560,6 +572,12 @@ void GetGymHistory(Exchange& x) {
 void ListCircuits(Exchange& x) {
   Result<int64_t> id = GymId(x.req);
   if (!id.ok()) return ApiError(x, id.status());
+  // Issue 34: the list's rows, counted first.
+  Result<double> cost = x.services.read_costs.GymListCost(x.caller.viewer, *id,
+                                                          app::ReadCosts::GymList::kCircuits);
+  if (!cost.ok()) return ApiError(x, cost.status());
+  auto slot = AdmitWork(x, *cost, *id);
+  if (!slot) return;
   Result<std::vector<app::Circuit>> all = x.services.gyms.Circuits(x.caller.viewer, *id);
   if (!all.ok()) return ApiError(x, all.status());
   json arr = json::array();

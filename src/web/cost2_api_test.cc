@@ -184,5 +184,48 @@ TEST_F(Cost2ApiTest, TheWallPagesAscentFitIsCostedFirst) {
   EXPECT_EQ(lt.Status("GET", "/walls/" + std::to_string(cave)), 404);
 }
 
+// Issue 34, "still not counted first": a gym's members, walls, circuits and
+// scales lists (API) and the gym page's lists are costed from their counts
+// before the reading: a member over budget gets 429 with Retry-After, a
+// member with less to read passes, an outsider gets 404 uncharged.
+TEST_F(Cost2ApiTest, AGymsListsAreCostedFromTheirCountsFirst) {
+  Client& head = *LoggedIn("head");
+  Client& light = *LoggedIn("light");
+  LoggedIn("setter");
+  LoggedIn("climber");
+  const int64_t g = head.NewGym("Busy Gym");
+  const int64_t quiet = light.NewGym("Quiet Gym");
+  const std::string gp = "/api/gyms/" + std::to_string(g);
+  const std::string qp = "/api/gyms/" + std::to_string(quiet);
+  head.AddMember(g, "setter", "setter");
+  head.AddMember(g, "climber", "climber");
+  for (const char* wall : {"Cave", "Slab", "Roof"}) head.AddWall(g, wall);
+  for (const char* colour : {"red", "blue", "green"}) head.AddCircuit(g, json{{"colour", colour}});
+  for (const char* name : {"Halle", "Halle 2", "Halle 3"}) {
+    json scale = testing::HalleScale();
+    scale["name"] = name;
+    ASSERT_EQ(head.Status("POST", gp + "/scales", scale.dump()), 201);
+  }
+  // A listed row costs 0.4 s: three rows are over a fresh caller's minute
+  // (1e6 units), light's one member is not.
+  Restart(256 * 1024, [](ServerOptions& o) {
+    o.app.renders.anonymous_max_cost = 1e12;
+    o.app.renders.user_max_cost = 1e12;
+    o.app.renders.anonymous_cost_per_minute = 1e6;
+    o.app.renders.user_cost_per_minute = 1e6;
+    o.app.render_costs.list_per_row = 400e3;
+    o.app.render_costs.row_per_read = 0;
+    o.app.render_costs.fit_per_tick = 0;
+  });
+  Client& h = *LoggedIn("head", false);
+  Client& lt = *LoggedIn("light", false);
+  for (const char* list : {"/members", "/walls", "/circuits", "/scales"}) {
+    Refused(h, gp + list);
+    EXPECT_EQ(lt.Status("GET", qp + list), 200) << list;
+  }
+  Refused(h, "/gyms/" + std::to_string(g));
+  EXPECT_EQ(lt.Status("GET", gp + "/members"), 404);
+}
+
 }  // namespace
 }  // namespace sb::web

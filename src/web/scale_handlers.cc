@@ -41,6 +41,12 @@ void PostGymScale(Exchange& x) {
 void ListGymScales(Exchange& x) {
   Result<int64_t> gym = PathId(x.req, "no such gym");
   if (!gym.ok()) return ApiError(x, gym.status());
+  // Issue 34: the list's rows, counted first.
+  Result<double> cost = x.services.read_costs.GymListCost(x.caller.viewer, *gym,
+                                                          app::ReadCosts::GymList::kScales);
+  if (!cost.ok()) return ApiError(x, cost.status());
+  auto slot = AdmitWork(x, *cost, *gym);
+  if (!slot) return;
   Result<std::vector<app::GymScaleView>> all = x.services.scales.List(x.caller.viewer, *gym);
   if (!all.ok()) return ApiError(x, all.status());
   json arr = json::array();
