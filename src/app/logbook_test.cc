@@ -20,6 +20,7 @@
 #include "grades/ratings_synth.h"
 #include "grades/scale.h"
 #include "store/gym_store.h"
+#include "store/tick_page.h"
 #include "store/tick_store.h"
 
 namespace sb::app {
@@ -426,6 +427,33 @@ TEST_F(SyntheticGymTest, TicksDuringARefitAreReplayedIntoIt) {
   EXPECT_EQ(book.FullFits(), fits);  // current: nothing refitted by the reads
 }
 
+
+// Issue 34 (memory): the store reads the gym's ticks in pages by id; a fit
+// made from pages of 3 ticks (35 pages here) is the fit made from one page,
+// value for value, on either backend.
+TEST_F(SyntheticGymTest, TheFitIsTheSameReadInPagesOfThreeTicks) {
+  Logbook book(store_.get(), &clock_);
+  ASSERT_NO_FATAL_FAILURE(Populate(book));
+  std::vector<AscentGrade> whole;
+  for (int64_t r : boulders_) whole.push_back(Refit(r));
+  whole.push_back(Refit(rope_));
+  const int64_t before = store::SetGymTickPageForTesting(3);
+  std::vector<AscentGrade> paged;
+  for (int64_t r : boulders_) paged.push_back(Refit(r));
+  paged.push_back(Refit(rope_));
+  store::SetGymTickPageForTesting(before);
+  ASSERT_EQ(whole.size(), paged.size());
+  for (size_t i = 0; i < whole.size(); ++i) {
+    EXPECT_TRUE(whole[i].fitted) << i;
+    EXPECT_EQ(whole[i].ticks, paged[i].ticks) << i;
+    EXPECT_EQ(whole[i].value, paged[i].value) << i;
+    EXPECT_EQ(whole[i].lo, paged[i].lo) << i;
+    EXPECT_EQ(whole[i].hi, paged[i].hi) << i;
+    EXPECT_EQ(whole[i].grade, paged[i].grade) << i;
+    EXPECT_EQ(whole[i].felt_votes, paged[i].felt_votes) << i;
+    EXPECT_EQ(whole[i].felt_median, paged[i].felt_median) << i;
+  }
+}
 
 // Issue 34, grades no one can push: a V3 route with ten honest ticks from
 // established climbers (each with day-old ticks on three other routes), and

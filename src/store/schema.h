@@ -14,7 +14,7 @@
 namespace sb::store {
 
 // The schema version this program writes (the number of migrations).
-inline constexpr int kSchemaVersion = 22;
+inline constexpr int kSchemaVersion = 23;
 
 // The tables of the schema in the order their rows can be inserted (every
 // table after the tables it refers to): what `db copy` moves and checksums.

@@ -990,7 +990,7 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
   }
   Result<std::vector<TickRecord>> GymTicks(int64_t gym_id) override {
     SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
-    return ticks_sql::GymTicks(*c, gym_id);
+    return ticks_sql::GymTicks(*c, gym_id, ticks_sql::GymTickPage());
   }
   Result<std::vector<TickRecord>> ClimberTicks(const std::string& climber) override {
     SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());

@@ -1,8 +1,11 @@
 #include "store/tick_sql.h"
 
-#include <iterator>
+#include <algorithm>
+#include <atomic>
 #include <optional>
 #include <utility>
+
+#include "store/tick_page.h"
 
 namespace sb::store::ticks_sql {
 
@@ -21,9 +24,8 @@ std::optional<int> OptInt32(const Rows& r, size_t i, size_t col) {
   return v ? std::optional<int>(static_cast<int>(*v)) : std::nullopt;
 }
 
-std::vector<TickRecord> Read(const Rows& r) {
-  std::vector<TickRecord> out;
-  out.reserve(r.size());
+// Appends the rows' ticks to `out`.
+void ReadInto(const Rows& r, std::vector<TickRecord>& out) {
   for (size_t i = 0; i < r.size(); ++i) {
     TickRecord t;
     t.id = r.Int(i, 0);
@@ -46,10 +48,20 @@ std::vector<TickRecord> Read(const Rows& r) {
     t.revision = static_cast<int>(r.Int(i, 17));
     out.push_back(std::move(t));
   }
+}
+
+std::vector<TickRecord> Read(const Rows& r) {
+  std::vector<TickRecord> out;
+  out.reserve(r.size());
+  ReadInto(r, out);
   return out;
 }
 
+std::atomic<int64_t> gym_tick_page{kGymTickPage};
+
 }  // namespace
+
+int64_t GymTickPage() { return gym_tick_page.load(); }
 
 Result<TickRecord> PutTick(sql::Connection& c, const TickRecord& t) {
   Violation v;
@@ -87,35 +99,36 @@ Result<std::vector<TickRecord>> RouteTicks(sql::Connection& c, int64_t route_id)
   return Read(r);
 }
 
-Result<std::vector<TickRecord>> GymTicks(sql::Connection& c, int64_t gym_id) {
-  // Issue 34 (memory under load): on SQLite read in pages of ids, so the
-  // text rows of a big gym (250,000 ticks: ~200 MB as Rows) are never all
-  // held beside the records made of them. Each tick is read once, in id order; a tick
-  // written meanwhile is in a later page or not at all (the fit's replay,
-  // app/logbook.cc, tells which).
-  // On PostgreSQL in one query: its (gym_id) index gives no id order, so
-  // each page would sort the gym's ticks again.
-  if (c.dialect() == sql::Dialect::kPostgres) {
-    SB_ASSIGN_OR_RETURN(Rows r, c.Query(std::string(kSelect) +
-                                            " WHERE gym_id = ? AND state = 'ok' ORDER BY id",
-                                        {gym_id}));
-    return Read(r);
-  }
-  // SQLite's index entries end with the id: each page is a range of it.
-  constexpr int64_t kPage = 10000;
+Result<std::vector<TickRecord>> GymTicks(sql::Connection& c, int64_t gym_id, int64_t page) {
+  // Issue 34 (memory under load): read in pages of `page` ticks by id (a
+  // keyset on (gym_id, id), the index ticks_gym_id of schema 23, on both
+  // backends), so the text rows of a big gym (250,000 ticks: ~200 MB as
+  // Rows, and on PostgreSQL libpq's result besides) are never all held
+  // beside the records made of them: one page of rows at a time. Each tick
+  // is read once, in id order; a tick written meanwhile is in a later page
+  // or not at all (the fit's replay, app/logbook.cc, tells which).
+  page = std::max<int64_t>(1, page);
+  // Sized once from a count of the gym's ticks in any state (an index-only
+  // read: 50 ms for 250,000 on PostgreSQL): grown by doubling, the vector of
+  // 250,000 records (100 MB) would be held one and a half times over while
+  // it moves. Ticks written between the count and the last page get the
+  // slack.
+  SB_ASSIGN_OR_RETURN(Rows n, c.Query("SELECT count(*) FROM ticks WHERE gym_id = ?", {gym_id}));
+  const int64_t count = n.empty() ? 0 : n.Int(0, 0);
   std::vector<TickRecord> out;
+  out.reserve(static_cast<size_t>(count + count / 64 + 16));
   int64_t after = 0;
   for (;;) {
     SB_ASSIGN_OR_RETURN(Rows r, c.Query(std::string(kSelect) +
                                             " WHERE gym_id = ? AND state = 'ok' AND id > ? "
-                                            "ORDER BY id LIMIT ?",
-                                        {gym_id, after, kPage}));
-    std::vector<TickRecord> page = Read(r);
-    if (page.empty()) break;
-    after = page.back().id;
-    out.insert(out.end(), std::make_move_iterator(page.begin()),
-               std::make_move_iterator(page.end()));
-    if (static_cast<int64_t>(page.size()) < kPage) break;
+                                            "ORDER BY gym_id, id LIMIT ?",
+                                        {gym_id, after, page}));
+    const size_t got = r.size();
+    ReadInto(r, out);
+    r = Rows();  // the page's text rows go before the next page is read
+    if (got == 0) break;
+    after = out.back().id;
+    if (static_cast<int64_t>(got) < page) break;
   }
   return out;
 }
@@ -212,3 +225,11 @@ Result<int> NewIdentitiesSince(sql::Connection& c, int64_t route_id, const std::
 }
 
 }  // namespace sb::store::ticks_sql
+
+namespace sb::store {
+
+int64_t SetGymTickPageForTesting(int64_t page) {
+  return ticks_sql::gym_tick_page.exchange(std::max<int64_t>(1, page));
+}
+
+}  // namespace sb::store

@@ -16,7 +16,14 @@ namespace sb::store::ticks_sql {
 Result<TickRecord> PutTick(sql::Connection& c, const TickRecord& tick);
 Result<TickRecord> GetTick(sql::Connection& c, int64_t id);
 Result<std::vector<TickRecord>> RouteTicks(sql::Connection& c, int64_t route_id);
-Result<std::vector<TickRecord>> GymTicks(sql::Connection& c, int64_t gym_id);
+// GymTicks reads in pages of `page` ticks (keyset on (gym_id, id)): the same
+// rows in the same order whatever the page; tests pass small pages.
+inline constexpr int64_t kGymTickPage = 10000;
+// The page SqlStore's GymTicks reads with: kGymTickPage unless a test set
+// another (SetGymTickPageForTesting, store/tick_page.h).
+int64_t GymTickPage();
+Result<std::vector<TickRecord>> GymTicks(sql::Connection& c, int64_t gym_id,
+                                         int64_t page = kGymTickPage);
 Result<std::vector<TickRecord>> ClimberTicks(sql::Connection& c, const std::string& climber);
 Result<TickCounts> CountClimberTicks(sql::Connection& c, const std::string& climber);
 Result<TickCounts> CountRouteTicks(sql::Connection& c, int64_t route_id);

@@ -12,6 +12,7 @@
 #include "store/gym_store.h"
 #include "store/target_store.h"
 #include "store/test_backends.h"
+#include "store/tick_page.h"
 
 namespace sb::store {
 namespace {
@@ -176,6 +177,55 @@ TEST_P(TickStoreTest, HeldTicksLeaveTheGymsTicksUntilAccepted) {
   EXPECT_TRUE(ticks_->ClimberTicks("d:bb")->empty());
   EXPECT_EQ(ticks_->SetTickState(99999, "ok", "t").code(), Status::Code::kNotFound);
   EXPECT_FALSE(ticks_->SetTickState(a->id, "weird", "t").ok());
+}
+
+// Issue 34: the gym's ticks are read in pages by id (a keyset on (gym_id,
+// id)); with pages of 1, 2 and 3 ticks the read is the same rows in the same
+// order as in one page, held and other gyms' ticks left out.
+TEST_P(TickStoreTest, GymTicksReadInSmallPagesAreTheSameRowsInTheSameOrder) {
+  Result<int64_t> g2 = GymStoreOf(store_.get())->CreateGym("Other", std::nullopt);
+  ASSERT_TRUE(g2.ok()) << g2.status().message();
+  RouteRecord elsewhere;
+  elsewhere.name = "E";
+  elsewhere.crdl = "name: E\n---\nR jug\n";
+  elsewhere.move_count = 1;
+  elsewhere.gym_id = *g2;
+  elsewhere.state = "set";
+  Result<int64_t> e = store_->InsertRoute(elsewhere);
+  ASSERT_TRUE(e.ok()) << e.status().message();
+  for (int i = 0; i < 7; ++i) {
+    const std::string day = "2026-11-1" + std::to_string(i);
+    TickRecord t = Tick(i % 2 ? route_ : other_, "d:c" + std::to_string(i % 3), day,
+                        i % 3 ? "send" : "attempt", day + " 10:00:00");
+    t.stars = 1 + i % 5;
+    if (i == 4) t.state = "held";
+    ASSERT_TRUE(ticks_->PutTick(t).ok());
+    TickRecord there = Tick(*e, "d:x" + std::to_string(i), day, "send", day + " 11:00:00");
+    there.gym_id = *g2;
+    ASSERT_TRUE(ticks_->PutTick(there).ok());
+  }
+  Result<std::vector<TickRecord>> whole = ticks_->GymTicks(gym_);
+  ASSERT_TRUE(whole.ok()) << whole.status().message();
+  ASSERT_EQ(whole->size(), 6u);
+  for (size_t i = 1; i < whole->size(); ++i) EXPECT_LT((*whole)[i - 1].id, (*whole)[i].id);
+  for (int64_t page : {1, 2, 3}) {
+    const int64_t before = SetGymTickPageForTesting(page);
+    Result<std::vector<TickRecord>> paged = ticks_->GymTicks(gym_);
+    SetGymTickPageForTesting(before);
+    ASSERT_TRUE(paged.ok()) << paged.status().message();
+    ASSERT_EQ(paged->size(), whole->size()) << "page " << page;
+    for (size_t i = 0; i < whole->size(); ++i) {
+      const TickRecord &a = (*whole)[i], &b = (*paged)[i];
+      EXPECT_EQ(a.id, b.id) << "page " << page;
+      EXPECT_EQ(a.gym_id, gym_);
+      EXPECT_EQ(a.climber, b.climber);
+      EXPECT_EQ(a.route_id, b.route_id);
+      EXPECT_EQ(a.stars, b.stars);
+      EXPECT_EQ(a.outcome, b.outcome);
+      EXPECT_EQ(a.revision, b.revision);
+      EXPECT_EQ(b.state, "ok");
+    }
+  }
 }
 
 TEST_P(TickStoreTest, MergeMovesADevicesTicksAndKeepsTheNewerOfTwo) {
