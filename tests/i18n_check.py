@@ -3,7 +3,9 @@
 the message catalogs.
 
 1. Extraction: xgettext reads every Tr/TrN/N_ message of src/web (the page
-   sources; tests excluded) into a template; msgcmp then fails for each
+   sources; tests excluded) and every Msg/MsgN/MsgId id of src/app (the
+   sentences the app keeps as app::Message, translated by id: a candidate's
+   reasons, a report's verdict) into a template; msgcmp then fails for each
    catalog po/<lang>.po that lacks one of them or leaves it untranslated or
    fuzzy, and msgfmt --check fails on a broken placeholder or plural form.
 2. Scan: a string literal of a page source with English text between tags
@@ -40,12 +42,18 @@ import subprocess
 import sys
 import tempfile
 
-KEYWORDS = ["--keyword=Tr:2", "--keyword=TrN:2,3", "--keyword=N_"]
+KEYWORDS = ["--keyword=Tr:2", "--keyword=TrN:2,3", "--keyword=N_", "--keyword=NN_:1,2"]
+# The app's messages (app/message.h): sentences web translates by id.
+APP_KEYWORDS = ["--keyword=Msg:1", "--keyword=MsgN:1,2", "--keyword=MsgId:1",
+                # The card's words (plan/card.cc, plan::CardTranslate).
+                "--keyword=CardTr:2", "--keyword=CardTrN:2,3"]
 LITERAL = re.compile(r'"((?:[^"\\\n]|\\.)*)"')
 WORD = re.compile(r"[A-Za-z]{2,}")
 
 
 JS_TR = re.compile(r"\btr\(\s*'((?:[^'\\\n]|\\.)*)'")
+# A count's message: trn('{1} route', '{1} routes', n, ...).
+JS_TRN = re.compile(r"\btrn\(\s*'((?:[^'\\\n]|\\.)*)'\s*,\s*'((?:[^'\\\n]|\\.)*)'")
 JS_LITERAL = re.compile(r"'((?:[^'\\\n]|\\.)*)'|\"((?:[^\"\\\n]|\\.)*)\"|`([^`]*)`")
 JS_SHOWN = re.compile(r"textContent|innerText|\.title\s*=|placeholder|\balert\(|\bconfirm\(|"
                       r"\bsay\(|aria-label")
@@ -70,6 +78,27 @@ def js_messages(path):
     """The tr('...') message ids of a script, in order."""
     with open(path, encoding="utf-8") as f:
         return [js_unescape(m.group(1)) for m in JS_TR.finditer(f.read())]
+
+
+def js_plural_messages(path):
+    """The trn('one', 'many') pairs of a script, in order."""
+    with open(path, encoding="utf-8") as f:
+        return [(js_unescape(m.group(1)), js_unescape(m.group(2)))
+                for m in JS_TRN.finditer(f.read())]
+
+
+def listed_script_plurals(root, name):
+    """The NN_() pairs of array `name` in src/web/script_messages.cc (None: no array)."""
+    path = os.path.join(root, "src", "web", "script_messages.cc")
+    if not os.path.exists(path):
+        return None
+    with open(path, encoding="utf-8") as f:
+        text = f.read()
+    m = re.search(r"\b" + name + r"\[\]\s*=\s*\{(.*?)\n\};", text, re.S)
+    if not m:
+        return None
+    return {(re.sub(r"\\(.)", r"\1", a), re.sub(r"\\(.)", r"\1", b)) for a, b in
+            re.findall(r'NN_\(\s*"((?:[^"\\]|\\.)*)"\s*,\s*"((?:[^"\\]|\\.)*)"\s*\)', m.group(1))}
 
 
 def script_array_name(path):
@@ -100,9 +129,17 @@ def check_scripts(root):
     for js in js_sources(root):
         rel = os.path.relpath(js, root)
         ids = js_messages(js)
+        name = script_array_name(js)
+        pairs = js_plural_messages(js)
+        if pairs:
+            listed = listed_script_plurals(root, name + "Plurals") or set()
+            for pair in pairs:
+                if pair not in listed:
+                    failures.append(f"{rel}: trn('{pair[0]}', '{pair[1]}') is not listed in "
+                                    f"{name}Plurals (src/web/script_messages.cc): it would "
+                                    f"stay English")
         if not ids:
             continue
-        name = script_array_name(js)
         listed = listed_script_messages(root, name)
         if listed is None:
             failures.append(f"{rel}: tr() messages but no array {name} in src/web/script_messages.cc")
@@ -125,6 +162,7 @@ def js_unwrapped_text(path, rel):
                 stripped.startswith("/*"):
             continue
         code = re.sub(r"\s//\s.*$", "", line)
+        code = JS_TRN.sub("trn(", code)
         code = JS_TR.sub("tr(", code)
         code = JS_NOT_TEXT.sub("", code)
         shown = JS_SHOWN.search(code) is not None
@@ -144,12 +182,29 @@ def page_sources(root):
     return [f for f in files if not f.endswith("_test.cc")]
 
 
+def app_sources(root):
+    """src/app's sources that build app::Message ids (Msg, MsgN, MsgId), and
+    the card's (src/plan/card.cc: CardTr, CardTrN)."""
+    out = [os.path.join(root, "src", "plan", "card.cc")]
+    out = [f for f in out if os.path.exists(f)]
+    for f in sorted(glob.glob(os.path.join(root, "src", "app", "*.cc"))):
+        if f.endswith("_test.cc") or f.endswith("message.cc"):
+            continue
+        with open(f, encoding="utf-8") as fh:
+            if re.search(r"\bMsg(N|Id)?\(", fh.read()):
+                out.append(f)
+    return out
+
+
 def extract(root, out):
-    cmd = ["xgettext", "--language=C++", "--from-code=UTF-8", "--no-wrap", "--sort-by-file",
-           "--add-comments=TRANSLATORS:", "--package-name=strangebeta", "-o", out]
-    cmd += KEYWORDS
-    cmd += [os.path.relpath(f, root) for f in page_sources(root)]
-    subprocess.run(cmd, cwd=root, check=True)
+    base = ["xgettext", "--language=C++", "--from-code=UTF-8", "--no-wrap", "--sort-by-file",
+            "--add-comments=TRANSLATORS:", "--package-name=strangebeta", "-o", out]
+    subprocess.run(base + KEYWORDS + [os.path.relpath(f, root) for f in page_sources(root)],
+                   cwd=root, check=True)
+    app = [os.path.relpath(f, root) for f in app_sources(root)]
+    if app:
+        # Joined to the pages' template (-j): the app's ids are page messages too.
+        subprocess.run(base + ["-j", "--keyword"] + APP_KEYWORDS + app, cwd=root, check=True)
 
 
 def check_catalogs(root):
@@ -312,20 +367,32 @@ def self_test(root):
         if not any("A message no catalog has" in s for s in cat_fail):
             print("self-test: the message missing from the catalogs was not reported")
             return 1
+        # An app message (app::Msg) no catalog has.
+        os.makedirs(os.path.join(copy, "src", "app"), exist_ok=True)
+        with open(os.path.join(copy, "src", "app", "i18n_selftest.cc"), "w",
+                  encoding="utf-8") as f:
+            f.write('Message A() { return Msg("An app sentence no catalog has"); }\n')
+        if not any("An app sentence no catalog has" in s for s in check_catalogs(copy)):
+            print("self-test: the app message missing from the catalogs was not reported")
+            return 1
         # The scripts: a message shown outside tr(), and a tr() message the
         # script's array in script_messages.cc lacks.
         script = os.path.join(copy, "web", "app.js")
         with open(script, "a", encoding="utf-8") as f:
             f.write("el.textContent = 'Unwrapped script words';\n"
-                    "say(msg, tr('A script message nobody listed'));\n")
+                    "say(msg, tr('A script message nobody listed'));\n"
+                    "say(msg, trn('{1} thing nobody listed', '{1} things nobody listed', n, n));\n")
         if not any("app.js:" in s and "Unwrapped script words" in s for s in scan(copy)):
             print("self-test: the unwrapped script string was not found")
             return 1
         if not any("A script message nobody listed" in s for s in check_scripts(copy)):
             print("self-test: the script message missing from kAppJs was not reported")
             return 1
-    print("self-test: unwrapped strings (page and script), an untranslated message and an "
-          "unlisted script message all fail the check")
+        if not any("{1} thing nobody listed" in s for s in check_scripts(copy)):
+            print("self-test: the script count message missing from kAppJsPlurals was not reported")
+            return 1
+    print("self-test: unwrapped strings (page and script), an untranslated message (page and "
+          "app) and an unlisted script message all fail the check")
     return 0
 
 

@@ -10,6 +10,13 @@
     try { Object.assign(MSG, JSON.parse(el.textContent)); } catch (e) { /* English */ }
   }
   const tr = (s, ...args) => (MSG[s] || s).replace(/\{(\d)\}/g, (m, i) => (args[i - 1] !== undefined ? String(args[i - 1]) : m));
+  // A count's message by the page language's plural rule: the block holds its forms for 1,
+  // for many and for 0 (French says "0 voie", German "0 Routen").
+  const trn = (one, many, n, ...args) => {
+    const f = MSG[one];
+    const s = Array.isArray(f) ? f[n === 1 ? 0 : n === 0 ? 2 : 1] : (n === 1 ? one : many);
+    return tr(s, ...args);
+  };
   const errorOf = (r) => (r.data && (r.data.message || r.data.error)) || tr('error {1}', r.status);
   const csrf = () => {
     const m = document.querySelector('meta[name="csrf-token"]');
@@ -312,7 +319,7 @@
       if (!r.data.ok && r.data.error) {
         say(msg, tr('line {1}: {2}', r.data.error.line, r.data.error.message));
       } else {
-        say(msg, tr('{1} moves', r.data.moves), true);
+        say(msg, trn('{1} move', '{1} moves', r.data.moves, r.data.moves), true);
       }
     }
     const later = () => { clearTimeout(timer); timer = setTimeout(refresh, 200); };
@@ -560,7 +567,7 @@
       const li = document.createElement('li');
       li.dataset.id = id; li.dataset.moves = moves; li.dataset.name = name;
       const n = document.createElement('span'); n.className = 'pick-name'; n.textContent = name;
-      const small = document.createElement('small'); small.textContent = ' (' + tr('{1} moves', moves) + extra + ') ';
+      const small = document.createElement('small'); small.textContent = ' (' + trn('{1} move', '{1} moves', moves, moves) + extra + ') ';
       const btns = document.createElement('span'); btns.className = 'pick-buttons';
       for (const [cls, label, text] of [['up', tr('Move up'), '↑'], ['down', tr('Move down'), '↓'], ['remove', tr('Remove'), '✕']]) {
         const b = document.createElement('button'); b.type = 'button'; b.className = cls;
@@ -594,7 +601,7 @@
       li.dataset.id = r.id; li.dataset.moves = r.moves; li.dataset.name = r.name;
       const n = document.createElement('span'); n.className = 'pick-name'; n.textContent = r.name;
       const small = document.createElement('small');
-      small.textContent = ' (' + tr('{1} moves', r.moves) + (r.grade ? ', ' + r.grade : '') + (r.public ? '' : ', ' + tr('private')) + ') ';
+      small.textContent = ' (' + trn('{1} move', '{1} moves', r.moves, r.moves) + (r.grade ? ', ' + r.grade : '') + (r.public ? '' : ', ' + tr('private')) + ') ';
       const b = document.createElement('button'); b.type = 'button'; b.className = 'add'; b.textContent = tr('Add');
       b.setAttribute('aria-label', tr('Add {1}', r.name));
       li.append(n, small, b);
@@ -617,7 +624,7 @@
       if (!more) { $('#found').innerHTML = ''; foundOffset = 0; }
       for (const x of r.data.routes) $('#found').appendChild(foundItem(x));
       foundOffset += r.data.routes.length;
-      $('#found-count').textContent = tr('{1} routes', r.data.total);
+      $('#found-count').textContent = trn('{1} route', '{1} routes', r.data.total, r.data.total);
       $('#found-more').hidden = foundOffset >= r.data.total;
     }
     $('#route-find').addEventListener('input', () => { clearTimeout(findTimer); findTimer = setTimeout(() => { find(false); saveState(); }, 200); });
@@ -847,7 +854,7 @@
     p.className = 'notice no-print';
     p.id = 'gallery-note';
     p.textContent = tr('The setter\'s preset: the best of {1} candidates ({2} kept by the filter), score {3}: {4}.',
-      gallery.count, gallery.kept, gallery.score, gallery.reasons.join('; '));
+      gallery.count, gallery.kept, gallery.score, (gallery.reasons_text || gallery.reasons).join('; '));
     plan.parentNode.insertBefore(p, plan);
   }
 

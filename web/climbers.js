@@ -10,6 +10,13 @@
     try { Object.assign(MSG, JSON.parse(el.textContent)); } catch (e) { /* English */ }
   }
   const tr = (s, ...args) => (MSG[s] || s).replace(/\{(\d)\}/g, (m, i) => (args[i - 1] !== undefined ? String(args[i - 1]) : m));
+  // A count's message by the page language's plural rule: the block holds its forms for 1,
+  // for many and for 0 (French says "0 voie", German "0 Routen").
+  const trn = (one, many, n, ...args) => {
+    const f = MSG[one];
+    const s = Array.isArray(f) ? f[n === 1 ? 0 : n === 0 ? 2 : 1] : (n === 1 ? one : many);
+    return tr(s, ...args);
+  };
   const errorOf = (r) => (r.data && (r.data.message || r.data.error)) || tr('error {1}', r.status);
   const csrf = () => {
     const m = document.querySelector('meta[name="csrf-token"]');
@@ -166,7 +173,7 @@
         const present = new Set([...picks.querySelectorAll('input.study-route')].map((el) => el.value));
         for (const r of data.routes) if (!present.has(String(r.id))) picks.appendChild(label(r));
         offset += data.routes.length;
-        found.textContent = tr('{1} routes', data.total);
+        found.textContent = trn('{1} route', '{1} routes', data.total, data.total);
         more.hidden = offset >= data.total;
       };
       find.addEventListener('input', () => { clearTimeout(timer); timer = setTimeout(() => load(false), 200); });

@@ -56,8 +56,20 @@ constexpr double kCloseStep = 0.5;  // of the ring step: the close level's rings
 constexpr double kNewFactor = 3.0;
 constexpr int kNewSkip = 100;
 
-std::string Plural(int n, const char* one, const char* many) {
-  return std::to_string(n) + " " + (n == 1 ? one : many);
+// A reason, in English and as a message (CandidateScore::why).
+void Say(CandidateScore* s, Message m) {
+  s->reasons.push_back(m.English());
+  s->why.push_back(std::move(m));
+}
+
+// "novelty close: close to its inputs", ... as one message each.
+Message NoveltyReason(Novelty n) {
+  switch (n) {
+    case Novelty::kClose: return Msg("novelty close: close to its inputs");
+    case Novelty::kMix: return Msg("novelty mix: a mix of its inputs and new moves");
+    case Novelty::kNew: break;
+  }
+  return Msg("novelty new: mostly new");
 }
 
 
@@ -270,7 +282,7 @@ chaos::VaryParams NoveltyCentre(const chaos::VaryParams& params, Novelty n) {
 }
 
 bool RejectedByFilter(const plan::PlanWarnings& warnings, std::vector<std::string>* why,
-                      bool excuse_one_hand_pair) {
+                      bool excuse_one_hand_pair, std::vector<Message>* said) {
   int finish = 0, moves = 0, hands = 0, pairs = 0;
   for (const plan::Warning& w : warnings.warnings) {
     finish += w.kind == plan::WarningKind::kFinishMidRoute;
@@ -280,10 +292,25 @@ bool RejectedByFilter(const plan::PlanWarnings& warnings, std::vector<std::strin
   }
   // The one same-hand pair the kept ends' parity demands (and no other run).
   if (excuse_one_hand_pair && hands == 1 && pairs == 1) hands = 0;
-  if (why) {
-    if (finish) why->push_back("rejected: a finish move before the end (" + Plural(finish, "move", "moves") + ")");
-    if (moves) why->push_back("rejected: a move repeated more often in a row than in its inputs (" + Plural(moves, "run", "runs") + ")");
-    if (hands) why->push_back("rejected: one hand more often in a row than in its inputs (" + Plural(hands, "run", "runs") + ")");
+  std::vector<Message> m;
+  if (finish) {
+    m.push_back(MsgN("rejected: a finish move before the end ({1} move)",
+                     "rejected: a finish move before the end ({1} moves)", finish,
+                     {std::to_string(finish)}));
+  }
+  if (moves) {
+    m.push_back(MsgN("rejected: a move repeated more often in a row than in its inputs ({1} run)",
+                     "rejected: a move repeated more often in a row than in its inputs ({1} runs)",
+                     moves, {std::to_string(moves)}));
+  }
+  if (hands) {
+    m.push_back(MsgN("rejected: one hand more often in a row than in its inputs ({1} run)",
+                     "rejected: one hand more often in a row than in its inputs ({1} runs)", hands,
+                     {std::to_string(hands)}));
+  }
+  for (Message& x : m) {
+    if (why) why->push_back(x.English());
+    if (said) said->push_back(std::move(x));
   }
   return finish + moves + hands > 0;
 }
@@ -346,19 +373,19 @@ CandidateScore CandidateScorer::Score(const plan::RoutePlan& p) {
       parity_pair |= o.constraint == chaos::Constraint::kAlternateHands && !o.held;
     }
   }
-  s.rejected = RejectedByFilter(w, &s.reasons, parity_pair);
+  s.rejected = RejectedByFilter(w, &s.reasons, parity_pair, &s.why);
   // A constraint asked and not held (a kept start or finish whose hand was
   // swapped): not what the setter asked for.
   if (p.search) {
     for (const chaos::ConstraintOutcome& o : p.search->constraints) {
       if (o.held) continue;
       if (o.constraint == chaos::Constraint::kAlternateHands) {
-        s.reasons.push_back("one same-hand pair allowed: " + o.detail);
+        Say(&s, Msg("one same-hand pair allowed: {1}", {o.detail}));
         continue;
       }
       s.rejected = true;
-      s.reasons.push_back(std::string("rejected: ") + chaos::ConstraintName(o.constraint) +
-                          " not held (" + o.detail + ")");
+      Say(&s, Msg("rejected: {1} not held ({2})",
+                  {std::string(chaos::ConstraintName(o.constraint)), o.detail}));
     }
   }
 
@@ -367,19 +394,23 @@ CandidateScore CandidateScorer::Score(const plan::RoutePlan& p) {
   s.new_moves = change.new_moves;
   s.moves = change.moves;
   s.novelty = NoveltyOf(change.new_moves, change.moves);
-  const std::string changed = std::to_string(change.new_moves) + " of " +
-                              Plural(change.moves, "move", "moves") + " new against its inputs";
+  const std::vector<Message> counts = {std::to_string(change.new_moves),
+                                        std::to_string(change.moves),
+                                        std::to_string(kMinNewMoves)};
   if (!change.same_as.empty()) {
     s.rejected = true;
-    s.reasons.push_back("rejected: same as input " + change.same_as);
+    Say(&s, Msg("rejected: same as input {1}", {change.same_as}));
   } else if (change.new_moves < kMinNewMoves) {
     s.rejected = true;
-    s.reasons.push_back("rejected: " + changed + " (at least " + std::to_string(kMinNewMoves) +
-                        " asked; the inputs one after the other make one)");
+    Say(&s, MsgN("rejected: {1} of {2} move new against its inputs (at least {3} asked; the "
+                 "inputs one after the other make one)",
+                 "rejected: {1} of {2} moves new against its inputs (at least {3} asked; the "
+                 "inputs one after the other make one)",
+                 change.moves, counts));
   } else {
-    s.reasons.push_back(changed);
-    s.reasons.push_back(std::string("novelty ") + NoveltyName(s.novelty) + ": " +
-                        NoveltyWords(s.novelty));
+    Say(&s, MsgN("{1} of {2} move new against its inputs", "{1} of {2} moves new against its inputs",
+                 change.moves, counts));
+    Say(&s, NoveltyReason(s.novelty));
   }
 
   // Warnings.
@@ -389,7 +420,7 @@ CandidateScore CandidateScorer::Score(const plan::RoutePlan& p) {
   }
   s.warnings_part = kScoreNoWarnings / (1.0 + nw);
   if (nw == 0) {
-    s.reasons.push_back("no warnings");
+    Say(&s, Msg("no warnings"));
   } else {
     std::string kinds;
     std::set<std::string> seen;
@@ -398,7 +429,7 @@ CandidateScore CandidateScorer::Score(const plan::RoutePlan& p) {
         kinds += (kinds.empty() ? "" : ", ") + std::string(plan::WarningKindName(x.kind));
       }
     }
-    s.reasons.push_back(Plural(nw, "warning", "warnings") + " (" + kinds + ")");
+    Say(&s, MsgN("{1} warning ({2})", "{1} warnings ({2})", nw, {std::to_string(nw), kinds}));
   }
 
   // The predicted grade (issue 33): the inputs' grades weighted by the moves
@@ -420,16 +451,24 @@ CandidateScore CandidateScorer::Score(const plan::RoutePlan& p) {
   }
   // The grade against the band: the predicted one, else the estimate.
   const std::string graded = s.predicted.known ? s.predicted.grade : s.estimated_band;
-  const std::string graded_words = s.predicted.known ? "predicted " : "estimated ";
+  const bool predicted = s.predicted.known;
   if (slot.band.empty()) {
     s.grade_part = kScoreGrade;
-    s.reasons.push_back("any grade (no band asked)" +
-                        (graded.empty() ? "" : ": " + graded_words + graded));
+    if (graded.empty()) {
+      Say(&s, Msg("any grade (no band asked)"));
+    } else {
+      Say(&s, Msg("any grade (no band asked): {1}",
+                  {predicted ? Msg("predicted {1}", {graded}) : Msg("estimated {1}", {graded})}));
+    }
   } else if (!p.grades || graded.empty() || p.grades->discipline.empty()) {
-    s.reasons.push_back("no grade prediction" +
-                        (s.predicted.note.empty()
-                             ? (p.grades && !p.grades->note.empty() ? ": " + p.grades->note : "")
-                             : ": " + s.predicted.note));
+    const Message note = !s.predicted.note.empty() ? s.predicted.note_said
+                         : p.grades                ? Message(p.grades->note)
+                                                   : Message();
+    if (note.empty()) {
+      Say(&s, Msg("no grade prediction"));
+    } else {
+      Say(&s, Msg("no grade prediction: {1}", {note}));
+    }
   } else {
     auto d = grades::ParseDiscipline(p.grades->discipline);
     std::optional<grades::Scale> scale;
@@ -442,15 +481,22 @@ CandidateScore CandidateScorer::Score(const plan::RoutePlan& p) {
         d.ok() ? (slot.band_to.empty() ? lo : BandOf(slot.band_to, *d, scale)) : std::nullopt;
     const std::string band = slot.band + (slot.band_to.empty() ? "" : "-" + slot.band_to);
     if (!est || !lo || !hi) {
-      s.reasons.push_back(graded_words + graded + ", not comparable with band " + band);
+      Say(&s, predicted ? Msg("predicted {1}, not comparable with band {2}", {graded, band})
+                        : Msg("estimated {1}, not comparable with band {2}", {graded, band}));
     } else {
       if (*hi < *lo) std::swap(*lo, *hi);
       const int off = *est < *lo ? *lo - *est : *est > *hi ? *est - *hi : 0;
       s.grade_part = off == 0 ? kScoreGrade : off == 1 ? kScoreGrade / 2 : 0.0;
-      s.reasons.push_back(graded_words + graded +
-                          (off == 0 ? " inside band " : " " + Plural(off, "band", "bands") +
-                                                            " outside band ") +
-                          band);
+      const std::vector<Message> a = {graded, std::to_string(off), band};
+      if (off == 0) {
+        Say(&s, predicted ? Msg("predicted {1} inside band {2}", {graded, band})
+                          : Msg("estimated {1} inside band {2}", {graded, band}));
+      } else {
+        Say(&s, predicted ? MsgN("predicted {1} {2} band outside band {3}",
+                                 "predicted {1} {2} bands outside band {3}", off, a)
+                          : MsgN("estimated {1} {2} band outside band {3}",
+                                 "estimated {1} {2} bands outside band {3}", off, a));
+      }
     }
   }
 
@@ -465,27 +511,30 @@ CandidateScore CandidateScorer::Score(const plan::RoutePlan& p) {
     std::vector<std::pair<int, std::string>> order;
     for (const auto& [st, n] : count) order.push_back({-n, st});
     std::sort(order.begin(), order.end());
+    std::vector<Message> words;
     for (size_t k = 0; k < order.size() && k < 3; ++k) {
-      s.style_words += (k ? ", " : "") + order[k].second + " (" +
-                       (k == 0 ? Plural(-order[k].first, "move", "moves")
-                               : std::to_string(-order[k].first)) +
-                       ")";
+      const int n = -order[k].first;
+      words.push_back(k == 0 ? MsgN("{1} ({2} move)", "{1} ({2} moves)", n,
+                                    {Word(order[k].second), std::to_string(n)})
+                             : List({Word(order[k].second), " (" + std::to_string(n) + ")"}, ""));
     }
+    s.style_said = List(std::move(words), ", ");
+    s.style_words = s.style_said.English();
   }
 
   // The slot's style.
   if (slot.style.empty()) {
     s.style_part = kScoreStyle;
-    s.reasons.push_back("any style (no style asked)");
+    Say(&s, Msg("any style (no style asked)"));
   } else {
     for (const chaos::VariedMove& m : p.variation.moves) {
       const std::vector<std::string> all = language::ReadStyle(impl_->styles, m.text).All();
       s.style_moves += std::find(all.begin(), all.end(), slot.style) != all.end();
     }
     s.style_part = s.style_moves > 0 ? kScoreStyle : 0.0;
-    s.reasons.push_back(s.style_moves > 0 ? slot.style + " on " +
-                                                Plural(s.style_moves, "move", "moves")
-                                          : "no " + slot.style + " move");
+    Say(&s, s.style_moves > 0 ? MsgN("{1} on {2} move", "{1} on {2} moves", s.style_moves,
+                                     {Word(slot.style), std::to_string(s.style_moves)})
+                              : Msg("no {1} move", {Word(slot.style)}));
   }
 
   // Smoothness: bits per move against the inputs' own.
@@ -503,8 +552,8 @@ CandidateScore CandidateScorer::Score(const plan::RoutePlan& p) {
   s.input_bits_per_move = in_moves ? in_bits / static_cast<double>(in_moves) : 0.0;
   const double extra = std::max(0.0, s.bits_per_move - s.input_bits_per_move);
   s.smooth_part = kScoreSmooth * std::exp2(-extra);
-  s.reasons.push_back("smoothness " + Fixed(s.bits_per_move, 2) + " bits per move (inputs " +
-                      Fixed(s.input_bits_per_move, 2) + ")");
+  Say(&s, Msg("smoothness {1} bits per move (inputs {2})",
+              {Fixed(s.bits_per_move, 2), Fixed(s.input_bits_per_move, 2)}));
 
   s.score = s.warnings_part + s.grade_part + s.style_part + s.smooth_part;
   return s;

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "app/grade_prediction.h"
+#include "app/message.h"
 #include "app/setting.h"
 #include "base/status.h"
 #include "chaos/variation.h"
@@ -67,9 +68,10 @@ inline constexpr double kScoreSmooth = 20.0;
 // keep-finish and alternate-hands asked and the ends' hands of different
 // parity: chaos::AlternateHands leaves one same-hand pair), a single
 // same-hand warning of two moves is not a rejection (it stays a warning).
-// Appends to `why` one phrase per reason. Pure.
+// Appends to `why` one phrase per reason (and to `said` the same as
+// messages, for the pages' languages). Pure.
 bool RejectedByFilter(const plan::PlanWarnings& warnings, std::vector<std::string>* why,
-                      bool excuse_one_hand_pair = false);
+                      bool excuse_one_hand_pair = false, std::vector<Message>* said = nullptr);
 
 // "A variation a setter could set" changes its inputs (issue 22). A move of
 // a candidate is new when it does not follow its predecessor in any input
@@ -112,6 +114,9 @@ struct CandidateScore {
   double score = 0.0;                 // 0..100, the sum of the parts below
   double warnings_part = 0.0, grade_part = 0.0, style_part = 0.0, smooth_part = 0.0;
   std::vector<std::string> reasons;   // words, one per part (and the filter's)
+  // The same reasons as messages (reasons[i] == why[i].English()), which the
+  // pages translate by id (issue 32).
+  std::vector<Message> why;
   std::vector<std::string> warnings;  // "kind: message", as the plan shows them
   std::string estimated_band;         // the plan's estimated grade ("" = none)
   // Issue 33: the grade predicted from its inputs' grades (what the grade
@@ -120,6 +125,7 @@ struct CandidateScore {
   // The styles read from its moves, in words: "crimp (5 moves), sidepull
   // (3), dyno (1)"; the three most frequent ("" = none read).
   std::string style_words;
+  Message style_said;                 // the same as a message (issue 32)
   int style_moves = 0;                // moves having the slot's style
   int new_moves = 0;                  // moves new against its inputs (MoveChange)
   int moves = 0;                      // its moves

@@ -62,26 +62,34 @@ PredictedGrade PredictGrade(const chaos::Variation& v, const std::vector<InputGr
     if (i < inputs.size() && inputs[i].known) known_moves += g.moves_from[i];
   }
   // The basis in words, input by input.
+  std::vector<Message> parts;
   for (size_t i = 0; i < g.moves_from.size(); ++i) {
     if (g.moves_from[i] == 0) continue;
     const std::string name = i < inputs.size() && !inputs[i].name.empty() ? inputs[i].name
                                                                          : v.inputs[i].name;
-    std::string part = std::to_string(g.moves_from[i]) + " from " + name + " (";
+    const std::string from = std::to_string(g.moves_from[i]);
     if (i >= inputs.size() || !inputs[i].known) {
-      part += "no grade: left out";
+      parts.push_back(Msg("{1} from {2} (no grade: left out)", {from, name}));
     } else if (inputs[i].source == "ascent") {
-      part += "ascent grade " + inputs[i].grade + " over " + std::to_string(inputs[i].ticks) +
-              (inputs[i].ticks == 1 ? " tick" : " ticks");
+      parts.push_back(MsgN("{1} from {2} (ascent grade {3} over {4} tick)",
+                           "{1} from {2} (ascent grade {3} over {4} ticks)", inputs[i].ticks,
+                           {from, name, inputs[i].grade, std::to_string(inputs[i].ticks)}));
     } else {
-      part += "setter's grade " + inputs[i].grade;
+      parts.push_back(Msg("{1} from {2} (setter's grade {3})", {from, name, inputs[i].grade}));
     }
-    part += ")";
-    g.basis += (g.basis.empty() ? "moves: " : ", ") + part;
   }
-  if (known_moves == 0) {
-    g.note = "no grade to predict from: none of the routes its moves come from has a grade or "
-             "ticks";
+  std::vector<Message> basis;
+  if (!parts.empty()) basis.push_back(Msg("moves: {1}", {List(std::move(parts), ", ")}));
+  auto done = [&] {
+    g.basis_said = List(std::move(basis), "; ");
+    g.basis = g.basis_said.English();
+    g.note = g.note_said.English();
     return g;
+  };
+  if (known_moves == 0) {
+    g.note_said = Msg("no grade to predict from: none of the routes its moves come from has a "
+                      "grade or ticks");
+    return done();
   }
   double mean = 0, var = 0;
   for (size_t i = 0; i < g.moves_from.size(); ++i) {
@@ -105,9 +113,10 @@ PredictedGrade PredictGrade(const chaos::Variation& v, const std::vector<InputGr
   g.grade = grades::FormatValue(g.value, d, scale);
   g.lo_grade = grades::FormatValue(g.lo, d, scale);
   g.hi_grade = grades::FormatValue(g.hi, d, scale);
-  g.basis += "; " + std::to_string(g.new_moves) + " of " + std::to_string(g.moves) +
-             " moves new (they widen the interval)";
-  return g;
+  basis.push_back(MsgN("{1} of {2} move new (they widen the interval)",
+                       "{1} of {2} moves new (they widen the interval)", g.moves,
+                       {std::to_string(g.new_moves), std::to_string(g.moves)}));
+  return done();
 }
 
 std::string PredictedGradeText(const PredictedGrade& g) {

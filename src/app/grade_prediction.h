@@ -18,6 +18,8 @@
 #include <string>
 #include <vector>
 
+#include "app/message.h"
+
 #include "chaos/variation.h"
 #include "grades/scale.h"
 #include "language/symbols.h"
@@ -75,6 +77,9 @@ struct PredictedGrade {
   std::vector<int> moves_from;  // per input: moves of the candidate taken from it
   std::string basis;  // in words: "12 moves from A (ascent V3, 10 ticks), 8 from B (setter's V4)"
   std::string note;   // why it is unknown ("" when known)
+  // The two above as messages (basis == basis_said.English(), note ==
+  // note_said.English()), translated by the pages (issue 32).
+  Message basis_said, note_said;
 };
 
 // The prediction: value = sum_i w_i g_i, w_i the share of the candidate's

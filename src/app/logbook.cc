@@ -13,6 +13,7 @@
 
 #include "app/climber_policy.h"
 #include "app/discipline.h"
+#include "app/message.h"
 #include "app/routes.h"
 #include "app/scales.h"
 #include "base/date.h"
@@ -96,8 +97,8 @@ AscentGrade MakeGrade(const std::string& discipline, Discipline d, const store::
   if (r.grade_value && r.grade_discipline == discipline) {
     a.setter_value = r.grade_value;
     const int band = grades::Band(*r.grade_value);
-    if (a.hi < band - 0.5) a.verdict = "soft";
-    if (a.lo >= band + 0.5) a.verdict = "sandbagged";
+    if (a.hi < band - 0.5) a.verdict = MsgId("soft");
+    if (a.lo >= band + 0.5) a.verdict = MsgId("sandbagged");
   }
   if (felt != nullptr && !felt->empty()) {
     Result<grades::Consensus> c = grades::ConsensusOf(*felt);
@@ -136,7 +137,7 @@ void InWallScale(store::Store* store, int64_t gym_id, std::map<int64_t, WallGrad
     // The setter's label: the one holding its value (the label's middle).
     for (const grades::GymLabel& l : g.labels) {
       if (*a->setter_value < l.lo || *a->setter_value > l.hi) continue;
-      a->verdict = a->hi < l.lo - 0.5 ? "soft" : a->lo >= l.hi + 0.5 ? "sandbagged" : "";
+      a->verdict = a->hi < l.lo - 0.5 ? MsgId("soft") : a->lo >= l.hi + 0.5 ? MsgId("sandbagged") : "";
       break;
     }
   }

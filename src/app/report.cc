@@ -81,26 +81,33 @@ VariationComparison CompareStars(std::vector<double> variation, std::vector<doub
   c.welch_df = w.df;
   c.welch_p = w.p;
   c.enough = nv >= ReportLimits::kMinRatingsPerGroup && nh >= ReportLimits::kMinRatingsPerGroup;
-  const std::string counts = std::to_string(nv) + " star rating" + (nv == 1 ? "" : "s") +
-                             " of variations and " + std::to_string(nh) + " of hand-set routes";
+  const Message counts =
+      MsgN("{1} star rating of variations and {2} of hand-set routes",
+           "{1} star ratings of variations and {2} of hand-set routes", nv,
+           {std::to_string(nv), std::to_string(nh)});
   if (!c.enough) {
-    c.verdict = "Too few ratings to compare: " + counts +
-                " in the grade bands both kinds share; at least " +
-                std::to_string(ReportLimits::kMinRatingsPerGroup) +
-                " a side are needed before the tests mean anything.";
+    c.verdict_said = Msg(
+        "Too few ratings to compare: {1} in the grade bands both kinds share; at least {2} a "
+        "side are needed before the tests mean anything.",
+        {counts, std::to_string(ReportLimits::kMinRatingsPerGroup)});
   } else if (!std::isnan(c.wilcoxon_p) && c.wilcoxon_p < ReportLimits::kSignificance) {
-    c.verdict = std::string("Variations are liked ") +
-                (c.variation_mean > c.hand_mean ? "more" : "less") +
-                " than hand-set routes of the same grades: " + Two(c.variation_mean) + " vs " +
-                Two(c.hand_mean) + " stars on average (Wilcoxon rank-sum p = " +
-                PText(c.wilcoxon_p) + ", Welch's t p = " + PText(c.welch_p) + "; " + counts +
-                ").";
+    const std::vector<Message> a = {Two(c.variation_mean), Two(c.hand_mean), PText(c.wilcoxon_p),
+                                    PText(c.welch_p), counts};
+    c.verdict_said =
+        c.variation_mean > c.hand_mean
+            ? Msg("Variations are liked more than hand-set routes of the same grades: {1} vs {2} "
+                  "stars on average (Wilcoxon rank-sum p = {3}, Welch's t p = {4}; {5}).",
+                  a)
+            : Msg("Variations are liked less than hand-set routes of the same grades: {1} vs {2} "
+                  "stars on average (Wilcoxon rank-sum p = {3}, Welch's t p = {4}; {5}).",
+                  a);
   } else {
-    c.verdict = "No difference shown: variations get " + Two(c.variation_mean) +
-                " stars on average, hand-set routes of the same grades " + Two(c.hand_mean) +
-                " (Wilcoxon rank-sum p = " + PText(c.wilcoxon_p) + ", Welch's t p = " +
-                PText(c.welch_p) + "; " + counts + ").";
+    c.verdict_said = Msg(
+        "No difference shown: variations get {1} stars on average, hand-set routes of the same "
+        "grades {2} (Wilcoxon rank-sum p = {3}, Welch's t p = {4}; {5}).",
+        {Two(c.variation_mean), Two(c.hand_mean), PText(c.wilcoxon_p), PText(c.welch_p), counts});
   }
+  c.verdict = c.verdict_said.English();
   return c;
 }
 

@@ -91,6 +91,7 @@ struct VariationComparison {
   double welch_t = 0, welch_df = 0, welch_p = 0;  // studies::WelchT(variation, hand)
   bool enough = false;  // both sides have kMinRatingsPerGroup ratings
   std::string verdict;  // in plain words, naming the counts
+  Message verdict_said;  // the same as a message (issue 32)
 };
 
 // The report.

@@ -196,19 +196,27 @@ PredictionCheck CheckPredictedGrades(store::Store* store, Logbook* logbook, int6
     out.days.push_back(std::move(day));
   }
   if (variations == 0) {
-    out.verdict = "no variation in this report: nothing to check the predicted grade against";
+    out.verdict_said =
+        Msg("no variation in this report: nothing to check the predicted grade against");
   } else if (checked == 0) {
-    out.verdict = "none of the " + std::to_string(variations) + " variations has " +
-                  std::to_string(min_ticks) +
-                  " ticks yet: the predicted grades are checked once climbers have logged them";
+    out.verdict_said = MsgN(
+        "none of the {1} variation has {2} ticks yet: the predicted grades are checked once "
+        "climbers have logged them",
+        "none of the {1} variations has {2} ticks yet: the predicted grades are checked once "
+        "climbers have logged them",
+        variations, {std::to_string(variations), std::to_string(min_ticks)});
   } else {
-    out.verdict = std::to_string(checked) + " of " + std::to_string(variations) +
-                  " variations with at least " + std::to_string(min_ticks) +
-                  " ticks: the ascent grade is within one band of the predicted grade on " +
-                  std::to_string(within) + ", inside its 80% interval on " +
-                  std::to_string(inside) + "; mean difference " + Fixed2(err / checked) +
-                  " grades";
+    out.verdict_said = MsgN(
+        // xgettext:no-c-format
+        "{1} of {2} variation with at least {3} ticks: the ascent grade is within one band of "
+        "the predicted grade on {4}, inside its 80% interval on {5}; mean difference {6} grades",
+        "{1} of {2} variations with at least {3} ticks: the ascent grade is within one band of "
+        "the predicted grade on {4}, inside its 80% interval on {5}; mean difference {6} grades",
+        variations,
+        {std::to_string(checked), std::to_string(variations), std::to_string(min_ticks),
+         std::to_string(within), std::to_string(inside), Fixed2(err / checked)});
   }
+  out.verdict = out.verdict_said.English();
   return out;
 }
 

@@ -61,6 +61,7 @@ struct PredictionCheck {
   int min_ticks = kMinTicksForPredictionCheck;
   std::vector<PredictionDay> days;
   std::string verdict;  // in words, naming the counts
+  Message verdict_said;  // the same as a message (issue 32)
 };
 
 // One route of a report as this check reads it.

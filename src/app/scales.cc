@@ -3,6 +3,7 @@
 #include <tuple>
 #include <utility>
 
+#include "app/message.h"
 #include "base/text.h"
 #include "gym/rules.h"
 #include "store/gym_store.h"
@@ -45,11 +46,12 @@ std::optional<grades::Discipline> WallGradeScale::discipline() const {
 
 std::string BuiltInAccepts(grades::Scale s) {
   switch (s) {
-    case grades::Scale::kV: return "VB, V0 to V17, with + or -, V3-4";
-    case grades::Scale::kFont: return "3 to 9A with A-C and +, such as 6B+";
-    case grades::Scale::kYds: return "5.0 to 5.15d, with a-d, + or -";
-    case grades::Scale::kFrench: return "3 to 9c with a-c and +, such as 6b+";
-    case grades::Scale::kUiaa: return "I to XII, with + or -";
+    // Message ids: a refusal's "(it accepts ...)" part, translated by the pages.
+    case grades::Scale::kV: return MsgId("VB, V0 to V17, with + or -, V3-4");
+    case grades::Scale::kFont: return MsgId("3 to 9A with A-C and +, such as 6B+");
+    case grades::Scale::kYds: return MsgId("5.0 to 5.15d, with a-d, + or -");
+    case grades::Scale::kFrench: return MsgId("3 to 9c with a-c and +, such as 6b+");
+    case grades::Scale::kUiaa: return MsgId("I to XII, with + or -");
   }
   return "";
 }

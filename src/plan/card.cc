@@ -16,6 +16,36 @@
 
 namespace sb::plan {
 
+namespace {
+
+// "{1}".."{9}" of `pattern` replaced by `args`.
+std::string FillIn(const std::string& pattern, const std::vector<std::string>& args) {
+  std::string out;
+  for (size_t i = 0; i < pattern.size(); ++i) {
+    if (pattern[i] == '{' && i + 2 < pattern.size() && pattern[i + 1] >= '1' &&
+        pattern[i + 1] <= '9' && pattern[i + 2] == '}') {
+      const size_t k = static_cast<size_t>(pattern[i + 1] - '1');
+      out += k < args.size() ? args[k] : pattern.substr(i, 3);
+      i += 2;
+      continue;
+    }
+    out += pattern[i];
+  }
+  return out;
+}
+
+// A card message (a string literal: extracted for the catalogs) in the
+// page's language, filled in.
+std::string CardTr(const CardTranslate& tr, const char* id, const std::vector<std::string>& args = {}) {
+  return FillIn(tr ? tr(id, nullptr, 0) : std::string(id), args);
+}
+std::string CardTrN(const CardTranslate& tr, const char* one, const char* many, long long n,
+                    const std::vector<std::string>& args) {
+  return FillIn(tr ? tr(one, many, n) : std::string(n == 1 ? one : many), args);
+}
+
+}  // namespace
+
 // ---------------------------------------------------------------------------
 // Content shared by every rendering.
 
@@ -69,22 +99,23 @@ std::vector<CardRow> CardRows(const RoutePlan& plan) {
   return rows;
 }
 
-std::string CardSummary(const RoutePlan& plan) {
+std::string CardSummary(const RoutePlan& plan, const CardTranslate& tr) {
   int changed = 0, added = 0;
   for (const chaos::VariedMove& m : plan.variation.moves) {
     changed += m.changed && !m.added;
     added += m.added;
   }
-  std::string s = std::to_string(changed) + " of " + std::to_string(plan.variation.moves.size()) +
-                  " moves changed";
-  if (added) s += ", " + std::to_string(added) + " added by the setter";
+  const long long total = static_cast<long long>(plan.variation.moves.size());
+  std::string s = CardTrN(tr, "{1} of {2} move changed", "{1} of {2} moves changed", total,
+                          {std::to_string(changed), std::to_string(total)});
+  if (added) s += ", " + CardTr(tr, "{1} added by the setter", {std::to_string(added)});
   const int generated = static_cast<int>(plan.variation.mapping.size());
   const int kept = static_cast<int>(plan.variation.moves.size()) - added;
-  if (generated > kept) s += ", " + std::to_string(generated - kept) + " taken out";
+  if (generated > kept) s += ", " + CardTr(tr, "{1} taken out", {std::to_string(generated - kept)});
   return s;
 }
 
-std::string CardLegend(const std::vector<CardRow>& rows) {
+std::string CardLegend(const std::vector<CardRow>& rows, const CardTranslate& tr) {
   bool changed = false, added = false, suggested = false, crux = false, diff = false;
   bool match = false, swapped = false;
   for (const CardRow& r : rows) {
@@ -102,21 +133,27 @@ std::string CardLegend(const std::vector<CardRow>& rows) {
     if (!s.empty()) s += " \xC2\xB7 ";  // ·
     s += text;
   };
-  add(changed, std::string(kMarkChanged) + " changed: not the input's move at this position");
-  add(added, std::string(kMarkAdded) + " added by the setter");
-  add(suggested, std::string(kMarkSuggested) + " smoothing suggestion (a linking move)");
-  add(crux, std::string(kMarkCrux) + " crux");
-  add(diff, "bar: difficulty estimate (0 to 1)");
+  add(changed, std::string(kMarkChanged) + " " +
+                   CardTr(tr, "changed: not the input's move at this position"));
+  add(added, std::string(kMarkAdded) + " " + CardTr(tr, "added by the setter"));
+  add(suggested, std::string(kMarkSuggested) + " " +
+                     CardTr(tr, "smoothing suggestion (a linking move)"));
+  add(crux, std::string(kMarkCrux) + " " + CardTr(tr, "crux"));
+  add(diff, CardTr(tr, "bar: difficulty estimate (0 to 1)"));
+  // The row notes "(match?)" and "(hand swapped)" are the rows' own words.
   add(match,
-      "(match?): the input's move here was a match; the paper puts the other hand's previous "
-      "move in its place, so check the hands at the wall");
-  add(swapped, "(hand swapped): the hand was swapped so that hands alternate");
+      "(match?): " + CardTr(tr, "the input's move here was a match; the paper puts the other "
+                                "hand's previous move in its place, so check the hands at the "
+                                "wall"));
+  add(swapped,
+      "(hand swapped): " + CardTr(tr, "the hand was swapped so that hands alternate"));
   return s;
 }
 
-std::string CardLegendLine(const RoutePlan& plan, const std::vector<CardRow>& rows) {
-  std::string s = CardLegend(rows);
-  const CardAnnotations a = CardAnnotationsOf(plan);
+std::string CardLegendLine(const RoutePlan& plan, const std::vector<CardRow>& rows,
+                           const CardTranslate& tr) {
+  std::string s = CardLegend(rows, tr);
+  const CardAnnotations a = CardAnnotationsOf(plan, tr);
   if (a.hardest.empty()) return s;
   return s + (s.empty() ? "" : " \xC2\xB7 ") + "\xE2\x94\x83 " + a.hardest;  // ┃
 }
@@ -182,9 +219,10 @@ namespace {
 constexpr char kDot[] = " \xC2\xB7 ";  // " · "
 
 // "moves 3-4" / "move 7" (1-based, inclusive).
-std::string Span(int first, int last) {
-  return first == last ? "move " + std::to_string(first + 1)
-                       : "moves " + std::to_string(first + 1) + "-" + std::to_string(last + 1);
+std::string Span(int first, int last, const CardTranslate& tr = {}) {
+  return first == last ? CardTr(tr, "move {1}", {std::to_string(first + 1)})
+                       : CardTr(tr, "moves {1}-{2}",
+                                {std::to_string(first + 1), std::to_string(last + 1)});
 }
 
 std::string Fixed2(double d) {
@@ -193,48 +231,51 @@ std::string Fixed2(double d) {
   return buf;
 }
 
-std::string GradesLine(const RoutePlan& plan) {
+std::string GradesLine(const RoutePlan& plan, const CardTranslate& tr) {
   if (!plan.grades) return "";
   const PlanGrades& g = *plan.grades;
-  std::string s = g.estimate.empty()
-                      ? "Estimated grade: none" + (g.note.empty() ? "" : " (" + g.note + ")")
-                      : "Estimated grade " + g.estimate + " (" +
-                            std::to_string(static_cast<int>(std::lround(g.level * 100))) +
-                            "%: " + g.low + " to " + g.high + ")";
+  std::string s =
+      g.estimate.empty()
+          ? CardTr(tr, "Estimated grade: none") + (g.note.empty() ? "" : " (" + g.note + ")")
+          // xgettext:no-c-format
+          : CardTr(tr, "Estimated grade {1} ({2}%: {3} to {4})",
+                   {g.estimate, std::to_string(static_cast<int>(std::lround(g.level * 100))),
+                    g.low, g.high});
   std::string inputs;
   const auto& in = plan.variation.inputs;
   for (size_t i = 0; i < in.size(); ++i) {
     if (i) inputs += ", ";
     inputs += in[i].name + " " +
-              (i < g.inputs.size() && !g.inputs[i].empty() ? g.inputs[i] : "(no grade)");
+              (i < g.inputs.size() && !g.inputs[i].empty() ? g.inputs[i]
+                                                           : CardTr(tr, "(no grade)"));
   }
-  return inputs.empty() ? s : s + kDot + "inputs: " + inputs;
+  return inputs.empty() ? s : s + kDot + CardTr(tr, "inputs: {1}", {inputs});
 }
 
-std::string SearchLine(const RoutePlan& plan) {
+std::string SearchLine(const RoutePlan& plan, const CardTranslate& tr) {
   if (!plan.search) return "";
   const SearchReport& r = *plan.search;
-  std::string s = "IC search: IC (" + FormatTriple(r.used_ic) + ") used, " +
-                  FormatDouble(r.distance, 4) + " from the IC asked for";
+  std::string s = CardTr(tr, "IC search: IC ({1}) used, {2} from the IC asked for",
+                         {FormatTriple(r.used_ic), FormatDouble(r.distance, 4)});
   std::string held, missed;
   for (const chaos::ConstraintOutcome& c : r.constraints) {
     std::string& to = c.held ? held : missed;
     if (!to.empty()) to += ", ";
     to += chaos::ConstraintName(c.constraint);
   }
-  if (!held.empty()) s += kDot + std::string("held: ") + held;
+  if (!held.empty()) s += kDot + CardTr(tr, "held: {1}", {held});
   if (r.hands_swapped > 0) {
-    s += " (" + std::to_string(r.hands_swapped) + (r.hands_swapped > 1 ? " hands" : " hand") +
-         " swapped)";
+    s += " " + CardTrN(tr, "({1} hand swapped)", "({1} hands swapped)", r.hands_swapped,
+                       {std::to_string(r.hands_swapped)});
   }
-  if (!missed.empty()) s += kDot + std::string("NOT held: ") + missed;
+  if (!missed.empty()) s += kDot + CardTr(tr, "NOT held: {1}", {missed});
   return CardRoundNumbers(s);
 }
 
 // One short line per kind of warning: the moves concerned as ranges (the
 // plan's text and JSON have each warning's full message); the missing
 // finish, which happens once, by its message.
-std::vector<std::string> WarningLines(const PlanWarnings& w) {
+std::vector<std::string> WarningLines(const PlanWarnings& w, const CardTranslate& tr) {
   std::vector<std::string> out;
   for (size_t i = 0; i < w.warnings.size();) {
     const WarningKind kind = w.warnings[i].kind;
@@ -246,26 +287,26 @@ std::vector<std::string> WarningLines(const PlanWarnings& w) {
         continue;
       }
       line += line.empty() ? "" : ", ";
-      line += Span(x.first, x.last);
+      line += Span(x.first, x.last, tr);
       if (kind == WarningKind::kRepeatedMove) {
         line += " (" + std::to_string(x.count) + "\xC3\x97)";  // ×
       }
     }
     switch (kind) {
       case WarningKind::kRepeatedMove:
-        line = "same move repeated: " + line;
+        line = CardTr(tr, "same move repeated: {1}", {line});
         break;
       case WarningKind::kSameHand:
-        line = "same hand in a row: " + line;
+        line = CardTr(tr, "same hand in a row: {1}", {line});
         break;
       case WarningKind::kEarlyCrux:
-        line = "crux in the first fifth: " + line;
+        line = CardTr(tr, "crux in the first fifth: {1}", {line});
         break;
       case WarningKind::kStartAwayFromStart:
-        line = "an input's start move mid-route: " + line;
+        line = CardTr(tr, "an input's start move mid-route: {1}", {line});
         break;
       case WarningKind::kFinishMidRoute:
-        line = "finish move before the end: " + line;
+        line = CardTr(tr, "finish move before the end: {1}", {line});
         break;
       case WarningKind::kNoFinish:
         break;
@@ -277,15 +318,15 @@ std::vector<std::string> WarningLines(const PlanWarnings& w) {
 
 }  // namespace
 
-CardAnnotations CardAnnotationsOf(const RoutePlan& plan) {
+CardAnnotations CardAnnotationsOf(const RoutePlan& plan, const CardTranslate& tr) {
   CardAnnotations a;
-  a.grades = GradesLine(plan);
-  a.search = SearchLine(plan);
-  if (plan.warnings) a.warnings = WarningLines(*plan.warnings);
+  a.grades = GradesLine(plan, tr);
+  a.search = SearchLine(plan, tr);
+  if (plan.warnings) a.warnings = WarningLines(*plan.warnings, tr);
   if (plan.profile && plan.profile->hardest_first >= 0) {
-    a.hardest =
-        "Hardest stretch: " + Span(plan.profile->hardest_first, plan.profile->hardest_last) +
-        " (mean estimate " + Fixed2(plan.profile->hardest_mean) + ")";
+    a.hardest = CardTr(tr, "Hardest stretch: {1} (mean estimate {2})",
+                       {Span(plan.profile->hardest_first, plan.profile->hardest_last, tr),
+                        Fixed2(plan.profile->hardest_mean)});
   }
   return a;
 }
@@ -302,23 +343,27 @@ std::vector<std::string> CardAnnotationLines(const RoutePlan& plan) {
 }
 
 namespace {
-std::string Joined(const std::vector<std::pair<const char*, const std::string*>>& parts) {
+// The parts that are set, " · " between them.
+std::string Joined(const std::vector<std::string>& parts) {
   std::string s;
-  for (const auto& [label, value] : parts) {
-    if (value->empty()) continue;
+  for (const std::string& p : parts) {
+    if (p.empty()) continue;
     if (!s.empty()) s += " \xC2\xB7 ";
-    s += std::string(label) + *value;
+    s += p;
   }
   return s;
 }
 }  // namespace
 
 std::string CardFactsLine(const CardInfo& i) {
-  return Joined({{"Grade ", &i.grade}, {"Colour ", &i.colour}, {"Wall ", &i.wall}});
+  const CardTranslate& tr = i.translate;
+  return Joined({i.grade.empty() ? "" : CardTr(tr, "Grade {1}", {i.grade}),
+                 i.colour.empty() ? "" : CardTr(tr, "Colour {1}", {i.colour}),
+                 i.wall.empty() ? "" : CardTr(tr, "Wall {1}", {i.wall})});
 }
 
 std::string CardSetterLine(const CardInfo& i) {
-  return Joined({{"Set by ", &i.setter}, {"", &i.date}});
+  return Joined({i.setter.empty() ? "" : CardTr(i.translate, "Set by {1}", {i.setter}), i.date});
 }
 
 // ---------------------------------------------------------------------------
@@ -521,14 +566,14 @@ double TableHeight(cairo_t* cr, const std::vector<CardRow>& rows, const Columns&
 }
 
 void DrawTable(cairo_t* cr, const std::vector<CardRow>& rows, const Columns& c, double y,
-               double font, double pad, double width) {
+               double font, double pad, double width, const CardTranslate& tr) {
   cairo_set_source_rgb(cr, 0, 0, 0);
   const double head = font * 0.8;
   Paragraph(cr, "#", c.x_num, y, kNumW, head, true);
-  Paragraph(cr, "Hand", c.x_hand - 2, y, kHandW + kMarkW, head, true);
-  Paragraph(cr, "Move", c.x_move, y, c.w_move, head, true);
-  if (c.w_diff > 0) Paragraph(cr, "Diff.", c.x_diff + 1, y, c.w_diff, head, true);
-  Paragraph(cr, "From", c.x_from, y, c.w_from, head, true);
+  Paragraph(cr, CardTr(tr, "Hand"), c.x_hand - 2, y, kHandW + kMarkW, head, true);
+  Paragraph(cr, CardTr(tr, "Move"), c.x_move, y, c.w_move, head, true);
+  if (c.w_diff > 0) Paragraph(cr, CardTr(tr, "Diff."), c.x_diff + 1, y, c.w_diff, head, true);
+  Paragraph(cr, CardTr(tr, "From"), c.x_from, y, c.w_from, head, true);
   y += font * 1.6;
   cairo_set_line_width(cr, 0.8);
   cairo_move_to(cr, c.x_num, y - 2);
@@ -591,20 +636,20 @@ double DrawHeader(cairo_t* cr, const RoutePlan& plan, const CardInfo& info, Page
   y += Paragraph(cr, info.name, x0, y, head_w, 22, true) + 2;
   y += Paragraph(cr, CardFactsLine(info), x0, y, head_w, 15, true) + 1;
   y += Paragraph(cr, CardSetterLine(info), x0, y, head_w, 12);
-  const CardAnnotations notes_of_plan = CardAnnotationsOf(plan);
+  const CardAnnotations notes_of_plan = CardAnnotationsOf(plan, info.translate);
   if (!notes_of_plan.grades.empty()) {
     y += 2 + Paragraph(cr, notes_of_plan.grades, x0, y + 2, head_w, 9.5);
   }
   if (qr) {
     DrawQr(cr, info.url, page.w - s.margin - s.qr, s.margin - 6, s.qr);
     cairo_set_source_rgb(cr, 0.25, 0.25, 0.25);
-    Paragraph(cr, "Scan to give feedback", page.w - s.margin - s.qr, s.margin - 6 + s.qr - 4, s.qr,
+    Paragraph(cr, CardTr(info.translate, "Scan to give feedback"), page.w - s.margin - s.qr, s.margin - 6 + s.qr - 4, s.qr,
               6.5);
     cairo_set_source_rgb(cr, 0, 0, 0);
     y = std::max(y, s.margin + s.qr + 4);
   }
   y += 4;
-  y += Paragraph(cr, CardSummary(plan) + ".", x0, y, cw, 9) + 2;
+  y += Paragraph(cr, CardSummary(plan, info.translate) + ".", x0, y, cw, 9) + 2;
   // The IC search and the warnings: short lines in small type above the
   // moves, where the setter reads them before setting.
   if (!notes_of_plan.search.empty()) y += Paragraph(cr, notes_of_plan.search, x0, y, cw, 8.5);
@@ -624,7 +669,8 @@ struct Footer {
 };
 
 Footer FooterOf(const RoutePlan& plan, const CardInfo& info, const std::vector<CardRow>& rows) {
-  return {info.notes.empty() ? "" : "Notes: " + info.notes, CardLegendLine(plan, rows),
+  return {info.notes.empty() ? "" : CardTr(info.translate, "Notes: {1}", {info.notes}),
+          CardLegendLine(plan, rows, info.translate),
           CardParameters(plan)};
 }
 
@@ -683,7 +729,7 @@ void DrawCard(cairo_t* cr, const RoutePlan& plan, const CardInfo& info, PageSize
   cairo_set_source_rgb(cr, 1, 1, 1);
   cairo_paint(cr);
   double y = DrawHeader(cr, plan, info, page, s);
-  DrawTable(cr, rows, l.columns, y, l.font, s.pad, cw);
+  DrawTable(cr, rows, l.columns, y, l.font, s.pad, cw, info.translate);
   y += l.table_h + 6;
   const Footer f = FooterOf(plan, info, rows);
   cairo_set_source_rgb(cr, 0, 0, 0);

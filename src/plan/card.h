@@ -7,6 +7,7 @@
 #ifndef SB_PLAN_CARD_H_
 #define SB_PLAN_CARD_H_
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,13 @@
 namespace sb::plan {
 
 // What the card says about the route besides its plan.
+// Issue 32: the card's words in a page's language. Called with a message
+// id of the card ("Set by {1}"; `many` and `n` for a count, else nullptr
+// and 0), it returns the id translated with its "{1}".. left for the card
+// to fill. Unset: English. The ids are extracted for the catalogs from
+// card.cc (tests/i18n_check.py: CardTr, CardTrN).
+using CardTranslate = std::function<std::string(const char* one, const char* many, long long n)>;
+
 struct CardInfo {
   std::string name;
   std::string grade;
@@ -30,6 +38,8 @@ struct CardInfo {
   std::string url;
   // Print the trajectory picture when it fits (it never shrinks the moves).
   bool picture = true;
+  // The card's words in the page's language (unset: English).
+  CardTranslate translate;
 };
 
 // The marks of the move table, chosen to survive black-and-white printing.
@@ -63,15 +73,16 @@ struct CardRow {
 std::vector<CardRow> CardRows(const RoutePlan& plan);
 
 // "12 of 30 moves changed", plus ", 2 added by the setter" when some were.
-std::string CardSummary(const RoutePlan& plan);
+std::string CardSummary(const RoutePlan& plan, const CardTranslate& tr = {});
 // The legend of the marks actually used by `rows` ("◆ changed position ·
 // + smoothing suggestion", "★ crux", the difficulty bar, the notes
 // "(match?)" and "(hand swapped)"), "" when none is.
-std::string CardLegend(const std::vector<CardRow>& rows);
+std::string CardLegend(const std::vector<CardRow>& rows, const CardTranslate& tr = {});
 // The legend line the card prints: CardLegend(rows) and, when the plan has a
 // hardest stretch, "┃ Hardest stretch: moves 14-19 (mean estimate 0.31)"
 // (the rule beside those rows). Pure.
-std::string CardLegendLine(const RoutePlan& plan, const std::vector<CardRow>& rows);
+std::string CardLegendLine(const RoutePlan& plan, const std::vector<CardRow>& rows,
+                           const CardTranslate& tr = {});
 // Whether the card has a difficulty column (the plan has one estimate per
 // move). Pure.
 bool CardHasDifficulty(const RoutePlan& plan);
@@ -92,7 +103,7 @@ struct CardAnnotations {
 };
 // The annotations of `plan` (empty strings/vectors where it has none). Pure;
 // deterministic.
-CardAnnotations CardAnnotationsOf(const RoutePlan& plan);
+CardAnnotations CardAnnotationsOf(const RoutePlan& plan, const CardTranslate& tr = {});
 // The annotation lines in card order (grades, search, "Warnings: " + each
 // warning line or "Warnings: none", hardest stretch), skipping empty ones.
 std::vector<std::string> CardAnnotationLines(const RoutePlan& plan);

@@ -8,6 +8,7 @@
 #include "base/text.h"
 #include "chaos/variation.h"
 #include "plan/plan.h"
+#include "web/error_text.h"
 #include "web/handlers.h"
 
 namespace sb::web {
@@ -189,6 +190,12 @@ void PostVariation(Exchange& x) {
                           {"new_moves", best.new_moves},
                           {"moves", best.moves}};
     if (!v->gallery->note.empty()) out["gallery"]["note"] = v->gallery->note;
+    // The reasons in the caller's language, beside the English ones (issue 32).
+    if (const std::string lang = ApiLanguage(x); lang != "en") {
+      json said = json::array();
+      for (const app::Message& m : best.why) said.push_back(TrMessage(lang, m));
+      out["gallery"]["reasons_text"] = said;
+    }
   }
   ReplyJson(x.res, v->existing ? 200 : 201, out);
 }

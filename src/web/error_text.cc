@@ -9,11 +9,14 @@ namespace sb::web {
 
 namespace {
 
-// The shapes of the app's sentences, after any "field: " (see error_text.h).
+// A wall's scale refusing a grade; {3}: what the scale accepts.
+const std::string kAccepts = N_("\"{1}\" is not a grade of the scale \"{2}\" (it accepts {3})");
+
+// The shapes of the app's refusals, after any "field: " (see error_text.h).
 // TRANSLATORS: keep the {1}..{4} and the quotes around them.
-const char* const kShapes[] = {
+const std::string kShapes[] = {
     // Grades and scales (app/scales.cc, grades/gym_scale.cc).
-    N_("\"{1}\" is not a grade of the scale \"{2}\" (it accepts {3})"),
+    kAccepts,
     N_("\"{1}\" is not a grade of the gym's walls' scales ({2})"),
     N_("'{1}' is not a grade"),
     N_("{1} is below grade_from {2} (a range ascends)"),
@@ -46,48 +49,6 @@ const char* const kShapes[] = {
     N_("answer at least one question, give a grade or a comment"),
     N_("expected bouldering or roped"),
     N_("unknown style \"{1}\"{2}"),
-    // A setting day's candidates (app/candidates.cc): their reasons.
-    N_("no warnings"),
-    N_("any style (no style asked)"),
-    N_("any grade (no band asked)"),
-    N_("any grade (no band asked): {1}"),
-    N_("no grade prediction"),
-    N_("no grade prediction: {1}"),
-    N_("{1} of {2} moves new against its inputs"),
-    N_("rejected: same as input {1}"),
-    N_("rejected: {1} of {2} moves new against its inputs (at least {3} asked; the inputs one "
-       "after the other make one)"),
-    N_("novelty close: close to its inputs"),
-    N_("novelty mix: a mix of its inputs and new moves"),
-    N_("novelty new: mostly new"),
-    N_("{1} warning ({2})"),
-    N_("{1} warnings ({2})"),
-    N_("predicted {1} inside band {2}"),
-    N_("estimated {1} inside band {2}"),
-    N_("predicted {1} {2} band outside band {3}"),
-    N_("predicted {1} {2} bands outside band {3}"),
-    N_("estimated {1} {2} band outside band {3}"),
-    N_("estimated {1} {2} bands outside band {3}"),
-    N_("{1} on {2} move"),
-    N_("{1} on {2} moves"),
-    N_("no {1} move"),
-    N_("smoothness {1} bits per move (inputs {2})"),
-    // The report's verdicts (app/report.cc, app/report_predicted.cc).
-    N_("Too few ratings to compare: {1} star rating of variations and {2} of hand-set routes in "
-       "the grade bands both kinds share; at least {3} a side are needed before the tests mean "
-       "anything."),
-    N_("Too few ratings to compare: {1} star ratings of variations and {2} of hand-set routes in "
-       "the grade bands both kinds share; at least {3} a side are needed before the tests mean "
-       "anything."),
-    N_("Variations are liked more than hand-set routes of the same grades: {1} vs {2} stars on "
-       "average (Wilcoxon rank-sum p = {3}, Welch's t p = {4}; {5})."),
-    N_("Variations are liked less than hand-set routes of the same grades: {1} vs {2} stars on "
-       "average (Wilcoxon rank-sum p = {3}, Welch's t p = {4}; {5})."),
-    N_("No difference shown: variations get {1} stars on average, hand-set routes of the same "
-       "grades {2} (Wilcoxon rank-sum p = {3}, Welch's t p = {4}; {5})."),
-    N_("{1} star rating of variations and {2} of hand-set routes"),
-    N_("{1} star ratings of variations and {2} of hand-set routes"),
-    N_("no variation in this report: nothing to check the predicted grade against"),
 };
 
 struct Shape {
@@ -96,12 +57,6 @@ struct Shape {
   int args = 0;
   std::string head, tail;  // the literal text before the first and after the last "{n}"
 };
-
-// The shapes whose {1} is a style's name.
-bool StyleFirst(const char* msgid) {
-  static const std::string kOn1 = "{1} on {2} move", kOn2 = "{1} on {2} moves", kNo = "no {1} move";
-  return msgid == kOn1 || msgid == kOn2 || msgid == kNo;
-}
 
 // A message's regex: its text literally, each "{n}" any text (in order).
 Shape Compile(const char* msgid) {
@@ -128,26 +83,10 @@ Shape Compile(const char* msgid) {
 const std::vector<Shape>& Shapes() {
   static const std::vector<Shape> shapes = [] {
     std::vector<Shape> out;
-    for (const char* id : kShapes) out.push_back(Compile(id));
+    for (const std::string& id : kShapes) out.push_back(Compile(id.c_str()));
     return out;
   }();
   return shapes;
-}
-
-// "{1}".."{9}" of `pattern` replaced by `args` (Fmt takes three).
-std::string FillIn(std::string_view pattern, const std::vector<std::string>& args) {
-  std::string out;
-  for (size_t i = 0; i < pattern.size(); ++i) {
-    if (pattern[i] == '{' && i + 2 < pattern.size() && pattern[i + 1] >= '1' &&
-        pattern[i + 1] <= '9' && pattern[i + 2] == '}') {
-      const size_t k = static_cast<size_t>(pattern[i + 1] - '1');
-      out += k < args.size() ? args[k] : std::string(pattern.substr(i, 3));
-      i += 2;
-      continue;
-    }
-    out += pattern[i];
-  }
-  return out;
 }
 
 std::string Translate(std::string_view lang, const std::string& text, int depth) {
@@ -158,13 +97,10 @@ std::string Translate(std::string_view lang, const std::string& text, int depth)
     if (!text.starts_with(s.head) || !text.ends_with(s.tail)) continue;
     if (!std::regex_match(text, m, s.re)) continue;
     std::vector<std::string> args;
-    // A part that is itself a sentence ("{5}" of a verdict: the counts) is
-    // translated too; names and numbers match no shape and stay.
-    for (size_t i = 1; i < m.size(); ++i) args.push_back(Translate(lang, m[i].str(), depth + 1));
-    // A style's name (a catalog message of its own: "heel hook") in the
-    // reasons that start with it.
-    if (StyleFirst(s.msgid) && !args.empty()) args[0] = Tr(lang, m[1].str().c_str());
-    return FillIn(Tr(lang, s.msgid), args);
+    for (size_t i = 1; i < m.size(); ++i) args.push_back(m[i].str());
+    // What a built-in scale accepts (app::BuiltInAccepts, a message id).
+    if (s.msgid == kAccepts && args.size() == 3) args[2] = Tr(lang, args[2].c_str());
+    return app::FillIn(Tr(lang, s.msgid), args);
   }
   // "field: rest" (field names are the API's: kept) and "line N: rest".
   static const std::regex kField(R"(^([A-Za-z_][A-Za-z0-9_.\[\]]*): (.+)$)");
@@ -180,6 +116,26 @@ std::string Translate(std::string_view lang, const std::string& text, int depth)
 }
 
 }  // namespace
+
+std::string TrMessage(std::string_view lang, const app::Message& m) {
+  using K = app::Message::Kind;
+  switch (m.kind) {
+    case K::kText: return m.id;
+    case K::kWord: return Tr(lang, m.id.c_str());
+    case K::kList: {
+      std::string out;
+      for (size_t i = 0; i < m.args.size(); ++i) out += (i ? m.id : "") + TrMessage(lang, m.args[i]);
+      return out;
+    }
+    case K::kMessage: break;
+  }
+  std::vector<std::string> args;
+  args.reserve(m.args.size());
+  for (const app::Message& a : m.args) args.push_back(TrMessage(lang, a));
+  const std::string pattern =
+      m.plural.empty() ? Tr(lang, m.id.c_str()) : TrN(lang, m.id.c_str(), m.plural.c_str(), m.n);
+  return app::FillIn(pattern, args);
+}
 
 std::string TrText(std::string_view lang, std::string_view english) {
   const std::string text(english);

@@ -85,6 +85,12 @@ std::string NextOf(const Request& req) {
 // account's language, else the browser's Accept-Language (the scripts' fetch
 // sends it), else English.
 std::string RefusalLanguage(Exchange& x) {
+  return ApiLanguage(x);
+}
+
+}  // namespace
+
+std::string ApiLanguage(Exchange& x) {
   if (x.caller.lang != "en") return x.caller.lang;  // a page or a PDF: chosen already
   std::string account;
   if (x.caller.viewer.logged_in()) {
@@ -95,7 +101,6 @@ std::string RefusalLanguage(Exchange& x) {
   return ChooseLanguage(account, x.req.Header("accept-language"), "");
 }
 
-}  // namespace
 
 void ApiError(Exchange& x, const Status& s) {
   const std::string message = ClientMessage(x, s);

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "app/report.h"
 #include "web/api_test_util.h"
 #include "web/error_text.h"
 #include "web/pages.h"
@@ -73,7 +74,7 @@ TEST(I18nTest, DatesNumbersAndColoursInTheLanguage) {
   EXPECT_EQ(ColourLabelIn("de", "gelbb"), "gelbb");
 }
 
-// Issue 32: the app's English sentences in the page's language by their
+// Issue 32: refusals (a Status: English text) in the page's language by their
 // shapes in the catalogs; the field's name and line, grades and names kept.
 TEST(I18nTest, AppSentencesAndRefusalsInTheLanguage) {
   const std::string grade = "grade: \"V99\" is not a grade of the scale \"V\" (it accepts V0..V17)";
@@ -92,16 +93,52 @@ TEST(I18nTest, AppSentencesAndRefusalsInTheLanguage) {
             "dire gelb, gold ?)");
   EXPECT_EQ(TrText("de", "work budget spent: 600 units per minute; retry in 12 s"),
             "Arbeitsbudget aufgebraucht: 600 Einheiten pro Minute; erneut versuchen in 12 s");
-  // A verdict whose counts are a sentence of their own: both translated.
-  EXPECT_EQ(TrText("de", "No difference shown: variations get 3.10 stars on average, hand-set "
-                         "routes of the same grades 3.00 (Wilcoxon rank-sum p = 0.41, Welch's t p "
-                         "= 0.39; 12 star ratings of variations and 14 of hand-set routes)."),
-            "Kein Unterschied nachgewiesen: Variationen erhalten im Mittel 3.10 Sterne, geschraubte "
-            "Routen derselben Grade 3.00 (Wilcoxon-Rangsummentest p = 0.41, Welch-t-Test p = 0.39; "
-            "12 Sternebewertungen von Variationen und 14 von geschraubten Routen).");
-  EXPECT_EQ(TrText("fr", "no warnings"), "aucun avertissement");
+  // What a built-in scale accepts, inside the refusal (app::BuiltInAccepts).
+  EXPECT_EQ(TrText("de", "grade: \"V99\" is not a grade of the scale \"V\" (it accepts VB, V0 to "
+                         "V17, with + or -, V3-4)"),
+            "grade: „V99“ ist kein Grad der Skala „V“ (sie kennt VB, V0 bis V17, mit + oder -, "
+            "V3-4)");
   // No shape: as written.
   EXPECT_EQ(TrText("de", "grade: something new the app says"), "grade: something new the app says");
+}
+
+// Issue 32: the app's sentences (app::Message) translated by their ids, with
+// the language's plural rule; nested messages and catalog words translated,
+// names and numbers kept; the English is the app's own text.
+TEST(I18nTest, AppMessagesTranslatedById) {
+  const app::VariationComparison c =
+      app::CompareStars({4, 4, 5, 3, 4, 4, 5, 3, 4, 4, 5, 4}, {3, 3, 4, 3, 3, 4, 3, 3, 4, 3, 3, 4});
+  ASSERT_EQ(c.verdict_said.English(), c.verdict);
+  EXPECT_EQ(TrMessage("en", c.verdict_said), c.verdict);
+  const std::string de = TrMessage("de", c.verdict_said);
+  EXPECT_NE(de.find("12 Sternebewertungen von Variationen und 12 von geschraubten Routen"),
+            std::string::npos) << de;
+  EXPECT_EQ(de.find("star rating"), std::string::npos) << de;
+  const app::Message one = app::MsgN("{1} on {2} move", "{1} on {2} moves", 1,
+                                     {app::Word("heel hook"), "1"});
+  const app::Message five = app::MsgN("{1} on {2} move", "{1} on {2} moves", 5,
+                                      {app::Word("crimp"), "5"});
+  EXPECT_EQ(one.English(), "heel hook on 1 move");
+  EXPECT_EQ(five.English(), "crimp on 5 moves");
+  EXPECT_EQ(TrMessage("de", five), Tr("de", "crimp") + " in 5 Zügen");
+  EXPECT_EQ(TrMessage("fr", one), Tr("fr", "heel hook") + " sur 1 mouvement");
+  // A list: the predicted grade's basis.
+  const app::Message basis = app::List(
+      {app::Msg("moves: {1}", {app::List({app::Msg("{1} from {2} (setter's grade {3})",
+                                                   {"6", "Simon Räss's arête", "V3"})},
+                                         ", ")}),
+       app::MsgN("{1} of {2} move new (they widen the interval)",
+                 "{1} of {2} moves new (they widen the interval)", 8, {"2", "8"})},
+      "; ");
+  EXPECT_EQ(basis.English(),
+            "moves: 6 from Simon Räss's arête (setter's grade V3); 2 of 8 moves new (they widen "
+            "the interval)");
+  EXPECT_EQ(TrMessage("fr", basis),
+            "mouvements : 6 de Simon Räss's arête (cotation de l'ouvreur V3); 2 sur 8 "
+            "mouvements nouveaux (ils élargissent l'intervalle)");
+  // An id the catalogs lack (caught by the CTest i18n_catalogs): English.
+  EXPECT_EQ(TrMessage("de", app::Msg("a sentence no catalog has ({1})", {"x"})),
+            "a sentence no catalog has (x)");
 }
 
 // The scripts' messages (web/*.js tr('...')) in the page's JSON block.
@@ -123,6 +160,23 @@ std::string HtmlLang(const std::string& page) {
   const size_t at = page.find("<html lang=\"");
   if (at == std::string::npos) return "?";
   return page.substr(at + 12, page.find('"', at + 12) - at - 12);
+}
+
+// The server's own refusals (415 here): "error" English, "message" in the
+// browser's language.
+TEST_F(I18nApiTest, TheServersOwnRefusalsCarryATranslatedMessage) {
+  testing::Client c = NewClient();
+  const std::string creds = R"({"username":"alice","password":"password123"})";
+  auto r = c.Send("POST", "/api/sessions", creds, true, "text/plain", {{"Accept-Language", "fr"}});
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 415);
+  json body = json::parse(r->body);
+  EXPECT_EQ(body["error"], "Content-Type must be application/json");
+  EXPECT_EQ(body["message"], Tr("fr", "Content-Type must be application/json"));
+  EXPECT_NE(body["message"], body["error"]);
+  r = c.Send("POST", "/api/sessions", creds, true, "text/plain");
+  ASSERT_TRUE(r);
+  EXPECT_FALSE(json::parse(r->body).contains("message"));
 }
 
 TEST_F(I18nApiTest, PagesAnswerInTheAccountsBrowsersOrGymsLanguage) {

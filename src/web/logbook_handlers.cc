@@ -408,9 +408,6 @@ std::string AscentText(const app::AscentGrade& a, bool with_ids, std::string_vie
   return b;
 }
 
-// The verdicts of app::AscentGrade, translated where shown (issue 32).
-[[maybe_unused]] const char* const kVerdicts[] = {N_("soft"), N_("sandbagged")};
-
 std::string AscentCell(const app::AscentGrade& a, std::string_view lang) {
   return "<td class=\"ascent\" data-ticks=\"" + std::to_string(a.ticks) + "\"" +
          (a.fitted ? " data-value=\"" + Fixed(a.value) + "\" data-lo=\"" + Fixed(a.lo) +

@@ -242,6 +242,12 @@ plan::CardInfo CardInfoOf(Exchange& x, const app::RouteView& rec) {
     }
   }
   info.url = ShortLink(x, rec.id);
+  // Issue 32: the card's words in the page's language.
+  if (const std::string lang = x.caller.lang; !lang.empty() && lang != "en") {
+    info.translate = [lang](const char* one, const char* many, long long n) {
+      return many ? TrN(lang, one, many, n) : Tr(lang, one);
+    };
+  }
   return info;
 }
 

@@ -768,7 +768,7 @@ std::string PlanPage(const PageViewer& v, const app::RouteView& rec, const plan:
   // The card's annotations (plan/card.h): the estimated grade next to the
   // inputs' grades in the header; the IC search and the warnings above the
   // moves; the hardest stretch with the legend.
-  const plan::CardAnnotations notes = plan::CardAnnotationsOf(plan);
+  const plan::CardAnnotations notes = plan::CardAnnotationsOf(plan, card.translate);
   if (!notes.grades.empty())
     b += "<p class=\"card-grades\" id=\"card-grades\">" + E(notes.grades) + "</p>";
   b += "</div>\n";
@@ -822,8 +822,8 @@ std::string PlanPage(const PageViewer& v, const app::RouteView& rec, const plan:
     b += "<td class=\"from\">" + E(r.from) + "</td></tr>\n";
   }
   b += "</tbody></table>\n";
-  const std::string legend = plan::CardLegendLine(plan, rows);
-  b += "<p class=\"summary\">" + E(plan::CardSummary(plan)) + "." +
+  const std::string legend = plan::CardLegendLine(plan, rows, card.translate);
+  b += "<p class=\"summary\">" + E(plan::CardSummary(plan, card.translate)) + "." +
        (legend.empty() ? "" : " <span class=\"legend\">" + E(legend) + "</span>") + "</p>\n";
   if (!card.notes.empty()) {
     b += "<section class=\"notes\"><h2>" + Tr(v, "Notes") + "</h2>";

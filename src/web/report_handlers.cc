@@ -174,7 +174,7 @@ std::string ReportPageHtml(const PageViewer& v, const app::GymReport& r) {
        "data-enough=\"" + std::string(c.enough ? "1" : "0") + "\" data-variation-ratings=\"" +
        std::to_string(c.variation_stars.size()) + "\" data-hand-ratings=\"" +
        std::to_string(c.hand_stars.size()) + "\">\n<p id=\"report-verdict\" class=\"" +
-       (c.enough ? "msg ok" : "msg") + "\">" + E(TrText(v.lang, c.verdict)) + "</p>\n";
+       (c.enough ? "msg ok" : "msg") + "\">" + E(TrMessage(v.lang, c.verdict_said)) + "</p>\n";
   b += "<div class=\"scroll\"><table class=\"stats\" id=\"report-tests\"><tr><th>" + Tr(v, "Test") + "</th>"
        "<th>" + Tr(v, "Statistic") + "</th><th>p</th><th>" + Tr(v, "Ratings (variations / hand-set)") + "</th></tr>\n";
   const std::string counts = "<td class=\"n\">" + std::to_string(c.variation_stars.size()) +

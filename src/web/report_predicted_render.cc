@@ -53,7 +53,7 @@ json PredictionCheckJson(const app::PredictionCheck& c) {
 std::string PredictionCheckHtml(const app::PredictionCheck& c, std::string_view lang) {
   std::string b = "<h2>" + Tr(lang, "Predicted grades against ascent grades") + "</h2>\n<section "
                   "id=\"report-predicted\"><p class=\"msg\" id=\"report-predicted-verdict\">" +
-                  E(TrText(lang, c.verdict)) + "</p>\n";
+                  E(TrMessage(lang, c.verdict_said)) + "</p>\n";
   if (!c.days.empty()) {
     b += "<div class=\"scroll\"><table class=\"stats\" id=\"report-predicted-table\"><tr><th>" +
          Tr(lang, "Setting day") + "</th><th>" + Tr(lang, "Variation") + "</th><th>" + Tr(lang, "Predicted (80%)") + "</th><th>" + Tr(lang, "Ascent grade") + "</th><th "

@@ -6,11 +6,21 @@
 // (tr(r.action)) has its possible values listed here by hand.
 #include "web/script_messages.h"
 
+#include <nlohmann/json.hpp>
+
 #include "web/i18n.h"
 
 namespace sb::web {
 
 namespace {
+
+// A count's message of a script (trn('{1} route', '{1} routes', n, ...)).
+struct PluralMessage {
+  const char* one;
+  const char* many;
+};
+// Marks a plural message for extraction (xgettext keyword NN_:1,2).
+#define NN_(one, many) PluralMessage{one, many}
 
 // web/app.js
 const char* const kAppJs[] = {
@@ -53,7 +63,6 @@ const char* const kAppJs[] = {
     N_("comment"),
     N_("description"),
     N_("line {1}: {2}"),
-    N_("{1} moves"),
     N_("line {1} of the moves: {2}"),
     N_("not saved: see the text"),
     N_("not saved: see the field \"{1}\""),
@@ -85,7 +94,6 @@ const char* const kAppJs[] = {
     N_("private"),
     N_("Add"),
     N_("Add {1}"),
-    N_("{1} routes"),
     N_("{1} of {2} moves change"),
     N_("{1} (mean distance)"),
     N_("warm = little variation, cold = much"),
@@ -119,7 +127,6 @@ const char* const kClimbersJs[] = {
     N_("Save changes"),
     N_("Thank you! Your answers are saved."),
     N_("variation"),
-    N_("{1} routes"),
     N_("instrument: choose a file"),
     N_("Accepted (reload to see the numbers)."),
     N_("Discarded."),
@@ -171,15 +178,50 @@ const char* const kSettingDayJs[] = {
     N_("Failed ({1})"),
 };
 
+// The count messages of web/app.js and web/climbers.js (trn()).
+const PluralMessage kAppJsPlurals[] = {
+    NN_("{1} move", "{1} moves"),
+    NN_("{1} route", "{1} routes"),
+};
+const PluralMessage kClimbersJsPlurals[] = {
+    NN_("{1} route", "{1} routes"),
+};
+
 template <size_t N>
 std::string Block(std::string_view lang, const char* const (&ids)[N]) {
   return ScriptMessages(lang, std::span<const char* const>(ids, N));
 }
 
+// The block of `ids` with the count messages `plurals` added, each as its
+// forms for 1, for many (2) and for 0: ["{1} Route", "{1} Routen", "{1} Routen"]
+// (the scripts' trn() picks by n; English, German and French differ only there).
+template <size_t N, size_t P>
+std::string Block(std::string_view lang, const char* const (&ids)[N],
+                  const PluralMessage (&plurals)[P]) {
+  std::string block = Block(lang, ids);
+  if (block.empty()) return block;
+  nlohmann::json forms = nlohmann::json::object();
+  for (const PluralMessage& p : plurals) {
+    forms[p.one] = {TrN(lang, p.one, p.many, 1), TrN(lang, p.one, p.many, 2),
+                    TrN(lang, p.one, p.many, 0)};
+  }
+  std::string text = forms.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+  std::string safe;
+  for (char c : text) safe += c == '<' ? std::string("\\u003c") : std::string(1, c);
+  // Joined into the one object: `{...}` + `{...}` -> `{..., ...}`.
+  const size_t close = block.rfind('}');
+  if (close == std::string::npos || safe.size() <= 2) return block;
+  const bool empty = block.find("{}") != std::string::npos && block.find("{}") + 1 == close;
+  return block.substr(0, close) + (empty ? "" : ",") + safe.substr(1, safe.size() - 2) +
+         block.substr(close);
+}
+
 }  // namespace
 
-std::string AppScriptMessages(std::string_view lang) { return Block(lang, kAppJs); }
-std::string ClimbersScriptMessages(std::string_view lang) { return Block(lang, kClimbersJs); }
+std::string AppScriptMessages(std::string_view lang) { return Block(lang, kAppJs, kAppJsPlurals); }
+std::string ClimbersScriptMessages(std::string_view lang) {
+  return Block(lang, kClimbersJs, kClimbersJsPlurals);
+}
 std::string ImportScriptMessages(std::string_view lang) { return Block(lang, kGymImportJs); }
 std::string GymsScriptMessages(std::string_view lang) { return Block(lang, kGymsJs); }
 std::string LogbookScriptMessages(std::string_view lang) { return Block(lang, kLogbookJs); }

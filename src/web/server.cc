@@ -13,6 +13,7 @@
 #include "web/dashboard_handlers.h"
 #include "web/handlers.h"
 #include "web/http_transport.h"
+#include "web/i18n.h"
 #include "web/logbook_handlers.h"
 #include "web/report_handlers.h"
 #include "web/router.h"
@@ -323,18 +324,18 @@ TransportOptions TransportFor(const ServerOptions& o) {
 // The message of a status the transport decided itself.
 const char* TransportMessage(int status) {
   switch (status) {
-    case 400: return "bad request";
-    case 413: return "request body too large";
+    case 400: return N_("bad request");
+    case 413: return N_("request body too large");
     case 429:
-      return "too many requests at once: at most 2 costly requests per caller in flight "
-             "(max_costly_per_caller), and signed-out callers fill at most three quarters of "
-             "the queue; try again";
-    case 415: return "compressed request bodies are not accepted";
-    case 417: return "expectation not supported";
-    case 431: return "request header fields too large";
-    case 501: return "transfer coding not supported";
-    case 503: return "server busy, try again";
-    default: return status >= 500 ? "internal error" : "error";
+      return N_("too many requests at once: at most 2 costly requests per caller in flight "
+                "(max_costly_per_caller), and signed-out callers fill at most three quarters of "
+                "the queue; try again");
+    case 415: return N_("compressed request bodies are not accepted");
+    case 417: return N_("expectation not supported");
+    case 431: return N_("request header fields too large");
+    case 501: return N_("transfer coding not supported");
+    case 503: return N_("server busy, try again");
+    default: return status >= 500 ? N_("internal error") : N_("error");
   }
 }
 
@@ -444,7 +445,7 @@ struct Server::Impl {
       std::string type = ToLower(Trim(req.Header("content-type").substr(
           0, req.Header("content-type").find(';'))));
       if (type != "application/json") {
-        return Status::InvalidInput("Content-Type must be application/json");
+        return Status::InvalidInput(N_("Content-Type must be application/json"));
       }
     }
     if (c.viewer.logged_in() && !app::TokensEqual(req.Header("x-csrf-token"), c.csrf)) {
@@ -458,7 +459,7 @@ struct Server::Impl {
     if (!HostAllowed(in.Header("host"), hosts)) {
       Caller nobody;  // no session lookup for a request to another host
       Exchange x{services, options, in, nobody, *res};
-      Failure(x, 421, "this server does not answer for that host name");
+      Failure(x, 421, N_("this server does not answer for that host name"));
       return Finish(in, res, started);
     }
     Request req = in;
@@ -472,7 +473,7 @@ struct Server::Impl {
     if (IsStateChanging(req.method)) {
       if (Status s = CheckStateChange(req, caller); !s.ok()) {
         if (s.code() == Status::Code::kInvalidInput) {
-          ReplyJson(*res, 415, nlohmann::json{{"error", s.message()}});
+          Failure(x, 415, s.message());
         } else {
           ApiError(x, s);
         }
@@ -490,12 +491,19 @@ struct Server::Impl {
   }
 
   // An error the router or transport decided (no Status behind it).
+  // A refusal the server makes itself: "error" English, "message" (API) or
+  // the page in the caller's language (issue 32; no session look-up here:
+  // the page's language, else the browser's).
   static void Failure(Exchange& x, int status, const std::string& message) {
+    std::string lang = x.caller.lang;
+    if (lang.empty() || lang == "en") lang = ChooseLanguage("", x.req.Header("accept-language"), "");
+    const std::string said = Tr(lang, message.c_str());
     if (IsApi(x.req)) {
-      ReplyJson(x.res, status, nlohmann::json{{"error", message}});
+      nlohmann::json body{{"error", message}};
+      if (said != message) body["message"] = said;
+      ReplyJson(x.res, status, body);
     } else {
-      x.res.SetBody(status, ErrorPage(x.caller.page(), status, message),
-                    "text/html; charset=utf-8");
+      x.res.SetBody(status, ErrorPage(x.caller.page(), status, said), "text/html; charset=utf-8");
     }
   }
 

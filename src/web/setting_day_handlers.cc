@@ -151,13 +151,13 @@ std::string DayPredictedLine(const app::DayCandidate& c, std::string_view lang) 
     const app::PredictedGrade& g = c.score.predicted;  // app::PredictedGradeText, translated
     h += Fmt(Tr(lang, "Predicted grade {1}"),
              "<b>" + E(g.grade) + " (" + E(Fmt(Tr(lang, "80%: {1} to {2}"), g.lo_grade, g.hi_grade)) + ")</b>") +
-         " <small>(" + E(c.score.predicted.basis) + ")</small>";
+         " <small>(" + E(TrMessage(lang, c.score.predicted.basis_said)) + ")</small>";
   } else {
     h += Tr(lang, "No predicted grade") + (c.score.predicted.note.empty()
                                      ? std::string()
-                                     : ": " + E(c.score.predicted.note));
+                                     : ": " + E(TrMessage(lang, c.score.predicted.note_said)));
   }
-  if (!c.score.style_words.empty()) h += "<br>" + Fmt(Tr(lang, "Style: {1}"), E(c.score.style_words));
+  if (!c.score.style_words.empty()) h += "<br>" + Fmt(Tr(lang, "Style: {1}"), E(TrMessage(lang, c.score.style_said)));
   return h + "</p>\n";
 }
 
@@ -448,9 +448,9 @@ void PageSettingDay(Exchange& x) {
                                        std::to_string(c.score.new_moves), std::to_string(c.moves.size())) + "</h3>\n";
           // Why, in a setter's words (the technical reasons in the fold).
           std::string why;
-          for (const std::string& r : c.score.reasons) {
-            if (r.find("bits") != std::string::npos || r.rfind("novelty ", 0) == 0) continue;
-            why += (why.empty() ? "" : "; ") + TrText(lang, r);
+          for (const app::Message& r : c.score.why) {
+            if (r.id.starts_with("smoothness ") || r.id.starts_with("novelty ")) continue;
+            why += (why.empty() ? "" : "; ") + TrMessage(lang, r);
           }
           h += "<p class=\"why\">" + (rank == 1 && !c.score.rejected
                                                        ? Tr(lang, "Why it ranks first:")
@@ -464,7 +464,7 @@ void PageSettingDay(Exchange& x) {
           for (const std::string& m : c.moves) h += "<li>" + E(m) + "</li>";
           h += "</ol>\n<details class=\"no-print\"><summary>" + Tr(lang, "Details") + "</summary><ul "
                "class=\"reasons\">";
-          for (const std::string& r2 : c.score.reasons) h += "<li>" + E(TrText(lang, r2)) + "</li>";
+          for (const app::Message& r2 : c.score.why) h += "<li>" + E(TrMessage(lang, r2)) + "</li>";
           h += "</ul>";
           if (!c.score.warnings.empty()) {
             h += "<p>" + Tr(lang, "Warnings:") + "</p><ul class=\"warnings\">";

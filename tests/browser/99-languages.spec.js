@@ -4,7 +4,8 @@
 // French (pdftotext: "Ouverte par", "jaune"); a gym's default language is set over the API and
 // on the gym page, whose dashboard and setting day a German head setter sees in German; the
 // scripts and the app's sentences too: a wall's gap lines, the editor's readings and a refused
-// grade at its field in German, the tick form's script in French.
+// grade at its field in German, the tick form's script in French; a variation's card (page and
+// PDF) in German, and a setting-day slot's reasons in French (the app's messages by id).
 'use strict';
 const fs = require('fs');
 const path = require('path');
@@ -108,6 +109,47 @@ module.exports = async (t) => {
   check(refused.startsWith('grade: „6B+“ ist kein Grad der Skala „V“') && (await text('#save-msg')).includes('nicht gespeichert'),
         'a refused grade is German at its field (' + refused + ')');
   await shot('99-editor-german');
+
+  // A variation's card in German (page and PDF): its annotations, summary and table heads.
+  const movesOf = [['V3', 'R small crimp\nL small crimp\nR sidepull\nL gaston\nR crimp\nL jug finish\n'],
+                   ['V4', 'L sloper\nR small crimp\nL heel hook\nR pinch\nL crimp\nR top out\n'],
+                   ['V5', 'R jug\nL crimp\nR crimp\nL undercling\nR sloper\nL jug finish\n']];
+  const inputs = [];
+  for (const [i, [grade, moves]] of movesOf.entries()) {
+    const r = await api('POST', '/api/routes', { crdl: 'name: Höhlenroute ' + n + '-' + i + '\ngrade: ' + grade +
+                                                 '\n---\n' + moves, public: true, gym: gym.data.id, wall, state: 'set' });
+    inputs.push(r.data.id);
+  }
+  const varied = await api('POST', '/api/variations', { routes: inputs.slice(0, 2), name: 'Karte ' + n, grade: 'V4',
+                                                       colour: 'yellow', wall: 'Höhle' });
+  check(varied.status === 201, 'a variation for the card (' + varied.status + ')');
+  await page.goto(base + '/variations/' + varied.data.id);
+  const summary = (await text('p.summary')).trim();
+  check(/\d+ von \d+ Zügen geändert/.test(summary) && (await text('.card-facts')).includes('Grad V4'),
+        'the card page is German (' + summary.slice(0, 80) + ')');
+  await shot('99-card-german');
+  const cardPdf = await page.request.get(base + '/variations/' + varied.data.id + '.pdf');
+  const cardFile = path.join(out, 'card-german.pdf');
+  fs.writeFileSync(cardFile, await cardPdf.body());
+  const cardWords = execFileSync('pdftotext', [cardFile, '-']).toString();
+  check(cardPdf.status() === 200 && /Zügen geändert/.test(cardWords) && cardWords.includes('Grad V4') &&
+        cardWords.includes('Scannen für Rückmeldung') && !cardWords.includes('moves changed'),
+        'the card PDF is German (' + cardWords.replace(/\s+/g, ' ').slice(0, 120) + ')');
+
+  // A setting-day slot in French (the account's language): the candidates' reasons and the
+  // predicted grade's basis are the app's messages, translated by their ids.
+  await api('PUT', '/api/account', { language: 'fr' });
+  const dayAhead = new Date(Date.now() + 30 * 864e5).toISOString().slice(0, 10);
+  await page.goto(gp + '/setting-day?date=' + dayAhead + '&walls=' + wall);
+  check(await lang() === 'fr' && (await page.$$('.day-candidate')).length >= 1, 'the setting day proposes in French');
+  const why = await text('.day-candidate p.why');
+  const details = await page.$$eval('.day-candidate ul.reasons li', (l) => l.map((e) => e.textContent).join(' | '));
+  check(/mouvements? nouveaux? par rapport aux voies d'origine|rejetée/.test(details) &&
+        !/new against its inputs|no warnings|bits per move/.test(details),
+        'the reasons are French (' + details.slice(0, 140) + ')');
+  check(!/any grade|any style|warning/.test(why), 'the why line is French (' + why.trim().slice(0, 100) + ')');
+  await shot('99-setting-day-french');
+  await api('PUT', '/api/account', { language: 'de' });
   await api('PUT', '/api/gyms/' + gym.data.id, { language: 'fr' });
 
   // French, from the browser's Accept-Language (no account).

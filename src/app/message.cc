@@ -1,0 +1,61 @@
+#include "app/message.h"
+
+namespace sb::app {
+
+std::string FillIn(const std::string& pattern, const std::vector<std::string>& args) {
+  std::string out;
+  for (size_t i = 0; i < pattern.size(); ++i) {
+    if (pattern[i] == '{' && i + 2 < pattern.size() && pattern[i + 1] >= '1' &&
+        pattern[i + 1] <= '9' && pattern[i + 2] == '}') {
+      const size_t k = static_cast<size_t>(pattern[i + 1] - '1');
+      out += k < args.size() ? args[k] : pattern.substr(i, 3);
+      i += 2;
+      continue;
+    }
+    out += pattern[i];
+  }
+  return out;
+}
+
+std::string Message::English() const {
+  if (kind == Kind::kList) {
+    std::string out;
+    for (size_t i = 0; i < args.size(); ++i) out += (i ? id : "") + args[i].English();
+    return out;
+  }
+  if (kind != Kind::kMessage) return id;
+  std::vector<std::string> parts;
+  parts.reserve(args.size());
+  for (const Message& a : args) parts.push_back(a.English());
+  return FillIn(n == 1 || plural.empty() ? id : plural, parts);
+}
+
+Message Msg(const char* id, std::vector<Message> args) {
+  Message m;
+  m.kind = Message::Kind::kMessage;
+  m.id = id;
+  m.args = std::move(args);
+  return m;
+}
+
+Message MsgN(const char* singular, const char* plural, long long n, std::vector<Message> args) {
+  Message m = Msg(singular, std::move(args));
+  m.plural = plural;
+  m.n = n;
+  return m;
+}
+
+Message Word(std::string word) {
+  Message m(std::move(word));
+  m.kind = Message::Kind::kWord;
+  return m;
+}
+
+Message List(std::vector<Message> items, std::string separator) {
+  Message m(std::move(separator));
+  m.kind = Message::Kind::kList;
+  m.args = std::move(items);
+  return m;
+}
+
+}  // namespace sb::app
