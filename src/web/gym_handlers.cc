@@ -92,8 +92,18 @@ void PageWall(Exchange& x) {
     for (const auto& [id, a] : *ascents) ascent[id] = AscentCell(a);
   }
   const app::WallAge age = app::WallAgeOf(*wall, routes->routes, app::SystemClock().Now());
-  std::string tables = WallRoutesHtml(*gym, *wall, routes->routes, &ascent,
-                                      WallStatus(*wall, age, x.caller.lang), x.caller.lang, Today());
+  std::string status = WallStatus(*wall, age, x.caller.lang);
+  if (routes->total > static_cast<int64_t>(routes->routes.size())) {
+    // Issue 31: the buttons below change only the routes shown (the others are counted).
+    status += "<p class=\"note\" id=\"wall-more\">" +
+              Fmt(Tr(x.caller.lang, "This page shows {1} of the wall's {2} routes (newest first); "
+                                    "its buttons change only the routes shown."),
+                  std::to_string(routes->routes.size()), std::to_string(routes->total)) +
+              " <a href=\"/?gym=" + std::to_string(wall->gym_id) + "&amp;wall=" +
+              std::to_string(wall->id) + "\">" + Tr(x.caller.lang, "All of them") + "</a></p>\n";
+  }
+  std::string tables = WallRoutesHtml(*gym, *wall, routes->routes, &ascent, status, x.caller.lang,
+                                      Today());
   // A page without its ascent grades (the fit failed) is not kept.
   if (*stamp && ascents.ok()) {
     return Html(x, WallPage(x.caller.page(), *gym, *wall,
