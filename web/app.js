@@ -73,14 +73,23 @@
     return m ? Number(m.content) : undefined;
   };
   const gymSwitch = $('#gym-switch');
+  const setGymCookie = (id) => {
+    document.cookie = 'sb_gym=' + id + '; path=/; max-age=31536000; SameSite=Lax';
+  };
+  // A page of a gym (its pages, a wall, a route of it) is that gym's: the header shows it,
+  // the page writes to it, and the next pages (New route, Import) stay with it.
+  const ownerGym = document.querySelector('meta[name="sb-page-gym"]');
+  if (ownerGym) setGymCookie(ownerGym.content);
   if (gymSwitch) {
     gymSwitch.addEventListener('change', () => {
       const id = gymSwitch.value;
-      document.cookie = 'sb_gym=' + id + '; path=/; max-age=31536000; SameSite=Lax';
-      // A gym's own pages go to the chosen gym's; other pages stay, with ?gym=.
-      if (/^\/(gyms\/\d+|walls\/\d+)/.test(location.pathname)) {
-        const rest = (location.pathname.match(/^\/gyms\/\d+(\/[a-z-]+)?/) || [])[1] || '';
-        location.href = '/gyms/' + id + rest;
+      setGymCookie(id);
+      // A gym's page goes to the chosen gym's same page (a setting day keeps its date); a
+      // wall's or a route's to the chosen gym's page; other pages stay, with ?gym=.
+      if (ownerGym || /^\/(gyms\/\d+|walls\/\d+)/.test(location.pathname)) {
+        const rest = (location.pathname.match(/^\/gyms\/\d+((\/[a-z-]+)*)/) || [])[1] || '';
+        const date = rest ? new URL(location.href).searchParams.get('date') : null;
+        location.href = '/gyms/' + id + rest + (date ? '?date=' + encodeURIComponent(date) : '');
         return;
       }
       const u = new URL(location.href);

@@ -99,6 +99,21 @@
     msg.classList.add('bad', 'conflict');
   }
 
+  // The note a change left before the page reloaded (above), shown at its form.
+  try {
+    const note = JSON.parse(sessionStorage.getItem('sb-note') || 'null');
+    sessionStorage.removeItem('sb-note');
+    if (note) {
+      const p = document.createElement('p');
+      p.className = 'msg ok';
+      p.id = 'bulk-note';
+      p.setAttribute('role', 'status');
+      p.textContent = note.text;
+      const form = document.getElementById(note.form);
+      if (form) form.after(p); else document.querySelector('main').prepend(p);
+    }
+  } catch (e) { /* no storage or no note */ }
+
   for (const form of document.querySelectorAll('form[data-api]')) {
     form.addEventListener('submit', async (ev) => {
       ev.preventDefault();
@@ -110,6 +125,20 @@
       if (button) button.disabled = false;
       const msg = form.querySelector('.msg');
       if (r.status >= 200 && r.status < 300) {
+        // Issue 31: a change of several routes at once says what it left as it was.
+        const left = [];
+        if (r.data && r.data.drafts_of_others > 0) {
+          left.push(tr('Drafts of others left as they are: {1}.', r.data.drafts_of_others));
+        }
+        if (r.data && r.data.not_shown > 0) {
+          left.push(tr('Routes this page did not show, left as they are: {1}.', r.data.not_shown));
+        }
+        if (left.length) {
+          try {
+            sessionStorage.setItem('sb-note', JSON.stringify({ form: form.id,
+              text: tr('Changed: {1}.', r.data.count) + ' ' + left.join(' ') }));
+          } catch (e) { /* no storage: the page reloads without the note */ }
+        }
         const next = form.dataset.next;
         if (next) location.href = next.replace(':id', r.data && r.data.id !== undefined ? r.data.id : '');
         else location.reload();

@@ -93,6 +93,7 @@ Result<WallPageModel> WallPage(Services& s, const Viewer& v, int64_t wall_id,
   const int64_t now = SystemClock().Now();
   w.age = WallAgeOf(m.wall, routes.routes, now);
   w.today = UtcDateText(now);  // what "set all planned routes of today" means
+  w.total = routes.total;
   w.routes = std::move(routes.routes);
   std::string tables = render(w);
   // A page without its ascent grades (the fit failed) is not kept.

@@ -44,6 +44,9 @@ struct WallRoutes {
   // The routes on the wall `viewer` sees, newest set first, at most
   // options.limits.wall_page_rows.
   std::vector<RouteView> routes;
+  // How many routes the wall holds for `viewer` (more than `routes` when the
+  // page is truncated: its buttons then change only the routes shown).
+  int64_t total = 0;
   // Each route's ascent grade by id (one cached fit of the gym); empty when
   // the fit failed (then the tables are not kept).
   std::map<int64_t, AscentGrade> ascents;

@@ -818,51 +818,82 @@ Result<std::vector<store::RouteRecord>> Routes::WallTargets(const Viewer& v, int
   std::vector<store::RouteRecord> out;
   for (store::RouteRecord& r : rows) {
     if (change.day && !change.day->empty() && r.set_on != *change.day) continue;
-    // A draft stays its owner's (the editing rule, CheckChange; the role is
-    // checked above for the others).
-    if (gym::Is(r.state, gym::RouteState::kDraft) && !IsOwner(r, v)) continue;
     out.push_back(std::move(r));
   }
   return out;
 }
 
+namespace {
+
+// A draft stays its owner's (the editing rule, CheckChange): a change of
+// several routes at once leaves the drafts of others as they are.
+bool DraftOfOther(const RouteView& r, const Viewer& v) {
+  return gym::Is(r.state, gym::RouteState::kDraft) && !IsOwner(r, v);
+}
+
+}  // namespace
+
 Result<std::vector<RouteView>> Routes::WallStateRoutes(const Viewer& v, int64_t gym, int64_t wall,
                                                        const WallStateChange& change) {
   std::optional<RouteState> to;
-  return WallTargets(v, gym, wall, change, &to);
+  SB_ASSIGN_OR_RETURN(std::vector<RouteView> rows, WallTargets(v, gym, wall, change, &to));
+  std::erase_if(rows, [&](const RouteView& r) { return DraftOfOther(r, v); });
+  return rows;
 }
 
-Result<std::vector<int64_t>> Routes::ChangeWallState(const Viewer& v, int64_t gym, int64_t wall,
-                                                     const WallStateChange& change) {
-  std::vector<int64_t> changed;
+Result<StatesChanged> Routes::ChangeStates(const Viewer& v, const std::vector<RouteView>& rows,
+                                           RouteState to, const std::optional<std::string>& on,
+                                           const std::optional<std::map<int64_t, int64_t>>& seen,
+                                           const std::string& group) {
+  StatesChanged out;
+  std::vector<const RouteView*> targets;
+  std::map<int64_t, int64_t> now;  // the routes that may change, at their revisions
+  std::string names;
+  for (const RouteView& r : rows) {
+    if (DraftOfOther(r, v)) {
+      ++out.drafts_of_others;
+      continue;
+    }
+    now[r.id] = r.revision;
+    names += (names.empty() ? "" : ", ") + r.name;
+    if (seen && !seen->count(r.id)) {
+      ++out.not_shown;  // not on the caller's page: left as it is, and said
+      continue;
+    }
+    targets.push_back(&r);
+  }
+  if (seen) {
+    for (const auto& [id, revision] : *seen) {
+      auto it = now.find(id);
+      const bool skipped_draft = std::any_of(rows.begin(), rows.end(), [&](const RouteView& r) {
+        return r.id == id && r.revision == revision && DraftOfOther(r, v);
+      });
+      if (skipped_draft || (it != now.end() && it->second == revision)) continue;
+      return Status::Conflict("revision: " + group + "'s routes changed meanwhile (now: " +
+                              (names.empty() ? "none" : names) + ")");
+    }
+  }
+  for (const RouteView* r : targets) {
+    StateChange one{NameOf(to), on, r->revision};
+    if (one.on && one.on->empty()) one.on.reset();
+    SB_RETURN_IF_ERROR(ChangeState(v, r->id, one));
+    out.changed.push_back(r->id);
+  }
+  return out;
+}
+
+Result<StatesChanged> Routes::ChangeWallState(const Viewer& v, int64_t gym, int64_t wall,
+                                              const WallStateChange& change) {
+  StatesChanged done;
   // Issue 31: one transaction, the list read inside it: a route refused in
   // the middle (changed meanwhile) leaves the wall as it was.
   SB_RETURN_IF_ERROR(store::RunAtomically(store_, [&]() -> Status {
-    changed.clear();
     std::optional<RouteState> to;
     SB_ASSIGN_OR_RETURN(std::vector<store::RouteRecord> rows, WallTargets(v, gym, wall, change, &to));
-    if (change.seen) {
-      std::map<int64_t, int64_t> now;
-      std::string names;
-      for (const store::RouteRecord& r : rows) {
-        now[r.id] = r.revision;
-        names += (names.empty() ? "" : ", ") + r.name;
-      }
-      if (now != *change.seen) {
-        return Status::Conflict("revision: the wall's routes changed meanwhile (" +
-                                std::string(Trim(change.from)) + " now: " +
-                                (names.empty() ? "none" : names) + ")");
-      }
-    }
-    for (const store::RouteRecord& r : rows) {
-      StateChange one{NameOf(*to), change.on, r.revision};
-      if (one.on && one.on->empty()) one.on.reset();
-      SB_RETURN_IF_ERROR(ChangeState(v, r.id, one));
-      changed.push_back(r.id);
-    }
+    SB_ASSIGN_OR_RETURN(done, ChangeStates(v, rows, *to, change.on, change.seen, "the wall"));
     return Status::Ok();
   }));
-  return changed;
+  return done;
 }
 
 // The owner's public variations made from a route they just made private

@@ -119,9 +119,18 @@ struct WallStateChange {
   std::optional<std::string> on;
   std::optional<std::string> day;
   // The routes the page showed for the change (route id -> revision): when
-  // given, the change is refused (kConflict "revision: ...") unless the wall
-  // holds exactly these routes at these revisions (nullopt: no check).
+  // given, exactly these change (Routes::ChangeStates: kConflict "revision:
+  // ..." when one of them changed meanwhile; the wall's others are left and
+  // counted); nullopt: every route of the wall in `from`.
   std::optional<std::map<int64_t, int64_t>> seen;
+};
+
+// Issue 31: what a change of several routes at once did (the wall page's
+// buttons, a setting day's sheet; Routes::ChangeStates, the one rule).
+struct StatesChanged {
+  std::vector<int64_t> changed;  // the routes changed, in the order changed
+  int drafts_of_others = 0;      // drafts of others left as they are (a draft is its owner's)
+  int not_shown = 0;             // routes the caller's page did not show, left as they are
 };
 
 struct ImportSummary {
@@ -250,8 +259,24 @@ class Routes {
   // when `change.seen` is not what it holds. One transaction
   // (store::RunAtomically): a route refused in the middle leaves every
   // route as it was.
-  Result<std::vector<int64_t>> ChangeWallState(const Viewer& v, int64_t gym, int64_t wall,
-                                               const WallStateChange& change);
+  Result<StatesChanged> ChangeWallState(const Viewer& v, int64_t gym, int64_t wall,
+                                        const WallStateChange& change);
+  // Issue 31: the one rule of a change of several routes at once (the
+  // wall's, ChangeWallState, and a setting day's,
+  // SettingDays::ChangeDayState): `rows` are the group's routes in the state
+  // the change starts from, as read now. Drafts of others are left as they
+  // are and counted (a draft stays its owner's); with `seen` (route id ->
+  // revision, what the caller's page showed) exactly the seen routes change
+  // and the others are left and counted (`not_shown`), and a seen route no
+  // longer among `rows` at that revision is kConflict "revision: `group`'s
+  // routes changed meanwhile (...)"; each route changes through ChangeState
+  // (`to`, `on`, its revision; a history row each). Run it inside one
+  // store::RunAtomically: a route refused midway is an error, and the
+  // caller's transaction leaves every route as it was.
+  Result<StatesChanged> ChangeStates(const Viewer& v, const std::vector<RouteView>& rows,
+                                     RouteState to, const std::optional<std::string>& on,
+                                     const std::optional<std::map<int64_t, int64_t>>& seen,
+                                     const std::string& group);
   // The routes ChangeWallState would change now (their ids and revisions
   // are what a page sends as `seen`), by its checks and errors, in the
   // order it changes them.

@@ -844,8 +844,8 @@ Result<std::vector<DayRoute>> SettingDays::Planned(const Viewer& v, int64_t gym,
   return out;
 }
 
-Result<std::vector<int64_t>> SettingDays::ChangeDayState(const Viewer& v, int64_t gym,
-                                                       const DayStateChange& change) {
+Result<StatesChanged> SettingDays::ChangeDayState(const Viewer& v, int64_t gym,
+                                                  const DayStateChange& change) {
   SB_RETURN_IF_ERROR(RequireSetter(v, gym));
   if (change.date.empty()) return Status::InvalidInput("date: expected the day (YYYY-MM-DD)");
   SB_RETURN_IF_ERROR(CheckDayDate(change.date));
@@ -857,38 +857,26 @@ Result<std::vector<int64_t>> SettingDays::ChangeDayState(const Viewer& v, int64_
   if (change.on && !change.on->empty() && !IsIsoDate(*change.on)) {
     return Status::InvalidInput("on: expected a date YYYY-MM-DD");
   }
-  std::vector<int64_t> changed;
+  StatesChanged done;
   // Issue 31: one transaction, the day read inside it: a route refused in
-  // the middle (changed meanwhile, someone else's draft) leaves the whole
-  // day as it was.
+  // the middle (changed meanwhile) leaves the whole day as it was. The rule
+  // of several routes at once is the wall's (Routes::ChangeStates: drafts of
+  // others left and counted, exactly the routes the sheet showed).
   SB_RETURN_IF_ERROR(store::RunAtomically(store_, [&]() -> Status {
-    changed.clear();
     SB_ASSIGN_OR_RETURN(std::vector<DayRoute> day, Planned(v, gym, change.date));
-    std::map<int64_t, int64_t> now;
-    std::string names;
-    for (const DayRoute& r : day) {
-      if (r.state != NameOf(*from) || now.count(r.id)) continue;
-      now[r.id] = r.revision;
-      names += (names.empty() ? "" : ", ") + r.name;
-    }
-    if (change.seen && *change.seen != now) {
-      return Status::Conflict("revision: the day's routes changed meanwhile (" +
-                              std::string(NameOf(*from)) + " now: " +
-                              (names.empty() ? "none" : names) + ")");
-    }
+    std::vector<RouteView> rows;
     for (const DayRoute& r : day) {
       if (r.state != NameOf(*from) ||
-          std::find(changed.begin(), changed.end(), r.id) != changed.end()) {
-        continue;
+          std::any_of(rows.begin(), rows.end(), [&](const RouteView& x) { return x.id == r.id; })) {
+        continue;  // a route of two setters is listed twice
       }
-      StateChange one{NameOf(*to), change.on, r.revision};
-      if (one.on && one.on->empty()) one.on.reset();
-      SB_RETURN_IF_ERROR(routes_->ChangeState(v, r.id, one));
-      changed.push_back(r.id);
+      SB_ASSIGN_OR_RETURN(RouteView row, routes_->GetRow(v, r.id));
+      rows.push_back(std::move(row));
     }
+    SB_ASSIGN_OR_RETURN(done, routes_->ChangeStates(v, rows, *to, change.on, change.seen, "the day"));
     return Status::Ok();
   }));
-  return changed;
+  return done;
 }
 
 }  // namespace sb::app

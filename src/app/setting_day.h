@@ -231,16 +231,17 @@ class SettingDays {
   // (kNotFound otherwise).
   Result<std::vector<DayRoute>> Planned(const Viewer& v, int64_t gym, const std::string& date);
 
-  // Issue 31: DayStateChange for the gym's day, route by route through
-  // Routes::ChangeState (app::CheckTransition, each route's history, its
-  // revision checked). Setters and head setters (kPermission; kNotFound for
-  // a non-member); kInvalidInput naming "date", "from", "to" or "on";
-  // kConflict "revision: ..." when `seen` is not what the day holds now (the
-  // message says what it holds). One transaction (store::RunAtomically): a
-  // route refused in the middle leaves the whole day as it was. Returns the
-  // ids changed, by wall and name.
-  Result<std::vector<int64_t>> ChangeDayState(const Viewer& v, int64_t gym,
-                                              const DayStateChange& change);
+  // Issue 31: DayStateChange for the gym's day by the rule of several routes
+  // at once, the wall's (Routes::ChangeStates: each route through
+  // Routes::ChangeState, app::CheckTransition, its history, its revision
+  // checked; drafts of others left as they are and counted; with `seen`
+  // exactly the routes the sheet showed, the others counted). Setters and
+  // head setters (kPermission; kNotFound for a non-member); kInvalidInput
+  // naming "date", "from", "to" or "on"; kConflict "revision: ..." when a
+  // seen route changed meanwhile (the message says what the day holds). One
+  // transaction (store::RunAtomically): a route refused in the middle leaves
+  // the whole day as it was. The ids changed are by wall and name.
+  Result<StatesChanged> ChangeDayState(const Viewer& v, int64_t gym, const DayStateChange& change);
 
  private:
   Status RequireSetter(const Viewer& v, int64_t gym);

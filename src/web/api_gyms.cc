@@ -417,7 +417,7 @@ void PostWallState(Exchange& x) {
   Result<std::optional<std::map<int64_t, int64_t>>> seen = SeenRoutesField(*body);
   if (!seen.ok()) return ApiError(x, seen.status());
   change.seen = std::move(seen).value();
-  Result<std::vector<int64_t>> changed =
+  Result<app::StatesChanged> changed =
       x.services.routes.ChangeWallState(x.caller.viewer, *gym, *wall_id, change);
   if (!changed.ok()) {
     // Issue 31: a stale page (409) gets what the wall holds now: the routes
@@ -439,7 +439,7 @@ void PostWallState(Exchange& x) {
     }
     return ApiConflict(x, changed.status(), current);
   }
-  ReplyJson(x.res, 200, json{{"changed", *changed}, {"count", changed->size()}});
+  ReplyJson(x.res, 200, StatesChangedJson(*changed));
 }
 
 void ListWalls(Exchange& x) {

@@ -57,6 +57,7 @@ PageViewer Caller::page() const {
   for (const app::GymRole& g : viewer.gyms) p.setter = p.setter || app::CanSet(g.role);
   p.gyms = gyms;
   p.gym = gym.value_or(0);
+  p.page_gym = page_gym.value_or(0);
   return p;
 }
 
@@ -94,6 +95,13 @@ Result<std::optional<std::map<int64_t, int64_t>>> SeenRoutesField(const json& bo
     seen[*id] = rev.get<int64_t>();
   }
   return std::optional<std::map<int64_t, int64_t>>(std::move(seen));
+}
+
+json StatesChangedJson(const app::StatesChanged& done) {
+  return json{{"changed", done.changed},
+              {"count", done.changed.size()},
+              {"drafts_of_others", done.drafts_of_others},
+              {"not_shown", done.not_shown}};
 }
 
 Result<bool> BoolField(const json& body, const char* field, bool fallback) {

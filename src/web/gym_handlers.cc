@@ -44,8 +44,17 @@ void PageWall(Exchange& x) {
   auto tables = [&x](const app::WallRoutes& w) {
     std::map<int64_t, std::string> ascent;
     for (const auto& [route, a] : w.ascents) ascent[route] = AscentCell(a);
-    return WallRoutesHtml(*w.gym, *w.wall, w.routes, &ascent,
-                          WallStatus(*w.wall, w.age, x.caller.lang), x.caller.lang, w.today);
+    std::string status = WallStatus(*w.wall, w.age, x.caller.lang);
+    if (w.total > static_cast<int64_t>(w.routes.size())) {
+      // Issue 31: the buttons below change only the routes shown (the others are counted).
+      status += "<p class=\"note\" id=\"wall-more\">" +
+                Fmt(Tr(x.caller.lang, "This page shows {1} of the wall's {2} routes (newest first); "
+                                      "its buttons change only the routes shown."),
+                    std::to_string(w.routes.size()), std::to_string(w.total)) +
+                " <a href=\"/?gym=" + std::to_string(w.wall->gym_id) + "&amp;wall=" +
+                std::to_string(w.wall->id) + "\">" + Tr(x.caller.lang, "All of them") + "</a></p>\n";
+    }
+    return WallRoutesHtml(*w.gym, *w.wall, w.routes, &ascent, status, x.caller.lang, w.today);
   };
   int retry = 0;
   Result<app::WallPageModel> m =

@@ -36,6 +36,10 @@ struct Caller {
   // their first gym; nullopt in no gym.
   std::vector<app::Gym> gyms;
   std::optional<int64_t> gym;
+  // Issue 31: the gym the page belongs to (a gym's pages, a wall's, a gym
+  // route's) when the caller is a member of it; it is then also `gym`, the
+  // one the header shows and the page writes to.
+  std::optional<int64_t> page_gym;
 
   // The page renderers' view of the caller.
   PageViewer page() const;
@@ -111,6 +115,10 @@ Result<std::optional<int64_t>> RevisionField(const nlohmann::json& body);
 // page showed; nullopt when absent or null; kInvalidInput naming "routes"
 // (or "routes.<key>") otherwise.
 Result<std::optional<std::map<int64_t, int64_t>>> SeenRoutesField(const nlohmann::json& body);
+// Issue 31: the answer to a change of several routes at once: {"changed":
+// [ids], "count", "drafts_of_others", "not_shown"} (the routes left as they
+// are: drafts of others, routes the page did not show).
+nlohmann::json StatesChangedJson(const app::StatesChanged& done);
 // A kConflict `s` as 409 {"error", "current": current} (the record as
 // stored now); any other status (or a null `current`) as ApiError.
 void ApiConflict(Exchange& x, const Status& s, const nlohmann::json& current);

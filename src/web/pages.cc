@@ -79,6 +79,9 @@ std::string Layout(const PageViewer& v, const std::string& title, const std::str
   if (v.logged_in && write_gym != v.gyms.end()) {
     h += "<meta name=\"sb-gym\" content=\"" + std::to_string(v.gym) + "\">\n";
   }
+  if (v.logged_in && v.page_gym) {  // the page is this gym's (the switcher goes to the other's)
+    h += "<meta name=\"sb-page-gym\" content=\"" + std::to_string(v.page_gym) + "\">\n";
+  }
   h += "<link rel=\"icon\" href=\"/static/favicon.svg\" type=\"image/svg+xml\">\n";
   h += "<link rel=\"stylesheet\" href=\"/static/app.css\">\n";
   h += AppScriptMessages(v.lang) + "<script src=\"/static/app.js\" defer></script>\n</head>\n";

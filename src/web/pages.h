@@ -37,6 +37,9 @@ struct PageViewer {
   // carries the gym in <meta name="sb-gym"> for the scripts' writes.
   std::vector<app::Gym> gyms;
   int64_t gym = 0;
+  // The gym the page belongs to (0: none; then `gym` too): the switcher goes
+  // to the chosen gym's same page (a gym's page, else its gym page).
+  int64_t page_gym = 0;
 };
 
 // "/": one page of the route list (server-side search, filters, sort and

@@ -155,6 +155,9 @@ const char* const kGymsJs[] = {
     N_("none"),
     N_("Someone else saved this first (now revision {1}). It is now: {2}. Your changes are still here: save again to apply yours over theirs, or reload to take theirs."),
     N_("Failed ({1})"),
+    N_("Drafts of others left as they are: {1}."),
+    N_("Routes this page did not show, left as they are: {1}."),
+    N_("Changed: {1}."),
 };
 
 // web/logbook.js

@@ -388,6 +388,38 @@ struct Server::Impl {
     return gyms.front().id;
   }
 
+  // Issue 31: the gym a page belongs to — /gyms/G..., a wall's (/walls/W),
+  // a gym route's (/routes/R, /routes/R/edit, /routes/R/tag, /variations/R)
+  // — when the caller is a member of it; nullopt for other pages, API calls
+  // and gyms the caller is not in. Its header shows that gym and the page
+  // writes to it, whatever the switcher's cookie says.
+  std::optional<int64_t> PageGymOf(const Request& req, const Caller& c) {
+    if (IsApi(req) || req.method != "GET" || c.gyms.empty()) return std::nullopt;
+    const std::string_view path = req.path;
+    if (path.size() < 2 || path[0] != '/') return std::nullopt;
+    const size_t slash = path.find('/', 1);
+    if (slash == std::string_view::npos) return std::nullopt;
+    const std::string_view kind = path.substr(1, slash - 1);
+    const size_t end = path.find('/', slash + 1);
+    const std::string_view rest = end == std::string_view::npos ? "" : path.substr(end);
+    std::optional<int64_t> id = ParseId(std::string(path.substr(slash + 1, end - slash - 1)));
+    if (!id) return std::nullopt;
+    std::optional<int64_t> gym;
+    if (kind == "gyms") {
+      gym = *id;
+    } else if (kind == "walls" && rest.empty()) {
+      if (Result<app::Wall> w = services.gyms.GetWall(c.viewer, *id); w.ok()) gym = w->gym_id;
+    } else if ((kind == "routes" && (rest.empty() || rest == "/edit" || rest == "/tag")) ||
+               (kind == "variations" && rest.empty())) {
+      if (Result<app::RouteView> r = services.routes.Get(c.viewer, *id); r.ok()) gym = r->gym_id;
+    }
+    if (!gym) return std::nullopt;
+    for (const app::Gym& g : c.gyms) {
+      if (g.id == *gym) return gym;
+    }
+    return std::nullopt;
+  }
+
   // Who is asking: the session named by the cookie, if any.
   Caller CallerOf(const Request& req) {
     Caller c;
@@ -407,6 +439,8 @@ struct Server::Impl {
       c.gyms = std::move(g).value();
       for (const app::Gym& gym : c.gyms) c.viewer.gyms.push_back({gym.id, gym.role});
       c.gym = ChosenGym(req, c.gyms);
+      c.page_gym = PageGymOf(req, c);
+      if (c.page_gym) c.gym = c.page_gym;
     } else {
       LogError(g.status().message());
     }

@@ -215,7 +215,7 @@ void PostSettingDayState(Exchange& x) {
   Result<std::optional<std::map<int64_t, int64_t>>> seen = SeenRoutesField(b);
   if (!seen.ok()) return ApiError(x, seen.status());
   c.seen = std::move(seen).value();
-  Result<std::vector<int64_t>> changed =
+  Result<app::StatesChanged> changed =
       x.services.setting_days.ChangeDayState(x.caller.viewer, *gym, c);
   if (!changed.ok()) {
     json current;
@@ -235,7 +235,7 @@ void PostSettingDayState(Exchange& x) {
     }
     return ApiConflict(x, changed.status(), current);
   }
-  ReplyJson(x.res, 200, json{{"changed", *changed}, {"count", changed->size()}});
+  ReplyJson(x.res, 200, StatesChangedJson(*changed));
 }
 
 void PostSettingDayAccept(Exchange& x) {
