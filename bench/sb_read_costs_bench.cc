@@ -230,19 +230,19 @@ void BM_Consensus(benchmark::State& state) {
 }
 BENCHMARK(BM_Consensus)->Unit(benchmark::kMillisecond);
 
-// The owner's answers, /r/{id}/responses (study_per_answer + row_per_read).
+// The owner's answers, /r/{id}/responses (answer_per_row).
 void BM_FeedbackAnswers(benchmark::State& state) {
   World& w = TheWorld();
-  PerRow(state, kRows, Costs().study_per_answer + Costs().row_per_read,
+  PerRow(state, kRows, Costs().answer_per_row,
          [&] { Must(w.services->climber_feedback.ForSetter(w.head, w.busy)); });
 }
 BENCHMARK(BM_FeedbackAnswers)->Unit(benchmark::kMillisecond);
 
-// The drift: kRows routes read whole (route_read each) and kRows feedback
-// rows (row_per_read each); reported per route.
+// The drift: kRows routes read whole in one list (route_listed each) and
+// kRows feedback rows (row_per_read each); reported per route.
 void BM_Drift(benchmark::State& state) {
   World& w = TheWorld();
-  PerRow(state, kRows, Costs().route_read + Costs().row_per_read,
+  PerRow(state, kRows, Costs().route_listed + Costs().row_per_read,
          [&] { Must(w.services->climber_feedback.Drift(w.head)); });
 }
 BENCHMARK(BM_Drift)->Unit(benchmark::kMillisecond);

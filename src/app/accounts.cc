@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <ctime>
 
 #include "base/log.h"
 #include "base/text.h"
@@ -33,7 +34,8 @@ Accounts::Accounts(store::AccountStore* store, const Options& options, Clock* cl
     : store_(store),
       options_(options),
       clock_(clock),
-      checks_(std::clamp(options.login.max_parallel_password_checks, 1, 1024)) {}
+      checks_(std::clamp(options.login.max_parallel_password_checks, 1, 1024)),
+      known_(std::make_shared<KnownSessions>()) {}
 
 bool Accounts::EnterCheckQueue() {
   const LoginPolicy& p = options_.login;
@@ -183,19 +185,66 @@ Result<NewSession> Accounts::LogIn(std::string_view username, std::string_view p
   out.session.csrf = store::RandomToken();
   out.session.expires_at = now + options_.session_seconds;
   SB_RETURN_IF_ERROR(store_->CreateSession(out.session));
+  known_->Remember(out.token, out.session.expires_at);
   return out;
 }
 
 Result<Session> Accounts::SessionOf(std::string_view token) {
   // Tokens are 64 hex digits; anything much longer is not one of ours.
   if (token.empty() || token.size() > 128) return Status::NotFound("no such session");
-  SB_ASSIGN_OR_RETURN(store::Session s, store_->FindSession(store::HashToken(token), clock_->Now()));
+  Result<store::Session> s = store_->FindSession(store::HashToken(token), clock_->Now());
+  if (!s.ok()) {
+    if (s.status().code() == Status::Code::kNotFound) known_->Forget(token);
+    return s.status();
+  }
+  known_->Remember(token, s->expires_at);
   return s;
 }
 
 Status Accounts::LogOut(std::string_view token) {
   if (token.empty() || token.size() > 128) return Status::Ok();
+  known_->Forget(token);
   return store_->DeleteSession(store::HashToken(token));
+}
+
+KnownSessions::KnownSessions(size_t max_entries)
+    : max_entries_(std::max<size_t>(1, max_entries)) {}
+
+bool KnownSessions::Valid(std::string_view token) {
+  if (token.empty() || token.size() > 128) return false;
+  const std::string hash = store::HashToken(token);
+  const int64_t now = static_cast<int64_t>(std::time(nullptr));
+  std::lock_guard<std::mutex> lock(mu_);
+  auto it = expiry_.find(hash);
+  return it != expiry_.end() && it->second > now;
+}
+
+void KnownSessions::Remember(std::string_view token, int64_t expires_at) {
+  if (token.empty() || token.size() > 128) return;
+  const std::string hash = store::HashToken(token);
+  const int64_t now = static_cast<int64_t>(std::time(nullptr));
+  std::lock_guard<std::mutex> lock(mu_);
+  expiry_[hash] = expires_at;
+  if (expiry_.size() <= max_entries_) return;
+  std::erase_if(expiry_, [&](const auto& e) { return e.second <= now; });
+  while (expiry_.size() > max_entries_) {
+    auto soonest = std::min_element(expiry_.begin(), expiry_.end(), [](const auto& a, const auto& b) {
+      return a.second < b.second;
+    });
+    expiry_.erase(soonest);
+  }
+}
+
+void KnownSessions::Forget(std::string_view token) {
+  if (token.empty() || token.size() > 128) return;
+  const std::string hash = store::HashToken(token);
+  std::lock_guard<std::mutex> lock(mu_);
+  expiry_.erase(hash);
+}
+
+size_t KnownSessions::size() {
+  std::lock_guard<std::mutex> lock(mu_);
+  return expiry_.size();
 }
 
 }  // namespace sb::app

@@ -2,6 +2,8 @@
 #ifndef SB_APP_ACCOUNTS_H_
 #define SB_APP_ACCOUNTS_H_
 
+#include <cstdint>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <semaphore>
@@ -21,6 +23,34 @@ namespace sb::app {
 struct NewSession {
   std::string token;
   Session session;
+};
+
+// Issue 34, capacity shared fairly: the sessions the HTTP transport may
+// count as signed in before a worker looks the session up (on an I/O
+// thread, without a database query), kept in memory by the hash of their
+// token (store::HashToken; the token itself is not kept) with their expiry.
+// Accounts fills it when it opens a session (LogIn) or finds one
+// (SessionOf), and takes a token out when it is logged out or found to be
+// no session; a session ended by another way (a password change, another
+// process) is taken out by the next SessionOf of its token. A made-up
+// cookie is never in it. At most `max_entries` sessions are kept (past it
+// the expired ones go, then the soonest to expire). Expiry is read against
+// the system clock (no Clock is held: a transport may keep this past the
+// services). Thread-safe.
+class KnownSessions {
+ public:
+  explicit KnownSessions(size_t max_entries = 65536);
+  // Whether `token` names a session opened or found here and not expired
+  // or forgotten since. One hash and one map look-up.
+  bool Valid(std::string_view token);
+  void Remember(std::string_view token, int64_t expires_at);
+  void Forget(std::string_view token);
+  size_t size();
+
+ private:
+  const size_t max_entries_;
+  std::mutex mu_;
+  std::map<std::string, int64_t> expiry_;  // token hash -> expires_at
 };
 
 // Thread-safe: every method may run on many threads at once. Does not own
@@ -55,6 +85,10 @@ class Accounts {
   // Ends the session of a token (nothing happens for an unknown one).
   Status LogOut(std::string_view token);
 
+  // The sessions this process opened or found (KnownSessions), shared so a
+  // transport may keep it past the Accounts. Never null.
+  std::shared_ptr<KnownSessions> known_sessions() const { return known_; }
+
  private:
   // A place in the password-check queue (running or waiting): false when
   // max_parallel + max_queued checks are already in it. Never blocks.
@@ -71,6 +105,7 @@ class Accounts {
   std::counting_semaphore<1024> checks_;
   std::mutex queue_mu_;
   int in_queue_ = 0;  // checks running or waiting for checks_
+  std::shared_ptr<KnownSessions> known_;
   std::once_flag dummy_once_;
   std::string dummy_hash_;
 };

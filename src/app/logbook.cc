@@ -632,9 +632,9 @@ void Logbook::AbsorbTick(const store::RouteRecord& route, const store::TickRecor
     // Readers may hold the old fit: the update goes into a copy.
     auto updated = std::make_shared<Fit>(*entry.fit);
     if (*g) {
-      updated->routes[route.id] = std::move(**g);
+      updated->Put(route.id, std::move(**g));
     } else {
-      updated->routes.erase(route.id);
+      updated->Put(route.id, std::nullopt);
     }
     entry.fit = std::move(updated);
     entry.version = after;
@@ -716,14 +716,25 @@ Status Logbook::DoFlight(const Key& key, Flight* flight) {
     flight->recording = true;
   }
   tlock.unlock();
-  Result<std::vector<store::TickRecord>> read = ticks_->GymTicks(gym_id);
-  if (!read.ok()) {
+  // Issue 34: only this discipline's ticks (a small discipline's refit no
+  // longer reads the whole gym's), and of the other disciplines only each
+  // identity's count of aged routes (one grouped row per climber).
+  const std::string aged = TimeText(clock_->Now() - policy_.history_age_seconds);
+  Result<std::vector<store::TickRecord>> read = ticks_->GymDisciplineTicks(gym_id, discipline);
+  Result<std::map<std::string, int64_t>> aged_counts =
+      read.ok() ? ticks_->AgedRouteCounts(gym_id, aged)
+                : Result<std::map<std::string, int64_t>>(read.status());
+  if (!read.ok() || !aged_counts.ok()) {
     std::lock_guard<std::mutex> lock(mu_);
     flight->recording = false;
     flight->replay.clear();
-    return read.status();
+    return read.ok() ? aged_counts.status() : read.status();
   }
   const std::vector<store::TickRecord> all = std::move(read).value();  // by id
+  {
+    std::lock_guard<std::mutex> lock(mu_);
+    ticks_read_ += all.size();
+  }
   bool kept_class = false;
   if (store::GymStore* gyms = store::GymStoreOf(store_)) {
     Result<std::vector<store::MemberRecord>> members = gyms->ListMembers(gym_id);
@@ -753,19 +764,22 @@ Status Logbook::DoFlight(const Key& key, Flight* flight) {
   std::map<int64_t, std::vector<double>> felt;
   std::map<std::string, std::string> last_day;
   // Issue 34: each identity's aged routes (counted ticks at least
-  // history_age_seconds old, any discipline); with fewer than history_routes
-  // besides a route, its tick there counts as the route's pool of new
-  // identities (CountedOf's one game, no felt grade).
-  const std::string aged = TimeText(clock_->Now() - policy_.history_age_seconds);
-  std::map<std::string, std::set<int64_t>> aged_routes;
+  // history_age_seconds old, any discipline: `aged_counts`); with fewer
+  // than history_routes besides a route, its tick there counts as the
+  // route's pool of new identities (CountedOf's one game, no felt grade).
+  // Whether the route itself is among them is known from this
+  // discipline's ticks (the route is of this discipline).
+  std::map<std::string, std::set<int64_t>> aged_here;
   for (const store::TickRecord& t : all) {
-    if (t.state == "ok" && t.created_at <= aged) aged_routes[t.climber].insert(t.route_id);
+    if (t.state == "ok" && t.created_at <= aged) aged_here[t.climber].insert(t.route_id);
   }
   auto young = [&](const store::TickRecord& t) {
-    auto it = aged_routes.find(t.climber);
-    const size_t others =
-        it == aged_routes.end() ? 0 : it->second.size() - it->second.count(t.route_id);
-    return static_cast<int>(others) < policy_.history_routes;
+    auto n = aged_counts->find(t.climber);
+    int64_t others = n == aged_counts->end() ? 0 : n->second;
+    if (auto h = aged_here.find(t.climber); h != aged_here.end() && h->second.count(t.route_id)) {
+      --others;
+    }
+    return others < policy_.history_routes;
   };
   for (const store::TickRecord* t : used) {
     const bool is_young = young(*t);
@@ -801,12 +815,14 @@ Status Logbook::DoFlight(const Key& key, Flight* flight) {
     const grades::RatingProblem& problem = state->problem;
     SB_ASSIGN_OR_RETURN(state->fit, grades::FitRatings(problem, state->params));
     const grades::RatingFit& rf = state->fit;
+    auto made = std::make_shared<std::map<int64_t, AscentGrade>>();
     for (const auto& [id, idx] : route_index) {
       auto it = felt.find(id);
-      fit->routes.emplace(id, MakeGrade(discipline, d, routes.at(id), problem.route_ticks[idx],
-                                        rf.difficulty[idx], rf.difficulty_sd[idx],
-                                        it == felt.end() ? nullptr : &it->second));
+      made->emplace(id, MakeGrade(discipline, d, routes.at(id), problem.route_ticks[idx],
+                                  rf.difficulty[idx], rf.difficulty_sd[idx],
+                                  it == felt.end() ? nullptr : &it->second));
     }
+    fit->base = std::move(made);
     for (int n : problem.route_ticks) state->fitted_ticks += n;
     fitted_ticks = state->fitted_ticks;
     state->climbers = std::move(climber_index);
@@ -843,9 +859,9 @@ Status Logbook::DoFlight(const Key& key, Flight* flight) {
       break;
     }
     if (*g) {
-      fit->routes[r.route.id] = std::move(**g);
+      fit->Put(r.route.id, std::move(**g));
     } else {
-      fit->routes.erase(r.route.id);
+      fit->Put(r.route.id, std::nullopt);
     }
   }
   flight->replay.clear();
@@ -871,8 +887,30 @@ Status Logbook::DoFlight(const Key& key, Flight* flight) {
   return Status::Ok();
 }
 
+const AscentGrade* Logbook::Fit::Find(int64_t id) const {
+  if (auto c = changed.find(id); c != changed.end()) return c->second ? &*c->second : nullptr;
+  auto b = base->find(id);
+  return b == base->end() ? nullptr : &b->second;
+}
+
+void Logbook::Fit::Put(int64_t id, std::optional<AscentGrade> grade) {
+  changed[id] = std::move(grade);
+  if (changed.size() <= kMaxChanged) return;
+  // Folded into a new base: one copy of the grades per kMaxChanged updates.
+  auto folded = std::make_shared<std::map<int64_t, AscentGrade>>(*base);
+  for (auto& [route, g] : changed) {
+    if (g) {
+      (*folded)[route] = std::move(*g);
+    } else {
+      folded->erase(route);
+    }
+  }
+  changed.clear();
+  base = std::move(folded);
+}
+
 Result<Logbook::FitRead> Logbook::FitGym(int64_t gym_id, const std::string& discipline,
-                                         bool anonymous) {
+                                         bool anonymous, bool wait) {
   SB_ASSIGN_OR_RETURN(store::TickVersion version, ticks_->GymTickVersion(gym_id));
   const Key key(gym_id, discipline);
   std::unique_lock<std::mutex> lock(mu_);
@@ -885,9 +923,9 @@ Result<Logbook::FitRead> Logbook::FitGym(int64_t gym_id, const std::string& disc
         e.stale_since = 0;
         return FitRead{e.fit, 0};
       }
-      // A big gym's stale entry: shown with its age while the refit runs
-      // in the background.
-      if (e.fitted_ticks >= policy_.fit_background_min_ticks && e.fit) {
+      // A big gym's stale entry (or any, for a caller that does not wait):
+      // shown with its age while the refit runs in the background.
+      if ((e.fitted_ticks >= policy_.fit_background_min_ticks || !wait) && e.fit) {
         const int64_t now = clock_->Now();
         if (e.stale_since == 0) e.stale_since = now;
         ScheduleLocked(key);
@@ -903,6 +941,7 @@ Result<Logbook::FitRead> Logbook::FitGym(int64_t gym_id, const std::string& disc
                : Result<std::vector<store::MemberRecord>>(std::vector<store::MemberRecord>{});
       if (!members.ok() || members->empty()) return FitRead{std::make_shared<Fit>(), 0};
       if (version.ticks < policy_.fit_anonymous_min_ticks) {
+        if (!wait) return FitRead{std::make_shared<Fit>(), 0};
         Flight uncached;
         uncached.keep = false;
         SB_RETURN_IF_ERROR(DoFlight(key, &uncached));
@@ -910,6 +949,12 @@ Result<Logbook::FitRead> Logbook::FitGym(int64_t gym_id, const std::string& disc
       }
       lock.lock();
       if (cache_.count(key)) continue;  // made meanwhile
+    }
+    // Issue 34: a caller that does not wait (a tick's answer) gets no
+    // grade yet; the first fit is made in the background, once.
+    if (!wait) {
+      ScheduleLocked(key);
+      return FitRead{std::make_shared<Fit>(), 0};
     }
     // A fit the reader waits for: one flight at a time per key.
     if (auto f = flights_.find(key); f != flights_.end()) {
@@ -997,16 +1042,29 @@ uint64_t Logbook::FullFits() {
   return full_fits_;
 }
 
+uint64_t Logbook::TicksRead() {
+  std::lock_guard<std::mutex> lock(mu_);
+  return ticks_read_;
+}
+
 Result<AscentGrade> Logbook::Ascent(const Viewer& v, int64_t route_id) {
+  return AscentOf(v, route_id, /*wait=*/true);
+}
+
+Result<AscentGrade> Logbook::KeptAscent(const Viewer& v, int64_t route_id) {
+  return AscentOf(v, route_id, /*wait=*/false);
+}
+
+Result<AscentGrade> Logbook::AscentOf(const Viewer& v, int64_t route_id, bool wait) {
   if (ticks_ == nullptr) return Status::Internal("this store keeps no ticks");
   SB_ASSIGN_OR_RETURN(store::RouteRecord route, Visible(v, route_id, store::Reach::kOnTheWall));
   AscentGrade none;
   none.discipline = DisciplineOf(route);
   if (!route.gym_id) return none;
-  SB_ASSIGN_OR_RETURN(FitRead read, FitGym(*route.gym_id, none.discipline, !v.logged_in()));
-  auto it = read.fit->routes.find(route_id);
-  if (it == read.fit->routes.end()) return none;
-  AscentGrade a = it->second;
+  SB_ASSIGN_OR_RETURN(FitRead read, FitGym(*route.gym_id, none.discipline, !v.logged_in(), wait));
+  const AscentGrade* found = read.fit->Find(route_id);
+  if (found == nullptr) return none;
+  AscentGrade a = *found;
   a.age_seconds = read.age_seconds;
   std::map<int64_t, WallGradeScale> walls;
   InWallScale(store_, *route.gym_id, &walls, &a);
@@ -1051,8 +1109,8 @@ Status Logbook::FillAscents(int64_t gym_id, const std::string& discipline, bool 
   SB_ASSIGN_OR_RETURN(FitRead read, FitGym(gym_id, discipline, anonymous));
   std::map<int64_t, WallGradeScale> walls;
   for (auto& [id, a] : *grades) {
-    if (auto it = read.fit->routes.find(id); it != read.fit->routes.end()) {
-      a = it->second;
+    if (const AscentGrade* found = read.fit->Find(id)) {
+      a = *found;
       a.age_seconds = read.age_seconds;
       InWallScale(store_, gym_id, &walls, &a);
     }

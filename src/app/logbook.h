@@ -229,6 +229,13 @@ class Logbook {
 
   // The ascent grade of a visible route (kNotFound as Log).
   Result<AscentGrade> Ascent(const Viewer& v, int64_t route_id);
+  // Issue 34, a tick's answer: as Ascent, but never fits on the caller's
+  // thread nor waits for a fit: the kept fit of the route's gym and
+  // discipline, a stale one with its age (its refit queued in the
+  // background), or, when none is kept, the unfitted grade (fitted = false)
+  // with the first fit queued in the background (one per gym and discipline
+  // at a time, as every refit).
+  Result<AscentGrade> KeptAscent(const Viewer& v, int64_t route_id);
   // The ascent grades of many routes of one gym at once (the dashboard's
   // rows, issue 22/23), from the same cached fits as Ascent: route id ->
   // grade, every id present (fitted = false without unheld ticks; routes of
@@ -277,6 +284,9 @@ class Logbook {
   // has run: for tests and benchmarks of the single-route update.
   // Thread-safe.
   uint64_t FullFits();
+  // How many tick rows the full fits have read from the store (tests of
+  // issue 34: a discipline's refit reads only its ticks). Thread-safe.
+  uint64_t TicksRead();
   // Blocks until no refit is queued or under way (tests, benchmarks).
   // Thread-safe.
   void WaitForRefits();
@@ -293,8 +303,19 @@ class Logbook {
   Result<int> MergeDevice(const Viewer& v, std::string_view participant_token);
 
  private:
+  // A fit's grades: those of the last full fit, shared by every copy, and
+  // the routes updated since (issue 34: a tick's update copies only these,
+  // not the gym's thousands of grades, while readers hold the old copy;
+  // past kMaxChanged they are folded into a new shared base).
   struct Fit {
-    std::map<int64_t, AscentGrade> routes;
+    static constexpr size_t kMaxChanged = 64;
+    std::shared_ptr<const std::map<int64_t, AscentGrade>> base =
+        std::make_shared<const std::map<int64_t, AscentGrade>>();
+    std::map<int64_t, std::optional<AscentGrade>> changed;  // nullopt: no grade now
+    // The grade of route `id`, or null.
+    const AscentGrade* Find(int64_t id) const;
+    // Sets (or, with nullopt, removes) the grade of route `id`.
+    void Put(int64_t id, std::optional<AscentGrade> grade);
   };
   using Key = std::pair<int64_t, std::string>;  // (gym, discipline)
   // A cached fit: shared, so a cache hit copies no map (a single-route update
@@ -345,7 +366,14 @@ class Logbook {
   // `anonymous` a gym without members gets an empty fit and is not fitted,
   // and one with fewer than fit_anonymous_min_ticks tick writes is fitted
   // (microseconds) but not cached, so it evicts nothing.
-  Result<FitRead> FitGym(int64_t gym_id, const std::string& discipline, bool anonymous);
+  // Without `wait` (a tick's answer, issue 34) nothing is fitted on the
+  // caller's thread: a kept entry is returned as it is (stale with its age,
+  // its refit queued), and a missing one is queued for the background and
+  // an empty fit returned.
+  Result<FitRead> FitGym(int64_t gym_id, const std::string& discipline, bool anonymous,
+                         bool wait = true);
+  // Ascent (wait) and KeptAscent (!wait).
+  Result<AscentGrade> AscentOf(const Viewer& v, int64_t route_id, bool wait);
   // Runs the flight of `key`: reads the ticks under the gym's tick lock, fits
   // off it, replays the ticks written meanwhile and publishes. Marks the
   // flight done (waking waiters).
@@ -398,6 +426,7 @@ class Logbook {
   std::thread worker_;  // started with the first background refit
   uint64_t uses_ = 0;
   uint64_t full_fits_ = 0;
+  uint64_t ticks_read_ = 0;  // tick rows the full fits read
   std::mutex locks_mu_;
   std::map<int64_t, std::unique_ptr<std::mutex>> tick_locks_;  // per gym
 };

@@ -359,6 +359,65 @@ TEST_F(SyntheticGymTest, ConcurrentReadersShareOneFit) {
   EXPECT_EQ(book.CachedFits(), 1u);
 }
 
+// Issue 34: a tick's answer never waits for a fit: with none kept, the
+// answer's grade (KeptAscent) is unfitted and the gym's first fit is made in
+// the background, once however many ask at once; the next answer has it.
+TEST_F(SyntheticGymTest, ATicksAnswerNeverMakesTheFirstFit) {
+  {
+    Logbook writer(store_.get(), &clock_);
+    ASSERT_NO_FATAL_FAILURE(Populate(writer));
+  }
+  Logbook book(store_.get(), &clock_);
+  Result<TickSaved> t = book.Log(Anonymous("10.12.0.1"), boulders_[2], "", Input("send", 2));
+  ASSERT_TRUE(t.ok()) << t.status().message();
+  Result<AscentGrade> first = book.KeptAscent(Anonymous(), boulders_[2]);
+  ASSERT_TRUE(first.ok());
+  EXPECT_FALSE(first->fitted);  // none was kept: the answer did not wait for one
+  std::vector<std::thread> phones;
+  std::atomic<int> fitted{0}, failed{0};
+  for (int i = 0; i < 8; ++i) {
+    phones.emplace_back([&] {
+      Result<AscentGrade> a = book.KeptAscent(Anonymous(), boulders_[2]);
+      if (!a.ok()) ++failed;
+      if (a.ok() && a->fitted) ++fitted;
+    });
+  }
+  for (std::thread& p : phones) p.join();
+  EXPECT_EQ(failed.load(), 0);
+  EXPECT_LE(fitted.load(), 8);  // those after the background fit landed see it
+  book.WaitForRefits();
+  EXPECT_EQ(book.FullFits(), 1u);  // one background fit for the nine answers
+  EXPECT_EQ(book.CachedFits(), 1u);
+  Result<AscentGrade> a = book.KeptAscent(Anonymous(), boulders_[2]);
+  ASSERT_TRUE(a.ok());
+  EXPECT_TRUE(a->fitted);
+  EXPECT_EQ(a->ticks, 12 + 1);
+  EXPECT_EQ(a->age_seconds, 0);
+  EXPECT_EQ(book.FullFits(), 1u);
+}
+
+// Issue 34: a discipline's fit reads only that discipline's ticks (the one
+// roped route's 12, not the gym's 108), and counts them as a fit over all
+// the gym's ticks did (the new identities' pooling from every discipline's
+// history).
+TEST_F(SyntheticGymTest, ADisciplinesFitReadsOnlyItsTicks) {
+  {
+    Logbook writer(store_.get(), &clock_);
+    ASSERT_NO_FATAL_FAILURE(Populate(writer));
+  }
+  Logbook book(store_.get(), &clock_);
+  Result<AscentGrade> rope = book.Ascent(Anonymous(), rope_);
+  ASSERT_TRUE(rope.ok()) << rope.status().message();
+  EXPECT_EQ(book.FullFits(), 1u);
+  EXPECT_EQ(book.TicksRead(), 12u);
+  EXPECT_EQ(rope->ticks, 12);
+  Result<AscentGrade> boulder = book.Ascent(Anonymous(), boulders_[0]);
+  ASSERT_TRUE(boulder.ok()) << boulder.status().message();
+  EXPECT_EQ(book.FullFits(), 2u);
+  EXPECT_EQ(book.TicksRead(), 12u + 96u);
+  EXPECT_EQ(boulder->ticks, 12);
+}
+
 // Issue 34: a big gym's stale fit (ticks written by another process) is
 // shown with its age while one background refit runs; readers never wait
 // for it, and the refit brings the grades current.

@@ -228,6 +228,14 @@ struct RenderCosts {
   // climber's ticks and a count of the route's new identities: two indexed
   // queries, ~0.3-0.5 ms on PostgreSQL).
   double held_reason = 500;
+  // Issue 34, priced from bench/sb_read_costs_bench (docs/BENCHMARKS.md,
+  // "Read costs re-timed"): a route read whole in a list of many (one
+  // query: a setter's drift reads every route they own; ~4 us for a short
+  // route on SQLite, the feedback row's 2.2 us off the 6.2 measured per
+  // route and row), and a climber's answer row read, tabulated and
+  // analysed for the route's owner (/r/{id}/responses: 6.3 us measured).
+  double route_listed = 8;
+  double answer_per_row = 8;
   // One answer row of a study (a participant's answers about one route),
   // read, tabulated and analysed or written: a few dozen items each.
   double study_per_answer = 20;

@@ -26,6 +26,8 @@ Status RenderCosts::Validate() const {
       {"fit_per_tick", fit_per_tick},
       {"held_reason", held_reason},
       {"study_per_answer", study_per_answer},
+      {"route_listed", route_listed},
+      {"answer_per_row", answer_per_row},
       {"predict_per_variation", predict_per_variation},
       {"predict_grammar", predict_grammar},
   };
@@ -212,14 +214,14 @@ Result<double> ReadCosts::FeedbackAnswersCost(const Viewer& v, int64_t route_id,
   if (!IsOwner(*route, v)) return 0.0;
   if (gym) *gym = route->gym_id;
   SB_ASSIGN_OR_RETURN(int64_t n, counts_->CountRouteFeedback(route_id));
-  return static_cast<double>(n) * (costs_.study_per_answer + costs_.row_per_read);
+  return static_cast<double>(n) * costs_.answer_per_row;
 }
 
 Result<double> ReadCosts::DriftCost(const Viewer& v) {
   SB_RETURN_IF_ERROR(costs_.Validate());
   if (counts_ == nullptr || !v.user_id) return 0.0;
   SB_ASSIGN_OR_RETURN(store::DriftCounts n, counts_->CountDrift(*v.user_id));
-  return static_cast<double>(n.routes) * costs_.route_read +
+  return static_cast<double>(n.routes) * costs_.route_listed +
          static_cast<double>(n.feedback) * costs_.row_per_read;
 }
 

@@ -85,13 +85,13 @@ class ReadCosts {
   // the route read once.
   Result<double> RouteBlocksCost(const Viewer& v, int64_t route_id);
   // The climbers' answers for the route's owner (GET /r/{id}/responses):
-  // each feedback row read, tabulated and analysed like a study's answer
-  // (study_per_answer), and the consensus (row_per_read each). 0 unless
-  // `v` owns the route.
+  // each feedback row read, tabulated, analysed and summarised
+  // (answer_per_row, measured). 0 unless `v` owns the route.
   Result<double> FeedbackAnswersCost(const Viewer& v, int64_t route_id,
                                      std::optional<int64_t>* gym = nullptr);
-  // A setter's drift (GET /drift): every route they own read whole
-  // (route_read) and each feedback row on them summarised (row_per_read).
+  // A setter's drift (GET /drift): every route they own read whole in one
+  // list (route_listed) and each feedback row on them summarised
+  // (row_per_read).
   // 0 signed out.
   Result<double> DriftCost(const Viewer& v);
   // The gym's lists (issue 34): GET /api/gyms/{gym}/members, /walls,

@@ -28,6 +28,7 @@
 #include "store/sqlite_store.h"
 #include "store/target_sql.h"
 #include "store/target_store.h"
+#include "store/tick_fit_sql.h"
 #include "store/tick_sql.h"
 #include "store/tick_store.h"
 #include "store/visibility.h"
@@ -991,6 +992,16 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
   Result<std::vector<TickRecord>> GymTicks(int64_t gym_id) override {
     SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
     return ticks_sql::GymTicks(*c, gym_id, ticks_sql::GymTickPage());
+  }
+  Result<std::vector<TickRecord>> GymDisciplineTicks(int64_t gym_id,
+                                                     const std::string& discipline) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return ticks_sql::GymDisciplineTicks(*c, gym_id, discipline);
+  }
+  Result<std::map<std::string, int64_t>> AgedRouteCounts(
+      int64_t gym_id, const std::string& created_until) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return ticks_sql::AgedRouteCounts(*c, gym_id, created_until);
   }
   Result<std::vector<TickRecord>> ClimberTicks(const std::string& climber) override {
     SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());

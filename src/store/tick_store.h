@@ -8,6 +8,7 @@
 #define SB_STORE_TICK_STORE_H_
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -82,6 +83,20 @@ class TickStore {
   // after `since` (new identities). Times are "YYYY-MM-DD HH:MM:SS".
   virtual Result<int> NewIdentitiesSince(int64_t route_id, const std::string& origin,
                                          const std::string& since) = 0;
+
+  // Issue 34, the fit's reads (app/logbook.cc): a gym's ticks in state "ok"
+  // on its routes of `discipline` ("bouldering" includes routes without a
+  // grade discipline), by id, with only the fields a fit counts set (id,
+  // route_id, gym_id, climber, day, outcome, attempts, felt_discipline,
+  // felt_value, state, created_at, revision; the rest default).
+  virtual Result<std::vector<TickRecord>> GymDisciplineTicks(int64_t gym_id,
+                                                             const std::string& discipline) = 0;
+  // Per climber of the gym (any discipline): how many distinct routes it
+  // has ticks in state "ok" on created at or before `created_until`
+  // ("YYYY-MM-DD HH:MM:SS"); climbers with none are absent. One grouped
+  // query (a row per climber, not per tick).
+  virtual Result<std::map<std::string, int64_t>> AgedRouteCounts(
+      int64_t gym_id, const std::string& created_until) = 0;
 };
 
 // The TickStore of a store opened by store::OpenStore (both backends);

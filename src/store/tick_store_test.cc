@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -159,6 +160,50 @@ TEST_P(TickStoreTest, EveryKindOfWriteMovesTheGymsDataVersion) {
   moved("tick state", true);
   // No such gym: zeros, not an error.
   EXPECT_EQ(*ticks_->GymTickVersion(gym_ + 1000), TickVersion{});
+}
+
+// Issue 34: a fit's read of one discipline returns only the ticks in state
+// "ok" on that discipline's routes ("bouldering" includes routes without a
+// grade discipline), by id; the aged routes are counted per climber over
+// every discipline.
+TEST_P(TickStoreTest, AFitReadsOnlyItsDisciplinesTicks) {
+  RouteRecord roped;
+  roped.name = "Rope";
+  roped.crdl = "name: Rope\n---\nR jug\n";
+  roped.move_count = 1;
+  roped.gym_id = gym_;
+  roped.state = "set";
+  roped.grade_discipline = "roped";
+  Result<int64_t> rope = store_->InsertRoute(roped);
+  ASSERT_TRUE(rope.ok()) << rope.status().message();
+  TickRecord felt = Tick(route_, "d:aa", "2026-11-20", "send", "2026-11-20 10:00:00");
+  felt.attempts = 2;
+  felt.felt_discipline = "bouldering";
+  felt.felt_value = 3.5;
+  ASSERT_TRUE(ticks_->PutTick(felt).ok());
+  ASSERT_TRUE(ticks_->PutTick(Tick(other_, "d:aa", "2026-11-20", "send", "2026-11-20 11:00:00")).ok());
+  ASSERT_TRUE(ticks_->PutTick(Tick(*rope, "d:aa", "2026-11-20", "flash", "2026-11-20 12:00:00")).ok());
+  TickRecord held = Tick(*rope, "d:bb", "2026-11-21", "send", "2026-11-21 10:00:00");
+  held.state = "held";
+  ASSERT_TRUE(ticks_->PutTick(held).ok());
+  Result<std::vector<TickRecord>> boulder = ticks_->GymDisciplineTicks(gym_, "bouldering");
+  ASSERT_TRUE(boulder.ok()) << boulder.status().message();
+  ASSERT_EQ(boulder->size(), 2u);
+  EXPECT_EQ((*boulder)[0].route_id, route_);
+  EXPECT_EQ((*boulder)[0].attempts, 2);
+  EXPECT_EQ((*boulder)[0].felt_value, 3.5);
+  EXPECT_EQ((*boulder)[0].state, "ok");
+  EXPECT_EQ((*boulder)[1].route_id, other_);
+  EXPECT_LT((*boulder)[0].id, (*boulder)[1].id);
+  Result<std::vector<TickRecord>> rope_ticks = ticks_->GymDisciplineTicks(gym_, "roped");
+  ASSERT_TRUE(rope_ticks.ok());
+  ASSERT_EQ(rope_ticks->size(), 1u);  // the held one is not counted
+  EXPECT_EQ((*rope_ticks)[0].outcome, "flash");
+  Result<std::map<std::string, int64_t>> aged =
+      ticks_->AgedRouteCounts(gym_, "2026-11-20 11:30:00");
+  ASSERT_TRUE(aged.ok()) << aged.status().message();
+  EXPECT_EQ(*aged, (std::map<std::string, int64_t>{{"d:aa", 2}}));
+  EXPECT_EQ(ticks_->AgedRouteCounts(gym_, "2026-12-01 00:00:00")->at("d:aa"), 3);
 }
 
 TEST_P(TickStoreTest, HeldTicksLeaveTheGymsTicksUntilAccepted) {

@@ -104,6 +104,8 @@ TEST_F(Cost2ApiTest, HistoriesConsensusAnswersAndDriftAreCostedFromTheirCountsFi
     o.app.renders.user_cost_per_minute = 1e6;
     o.app.render_costs.row_per_read = 400e3;
     o.app.render_costs.route_read = 400e3;
+    o.app.render_costs.route_listed = 400e3;
+    o.app.render_costs.answer_per_row = 400e3;
     o.app.render_costs.study_per_answer = 0;
     o.app.render_costs.fit_per_tick = 0;
     o.app.render_costs.list_per_row = 0;

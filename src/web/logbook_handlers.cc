@@ -184,7 +184,8 @@ void PostTick(Exchange& x) {
   json out = TickJson(saved->tick);
   out["edited"] = saved->edited;
   out["held"] = saved->held;
-  Result<app::AscentGrade> a = x.services.logbook.Ascent(x.caller.viewer, *id);
+  // Issue 34: the kept fit's grade; the answer never waits for a fit.
+  Result<app::AscentGrade> a = x.services.logbook.KeptAscent(x.caller.viewer, *id);
   if (a.ok()) out["ascent"] = AscentJson(*a);
   ReplyJson(x.res, saved->edited ? 200 : 201, out);
 }

@@ -244,11 +244,19 @@ bool IsLoopbackName(const std::string& h) {
   return dots == 3;
 }
 
+// Whether the request's session cookie names a session this process opened
+// or found (app::KnownSessions: one hash and one map look-up, no database
+// query on the I/O thread). Issue 34: a made-up cookie is anonymous.
+bool SignedIn(const Request& q, app::KnownSessions& known) {
+  const std::string session = q.Cookie(kSessionCookie);
+  return !session.empty() && known.Valid(session);
+}
+
 // The lane of a request (worker_lanes.h): costly endpoints of the table
-// in the costly lane of signed-in callers (a session cookie) or of
+// in the costly lane of signed-in callers (a known session, SignedIn) or of
 // anonymous ones; other writes (ticks, edits) in the write lane;
-// everything else quick. Stateless: the table only.
-RequestLane LaneOf(const Request& q) {
+// everything else quick. The table and the known sessions only.
+RequestLane LaneOf(const Request& q, app::KnownSessions& known) {
   static const Router<bool> costly = [] {
     Router<bool> r;
     for (const Endpoint& e : kEndpoints) r.Add(e.method, e.pattern, e.costly);
@@ -262,19 +270,16 @@ RequestLane LaneOf(const Request& q) {
   if (!is_costly || !*is_costly) {
     return IsStateChanging(q.method) ? RequestLane::kWrite : RequestLane::kQuick;
   }
-  return q.Cookie(kSessionCookie).empty() ? RequestLane::kCostlyAnonymous
-                                          : RequestLane::kCostlySignedIn;
+  return SignedIn(q, known) ? RequestLane::kCostlySignedIn : RequestLane::kCostlyAnonymous;
 }
 
 // The caller of a request for the transport's per-caller fairness
-// (worker_lanes.h): a session cookie's holder, else the address. The
-// session is not looked up here (an I/O thread); a made-up cookie only
-// moves its sender into a share of its own, still bounded per caller, and
-// the render budget charges the account once the session is resolved.
-RequestCaller TransportCallerOf(const Request& q) {
-  const std::string session = q.Cookie(kSessionCookie);
-  if (session.empty()) return {"addr:" + q.remote_address, false};
-  return {"session:" + session, true};
+// (worker_lanes.h): a known session's holder (SignedIn), else the address:
+// a made-up or expired cookie is its address's, anonymous, and takes
+// nothing of the members' share of the queue.
+RequestCaller TransportCallerOf(const Request& q, app::KnownSessions& known) {
+  if (!SignedIn(q, known)) return {"addr:" + q.remote_address, false};
+  return {"session:" + q.Cookie(kSessionCookie), true};
 }
 
 }  // namespace
@@ -356,8 +361,11 @@ struct Server::Impl {
             [this](const Request& q, int status, Response* s) { TransportError(q, status, s); }) {
     for (const Endpoint& e : kEndpoints) router.Add(e.method, e.pattern, e.handler);
     LanePolicy lanes;  // the transport's default caps
-    lanes.lane = LaneOf;
-    lanes.caller = TransportCallerOf;
+    // The lanes keep the known sessions alive (a transport may outlive
+    // this server's services).
+    std::shared_ptr<app::KnownSessions> known = services.accounts.known_sessions();
+    lanes.lane = [known](const Request& q) { return LaneOf(q, *known); };
+    lanes.caller = [known](const Request& q) { return TransportCallerOf(q, *known); };
     lanes.max_costly_per_caller = 2;  // TransportMessage(429) names it
     SetLanePolicy(std::move(lanes));
     for (const std::string& h : options.allowed_hosts) AllowHost(h);

@@ -1,0 +1,82 @@
+#include "store/tick_fit_sql.h"
+
+#include <iterator>
+#include <optional>
+#include <utility>
+
+namespace sb::store::ticks_sql {
+
+namespace {
+
+using sql::Rows;
+
+// The columns a fit reads (TickStore::GymDisciplineTicks), in this order.
+constexpr const char* kFitSelect =
+    "SELECT t.id, t.route_id, t.climber, t.day, t.outcome, t.attempts, t.felt_discipline, "
+    "t.felt_value, t.created_at, t.revision FROM ticks t JOIN routes r ON r.id = t.route_id "
+    "WHERE t.gym_id = ? AND t.state = 'ok' AND "
+    "(CASE WHEN r.grade_discipline = '' THEN 'bouldering' ELSE r.grade_discipline END) = ?";
+
+std::vector<TickRecord> ReadFit(const Rows& r, int64_t gym_id) {
+  std::vector<TickRecord> out;
+  out.reserve(r.size());
+  for (size_t i = 0; i < r.size(); ++i) {
+    TickRecord t;
+    t.id = r.Int(i, 0);
+    t.route_id = r.Int(i, 1);
+    t.gym_id = gym_id;
+    t.climber = r.Text(i, 2);
+    t.day = r.Text(i, 3);
+    t.outcome = r.Text(i, 4);
+    std::optional<int64_t> attempts = r.OptInt(i, 5);
+    if (attempts) t.attempts = static_cast<int>(*attempts);
+    t.felt_discipline = r.Text(i, 6);
+    t.felt_value = r.OptDouble(i, 7);
+    t.state = "ok";
+    t.created_at = r.Text(i, 8);
+    t.revision = static_cast<int>(r.Int(i, 9));
+    out.push_back(std::move(t));
+  }
+  return out;
+}
+
+}  // namespace
+
+Result<std::vector<TickRecord>> GymDisciplineTicks(sql::Connection& c, int64_t gym_id,
+                                                   const std::string& discipline) {
+  // As GymTicks: on SQLite in pages of ids (the text rows of a big gym are
+  // never all held beside the records); on PostgreSQL in one query.
+  if (c.dialect() == sql::Dialect::kPostgres) {
+    SB_ASSIGN_OR_RETURN(Rows r, c.Query(std::string(kFitSelect) + " ORDER BY t.id",
+                                        {gym_id, discipline}));
+    return ReadFit(r, gym_id);
+  }
+  constexpr int64_t kPage = 10000;
+  std::vector<TickRecord> out;
+  int64_t after = 0;
+  for (;;) {
+    SB_ASSIGN_OR_RETURN(Rows r, c.Query(std::string(kFitSelect) +
+                                            " AND t.id > ? ORDER BY t.id LIMIT ?",
+                                        {gym_id, discipline, after, kPage}));
+    std::vector<TickRecord> page = ReadFit(r, gym_id);
+    if (page.empty()) break;
+    after = page.back().id;
+    out.insert(out.end(), std::make_move_iterator(page.begin()),
+               std::make_move_iterator(page.end()));
+    if (static_cast<int64_t>(page.size()) < kPage) break;
+  }
+  return out;
+}
+
+Result<std::map<std::string, int64_t>> AgedRouteCounts(sql::Connection& c, int64_t gym_id,
+                                                       const std::string& created_until) {
+  SB_ASSIGN_OR_RETURN(
+      Rows r, c.Query("SELECT climber, COUNT(DISTINCT route_id) FROM ticks WHERE gym_id = ? AND "
+                      "state = 'ok' AND created_at <= ? GROUP BY climber",
+                      {gym_id, created_until}));
+  std::map<std::string, int64_t> out;
+  for (size_t i = 0; i < r.size(); ++i) out.emplace(r.Text(i, 0), r.Int(i, 1));
+  return out;
+}
+
+}  // namespace sb::store::ticks_sql
