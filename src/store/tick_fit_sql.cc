@@ -1,4 +1,5 @@
 #include "store/tick_fit_sql.h"
+#include "store/tick_sql.h"
 
 #include <iterator>
 #include <optional>
@@ -44,26 +45,23 @@ std::vector<TickRecord> ReadFit(const Rows& r, int64_t gym_id) {
 
 Result<std::vector<TickRecord>> GymDisciplineTicks(sql::Connection& c, int64_t gym_id,
                                                    const std::string& discipline) {
-  // As GymTicks: on SQLite in pages of ids (the text rows of a big gym are
-  // never all held beside the records); on PostgreSQL in one query.
-  if (c.dialect() == sql::Dialect::kPostgres) {
-    SB_ASSIGN_OR_RETURN(Rows r, c.Query(std::string(kFitSelect) + " ORDER BY t.id",
-                                        {gym_id, discipline}));
-    return ReadFit(r, gym_id);
-  }
-  constexpr int64_t kPage = 10000;
+  // As GymTicks (issue 34, memory under load): on both backends in pages of
+  // ids (keyset on (gym_id, id), index ticks_gym_id), so the text rows of a
+  // big gym are never all held beside the records.
+  const int64_t page_size = GymTickPage();
   std::vector<TickRecord> out;
   int64_t after = 0;
   for (;;) {
     SB_ASSIGN_OR_RETURN(Rows r, c.Query(std::string(kFitSelect) +
                                             " AND t.id > ? ORDER BY t.id LIMIT ?",
-                                        {gym_id, discipline, after, kPage}));
+                                        {gym_id, discipline, after, page_size}));
     std::vector<TickRecord> page = ReadFit(r, gym_id);
+    r = Rows();  // the page's text rows go before the next page is read
     if (page.empty()) break;
     after = page.back().id;
     out.insert(out.end(), std::make_move_iterator(page.begin()),
                std::make_move_iterator(page.end()));
-    if (static_cast<int64_t>(page.size()) < kPage) break;
+    if (static_cast<int64_t>(page.size()) < page_size) break;
   }
   return out;
 }

@@ -195,6 +195,14 @@ TEST_P(TickStoreTest, AFitReadsOnlyItsDisciplinesTicks) {
   EXPECT_EQ((*boulder)[0].state, "ok");
   EXPECT_EQ((*boulder)[1].route_id, other_);
   EXPECT_LT((*boulder)[0].id, (*boulder)[1].id);
+  // Read in pages of one tick (issue 34: both backends page): the same rows.
+  const int64_t was = SetGymTickPageForTesting(1);
+  Result<std::vector<TickRecord>> paged = ticks_->GymDisciplineTicks(gym_, "bouldering");
+  SetGymTickPageForTesting(was);
+  ASSERT_TRUE(paged.ok()) << paged.status().message();
+  ASSERT_EQ(paged->size(), 2u);
+  EXPECT_EQ((*paged)[0].id, (*boulder)[0].id);
+  EXPECT_EQ((*paged)[1].id, (*boulder)[1].id);
   Result<std::vector<TickRecord>> rope_ticks = ticks_->GymDisciplineTicks(gym_, "roped");
   ASSERT_TRUE(rope_ticks.ok());
   ASSERT_EQ(rope_ticks->size(), 1u);  // the held one is not counted
