@@ -66,7 +66,7 @@ TEST_F(ReportPredictedTest, ASettingDaysVariationIsSetAgainstItsAscentGradeAfter
   EXPECT_EQ(before->predictions.days[0].day, "2023-12-01");
   EXPECT_EQ(before->predictions.days[0].variations, 1);
   EXPECT_EQ(before->predictions.days[0].checked, 0);  // no ticks yet
-  EXPECT_NE(before->predictions.verdict.find("none of the 1 variations has 5 ticks"),
+  EXPECT_NE(before->predictions.verdict.find("none of the 1 variation has 5 ticks"),
             std::string::npos)
       << before->predictions.verdict;
   // Issue 34: the plan's cost counts the predicted_grades section (the
@@ -128,7 +128,7 @@ TEST_F(ReportPredictedTest, ASettingDaysVariationIsSetAgainstItsAscentGradeAfter
   EXPECT_EQ(checked.ascent.ticks, 5);
   EXPECT_NEAR(checked.error, checked.ascent.value - checked.predicted.value, 1e-9);
   EXPECT_NEAR(day.mean_abs_error, std::abs(checked.error), 1e-9);
-  EXPECT_NE(after->predictions.verdict.find("1 of 1 variations with at least 5 ticks"),
+  EXPECT_NE(after->predictions.verdict.find("1 of 1 variation with at least 5 ticks"),
             std::string::npos)
       << after->predictions.verdict;
 }
