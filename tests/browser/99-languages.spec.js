@@ -131,7 +131,7 @@ module.exports = async (t) => {
   const cardPdf = await page.request.get(base + '/variations/' + varied.data.id + '.pdf');
   const cardFile = path.join(out, 'card-german.pdf');
   fs.writeFileSync(cardFile, await cardPdf.body());
-  const cardWords = execFileSync('pdftotext', [cardFile, '-']).toString();
+  const cardWords = execFileSync('pdftotext', [cardFile, '-']).toString().replace(/\s+/g, ' ');
   check(cardPdf.status() === 200 && /Zügen geändert/.test(cardWords) && cardWords.includes('Grad V4') &&
         cardWords.includes('Scannen für Rückmeldung') && !cardWords.includes('moves changed'),
         'the card PDF is German (' + cardWords.replace(/\s+/g, ' ').slice(0, 120) + ')');
