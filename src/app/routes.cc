@@ -350,7 +350,18 @@ Status Routes::ApplyWallDiscipline(store::RouteRecord* rec, bool strict) {
       if (!value.ok() && strict) return value.status();
       rec->grade_discipline = grades::DisciplineName(*sd);
       rec->grade_value = value.ok() ? std::optional<double>(*value) : std::nullopt;
+      return Status::Ok();
     }
+  }
+  // A gym's route on a wall without a scale of its own (or on no wall): its
+  // grade is one of a built-in scale's, else the dashboard's bands, the
+  // filters and the setting day would not see it (hands-on, stop 40: "V99"
+  // and "blah" were stored). A personal route's grade stays free text.
+  if (strict && rec->gym_id && !Trim(rec->grade).empty() &&
+      !grades::ParseGrade(rec->grade, {}, "grade").ok()) {
+    return Status::InvalidInput("grade: \"" + std::string(Trim(rec->grade)) +
+                                "\" is not a grade of a built-in scale (V, Font, YDS, French or UIAA, "
+                                "such as V4, 6B+, 5.10a, 6b+ or VI+)");
   }
   return Status::Ok();
 }

@@ -177,5 +177,32 @@ TEST_F(Cycle5ApiTest, TheWallsButtonsChangeExactlyTheRoutesThePageShowed) {
   EXPECT_EQ(setter.Json("GET", Rp(theirs), "", 200)["state"], "draft");
 }
 
+// Hands-on, stop 40: a gym's route on a wall without a scale of its own took
+// any grade ("V99", "blah"), which no band, filter or setting day could read.
+// It is now one of a built-in scale's or refused naming the field; a
+// personal route's grade stays free text.
+TEST_F(Cycle5ApiTest, AGymRoutesGradeIsAGradeOfABuiltInScale) {
+  Client& head = SignedIn("gradehead");
+  const int64_t g = head.FirstGym();
+  const int64_t wall = head.AddWall(g, "Plain");
+  for (const std::string bad : {"V99", "blah"}) {
+    json j = head.Json("POST", "/api/routes",
+                       json{{"crdl", "name: Bad\ngrade: " + bad + "\n---\nR jug\n"}, {"gym", g},
+                            {"wall", wall}}
+                           .dump(),
+                       400);
+    EXPECT_NE(j.value("error", "").find("grade: \"" + bad + "\" is not a grade"), std::string::npos)
+        << j.dump();
+  }
+  for (const std::string good : {"V4", "6B+", "5.10a"}) {
+    head.Json("POST", "/api/routes",
+              json{{"crdl", "name: Good\ngrade: " + good + "\n---\nR jug\n"}, {"gym", g}}.dump(),
+              201);
+  }
+  Client& own = SignedIn("gradeclimber");
+  own.Json("POST", "/api/routes", json{{"crdl", "name: Mine\ngrade: project\n---\nR jug\n"}}.dump(),
+           201);
+}
+
 }  // namespace
 }  // namespace sb::web
