@@ -876,9 +876,11 @@ Result<StatesChanged> Routes::ChangeStates(const Viewer& v, const std::vector<Ro
   if (seen) {
     for (const auto& [id, revision] : *seen) {
       auto it = now.find(id);
-      const bool skipped_draft = std::any_of(rows.begin(), rows.end(), [&](const RouteView& r) {
-        return r.id == id && r.revision == revision && DraftOfOther(r, v);
-      });
+      // Init-captures: clang (the sanitizer build) cannot capture a structured binding.
+      const bool skipped_draft =
+          std::any_of(rows.begin(), rows.end(), [&, id = id, revision = revision](const RouteView& r) {
+            return r.id == id && r.revision == revision && DraftOfOther(r, v);
+          });
       if (skipped_draft || (it != now.end() && it->second == revision)) continue;
       return Status::Conflict("revision: " + group + "'s routes changed meanwhile (now: " +
                               (names.empty() ? "none" : names) + ")");
