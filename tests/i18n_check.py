@@ -87,18 +87,24 @@ def js_plural_messages(path):
                 for m in JS_TRN.finditer(f.read())]
 
 
-def listed_script_plurals(root, name):
-    """The NN_() pairs of array `name` in src/web/script_messages.cc (None: no array)."""
+def script_array(root, name):
+    """The body of array `name` in src/web/script_messages.cc (None: no file or array)."""
     path = os.path.join(root, "src", "web", "script_messages.cc")
     if not os.path.exists(path):
         return None
     with open(path, encoding="utf-8") as f:
         text = f.read()
     m = re.search(r"\b" + name + r"\[\]\s*=\s*\{(.*?)\n\};", text, re.S)
-    if not m:
+    return m.group(1) if m else None
+
+
+def listed_script_plurals(root, name):
+    """The NN_() pairs of array `name` in src/web/script_messages.cc (None: no array)."""
+    body = script_array(root, name)
+    if body is None:
         return None
     return {(re.sub(r"\\(.)", r"\1", a), re.sub(r"\\(.)", r"\1", b)) for a, b in
-            re.findall(r'NN_\(\s*"((?:[^"\\]|\\.)*)"\s*,\s*"((?:[^"\\]|\\.)*)"\s*\)', m.group(1))}
+            re.findall(r'NN_\(\s*"((?:[^"\\]|\\.)*)"\s*,\s*"((?:[^"\\]|\\.)*)"\s*\)', body)}
 
 
 def script_array_name(path):
@@ -108,16 +114,11 @@ def script_array_name(path):
 
 def listed_script_messages(root, name):
     """The N_() ids of array `name` in src/web/script_messages.cc (None: no array)."""
-    path = os.path.join(root, "src", "web", "script_messages.cc")
-    if not os.path.exists(path):
-        return None
-    with open(path, encoding="utf-8") as f:
-        text = f.read()
-    m = re.search(r"\b" + name + r"\[\]\s*=\s*\{(.*?)\n\};", text, re.S)
-    if not m:
+    body = script_array(root, name)
+    if body is None:
         return None
     ids = set()
-    for n in re.finditer(r'N_\(((?:\s*"(?:[^"\\]|\\.)*")+)\s*\)', m.group(1)):
+    for n in re.finditer(r'N_\(((?:\s*"(?:[^"\\]|\\.)*")+)\s*\)', body):
         parts = re.findall(r'"((?:[^"\\]|\\.)*)"', n.group(1))
         ids.add(re.sub(r"\\(.)", r"\1", "".join(parts)))
     return ids

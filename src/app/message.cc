@@ -1,21 +1,8 @@
 #include "app/message.h"
 
-namespace sb::app {
+#include "base/fill_in.h"
 
-std::string FillIn(const std::string& pattern, const std::vector<std::string>& args) {
-  std::string out;
-  for (size_t i = 0; i < pattern.size(); ++i) {
-    if (pattern[i] == '{' && i + 2 < pattern.size() && pattern[i + 1] >= '1' &&
-        pattern[i + 1] <= '9' && pattern[i + 2] == '}') {
-      const size_t k = static_cast<size_t>(pattern[i + 1] - '1');
-      out += k < args.size() ? args[k] : pattern.substr(i, 3);
-      i += 2;
-      continue;
-    }
-    out += pattern[i];
-  }
-  return out;
-}
+namespace sb::app {
 
 std::string Message::English() const {
   if (kind == Kind::kList) {

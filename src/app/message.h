@@ -59,8 +59,6 @@ Message MsgN(const char* singular, const char* plural, long long n, std::vector<
 Message Word(std::string word);
 // `items` one after the other, `separator` ("; ", ", ") between them.
 Message List(std::vector<Message> items, std::string separator);
-// "{1}".."{9}" of `pattern` replaced by `args` (a placeholder past the end stays).
-std::string FillIn(const std::string& pattern, const std::vector<std::string>& args);
 
 }  // namespace sb::app
 

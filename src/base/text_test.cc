@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 
 #include "base/files.h"
+#include "base/fill_in.h"
 #include "base/status.h"
 
 namespace sb {
@@ -22,6 +23,12 @@ TEST(Text, SplitLinesHandlesCrlfAndFinalNewline) {
   EXPECT_EQ(lines[1], "b");
   EXPECT_EQ(lines[2], "");
   EXPECT_EQ(lines[3], "c");
+}
+
+TEST(Text, FillInReplacesNumberedPlaceholdersAndKeepsOnesPastTheEnd) {
+  EXPECT_EQ(FillIn("{2} of {1} moves", {"12", "3"}), "3 of 12 moves");
+  EXPECT_EQ(FillIn("{1}, {3} and {1}", {"a", "b"}), "a, {3} and a");
+  EXPECT_EQ(FillIn("{0} {x} {", {"a"}), "{0} {x} {");
 }
 
 TEST(Text, XmlEscape) { EXPECT_EQ(XmlEscape("<a&'\">"), "&lt;a&amp;&#39;&quot;&gt;"); }

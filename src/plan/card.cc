@@ -10,6 +10,7 @@
 #include <map>
 #include <memory>
 
+#include "base/fill_in.h"
 #include "base/number.h"
 #include "plan/draw.h"
 #include "plan/qr.h"
@@ -17,22 +18,6 @@
 namespace sb::plan {
 
 namespace {
-
-// "{1}".."{9}" of `pattern` replaced by `args`.
-std::string FillIn(const std::string& pattern, const std::vector<std::string>& args) {
-  std::string out;
-  for (size_t i = 0; i < pattern.size(); ++i) {
-    if (pattern[i] == '{' && i + 2 < pattern.size() && pattern[i + 1] >= '1' &&
-        pattern[i + 1] <= '9' && pattern[i + 2] == '}') {
-      const size_t k = static_cast<size_t>(pattern[i + 1] - '1');
-      out += k < args.size() ? args[k] : pattern.substr(i, 3);
-      i += 2;
-      continue;
-    }
-    out += pattern[i];
-  }
-  return out;
-}
 
 // A card message (a string literal: extracted for the catalogs) in the
 // page's language, filled in.

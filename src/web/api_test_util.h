@@ -229,6 +229,26 @@ class ApiFixture : public ::testing::Test {
   std::vector<std::unique_ptr<Client>> clients_;
 };
 
+// A GET of `path` by `c` refused with 429 and a Retry-After of at least a
+// second (the cost tests' refusal); returns the answer's body ("" when none).
+inline std::string ExpectRetryLater(Client& c, const std::string& path) {
+  auto r = c.Send("GET", path);
+  EXPECT_TRUE(r) << path;
+  if (!r) return "";
+  EXPECT_EQ(r->status, 429) << path << " -> " << r->body;
+  EXPECT_GE(std::atoi(r->get_header_value("Retry-After").c_str()), 1) << path;
+  return r->body;
+}
+
+// Every caller may spend 1e6 units a minute (a fresh one has them all), with
+// no per-request cap: a request costing more waits (Retry-After).
+inline void TightBudgets(ServerOptions& o) {
+  o.app.renders.anonymous_max_cost = 1e12;
+  o.app.renders.user_max_cost = 1e12;
+  o.app.renders.anonymous_cost_per_minute = 1e6;
+  o.app.renders.user_cost_per_minute = 1e6;
+}
+
 }  // namespace sb::web::testing
 
 #endif  // SB_WEB_API_TEST_UTIL_H_

@@ -34,11 +34,7 @@ class Cost2ApiTest : public testing::ApiFixture {
   // 429 with a Retry-After of at least a second, and the error naming the
   // budget.
   static void Refused(Client& c, const std::string& path) {
-    auto r = c.Send("GET", path);
-    ASSERT_TRUE(r) << path;
-    EXPECT_EQ(r->status, 429) << path << " -> " << r->body;
-    EXPECT_GE(std::atoi(r->get_header_value("Retry-After").c_str()), 1) << path;
-    EXPECT_NE(r->body.find("budget"), std::string::npos) << path << " -> " << r->body;
+    EXPECT_NE(testing::ExpectRetryLater(c, path).find("budget"), std::string::npos) << path;
   }
   std::vector<std::unique_ptr<Client>> all_;
 };
@@ -98,10 +94,7 @@ TEST_F(Cost2ApiTest, HistoriesConsensusAnswersAndDriftAreCostedFromTheirCountsFi
   // list rows and page moves cost nothing here. A refusal charges nothing;
   // what passes is charged to its own caller (light, or the address).
   Restart(256 * 1024, [](ServerOptions& o) {
-    o.app.renders.anonymous_max_cost = 1e12;
-    o.app.renders.user_max_cost = 1e12;
-    o.app.renders.anonymous_cost_per_minute = 1e6;
-    o.app.renders.user_cost_per_minute = 1e6;
+    testing::TightBudgets(o);
     o.app.render_costs.row_per_read = 400e3;
     o.app.render_costs.route_read = 400e3;
     o.app.render_costs.route_listed = 400e3;
@@ -170,10 +163,7 @@ TEST_F(Cost2ApiTest, TheWallPagesAscentFitIsCostedFirst) {
   // A fresh start: no fit kept. A tick fitted costs 0.3 s, so the gym's 4
   // ticks are over a member's minute (1e6 units).
   Restart(256 * 1024, [](ServerOptions& o) {
-    o.app.renders.anonymous_max_cost = 1e12;
-    o.app.renders.user_max_cost = 1e12;
-    o.app.renders.anonymous_cost_per_minute = 1e6;
-    o.app.renders.user_cost_per_minute = 1e6;
+    testing::TightBudgets(o);
     o.app.render_costs.list_per_row = 0;
     o.app.render_costs.fit_per_tick = 300e3;
   });
@@ -211,10 +201,7 @@ TEST_F(Cost2ApiTest, AGymsListsAreCostedFromTheirCountsFirst) {
   // A listed row costs 0.4 s: three rows are over a fresh caller's minute
   // (1e6 units), light's one member is not.
   Restart(256 * 1024, [](ServerOptions& o) {
-    o.app.renders.anonymous_max_cost = 1e12;
-    o.app.renders.user_max_cost = 1e12;
-    o.app.renders.anonymous_cost_per_minute = 1e6;
-    o.app.renders.user_cost_per_minute = 1e6;
+    testing::TightBudgets(o);
     o.app.render_costs.list_per_row = 400e3;
     o.app.render_costs.row_per_read = 0;
     o.app.render_costs.fit_per_tick = 0;

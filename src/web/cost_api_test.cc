@@ -35,20 +35,7 @@ class CostApiTest : public testing::ApiFixture {
     c.Tick(r, json{{"outcome", "send"}, {"attempts", 2}}, 201);
   }
   // 429 with a Retry-After of at least a second.
-  static void Refused(Client& c, const std::string& path) {
-    auto r = c.Send("GET", path);
-    ASSERT_TRUE(r) << path;
-    EXPECT_EQ(r->status, 429) << path << " -> " << r->body;
-    EXPECT_GE(std::atoi(r->get_header_value("Retry-After").c_str()), 1) << path;
-  }
-  // Every caller may spend 1e6 units a minute (a fresh one has them all),
-  // with no per-request cap: a request costing more waits (Retry-After).
-  static void TightBudgets(ServerOptions& o) {
-    o.app.renders.anonymous_max_cost = 1e12;
-    o.app.renders.user_max_cost = 1e12;
-    o.app.renders.anonymous_cost_per_minute = 1e6;
-    o.app.renders.user_cost_per_minute = 1e6;
-  }
+  static void Refused(Client& c, const std::string& path) { testing::ExpectRetryLater(c, path); }
 };
 
 TEST_F(CostApiTest, ReadsOfTicksStudiesAndAccountsAreCostedFromTheirCountsFirst) {
@@ -92,7 +79,7 @@ TEST_F(CostApiTest, ReadsOfTicksStudiesAndAccountsAreCostedFromTheirCountsFirst)
   // A row read costs 0.4 s: three rows are over a fresh caller's minute,
   // one is not; the fits cost nothing here.
   Restart(256 * 1024, [](ServerOptions& o) {
-    TightBudgets(o);
+    testing::TightBudgets(o);
     o.app.render_costs.row_per_read = 400e3;
     o.app.render_costs.study_per_answer = 400e3;
     o.app.render_costs.export_per_route = 400e3;
@@ -158,7 +145,7 @@ TEST_F(CostApiTest, AReaderWhoWouldFitAGymIsChargedForItsTicksBeforeTheFit) {
   // (a gym's first fit must be made by someone) and passes; then the fit
   // is current and costs the anonymous reader nothing.
   Restart(256 * 1024, [](ServerOptions& o) {
-    TightBudgets(o);
+    testing::TightBudgets(o);
     o.app.renders.user_max_cost = 500e3;
     o.app.render_costs.fit_per_tick = 300e3;
   });

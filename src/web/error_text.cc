@@ -3,6 +3,7 @@
 #include <regex>
 #include <vector>
 
+#include "base/fill_in.h"
 #include "web/i18n.h"
 
 namespace sb::web {
@@ -100,7 +101,7 @@ std::string Translate(std::string_view lang, const std::string& text, int depth)
     for (size_t i = 1; i < m.size(); ++i) args.push_back(m[i].str());
     // What a built-in scale accepts (app::BuiltInAccepts, a message id).
     if (s.msgid == kAccepts && args.size() == 3) args[2] = Tr(lang, args[2].c_str());
-    return app::FillIn(Tr(lang, s.msgid), args);
+    return FillIn(Tr(lang, s.msgid), args);
   }
   // "field: rest" (field names are the API's: kept) and "line N: rest".
   static const std::regex kField(R"(^([A-Za-z_][A-Za-z0-9_.\[\]]*): (.+)$)");
@@ -134,7 +135,7 @@ std::string TrMessage(std::string_view lang, const app::Message& m) {
   for (const app::Message& a : m.args) args.push_back(TrMessage(lang, a));
   const std::string pattern =
       m.plural.empty() ? Tr(lang, m.id.c_str()) : TrN(lang, m.id.c_str(), m.plural.c_str(), m.n);
-  return app::FillIn(pattern, args);
+  return FillIn(pattern, args);
 }
 
 std::string TrText(std::string_view lang, std::string_view english) {

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "base/fill_in.h"
 #include "base/log.h"
 #include "base/text.h"
 #include "plan/colour.h"
@@ -170,18 +171,7 @@ std::string TrN(const PageViewer& v, const char* singular, const char* plural, l
 
 std::string Fmt(std::string_view pattern, std::string_view a1, std::string_view a2,
                 std::string_view a3) {
-  std::string out;
-  out.reserve(pattern.size() + a1.size() + a2.size() + a3.size());
-  for (size_t i = 0; i < pattern.size(); ++i) {
-    if (pattern[i] == '{' && i + 2 < pattern.size() && pattern[i + 2] == '}' &&
-        pattern[i + 1] >= '1' && pattern[i + 1] <= '3') {
-      out += pattern[i + 1] == '1' ? a1 : pattern[i + 1] == '2' ? a2 : a3;
-      i += 2;
-    } else {
-      out += pattern[i];
-    }
-  }
-  return out;
+  return FillIn(pattern, {std::string(a1), std::string(a2), std::string(a3)});
 }
 
 std::string FormatDate(std::string_view lang, std::string_view iso) {

@@ -25,41 +25,14 @@
 #include "web/api_test_util.h"
 #include "web/handlers.h"
 #include "web/http_transport.h"
+#include "web/socket_test_util.h"
 #include "web/worker_lanes.h"
 
 namespace sb::web {
 namespace {
 
-// One request over a fresh loopback connection; the whole answer ("" when
-// none came within 5 s).
-std::string Exchange(int port, const std::string& request) {
-  int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-  timeval tv{5, 0};
-  ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_port = htons(static_cast<uint16_t>(port));
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  if (::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) {
-    ::close(fd);
-    return "";
-  }
-  for (size_t off = 0; off < request.size();) {
-    ssize_t n = ::send(fd, request.data() + off, request.size() - off, MSG_NOSIGNAL);
-    if (n <= 0) break;
-    off += static_cast<size_t>(n);
-  }
-  std::string out;
-  char buf[4096];
-  for (ssize_t n; (n = ::recv(fd, buf, sizeof buf, 0)) > 0;) out.append(buf, size_t(n));
-  ::close(fd);
-  return out;
-}
-
-int StatusOf(const std::string& response) {
-  if (response.rfind("HTTP/1.1 ", 0) != 0) return -1;
-  return std::stoi(response.substr(9, 3));
-}
+using testing::Exchange;
+using testing::StatusOf;
 
 class SessionLaneTest : public testing::ApiFixture {};
 

@@ -2,6 +2,7 @@
 // handler (the whole server is tested in api_test.cc, the attacks under
 // load in tests/abuse.py).
 #include "web/http_transport.h"
+#include "web/socket_test_util.h"
 #include "web/worker_lanes.h"
 
 #include <arpa/inet.h>
@@ -24,6 +25,12 @@
 
 namespace sb::web {
 namespace {
+
+using testing::Connect;
+using testing::Exchange;
+using testing::ReadAll;
+using testing::SendAll;
+using testing::StatusOf;
 
 class Running {
  public:
@@ -54,57 +61,6 @@ class Running {
   std::thread thread_;
   int port_ = 0;
 };
-
-// A blocking loopback client socket with a 5 s receive timeout.
-int Connect(int port) {
-  int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-  timeval tv{5, 0};
-  ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_port = htons(static_cast<uint16_t>(port));
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  if (::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) {
-    ::close(fd);
-    return -1;
-  }
-  return fd;
-}
-
-void SendAll(int fd, const std::string& s) {
-  size_t off = 0;
-  while (off < s.size()) {
-    ssize_t n = ::send(fd, s.data() + off, s.size() - off, MSG_NOSIGNAL);
-    if (n <= 0) return;
-    off += static_cast<size_t>(n);
-  }
-}
-
-// Everything until the peer closes or the timeout.
-std::string ReadAll(int fd) {
-  std::string out;
-  char buf[4096];
-  for (;;) {
-    ssize_t n = ::recv(fd, buf, sizeof buf, 0);
-    if (n <= 0) break;
-    out.append(buf, static_cast<size_t>(n));
-  }
-  return out;
-}
-
-std::string Exchange(int port, const std::string& request) {
-  int fd = Connect(port);
-  if (fd < 0) return "";
-  SendAll(fd, request);
-  std::string r = ReadAll(fd);
-  ::close(fd);
-  return r;
-}
-
-int StatusOf(const std::string& response) {
-  if (response.rfind("HTTP/1.1 ", 0) != 0) return -1;
-  return std::stoi(response.substr(9, 3));
-}
 
 TEST(TransportTest, ServesAndDecodesTheTarget) {
   Running r(TransportOptions{});
