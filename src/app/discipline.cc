@@ -56,6 +56,10 @@ RouteDiscipline DisciplineOfRoute(const Route& route, std::string_view wall_disc
   return out;
 }
 
+std::string FitDiscipline(const std::string& grade_discipline) {
+  return grade_discipline.empty() ? "bouldering" : grade_discipline;
+}
+
 std::string GradeNote(const std::string& typed_grade, const std::string& discipline) {
   std::optional<grades::Discipline> d = Named(discipline);
   if (!d || Trim(typed_grade).empty()) return "";

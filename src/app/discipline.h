@@ -61,6 +61,11 @@ std::string GradeNote(const std::string& typed_grade, const std::string& discipl
 bool FeltGradeFits(const grades::Grade& felt, const std::string& typed_grade,
                    const std::string& discipline);
 
+// The discipline whose ascent fit holds a route: its stored `grade_discipline`,
+// else "bouldering" (the logbook's fits and what the pages charge for them;
+// the store's one-discipline tick read says the same in SQL). Pure.
+std::string FitDiscipline(const std::string& grade_discipline);
+
 }  // namespace sb::app
 
 #endif  // SB_APP_DISCIPLINE_H_

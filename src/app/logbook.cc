@@ -49,11 +49,8 @@ int64_t ParseUtcTimeOr(const std::string& text, int64_t fallback) {
 
 bool IsSend(const std::string& outcome) { return outcome == "flash" || outcome == "send"; }
 
-// The route's discipline for the fit: its grade's, else bouldering.
-std::string DisciplineOf(const std::string& grade_discipline) {
-  return grade_discipline.empty() ? "bouldering" : grade_discipline;
-}
-std::string DisciplineOf(const store::RouteRecord& r) { return DisciplineOf(r.grade_discipline); }
+// The route's discipline for the fit (app/discipline.h, FitDiscipline).
+std::string DisciplineOf(const store::RouteRecord& r) { return FitDiscipline(r.grade_discipline); }
 
 // The scale a route's grade is written in (the discipline's default when
 // unreadable).

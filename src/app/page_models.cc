@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "app/clock.h"
+#include "app/discipline.h"
 #include "base/date.h"
 #include "gym/rules.h"
 
@@ -30,14 +31,11 @@ namespace {
 Result<double> ListedAscentsCost(Services& s, const Viewer& v, const std::vector<RouteView>& routes,
                                  double before) {
   SB_RETURN_IF_ERROR(s.options.render_costs.Validate());
-  // One route per (gym, discipline): a route's fit discipline is its
-  // grade's, else bouldering (logbook.cc, DisciplineOf).
+  // One route per (gym, discipline) of the fits (FitDiscipline).
   std::map<std::pair<int64_t, std::string>, const RouteView*> groups;
   for (const RouteView& r : routes) {
     if (!r.gym_id) continue;
-    groups.emplace(std::make_pair(*r.gym_id, r.grade_discipline.empty() ? std::string("bouldering")
-                                                                        : r.grade_discipline),
-                   &r);
+    groups.emplace(std::make_pair(*r.gym_id, FitDiscipline(r.grade_discipline)), &r);
   }
   double fits = 0;
   for (const auto& [key, route] : groups) {

@@ -11,7 +11,9 @@ namespace {
 
 using sql::Rows;
 
-// The columns a fit reads (TickStore::GymDisciplineTicks), in this order.
+// The columns a fit reads (TickStore::GymDisciplineTicks), in this order. A
+// route's fit discipline is its grade's, else bouldering: app::FitDiscipline's
+// rule, said in SQL (the store sees no app).
 constexpr const char* kFitSelect =
     "SELECT t.id, t.route_id, t.climber, t.day, t.outcome, t.attempts, t.felt_discipline, "
     "t.felt_value, t.created_at, t.revision FROM ticks t JOIN routes r ON r.id = t.route_id "
