@@ -31,7 +31,7 @@ class TickStoreTest : public testing::BackendTest {
     r.crdl = "name: " + name + "\n---\nR jug\n";
     r.move_count = 1;
     r.gym_id = gym_;
-    r.state = "set";
+    r.state = gym::RouteState::kSet;
     Result<int64_t> id = store_->InsertRoute(r);
     EXPECT_TRUE(id.ok()) << id.status().message();
     return id.ok() ? *id : 0;
@@ -91,7 +91,7 @@ TEST_P(TickStoreTest, OneTickPerRouteClimberAndDayASecondEditsIt) {
   EXPECT_GT(ticks_->GymTickVersion(gym_)->ticks, 1);
   // Issue 34: the counts a page's cost is made from, before the reading.
   TickRecord held = Tick(route_, "d:bb", "2026-11-21", "send", "2026-11-21 10:00:00");
-  held.state = "held";
+  held.state = gym::TickState::kHeld;
   ASSERT_TRUE(ticks_->PutTick(held).ok());
   Result<TickCounts> by_route = ticks_->CountRouteTicks(route_);
   ASSERT_TRUE(by_route.ok()) << by_route.status().message();
@@ -163,7 +163,7 @@ TEST_P(TickStoreTest, EveryKindOfWriteMovesTheGymsDataVersion) {
 TEST_P(TickStoreTest, HeldTicksLeaveTheGymsTicksUntilAccepted) {
   Result<TickRecord> a = ticks_->PutTick(Tick(route_, "d:aa", "2026-11-20", "send", "t1"));
   TickRecord held = Tick(route_, "d:bb", "2026-11-20", "send", "t1");
-  held.state = "held";
+  held.state = gym::TickState::kHeld;
   Result<TickRecord> b = ticks_->PutTick(held);
   ASSERT_TRUE(a.ok() && b.ok());
   EXPECT_EQ(ticks_->GymTicks(gym_)->size(), 1u);

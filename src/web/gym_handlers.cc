@@ -106,7 +106,7 @@ std::string GymBlock(Exchange& x, const app::RouteView& r) {
   if (!r.gym_id) return "";
   Result<std::string> role = x.services.gyms.RoleIn(x.caller.viewer, *r.gym_id);
   const bool member = role.ok() && !role->empty();
-  if (!member && gym::Is(r.state, gym::RouteState::kDraft)) return "";  // nothing to say to outsiders about a draft
+  if (!member && r.state == gym::RouteState::kDraft) return "";  // nothing to say to outsiders about a draft
   std::vector<app::HistoryEntry> history;
   if (member) {
     Result<std::vector<app::HistoryEntry>> h = x.services.routes.History(x.caller.viewer, r.id);
