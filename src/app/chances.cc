@@ -53,7 +53,7 @@ Result<Chance> Chances::For(const Viewer& v, const RouteView& route) {
   std::map<int64_t, std::pair<grades::Games, int>> games;  // route -> (games, ticks)
   size_t read = 0;
   for (const store::TickRecord& t : mine) {
-    if (t.gym_id != *route.gym_id || t.state != "ok") continue;
+    if (t.gym_id != *route.gym_id || t.state != gym::TickState::kOk) continue;
     if (++read > ChanceLimits::kMaxOwnTicks) break;
     Result<grades::TickOutcome> o = grades::ParseTickOutcome(t.outcome);
     if (!o.ok()) continue;

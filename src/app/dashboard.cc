@@ -126,7 +126,7 @@ WallAge WallAgeOf(const Wall& wall, const std::vector<RouteView>& routes, int64_
   WallAge age;
   const int64_t today = now / 86400;
   for (const RouteView& r : routes) {
-    if (!gym::Is(r.state, gym::kOnTheWall)) continue;
+    if (r.state != gym::kOnTheWall) continue;
     ++age.on_wall;
     std::optional<int> days = AgeDays(r.set_on, today);
     if (days && (!age.oldest_days || *days > *age.oldest_days)) age.oldest_days = days;

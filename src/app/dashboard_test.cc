@@ -184,7 +184,7 @@ TEST(ProposeSlotsTest, OnlyDueWallsUnlessChosenAndAChosenWallWithNothingDueIsStr
 TEST(WallAgeTest, OnlyTheWallCountsAndDueIsTheOneRule) {
   auto route = [](const char* state, const char* set_on) {
     RouteView r;
-    r.state = state;
+    r.state = *gym::RouteStateOf(state);
     r.set_on = set_on;
     return r;
   };
@@ -280,7 +280,7 @@ class DashboardTest : public AppTest {
     r.is_public = true;
     r.gym_id = gym_;
     r.wall_id = wall;
-    r.state = state;
+    r.state = *gym::RouteStateOf(state);
     r.set_on = set_on;
     r.colour = colour;
     r.grade_discipline = "bouldering";

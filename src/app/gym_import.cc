@@ -446,7 +446,7 @@ Result<GymImport::Plan> GymImport::Read(const Viewer& v, int64_t gym, const Impo
   // Candidates for a match: on the wall or planned, and the viewer's own drafts.
   std::map<int64_t, const store::RouteRecord*> candidates;
   for (const store::RouteRecord& r : routes) {
-    const std::optional<gym::RouteState> s = gym::RouteStateOf(r.state);
+    const gym::RouteState s = r.state;
     if (s == gym::RouteState::kSet || s == gym::RouteState::kPlanned ||
         (s == gym::RouteState::kDraft && r.owner_id == v.user_id)) {
       candidates[r.id] = &r;
@@ -776,7 +776,7 @@ Result<GymImport::Plan> GymImport::Read(const Viewer& v, int64_t gym, const Impo
 
   // What left the list: the routes on the wall no row matched.
   for (const store::RouteRecord& r : routes) {
-    if (!gym::Is(r.state, gym::RouteState::kSet) || matched.count(r.id)) continue;
+    if (r.state != gym::RouteState::kSet || matched.count(r.id)) continue;
     ImportRow out;
     out.action = "missing";
     out.route = r.id;
@@ -893,7 +893,7 @@ Result<std::pair<int64_t, Viewer>> GymImport::HeadSetterOf(const std::string& gy
   if (!id) return Status::NotFound("gym: no gym \"" + gym + "\" (an id or a name)");
   SB_ASSIGN_OR_RETURN(std::vector<store::MemberRecord> members, gs->ListMembers(*id));
   for (const store::MemberRecord& m : members) {
-    if (!gym::IsHead(m.role) || (!username.empty() && !EqualsIgnoreCase(m.username, username))) {
+    if (m.role != gym::Role::kHead || (!username.empty() && !EqualsIgnoreCase(m.username, username))) {
       continue;
     }
     Viewer v;

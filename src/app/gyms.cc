@@ -161,9 +161,9 @@ Status Gyms::SetRole(const Viewer& v, int64_t gym, const std::string& username,
   if (m.user_id == *v.user_id && new_role != Role::kHead) {
     return Status::InvalidInput("role: a head setter cannot demote themselves");
   }
-  if (m.role == role) return Status::Ok();
+  if (m.role == new_role) return Status::Ok();
   SB_RETURN_IF_ERROR(gyms_->PutMember(gym, m.user_id, role));
-  return Record(v, gym, "member " + m.username + ": " + m.role + " -> " + role);
+  return Record(v, gym, "member " + m.username + ": " + NameOf(m.role) + " -> " + role);
 }
 
 Status Gyms::RemoveMember(const Viewer& v, int64_t gym, const std::string& username) {
@@ -173,7 +173,7 @@ Status Gyms::RemoveMember(const Viewer& v, int64_t gym, const std::string& usern
     return Status::InvalidInput("username: a head setter cannot remove themselves");
   }
   SB_RETURN_IF_ERROR(gyms_->RemoveMember(gym, m.user_id));
-  return Record(v, gym, "member " + m.username + " (" + m.role + ") removed");
+  return Record(v, gym, "member " + m.username + " (" + NameOf(m.role) + ") removed");
 }
 
 Result<std::vector<GymHistoryEntry>> Gyms::GymHistory(const Viewer& v, int64_t gym) {

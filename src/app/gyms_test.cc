@@ -172,7 +172,7 @@ TEST_F(AppTest, GymFieldsTravelThroughTheCrdlHeaderAndTheCsvExport) {
   Result<int64_t> r = services_->routes.Create(head, crdl, true, f);
   ASSERT_TRUE(r.ok()) << r.status().message();
   RouteView got = *services_->routes.Get(head, *r);
-  EXPECT_EQ(got.state, "stripped");
+  EXPECT_EQ(got.state, gym::RouteState::kStripped);
   EXPECT_EQ(got.strip_on, "2026-11-20");
   EXPECT_EQ(got.set_on, "2026-10-01");
   EXPECT_EQ(got.wall_name, "Cave");
@@ -190,7 +190,7 @@ TEST_F(AppTest, GymFieldsTravelThroughTheCrdlHeaderAndTheCsvExport) {
   ASSERT_EQ(im->ids.size(), 1u);
   RouteView back = *services_->routes.Get(other, im->ids[0].second);
   EXPECT_EQ(back.gym_id, *g2);
-  EXPECT_EQ(back.state, "stripped");
+  EXPECT_EQ(back.state, gym::RouteState::kStripped);
   EXPECT_EQ(back.strip_on, "2026-11-20");
   EXPECT_EQ(back.set_on, "2026-10-01");
   EXPECT_EQ(back.wall_name, "Cave");  // the other gym's wall of that name

@@ -152,7 +152,7 @@ struct Counted {
 // A new identity's tick (`young`, issue 34) counts as one game and without
 // its felt grade.
 std::optional<Counted> CountedOf(const store::TickRecord& t, Discipline d, bool young = false) {
-  if (t.state != "ok") return std::nullopt;
+  if (t.state != gym::TickState::kOk) return std::nullopt;
   Result<grades::TickOutcome> o = grades::ParseTickOutcome(t.outcome);
   if (!o.ok()) return std::nullopt;
   Result<grades::Games> g = grades::TickGames(*o, t.attempts);
@@ -491,7 +491,7 @@ Result<TickSaved> Logbook::Log(const Viewer& v, int64_t route_id,
     if (m.route_id == route_id && m.day == t.day) {
       out.edited = true;
       replaced = m;
-      if (m.state == "held") t.state = "held";
+      if (m.state == gym::TickState::kHeld) t.state = gym::TickState::kHeld;
     }
     if (m.created_at < since) known = true;
   }
@@ -500,16 +500,16 @@ Result<TickSaved> Logbook::Log(const Viewer& v, int64_t route_id,
                                  [&](const std::string& from) {
                                    return ticks_->NewIdentitiesSince(route_id, t.origin, from);
                                  }));
-  if (burst_held) t.state = "held";
+  if (burst_held) t.state = gym::TickState::kHeld;
   // Issue 34: a new identity at this gym (no aged ticks on other routes)
   // counts as the route's pool of new identities, and is held when many
   // others already ticked the route in the rush window (from any address).
   const bool young = !Established(mine, *route.gym_id, route_id, now);
-  if (young && !out.edited && t.state != "held") {
+  if (young && !out.edited && t.state != gym::TickState::kHeld) {
     SB_ASSIGN_OR_RETURN(int others, NewIdentitiesOnRoute(route_id, *route.gym_id, t.climber, now));
-    if (others >= policy_.rush_new_identities) t.state = "held";
+    if (others >= policy_.rush_new_identities) t.state = gym::TickState::kHeld;
   }
-  out.held = t.state == "held";
+  out.held = t.state == gym::TickState::kHeld;
   // The write and the single-route update under the gym's tick lock (issue
   // 34): ticks of one gym are applied one at a time, so each updates the
   // cached fit whatever the concurrency.
@@ -523,7 +523,7 @@ bool Logbook::Established(const std::vector<store::TickRecord>& climber_ticks, i
   const std::string aged = TimeText(at - policy_.history_age_seconds);
   std::set<int64_t> others;
   for (const store::TickRecord& m : climber_ticks) {
-    if (m.gym_id == gym && m.route_id != route && m.state == "ok" && m.created_at <= aged) {
+    if (m.gym_id == gym && m.route_id != route && m.state == gym::TickState::kOk && m.created_at <= aged) {
       others.insert(m.route_id);
     }
   }
@@ -768,7 +768,7 @@ Status Logbook::DoFlight(const Key& key, Flight* flight) {
   // discipline's ticks (the route is of this discipline).
   std::map<std::string, std::set<int64_t>> aged_here;
   for (const store::TickRecord& t : all) {
-    if (t.state == "ok" && t.created_at <= aged) aged_here[t.climber].insert(t.route_id);
+    if (t.state == gym::TickState::kOk && t.created_at <= aged) aged_here[t.climber].insert(t.route_id);
   }
   auto young = [&](const store::TickRecord& t) {
     auto n = aged_counts->find(t.climber);
@@ -1129,7 +1129,7 @@ Result<std::vector<Tick>> Logbook::ForSetters(const Viewer& v, int64_t route_id,
     constexpr int kMaxExplained = kMaxHeldReasons;
     int explained = 0;
     for (const store::TickRecord& t : ticks) {
-      if (t.state != "held") continue;
+      if (t.state != gym::TickState::kHeld) continue;
       if (++explained > kMaxExplained) {
         (*held_reasons)[t.id] = "held (reason not worked out: too many held ticks)";
         continue;
@@ -1170,11 +1170,11 @@ Status Logbook::Decide(const Viewer& v, int64_t route_id, int64_t tick_id, bool 
   // Under the gym's tick lock like a new tick: the cached fit takes the
   // accepted tick in (or the discarded one out) at once.
   store::TickRecord changed = *t;
-  changed.state = accept ? "ok" : "discarded";
+  changed.state = accept ? gym::TickState::kOk : gym::TickState::kDiscarded;
   SB_ASSIGN_OR_RETURN(std::vector<store::TickRecord> theirs, ticks_->ClimberTicks(t->climber));
   const bool young = !Established(theirs, *route.gym_id, route_id, clock_->Now());
   Result<store::TickRecord> done = WriteTick(route, *t, young, [&]() -> Result<store::TickRecord> {
-    SB_RETURN_IF_ERROR(ticks_->SetTickState(tick_id, changed.state, TimeText(clock_->Now())));
+    SB_RETURN_IF_ERROR(ticks_->SetTickState(tick_id, gym::NameOf(changed.state), TimeText(clock_->Now())));
     return changed;
   });
   return done.ok() ? Status::Ok() : done.status();

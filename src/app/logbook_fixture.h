@@ -41,7 +41,7 @@ class LogbookFixture : public AppTest {
     r.move_count = 1;
     r.is_public = true;
     r.gym_id = gym_;
-    r.state = "set";
+    r.state = gym::RouteState::kSet;
     r.grade_discipline = "bouldering";
     Result<grades::Grade> g = grades::ParseGrade(grade, {});
     if (g.ok()) r.grade_value = g->value;

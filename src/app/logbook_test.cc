@@ -568,7 +568,7 @@ class IntegrityTest : public LogbookTest {
     Result<std::vector<Tick>> ticks = book.ForSetters(setter_, target_, &reasons);
     ASSERT_TRUE(ticks.ok());
     int held = 0;
-    for (const Tick& t : *ticks) held += t.state == "held";
+    for (const Tick& t : *ticks) held += t.state == gym::TickState::kHeld;
     std::printf("%s: %d attackers, %d held; grade %.3f -> %.3f (kept fit %.3f)\n", what,
                 attackers, held, base_, refit, shown->value);
     EXPECT_LT(std::abs(refit - base_), 0.5) << what;

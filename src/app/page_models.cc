@@ -108,7 +108,7 @@ std::optional<RouteGymBlockModel> RouteGymBlock(Services& s, const Viewer& v, co
   Result<std::string> role = s.gyms.RoleIn(v, *r.gym_id);
   const bool member = role.ok() && !role->empty();
   // Nothing to say to outsiders about a draft.
-  if (!member && gym::Is(r.state, gym::RouteState::kDraft)) return std::nullopt;
+  if (!member && r.state == gym::RouteState::kDraft) return std::nullopt;
   RouteGymBlockModel m;
   if (member) {
     Result<std::vector<HistoryEntry>> h = s.routes.History(v, r.id);

@@ -46,8 +46,8 @@ class PageModelsTest : public AppTest {
     Result<int64_t> wall = services_->gyms.AddWall(head_, w);
     ASSERT_TRUE(wall.ok()) << wall.status().message();
     cave_ = *wall;
-    up_ = Route("Up", "set");
-    draft_ = Route("Sketch", "draft");
+    up_ = Route("Up", gym::RouteState::kSet);
+    draft_ = Route("Sketch", gym::RouteState::kDraft);
   }
   // Each viewer's memberships as a request reads them.
   void Refresh() {
@@ -55,7 +55,7 @@ class PageModelsTest : public AppTest {
       v->gyms = *services_->gyms.RolesOf(*v);
     }
   }
-  int64_t Route(const std::string& name, const std::string& state) {
+  int64_t Route(const std::string& name, gym::RouteState state) {
     store::RouteRecord r;
     r.owner_id = head_.user_id;
     r.name = name;
@@ -66,7 +66,7 @@ class PageModelsTest : public AppTest {
     r.gym_id = gym_;
     r.wall_id = cave_;
     r.state = state;
-    r.set_on = state == "set" ? "2023-11-10" : "";
+    r.set_on = state == gym::RouteState::kSet ? "2023-11-10" : "";
     r.grade_discipline = "bouldering";
     Result<int64_t> id = store_->InsertRoute(r);
     EXPECT_TRUE(id.ok()) << id.status().message();
@@ -141,7 +141,7 @@ TEST_F(PageModelsTest, AWallPagesTablesAreKeptPerViewerUntilTheNextWrite) {
   ASSERT_TRUE(WallOf(climber_, &renders).ok());
   EXPECT_EQ(renders, 2);  // per viewer
   // A write in the gym: rendered again, with the new route.
-  Route("New", "set");
+  Route("New", gym::RouteState::kSet);
   Result<WallPageModel> after = WallOf(setter_, &renders);
   ASSERT_TRUE(after.ok());
   EXPECT_EQ(renders, 3);

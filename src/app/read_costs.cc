@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "app/routes.h"
+#include "gym/rules.h"
 
 namespace sb::app {
 
@@ -87,7 +88,7 @@ bool SetsRoute(const Viewer& v, const store::RouteRecord& r) {
   if (!v.user_id) return false;
   if (r.owner_id && *r.owner_id == *v.user_id) return true;
   for (const GymRole& g : v.gyms) {
-    if (r.gym_id && g.gym_id == *r.gym_id && (g.role == "head" || g.role == "setter")) {
+    if (r.gym_id && g.gym_id == *r.gym_id && gym::CanSet(g.role)) {
       return true;
     }
   }
@@ -147,7 +148,7 @@ namespace {
 bool MemberOf(const Viewer& v, int64_t gym, bool setter) {
   if (!v.user_id) return false;
   for (const GymRole& g : v.gyms) {
-    if (g.gym_id == gym && (!setter || g.role == "head" || g.role == "setter")) return true;
+    if (g.gym_id == gym && (!setter || gym::CanSet(g.role))) return true;
   }
   return false;
 }

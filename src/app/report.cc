@@ -248,7 +248,7 @@ Result<GymReport> Reports::Build([[maybe_unused]] const Viewer& v, ReportPlan pl
     per_route.reserve(routes.size());
     for (const auto& [id, r] : routes) {
       SB_ASSIGN_OR_RETURN(std::vector<store::TickRecord> rt, ticks->RouteTicks(id));
-      std::erase_if(rt, [](const store::TickRecord& t) { return t.state != "ok"; });
+      std::erase_if(rt, [](const store::TickRecord& t) { return t.state != gym::TickState::kOk; });
       // By id, as GymTicks gave them.
       std::sort(rt.begin(), rt.end(),
                 [](const store::TickRecord& a, const store::TickRecord& b) { return a.id < b.id; });
@@ -277,7 +277,7 @@ Result<GymReport> Reports::Build([[maybe_unused]] const Viewer& v, ReportPlan pl
     rr.name = r.name;
     rr.grade = r.grade;
     rr.colour = r.colour;
-    rr.state = r.state;
+    rr.state = gym::NameOf(r.state);
     rr.set_on = r.set_on;
     rr.planned_on = r.planned_on;
     rr.wall_name = r.wall_name;

@@ -428,7 +428,7 @@ Result<store::RouteRecord> Routes::GetOwnedRow(const Viewer& v, int64_t id) {
 
 Status Routes::CheckChange(const Viewer& v, const store::RouteRecord& r) {
   if (IsOwner(r, v)) return Status::Ok();
-  if (r.gym_id && !gym::Is(r.state, gym::RouteState::kDraft)) {  // a draft stays its owner's
+  if (r.gym_id && r.state != gym::RouteState::kDraft) {  // a draft stays its owner's
     SB_ASSIGN_OR_RETURN(std::string role, gyms_.RoleIn(v, *r.gym_id));
     if (CanSet(role)) return Status::Ok();
     if (!role.empty()) return Status::Permission("only the gym's setters may change its routes");
@@ -525,7 +525,7 @@ void SyncHeader(store::RouteRecord* rec) {
   };
   put({"date", "set"}, "set", rec->set_on);
   put({"strip"}, "strip", rec->strip_on);
-  put({"state"}, nullptr, rec->state);
+  put({"state"}, nullptr, NameOf(rec->state));
   put({"colour", "color"}, "colour", rec->colour);  // issue 31: a circuit's colour
   if (changed) rec->crdl = PrintCrdl(*r);
 }
@@ -615,20 +615,18 @@ Status Routes::ApplyGymFields(const Viewer& v, const GymFields& g, store::RouteR
     rec->strip_on = *g.strip_on;
   }
   if (g.state) {
-    if (!IsRouteState(*g.state)) {
-      return Status::InvalidInput("state: expected draft, planned, set or stripped");
-    }
-    if (*g.state != rec->state) {
-      changes->push_back("state: " + rec->state + " -> " + *g.state);
-      rec->state = *g.state;
+    SB_ASSIGN_OR_RETURN(const RouteState state, gym::ParseRouteState(*g.state));
+    if (state != rec->state) {
+      changes->push_back(std::string("state: ") + NameOf(rec->state) + " -> " + *g.state);
+      rec->state = state;
       // The day it happened, unless the request or the route has it
       // (issue 31: a typed date is kept; only an empty one becomes today).
-      if (gym::Is(rec->state, gym::RouteState::kSet) && !g.set_on && rec->set_on.empty()) rec->set_on = Today();
-      if (gym::Is(rec->state, gym::RouteState::kStripped) && !g.strip_on && rec->strip_on.empty()) {
+      if (rec->state == gym::RouteState::kSet && !g.set_on && rec->set_on.empty()) rec->set_on = Today();
+      if (rec->state == gym::RouteState::kStripped && !g.strip_on && rec->strip_on.empty()) {
         rec->strip_on = Today();
       }
     }
-    if (gym::Is(rec->state, gym::RouteState::kPlanned)) rec->planned_on = rec->set_on;
+    if (rec->state == gym::RouteState::kPlanned) rec->planned_on = rec->set_on;
   }
   if (g.setters) {
     if (g.setters->size() > GymLimits::kMaxSetters) {
@@ -676,7 +674,7 @@ Result<int64_t> Routes::Create(const Viewer& v, std::string_view crdl,
     if (CanSet(role)) gym_of_setter = rec.gym_id;
   }
   rec.is_public = is_public.value_or(DefaultInLibrary(gym_of_setter));
-  rec.state = gym::NameOf(gym::RouteState::kDraft);
+  rec.state = gym::RouteState::kDraft;
   std::vector<std::string> changes;
   std::optional<std::vector<store::RouteSetter>> setters;
   SB_RETURN_IF_ERROR(ApplyGymFields(v, g, &rec, &changes, &setters));
@@ -695,7 +693,7 @@ Result<int64_t> Routes::Create(const Viewer& v, std::string_view crdl,
   SB_RETURN_IF_ERROR(ApplyWallDiscipline(&rec));
   SB_ASSIGN_OR_RETURN(int64_t id, store_->InsertRoute(rec));
   if (store::GymStore* gs = store::GymStoreOf(store_); gs && rec.gym_id) {
-    std::string what = "created (" + rec.state + ")";
+    std::string what = std::string("created (") + NameOf(rec.state) + ")";
     for (const std::string& c : changes) what += "; " + c;
     SB_RETURN_IF_ERROR(gs->AddHistory(id, v.user_id, what));
   }
@@ -750,18 +748,15 @@ Status Routes::Update(const Viewer& v, int64_t id, const RouteEdit& edit) {
   }
   std::optional<std::vector<store::RouteSetter>> setters;
   GymFields g = edit.crdl ? WithHeaderFields(*edit.crdl, edit.gym) : edit.gym;
-  if (g.state && *g.state == r.state && !edit.gym.state) g.state.reset();  // unchanged header
+  if (g.state && gym::Is(*g.state, r.state) && !edit.gym.state) g.state.reset();  // unchanged header
   if (g.strip_on && *g.strip_on == r.strip_on && !edit.gym.strip_on) g.strip_on.reset();
-  if (g.state && *g.state != r.state) {
+  if (g.state && !gym::Is(*g.state, r.state)) {
     // Issue 31: a PUT (or the text's "state:" line) changes the state by the
     // cycle's one rule, as POST /api/routes/{id}/state does; its own state
     // is no change.
     std::optional<RouteState> to = RouteStateOf(ToLower(Trim(*g.state)));
     if (!to) return Status::InvalidInput("state: expected draft, planned, set or stripped");
-    if (NameOf(*to) != r.state) {
-      SB_RETURN_IF_ERROR(
-          CheckTransition(RouteStateOf(r.state).value_or(RouteState::kDraft), *to));
-    }
+    if (*to != r.state) SB_RETURN_IF_ERROR(CheckTransition(r.state, *to));
   }
   SB_RETURN_IF_ERROR(ApplyGymFields(v, g, &r, &changes, &setters));
   if (!g.circuit && ToLower(r.colour) != colour_before) CircuitOfColour(gyms_, &r, &changes);
@@ -788,8 +783,7 @@ Status Routes::ChangeState(const Viewer& v, int64_t id, const StateChange& chang
   if (!to) return Status::InvalidInput("state: expected draft, planned, set or stripped");
   SB_ASSIGN_OR_RETURN(store::RouteRecord r, GetOwnedRow(v, id));
   if (!r.gym_id) return Status::InvalidInput("state: this route belongs to no gym");
-  std::optional<RouteState> from = RouteStateOf(r.state);
-  SB_RETURN_IF_ERROR(CheckTransition(from.value_or(RouteState::kDraft), *to));
+  SB_RETURN_IF_ERROR(CheckTransition(r.state, *to));
   if (change.on) SB_RETURN_IF_ERROR(CheckDate("on", *change.on));
   RouteEdit edit;
   edit.revision = change.revision;
@@ -839,7 +833,7 @@ namespace {
 // A draft stays its owner's (the editing rule, CheckChange): a change of
 // several routes at once leaves the drafts of others as they are.
 bool DraftOfOther(const RouteView& r, const Viewer& v) {
-  return gym::Is(r.state, gym::RouteState::kDraft) && !IsOwner(r, v);
+  return r.state == gym::RouteState::kDraft && !IsOwner(r, v);
 }
 
 }  // namespace
@@ -1051,9 +1045,9 @@ Result<ImportSummary> Routes::ImportCsv(const Viewer& v, std::string_view routes
     rec.created_at = sr.created_at;
     rec.gym_id = gym;
     rec.original_id = sr.id;
-    rec.state = gym::NameOf(gym::RouteState::kDraft);
+    rec.state = gym::RouteState::kDraft;
     if (std::optional<std::string> st = sr.route.Meta("state"); st && CanSet(role)) {
-      if (IsRouteState(ToLower(Trim(*st)))) rec.state = ToLower(Trim(*st));
+      rec.state = RouteStateOf(ToLower(Trim(*st))).value_or(rec.state);
     }
     if (std::optional<std::string> strip = sr.route.Meta("strip")) {
       if (CheckDate("strip", std::string(Trim(*strip))).ok()) rec.strip_on = std::string(Trim(*strip));
@@ -1197,7 +1191,7 @@ Result<CsvFiles> Routes::ExportCsv(const Viewer& v, bool mine) {
     sr.route.SetMeta("name", rec.name);
     // The gym fields travel in the header (docs/formats.md), so an import
     // of this export restores them.
-    if (!gym::Is(rec.state, gym::RouteState::kDraft) || sr.route.Meta("state")) sr.route.SetMeta("state", rec.state);
+    if (rec.state != gym::RouteState::kDraft || sr.route.Meta("state")) sr.route.SetMeta("state", NameOf(rec.state));
     if (!rec.strip_on.empty()) sr.route.SetMeta("strip", rec.strip_on);
     if (!rec.set_on.empty() && !sr.route.Meta("date")) sr.route.SetMeta("set", rec.set_on);
     if (!rec.wall_name.empty() && !sr.route.Meta("wall")) sr.route.SetMeta("wall", rec.wall_name);

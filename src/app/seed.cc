@@ -110,7 +110,7 @@ Result<int> SeedExamples(store::Store* store, const std::string& dir, int64_t ow
     rec.is_public = true;
     if (gym) {
       rec.gym_id = gym;
-      rec.state = gym::NameOf(gym::RouteState::kSet);
+      rec.state = gym::RouteState::kSet;
       if (!Trim(rec.wall).empty()) {
         SB_ASSIGN_OR_RETURN(int64_t wall, WallFor(gs, *gym, std::string(Trim(rec.wall)), &walls));
         rec.wall_id = wall;

@@ -83,7 +83,7 @@ TEST_F(AppTest, DemoGymHoldsTheExamplesOnItsWalls) {
   ASSERT_EQ(all->size(), 4u);
   for (const store::RouteRecord& r : *all) {
     EXPECT_EQ(r.gym_id, *gym) << r.name;
-    EXPECT_EQ(r.state, "set") << r.name;
+    EXPECT_EQ(r.state, gym::RouteState::kSet) << r.name;
     EXPECT_EQ(r.wall_id.has_value(), r.name != "D") << r.name;
   }
   EXPECT_EQ((*all)[0].wall_id, (*all)[2].wall_id);  // A and C share the roof

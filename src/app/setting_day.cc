@@ -828,7 +828,7 @@ Result<std::vector<DayRoute>> SettingDays::Planned(const Viewer& v, int64_t gym,
     d.name = r.name;
     d.grade = r.grade;
     d.colour = r.colour;
-    d.state = r.state;
+    d.state = gym::NameOf(r.state);
     d.planned_on = r.planned_on;
     d.wall_name = r.wall_name;
     d.move_count = r.move_count;

@@ -223,7 +223,7 @@ TEST_F(SettingDayTest, AcceptingMakesAPlannedRouteAndChecksTheMoves) {
   ASSERT_TRUE(id.ok()) << id.status().message();
   Result<RouteView> r = services_->routes.Get(head_, *id);
   ASSERT_TRUE(r.ok()) << r.status().message();
-  EXPECT_EQ(r->state, "planned");
+  EXPECT_EQ(r->state, gym::RouteState::kPlanned);
   EXPECT_EQ(r->planned_on, "2026-12-01");
   EXPECT_EQ(r->wall_id, wall_);
   ASSERT_EQ(r->setters.size(), 1u);

@@ -309,7 +309,7 @@ Result<Built> BuildRoute(const ChainParams& p, const Vocabulary& vocab,
   rec.is_public = rng.Uniform() < 0.1;  // a few shared with the public library
   rec.gym_id = gym.id;
   rec.wall_id = wall.id;
-  rec.state = gym::NameOf(on_wall ? gym::RouteState::kSet : gym::RouteState::kStripped);
+  rec.state = on_wall ? gym::RouteState::kSet : gym::RouteState::kStripped;
   rec.strip_on = on_wall ? "" : CivilText(strip_day);
   rec.created_at = CivilText(set_day - rng.Int(1, 14)) + " 09:00:00";  // planned before setting
   b.info.gym = wall.gym;
@@ -366,7 +366,7 @@ void RouteTicks(const ChainParams& p, const RouteInfo& r, const GymInfo& gym, in
       t.stars = std::clamp(static_cast<int>(std::lround(1 + 4 * r.quality + 0.8 * rng.Normal())),
                            1, 5);
     }
-    t.state = "ok";
+    t.state = gym::TickState::kOk;
     t.created_at = t.day + " 19:00:00";
     t.updated_at = t.created_at;
     out->push_back(std::move(t));

@@ -69,8 +69,8 @@ TEST_F(SynthChainTest, WritesTheCountsAskedFor) {
     ASSERT_TRUE(all.ok());
     for (const store::RouteRecord& r : *all) {
       if (r.gym_id != g.id) continue;
-      set += r.state == "set";
-      stripped += r.state == "stripped";
+      set += r.state == gym::RouteState::kSet;
+      stripped += r.state == gym::RouteState::kStripped;
     }
     ticks += static_cast<int64_t>(ts->GymTicks(g.id).value().size());
     Result<std::vector<store::WallRecord>> walls = gs->ListWalls(g.id);
@@ -107,12 +107,12 @@ TEST_F(SynthChainTest, RoutesReadAsRoutesWithDatesInTheirWindow) {
     EXPECT_TRUE(r.grade_value.has_value()) << r.grade;
     EXPECT_TRUE(r.wall_id.has_value());
     EXPECT_FALSE(r.set_on.empty());
-    if (r.state == "set") {
+    if (r.state == gym::RouteState::kSet) {
       EXPECT_TRUE(r.strip_on.empty());
       EXPECT_GE(r.set_on, "2026-09-17");  // 70 days before today
       EXPECT_LE(r.set_on, "2026-11-26");
     } else {
-      EXPECT_EQ(r.state, "stripped");
+      EXPECT_EQ(r.state, gym::RouteState::kStripped);
       EXPECT_LT(r.set_on, r.strip_on);
       EXPECT_LT(r.strip_on, "2026-11-26");
     }
@@ -123,7 +123,7 @@ TEST_F(SynthChainTest, RoutesReadAsRoutesWithDatesInTheirWindow) {
     ASSERT_TRUE(route_ticks.ok());
     for (const store::TickRecord& t : *route_ticks) {
       EXPECT_GE(t.day, r.set_on);
-      EXPECT_LE(t.day, r.state == "set" ? std::string("2026-11-26") : r.strip_on);
+      EXPECT_LE(t.day, r.state == gym::RouteState::kSet ? std::string("2026-11-26") : r.strip_on);
     }
   }
   EXPECT_GT(known_moves, 0);  // moves come from the examples (two of twelve files checked)

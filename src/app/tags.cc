@@ -24,7 +24,7 @@ plan::TagInfo TagInfoOf(const RouteView& r, const std::string& url) {
     }
   }
   if (t.setters.empty() && !r.owner_name.empty()) t.setters.push_back(r.owner_name);
-  t.planned = gym::Is(r.state, gym::RouteState::kPlanned);
+  t.planned = r.state == gym::RouteState::kPlanned;
   if (t.planned) {  // the planned date, never the day it was added
     t.set_on = r.set_on.empty() ? r.planned_on : r.set_on;
   } else {

@@ -12,7 +12,9 @@
 // such as the attempts that throttle log-ins, stay in store).
 //
 // Plain values: no behaviour, no allocation beyond their fields. States and
-// roles are still their names (gym::NameOf of gym/rules.h's enums), as stored.
+// roles are gym/rules.h's enums; their names (gym::NameOf, gym::Parse*) are
+// spelt only where a value is stored, read or sent (the store's SQL rows, the
+// JSON and forms of web, CRDL header lines).
 #ifndef SB_GYM_RECORDS_H_
 #define SB_GYM_RECORDS_H_
 
@@ -56,7 +58,7 @@ struct SourceRoute {
   std::optional<int64_t> owner_id;
   // Schema 6: its gym and state (gym members see its non-draft routes).
   std::optional<int64_t> gym_id;
-  std::string state;
+  RouteState state = RouteState::kDraft;
 };
 
 // A route or a variation ("variations are stored like routes"). For a
@@ -102,14 +104,14 @@ struct Route {
   std::vector<SourceRoute> sources;
   // Schema 6 (gyms, docs/web.md "Gyms"): the gym it belongs to, its wall
   // (a wall row of that gym; `wall` above stays the CRDL's free text),
-  // its state (RouteState's names: "draft", "planned", "set", "stripped")
+  // its state (stored and sent as its name: "draft", "planned", "set", "stripped")
   // and dates (ISO "YYYY-MM-DD" or ""; set_on above is the set date), the
   // original site's id of an imported route. Written by InsertRoute and
   // UpdateRoute.
   std::optional<int64_t> gym_id;
   std::optional<int64_t> wall_id;
   std::string wall_name;  // the wall row's name (read only; "" without wall_id)
-  std::string state = NameOf(RouteState::kDraft);
+  RouteState state = RouteState::kDraft;
   std::string planned_on;
   std::string strip_on;
   std::optional<int64_t> original_id;
@@ -158,12 +160,13 @@ struct Circuit {
   int64_t revision = 0;  // schema 14: as Wall::revision
 };
 
-// A member of a gym; `role` is Role's name ("head", "setter", "climber").
+// A member of a gym and its role (stored and sent as "head", "setter",
+// "climber").
 struct Member {
   int64_t gym_id = 0;
   int64_t user_id = 0;
   std::string username;
-  std::string role;
+  Role role = Role::kClimber;
   std::string display_name;  // issue 32: "" when not set (the user name is shown)
 };
 
@@ -189,7 +192,7 @@ struct Tick {
   std::string felt_discipline;
   std::optional<double> felt_value;  // on felt_discipline's axis
   std::string comment;
-  std::string state = "ok";  // "ok", "held" (a burst, for the setters) or "discarded"
+  TickState state = TickState::kOk;  // ok, held (a burst, for the setters) or discarded
   std::string created_at;    // "YYYY-MM-DD HH:MM:SS" UTC, set by the caller
   std::string updated_at;
   int revision = 0;  // 1 on insert, +1 on every change (read only)

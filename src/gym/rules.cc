@@ -9,6 +9,7 @@ namespace {
 // The one name table of each enum, in enum order.
 constexpr const char* kRoleNames[] = {"head", "setter", "climber"};
 constexpr const char* kStateNames[] = {"draft", "planned", "set", "stripped"};
+constexpr const char* kTickStateNames[] = {"ok", "held", "discarded"};
 
 // The cycle's changes (from, to); MayChange reads only this.
 struct Change {
@@ -99,6 +100,14 @@ Status CheckTransition(RouteState from, RouteState to) {
   }
   return Status::Conflict(std::string("state: a ") + NameOf(from) + " route cannot become " +
                           NameOf(to) + " (plan → set → strip)");
+}
+
+const char* NameOf(TickState s) { return kTickStateNames[static_cast<int>(s)]; }
+
+std::optional<TickState> TickStateOf(std::string_view name) { return ByName(kTickStates, name); }
+
+Result<TickState> ParseTickState(std::string_view name, std::string_view field) {
+  return Parse(kTickStates, kTickStateNames, name, field);
 }
 
 bool MemberSees(Role r, RouteState s) {

@@ -56,9 +56,11 @@ std::optional<RouteState> RouteStateOf(std::string_view name);
 // As RouteStateOf for input: kInvalidInput "<field>: expected draft,
 // planned, set or stripped" when `name` names no state.
 Result<RouteState> ParseRouteState(std::string_view name, std::string_view field = "state");
-// Whether `name` is the name of `s` (a stored row's state against a state).
+
+// Whether the text `name` is the name of `s` (for text at a boundary; a
+// record's state is the enum: compare with ==).
 inline bool Is(std::string_view name, RouteState s) { return name == NameOf(s); }
-// Whether `name` is the name of `r`.
+// Whether the text `name` is the name of `r`.
 inline bool Is(std::string_view name, Role r) { return name == NameOf(r); }
 
 // Whether a route may change from `from` to `to` by a state change (the
@@ -69,6 +71,23 @@ bool MayChange(RouteState from, RouteState to);
 // MayChange as a Status: kConflict "state: the route is X already" or
 // "state: a X route cannot become Y (plan → set → strip)".
 Status CheckTransition(RouteState from, RouteState to);
+
+// ---- tick states ---------------------------------------------------------------
+
+// A tick's state (issue 23): counted (ok), held back as part of a burst for
+// the gym's setters to accept or discard, or discarded (kept, never counted).
+enum class TickState { kOk, kHeld, kDiscarded };
+inline constexpr TickState kTickStates[] = {TickState::kOk, TickState::kHeld,
+                                            TickState::kDiscarded};
+
+// The tick state's name: "ok", "held", "discarded" (the stored and API
+// spelling). Never null.
+const char* NameOf(TickState s);
+// The tick state named exactly `name`; nullopt for any other text.
+std::optional<TickState> TickStateOf(std::string_view name);
+// As TickStateOf for input: kInvalidInput "<field>: expected ok, held or
+// discarded" when `name` names no tick state.
+Result<TickState> ParseTickState(std::string_view name, std::string_view field = "state");
 
 // ---- visibility ---------------------------------------------------------------
 

@@ -119,7 +119,7 @@ Status InsertTicks(sql::Connection& c, const std::vector<TickRecord>& ticks) {
                                     t.origin, t.day, t.outcome, sql::Nullable(t.attempts),
                                     sql::Nullable(t.stars), t.felt_grade, t.felt_discipline,
                                     sql::Nullable(t.felt_value), t.comment,
-                                    t.state.empty() ? std::string("ok") : t.state,
+                                    std::string(gym::NameOf(t.state)),
                                     t.created_at, t.updated_at};
         for (Value& v : vals) params.push_back(std::move(v));
       }

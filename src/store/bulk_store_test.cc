@@ -28,7 +28,7 @@ class BulkStoreTest : public testing::BackendTest {
     r.crdl = "name: " + r.name + "\n---\nR jug\n";
     r.move_count = 1;
     r.gym_id = gym_;
-    r.state = "set";
+    r.state = gym::RouteState::kSet;
     r.created_at = "2026-01-02 03:04:05";
     r.setters = {{std::nullopt, "Ann"}, {std::nullopt, "Bob " + std::to_string(i)}};
     return r;

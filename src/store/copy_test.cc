@@ -49,7 +49,7 @@ void Fill(Store& s) {
   RouteRecord one = Route(a, "One");
   one.gym_id = gym;
   one.wall_id = wall;
-  one.state = "set";
+  one.state = gym::RouteState::kSet;
   one.setters = {{b, "Bob"}, {std::nullopt, "Guest"}};
   int64_t r1 = *s.InsertRoute(one);
   ASSERT_TRUE(gs->AddHistory(r1, b, "state: planned -> set").ok());

@@ -49,7 +49,7 @@ class GymStoreTest : public ::testing::TestWithParam<Backend> {
     r.move_count = 2;
     r.is_public = pub;
     r.gym_id = gym;
-    r.state = state;
+    r.state = *gym::RouteStateOf(state);
     Result<int64_t> id = store_->InsertRoute(r);
     EXPECT_TRUE(id.ok()) << id.status().message();
     return id.ok() ? *id : 0;
@@ -86,8 +86,8 @@ TEST_P(GymStoreTest, GymsMembersWallsAndCircuits) {
   std::vector<MemberRecord> m = *gyms_->ListMembers(*g);
   ASSERT_EQ(m.size(), 2u);
   EXPECT_EQ(m[0].username, "ann");
-  EXPECT_EQ(m[0].role, "head");
-  EXPECT_EQ(m[1].role, "climber");
+  EXPECT_EQ(m[0].role, gym::Role::kHead);
+  EXPECT_EQ(m[1].role, gym::Role::kClimber);
   ASSERT_EQ(gyms_->GymsOf(bob)->size(), 1u);
   EXPECT_EQ((*gyms_->GymsOf(bob))[0].role, "climber");
 
@@ -148,7 +148,7 @@ TEST_P(GymStoreTest, RouteFieldsSettersHistoryAndTheGymVisibilityRule) {
   r.is_public = false;
   r.gym_id = g;
   r.wall_id = wall;
-  r.state = "planned";
+  r.state = gym::RouteState::kPlanned;
   r.set_on = "2026-12-01";
   r.setters = {{setter, "setter"}, {std::nullopt, "Guest Setter"}};
   const int64_t planned = *store_->InsertRoute(r);
@@ -160,7 +160,7 @@ TEST_P(GymStoreTest, RouteFieldsSettersHistoryAndTheGymVisibilityRule) {
   EXPECT_EQ(got.gym_id, g);
   EXPECT_EQ(got.wall_id, wall);
   EXPECT_EQ(got.wall_name, "Cave");
-  EXPECT_EQ(got.state, "planned");
+  EXPECT_EQ(got.state, gym::RouteState::kPlanned);
   EXPECT_EQ(got.set_on, "2026-12-01");
   ASSERT_EQ(got.setters.size(), 2u);
   EXPECT_EQ(got.setters[0].user_id, setter);
@@ -186,13 +186,13 @@ TEST_P(GymStoreTest, RouteFieldsSettersHistoryAndTheGymVisibilityRule) {
   EXPECT_EQ(*store_->CountRoutes(f), 1);
 
   // A state change through UpdateRoute; setters and a history row at once.
-  got.state = "set";
+  got.state = gym::RouteState::kSet;
   ASSERT_TRUE(store_->UpdateRoute(got).ok());
   ASSERT_TRUE(gyms_->SetRouteSetters(planned, {{head, "head"}}, head, "setters: head").ok());
   ASSERT_TRUE(gyms_->AddHistory(planned, setter, "state: planned -> set").ok());
   EXPECT_EQ(gyms_->SetRouteSetters(999999, {}, head, "x").code(), Status::Code::kNotFound);
   got = *store_->GetRoute(planned);
-  EXPECT_EQ(got.state, "set");
+  EXPECT_EQ(got.state, gym::RouteState::kSet);
   ASSERT_EQ(got.setters.size(), 1u);
   std::vector<HistoryRecord> h = *gyms_->ListHistory(planned);
   ASSERT_EQ(h.size(), 2u);
@@ -353,8 +353,8 @@ INSERT INTO studies(owner_id, name, instrument_json, created_at, updated_at)
   EXPECT_EQ(gyms[0].name, "My gym");
   std::vector<MemberRecord> members = *gyms_->ListMembers(gyms[0].id);
   ASSERT_EQ(members.size(), 2u);
-  EXPECT_EQ(members[0].role, "head");  // the first user
-  EXPECT_EQ(members[1].role, "setter");
+  EXPECT_EQ(members[0].role, gym::Role::kHead);  // the first user
+  EXPECT_EQ(members[1].role, gym::Role::kSetter);
   // The distinct free-text walls became walls, in the order first used.
   std::vector<WallRecord> walls = *gyms_->ListWalls(gyms[0].id);
   ASSERT_EQ(walls.size(), 2u);
@@ -366,7 +366,7 @@ INSERT INTO studies(owner_id, name, instrument_json, created_at, updated_at)
     RouteRecord r = *store_->GetRoute(id);
     EXPECT_EQ(r.gym_id, gyms[0].id);
     EXPECT_EQ(r.wall_name, r.wall) << id;  // the text stays; the row names the same wall
-    EXPECT_EQ(r.state, r.is_variation ? "draft" : "set") << id;
+    EXPECT_EQ(r.state, r.is_variation ? gym::RouteState::kDraft : gym::RouteState::kSet) << id;
   }
   RouteRecord a = *store_->GetRoute(1), c = *store_->GetRoute(3);
   ASSERT_EQ(a.setters.size(), 1u);
@@ -528,10 +528,10 @@ TEST_P(GymStoreTest, TheVisibilityRuleIsTheSameInSqlAndInCpp) {
   EXPECT_TRUE(MemberSees("climber", "stripped"));
   EXPECT_FALSE(MemberSees("", "set"));
   // The climbers' page of a route on the wall: anyone; not a plan.
-  EXPECT_TRUE(Sees({false, head, gym, "set"}, std::nullopt, "", Reach::kOnTheWall));
-  EXPECT_FALSE(Sees({false, head, gym, "planned"}, std::nullopt, "", Reach::kOnTheWall));
-  EXPECT_FALSE(Sees({false, head, std::nullopt, "set"}, std::nullopt, "", Reach::kOnTheWall));
-  EXPECT_FALSE(Sees({false, head, gym, "set"}, std::nullopt, ""));
+  EXPECT_TRUE(Sees({false, head, gym, gym::RouteState::kSet}, std::nullopt, "", Reach::kOnTheWall));
+  EXPECT_FALSE(Sees({false, head, gym, gym::RouteState::kPlanned}, std::nullopt, "", Reach::kOnTheWall));
+  EXPECT_FALSE(Sees({false, head, std::nullopt, gym::RouteState::kSet}, std::nullopt, "", Reach::kOnTheWall));
+  EXPECT_FALSE(Sees({false, head, gym, gym::RouteState::kSet}, std::nullopt, ""));
 }
 
 }  // namespace

@@ -23,6 +23,18 @@ std::string Placeholders(int columns, size_t rows) {
   return out;
 }
 
+gym::RouteState RouteStateColumn(std::string_view text) {
+  return gym::RouteStateOf(text).value_or(gym::RouteState::kDraft);
+}
+
+gym::Role RoleColumn(std::string_view text) {
+  return gym::RoleOf(text).value_or(gym::Role::kClimber);
+}
+
+gym::TickState TickStateColumn(std::string_view text) {
+  return gym::TickStateOf(text).value_or(gym::TickState::kHeld);
+}
+
 void AppendRouteRow(const RouteRecord& r, const std::string& now, std::string search_text,
                     int search_version, std::vector<sql::Value>* out) {
   const std::string& at = r.created_at.empty() ? now : r.created_at;
@@ -33,7 +45,7 @@ void AppendRouteRow(const RouteRecord& r, const std::string& now, std::string se
                                     r.grade_discipline, sql::Nullable(r.grade_value),
                                     int64_t{r.meta_version}, r.request_key,
                                     sql::Nullable(r.gym_id), sql::Nullable(r.wall_id),
-                                    r.state.empty() ? std::string(gym::NameOf(gym::RouteState::kDraft)) : r.state,
+                                    std::string(gym::NameOf(r.state)),
                                     r.planned_on, r.strip_on, sql::Nullable(r.original_id),
                                     std::move(search_text), int64_t{search_version},
                                     sql::Nullable(r.circuit_id)};

@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "gym/rules.h"
 #include "store/sql.h"
 #include "store/store.h"
 
@@ -34,9 +35,17 @@ inline constexpr std::string_view kRouteInsert =
     "gym_id, wall_id, state, planned_on, strip_on, original_id, search_text, "
     "search_version, circuit_id) VALUES ";
 
+// The gym's enums from their stored names (gym/rules.h's names, the text of
+// the state and role columns; the app writes them with gym::NameOf). A name
+// no value has (the schema's CHECKs and the app write none) reads as the
+// least of each: a draft route, a climber, a held tick. Pure.
+gym::RouteState RouteStateColumn(std::string_view text);
+gym::Role RoleColumn(std::string_view text);
+gym::TickState TickStateColumn(std::string_view text);
+
 // Appends the kRouteColumns parameters of route `r` to `out`, in
 // kRouteInsert's order: created_at and updated_at are `now` where
-// r.created_at is empty, state "draft" where r.state is empty, search_text and
+// r.created_at is empty, the state's name, search_text and
 // search_version as given (the store's search rule). Pure.
 void AppendRouteRow(const RouteRecord& r, const std::string& now, std::string search_text,
                     int search_version, std::vector<sql::Value>* out);

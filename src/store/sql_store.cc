@@ -101,7 +101,7 @@ RouteRecord ReadRoute(const Rows& s, size_t i) {
   r.gym_id = s.OptInt(i, 22);
   r.wall_id = s.OptInt(i, 23);
   r.wall_name = s.Text(i, 24);
-  r.state = s.Text(i, 25);
+  r.state = sql_rows::RouteStateColumn(s.Text(i, 25));
   r.planned_on = s.Text(i, 26);
   r.strip_on = s.Text(i, 27);
   r.original_id = s.OptInt(i, 28);
@@ -117,7 +117,7 @@ SourceRoute ReadSource(const Rows& s, size_t i, size_t first) {
   sr.is_public = s.Int(i, first + 1) != 0;
   sr.owner_id = s.OptInt(i, first + 2);
   sr.gym_id = s.OptInt(i, first + 3);
-  sr.state = s.Text(i, first + 4);
+  sr.state = sql_rows::RouteStateColumn(s.Text(i, first + 4));
   return sr;
 }
 
@@ -548,7 +548,8 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
         int64_t{route.move_count}, NowText(), route.colour, route.wall, route.set_on,
         route.grade_discipline, sql::Nullable(route.grade_value), int64_t{route.meta_version},
         route.request_key, sql::Nullable(route.gym_id), sql::Nullable(route.wall_id),
-        route.state, route.planned_on, route.strip_on, sql::Nullable(route.original_id),
+        std::string(gym::NameOf(route.state)), route.planned_on, route.strip_on,
+        sql::Nullable(route.original_id),
         SearchText(route.name, route.crdl), int64_t{kSearchVersion},
         sql::Nullable(route.circuit_id), route.id};
     // Issue 31: the revision is checked and bumped in the one statement.
@@ -1206,7 +1207,8 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
                          {gym_id}));
     std::vector<MemberRecord> out;
     for (size_t i = 0; i < r.size(); ++i) {
-      out.push_back({r.Int(i, 0), r.Int(i, 1), r.Text(i, 2), r.Text(i, 3), r.Text(i, 4)});
+      out.push_back({r.Int(i, 0), r.Int(i, 1), r.Text(i, 2), sql_rows::RoleColumn(r.Text(i, 3)),
+                     r.Text(i, 4)});
     }
     return out;
   }

@@ -124,7 +124,7 @@ TEST_P(TargetStoreTest, TickSumsCountUnheldTicksAndStarsPerRoute) {
   r.crdl = "name: A\n---\nR jug\n";
   r.move_count = 1;
   r.gym_id = gym_;
-  r.state = "set";
+  r.state = gym::RouteState::kSet;
   const int64_t a = *store_->InsertRoute(r);
   TickStore* ticks = TickStoreOf(store_.get());
   ASSERT_NE(ticks, nullptr);
@@ -140,7 +140,7 @@ TEST_P(TargetStoreTest, TickSumsCountUnheldTicksAndStarsPerRoute) {
     t.day = "2026-11-2" + std::to_string(n++);
     t.outcome = "send";
     if (stars) t.stars = stars;
-    t.state = state;
+    t.state = *gym::TickStateOf(state);
     t.created_at = t.updated_at = "2026-11-20 10:00:00";
     ASSERT_TRUE(ticks->PutTick(t).ok());
   }
@@ -154,7 +154,7 @@ TEST_P(TargetStoreTest, TickSumsCountUnheldTicksAndStarsPerRoute) {
   // By route state: a stripped route's ticks count in its state only.
   RouteRecord old = r;
   old.name = "B";
-  old.state = "stripped";
+  old.state = gym::RouteState::kStripped;
   const int64_t b = *store_->InsertRoute(old);
   TickRecord t;
   t.route_id = b;

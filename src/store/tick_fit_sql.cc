@@ -35,7 +35,7 @@ std::vector<TickRecord> ReadFit(const Rows& r, int64_t gym_id) {
     if (attempts) t.attempts = static_cast<int>(*attempts);
     t.felt_discipline = r.Text(i, 6);
     t.felt_value = r.OptDouble(i, 7);
-    t.state = "ok";
+    t.state = gym::TickState::kOk;
     t.created_at = r.Text(i, 8);
     t.revision = static_cast<int>(r.Int(i, 9));
     out.push_back(std::move(t));

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "store/tick_page.h"
+#include "store/sql_rows.h"
 
 namespace sb::store::ticks_sql {
 
@@ -42,7 +43,7 @@ void ReadInto(const Rows& r, std::vector<TickRecord>& out) {
     t.felt_discipline = r.Text(i, 11);
     t.felt_value = r.OptDouble(i, 12);
     t.comment = r.Text(i, 13);
-    t.state = r.Text(i, 14);
+    t.state = sql_rows::TickStateColumn(r.Text(i, 14));
     t.created_at = r.Text(i, 15);
     t.updated_at = r.Text(i, 16);
     t.revision = static_cast<int>(r.Int(i, 17));
@@ -76,7 +77,8 @@ Result<TickRecord> PutTick(sql::Connection& c, const TickRecord& t) {
       "revision = ticks.revision + 1 RETURNING id",
       {t.route_id, t.gym_id, t.climber, sql::Nullable(t.user_id), t.origin, t.day, t.outcome,
        sql::Nullable(t.attempts), sql::Nullable(t.stars), t.felt_grade, t.felt_discipline,
-       sql::Nullable(t.felt_value), t.comment, t.state, t.created_at, t.updated_at},
+       sql::Nullable(t.felt_value), t.comment, std::string(gym::NameOf(t.state)), t.created_at,
+       t.updated_at},
       &v);
   if (!r.ok() && v == Violation::kForeignKey) {
     return Status::NotFound("no route " + std::to_string(t.route_id) + " in gym " +

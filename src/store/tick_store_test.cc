@@ -33,7 +33,7 @@ class TickStoreTest : public testing::BackendTest {
     r.crdl = "name: " + name + "\n---\nR jug\n";
     r.move_count = 1;
     r.gym_id = gym_;
-    r.state = "set";
+    r.state = gym::RouteState::kSet;
     Result<int64_t> id = store_->InsertRoute(r);
     EXPECT_TRUE(id.ok()) << id.status().message();
     return id.ok() ? *id : 0;
@@ -93,7 +93,7 @@ TEST_P(TickStoreTest, OneTickPerRouteClimberAndDayASecondEditsIt) {
   EXPECT_GT(ticks_->GymTickVersion(gym_)->ticks, 1);
   // Issue 34: the counts a page's cost is made from, before the reading.
   TickRecord held = Tick(route_, "d:bb", "2026-11-21", "send", "2026-11-21 10:00:00");
-  held.state = "held";
+  held.state = gym::TickState::kHeld;
   ASSERT_TRUE(ticks_->PutTick(held).ok());
   Result<TickCounts> by_route = ticks_->CountRouteTicks(route_);
   ASSERT_TRUE(by_route.ok()) << by_route.status().message();
@@ -172,7 +172,7 @@ TEST_P(TickStoreTest, AFitReadsOnlyItsDisciplinesTicks) {
   roped.crdl = "name: Rope\n---\nR jug\n";
   roped.move_count = 1;
   roped.gym_id = gym_;
-  roped.state = "set";
+  roped.state = gym::RouteState::kSet;
   roped.grade_discipline = "roped";
   Result<int64_t> rope = store_->InsertRoute(roped);
   ASSERT_TRUE(rope.ok()) << rope.status().message();
@@ -184,7 +184,7 @@ TEST_P(TickStoreTest, AFitReadsOnlyItsDisciplinesTicks) {
   ASSERT_TRUE(ticks_->PutTick(Tick(other_, "d:aa", "2026-11-20", "send", "2026-11-20 11:00:00")).ok());
   ASSERT_TRUE(ticks_->PutTick(Tick(*rope, "d:aa", "2026-11-20", "flash", "2026-11-20 12:00:00")).ok());
   TickRecord held = Tick(*rope, "d:bb", "2026-11-21", "send", "2026-11-21 10:00:00");
-  held.state = "held";
+  held.state = gym::TickState::kHeld;
   ASSERT_TRUE(ticks_->PutTick(held).ok());
   Result<std::vector<TickRecord>> boulder = ticks_->GymDisciplineTicks(gym_, "bouldering");
   ASSERT_TRUE(boulder.ok()) << boulder.status().message();
@@ -192,7 +192,7 @@ TEST_P(TickStoreTest, AFitReadsOnlyItsDisciplinesTicks) {
   EXPECT_EQ((*boulder)[0].route_id, route_);
   EXPECT_EQ((*boulder)[0].attempts, 2);
   EXPECT_EQ((*boulder)[0].felt_value, 3.5);
-  EXPECT_EQ((*boulder)[0].state, "ok");
+  EXPECT_EQ((*boulder)[0].state, gym::TickState::kOk);
   EXPECT_EQ((*boulder)[1].route_id, other_);
   EXPECT_LT((*boulder)[0].id, (*boulder)[1].id);
   // Read in pages of one tick (issue 34: both backends page): the same rows.
@@ -217,7 +217,7 @@ TEST_P(TickStoreTest, AFitReadsOnlyItsDisciplinesTicks) {
 TEST_P(TickStoreTest, HeldTicksLeaveTheGymsTicksUntilAccepted) {
   Result<TickRecord> a = ticks_->PutTick(Tick(route_, "d:aa", "2026-11-20", "send", "t1"));
   TickRecord held = Tick(route_, "d:bb", "2026-11-20", "send", "t1");
-  held.state = "held";
+  held.state = gym::TickState::kHeld;
   Result<TickRecord> b = ticks_->PutTick(held);
   ASSERT_TRUE(a.ok() && b.ok());
   EXPECT_EQ(ticks_->GymTicks(gym_)->size(), 1u);
@@ -243,7 +243,7 @@ TEST_P(TickStoreTest, GymTicksReadInSmallPagesAreTheSameRowsInTheSameOrder) {
   elsewhere.crdl = "name: E\n---\nR jug\n";
   elsewhere.move_count = 1;
   elsewhere.gym_id = *g2;
-  elsewhere.state = "set";
+  elsewhere.state = gym::RouteState::kSet;
   Result<int64_t> e = store_->InsertRoute(elsewhere);
   ASSERT_TRUE(e.ok()) << e.status().message();
   for (int i = 0; i < 7; ++i) {
@@ -251,7 +251,7 @@ TEST_P(TickStoreTest, GymTicksReadInSmallPagesAreTheSameRowsInTheSameOrder) {
     TickRecord t = Tick(i % 2 ? route_ : other_, "d:c" + std::to_string(i % 3), day,
                         i % 3 ? "send" : "attempt", day + " 10:00:00");
     t.stars = 1 + i % 5;
-    if (i == 4) t.state = "held";
+    if (i == 4) t.state = gym::TickState::kHeld;
     ASSERT_TRUE(ticks_->PutTick(t).ok());
     TickRecord there = Tick(*e, "d:x" + std::to_string(i), day, "send", day + " 11:00:00");
     there.gym_id = *g2;
@@ -276,7 +276,7 @@ TEST_P(TickStoreTest, GymTicksReadInSmallPagesAreTheSameRowsInTheSameOrder) {
       EXPECT_EQ(a.stars, b.stars);
       EXPECT_EQ(a.outcome, b.outcome);
       EXPECT_EQ(a.revision, b.revision);
-      EXPECT_EQ(b.state, "ok");
+      EXPECT_EQ(b.state, gym::TickState::kOk);
     }
   }
 }

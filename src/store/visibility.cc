@@ -15,8 +15,9 @@ bool Sees(const RouteSight& r, std::optional<int64_t> viewer, std::string_view r
   if (r.in_library) return true;
   if (viewer && r.owner_id && *viewer == *r.owner_id) return true;
   if (!r.gym_id) return false;
-  if (MemberSees(role_in_gym, r.state)) return true;
-  return reach == Reach::kOnTheWall && gym::Is(r.state, gym::kOnTheWall);
+  const std::optional<gym::Role> role = gym::RoleOf(role_in_gym);
+  if (role && gym::MemberSees(*role, r.state)) return true;
+  return reach == Reach::kOnTheWall && r.state == gym::kOnTheWall;
 }
 
 std::string SeesSql(std::string_view t_view, int* params) {

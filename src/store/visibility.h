@@ -10,6 +10,8 @@
 #include <string>
 #include <string_view>
 
+#include "gym/rules.h"
+
 namespace sb::store {
 
 // Where a route is asked for.
@@ -26,7 +28,7 @@ struct RouteSight {
   bool in_library = false;          // routes.is_public: "public" / "library"
   std::optional<int64_t> owner_id;  // nullopt: seeded or orphaned
   std::optional<int64_t> gym_id;    // nullopt: a personal route
-  std::string_view state;           // "draft", "planned", "set", "stripped"
+  gym::RouteState state = gym::RouteState::kDraft;
 };
 
 // Whether a member of a route's gym with `role` ("head", "setter",

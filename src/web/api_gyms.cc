@@ -305,7 +305,7 @@ void ListMembers(Exchange& x) {
   for (const app::Member& mem : *m) {
     arr.push_back({{"id", mem.user_id},
                    {"username", mem.username},
-                   {"role", mem.role},
+                   {"role", gym::NameOf(mem.role)},
                    {"display_name", mem.display_name.empty() ? mem.username : mem.display_name}});
   }
   ReplyJson(x.res, 200, json{{"members", arr}});
@@ -431,7 +431,7 @@ void PostWallState(Exchange& x) {
         std::string summary;
         for (const app::RouteView& r : *now) {
           routes[std::to_string(r.id)] = r.revision;
-          summary += (summary.empty() ? "" : ", ") + r.name + " (" + r.state + ")";
+          summary += (summary.empty() ? "" : ", ") + r.name + " (" + gym::NameOf(r.state) + ")";
         }
         current = json{{"wall", *wall_id}, {"from", change.from}, {"to", change.to},
                        {"routes", routes}, {"summary", summary}};

@@ -3,6 +3,7 @@
 
 #include "app/feedback.h"
 #include "base/text.h"
+#include "gym/rules.h"
 #include "web/handlers.h"
 
 namespace sb::web {
@@ -28,7 +29,7 @@ json RevisionReply(Exchange& x, int64_t id) {
   json out{{"id", id}};
   if (Result<app::RouteView> r = x.services.routes.Get(x.caller.viewer, id); r.ok()) {
     out["revision"] = r->revision;
-    out["state"] = r->state;
+    out["state"] = gym::NameOf(r->state);
     out["set_on"] = r->set_on;
     out["strip_on"] = r->strip_on;
   }

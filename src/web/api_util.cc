@@ -5,6 +5,7 @@
 #include "app/discipline.h"
 #include "base/number.h"
 #include "crdl/route.h"
+#include "gym/rules.h"
 #include "web/handlers.h"
 #include "web/model_reply.h"
 
@@ -209,7 +210,7 @@ json RouteSummaryJson(const app::RouteView& r) {
               {"gym", r.gym_id ? json(*r.gym_id) : json()},
               {"wall_id", r.wall_id ? json(*r.wall_id) : json()},
               {"wall_name", r.wall_name},
-              {"state", r.state},
+              {"state", gym::NameOf(r.state)},
               {"set_on", r.set_on},
               {"strip_on", r.strip_on},
               {"revision", r.revision},  // issue 31

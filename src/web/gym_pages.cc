@@ -220,11 +220,11 @@ std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<
     // Issue 32: a member by display name (the log-in name beside it).
     b += "<li>" + (m.display_name.empty() ? E(m.username)
                                           : E(m.display_name) + " <small>(" + E(m.username) + ")</small>") +
-         " <span class=\"tag\">" + E(Tr(v, m.role.c_str())) + "</span>";
+         " <span class=\"tag\">" + E(Tr(v, gym::NameOf(m.role))) + "</span>";
     if (head && m.username != v.username) {
       const std::string url = "/api/gyms/" + gid + "/members/" + m.username;
       auto opt = [&](const char* r, const char* label) {
-        return "<option value=\"" + std::string(r) + "\"" + (m.role == r ? " selected" : "") +
+        return "<option value=\"" + std::string(r) + "\"" + (gym::Is(r, m.role) ? " selected" : "") +
                ">" + Tr(v, label) + "</option>";
       };
       b += " " +
@@ -294,7 +294,7 @@ std::string WallActions(const app::Gym& gym, const app::Wall& wall,
   auto seen = [&](gym::RouteState state, const std::string& day, int* n) {
     std::string fields;
     for (const app::RouteView& r : routes) {
-      if (!gym::Is(r.state, state) || (!day.empty() && r.set_on != day)) continue;
+      if (r.state != state || (!day.empty() && r.set_on != day)) continue;
       fields += "<input type=\"hidden\" name=\"routes." + std::to_string(r.id) +
                 "\" data-int value=\"" + std::to_string(r.revision) + "\">";
       ++*n;
@@ -345,10 +345,10 @@ std::string WallRoutesHtml(const app::Gym& gym, const app::Wall& wall,
                                 gym::RouteState::kDraft, gym::RouteState::kStripped}) {
     std::string rows;
     for (const app::RouteView& r : routes) {
-      if (!gym::Is(r.state, state)) continue;
+      if (r.state != state) continue;
       rows += "<tr><td><a href=\"/routes/" + std::to_string(r.id) + "\">" + E(r.name) +
               "</a></td><td>" + E(r.grade) + GradeNoteHtml(r) + "</td><td>" + ColourHtml(r.colour, lang) + "</td><td>" +
-              E(FormatDate(lang, gym::Is(r.state, gym::RouteState::kStripped) ? r.strip_on : r.set_on)) + "</td>";
+              E(FormatDate(lang, r.state == gym::RouteState::kStripped ? r.strip_on : r.set_on)) + "</td>";
       if (ascent_cells) {
         auto it = ascent_cells->find(r.id);
         rows += it == ascent_cells->end() ? "<td></td>" : it->second;
@@ -398,7 +398,7 @@ std::string RouteGymBlock(const app::RouteView& r, const std::vector<app::Histor
                           bool can_set, std::string_view lang,
                           const std::string& circuit_row) {
   std::string b = "<section class=\"gym-block\" id=\"route-gym\"><h2>" + Tr(lang, "On the wall") + "</h2>\n<dl>";
-  b += "<dt>" + Tr(lang, "State") + "</dt><dd id=\"route-state\">" + E(StateLabel(lang, r.state)) + "</dd>";
+  b += "<dt>" + Tr(lang, "State") + "</dt><dd id=\"route-state\">" + E(StateLabel(lang, gym::NameOf(r.state))) + "</dd>";
   b += "<dt>" + Tr(lang, "Wall") + "</dt><dd id=\"route-wall\">" +
        (r.wall_id ? "<a href=\"/walls/" + std::to_string(*r.wall_id) + "\">" + E(r.wall_name) +
                         "</a>"
@@ -408,7 +408,7 @@ std::string RouteGymBlock(const app::RouteView& r, const std::vector<app::Histor
   for (const app::RouteSetter& s : r.setters) setters += (setters.empty() ? "" : ", ") + s.name;
   b += "<dt>" + Tr(lang, "Setters") + "</dt><dd id=\"route-setters\">" + E(setters.empty() ? "—" : setters) + "</dd>";
   if (!r.set_on.empty()) {
-    b += "<dt>" + (gym::Is(r.state, gym::RouteState::kPlanned) ? Tr(lang, "Planned for") : Tr(lang, "Set")) +
+    b += "<dt>" + (r.state == gym::RouteState::kPlanned ? Tr(lang, "Planned for") : Tr(lang, "Set")) +
          "</dt><dd id=\"route-set-on\">" + E(FormatDate(lang, r.set_on)) + "</dd>";
   }
   if (!r.strip_on.empty()) b += "<dt>" + Tr(lang, "Stripped") + "</dt><dd id=\"route-strip-on\">" + E(FormatDate(lang, r.strip_on)) + "</dd>";
@@ -418,17 +418,16 @@ std::string RouteGymBlock(const app::RouteView& r, const std::vector<app::Histor
     std::string states;
     for (gym::RouteState s : gym::kRouteStates) {
       const std::string name = gym::NameOf(s);
-      states += "<option value=\"" + name + "\"" + (r.state == name ? " selected" : "") + ">" +
+      states += "<option value=\"" + name + "\"" + (r.state == s ? " selected" : "") + ">" +
                 E(StateLabel(lang, name)) + "</option>";
     }
     // Issue 31: the buttons of the cycle (plan → set → strip), by the one
     // rule of app::CheckTransition; each carries the revision shown.
     std::string buttons;
-    const std::optional<app::RouteState> from = app::RouteStateOf(r.state);
     for (auto [to, label, id] : {std::tuple{app::RouteState::kPlanned, N_("Plan"), "route-plan"},
                                  std::tuple{app::RouteState::kSet, N_("Set on the wall"), "route-set"},
                                  std::tuple{app::RouteState::kStripped, N_("Strip"), "route-strip"}}) {
-      if (!from || !app::CheckTransition(*from, to).ok()) continue;
+      if (!app::CheckTransition(r.state, to).ok()) continue;
       buttons += ButtonForm(id, "POST", url + "/state",
                             Hidden("state", app::NameOf(to)) + RevisionField(r.revision) +
                                 "<label>" + Tr(lang, "on") + " <input type=\"date\" name=\"on\" data-optional "

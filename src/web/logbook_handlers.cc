@@ -11,6 +11,7 @@
 #include "app/routes.h"
 #include "base/log.h"
 #include "base/text.h"
+#include "gym/rules.h"
 #include "web/chance_handlers.h"
 #include "web/climber_handlers.h"
 
@@ -54,7 +55,7 @@ json TickJson(const app::Tick& t) {
          {"stars", t.stars ? json(*t.stars) : json(nullptr)},
          {"felt_grade", t.felt_grade},
          {"comment", t.comment},
-         {"state", t.state},
+         {"state", gym::NameOf(t.state)},
          {"account", t.user_id.has_value()},
          {"created_at", t.created_at},
          {"updated_at", t.updated_at}};
@@ -117,7 +118,7 @@ std::string HeldHtml(std::string_view lang, int64_t route_id, const std::vector<
                      const std::map<int64_t, std::string>& reasons) {
   std::string b;
   int held = 0;
-  for (const app::Tick& t : ticks) held += t.state == "held";
+  for (const app::Tick& t : ticks) held += t.state == gym::TickState::kHeld;
   if (held == 0) return b;
   b += "<section id=\"held-ticks\" class=\"no-print\" data-route=\"" + Id(route_id) +
        "\"><h2>" + Fmt(Tr(lang, "Held ticks ({1})"), std::to_string(held)) +
@@ -127,7 +128,7 @@ std::string HeldHtml(std::string_view lang, int64_t route_id, const std::vector<
           "these count nowhere until you accept them.") +
        "</p>\n<ul>\n";
   for (const app::Tick& t : ticks) {
-    if (t.state != "held") continue;
+    if (t.state != gym::TickState::kHeld) continue;
     b += "<li class=\"held-tick\" data-tick=\"" + Id(t.id) + "\">" + E(FormatDate(lang, t.day)) +
          " " + E(Tr(lang, t.outcome.c_str())) +
          (t.attempts ? " (" + Fmt(TrN(lang, "{1} try", "{1} tries", *t.attempts), std::to_string(*t.attempts)) + ")" : "") +
@@ -296,7 +297,7 @@ void PageLogbook(Exchange& x) {
            "\">" + E(v->route_names[t.route_id]) + "</a></td><td class=\"outcome\" data-outcome=\"" +
            E(t.outcome) + "\">" + E(Tr(lang, t.outcome.c_str())) +
            (t.outcome != "flash" && t.attempts ? " (" + std::to_string(*t.attempts) + ")" : "") +
-           (t.state == "held" ? " <span class=\"tag\">" + Tr(lang, "held") + "</span>" : "") +
+           (t.state == gym::TickState::kHeld ? " <span class=\"tag\">" + Tr(lang, "held") + "</span>" : "") +
            "</td><td>" +
            (t.stars ? std::string(static_cast<size_t>(*t.stars), '*') : "") + "</td><td>" +
            E(t.felt_grade) + "</td></tr>\n";

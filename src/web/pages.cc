@@ -129,8 +129,8 @@ std::string RouteRows(const PageViewer& v, const std::vector<app::RouteView>& ro
       h += r.gym_id ? " <span class=\"tag private\">" + Tr(v, "gym only") + "</span>"
                     : " <span class=\"tag private\">" + Tr(v, "private") + "</span>";
     }
-    if (gym::Is(r.state, gym::RouteState::kPlanned) || gym::Is(r.state, gym::RouteState::kStripped)) {
-      h += " <span class=\"tag state\">" + E(Tr(v, r.state.c_str())) + "</span>";
+    if (r.state == gym::RouteState::kPlanned || r.state == gym::RouteState::kStripped) {
+      h += " <span class=\"tag state\">" + E(Tr(v, gym::NameOf(r.state))) + "</span>";
     }
     h += "</td><td>" + E(r.grade) + "</td><td>" + E(r.setter.empty() ? r.owner_name : r.setter) +
          "</td><td>" + E(r.wall_name.empty() ? r.wall : r.wall_name) + "</td><td class=\"num\">" + std::to_string(r.move_count) + "</td><td>" +
@@ -396,7 +396,7 @@ std::string EditorPage(const PageViewer& v, const std::optional<app::RouteView>&
        (route ? std::to_string(route->id) : std::string()) + "\" data-revision=\"" +
        (route ? std::to_string(route->revision) : std::string()) + "\" data-gym=\"" +
        (in_gym ? std::to_string(form.gym->id) : std::string()) + "\" data-state=\"" +
-       E(route ? route->state : std::string()) + "\">\n<div class=\"pane\">\n";
+       E(route ? std::string(gym::NameOf(route->state)) : std::string()) + "\">\n<div class=\"pane\">\n";
   b += "<div class=\"view-tabs no-print\" role=\"tablist\"><button type=\"button\" role=\"tab\" "
        "id=\"view-form\" aria-selected=\"true\">" + Tr(v, t::kViewForm) +
        "</button><button type=\"button\" role=\"tab\" id=\"view-text\" aria-selected=\"false\">" +
@@ -457,7 +457,7 @@ std::string EditorPage(const PageViewer& v, const std::optional<app::RouteView>&
        " <input id=\"f-colour\" name=\"colour\" maxlength=\"60\" autocomplete=\"off\">" +
        msg("colour") + "</label>\n";
   if (in_gym) {
-    const std::string cur = route ? route->state : gym::NameOf(gym::RouteState::kDraft);
+    const std::string cur = gym::NameOf(route ? route->state : gym::RouteState::kDraft);
     b += "<label>" + Tr(v, t::kState) + " <select id=\"f-state\" name=\"state\">";
     for (gym::RouteState state : gym::kRouteStates) {
       const std::string s = gym::NameOf(state);
@@ -487,7 +487,7 @@ std::string EditorPage(const PageViewer& v, const std::optional<app::RouteView>&
     if (!member) others += (others.empty() ? "" : ", ") + c;
   }
   for (const app::Member& m : form.members) {
-    if (gym::Is(m.role, gym::Role::kClimber)) continue;
+    if (m.role == gym::Role::kClimber) continue;
     bool on = false;
     for (const std::string& c : chosen) on = on || ToLower(c) == ToLower(m.username);
     b += "<label class=\"inline\"><input type=\"checkbox\" class=\"f-setter\" value=\"" +
