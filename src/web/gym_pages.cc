@@ -150,13 +150,13 @@ std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<
                    "</select></label><label>" + Tr(v, "Angle") + " " +
                    num("angle", FormatDouble(w.angle), "min=\"-90\" max=\"90\" step=\"any\"") +
                    "</label><label>" + Fmt(Tr(v, "Reset every {1} weeks"),
-                   num("reset_weeks", OptInt(w.reset_weeks), "data-optional min=\"1\" max=\"104\"")) +
+                   num("reset_weeks", OptInt(w.reset_weeks), "data-clear min=\"1\" max=\"104\"")) +
                    "</label><label>" + Tr(v, "Order") + " " + num("position", std::to_string(w.position), "") +
                    "</label><fieldset class=\"plan\"><legend>" + Tr(v, "Floor plan (cells)") + "</legend><label>x " +
-                   num("plan.x", OptInt(w.plan_x), "data-optional min=\"0\"") + "</label><label>y " +
-                   num("plan.y", OptInt(w.plan_y), "data-optional min=\"0\"") + "</label><label>w " +
-                   num("plan.w", OptInt(w.plan_w), "data-optional min=\"1\"") + "</label><label>h " +
-                   num("plan.h", OptInt(w.plan_h), "data-optional min=\"1\"") +
+                   num("plan.x", OptInt(w.plan_x), "data-clear min=\"0\"") + "</label><label>y " +
+                   num("plan.y", OptInt(w.plan_y), "data-clear min=\"0\"") + "</label><label>w " +
+                   num("plan.w", OptInt(w.plan_w), "data-clear min=\"1\"") + "</label><label>h " +
+                   num("plan.h", OptInt(w.plan_h), "data-clear min=\"1\"") +
                    "</label></fieldset>",
                    Tr(v, "Save wall")) +
            ButtonForm("wall-remove-" + wid, "DELETE", url, "", Tr(v, "Remove wall"),

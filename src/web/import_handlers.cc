@@ -88,12 +88,18 @@ Result<app::ImportRequest> ImportRequestOf(const json& body) {
   return req;
 }
 
+// Issue 31: the fields each import accepts (anything else: 400 naming it).
+const Fields kGymImportFields = {"format", "data",  "file",         "mapping",
+                                 "guess",  "confirm", "strip_missing"};
+const Fields kCrdlImportFields = {"files", "gym"};
+const Fields kCrdlFileFields = {"name", "crdl"};
+
 }  // namespace
 
 void PostGymImport(Exchange& x) {
   Result<int64_t> gym = PathId(x.req, "no such gym");
   if (!gym.ok()) return ApiError(x, gym.status());
-  Result<json> body = BodyObject(x.req);
+  Result<json> body = BodyObject(x.req, kGymImportFields);
   if (!body.ok()) return ApiError(x, body.status());
   Result<bool> confirm = BoolField(*body, "confirm", false);
   if (!confirm.ok()) return ApiError(x, confirm.status());
@@ -153,7 +159,7 @@ void PostGymImport(Exchange& x) {
 }
 
 void PostImportCrdl(Exchange& x) {
-  Result<json> body = BodyObject(x.req);
+  Result<json> body = BodyObject(x.req, kCrdlImportFields);
   if (!body.ok()) return ApiError(x, body.status());
   if (!body->contains("files") || !(*body)["files"].is_array()) {
     return ApiError(x, Status::InvalidInput("files: expected an array of {\"name\",\"crdl\"}"));
@@ -162,6 +168,8 @@ void PostImportCrdl(Exchange& x) {
   size_t bytes = 0;
   for (const json& f : (*body)["files"]) {
     if (!f.is_object()) return ApiError(x, Status::InvalidInput("files: expected objects"));
+    const std::string at = "files[" + std::to_string(files.size()) + "].";
+    if (Status s = OnlyFields(f, kCrdlFileFields, at); !s.ok()) return ApiError(x, s);
     app::CrdlFile file;
     Result<std::string> crdl = StringField(f, "crdl");
     if (!crdl.ok()) return ApiError(x, crdl.status().WithPrefix("files[" + std::to_string(files.size()) + "]"));
