@@ -163,6 +163,8 @@ std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<
                       Fmt(Tr(v, "Remove the wall {1}?"), w.name)) +
            "</details>\n";
     }
+    // Hands-on (issue 31): the form's own heading (it read as the last wall's edit form).
+    b += "<h3 class=\"no-print\" id=\"new-wall-title\">" + Tr(v, "Add wall") + "</h3>\n";
     b += ApiForm("new-wall", "POST", "/api/gyms/" + gid + "/walls",
                  "<label>" + Tr(v, "Name") + " <input name=\"name\" id=\"wall-name\" required maxlength=\"100\">"
                  "</label><label>" + Tr(v, "Discipline") + " <select name=\"discipline\" id=\"wall-discipline\">"
@@ -208,6 +210,7 @@ std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<
                       Fmt(Tr(v, "Remove the circuit {1}?"), c.colour)) +
            "</details>\n";
     }
+    b += "<h3 class=\"no-print\" id=\"new-circuit-title\">" + Tr(v, "Add circuit") + "</h3>\n";
     b += ApiForm("new-circuit", "POST", "/api/gyms/" + gid + "/circuits",
                  "<label>" + Tr(v, "Colour") + " <input name=\"colour\" id=\"circuit-colour\" required "
                  "maxlength=\"40\"></label><label>" + Tr(v, "From") + " <input name=\"grade_from\" "
@@ -313,7 +316,8 @@ std::string WallActions(const app::Gym& gym, const app::Wall& wall,
   int planned = 0, on_wall = 0;
   const std::string planned_fields = seen(gym::RouteState::kPlanned, today, &planned);
   const std::string set_fields = seen(gym::RouteState::kSet, "", &on_wall);
-  return "<p class=\"wall-actions no-print\">" +
+  // A <div>: a <form> start tag closes an open <p> (the buttons fell out of it).
+  return "<div class=\"wall-actions no-print\">" +
          button("wall-set-today",
                 Hidden("from", gym::NameOf(gym::RouteState::kPlanned)) +
                     Hidden("to", gym::NameOf(gym::RouteState::kSet)) + Hidden("day", today) +
@@ -325,7 +329,7 @@ std::string WallActions(const app::Gym& gym, const app::Wall& wall,
                 Hidden("from", gym::NameOf(gym::RouteState::kSet)) +
                     Hidden("to", gym::NameOf(gym::RouteState::kStripped)) + set_fields,
                 on_wall, Tr(lang, "Strip this wall"), Fmt(Tr(lang, "Strip every route on {1}?"), wall.name)) +
-         "</p>\n";
+         "</div>\n";
 }
 
 // " (grade in another discipline's scale)" after a route's grade, or "".
@@ -436,7 +440,8 @@ std::string RouteGymBlock(const app::RouteView& r, const std::vector<app::Histor
                                 "\"></label>",
                             Tr(lang, label)) + " ";
     }
-    if (!buttons.empty()) b += "<p class=\"state-buttons\" id=\"route-state-buttons\">" + buttons + "</p>\n";
+    // A <div>: a <form> start tag closes an open <p> (the buttons fell out of it).
+    if (!buttons.empty()) b += "<div class=\"state-buttons\" id=\"route-state-buttons\">" + buttons + "</div>\n";
     b += ApiForm("route-gym-form", "PUT", url,
                  RevisionField(r.revision) +
                  "<label>" + Tr(lang, "State") + " <select name=\"state\" id=\"route-state-select\">" + states +

@@ -2,7 +2,7 @@
 // setter renames the gym, moves a wall on the floor plan and clears its reset weeks and plan from
 // the form, removes a wall (refused while routes are on it) and a circuit; a setter made a
 // climber loses "Edit" at once and a removed member gets nothing of the gym on the next request;
-// a route planned for a day is set and stripped from the day's sheet; the CSV export holds a
+// a route planned for a day is set from the day's sheet and stripped from its page; the CSV export holds a
 // gym's routes for its setters only; a logged-out visitor of a gym page logs in and is back.
 'use strict';
 const { gymPeople, makeGym } = require('./gym_people');
@@ -34,6 +34,8 @@ module.exports = async (t) => {
   await page.fill('#gym-rename-name', 'C6 Away Renamed ' + n);
   await submit('#gym-rename');
   check((await page.textContent('#gym-title')).includes('Renamed'), 'the gym is renamed from its page');
+  check(await page.isVisible('#new-wall-title') && await page.isVisible('#new-circuit-title'),
+        'the forms that add a wall and a circuit have headings of their own');
   const form = '#wall-form-' + north;
   await page.click('#wall-edit-' + north + ' summary');
   await page.fill(form + ' input[name="reset_weeks"]', '6');
@@ -66,9 +68,15 @@ module.exports = async (t) => {
   await page.goto(base + '/gyms/' + g.id + '/setting-day/sheet?date=' + day);
   await submit('#sheet-set-' + planned);
   check((await api('GET', '/api/routes/' + planned)).data.state === 'set', 'the sheet sets the planned route');
-  await submit('#sheet-stripped-' + planned);
-  check((await api('GET', '/api/routes/' + planned)).data.state === 'stripped' &&
-        (await page.textContent('main')).includes('C6 Plan'), 'and strips it; the sheet keeps it');
+  // Its page's buttons are inside their block (a <p> around forms lost them), and strip it.
+  await page.goto(base + '/routes/' + planned);
+  check((await page.$$('#route-state-buttons form')).length === 1, 'the route page\'s state buttons are in their block');
+  await submit('#route-strip');
+  check((await api('GET', '/api/routes/' + planned)).data.state === 'stripped', 'the route page strips it');
+  await page.goto(base + '/gyms/' + g.id + '/setting-day/sheet?date=' + day);
+  check((await page.textContent('main')).includes('C6 Plan'), 'the sheet keeps the stripped route');
+  await page.goto(base + '/walls/' + north);
+  check((await page.$$('.wall-actions form')).length === 2, 'the wall\'s buttons are in their block');
 
   // The setter made a climber: no "Edit" on their next page, the API refuses.
   await page.goto(base + '/gyms/' + g.id);
