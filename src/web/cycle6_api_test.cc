@@ -242,6 +242,13 @@ TEST_F(Cycle6ApiTest, AWallsResetWeeksAndFloorPlanAreClearedWithNull) {
   const json stored = head.Json("GET", Gp(g) + "/walls", "", 200)["walls"][0];
   EXPECT_TRUE(stored["reset_weeks"].is_null());
   EXPECT_TRUE(stored["plan"].is_null());
+  // The gym's history says what each edit changed (hands-on: "wall Cave
+  // edited" said nothing of it).
+  const json history = head.Json("GET", Gp(g) + "/history", "", 200)["history"];
+  std::string said;
+  for (const json& h : history) said += h.value("what", "") + "\n";
+  EXPECT_NE(said.find("wall Cave edited; reset weeks: 6 -> none\n"), std::string::npos) << said;
+  EXPECT_NE(said.find("wall Cave edited; floor plan: 1,2 3x4 -> none\n"), std::string::npos) << said;
   // Cleared values can be given again.
   w = head.Json("PUT", wp, R"({"reset_weeks": 8, "plan": {"x": 0, "y": 0, "w": 1, "h": 1}})", 200);
   EXPECT_EQ(w["reset_weeks"], 8);
