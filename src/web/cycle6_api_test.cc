@@ -137,7 +137,9 @@ TEST_F(Cycle6ApiTest, AWriteRefusesAFieldItDoesNotKnowNamingIt) {
   EXPECT_EQ(gym["circuits"][0]["colour"], "red");
   const json members = head.Json("GET", gp + "/members", "", 200)["members"];
   for (const json& m : members) {
-    if (m["username"] == "ann") EXPECT_EQ(m["role"], "setter");
+    if (m["username"] == "ann") {
+      EXPECT_EQ(m["role"], "setter");
+    }
   }
   EXPECT_EQ(head.Json("GET", "/api/routes?mine=1", "", 200)["total"], 1);
   EXPECT_EQ(head.Json("GET", "/api/gyms", "", 200)["gyms"].size(), 2u);  // the first and Strict
@@ -150,6 +152,64 @@ TEST_F(Cycle6ApiTest, AWriteRefusesAFieldItDoesNotKnowNamingIt) {
                 .dump(),
             200);
   EXPECT_EQ(head.Json("GET", Rp(route), "", 200)["grade"], "V3");
+}
+
+// Issue 31, the writes left: a variation and the dashboard's targets also
+// refused nothing ("seed" beside a variation's fields was dropped; a
+// targets' "wall" too). Each names the field and lists what it accepts, and
+// writes nothing; the fields they accept still work together.
+TEST_F(Cycle6ApiTest, VariationsAndTargetsRefuseAFieldTheyDoNotKnow) {
+  Client& head = SignedIn("head");
+  const int64_t g = head.NewGym("Strict");
+  const int64_t wall = head.AddWall(g, "Cave");
+  const int64_t route =
+      head.Json("POST", "/api/routes",
+                json{{"crdl", "name: Base\n---\nL crimp\nR sloper\nL pinch\nR jug\nL crimp\n"},
+                     {"gym", g}, {"wall", wall}, {"state", "set"}}
+                    .dump(),
+                201)["id"];
+  const std::string gp = Gp(g), wp = gp + "/walls/" + std::to_string(wall);
+  struct Case {
+    std::string method, path;
+    json body;
+    std::string field, accepted;
+  };
+  const std::vector<Case> cases = {
+      {"POST", "/api/variations",
+       {{"routes", {route}}, {"preset", "default"}, {"name", "V"}, {"seed", 7}}, "seed",
+       "keep_start"},
+      {"PUT", wp + "/targets", {{"grades", {{"V3", 2}}}, {"colour", "red"}}, "colour", "styles"},
+      {"PUT", gp + "/targets",
+       {{"discipline", "bouldering"}, {"grades", {{"V3", 2}}}, {"wall", wall}}, "wall",
+       "discipline"},
+  };
+  for (const Case& c : cases) {
+    const json j = head.Json(c.method, c.path, c.body.dump(), 400);
+    const std::string error = j.value("error", "");
+    EXPECT_EQ(error.rfind(c.field + ": unknown field (accepted: ", 0), 0u)
+        << c.method << " " << c.path << ": " << error;
+    EXPECT_NE(error.find(c.accepted), std::string::npos) << error;
+  }
+  // Nothing written: no variation, no targets.
+  EXPECT_EQ(head.Json("GET", "/api/routes?mine=1", "", 200)["total"], 1);
+  const std::string dashboard = head.Json("GET", gp + "/dashboard", "", 200).dump();
+  EXPECT_EQ(dashboard.find("\"V3\":2"), std::string::npos) << dashboard.substr(0, 2000);
+
+  // The accepted fields together still work.
+  head.Json("POST", "/api/variations",
+            json{{"routes", {route}}, {"preset", "default"}, {"name", "V"}, {"gym", g},
+                 {"public", false}, {"keep_start", true}, {"max_repeat", 1}}
+                .dump(),
+            201);
+  EXPECT_EQ(head.Json("GET", "/api/routes?mine=1", "", 200)["total"], 2);
+  EXPECT_EQ(head.Json("PUT", wp + "/targets",
+                      json{{"grades", {{"V3", 2}}}, {"styles", {{"crimp", 0.5}}}}.dump(), 200)
+                ["grades"]["V3"],
+            2);
+  EXPECT_EQ(head.Json("PUT", gp + "/targets",
+                      json{{"discipline", "bouldering"}, {"grades", {{"V4", 3}}}}.dump(), 200)
+                ["grades"]["V4"],
+            3);
 }
 
 // Hands-on: a wall whose many recently stripped routes filled the page
