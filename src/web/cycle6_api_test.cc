@@ -212,6 +212,45 @@ TEST_F(Cycle6ApiTest, VariationsAndTargetsRefuseAFieldTheyDoNotKnow) {
             3);
 }
 
+// Hands-on: the import page's "2 imported" said neither where the routes
+// went nor linked them. The reply names the gym (null: the importer's own
+// routes) and each new route with its page, which the page links.
+TEST_F(Cycle6ApiTest, ACrdlImportSaysItsGymAndLinksItsRoutes) {
+  Client& head = SignedIn("head");
+  const int64_t g = head.NewGym("Boulderhalle");
+  const json into = head.Json(
+      "POST", "/api/import/crdl",
+      json{{"files", {{{"name", "a.crdl"}, {"crdl", "name: Alpha\n---\nR jug\n"}},
+                      {{"name", "b.crdl"}, {"crdl", "name: Beta\n---\nL crimp\n"}}}},
+           {"gym", g}}
+          .dump(),
+      201);
+  EXPECT_EQ(into["imported"], 2);
+  EXPECT_EQ(into["gym"]["id"], g);
+  EXPECT_EQ(into["gym"]["name"], "Boulderhalle");
+  EXPECT_EQ(into["gym"]["url"], "/gyms/" + std::to_string(g));
+  ASSERT_EQ(into["routes"].size(), 2u);
+  EXPECT_EQ(into["routes"][0]["name"], "Alpha");
+  EXPECT_EQ(into["routes"][1]["name"], "Beta");
+  const int64_t alpha = into["routes"][0]["id"];
+  EXPECT_EQ(into["routes"][0]["url"], "/routes/" + std::to_string(alpha));
+  EXPECT_EQ(head.Json("GET", Rp(alpha), "", 200)["gym"], g);
+  // Personal ("gym": null): no gym named.
+  const json own = head.Json(
+      "POST", "/api/import/crdl",
+      json{{"files", {{{"name", "c.crdl"}, {"crdl", "name: Gamma\n---\nR jug\n"}}}},
+           {"gym", nullptr}}
+          .dump(),
+      201);
+  EXPECT_TRUE(own["gym"].is_null());
+  ASSERT_EQ(own["routes"].size(), 1u);
+  EXPECT_EQ(own["routes"][0]["name"], "Gamma");
+  // The page has the place the links go.
+  const auto page = head.Send("GET", "/import", "");
+  ASSERT_TRUE(page);
+  EXPECT_NE(page->body.find("id=\"crdl-imported\""), std::string::npos);
+}
+
 // Hands-on: a wall whose many recently stripped routes filled the page
 // (sorted by set date whatever their state) showed none of the routes on it,
 // and "Strip this wall" had nothing to strip. The routes on the wall come

@@ -186,7 +186,26 @@ void PostImportCrdl(Exchange& x) {
   Result<app::CrdlImportSummary> im =
       x.services.imports.ImportCrdlFiles(x.caller.viewer, files, gym->gym, gym->personal);
   if (!im.ok()) return ApiError(x, im.status());
-  ReplyJson(x.res, 201, json{{"imported", im->ids.size()}, {"ids", im->ids}, {"skipped", im->skipped}});
+  // Issue 31: the reply names the gym the routes went into (the same rule as
+  // the import's, Gyms::WriteGym; null: personal) and each new route, so the
+  // import page says where they are and links them.
+  json where = nullptr;
+  if (Result<std::optional<int64_t>> target =
+          x.services.gyms.WriteGym(x.caller.viewer, gym->gym, gym->personal, "add routes to it");
+      target.ok() && target->has_value()) {
+    if (Result<app::Gym> g = x.services.gyms.Get(x.caller.viewer, **target); g.ok()) {
+      where = json{{"id", g->id}, {"name", g->name}, {"url", "/gyms/" + std::to_string(g->id)}};
+    }
+  }
+  json routes = json::array();
+  for (int64_t id : im->ids) {
+    Result<app::RouteView> r = x.services.routes.Get(x.caller.viewer, id);
+    routes.push_back(json{{"id", id},
+                          {"name", r.ok() ? r->name : std::string()},
+                          {"url", "/routes/" + std::to_string(id)}});
+  }
+  ReplyJson(x.res, 201, json{{"imported", im->ids.size()}, {"ids", im->ids}, {"skipped", im->skipped},
+                             {"gym", where}, {"routes", routes}});
 }
 
 void PageGymImport(Exchange& x) {
