@@ -2,7 +2,7 @@
 // setter renames the gym, moves a wall on the floor plan and clears its reset weeks and plan from
 // the form, removes a wall (refused while routes are on it) and a circuit; a setter made a
 // climber loses "Edit" at once and a removed member gets nothing of the gym on the next request;
-// a route planned for a day is set from the day's sheet and stripped from its page; the CSV export holds a
+// a route planned for a day is set from the day's sheet and stripped from its page; a CRDL import names its gym and links its routes; the CSV export holds a
 // gym's routes for its setters only; a logged-out visitor of a gym page logs in and is back.
 'use strict';
 const { gymPeople, makeGym } = require('./gym_people');
@@ -100,6 +100,21 @@ module.exports = async (t) => {
   check(!(await csv()).includes('C6 On ' + n), 'a removed member\'s export has none of the gym\'s routes');
   await as(head);
   check((await csv()).includes('C6 On ' + n), 'the head setter\'s export has them');
+
+  // A CRDL import names the gym its routes went into and links them (it said only "1 imported").
+  await page.goto(base + '/gyms/' + g.id);
+  await page.evaluate((id) => { document.cookie = 'sb_gym=' + id + '; path=/'; }, g.id);
+  await page.goto(base + '/import');
+  await page.setInputFiles('#crdl-files', { name: 'c6.crdl', mimeType: 'text/plain',
+                                            buffer: Buffer.from('name: C6 Imported ' + n + '\n---\nR jug\n') });
+  await page.click('#import-crdl');
+  await page.waitForSelector('#crdl-imported:not([hidden]) a');
+  const msg = await page.textContent('#crdl-msg');
+  check(msg.includes('1') && msg.includes('C6 Away Renamed ' + n), 'the import says the gym it went into (' + msg + ')');
+  check((await page.getAttribute('#crdl-gym', 'href')) === '/gyms/' + g.id, 'and links the gym');
+  const link = page.locator('#crdl-imported li a', { hasText: 'C6 Imported ' + n });
+  check(/^\/routes\/\d+$/.test(await link.getAttribute('href') || ''), 'and links the imported route');
+  await shot('96c-crdl-imported');
 
   // A logged-out visitor of a gym page: the log-in page, then back.
   await as(null);
