@@ -882,7 +882,32 @@
         const r = await api('POST', '/api/import/crdl', { files: list, gym: pageGym() });
         if (r.status === 201) {
           const skipped = r.data.skipped || [];
-          say($('#crdl-msg'), tr('{1} imported', r.data.imported) + (skipped.length ? '; ' + skipped.join('; ') : ''), true);
+          // Issue 31: where the routes went (a gym, or the importer's own) and a link to each.
+          const g = r.data.gym;
+          const said = g ? tr('{1} imported into {2}', r.data.imported, g.name) : tr('{1} imported as your own routes', r.data.imported);
+          say($('#crdl-msg'), said + (skipped.length ? '; ' + skipped.join('; ') : ''), true);
+          const out = $('#crdl-imported');
+          if (out) {
+            out.textContent = '';
+            if (g) {
+              const a = document.createElement('a');
+              a.href = g.url;
+              a.id = 'crdl-gym';
+              a.textContent = tr('Open {1}', g.name);
+              out.appendChild(a);
+            }
+            const ul = document.createElement('ul');
+            for (const route of r.data.routes || []) {
+              const li = document.createElement('li');
+              const a = document.createElement('a');
+              a.href = route.url;
+              a.textContent = route.name || ('#' + route.id);
+              li.appendChild(a);
+              ul.appendChild(li);
+            }
+            if (ul.children.length) out.appendChild(ul);
+            out.hidden = !out.children.length;
+          }
         } else {
           say($('#crdl-msg'), errorOf(r), false);
         }

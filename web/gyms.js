@@ -1,7 +1,8 @@
 // Strange Beta: the gym pages' forms (issue 21). A form with data-api="METHOD URL" sends its
 // fields as a JSON object (numbers for inputs of type number, arrays for data-list fields split
-// at commas, nothing for empty optional fields) and reloads the page, or follows data-next
-// (":id" = the new id) on success; errors go to the form's .msg element.
+// at commas, nothing for empty optional fields, null for empty data-clear fields: an edit form's
+// way of removing a value; an object of "a.b" fields all null is null) and reloads the page, or
+// follows data-next (":id" = the new id) on success; errors go to the form's .msg element.
 'use strict';
 
 (function () {
@@ -33,7 +34,8 @@
       let v = el.value.trim();
       if (el.type === 'checkbox') { body[el.name] = el.checked; continue; }
       if (v === '' && el.dataset.optional !== undefined) continue;
-      if (el.type === 'number' && v !== '') v = Number(v);
+      if (v === '' && el.dataset.clear !== undefined) v = null;  // issue 31: cleared
+      else if (el.type === 'number' && v !== '') v = Number(v);
       else if (el.dataset.list !== undefined) v = v === '' ? [] : v.split(',').map((s) => s.trim()).filter(Boolean);
       else if (el.dataset.int !== undefined && v !== '') v = Number(v);
       // data-map fields ("V3: 2, V4: 1") go as typed: the server reads them and names
@@ -46,6 +48,12 @@
       } else {
         body[el.name] = v;
       }
+    }
+    // An object whose fields were all cleared (the floor plan's x, y, w, h) is cleared.
+    for (const k of Object.keys(body)) {
+      const o = body[k];
+      if (o !== null && typeof o === 'object' && !Array.isArray(o) &&
+          Object.keys(o).length && Object.values(o).every((x) => x === null)) body[k] = null;
     }
     return body;
   }

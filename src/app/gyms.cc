@@ -292,6 +292,34 @@ Result<int64_t> Gyms::AddWall(const Viewer& v, const Wall& w) {
   return id;
 }
 
+namespace {
+
+// Hands-on (issue 31): what an edit changed of a wall besides its name and
+// discipline, for the gym's history ("; reset weeks: 6 -> none; floor plan:
+// 2,1 4x3 -> none"); "" when nothing else changed.
+std::string WallChanges(const Wall& from, const Wall& to) {
+  auto weeks = [](const std::optional<int>& w) { return w ? std::to_string(*w) : std::string("none"); };
+  auto plan = [](const Wall& w) {
+    if (!w.plan_x || !w.plan_y || !w.plan_w || !w.plan_h) return std::string("none");
+    return std::to_string(*w.plan_x) + "," + std::to_string(*w.plan_y) + " " +
+           std::to_string(*w.plan_w) + "x" + std::to_string(*w.plan_h);
+  };
+  std::string out;
+  if (from.angle != to.angle) {
+    out += "; angle: " + FormatDouble(from.angle) + " -> " + FormatDouble(to.angle);
+  }
+  if (from.reset_weeks != to.reset_weeks) {
+    out += "; reset weeks: " + weeks(from.reset_weeks) + " -> " + weeks(to.reset_weeks);
+  }
+  if (from.position != to.position) {
+    out += "; order: " + std::to_string(from.position) + " -> " + std::to_string(to.position);
+  }
+  if (plan(from) != plan(to)) out += "; floor plan: " + plan(from) + " -> " + plan(to);
+  return out;
+}
+
+}  // namespace
+
 Status Gyms::EditWall(const Viewer& v, const Wall& w) {
   if (!v.logged_in()) return Status::Unauthenticated("log in first");
   SB_ASSIGN_OR_RETURN(Wall stored, GetWall(v, w.id));
@@ -308,7 +336,8 @@ Status Gyms::EditWall(const Viewer& v, const Wall& w) {
   const std::string what =
       "wall " + stored.name + " edited" +
       (std::string(Trim(edited.name)) != stored.name ? " (now " + std::string(Trim(edited.name)) + ")"
-                                                     : std::string());
+                                                     : std::string()) +
+      WallChanges(stored, edited);
   if (edited.discipline == stored.discipline) {
     SB_RETURN_IF_ERROR(gyms_->UpdateWall(Stored(edited)));
     return Record(v, stored.gym_id, what);

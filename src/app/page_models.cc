@@ -46,6 +46,33 @@ Result<double> ListedAscentsCost(Services& s, const Viewer& v, const std::vector
   return std::min(fits, std::max(0.0, cap - before));
 }
 
+// Issue 31: the routes on `wall` that `v` sees, current first: planned, then
+// set (each newest set first), then the drafts `v` sees, then the stripped,
+// at most `rows` in all; `total` counts every route of the wall `v` sees. So
+// however many routes were stripped from the wall, the page (and its buttons
+// for several routes at once) holds the routes on it.
+Result<RoutePage> CurrentFirst(Services& s, const Viewer& v, const Wall& wall, int rows) {
+  RoutePage out;
+  for (gym::RouteState state : {gym::RouteState::kPlanned, gym::RouteState::kSet,
+                                gym::RouteState::kDraft, gym::RouteState::kStripped}) {
+    RouteQuery q;
+    q.gym = wall.gym_id;
+    q.wall = std::to_string(wall.id);
+    q.state = gym::NameOf(state);
+    q.sort = "set";
+    const int left = rows - static_cast<int>(out.routes.size());
+    q.limit = std::max(left, 1);  // a full page still counts the state's routes
+    SB_ASSIGN_OR_RETURN(RoutePage page, s.routes.Search(v, q));
+    out.total += page.total;
+    for (RouteView& r : page.routes) {
+      if (static_cast<int>(out.routes.size()) >= rows) break;
+      out.routes.push_back(std::move(r));
+    }
+  }
+  out.limit = rows;
+  return out;
+}
+
 }  // namespace
 
 Result<WallPageModel> WallPage(Services& s, const Viewer& v, int64_t wall_id,
@@ -66,12 +93,8 @@ Result<WallPageModel> WallPage(Services& s, const Viewer& v, int64_t wall_id,
       return m;
     }
   }
-  RouteQuery q;
-  q.gym = m.wall.gym_id;
-  q.wall = std::to_string(m.wall.id);
-  q.limit = s.options.limits.wall_page_rows;
-  q.sort = "set";
-  SB_ASSIGN_OR_RETURN(RoutePage routes, s.routes.Search(v, q));
+  SB_ASSIGN_OR_RETURN(RoutePage routes,
+                      CurrentFirst(s, v, m.wall, s.options.limits.wall_page_rows));
   // Issue 34: the rows listed and the fit this reader would make, counted
   // before the fit is read.
   const double rows =

@@ -41,8 +41,10 @@ namespace sb::app {
 struct WallRoutes {
   const Gym* gym = nullptr;    // the wall's gym; not owned
   const Wall* wall = nullptr;  // not owned
-  // The routes on the wall `viewer` sees, newest set first, at most
-  // options.limits.wall_page_rows.
+  // The routes on the wall `viewer` sees, current first (issue 31): planned,
+  // set, the drafts the viewer sees, stripped, each newest set first; at
+  // most options.limits.wall_page_rows (stripped routes are the first left
+  // out, so the page's buttons cover the routes on the wall).
   std::vector<RouteView> routes;
   // How many routes the wall holds for `viewer` (more than `routes` when the
   // page is truncated: its buttons then change only the routes shown).

@@ -13,6 +13,20 @@ namespace {
 
 const char kNoGym[] = "no such gym";
 
+// Issue 31: the fields each write accepts (anything else: 400 naming it).
+const Fields kPostGymFields = {"name"};
+const Fields kPutGymFields = {"name", "language", "revision"};
+const Fields kPostMemberFields = {"username", "role"};
+const Fields kPutMemberFields = {"role"};
+const Fields kPostWallFields = {"name",        "discipline", "angle", "position",
+                                    "reset_weeks", "plan",       "scale"};
+const Fields kPutWallFields = {"name", "discipline", "angle", "position",
+                                   "reset_weeks", "plan", "scale", "revision"};
+const Fields kWallPlanFields = {"x", "y", "w", "h"};
+const Fields kWallStateFields = {"from", "to", "on", "day", "routes"};
+const Fields kPostCircuitFields = {"colour", "grade_from", "grade_to"};
+const Fields kPutCircuitFields = {"colour", "grade_from", "grade_to", "revision"};
+
 json WallJson(const app::Wall& w) {
   json j{{"id", w.id},
          {"gym", w.gym_id},
@@ -79,6 +93,7 @@ Status ReadWall(const json& body, app::Wall* w) {
     } else if (!p.is_object()) {
       return Status::InvalidInput("plan: expected {\"x\", \"y\", \"w\", \"h\"} or null");
     } else {
+      SB_RETURN_IF_ERROR(OnlyFields(p, kWallPlanFields, "plan."));
       SB_ASSIGN_OR_RETURN(w->plan_x, OptInt(p, "x"));
       SB_ASSIGN_OR_RETURN(w->plan_y, OptInt(p, "y"));
       SB_ASSIGN_OR_RETURN(w->plan_w, OptInt(p, "w"));
@@ -192,7 +207,7 @@ Result<app::GymFields> GymFieldsOf(const json& body) {
 }
 
 void PostGym(Exchange& x) {
-  Result<json> body = BodyObject(x.req);
+  Result<json> body = BodyObject(x.req, kPostGymFields);
   if (!body.ok()) return ApiError(x, body.status());
   Result<std::string> name = StringField(*body, "name");
   if (!name.ok()) return ApiError(x, name.status());
@@ -227,7 +242,7 @@ void GetGym(Exchange& x) {
 void PutGym(Exchange& x) {
   Result<int64_t> id = GymId(x.req);
   if (!id.ok()) return ApiError(x, id.status());
-  Result<json> body = BodyObject(x.req);
+  Result<json> body = BodyObject(x.req, kPutGymFields);
   if (!body.ok()) return ApiError(x, body.status());
   // Issue 32: "language" (the gym's default: en, de, fr; "" or null
   // clears it); "name" may then be left out.
@@ -274,7 +289,7 @@ void PutGym(Exchange& x) {
 void PostMember(Exchange& x) {
   Result<int64_t> id = GymId(x.req);
   if (!id.ok()) return ApiError(x, id.status());
-  Result<json> body = BodyObject(x.req);
+  Result<json> body = BodyObject(x.req, kPostMemberFields);
   if (!body.ok()) return ApiError(x, body.status());
   Result<std::string> user = StringField(*body, "username");
   if (!user.ok()) return ApiError(x, user.status());
@@ -314,7 +329,7 @@ void ListMembers(Exchange& x) {
 void PostWall(Exchange& x) {
   Result<int64_t> id = GymId(x.req);
   if (!id.ok()) return ApiError(x, id.status());
-  Result<json> body = BodyObject(x.req);
+  Result<json> body = BodyObject(x.req, kPostWallFields);
   if (!body.ok()) return ApiError(x, body.status());
   app::Wall w;
   w.gym_id = *id;
@@ -346,7 +361,7 @@ void PutWall(Exchange& x) {
   if (!wall_id.ok()) return ApiError(x, wall_id.status());
   Result<app::Wall> w = WallOf(x, *gym, *wall_id);
   if (!w.ok()) return ApiError(x, w.status());
-  Result<json> body = BodyObject(x.req);
+  Result<json> body = BodyObject(x.req, kPutWallFields);
   if (!body.ok()) return ApiError(x, body.status());
   app::Wall edited = *w;
   if (Status s = ReadWall(*body, &edited); !s.ok()) return ApiError(x, s);
@@ -398,7 +413,7 @@ void PostWallState(Exchange& x) {
   if (!gym.ok()) return ApiError(x, gym.status());
   Result<int64_t> wall_id = SubId(x.req, "wall", "no such wall");
   if (!wall_id.ok()) return ApiError(x, wall_id.status());
-  Result<json> body = BodyObject(x.req);
+  Result<json> body = BodyObject(x.req, kWallStateFields);
   if (!body.ok()) return ApiError(x, body.status());
   app::WallStateChange change;
   Result<std::string> from = StringField(*body, "from");
@@ -465,7 +480,7 @@ void ListWalls(Exchange& x) {
 void PostCircuit(Exchange& x) {
   Result<int64_t> id = GymId(x.req);
   if (!id.ok()) return ApiError(x, id.status());
-  Result<json> body = BodyObject(x.req);
+  Result<json> body = BodyObject(x.req, kPostCircuitFields);
   if (!body.ok()) return ApiError(x, body.status());
   app::Circuit c;
   c.gym_id = *id;
@@ -491,7 +506,7 @@ void PutCircuit(Exchange& x) {
   if (!circuit.ok()) return ApiError(x, circuit.status());
   Result<app::Circuit> c = CircuitOf(x, *gym, *circuit);
   if (!c.ok()) return ApiError(x, c.status());
-  Result<json> body = BodyObject(x.req);
+  Result<json> body = BodyObject(x.req, kPutCircuitFields);
   if (!body.ok()) return ApiError(x, body.status());
   app::Circuit edited = *c;
   for (auto [field, out] : {std::pair<const char*, std::string*>{"colour", &edited.colour},
@@ -531,7 +546,7 @@ void DeleteCircuit(Exchange& x) {
 void PutMember(Exchange& x) {
   Result<int64_t> id = GymId(x.req);
   if (!id.ok()) return ApiError(x, id.status());
-  Result<json> body = BodyObject(x.req);
+  Result<json> body = BodyObject(x.req, kPutMemberFields);
   if (!body.ok()) return ApiError(x, body.status());
   Result<std::string> role = StringField(*body, "role");
   if (!role.ok()) return ApiError(x, role.status());

@@ -13,6 +13,16 @@ using nlohmann::json;
 namespace {
 const char kNoRoute[] = "no such route";
 
+// Issue 31: the fields each route write accepts (anything else: 400 naming it).
+const Fields kPostRouteFields = {"crdl",  "styles",  "public", "library",
+                                     "gym",   "wall",    "circuit", "state",
+                                     "setters", "set_on", "strip_on"};
+const Fields kPutRouteFields = {"crdl",    "styles", "public",   "library",    "gym",
+                                    "wall",    "circuit", "state",   "setters",    "set_on",
+                                    "strip_on", "discipline", "revision"};
+const Fields kRouteStateFields = {"state", "on", "revision"};
+const Fields kImportCsvFields = {"routes_csv", "moves_csv", "gym"};
+
 // A refused route write: a conflict with the route as stored now (issue 31).
 void RouteConflict(Exchange& x, int64_t id, const Status& s) {
   json current;
@@ -112,7 +122,7 @@ Result<std::string> WithStylesOf(const json& body, std::string crdl) {
 }
 
 void PostRoute(Exchange& x) {
-  Result<json> body = BodyObject(x.req);
+  Result<json> body = BodyObject(x.req, kPostRouteFields);
   if (!body.ok()) return ApiError(x, body.status());
   Result<std::string> crdl = StringField(*body, "crdl");
   if (!crdl.ok()) return ApiError(x, crdl.status());
@@ -135,7 +145,7 @@ void PutRoute(Exchange& x) {
   if (Result<app::RouteView> r = x.services.routes.GetOwned(x.caller.viewer, *id); !r.ok()) {
     return ApiError(x, r.status());
   }
-  Result<json> body = BodyObject(x.req);
+  Result<json> body = BodyObject(x.req, kPutRouteFields);
   if (!body.ok()) return ApiError(x, body.status());
   app::RouteEdit edit;
   if (body->contains("crdl")) {
@@ -181,7 +191,7 @@ void PutRoute(Exchange& x) {
 void PostRouteState(Exchange& x) {
   Result<int64_t> id = PathId(x.req, kNoRoute);
   if (!id.ok()) return ApiError(x, id.status());
-  Result<json> body = BodyObject(x.req);
+  Result<json> body = BodyObject(x.req, kRouteStateFields);
   if (!body.ok()) return ApiError(x, body.status());
   app::StateChange change;
   Result<std::string> state = StringField(*body, "state");
@@ -252,7 +262,7 @@ void PostFeedback(Exchange& x) {
 }
 
 void PostImportCsv(Exchange& x) {
-  Result<json> body = BodyObject(x.req);
+  Result<json> body = BodyObject(x.req, kImportCsvFields);
   if (!body.ok()) return ApiError(x, body.status());
   Result<std::string> routes = StringField(*body, "routes_csv");
   if (!routes.ok()) return ApiError(x, routes.status());

@@ -75,6 +75,25 @@ Result<json> BodyObject(const Request& req) {
   return body;
 }
 
+Status OnlyFields(const json& obj, Fields accepted, std::string_view prefix) {
+  for (const auto& [key, value] : obj.items()) {
+    if (std::find(accepted.begin(), accepted.end(), key) != accepted.end()) continue;
+    std::string list;
+    for (std::string_view f : accepted) {
+      list += (list.empty() ? "" : ", ") + std::string(f);
+    }
+    return Status::InvalidInput(std::string(prefix) + key + ": unknown field (accepted: " + list +
+                                ")");
+  }
+  return Status::Ok();
+}
+
+Result<json> BodyObject(const Request& req, Fields accepted) {
+  SB_ASSIGN_OR_RETURN(json body, BodyObject(req));
+  SB_RETURN_IF_ERROR(OnlyFields(body, accepted));
+  return body;
+}
+
 Result<std::string> StringField(const json& body, const char* field) {
   if (!body.contains(field) || !body[field].is_string()) {
     return Status::InvalidInput(std::string(field) + ": expected a string");

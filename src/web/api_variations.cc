@@ -100,8 +100,22 @@ Result<app::MapQuery> MapQueryOf(const Request& req) {
 
 }  // namespace
 
+// Issue 31: every field POST /api/variations reads: the variation's own, the
+// chaos parameters (chaos::ParamsFromJson) and the setter's
+// (plan::SetterOptionsFromJson); any other is refused, naming it.
+const Fields kPostVariationFields = {
+    "routes", "gym", "smooth", "public", "library", "duplicate", "name", "grade", "colour", "wall",
+    "setter", "date", "notes", "preset", "novelty",
+    // chaos::ParamsFromJson
+    "system", "params", "integrator", "step", "ref_ic", "var_ic", "skip", "mapping", "mask",
+    "dabby_direction", "max_repeat",
+    // plan::SetterOptionsFromJson
+    "keep_start", "keep_finish", "crux_window", "alternate_hands", "drop_inner_finishes",
+    "drop_inner_starts", "match", "target_effect", "target_change", "effect_tolerance",
+    "change_tolerance", "search_spacing", "search_radius", "search_plane", "smooth_method"};
+
 void PostVariation(Exchange& x) {
-  Result<json> body = BodyObject(x.req);
+  Result<json> body = BodyObject(x.req, kPostVariationFields);
   if (!body.ok()) return ApiError(x, body.status());
   app::VariationRequest vr;
   Result<std::vector<int64_t>> ids = IdArray(*body, "routes");

@@ -56,7 +56,7 @@ TEST_F(Cost2ApiTest, HistoriesConsensusAnswersAndDriftAreCostedFromTheirCountsFi
               {"gym", g},
               {"wall", "cave"},
               {"state", "planned"},
-              {"on", "2026-10-01"}};
+              {"set_on", "2026-10-01"}};
     return head.Json("POST", "/api/routes", body.dump(), 201)["id"];
   };
   const int64_t busy = route(0), calm = route(1);

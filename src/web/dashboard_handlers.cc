@@ -600,12 +600,16 @@ void GetDashboard(Exchange& x) {
   x.res.SetBody(200, **text, "application/json; charset=utf-8");
 }
 
+// Issue 31: the fields each targets PUT accepts (others are refused, naming them).
+const Fields kWallTargetsFields = {"grades", "styles", "revision"};
+const Fields kDisciplineTargetsFields = {"discipline", "grades", "styles", "revision"};
+
 void PutWallTargets(Exchange& x) {
   Result<int64_t> gym = PathId(x.req, "no such gym");
   if (!gym.ok()) return ApiError(x, gym.status());
   Result<int64_t> wall = WallIdOf(x.req);
   if (!wall.ok()) return ApiError(x, wall.status());
-  Result<json> body = BodyObject(x.req);
+  Result<json> body = BodyObject(x.req, kWallTargetsFields);
   if (!body.ok()) return ApiError(x, body.status());
   app::WallTargets t;
   Result<std::map<std::string, int>> grades = NumberMap<int>(*body, "grades", true);
@@ -634,7 +638,7 @@ void PutWallTargets(Exchange& x) {
 void PutDisciplineTargets(Exchange& x) {
   Result<int64_t> gym = PathId(x.req, "no such gym");
   if (!gym.ok()) return ApiError(x, gym.status());
-  Result<json> body = BodyObject(x.req);
+  Result<json> body = BodyObject(x.req, kDisciplineTargetsFields);
   if (!body.ok()) return ApiError(x, body.status());
   app::DisciplineTargets t;
   if (!body->contains("discipline") || !(*body)["discipline"].is_string()) {

@@ -48,7 +48,7 @@ void PageWall(Exchange& x) {
     if (w.total > static_cast<int64_t>(w.routes.size())) {
       // Issue 31: the buttons below change only the routes shown (the others are counted).
       status += "<p class=\"note\" id=\"wall-more\">" +
-                Fmt(Tr(x.caller.lang, "This page shows {1} of the wall's {2} routes (newest first); "
+                Fmt(Tr(x.caller.lang, "This page shows {1} of the wall's {2} routes (those on the wall first); "
                                       "its buttons change only the routes shown."),
                     std::to_string(w.routes.size()), std::to_string(w.total)) +
                 " <a href=\"/?gym=" + std::to_string(w.wall->gym_id) + "&amp;wall=" +

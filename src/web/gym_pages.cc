@@ -150,19 +150,21 @@ std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<
                    "</select></label><label>" + Tr(v, "Angle") + " " +
                    num("angle", FormatDouble(w.angle), "min=\"-90\" max=\"90\" step=\"any\"") +
                    "</label><label>" + Fmt(Tr(v, "Reset every {1} weeks"),
-                   num("reset_weeks", OptInt(w.reset_weeks), "data-optional min=\"1\" max=\"104\"")) +
+                   num("reset_weeks", OptInt(w.reset_weeks), "data-clear min=\"1\" max=\"104\"")) +
                    "</label><label>" + Tr(v, "Order") + " " + num("position", std::to_string(w.position), "") +
                    "</label><fieldset class=\"plan\"><legend>" + Tr(v, "Floor plan (cells)") + "</legend><label>x " +
-                   num("plan.x", OptInt(w.plan_x), "data-optional min=\"0\"") + "</label><label>y " +
-                   num("plan.y", OptInt(w.plan_y), "data-optional min=\"0\"") + "</label><label>w " +
-                   num("plan.w", OptInt(w.plan_w), "data-optional min=\"1\"") + "</label><label>h " +
-                   num("plan.h", OptInt(w.plan_h), "data-optional min=\"1\"") +
+                   num("plan.x", OptInt(w.plan_x), "data-clear min=\"0\"") + "</label><label>y " +
+                   num("plan.y", OptInt(w.plan_y), "data-clear min=\"0\"") + "</label><label>w " +
+                   num("plan.w", OptInt(w.plan_w), "data-clear min=\"1\"") + "</label><label>h " +
+                   num("plan.h", OptInt(w.plan_h), "data-clear min=\"1\"") +
                    "</label></fieldset>",
                    Tr(v, "Save wall")) +
            ButtonForm("wall-remove-" + wid, "DELETE", url, "", Tr(v, "Remove wall"),
                       Fmt(Tr(v, "Remove the wall {1}?"), w.name)) +
            "</details>\n";
     }
+    // Hands-on (issue 31): the form's own heading (it read as the last wall's edit form).
+    b += "<h3 class=\"no-print\" id=\"new-wall-title\">" + Tr(v, "Add wall") + "</h3>\n";
     b += ApiForm("new-wall", "POST", "/api/gyms/" + gid + "/walls",
                  "<label>" + Tr(v, "Name") + " <input name=\"name\" id=\"wall-name\" required maxlength=\"100\">"
                  "</label><label>" + Tr(v, "Discipline") + " <select name=\"discipline\" id=\"wall-discipline\">"
@@ -208,6 +210,7 @@ std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<
                       Fmt(Tr(v, "Remove the circuit {1}?"), c.colour)) +
            "</details>\n";
     }
+    b += "<h3 class=\"no-print\" id=\"new-circuit-title\">" + Tr(v, "Add circuit") + "</h3>\n";
     b += ApiForm("new-circuit", "POST", "/api/gyms/" + gid + "/circuits",
                  "<label>" + Tr(v, "Colour") + " <input name=\"colour\" id=\"circuit-colour\" required "
                  "maxlength=\"40\"></label><label>" + Tr(v, "From") + " <input name=\"grade_from\" "
@@ -313,7 +316,8 @@ std::string WallActions(const app::Gym& gym, const app::Wall& wall,
   int planned = 0, on_wall = 0;
   const std::string planned_fields = seen(gym::RouteState::kPlanned, today, &planned);
   const std::string set_fields = seen(gym::RouteState::kSet, "", &on_wall);
-  return "<p class=\"wall-actions no-print\">" +
+  // A <div>: a <form> start tag closes an open <p> (the buttons fell out of it).
+  return "<div class=\"wall-actions no-print\">" +
          button("wall-set-today",
                 Hidden("from", gym::NameOf(gym::RouteState::kPlanned)) +
                     Hidden("to", gym::NameOf(gym::RouteState::kSet)) + Hidden("day", today) +
@@ -325,7 +329,7 @@ std::string WallActions(const app::Gym& gym, const app::Wall& wall,
                 Hidden("from", gym::NameOf(gym::RouteState::kSet)) +
                     Hidden("to", gym::NameOf(gym::RouteState::kStripped)) + set_fields,
                 on_wall, Tr(lang, "Strip this wall"), Fmt(Tr(lang, "Strip every route on {1}?"), wall.name)) +
-         "</p>\n";
+         "</div>\n";
 }
 
 // " (grade in another discipline's scale)" after a route's grade, or "".
@@ -435,7 +439,8 @@ std::string RouteGymBlock(const app::RouteView& r, const std::vector<app::Histor
                                 "\"></label>",
                             Tr(lang, label)) + " ";
     }
-    if (!buttons.empty()) b += "<p class=\"state-buttons\" id=\"route-state-buttons\">" + buttons + "</p>\n";
+    // A <div>: a <form> start tag closes an open <p> (the buttons fell out of it).
+    if (!buttons.empty()) b += "<div class=\"state-buttons\" id=\"route-state-buttons\">" + buttons + "</div>\n";
     b += ApiForm("route-gym-form", "PUT", url,
                  RevisionField(r.revision) +
                  "<label>" + Tr(lang, "State") + " <select name=\"state\" id=\"route-state-select\">" + states +

@@ -5,10 +5,12 @@
 #define SB_WEB_HANDLERS_H_
 
 #include <cstdint>
+#include <initializer_list>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "app/services.h"
 #include "app/types.h"
@@ -87,6 +89,15 @@ void ReplyJson(Response& res, int status, const nlohmann::json& body);
 // The body as a JSON object. kInvalidInput "malformed JSON body" or
 // "the body must be a JSON object".
 Result<nlohmann::json> BodyObject(const Request& req);
+// Issue 31: the fields a write accepts; one list per endpoint, beside its handler.
+using Fields = std::initializer_list<std::string_view>;
+// kInvalidInput "NAME: unknown field (accepted: a, b, c)" for the first field
+// of `obj` (in name order) not in `accepted`; `prefix` goes before NAME (a
+// nested object's "plan."). Ok when every field is accepted.
+Status OnlyFields(const nlohmann::json& obj, Fields accepted, std::string_view prefix = "");
+// BodyObject, then OnlyFields: a write never ignores a field it does not know
+// (`{"crdl", "grade"}` is refused naming "grade", not stored without it).
+Result<nlohmann::json> BodyObject(const Request& req, Fields accepted);
 Result<std::string> StringField(const nlohmann::json& body, const char* field);
 // `fallback` when absent; kInvalidInput when not a boolean.
 Result<bool> BoolField(const nlohmann::json& body, const char* field, bool fallback);

@@ -88,12 +88,18 @@ Result<app::ImportRequest> ImportRequestOf(const json& body) {
   return req;
 }
 
+// Issue 31: the fields each import accepts (anything else: 400 naming it).
+const Fields kGymImportFields = {"format", "data",  "file",         "mapping",
+                                 "guess",  "confirm", "strip_missing"};
+const Fields kCrdlImportFields = {"files", "gym"};
+const Fields kCrdlFileFields = {"name", "crdl"};
+
 }  // namespace
 
 void PostGymImport(Exchange& x) {
   Result<int64_t> gym = PathId(x.req, "no such gym");
   if (!gym.ok()) return ApiError(x, gym.status());
-  Result<json> body = BodyObject(x.req);
+  Result<json> body = BodyObject(x.req, kGymImportFields);
   if (!body.ok()) return ApiError(x, body.status());
   Result<bool> confirm = BoolField(*body, "confirm", false);
   if (!confirm.ok()) return ApiError(x, confirm.status());
@@ -153,7 +159,7 @@ void PostGymImport(Exchange& x) {
 }
 
 void PostImportCrdl(Exchange& x) {
-  Result<json> body = BodyObject(x.req);
+  Result<json> body = BodyObject(x.req, kCrdlImportFields);
   if (!body.ok()) return ApiError(x, body.status());
   if (!body->contains("files") || !(*body)["files"].is_array()) {
     return ApiError(x, Status::InvalidInput("files: expected an array of {\"name\",\"crdl\"}"));
@@ -162,6 +168,8 @@ void PostImportCrdl(Exchange& x) {
   size_t bytes = 0;
   for (const json& f : (*body)["files"]) {
     if (!f.is_object()) return ApiError(x, Status::InvalidInput("files: expected objects"));
+    const std::string at = "files[" + std::to_string(files.size()) + "].";
+    if (Status s = OnlyFields(f, kCrdlFileFields, at); !s.ok()) return ApiError(x, s);
     app::CrdlFile file;
     Result<std::string> crdl = StringField(f, "crdl");
     if (!crdl.ok()) return ApiError(x, crdl.status().WithPrefix("files[" + std::to_string(files.size()) + "]"));
@@ -178,7 +186,26 @@ void PostImportCrdl(Exchange& x) {
   Result<app::CrdlImportSummary> im =
       x.services.imports.ImportCrdlFiles(x.caller.viewer, files, gym->gym, gym->personal);
   if (!im.ok()) return ApiError(x, im.status());
-  ReplyJson(x.res, 201, json{{"imported", im->ids.size()}, {"ids", im->ids}, {"skipped", im->skipped}});
+  // Issue 31: the reply names the gym the routes went into (the same rule as
+  // the import's, Gyms::WriteGym; null: personal) and each new route, so the
+  // import page says where they are and links them.
+  json where = nullptr;
+  if (Result<std::optional<int64_t>> target =
+          x.services.gyms.WriteGym(x.caller.viewer, gym->gym, gym->personal, "add routes to it");
+      target.ok() && target->has_value()) {
+    if (Result<app::Gym> g = x.services.gyms.Get(x.caller.viewer, **target); g.ok()) {
+      where = json{{"id", g->id}, {"name", g->name}, {"url", "/gyms/" + std::to_string(g->id)}};
+    }
+  }
+  json routes = json::array();
+  for (int64_t id : im->ids) {
+    Result<app::RouteView> r = x.services.routes.Get(x.caller.viewer, id);
+    routes.push_back(json{{"id", id},
+                          {"name", r.ok() ? r->name : std::string()},
+                          {"url", "/routes/" + std::to_string(id)}});
+  }
+  ReplyJson(x.res, 201, json{{"imported", im->ids.size()}, {"ids", im->ids}, {"skipped", im->skipped},
+                             {"gym", where}, {"routes", routes}});
 }
 
 void PageGymImport(Exchange& x) {

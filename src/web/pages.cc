@@ -878,7 +878,7 @@ std::string ImportPage(const PageViewer& v) {
   if (v.logged_in) {
     b += "<section class=\"card\"><h2>" + Tr(v, "Import CRDL files") + "</h2><input type=\"file\" id=\"crdl-files\" "
          "accept=\".crdl,.txt\" multiple> <button type=\"button\" id=\"import-crdl\">" + Tr(v, "Import") +
-         "</button><p class=\"msg\" id=\"crdl-msg\"></p></section>\n";
+         "</button><p class=\"msg\" id=\"crdl-msg\"></p><div id=\"crdl-imported\" hidden></div></section>\n";
     b += "<section class=\"card\"><h2>" + Tr(v, "Import the original site's CSV export") + "</h2>"
          "<label>" + Tr(v, "routes CSV") + " <input type=\"file\" id=\"routes-csv\" accept=\".csv\"></label>"
          "<label>" + Tr(v, "moves CSV") + " <input type=\"file\" id=\"moves-csv\" accept=\".csv\"></label>"

@@ -18,6 +18,12 @@ using nlohmann::json;
 
 namespace {
 
+// Issue 31: the fields each setting-day write accepts (anything else: 400
+// naming it; the candidate is sent back as the proposal gave it).
+const Fields kProposeFields = {"date", "walls", "slots", "novelty", "candidates"};
+const Fields kDayStateFields = {"date", "from", "to", "on", "routes"};
+const Fields kAcceptFields = {"date", "wall", "setter", "name", "candidate"};
+
 std::string E(std::string_view s) { return XmlEscape(s); }
 
 void Html(Exchange& x, const std::string& html) {
@@ -178,7 +184,7 @@ std::vector<int64_t> WallsOfQuery(const Request& req) {
 void PostSettingDay(Exchange& x) {
   Result<int64_t> gym = PathId(x.req, "no such gym");
   if (!gym.ok()) return ApiError(x, gym.status());
-  Result<json> body = BodyObject(x.req);
+  Result<json> body = BodyObject(x.req, kProposeFields);
   if (!body.ok()) return ApiError(x, body.status());
   Result<app::SettingDayRequest> r = DayRequestOf(*body, *gym);
   if (!r.ok()) return ApiError(x, r.status());
@@ -200,7 +206,7 @@ void PostSettingDay(Exchange& x) {
 void PostSettingDayState(Exchange& x) {
   Result<int64_t> gym = PathId(x.req, "no such gym");
   if (!gym.ok()) return ApiError(x, gym.status());
-  Result<json> body = BodyObject(x.req);
+  Result<json> body = BodyObject(x.req, kDayStateFields);
   if (!body.ok()) return ApiError(x, body.status());
   const json& b = *body;
   app::DayStateChange c;
@@ -241,7 +247,7 @@ void PostSettingDayState(Exchange& x) {
 void PostSettingDayAccept(Exchange& x) {
   Result<int64_t> gym = PathId(x.req, "no such gym");
   if (!gym.ok()) return ApiError(x, gym.status());
-  Result<json> body = BodyObject(x.req);
+  Result<json> body = BodyObject(x.req, kAcceptFields);
   if (!body.ok()) return ApiError(x, body.status());
   const json& b = *body;
   app::AcceptRequest a;
