@@ -1,14 +1,20 @@
 #include "app/logbook.h"
 
 #include <algorithm>
+#include <atomic>
 #include <climits>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <ctime>
+#include <deque>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <set>
+#include <string>
+#include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "app/climber_policy.h"
@@ -52,9 +58,22 @@ bool IsSend(const std::string& outcome) { return outcome == "flash" || outcome =
 // The route's discipline for the fit (app/discipline.h, FitDiscipline).
 std::string DisciplineOf(const store::RouteRecord& r) { return FitDiscipline(r.grade_discipline); }
 
+// What a fit reads of a route (issue 34, memory: a full fit holds one per
+// route of the gym's discipline, not the whole record).
+struct GradedRoute {
+  std::string grade;
+  std::string grade_discipline;
+  std::optional<double> grade_value;
+  std::optional<int64_t> wall_id;
+};
+
+GradedRoute GradedOf(const store::RouteRecord& r) {
+  return GradedRoute{r.grade, r.grade_discipline, r.grade_value, r.wall_id};
+}
+
 // The scale a route's grade is written in (the discipline's default when
 // unreadable).
-grades::Scale ScaleOf(const store::RouteRecord& r, Discipline d) {
+grades::Scale ScaleOf(const GradedRoute& r, Discipline d) {
   if (!r.grade.empty()) {
     Result<grades::Grade> g = grades::ParseGrade(r.grade, {d, std::nullopt});
     if (g.ok()) return g->scale;
@@ -77,8 +96,8 @@ std::optional<double> FeltOn(const store::TickRecord& t, Discipline d) {
 // route's scale, the verdict against the setter's band and the felt-grade
 // consensus of `felt` (may be null). The one place a fit's numbers become an
 // AscentGrade (the full fit and the single-route update).
-AscentGrade MakeGrade(const std::string& discipline, Discipline d, const store::RouteRecord& r,
-                      int ticks, double value, double sd, const std::vector<double>* felt) {
+AscentGrade MakeGrade(const std::string& discipline, Discipline d, const GradedRoute& r, int ticks,
+                      double value, double sd, const std::vector<double>* felt) {
   const grades::Scale scale = ScaleOf(r, d);
   AscentGrade a;
   a.ticks = ticks;
@@ -170,6 +189,113 @@ std::string FitClimber(const std::string& climber, int64_t route, bool young) {
   return young ? "new:" + std::to_string(route) : climber;
 }
 
+// What a full fit keeps of one tick it read (issue 34, memory): 48 bytes
+// rather than a 406-byte record and its strings. The climber and the day
+// are indices into the read's lists (FitTicks); the outcome is parsed and
+// the felt grade put on the fit's axis (FeltOn) as the page is read.
+struct FitTick {
+  int64_t id = 0;
+  int64_t route_id = 0;
+  double felt = 0;  // when has_felt
+  int32_t revision = 0;
+  int32_t climber = 0;
+  int32_t day = 0;
+  int32_t attempts = 0;  // when has_attempts
+  int8_t outcome = -1;   // a grades::TickOutcome; -1: unreadable (not counted)
+  bool has_attempts = false;
+  bool has_felt = false;
+  bool aged = false;  // created at or before the fit's history age
+};
+
+// A discipline's ticks as a full fit keeps them, by id, filled one page of
+// the store's read at a time (TickStore::EachGymDisciplineTicksPage). A
+// deque: it grows without copying what it holds (a vector's doubling would
+// hold two copies at its peak).
+struct FitTicks {
+  std::deque<FitTick> ticks;
+  std::vector<std::string> climbers;  // index -> climber key
+  std::vector<std::string> days;      // index -> "YYYY-MM-DD"
+  std::unordered_map<std::string, int32_t> climber_ids, day_ids;
+
+  static int32_t Intern(const std::string& s, std::unordered_map<std::string, int32_t>* ids,
+                        std::vector<std::string>* names) {
+    auto [it, inserted] = ids->emplace(s, static_cast<int32_t>(names->size()));
+    if (inserted) names->push_back(s);
+    return it->second;
+  }
+  // Keeps `t` (a tick in state "ok", as the fit's read returns them).
+  void Add(const store::TickRecord& t, Discipline d, const std::string& aged) {
+    FitTick f;
+    f.id = t.id;
+    f.route_id = t.route_id;
+    f.revision = t.revision;
+    f.climber = Intern(t.climber, &climber_ids, &climbers);
+    f.day = Intern(t.day, &day_ids, &days);
+    if (t.attempts) {
+      f.has_attempts = true;
+      f.attempts = *t.attempts;
+    }
+    if (Result<grades::TickOutcome> o = grades::ParseTickOutcome(t.outcome); o.ok()) {
+      f.outcome = static_cast<int8_t>(*o);
+    }
+    if (std::optional<double> felt = FeltOn(t, d)) {
+      f.has_felt = true;
+      f.felt = *felt;
+    }
+    f.aged = t.state == gym::TickState::kOk && t.created_at <= aged;
+    ticks.push_back(f);
+  }
+  // As CountedOf for the record `f` was made from.
+  std::optional<Counted> CountedOf(const FitTick& f, bool young) const {
+    if (f.outcome < 0) return std::nullopt;
+    Result<grades::Games> g =
+        grades::TickGames(static_cast<grades::TickOutcome>(f.outcome),
+                          f.has_attempts ? std::optional<int>(f.attempts) : std::nullopt);
+    if (!g.ok()) return std::nullopt;
+    if (young) {
+      const bool sent = g->wins > 0;
+      return Counted{grades::Games{sent ? 1 : 0, sent ? 0 : 1}, std::nullopt, days[size_t(f.day)]};
+    }
+    return Counted{*g, f.has_felt ? std::optional<double>(f.felt) : std::nullopt,
+                   days[size_t(f.day)]};
+  }
+};
+
+// Issue 34 (memory): a big gym's full fit holds its discipline's ticks and
+// rating problem for seconds; at most one such fit runs at a time in the
+// process (two disciplines', or a reader's first fit beside a background
+// refit, would hold both transients at once).
+std::mutex& BigFitGate() {
+  static std::mutex gate;
+  return gate;
+}
+std::atomic<int> big_fits_now{0}, big_fits_most{0};
+
+// One big fit's turn at BigFitGate (taken by Take, let go by Release or on
+// leaving the scope, error returns too).
+class BigFitTurn {
+ public:
+  BigFitTurn() = default;
+  ~BigFitTurn() { Release(); }
+  BigFitTurn(const BigFitTurn&) = delete;
+  BigFitTurn& operator=(const BigFitTurn&) = delete;
+  void Take() {
+    lock_.lock();
+    const int now = ++big_fits_now;
+    int most = big_fits_most.load();
+    while (now > most && !big_fits_most.compare_exchange_weak(most, now)) {
+    }
+  }
+  void Release() {
+    if (!lock_.owns_lock()) return;
+    --big_fits_now;
+    lock_.unlock();
+  }
+
+ private:
+  std::unique_lock<std::mutex> lock_{BigFitGate(), std::defer_lock};
+};
+
 }  // namespace
 
 // The full fit's data the single-route update reads and keeps current: the
@@ -195,6 +321,40 @@ struct FitState {
 using logbook_internal::FitState;
 
 namespace {
+
+// What a cached fit is charged against LogbookPolicy::fit_cache_bytes: an
+// estimate of what its grades and its state hold (issue 34: entries by
+// their size, so a gym of 250,000 ticks counts for what it holds and a
+// throw-away gym for little). Map nodes are counted at 48 bytes beside
+// their values; strings at their capacity past the in-place 15 bytes.
+int64_t FitBytes(const std::map<int64_t, AscentGrade>& grades, const FitState* s) {
+  constexpr int64_t kNode = 48;
+  auto text = [](const std::string& t) -> int64_t {
+    return t.capacity() > 15 ? static_cast<int64_t>(t.capacity()) + 1 : 0;
+  };
+  int64_t n = 0;
+  for (const auto& [id, g] : grades) {
+    n += kNode + static_cast<int64_t>(sizeof(id) + sizeof(g)) + text(g.discipline) + text(g.grade) +
+         text(g.lo_grade) + text(g.hi_grade) + text(g.verdict) + text(g.felt_median) +
+         text(g.scale);
+  }
+  if (s == nullptr) return n;
+  auto vec = [](const auto& v) -> int64_t {
+    return static_cast<int64_t>(v.capacity() * sizeof(v[0]));
+  };
+  const grades::RatingProblem& p = s->problem;
+  n += vec(p.pairs) + vec(p.setter) + vec(p.felt_sum) + vec(p.felt_count) + vec(p.route_ticks) +
+       vec(p.climber_ticks);
+  n += vec(s->fit.difficulty) + vec(s->fit.difficulty_sd) + vec(s->fit.ability) +
+       vec(s->fit.ability_sd);
+  for (const auto& [k, v] : s->climbers) n += kNode + int64_t(sizeof(k) + sizeof(v)) + text(k);
+  n += static_cast<int64_t>(s->routes.size()) * (kNode + 16);
+  for (const auto& [k, v] : s->felt) n += kNode + int64_t(sizeof(k) + sizeof(v)) + vec(v);
+  for (const auto& [k, v] : s->last_day) {
+    n += kNode + int64_t(sizeof(k) + sizeof(v)) + text(k) + text(v);
+  }
+  return n;
+}
 
 // Replaces `route`'s pairs in the problem's (route, climber)-sorted pairs by
 // `pairs` (this route's, any order; empty ones dropped).
@@ -338,7 +498,7 @@ Result<std::optional<AscentGrade>> Absorb(FitState* s, const store::RouteRecord&
   if (e.ticks <= 0) return std::optional<AscentGrade>();
   SB_ASSIGN_OR_RETURN(grades::RouteRating rating, RateJointly(s, e, route, c));
   return std::optional<AscentGrade>(
-      MakeGrade(discipline, d, r, e.ticks, rating.value, rating.sd, &felt));
+      MakeGrade(discipline, d, GradedOf(r), e.ticks, rating.value, rating.sd, &felt));
 }
 
 }  // namespace
@@ -684,6 +844,15 @@ size_t Logbook::CachedFits() {
   return cache_.size();
 }
 
+int Logbook::MostBigFitsAtOnce() { return big_fits_most.load(); }
+
+int64_t Logbook::CachedFitBytes() {
+  std::lock_guard<std::mutex> lock(mu_);
+  int64_t total = 0;
+  for (const auto& [key, e] : cache_) total += e.bytes;
+  return total;
+}
+
 void Logbook::RunFlight(const Key& key, const std::shared_ptr<Flight>& flight) {
   Status st = DoFlight(key, flight.get());
   if (!st.ok()) LogError("ascent grades of gym " + std::to_string(key.first) + ": " + st.message());
@@ -717,43 +886,51 @@ Status Logbook::DoFlight(const Key& key, Flight* flight) {
   // longer reads the whole gym's), and of the other disciplines only each
   // identity's count of aged routes (one grouped row per climber).
   const std::string aged = TimeText(clock_->Now() - policy_.history_age_seconds);
-  Result<std::vector<store::TickRecord>> read = ticks_->GymDisciplineTicks(gym_id, discipline);
+  // Issue 34 (memory): a big gym's fit waits for any other big fit to end.
+  BigFitTurn turn;
+  if (version.ticks >= policy_.fit_background_min_ticks) turn.Take();
+  // The ticks page by page into their compact form (the records of one
+  // page at a time, never the gym's as one vector).
+  FitTicks all;  // by id
+  Status read = ticks_->EachGymDisciplineTicksPage(gym_id, discipline,
+                                                   [&](std::vector<store::TickRecord>& page) {
+                                                     for (const store::TickRecord& t : page)
+                                                       all.Add(t, d, aged);
+                                                     return Status::Ok();
+                                                   });
   Result<std::map<std::string, int64_t>> aged_counts =
       read.ok() ? ticks_->AgedRouteCounts(gym_id, aged)
-                : Result<std::map<std::string, int64_t>>(read.status());
+                : Result<std::map<std::string, int64_t>>(read);
   if (!read.ok() || !aged_counts.ok()) {
     std::lock_guard<std::mutex> lock(mu_);
     flight->recording = false;
     flight->replay.clear();
-    return read.ok() ? aged_counts.status() : read.status();
+    return read.ok() ? aged_counts.status() : read;
   }
-  const std::vector<store::TickRecord> all = std::move(read).value();  // by id
   {
     std::lock_guard<std::mutex> lock(mu_);
-    ticks_read_ += all.size();
+    ticks_read_ += all.ticks.size();
   }
   bool kept_class = false;
   if (store::GymStore* gyms = store::GymStoreOf(store_)) {
     Result<std::vector<store::MemberRecord>> members = gyms->ListMembers(gym_id);
     kept_class = members.ok() && !members->empty();
   }
-  // Routes of this discipline with ticks, dense indices in id order.
-  std::map<int64_t, store::RouteRecord> routes;
+  // Routes of this discipline with ticks, dense indices in id order (a
+  // route that cannot be read counts none of its ticks).
+  std::map<int64_t, GradedRoute> routes;
+  {
+    std::set<int64_t> ids;
+    for (const FitTick& t : all.ticks) ids.insert(t.route_id);
+    for (int64_t id : ids) {
+      Result<store::RouteRecord> r = store_->GetRoute(id);
+      if (r.ok()) routes.emplace(id, GradedOf(*r));
+    }
+  }
   std::map<int64_t, int> route_index;
   std::map<std::string, int> climber_index;
-  std::vector<const store::TickRecord*> used;
-  for (const store::TickRecord& t : all) {
-    auto it = routes.find(t.route_id);
-    if (it == routes.end()) {
-      Result<store::RouteRecord> r = store_->GetRoute(t.route_id);
-      if (!r.ok()) continue;
-      it = routes.emplace(t.route_id, std::move(*r)).first;
-    }
-    if (DisciplineOf(it->second) != discipline) continue;
-    used.push_back(&t);
-  }
   for (const auto& [id, r] : routes) {
-    if (DisciplineOf(r) != discipline) continue;
+    if (FitDiscipline(r.grade_discipline) != discipline) continue;
     route_index.emplace(id, static_cast<int>(route_index.size()));
   }
   grades::RatingProblemBuilder b;
@@ -765,41 +942,58 @@ Status Logbook::DoFlight(const Key& key, Flight* flight) {
   // than history_routes besides a route, its tick there counts as the
   // route's pool of new identities (CountedOf's one game, no felt grade).
   // Whether the route itself is among them is known from this
-  // discipline's ticks (the route is of this discipline).
-  std::map<std::string, std::set<int64_t>> aged_here;
-  for (const store::TickRecord& t : all) {
-    if (t.state == gym::TickState::kOk && t.created_at <= aged) aged_here[t.climber].insert(t.route_id);
+  // discipline's ticks (the route is of this discipline): `aged_here`, the
+  // (climber, route) pairs with an aged tick, sorted.
+  std::vector<std::pair<int32_t, int64_t>> aged_here;
+  for (const FitTick& t : all.ticks) {
+    if (t.aged) aged_here.emplace_back(t.climber, t.route_id);
   }
-  auto young = [&](const store::TickRecord& t) {
-    auto n = aged_counts->find(t.climber);
-    int64_t others = n == aged_counts->end() ? 0 : n->second;
-    if (auto h = aged_here.find(t.climber); h != aged_here.end() && h->second.count(t.route_id)) {
+  std::sort(aged_here.begin(), aged_here.end());
+  aged_here.erase(std::unique(aged_here.begin(), aged_here.end()), aged_here.end());
+  aged_here.shrink_to_fit();
+  std::vector<int64_t> aged_count(all.climbers.size(), 0);  // per climber index
+  for (size_t i = 0; i < all.climbers.size(); ++i) {
+    if (auto n = aged_counts->find(all.climbers[i]); n != aged_counts->end()) {
+      aged_count[i] = n->second;
+    }
+  }
+  auto young = [&](const FitTick& t) {
+    int64_t others = aged_count[size_t(t.climber)];
+    if (std::binary_search(aged_here.begin(), aged_here.end(),
+                           std::pair<int32_t, int64_t>(t.climber, t.route_id))) {
       --others;
     }
     return others < policy_.history_routes;
   };
-  for (const store::TickRecord* t : used) {
-    const bool is_young = young(*t);
-    std::optional<Counted> counted = CountedOf(*t, d, is_young);
+  size_t used = 0;
+  for (const FitTick& t : all.ticks) used += route_index.count(t.route_id);
+  b.Reserve(used);
+  for (const FitTick& t : all.ticks) {
+    auto ri = route_index.find(t.route_id);
+    if (ri == route_index.end()) continue;  // unread, or of another discipline now
+    const bool is_young = young(t);
+    std::optional<Counted> counted = all.CountedOf(t, is_young);
     if (!counted) continue;
-    auto [c, inserted] = climber_index.emplace(FitClimber(t->climber, t->route_id, is_young),
-                                               static_cast<int>(climber_index.size()));
+    auto [c, inserted] =
+        climber_index.emplace(FitClimber(all.climbers[size_t(t.climber)], t.route_id, is_young),
+                              static_cast<int>(climber_index.size()));
     (void)inserted;
-    if (counted->felt) felt[t->route_id].push_back(*counted->felt);
-    b.AddTick(c->second, route_index.at(t->route_id), counted->games, counted->felt);
+    if (counted->felt) felt[t.route_id].push_back(*counted->felt);
+    b.AddTick(c->second, ri->second, counted->games, counted->felt);
     // Issue 35: a session's length as `ratings predict` counts it (a known
     // count of tries; a flash is one), and when each climber last ticked.
-    if (t->attempts) {
-      b.AddSessionTries(*t->attempts);
-    } else if (t->outcome == "flash") {
+    if (t.has_attempts) {
+      b.AddSessionTries(t.attempts);
+    } else if (t.outcome == static_cast<int8_t>(grades::TickOutcome::kFlash)) {
       b.AddSessionTries(1);
     }
     std::string& last = last_day[c->first];
-    last = std::max(last, t->day);
+    last = std::max(last, all.days[size_t(t.day)]);
   }
+  aged_here = {};
   b.EnsureClimbers(static_cast<int>(climber_index.size()));
   for (const auto& [id, idx] : route_index) {
-    const store::RouteRecord& r = routes.at(id);
+    const GradedRoute& r = routes.at(id);
     if (r.grade_value && r.grade_discipline == discipline) b.SetSetterGrade(idx, *r.grade_value);
   }
   auto fit = std::make_shared<Fit>();
@@ -829,6 +1023,8 @@ Status Logbook::DoFlight(const Key& key, Flight* flight) {
   }
   // Publish under the tick lock: the ticks written during the fit are
   // replayed into it first, so it is current for the latest of them.
+  routes.clear();
+  turn.Release();
   tlock.lock();
   std::lock_guard<std::mutex> lock(mu_);
   flight->recording = false;
@@ -837,9 +1033,11 @@ Status Logbook::DoFlight(const Key& key, Flight* flight) {
     if (DisciplineOf(r.route) != discipline) continue;
     // Already in the read (written after the recording began, before the
     // read's snapshot): counted once.
-    auto seen = std::lower_bound(all.begin(), all.end(), r.saved.id,
-                                 [](const store::TickRecord& t, int64_t id) { return t.id < id; });
-    if (seen != all.end() && seen->id == r.saved.id && seen->revision >= r.saved.revision) continue;
+    auto seen = std::lower_bound(all.ticks.begin(), all.ticks.end(), r.saved.id,
+                                 [](const FitTick& t, int64_t id) { return t.id < id; });
+    if (seen != all.ticks.end() && seen->id == r.saved.id && seen->revision >= r.saved.revision) {
+      continue;
+    }
     std::optional<Counted> add = CountedOf(r.saved, d, r.young), remove;
     if (r.old) remove = CountedOf(*r.old, d, r.young);
     if (!add && !remove) continue;
@@ -868,13 +1066,23 @@ Status Logbook::DoFlight(const Key& key, Flight* flight) {
     flight->result = std::move(fit);
     return Status::Ok();
   }
+  const int64_t bytes = FitBytes(*fit->base, state.get());
   CachedFit entry{version, fit, std::move(state), ++uses_};
   entry.fitted_ticks = fitted_ticks;
+  entry.bytes = bytes;
   entry.kept = kept_class && fitted_ticks >= policy_.fit_keep_min_ticks;
   cache_[key] = std::move(entry);
   // Over the budget: the least recently used entry goes, those of throw-away
   // gyms (no members, few ticks) before any kept one.
-  while (static_cast<int>(cache_.size()) > policy_.fit_cache_entries) {
+  // Issue 34: the same while the entries are charged more than
+  // fit_cache_bytes.
+  auto charged = [this] {
+    int64_t total = 0;
+    for (const auto& [k, e] : cache_) total += e.bytes;
+    return total;
+  };
+  while (static_cast<int>(cache_.size()) > policy_.fit_cache_entries ||
+         charged() > policy_.fit_cache_bytes) {
     auto victim = std::min_element(cache_.begin(), cache_.end(), [](const auto& a, const auto& b) {
       return std::pair(a.second.kept, a.second.used) < std::pair(b.second.kept, b.second.used);
     });

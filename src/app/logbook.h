@@ -73,6 +73,11 @@ struct LogbookPolicy {
   // 16, wall pages of the chain refitted a gym on most requests, 15-40 s
   // each); an entry holds one grade per ticked route (~10,500 at chain scale).
   int fit_cache_entries = 48;
+  // Issue 34 (memory): the cache's entries are also charged by their size
+  // (the grades and the single-route update's state, Logbook's estimate),
+  // and the least recently used go (throw-away gyms' first) while they hold
+  // more than this.
+  int64_t fit_cache_bytes = int64_t{256} << 20;
   // The single-route update (docs/grades.md, "A new tick"): a tick logged
   // while its (gym, discipline) fit is cached updates that route's grade in
   // place (grades::RateRoute, the climbers held at the fit's abilities)
@@ -292,6 +297,14 @@ class Logbook {
   void WaitForRefits();
   // How many fits are cached (tests). Thread-safe.
   size_t CachedFits();
+  // The bytes the cached fits are charged (LogbookPolicy::fit_cache_bytes).
+  // Thread-safe.
+  int64_t CachedFitBytes();
+  // Issue 34 (memory): a big gym's full fit (fit_background_min_ticks tick
+  // writes or more) holds its ticks and problem for seconds, so at most one
+  // runs at a time in the process, whichever logbook and thread runs it.
+  // The most that ever ran at once in this process (tests). Thread-safe.
+  static int MostBigFitsAtOnce();
 
   ~Logbook();
   Logbook(const Logbook&) = delete;
@@ -332,6 +345,7 @@ class Logbook {
     int64_t fitted_ticks = 0;  // ticks the full fit counted
     bool kept = false;         // a gym with members and fit_keep_min_ticks
     int64_t stale_since = 0;   // clock time a reader first saw it stale; 0 = not
+    int64_t bytes = 0;         // charged against fit_cache_bytes (its full fit's size)
   };
   // A tick written while a refit of its gym was under way: replayed into the
   // refit's state before the refit is published (so it is current at once).

@@ -5,17 +5,20 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <cstdint>
-#include <atomic>
 #include <cstdio>
 #include <map>
+#include <memory>
 #include <set>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "app/discipline.h"
 #include "app/logbook_fixture.h"
+#include "base/date.h"
 #include "grades/ratings.h"
 #include "grades/ratings_synth.h"
 #include "grades/scale.h"
@@ -512,6 +515,176 @@ TEST_F(SyntheticGymTest, TheFitIsTheSameReadInPagesOfThreeTicks) {
     EXPECT_EQ(whole[i].felt_votes, paged[i].felt_votes) << i;
     EXPECT_EQ(whole[i].felt_median, paged[i].felt_median) << i;
   }
+}
+
+// Issue 34 (memory): the old fit, made from the discipline's ticks held as
+// one vector of records (main at 70c1919's Logbook::DoFlight, kept here as
+// the reference): each route's difficulty and its standard deviation.
+std::map<int64_t, std::pair<double, double>> RecordsFit(store::Store* store, int64_t gym,
+                                                        const std::string& discipline,
+                                                        const std::string& aged,
+                                                        int history_routes) {
+  std::map<int64_t, std::pair<double, double>> out;
+  store::TickStore* ticks = store::TickStoreOf(store);
+  Result<grades::Discipline> d = grades::ParseDiscipline(discipline);
+  Result<std::vector<store::TickRecord>> all = ticks->GymDisciplineTicks(gym, discipline);
+  Result<std::map<std::string, int64_t>> aged_counts = ticks->AgedRouteCounts(gym, aged);
+  EXPECT_TRUE(d.ok() && all.ok() && aged_counts.ok());
+  if (!d.ok() || !all.ok() || !aged_counts.ok()) return out;
+  std::map<int64_t, store::RouteRecord> routes;
+  std::vector<const store::TickRecord*> used;
+  for (const store::TickRecord& t : *all) {
+    auto it = routes.find(t.route_id);
+    if (it == routes.end()) it = routes.emplace(t.route_id, *store->GetRoute(t.route_id)).first;
+    if (FitDiscipline(it->second.grade_discipline) == discipline) used.push_back(&t);
+  }
+  std::map<int64_t, int> route_index;
+  for (const auto& [id, r] : routes) {
+    if (FitDiscipline(r.grade_discipline) == discipline) {
+      route_index.emplace(id, static_cast<int>(route_index.size()));
+    }
+  }
+  std::map<std::string, std::set<int64_t>> aged_here;
+  for (const store::TickRecord& t : *all) {
+    if (t.state == gym::TickState::kOk && t.created_at <= aged) aged_here[t.climber].insert(t.route_id);
+  }
+  grades::RatingProblemBuilder b;
+  b.EnsureRoutes(static_cast<int>(route_index.size()));
+  std::map<std::string, int> climber_index;
+  for (const store::TickRecord* t : used) {
+    auto n = aged_counts->find(t->climber);
+    int64_t others = n == aged_counts->end() ? 0 : n->second;
+    if (aged_here[t->climber].count(t->route_id)) --others;
+    const bool young = others < history_routes;
+    Result<grades::TickOutcome> o = grades::ParseTickOutcome(t->outcome);
+    if (!o.ok()) continue;
+    Result<grades::Games> g = grades::TickGames(*o, t->attempts);
+    if (!g.ok()) continue;
+    std::optional<double> felt;
+    if (young) {
+      const bool sent = g->wins > 0;
+      *g = grades::Games{sent ? 1 : 0, sent ? 0 : 1};
+    } else if (t->felt_value && t->felt_discipline == discipline) {
+      felt = t->felt_value;
+    }
+    const std::string key = young ? "new:" + std::to_string(t->route_id) : t->climber;
+    auto c = climber_index.emplace(key, static_cast<int>(climber_index.size())).first;
+    b.AddTick(c->second, route_index.at(t->route_id), *g, felt);
+    if (t->attempts) {
+      b.AddSessionTries(*t->attempts);
+    } else if (t->outcome == "flash") {
+      b.AddSessionTries(1);
+    }
+  }
+  b.EnsureClimbers(static_cast<int>(climber_index.size()));
+  for (const auto& [id, idx] : route_index) {
+    const store::RouteRecord& r = routes.at(id);
+    if (r.grade_value && r.grade_discipline == discipline) b.SetSetterGrade(idx, *r.grade_value);
+  }
+  Result<grades::RatingFit> fit = grades::FitRatings(b.Build(), grades::RatingParams::For(*d));
+  EXPECT_TRUE(fit.ok());
+  if (!fit.ok()) return out;
+  for (const auto& [id, idx] : route_index) {
+    out[id] = {fit->difficulty[size_t(idx)], fit->difficulty_sd[size_t(idx)]};
+  }
+  return out;
+}
+
+// Issue 34 (memory): the fit consumes the store's pages of ticks into a
+// compact form (app/logbook.cc FitTicks) instead of holding the gym's ticks
+// as one vector of records. Its grades are the records' fit's, value for
+// value, read in pages of 10,000 or of 2, with some identities pooled as new
+// (only the warm-up ticks are old enough here).
+TEST_F(SyntheticGymTest, ThePagedCompactFitIsTheFitOfTheRecords) {
+  {
+    Logbook writer(store_.get(), &clock_);
+    ASSERT_NO_FATAL_FAILURE(Populate(writer));
+  }
+  LogbookPolicy policy;
+  policy.history_age_seconds = 3 * 86400;
+  const std::string aged = UtcTimeText(clock_.Now() - policy.history_age_seconds);
+  std::map<int64_t, std::pair<double, double>> want =
+      RecordsFit(store_.get(), gym_, "bouldering", aged, policy.history_routes);
+  for (const auto& [id, v] : RecordsFit(store_.get(), gym_, "roped", aged, policy.history_routes)) {
+    want[id] = v;
+  }
+  ASSERT_EQ(want.size(), boulders_.size() + 1);
+  // Some identities are pooled as new: the fit differs from one where none is.
+  EXPECT_NE(want.at(boulders_[0]),
+            RecordsFit(store_.get(), gym_, "bouldering", aged, 0).at(boulders_[0]));
+  for (int64_t page : {int64_t{10000}, int64_t{2}}) {
+    const int64_t before = store::SetGymTickPageForTesting(page);
+    Logbook fresh(store_.get(), &clock_, policy);
+    for (const auto& [id, v] : want) {
+      Result<AscentGrade> a = fresh.Ascent(Anonymous(), id);
+      ASSERT_TRUE(a.ok()) << a.status().message();
+      EXPECT_EQ(a->value, v.first) << id << " page " << page;
+      EXPECT_EQ(a->lo, v.first - grades::kZ80 * v.second) << id << " page " << page;
+      EXPECT_EQ(a->hi, v.first + grades::kZ80 * v.second) << id << " page " << page;
+    }
+    store::SetGymTickPageForTesting(before);
+    EXPECT_EQ(fresh.FullFits(), 2u);
+  }
+}
+
+// Issue 34 (memory): big fits run one at a time in the process: four
+// logbooks (as after a restart, or readers of two disciplines) fitting the
+// gym at once, every gym counting as big, never ran two together.
+TEST_F(SyntheticGymTest, BigFitsRunOneAtATime) {
+  {
+    Logbook writer(store_.get(), &clock_);
+    ASSERT_NO_FATAL_FAILURE(Populate(writer));
+  }
+  LogbookPolicy policy;
+  policy.fit_background_min_ticks = 1;
+  std::vector<std::unique_ptr<Logbook>> books;
+  for (int i = 0; i < 4; ++i)
+    books.push_back(std::make_unique<Logbook>(store_.get(), &clock_, policy));
+  std::vector<std::thread> readers;
+  std::atomic<int> fitted{0};
+  for (int i = 0; i < 4; ++i) {
+    readers.emplace_back([&, i] {
+      Result<AscentGrade> a = books[size_t(i)]->Ascent(Anonymous(), i % 2 ? rope_ : boulders_[0]);
+      if (a.ok() && a->fitted) ++fitted;
+    });
+  }
+  for (std::thread& t : readers) t.join();
+  EXPECT_EQ(fitted.load(), 4);
+  EXPECT_EQ(Logbook::MostBigFitsAtOnce(), 1);
+}
+
+// Issue 34 (memory): the fit cache is bounded in bytes too: entries are
+// charged by their size, and past fit_cache_bytes the least recently used
+// goes (never the one just made).
+TEST_F(SyntheticGymTest, TheFitCacheIsBoundedInBytes) {
+  {
+    Logbook writer(store_.get(), &clock_);
+    ASSERT_NO_FATAL_FAILURE(Populate(writer));
+  }
+  int64_t both = 0;
+  {
+    Logbook book(store_.get(), &clock_);
+    ASSERT_TRUE(book.Ascent(Anonymous(), boulders_[0]).ok());
+    const int64_t boulder = book.CachedFitBytes();
+    EXPECT_GT(boulder, 8 * 1000);  // 8 routes' grades and the state at least
+    ASSERT_TRUE(book.Ascent(Anonymous(), rope_).ok());
+    both = book.CachedFitBytes();
+    EXPECT_GT(both, boulder);
+    EXPECT_EQ(book.CachedFits(), 2u);
+  }
+  LogbookPolicy policy;
+  policy.fit_cache_bytes = both - 1;
+  Logbook book(store_.get(), &clock_, policy);
+  ASSERT_TRUE(book.Ascent(Anonymous(), rope_).ok());
+  ASSERT_TRUE(book.Ascent(Anonymous(), boulders_[0]).ok());
+  // The roped fit went (12 ticks: below fit_keep_min_ticks, so it goes
+  // before a kept entry; it would anyway, as the least recently used).
+  EXPECT_EQ(book.CachedFits(), 1u);
+  EXPECT_LT(book.CachedFitBytes(), both);
+  ASSERT_TRUE(book.Ascent(Anonymous(), boulders_[0]).ok());
+  EXPECT_EQ(book.FullFits(), 2u);  // the bouldering one kept
+  ASSERT_TRUE(book.Ascent(Anonymous(), rope_).ok());
+  EXPECT_EQ(book.FullFits(), 3u);  // the roped one refitted
 }
 
 // Issue 34, grades no one can push: a V3 route with ten honest ticks from

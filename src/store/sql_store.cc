@@ -999,6 +999,12 @@ class SqlStore final : public Store, public GymStore, public TickStore, public T
     SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
     return ticks_sql::GymDisciplineTicks(*c, gym_id, discipline);
   }
+  Status EachGymDisciplineTicksPage(
+      int64_t gym_id, const std::string& discipline,
+      const std::function<Status(std::vector<TickRecord>&)>& page) override {
+    SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());
+    return ticks_sql::EachGymDisciplineTicksPage(*c, gym_id, discipline, page);
+  }
   Result<std::map<std::string, int64_t>> AgedRouteCounts(
       int64_t gym_id, const std::string& created_until) override {
     SB_ASSIGN_OR_RETURN(sql::Pool::Lease c, pool_->Acquire());

@@ -45,26 +45,38 @@ std::vector<TickRecord> ReadFit(const Rows& r, int64_t gym_id) {
 
 }  // namespace
 
-Result<std::vector<TickRecord>> GymDisciplineTicks(sql::Connection& c, int64_t gym_id,
-                                                   const std::string& discipline) {
+Status EachGymDisciplineTicksPage(sql::Connection& c, int64_t gym_id, const std::string& discipline,
+                                  const std::function<Status(std::vector<TickRecord>&)>& page) {
   // As GymTicks (issue 34, memory under load): on both backends in pages of
   // ids (keyset on (gym_id, id), index ticks_gym_id), so the text rows of a
-  // big gym are never all held beside the records.
+  // big gym are never all held beside the records, and (this callback) the
+  // records of one page at a time.
   const int64_t page_size = GymTickPage();
-  std::vector<TickRecord> out;
   int64_t after = 0;
   for (;;) {
     SB_ASSIGN_OR_RETURN(Rows r, c.Query(std::string(kFitSelect) +
                                             " AND t.id > ? ORDER BY t.id LIMIT ?",
                                         {gym_id, discipline, after, page_size}));
-    std::vector<TickRecord> page = ReadFit(r, gym_id);
+    std::vector<TickRecord> records = ReadFit(r, gym_id);
     r = Rows();  // the page's text rows go before the next page is read
-    if (page.empty()) break;
-    after = page.back().id;
-    out.insert(out.end(), std::make_move_iterator(page.begin()),
-               std::make_move_iterator(page.end()));
-    if (static_cast<int64_t>(page.size()) < page_size) break;
+    if (records.empty()) break;
+    after = records.back().id;
+    const bool last = static_cast<int64_t>(records.size()) < page_size;
+    SB_RETURN_IF_ERROR(page(records));
+    if (last) break;
   }
+  return Status::Ok();
+}
+
+Result<std::vector<TickRecord>> GymDisciplineTicks(sql::Connection& c, int64_t gym_id,
+                                                   const std::string& discipline) {
+  std::vector<TickRecord> out;
+  SB_RETURN_IF_ERROR(
+      EachGymDisciplineTicksPage(c, gym_id, discipline, [&out](std::vector<TickRecord>& records) {
+        out.insert(out.end(), std::make_move_iterator(records.begin()),
+                   std::make_move_iterator(records.end()));
+        return Status::Ok();
+      }));
   return out;
 }
 

@@ -7,6 +7,7 @@
 #define SB_STORE_TICK_FIT_SQL_H_
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -16,9 +17,12 @@
 
 namespace sb::store::ticks_sql {
 
-// As TickStore::GymDisciplineTicks and TickStore::AgedRouteCounts, on `c`.
+// As TickStore::GymDisciplineTicks, EachGymDisciplineTicksPage and
+// AgedRouteCounts, on `c`.
 Result<std::vector<TickRecord>> GymDisciplineTicks(sql::Connection& c, int64_t gym_id,
                                                    const std::string& discipline);
+Status EachGymDisciplineTicksPage(sql::Connection& c, int64_t gym_id, const std::string& discipline,
+                                  const std::function<Status(std::vector<TickRecord>&)>& page);
 Result<std::map<std::string, int64_t>> AgedRouteCounts(sql::Connection& c, int64_t gym_id,
                                                        const std::string& created_until);
 

@@ -8,6 +8,7 @@
 #define SB_STORE_TICK_STORE_H_
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -91,6 +92,15 @@ class TickStore {
   // felt_value, state, created_at, revision; the rest default).
   virtual Result<std::vector<TickRecord>> GymDisciplineTicks(int64_t gym_id,
                                                              const std::string& discipline) = 0;
+  // The same ticks in the same order, handed to `page` one page at a time
+  // (the page GymTicks reads, store/tick_page.h) instead of held as one
+  // vector (issue 34, memory: the fit keeps ~48 bytes of each, not a record
+  // and its strings). `page` may move from the records; it must not call
+  // this store (a connection is held while it runs). A non-OK status from
+  // `page` stops the read and is returned.
+  virtual Status EachGymDisciplineTicksPage(
+      int64_t gym_id, const std::string& discipline,
+      const std::function<Status(std::vector<TickRecord>& page)>& page) = 0;
   // Per climber of the gym (any discipline): how many distinct routes it
   // has ticks in state "ok" on created at or before `created_until`
   // ("YYYY-MM-DD HH:MM:SS"); climbers with none are absent. One grouped

@@ -203,6 +203,26 @@ TEST_P(TickStoreTest, AFitReadsOnlyItsDisciplinesTicks) {
   ASSERT_EQ(paged->size(), 2u);
   EXPECT_EQ((*paged)[0].id, (*boulder)[0].id);
   EXPECT_EQ((*paged)[1].id, (*boulder)[1].id);
+  // Issue 34 (memory): the same ticks handed over a page at a time, pages of
+  // one tick here; an error from the callback stops the read.
+  SetGymTickPageForTesting(1);
+  std::vector<int64_t> ids;
+  int pages = 0;
+  Status each =
+      ticks_->EachGymDisciplineTicksPage(gym_, "bouldering", [&](std::vector<TickRecord>& page) {
+        ++pages;
+        for (const TickRecord& t : page) {
+          ids.push_back(t.id);
+        }
+        return Status::Ok();
+      });
+  Status stopped = ticks_->EachGymDisciplineTicksPage(
+      gym_, "bouldering", [](std::vector<TickRecord>&) { return Status::InvalidInput("stop"); });
+  SetGymTickPageForTesting(was);
+  ASSERT_TRUE(each.ok()) << each.message();
+  EXPECT_EQ(pages, 2);
+  EXPECT_EQ(ids, (std::vector<int64_t>{(*boulder)[0].id, (*boulder)[1].id}));
+  EXPECT_EQ(stopped.code(), Status::Code::kInvalidInput);
   Result<std::vector<TickRecord>> rope_ticks = ticks_->GymDisciplineTicks(gym_, "roped");
   ASSERT_TRUE(rope_ticks.ok());
   ASSERT_EQ(rope_ticks->size(), 1u);  // the held one is not counted
