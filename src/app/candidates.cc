@@ -553,7 +553,7 @@ CandidateScore CandidateScorer::Score(const plan::RoutePlan& p) {
   const double extra = std::max(0.0, s.bits_per_move - s.input_bits_per_move);
   s.smooth_part = kScoreSmooth * std::exp2(-extra);
   Say(&s, Msg("smoothness {1} bits per move (inputs {2})",
-              {Fixed(s.bits_per_move, 2), Fixed(s.input_bits_per_move, 2)}));
+              {Decimal(Fixed(s.bits_per_move, 2)), Decimal(Fixed(s.input_bits_per_move, 2))}));
 
   s.score = s.warnings_part + s.grade_part + s.style_part + s.smooth_part;
   return s;

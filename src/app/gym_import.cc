@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/discipline.h"
 #include "app/limits.h"
 #include "base/csv.h"
 #include "base/date.h"
@@ -541,12 +542,14 @@ Result<GymImport::Plan> GymImport::Read(const Viewer& v, int64_t gym, const Impo
       if (!out.wall.empty() && SameFolded(w.name, out.wall)) wall = w;
     }
     std::optional<WallGradeScale> row_scale;
+    std::string wall_discipline;  // the row's wall's (or new sector's), "" for none
     if (!scale_text.empty()) {
       row_scale = scales.Of(scale_text);
       if (!row_scale) bad("scale", "\"" + scale_text + "\" is no scale (" + scales.Names() + ")");
     }
     if (wall) {
       out.wall = wall->name;
+      wall_discipline = wall->discipline;
       auto it = wall_scales.find(wall->id);
       if (it == wall_scales.end()) {
         SB_ASSIGN_OR_RETURN(WallGradeScale ws, LoadWallScale(store_, gym, wall->id));
@@ -576,6 +579,7 @@ Result<GymImport::Plan> GymImport::Read(const Viewer& v, int64_t gym, const Impo
       }
       const Plan::NewWall& nw = plan.new_walls[it->second];
       out.wall = nw.name;
+      wall_discipline = nw.discipline;
       if (std::optional<WallGradeScale> s = scales.Of(nw.scale)) scale = *s;
       if (row_scale && !EqualsIgnoreCase(row_scale->name, nw.scale)) {
         bad("scale", "the new sector \"" + nw.name + "\" reads grades in \"" +
@@ -588,6 +592,13 @@ Result<GymImport::Plan> GymImport::Read(const Viewer& v, int64_t gym, const Impo
     if (!out.grade.empty() && scale.any()) {
       if (Result<double> g = scale.Read(out.grade, "grade"); !g.ok()) {
         std::string msg = g.status().message();
+        bad("grade", msg.rfind("grade: ", 0) == 0 ? msg.substr(7) : msg);
+      }
+    } else if (!out.grade.empty() && !wall_discipline.empty()) {
+      // Issue 32: a sector without a scale of its own takes its discipline's
+      // built-in scales (as the route's create does on confirm).
+      if (Status s = CheckGradeOfDiscipline(out.grade, wall_discipline); !s.ok()) {
+        const std::string msg = s.message();
         bad("grade", msg.rfind("grade: ", 0) == 0 ? msg.substr(7) : msg);
       }
     }

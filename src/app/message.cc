@@ -38,6 +38,14 @@ Message Word(std::string word) {
   return m;
 }
 
+Message Decimal(const std::string& number) {
+  const size_t dot = number.find('.');
+  if (dot == std::string::npos) return Message(number);
+  // TRANSLATORS: a decimal number, {1} its whole part and {2} its fraction ("0.31"); German and
+  // French write "{1},{2}".
+  return Msg("{1}.{2}", {number.substr(0, dot), number.substr(dot + 1)});
+}
+
 Message List(std::vector<Message> items, std::string separator) {
   Message m(std::move(separator));
   m.kind = Message::Kind::kList;

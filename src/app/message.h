@@ -57,6 +57,11 @@ Message MsgN(const char* singular, const char* plural, long long n, std::vector<
 // A single word of the catalogs (a style's name such as "heel hook", marked
 // for extraction where its table is): translated, not filled in.
 Message Word(std::string word);
+// A number printed with a decimal point ("0.31"), shown with the decimal
+// mark of a page's language ("0,31" in German and French: the catalog
+// message "{1}.{2}"); its English() is `number` itself. Without a point:
+// `number` as it is.
+Message Decimal(const std::string& number);
 // `items` one after the other, `separator` ("; ", ", ") between them.
 Message List(std::vector<Message> items, std::string separator);
 

@@ -91,8 +91,9 @@ VariationComparison CompareStars(std::vector<double> variation, std::vector<doub
         "side are needed before the tests mean anything.",
         {counts, std::to_string(ReportLimits::kMinRatingsPerGroup)});
   } else if (!std::isnan(c.wilcoxon_p) && c.wilcoxon_p < ReportLimits::kSignificance) {
-    const std::vector<Message> a = {Two(c.variation_mean), Two(c.hand_mean), PText(c.wilcoxon_p),
-                                    PText(c.welch_p), counts};
+    const std::vector<Message> a = {Decimal(Two(c.variation_mean)), Decimal(Two(c.hand_mean)),
+                                    Decimal(PText(c.wilcoxon_p)), Decimal(PText(c.welch_p)),
+                                    counts};
     c.verdict_said =
         c.variation_mean > c.hand_mean
             ? Msg("Variations are liked more than hand-set routes of the same grades: {1} vs {2} "
@@ -105,7 +106,8 @@ VariationComparison CompareStars(std::vector<double> variation, std::vector<doub
     c.verdict_said = Msg(
         "No difference shown: variations get {1} stars on average, hand-set routes of the same "
         "grades {2} (Wilcoxon rank-sum p = {3}, Welch's t p = {4}; {5}).",
-        {Two(c.variation_mean), Two(c.hand_mean), PText(c.wilcoxon_p), PText(c.welch_p), counts});
+        {Decimal(Two(c.variation_mean)), Decimal(Two(c.hand_mean)), Decimal(PText(c.wilcoxon_p)),
+         Decimal(PText(c.welch_p)), counts});
   }
   c.verdict = c.verdict_said.English();
   return c;

@@ -214,7 +214,7 @@ PredictionCheck CheckPredictedGrades(store::Store* store, Logbook* logbook, int6
         "the predicted grade on {4}, inside its 80% interval on {5}; mean difference {6} grades",
         variations,
         {std::to_string(checked), std::to_string(variations), std::to_string(min_ticks),
-         std::to_string(within), std::to_string(inside), Fixed2(err / checked)});
+         std::to_string(within), std::to_string(inside), Decimal(Fixed2(err / checked))});
   }
   out.verdict = out.verdict_said.English();
   return out;

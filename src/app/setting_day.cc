@@ -348,6 +348,7 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
   // ask: a dyno on a V0 slab or a kids' wall becomes the first allowed style
   // of kDefaultSlotStyles not yet asked of the wall.
   std::vector<std::string> style_notes(slots.size());
+  std::vector<Message> style_notes_said(slots.size());
   if (req.slots.empty()) {
     for (size_t i = 0; i < slots.size(); ++i) {
       const Wall& w = walls.at(slots[i].wall);
@@ -368,6 +369,15 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
       }
       style_notes[i] = why + ": asks " + (instead.empty() ? "any style" : instead) +
                        " instead (choose dyno on the page to ask it anyway)";
+      // The same sentence as message ids (StyleAllowed's reasons, issue 32).
+      const Message why_said =
+          ToLower(w.name).find("kid") != std::string::npos
+              ? Msg("no dyno on a kids' wall ({1})", {w.name})
+              : Msg("no dyno on a {1} slab ({2})",
+                    {band ? grades::BandName(DisciplineOfWall(w), *band) : std::string(), w.name});
+      style_notes_said[i] =
+          Msg("{1}: asks {2} instead (choose dyno on the page to ask it anyway)",
+              {why_said, instead.empty() ? Msg("any style") : Word(instead)});
       slots[i].style = instead;
     }
   }
@@ -482,6 +492,7 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
                                   "\" is not a " + w.discipline + " grade");
     }
     sp.style_note = style_notes[i];
+    sp.style_note_said = style_notes_said[i];
     // The pool: the gym's routes (set or stripped) and public routes, near the band.
     auto make_pool = [&](const std::vector<store::RouteRecord>& recs) {
       std::vector<Pool> pool;
@@ -562,6 +573,11 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
                   ", so these candidates are made for " + sp.reachable_band +
                   ": set this slot to " + sp.reachable_band + ", or set or share routes near " +
                   slot.band + " to vary";
+        sp.note_said = Msg(
+            "no route of this gym or the library is near {1} (within one band); the nearest are "
+            "{2}, so these candidates are made for {2}: set this slot to {2}, or set or share "
+            "routes near {1} to vary",
+            {slot.band, sp.reachable_band});
       }
     }
     // Style first, then the band, the climbers' stars, this wall, this gym, id.
@@ -589,6 +605,13 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
       sp.note = "no route of this gym or the library has moves to vary" +
                 (slot.band.empty() ? std::string() : " near " + slot.band + " or any other band") +
                 ": set or share routes with their moves (CRDL) first";
+      sp.note_said =
+          slot.band.empty()
+              ? Msg("no route of this gym or the library has moves to vary: set or share routes "
+                    "with their moves (CRDL) first")
+              : Msg("no route of this gym or the library has moves to vary near {1} or any other "
+                    "band: set or share routes with their moves (CRDL) first",
+                    {slot.band});
     }
     out.slots.push_back(std::move(sp));
   }
@@ -617,6 +640,7 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
       sp.novelty = go.novelty;
       if (!gallery.ok()) {
         sp.note = "no candidate: " + gallery.status().message();
+        sp.note_said = Msg("no candidate: {1}", {gallery.status().message()});
         continue;
       }
       // Two ICs whose searches end in the same moves are one candidate for a
@@ -639,7 +663,12 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
         dc.id = CandidateId(dc.params_json, dc.inputs, dc.moves);
         work[i].all.push_back(std::move(dc));
       }
-      if (!level_note.empty()) sp.note += (sp.note.empty() ? "" : "; ") + level_note;
+      if (!level_note.empty()) {
+        sp.note += (sp.note.empty() ? "" : "; ") + level_note;
+        // The gallery's level note (MakeGallery's) is not a message yet: English.
+        sp.note_said = sp.note_said.empty() ? Message(level_note)
+                                            : List({sp.note_said, Message(level_note)}, "; ");
+      }
     }
   };
   std::vector<std::thread> threads;
@@ -677,6 +706,12 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
       sp.note = "only " + std::to_string(sp.candidates.size()) +
                 " different routes from these inputs (the others repeat one shown here or in an "
                 "earlier slot, or could not keep the inputs' start and finish)";
+      sp.note_said = MsgN(
+          "only {1} different route from these inputs (the others repeat one shown here or in an "
+          "earlier slot, or could not keep the inputs' start and finish)",
+          "only {1} different routes from these inputs (the others repeat one shown here or in an "
+          "earlier slot, or could not keep the inputs' start and finish)",
+          static_cast<long long>(sp.candidates.size()), {std::to_string(sp.candidates.size())});
     }
   }
   return out;

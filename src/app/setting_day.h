@@ -111,6 +111,9 @@ struct DaySlotProposal {
   std::string discipline;          // the wall's
   std::vector<DayCandidate> candidates;  // ranked, best first (kept before rejected)
   std::string note;                // why there are none or fewer ("" = none)
+  // Issue 32: `note` as message ids, which pages translate (its parts the
+  // app does not yet build as messages stay English inside it).
+  Message note_said;
   Novelty novelty = Novelty::kMix; // the level its gallery was asked
   // Issue 33: the planned route of this day accepted from this slot's
   // gallery (0 = none yet): the slot is filled.
@@ -123,6 +126,7 @@ struct DaySlotProposal {
   // on a V0 slab or a kids' wall) and was not asked: the style used instead
   // and why ("" = the slot's own).
   std::string style_note;
+  Message style_note_said;  // issue 32: `style_note` as a message id
 };
 
 struct SettingDayProposal {

@@ -29,15 +29,29 @@ std::string CardTrN(const CardTranslate& tr, const char* one, const char* many, 
   return FillIn(tr ? tr(one, many, n) : std::string(n == 1 ? one : many), args);
 }
 
+// A number printed with a point ("0.31") with the decimal mark of the
+// card's language ("0,31" in German and French); unchanged in English.
+std::string CardDecimal(const CardTranslate& tr, const std::string& number) {
+  const size_t dot = number.find('.');
+  if (!tr || dot == std::string::npos) return number;
+  // TRANSLATORS: a decimal number, {1} its whole part and {2} its fraction ("0.31"); German and
+  // French write "{1},{2}".
+  return CardTr(tr, "{1}.{2}", {number.substr(0, dot), number.substr(dot + 1)});
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------------------
 // Content shared by every rendering.
 
-std::vector<CardRow> CardRows(const RoutePlan& plan) {
+std::vector<CardRow> CardRows(const RoutePlan& plan, const CardTranslate& tr) {
   const chaos::Variation& v = plan.variation;
   std::multimap<int, const Suggestion*> after;
   for (const Suggestion& s : plan.smoothing) after.emplace(s.after, &s);
+  // The chaos module's row notes in the card's language (its own words:
+  // chaos/variation.cc, chaos/constraints.cc).
+  const std::map<std::string, std::string> note_words = {
+      {"(match?)", CardTr(tr, "(match?)")}, {"(hand swapped)", CardTr(tr, "(hand swapped)")}};
   std::vector<CardRow> rows;
   for (size_t i = 0; i < v.moves.size(); ++i) {
     const chaos::VariedMove& m = v.moves[i];
@@ -51,15 +65,17 @@ std::vector<CardRow> CardRows(const RoutePlan& plan) {
                 static_cast<int>(i) >= plan.profile->hardest_first &&
                 static_cast<int>(i) <= plan.profile->hardest_last;
     r.hand_swapped = std::find(m.notes.begin(), m.notes.end(), "(hand swapped)") != m.notes.end();
+    r.match = std::find(m.notes.begin(), m.notes.end(), "(match?)") != m.notes.end();
     r.mark = m.added ? kMarkAdded : m.changed ? kMarkChanged : "";
-    r.text = m.text.empty() && !m.added ? "________ (blank: fill in)" : m.text;
-    if (m.crux) r.text += " (crux)";
+    r.text = m.text.empty() && !m.added ? "________ " + CardTr(tr, "(blank: fill in)") : m.text;
+    if (m.crux) r.text += " " + CardTr(tr, "(crux)");
     for (const std::string& n : m.notes) {
       if (n.rfind("(blank", 0) == 0 || n == "(added by the setter)") continue;
-      r.text += " " + n;
+      auto w = note_words.find(n);
+      r.text += " " + (w == note_words.end() ? n : w->second);
     }
     if (m.added) {
-      r.from = "added by the setter";
+      r.from = CardTr(tr, "added by the setter");
     } else if (m.source && m.source->route >= 0 &&
                static_cast<size_t>(m.source->route) < v.inputs.size()) {
       r.from = v.inputs[m.source->route].name + " #" +
@@ -75,8 +91,8 @@ std::vector<CardRow> CardRows(const RoutePlan& plan) {
         s.kind = CardRow::Kind::kSuggestion;
         s.hand = im.hand;
         s.mark = kMarkSuggested;
-        s.text = "suggested: " + (im.description.empty() ? im.symbol : im.description);
-        s.from = "smoothing suggestion";
+        s.text = CardTr(tr, "suggested: {1}", {im.description.empty() ? im.symbol : im.description});
+        s.from = CardTr(tr, "smoothing suggestion");
         rows.push_back(std::move(s));
       }
     }
@@ -104,7 +120,7 @@ std::string CardLegend(const std::vector<CardRow>& rows, const CardTranslate& tr
   bool changed = false, added = false, suggested = false, crux = false, diff = false;
   bool match = false, swapped = false;
   for (const CardRow& r : rows) {
-    match |= r.text.find("(match?)") != std::string::npos;
+    match |= r.match;
     swapped |= r.hand_swapped;
     changed |= r.mark == kMarkChanged;
     added |= r.mark == kMarkAdded;
@@ -127,11 +143,11 @@ std::string CardLegend(const std::vector<CardRow>& rows, const CardTranslate& tr
   add(diff, CardTr(tr, "bar: difficulty estimate (0 to 1)"));
   // The row notes "(match?)" and "(hand swapped)" are the rows' own words.
   add(match,
-      "(match?): " + CardTr(tr, "the input's move here was a match; the paper puts the other "
+      CardTr(tr, "(match?)") + ": " + CardTr(tr, "the input's move here was a match; the paper puts the other "
                                 "hand's previous move in its place, so check the hands at the "
                                 "wall"));
   add(swapped,
-      "(hand swapped): " + CardTr(tr, "the hand was swapped so that hands alternate"));
+      CardTr(tr, "(hand swapped)") + ": " + CardTr(tr, "the hand was swapped so that hands alternate"));
   return s;
 }
 
@@ -180,18 +196,46 @@ std::string CardRoundNumbers(const std::string& s) {
   return out;
 }
 
-std::string CardParameters(const RoutePlan& plan) {
+std::string CardParameters(const RoutePlan& plan, const CardTranslate& tr) {
   const chaos::VaryParams& p = plan.variation.params;
-  std::string s = "Preset " + p.preset + "; " + chaos::SystemKindName(p.system.kind) + " (" +
-                  FormatTriple(p.system.params) + "), " + chaos::IntegratorKindName(p.integrator) +
-                  " step " + FormatDouble(p.step) + ", skip " + std::to_string(p.skip) +
-                  "; reference IC (" + FormatTriple(p.ref_ic) + "), variation IC (" +
-                  FormatTriple(p.var_ic) + "); mapping " + chaos::MappingKindName(p.mapping.kind) +
-                  ", mask " + chaos::MaskString(p.mapping.mask);
-  if (p.mapping.max_repeat) s += ", max repeat " + std::to_string(p.mapping.max_repeat);
-  if (!plan.smoothing_model.empty()) s += "; smoothing " + plan.smoothing_model;
-  return CardRoundNumbers(s + ". Reproduce: strangebeta vary " + ReproduceOptions(p, plan.setter) +
-                          " ROUTES\xE2\x80\xA6");
+  // The names (systems, integrators, mappings, masks) and the numbers are
+  // the `strangebeta vary` options' own: as the CLI spells them.
+  std::string s =
+      CardTr(tr, "Preset {1}", {p.preset}) + "; " + chaos::SystemKindName(p.system.kind) + " (" +
+      FormatTriple(p.system.params) + "), " +
+      CardTr(tr, "{1} step {2}, skip {3}",
+             {chaos::IntegratorKindName(p.integrator), FormatDouble(p.step), std::to_string(p.skip)}) +
+      "; " +
+      CardTr(tr, "reference IC ({1}), variation IC ({2})",
+             {FormatTriple(p.ref_ic), FormatTriple(p.var_ic)}) +
+      "; " +
+      CardTr(tr, "mapping {1}, mask {2}",
+             {chaos::MappingKindName(p.mapping.kind), chaos::MaskString(p.mapping.mask)});
+  if (p.mapping.max_repeat) {
+    s += ", " + CardTr(tr, "max repeat {1}", {std::to_string(p.mapping.max_repeat)});
+  }
+  if (!plan.smoothing_model.empty()) s += "; " + CardTr(tr, "smoothing {1}", {plan.smoothing_model});
+  return CardRoundNumbers(s + ". " +
+                          CardTr(tr, "Reproduce: {1}",
+                                 {"strangebeta vary " + ReproduceOptions(p, plan.setter) +
+                                  " ROUTES\xE2\x80\xA6"}));
+}
+
+namespace {
+// The trajectory chart's words in the card's language.
+TrajectoryWords CardTrajectoryWords(const CardTranslate& tr) {
+  TrajectoryWords w;
+  if (!tr) return w;
+  w.title = CardTr(tr, "Reference (black) and variation (blue) trajectories, x\u2013z plane");
+  w.reference = CardTr(tr, "reference");
+  w.variation = CardTr(tr, "variation");
+  w.association = CardTr(tr, "association");
+  return w;
+}
+}  // namespace
+
+std::string CardTrajectorySvg(const RoutePlan& plan, const CardTranslate& tr) {
+  return TrajectorySvg(plan, CardTrajectoryWords(tr));
 }
 
 bool CardHasDifficulty(const RoutePlan& plan) {
@@ -241,7 +285,7 @@ std::string SearchLine(const RoutePlan& plan, const CardTranslate& tr) {
   if (!plan.search) return "";
   const SearchReport& r = *plan.search;
   std::string s = CardTr(tr, "IC search: IC ({1}) used, {2} from the IC asked for",
-                         {FormatTriple(r.used_ic), FormatDouble(r.distance, 4)});
+                         {FormatTriple(r.used_ic), CardDecimal(tr, FormatDouble(r.distance, 4))});
   std::string held, missed;
   for (const chaos::ConstraintOutcome& c : r.constraints) {
     std::string& to = c.held ? held : missed;
@@ -311,9 +355,45 @@ CardAnnotations CardAnnotationsOf(const RoutePlan& plan, const CardTranslate& tr
   if (plan.profile && plan.profile->hardest_first >= 0) {
     a.hardest = CardTr(tr, "Hardest stretch: {1} (mean estimate {2})",
                        {Span(plan.profile->hardest_first, plan.profile->hardest_last, tr),
-                        Fixed2(plan.profile->hardest_mean)});
+                        CardDecimal(tr, Fixed2(plan.profile->hardest_mean))});
   }
   return a;
+}
+
+std::vector<std::string> CardPlanNotes(const RoutePlan& plan, const CardTranslate& tr) {
+  if (!tr || plan.tokens()) return PlanNotes(plan);
+  const CardAnnotations a = CardAnnotationsOf(plan, tr);
+  std::vector<std::string> out;
+  if (!a.grades.empty()) out.push_back(a.grades);
+  if (!a.search.empty()) out.push_back(a.search);
+  if (plan.search) {
+    // The constraint's detail is the chaos module's (its names and numbers).
+    for (const chaos::ConstraintOutcome& c : plan.search->constraints) {
+      out.push_back("  " + (c.held ? CardTr(tr, "{1}: held ({2})", {chaos::ConstraintName(c.constraint), c.detail})
+                                   : CardTr(tr, "{1}: NOT held ({2})",
+                                            {chaos::ConstraintName(c.constraint), c.detail})));
+    }
+  }
+  if (plan.warnings) {
+    if (a.warnings.empty()) out.push_back(CardTr(tr, "Warnings: none"));
+    for (const std::string& w : a.warnings) out.push_back(CardTr(tr, "Warning: {1}", {w}));
+    const ChangeSummary& c = plan.warnings->summary;
+    char change[32];
+    std::snprintf(change, sizeof change, "%.2f", c.change);
+    out.push_back(CardTrN(
+        tr,
+        "Summary: {1} of {2} move new against the inputs; source position moved for {3}; {4} "
+        "differ in text from the input at their position; moves travelled {5} positions on "
+        "average (change), at most {6}",
+        "Summary: {1} of {2} moves new against the inputs; source position moved for {3}; {4} "
+        "differ in text from the input at their position; moves travelled {5} positions on "
+        "average (change), at most {6}",
+        c.moves,
+        {std::to_string(c.new_moves), std::to_string(c.moves), std::to_string(c.changed),
+         std::to_string(c.text_changed), CardDecimal(tr, change), std::to_string(c.farthest)}));
+  }
+  if (!a.hardest.empty()) out.push_back(a.hardest);
+  return out;
 }
 
 std::vector<std::string> CardAnnotationLines(const RoutePlan& plan) {
@@ -656,7 +736,7 @@ struct Footer {
 Footer FooterOf(const RoutePlan& plan, const CardInfo& info, const std::vector<CardRow>& rows) {
   return {info.notes.empty() ? "" : CardTr(info.translate, "Notes: {1}", {info.notes}),
           CardLegendLine(plan, rows, info.translate),
-          CardParameters(plan)};
+          CardParameters(plan, info.translate)};
 }
 
 double FooterHeight(cairo_t* cr, const Footer& f, double cw) {
@@ -707,7 +787,7 @@ Layout Fit(const RoutePlan& plan, const CardInfo& info, const std::vector<CardRo
 
 // Draws the whole card on the page `page` of `cr`.
 void DrawCard(cairo_t* cr, const RoutePlan& plan, const CardInfo& info, PageSize page) {
-  const std::vector<CardRow> rows = CardRows(plan);
+  const std::vector<CardRow> rows = CardRows(plan, info.translate);
   const Layout l = Fit(plan, info, rows, page);
   const Style& s = l.style;
   const double x0 = s.margin, cw = page.w - 2 * s.margin;
@@ -730,7 +810,7 @@ void DrawCard(cairo_t* cr, const RoutePlan& plan, const CardInfo& info, PageSize
     cairo_save(cr);
     cairo_translate(cr, x0 + (cw - pw) / 2, y);
     cairo_scale(cr, pw / 640.0, ph / 480.0);
-    DrawTrajectory(cr, plan, 640, 480);
+    DrawTrajectory(cr, plan, 640, 480, CardTrajectoryWords(info.translate));
     cairo_restore(cr);
   }
   cairo_set_source_rgb(cr, 0.3, 0.3, 0.3);
@@ -789,7 +869,7 @@ std::string PinSvgIds(const std::string& svg) {
 }  // namespace
 
 double CardMoveFontPt(const RoutePlan& plan, const CardInfo& info, Paper paper) {
-  return Fit(plan, info, CardRows(plan), SizeOf(paper)).font;
+  return Fit(plan, info, CardRows(plan, info.translate), SizeOf(paper)).font;
 }
 
 Result<std::string> RenderCardPdf(const RoutePlan& plan, const CardInfo& info, Paper paper) {

@@ -66,11 +66,14 @@ struct CardRow {
   double difficulty = -1.0;
   bool hardest = false;
   bool hand_swapped = false;
+  bool match = false;  // its text has the note "(match?)" (in the card's language)
 };
 
 // The rows of `plan`: its moves in order, each smoothing suggestion's moves
-// after the move they follow. Provenance names the input route in full.
-std::vector<CardRow> CardRows(const RoutePlan& plan);
+// after the move they follow. Provenance names the input route in full. The
+// rows' own words ("(crux)", "(match?)", "(hand swapped)", "suggested: ",
+// "smoothing suggestion", "added by the setter") in `tr`'s language.
+std::vector<CardRow> CardRows(const RoutePlan& plan, const CardTranslate& tr = {});
 
 // "12 of 30 moves changed", plus ", 2 added by the setter" when some were.
 std::string CardSummary(const RoutePlan& plan, const CardTranslate& tr = {});
@@ -120,7 +123,16 @@ std::string CardRoundNumbers(const std::string& text);
 
 // The generation parameters on one line (small type at the bottom), numbers
 // rounded (CardRoundNumbers), the reproducing `strangebeta vary` options too.
-std::string CardParameters(const RoutePlan& plan);
+// Its words in `tr`'s language (names of systems, integrators, mappings and
+// the `strangebeta vary` options stay as the CLI spells them).
+std::string CardParameters(const RoutePlan& plan, const CardTranslate& tr = {});
+// The trajectory chart (x-z plane) as SVG with its title and legend in
+// `tr`'s language (plan::RenderTrajectorySvg in English).
+std::string CardTrajectorySvg(const RoutePlan& plan, const CardTranslate& tr = {});
+// The setter's notes in detail as the page lists them (plan::PlanNotes: the
+// estimated grade, the IC search and its constraints, each warning, the
+// summary, the hardest stretch) in `tr`'s language; English: PlanNotes.
+std::vector<std::string> CardPlanNotes(const RoutePlan& plan, const CardTranslate& tr = {});
 // "Grade V4 · Colour yellow · Wall the cave" from the fields that are set.
 std::string CardFactsLine(const CardInfo& info);
 // "Set by Carol · 2024-05-01" from the fields that are set.

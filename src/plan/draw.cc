@@ -31,7 +31,8 @@ void Text(cairo_t* cr, double x, double y, const std::string& s, double align_x,
 
 }  // namespace
 
-void DrawTrajectory(cairo_t* cr, const RoutePlan& plan, double width, double height) {
+void DrawTrajectory(cairo_t* cr, const RoutePlan& plan, double width, double height,
+                    const TrajectoryWords& words) {
   const auto& ref = plan.variation.reference;
   const auto& var = plan.variation.variation;
   cairo_save(cr);
@@ -65,8 +66,7 @@ void DrawTrajectory(cairo_t* cr, const RoutePlan& plan, double width, double hei
   // Title.
   cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
   cairo_set_font_size(cr, 13);
-  Text(cr, width / 2, 8, "Reference (black) and variation (blue) trajectories, x\u2013z plane", 0.5,
-       0);
+  Text(cr, width / 2, 8, words.title, 0.5, 0);
 
   // Axes, ticks and labels.
   cairo_set_line_width(cr, 1);
@@ -129,16 +129,16 @@ void DrawTrajectory(cairo_t* cr, const RoutePlan& plan, double width, double hei
   cairo_set_source_rgb(cr, 0, 0, 0);
   cairo_rectangle(cr, lx, ly - 4, 14, 3);
   cairo_fill(cr);
-  Text(cr, lx + 20, ly - 2.5, "reference", 0, 0.5);
+  Text(cr, lx + 20, ly - 2.5, words.reference, 0, 0.5);
   cairo_set_source_rgb(cr, 0.15, 0.45, 0.95);
   cairo_rectangle(cr, lx, ly + 10, 14, 3);
   cairo_fill(cr);
-  Text(cr, lx + 20, ly + 11.5, "variation", 0, 0.5);
+  Text(cr, lx + 20, ly + 11.5, words.variation, 0, 0.5);
   cairo_set_source_rgb(cr, 0.72, 0.72, 0.72);
   cairo_rectangle(cr, lx, ly + 24, 14, 1.5);
   cairo_fill(cr);
   cairo_set_source_rgb(cr, 0.2, 0.2, 0.2);
-  Text(cr, lx + 20, ly + 25, "association", 0, 0.5);
+  Text(cr, lx + 20, ly + 25, words.association, 0, 0.5);
   cairo_restore(cr);
 }
 

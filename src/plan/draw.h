@@ -15,7 +15,19 @@ namespace sb::plan {
 // its reference point r_k(j), axes with ticks and labels and a legend, into
 // the rectangle (0, 0, width, height) of `cr` (user units). Does not own `cr`;
 // leaves its state as it found it. Not thread-safe on one cairo_t.
-void DrawTrajectory(cairo_t* cr, const RoutePlan& plan, double width, double height);
+// The chart's words (English unless given: the card passes them in its
+// language, issue 32).
+struct TrajectoryWords {
+  std::string title = "Reference (black) and variation (blue) trajectories, x\u2013z plane";
+  std::string reference = "reference";
+  std::string variation = "variation";
+  std::string association = "association";
+};
+void DrawTrajectory(cairo_t* cr, const RoutePlan& plan, double width, double height,
+                    const TrajectoryWords& words = {});
+// The chart as a 640x480 SVG (ids pinned: the same plan, the same bytes);
+// RenderTrajectorySvg is this in English.
+std::string TrajectorySvg(const RoutePlan& plan, const TrajectoryWords& words);
 
 }  // namespace sb::plan
 

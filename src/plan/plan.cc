@@ -916,14 +916,16 @@ cairo_status_t AppendToString(void* closure, const unsigned char* data, unsigned
 }
 }  // namespace
 
-std::string RenderTrajectorySvg(const RoutePlan& plan) {
+std::string RenderTrajectorySvg(const RoutePlan& plan) { return TrajectorySvg(plan, {}); }
+
+std::string TrajectorySvg(const RoutePlan& plan, const TrajectoryWords& words) {
   std::string out;
   const double w = 640, h = 480;
   cairo_surface_t* surface = cairo_svg_surface_create_for_stream(AppendToString, &out, w, h);
   cairo_svg_surface_restrict_to_version(surface, CAIRO_SVG_VERSION_1_1);
   cairo_svg_surface_set_document_unit(surface, CAIRO_SVG_UNIT_PX);
   cairo_t* cr = cairo_create(surface);
-  DrawTrajectory(cr, plan, w, h);
+  DrawTrajectory(cr, plan, w, h, words);
   cairo_destroy(cr);
   cairo_surface_finish(surface);
   cairo_surface_destroy(surface);

@@ -13,12 +13,25 @@ namespace {
 // A wall's scale refusing a grade; {3}: what the scale accepts.
 const std::string kAccepts = N_("\"{1}\" is not a grade of the scale \"{2}\" (it accepts {3})");
 
+// The gym's walls' scales refusing a circuit's bound; {2}: each scale and
+// what it accepts (kScaleAccepts, "; " between them).
+const std::string kWallsScales = N_("\"{1}\" is not a grade of the gym's walls' scales ({2})");
+const std::string kScaleAccepts = N_("\"{1}\" accepts {2}");
+
 // The shapes of the app's refusals, after any "field: " (see error_text.h).
 // TRANSLATORS: keep the {1}..{4} and the quotes around them.
 const std::string kShapes[] = {
     // Grades and scales (app/scales.cc, grades/gym_scale.cc).
     kAccepts,
-    N_("\"{1}\" is not a grade of the gym's walls' scales ({2})"),
+    kWallsScales,
+    // A gym route's grade on a wall without a scale of its own (app/routes.cc).
+    N_("\"{1}\" is not a grade of a built-in scale (V, Font, YDS, French or UIAA, such as V4, "
+       "6B+, 5.10a, 6b+ or VI+)"),
+    N_("\"{1}\" is not a bouldering grade (V or Font, such as V4 or 6B+)"),
+    N_("\"{1}\" is not a roped grade (YDS, French or UIAA, such as 5.10a, 6b+ or VI+)"),
+    // A setting day's slot band (app/setting_day.cc).
+    N_("\"{1}\" is not a bouldering grade"),
+    N_("\"{1}\" is not a roped grade"),
     N_("'{1}' is not a grade"),
     N_("{1} is below grade_from {2} (a range ascends)"),
     // Colours (plan/colour.cc).
@@ -101,6 +114,24 @@ std::string Translate(std::string_view lang, const std::string& text, int depth)
     for (size_t i = 1; i < m.size(); ++i) args.push_back(m[i].str());
     // What a built-in scale accepts (app::BuiltInAccepts, a message id).
     if (s.msgid == kAccepts && args.size() == 3) args[2] = Tr(lang, args[2].c_str());
+    // Each wall scale's name and what it accepts, translated the same way.
+    if (s.msgid == kWallsScales && args.size() == 2) {
+      static const std::regex kPart("^\"(.+)\" accepts (.+)$");
+      std::string parts;
+      size_t start = 0;
+      for (;;) {
+        const size_t end = args[1].find("; ", start);
+        const std::string part = args[1].substr(start, end == std::string::npos ? end : end - start);
+        std::smatch pm;
+        parts += (start ? "; " : "") +
+                 (std::regex_match(part, pm, kPart)
+                      ? FillIn(Tr(lang, kScaleAccepts.c_str()), {pm[1].str(), Tr(lang, pm[2].str().c_str())})
+                      : part);
+        if (end == std::string::npos) break;
+        start = end + 2;
+      }
+      args[1] = parts;
+    }
     return FillIn(Tr(lang, s.msgid), args);
   }
   // "field: rest" (field names are the API's: kept) and "line N: rest".

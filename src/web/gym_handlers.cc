@@ -69,7 +69,7 @@ std::string GymBlock(Exchange& x, const app::RouteView& r) {
   // Issue 31: the circuit the route is set in.
   const std::string circuit_row =
       r.circuit_id ? "<dt>" + Tr(x.caller.page(), "Circuit") + "</dt><dd id=\"route-circuit\">" +
-                         XmlEscape(r.circuit_colour) + "</dd>"
+                         ColourHtml(r.circuit_colour, x.caller.lang) + "</dd>"
                    : std::string();
   return RouteGymBlock(r, m->history, m->can_change, x.caller.lang, circuit_row);
 }

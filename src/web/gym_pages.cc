@@ -198,7 +198,7 @@ std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<
       const std::string cid = std::to_string(c.id);
       const std::string url = "/api/gyms/" + gid + "/circuits/" + cid;
       b += "<details class=\"circuit-edit no-print\" id=\"circuit-edit-" + cid +
-           "\"><summary>" + Fmt(Tr(v, "Edit {1}"), E(c.colour)) + "</summary>" +
+           "\"><summary>" + Fmt(Tr(v, "Edit {1}"), E(ColourLabelIn(v.lang, c.colour))) + "</summary>" +
            ApiForm("circuit-form-" + cid, "PUT", url,
                    RevisionField(c.revision) + "<label>" + Tr(v, "Colour") + " <input name=\"colour\" required "
                    "maxlength=\"40\" value=\"" + E(c.colour) + "\"></label><label>" + Tr(v, "From") + " <input "
@@ -207,7 +207,7 @@ std::string GymPage(const PageViewer& v, const app::Gym& gym, const std::vector<
                    "\"></label>",
                    Tr(v, "Save circuit")) +
            ButtonForm("circuit-remove-" + cid, "DELETE", url, "", Tr(v, "Remove circuit"),
-                      Fmt(Tr(v, "Remove the circuit {1}?"), c.colour)) +
+                      Fmt(Tr(v, "Remove the circuit {1}?"), ColourLabelIn(v.lang, c.colour))) +
            "</details>\n";
     }
     b += "<h3 class=\"no-print\" id=\"new-circuit-title\">" + Tr(v, "Add circuit") + "</h3>\n";

@@ -13,6 +13,10 @@
 #include <string>
 
 #include "app/report.h"
+#include "chaos/variation.h"
+#include "crdl/route.h"
+#include "plan/card.h"
+#include "plan/warnings.h"
 #include "web/api_test_util.h"
 #include "web/error_text.h"
 #include "web/pages.h"
@@ -98,6 +102,24 @@ TEST(I18nTest, AppSentencesAndRefusalsInTheLanguage) {
                          "V17, with + or -, V3-4)"),
             "grade: „V99“ ist kein Grad der Skala „V“ (sie kennt VB, V0 bis V17, mit + oder -, "
             "V3-4)");
+  // Issue 32: a gym route's grade on a wall without a scale of its own, and
+  // each scale of the gym's walls with what it accepts.
+  EXPECT_EQ(TrText("de", "grade: \"5.10a\" is not a bouldering grade (V or Font, such as V4 or 6B+)"),
+            "grade: „5.10a“ ist kein Bouldergrad (V oder Font, etwa V4 oder 6B+)");
+  EXPECT_EQ(TrText("fr", "grade: \"V3\" is not a roped grade (YDS, French or UIAA, such as 5.10a, "
+                         "6b+ or VI+)"),
+            "grade: « V3 » n'est pas une cotation de voie (YDS, française ou UIAA, comme 5.10a, 6b+ "
+            "ou VI+)");
+  EXPECT_EQ(TrText("de", "grade: \"V99\" is not a grade of a built-in scale (V, Font, YDS, French or "
+                         "UIAA, such as V4, 6B+, 5.10a, 6b+ or VI+)"),
+            "grade: „V99“ ist kein Grad einer eingebauten Skala (V, Font, YDS, Französisch oder "
+            "UIAA, etwa V4, 6B+, 5.10a, 6b+ oder VI+)");
+  EXPECT_EQ(TrText("de", "grade_from: \"X\" is not a grade of the gym's walls' scales (\"V\" "
+                         "accepts VB, V0 to V17, with + or -, V3-4; \"Halle\" accepts 1, 2)"),
+            "grade_from: „X“ ist kein Grad der Skalen der Wände dieser Halle („V“ kennt VB, V0 bis "
+            "V17, mit + oder -, V3-4; „Halle“ kennt 1, 2)");
+  EXPECT_EQ(TrText("fr", "slots[0].band: \"5.9\" is not a bouldering grade"),
+            "slots[0].band: « 5.9 » n'est pas une cotation de bloc");
   // No shape: as written.
   EXPECT_EQ(TrText("de", "grade: something new the app says"), "grade: something new the app says");
 }
@@ -136,9 +158,84 @@ TEST(I18nTest, AppMessagesTranslatedById) {
   EXPECT_EQ(TrMessage("fr", basis),
             "mouvements : 6 de Simon Räss's arête (cotation de l'ouvreur V3); 2 sur 8 "
             "mouvements nouveaux (ils élargissent l'intervalle)");
+  // Issue 32: a decimal number with the language's decimal mark; English
+  // (JSON, CLI) keeps the point.
+  const app::Message smooth = app::Msg("smoothness {1} bits per move (inputs {2})",
+                                       {app::Decimal("1.25"), app::Decimal("0.50")});
+  EXPECT_EQ(smooth.English(), "smoothness 1.25 bits per move (inputs 0.50)");
+  EXPECT_NE(TrMessage("de", smooth).find("1,25"), std::string::npos) << TrMessage("de", smooth);
+  EXPECT_NE(TrMessage("fr", smooth).find("0,50"), std::string::npos) << TrMessage("fr", smooth);
+  EXPECT_EQ(TrMessage("en", smooth), smooth.English());
+  // A setting day's slot note.
+  const app::Message only = app::MsgN(
+      "only {1} different route from these inputs (the others repeat one shown here or in an "
+      "earlier slot, or could not keep the inputs' start and finish)",
+      "only {1} different routes from these inputs (the others repeat one shown here or in an "
+      "earlier slot, or could not keep the inputs' start and finish)",
+      2, {"2"});
+  EXPECT_EQ(TrMessage("de", only).rfind("nur 2 verschiedene Routen", 0), 0u) << TrMessage("de", only);
   // An id the catalogs lack (caught by the CTest i18n_catalogs): English.
   EXPECT_EQ(TrMessage("de", app::Msg("a sentence no catalog has ({1})", {"x"})),
             "a sentence no catalog has (x)");
+}
+
+// Issue 32: a German or French card (its page) has none of the card's
+// English words: the rows' notes, the setter's notes in detail (warnings,
+// summary, constraints), the parameters line; numbers with a decimal comma.
+TEST(I18nTest, TheCardIsInThePagesLanguageThroughout) {
+  auto a = ParseCrdl("name: Alpha\n---\nR jug\nL crimp (crux)\nR crimp\nL sloper\nR match\nR pinch\n",
+                     "a");
+  auto b = ParseCrdl("---\nL pocket\nR edge\nL gaston\nR undercling\n", "b");
+  ASSERT_TRUE(a.ok() && b.ok());
+  auto var = chaos::Vary({{"Alpha", *a}, {"b", *b}}, *chaos::VaryParams::Preset("more"));
+  ASSERT_TRUE(var.ok()) << var.status().message();
+  plan::RoutePlan p;
+  p.variation = *var;
+  chaos::MoveFacts facts;
+  facts.crux = chaos::CruxFlags(var->inputs);
+  for (int i = 0; i < 10; ++i) facts.difficulty.push_back(0.1 * (i % 5) + 0.05);
+  p.warnings = plan::Warn(p.variation, facts);
+  p.profile = plan::Profile(p.variation, facts);
+  plan::SearchReport r;
+  r.used_ic = {-15.9, -12, 52};
+  r.distance = 0.5;
+  r.constraints.push_back({chaos::Constraint::kKeepStart, true, "starts with \"jug\""});
+  p.search = r;
+  // Every row note the card knows, whatever this variation drew.
+  p.variation.moves[0].crux = true;
+  p.variation.moves[1].notes.push_back("(match?)");
+  p.variation.moves[2].notes.push_back("(hand swapped)");
+  app::RouteView rec;
+  rec.id = 7;
+  rec.name = "Karte";
+  for (const char* lang : {"en", "de", "fr"}) {
+    PageViewer v;
+    v.lang = lang;
+    plan::CardInfo card;
+    card.name = "Karte";
+    card.colour = ColourLabelIn(lang, "yellow");
+    if (v.lang != "en") {
+      card.translate = [l = v.lang](const char* one, const char* many, long long n) {
+        return many ? TrN(l, one, many, n) : Tr(l, one);
+      };
+    }
+    const std::string page = PlanPage(v, rec, p, "", card, false);
+    if (v.lang == "en") {
+      for (const char* w : {"(crux)", "(match?)", "(hand swapped)", "Preset ", "Summary: ",
+                            "Colour yellow", "0.5 from the IC"}) {
+        EXPECT_NE(page.find(w), std::string::npos) << w;  // what the others must not have
+      }
+      continue;
+    }
+    for (const char* w : {"(crux)", "(match?)", "(hand swapped)", "Preset ", "reference IC",
+                          "mapping ", "Reproduce", "Summary: ", "Warning", "held", "mean estimate",
+                          "yellow", "suggested"}) {
+      EXPECT_EQ(page.find(w), std::string::npos) << lang << ": " << w;
+    }
+    EXPECT_NE(page.find(v.lang == "de" ? "0,5 vom verlangten IC" : "0,5 de l"), std::string::npos)
+        << lang << ": the decimal comma";
+    EXPECT_NE(page.find(v.lang == "de" ? "(Crux)" : "(main-main ?)"), std::string::npos) << lang;
+  }
 }
 
 // The scripts' messages (web/*.js tr('...')) in the page's JSON block.

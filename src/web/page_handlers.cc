@@ -230,7 +230,9 @@ plan::CardInfo CardInfoOf(Exchange& x, const app::RouteView& rec) {
   plan::CardInfo info;
   info.name = rec.name;
   info.grade = rec.grade;
-  info.colour = rec.colour;
+  // The colour's name in the page's language ("gelb", "jaune"; a hex code as
+  // its nearest name).
+  info.colour = ColourLabelIn(x.caller.lang.empty() ? "en" : x.caller.lang, rec.colour);
   info.wall = rec.wall;
   info.setter = rec.setter.empty() ? rec.owner_name : rec.setter;
   info.date = rec.set_on.empty() ? rec.created_at.substr(0, 10) : rec.set_on;

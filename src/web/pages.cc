@@ -449,7 +449,7 @@ std::string EditorPage(const PageViewer& v, const std::optional<app::RouteView>&
                               : " (" + c.grade_from + "–" + c.grade_to + ")";
       const bool chosen = route && route->circuit_id == c.id;
       b += "<option value=\"" + std::to_string(c.id) + "\" data-colour=\"" + E(c.colour) + "\"" +
-           (chosen ? " selected" : "") + ">" + E(c.colour + range) + "</option>";
+           (chosen ? " selected" : "") + ">" + E(ColourLabelIn(v.lang, c.colour) + range) + "</option>";
     }
     b += "</select>" + msg("circuit") + "</label>\n";
   }
@@ -747,7 +747,7 @@ std::string PlanPage(const PageViewer& v, const app::RouteView& rec, const plan:
                      bool can_change) {
   const chaos::Variation& var = plan.variation;
   std::string id = std::to_string(rec.id);
-  const std::vector<plan::CardRow> rows = plan::CardRows(plan);
+  const std::vector<plan::CardRow> rows = plan::CardRows(plan, card.translate);
   std::string b = "<article class=\"card-sheet plan\" id=\"plan\" data-rows=\"" +
                   std::to_string(rows.size()) + "\">\n<header class=\"card-head\"><div>";
   b += "<h1 class=\"card-name\">" + E(card.name) + "</h1>\n";
@@ -815,9 +815,8 @@ std::string PlanPage(const PageViewer& v, const app::RouteView& rec, const plan:
       if (r.difficulty >= 0) {
         char pct[32];
         std::snprintf(pct, sizeof pct, "%.0f", 100.0 * std::clamp(r.difficulty, 0.0, 1.0));
-        char val[32];
-        std::snprintf(val, sizeof val, "%.2f", r.difficulty);
-        b += "<span class=\"bar\" title=\"" + std::string(val) + "\"><span style=\"width:" + pct +
+        const std::string val = FormatNumber(v.lang, r.difficulty, 2);  // "0,31" in German
+        b += "<span class=\"bar\" title=\"" + val + "\"><span style=\"width:" + pct +
              "%\"></span></span>";
       }
       b += "</td>";
@@ -834,13 +833,13 @@ std::string PlanPage(const PageViewer& v, const app::RouteView& rec, const plan:
     b += "</section>\n";
   }
   b += std::string("<figure class=\"trajectory") + (rows.size() > 18 ? " no-print" : "") +
-       "\">" + plan::RenderTrajectorySvg(plan) +
+       "\">" + plan::CardTrajectorySvg(plan, card.translate) +
        "<figcaption>" + Tr(v, "Reference trajectory (black), variation (blue), association lines "
        "(grey); x–z projection.") + "</figcaption></figure>\n";
-  b += "<p class=\"params-line\">" + E(plan::CardParameters(plan)) + "</p>\n";
+  b += "<p class=\"params-line\">" + E(plan::CardParameters(plan, card.translate)) + "</p>\n";
   // The setter's annotations (issues 13, 15): grade estimate, IC search,
   // warnings, change summary, hardest stretch (plan::PlanNotes).
-  if (std::vector<std::string> notes = plan::PlanNotes(plan); !notes.empty()) {
+  if (std::vector<std::string> notes = plan::CardPlanNotes(plan, card.translate); !notes.empty()) {
     // Screen only: the printed sheet is the card's layout (one page).
     b += "<div class=\"plan-notes no-print\"><h2>" + Tr(v, "Setter's notes") + "</h2><ul>";
     for (const std::string& n : notes) b += "<li>" + E(n) + "</li>";

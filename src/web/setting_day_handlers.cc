@@ -426,8 +426,16 @@ void PageSettingDay(Exchange& x) {
              E(s.slot.band.empty() ? Tr(lang, "any grade") : s.slot.band) + " · " +
              E(s.slot.style.empty() ? Tr(lang, "any style") : Tr(lang, s.slot.style.c_str())) + " · " +
              E(Tr(lang, app::NoveltyWords(s.novelty))) + "</h2>\n";
-        if (!s.note.empty()) b += "<p class=\"note\">" + E(s.note) + "</p>\n";
-        if (!s.style_note.empty()) b += "<p class=\"note\">" + E(s.style_note) + "</p>\n";
+        // The notes in the page's language (app::Message ids, issue 32).
+        if (!s.note.empty()) {
+          b += "<p class=\"note\">" +
+               E(s.note_said.empty() ? s.note : TrMessage(lang, s.note_said)) + "</p>\n";
+        }
+        if (!s.style_note.empty()) {
+          b += "<p class=\"note\">" +
+               E(s.style_note_said.empty() ? s.style_note : TrMessage(lang, s.style_note_said)) +
+               "</p>\n";
+        }
         if (s.accepted_route) {
           const std::string id = std::to_string(s.accepted_route);
           b += "<p class=\"day-accepted\">" + Tr(lang, "Accepted:") + " <a href=\"/routes/" + id + "\">" + Fmt(Tr(lang, "route {1}"), id) +

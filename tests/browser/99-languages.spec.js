@@ -111,8 +111,8 @@ module.exports = async (t) => {
   await shot('99-editor-german');
 
   // A variation's card in German (page and PDF): its annotations, summary and table heads.
-  const movesOf = [['V3', 'R small crimp\nL small crimp\nR sidepull\nL gaston\nR crimp\nL jug finish\n'],
-                   ['V4', 'L sloper\nR small crimp\nL heel hook\nR pinch\nL crimp\nR top out\n'],
+  const movesOf = [['V3', 'R small crimp (crux)\nL small crimp\nR sidepull\nR match\nL gaston\nR crimp\nL jug finish\n'],
+                   ['V4', 'L sloper\nR small crimp (crux)\nL heel hook\nR pinch\nL crimp\nR top out\n'],
                    ['V5', 'R jug\nL crimp\nR crimp\nL undercling\nR sloper\nL jug finish\n']];
   const inputs = [];
   for (const [i, [grade, moves]] of movesOf.entries()) {
@@ -127,13 +127,22 @@ module.exports = async (t) => {
   const summary = (await text('p.summary')).trim();
   check(/\d+ von \d+ Zügen geändert/.test(summary) && (await text('.card-facts')).includes('Grad V4'),
         'the card page is German (' + summary.slice(0, 80) + ')');
+  // Issue 32: none of the card's English words (rows' notes, the setter's notes in detail, the
+  // parameters line, the colour's name), whatever the variation drew.
+  const cardText = (await text('#plan')) + ' ' + (await text('.plan-notes'));
+  const english = ['(crux)', '(match?)', '(hand swapped)', 'Preset ', 'reference IC', 'Reproduce:', 'Summary:',
+                   'Warning', 'mean estimate', 'yellow', 'Colour', 'moves changed', 'suggested:'];
+  check(english.every(w => !cardText.includes(w)) && cardText.includes('Farbe gelb') &&
+        cardText.includes('Nachmachen: strangebeta vary') && cardText.includes('Zusammenfassung:'),
+        'the card has none of its English words (' + english.filter(w => cardText.includes(w)).join(', ') + ')');
   await shot('99-card-german');
   const cardPdf = await page.request.get(base + '/variations/' + varied.data.id + '.pdf');
   const cardFile = path.join(out, 'card-german.pdf');
   fs.writeFileSync(cardFile, await cardPdf.body());
   const cardWords = execFileSync('pdftotext', [cardFile, '-']).toString().replace(/\s+/g, ' ');
   check(cardPdf.status() === 200 && /Zügen geändert/.test(cardWords) && cardWords.includes('Grad V4') &&
-        cardWords.includes('Scannen für Rückmeldung') && !cardWords.includes('moves changed'),
+        cardWords.includes('Scannen für Rückmeldung') && !cardWords.includes('moves changed') &&
+        cardWords.includes('Farbe gelb') && !/Preset |reference IC|trajectories|\(crux\)|\(match\?\)/.test(cardWords),
         'the card PDF is German (' + cardWords.replace(/\s+/g, ' ').slice(0, 120) + ')');
 
   // A setting-day slot in French (the account's language): the candidates' reasons and the
