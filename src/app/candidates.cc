@@ -319,10 +319,11 @@ struct CandidateScorer::Impl {
   CandidateSlot slot;
   language::MoveLanguage styles;   // the project's grammar (style reading)
   language::MoveLanguage symbols;  // the model's own reading of moves
-  markov::TokenModel model;
+  // Read once per process and shared (plan::CachedModel): immutable.
+  std::shared_ptr<const markov::TokenModel> model;
   int symbol_set = 0;  // 0..3 (k1..k4)
-  Impl(CandidateSlot s, language::MoveLanguage st, language::MoveLanguage sy, markov::TokenModel m,
-       int set)
+  Impl(CandidateSlot s, language::MoveLanguage st, language::MoveLanguage sy,
+       std::shared_ptr<const markov::TokenModel> m, int set)
       : slot(std::move(s)),
         styles(std::move(st)),
         symbols(std::move(sy)),
@@ -339,8 +340,8 @@ Result<CandidateScorer> CandidateScorer::Make(const CandidateSlot& slot, const s
   SB_RETURN_IF_ERROR(slot.Validate());
   std::string path = model == "default" ? plan::DefaultModelPath() : model;
   if (path.empty()) return Status::NotFound("the bundled Markov model (data/models/default.sbm) was not found");
-  SB_ASSIGN_OR_RETURN(markov::TokenModel m, markov::LoadModel(path));
-  SB_ASSIGN_OR_RETURN(plan::SymbolSource src, plan::CheckSmoothingModel(m, path));
+  SB_ASSIGN_OR_RETURN(std::shared_ptr<const markov::TokenModel> m, plan::CachedModel(path));
+  SB_ASSIGN_OR_RETURN(plan::SymbolSource src, plan::CheckSmoothingModel(*m, path));
   SB_ASSIGN_OR_RETURN(language::MoveLanguage sy, plan::LoadSymbolLanguage(src));
   SB_ASSIGN_OR_RETURN(language::MoveLanguage st, language::MoveLanguage::LoadDefault());
   const int set = src.symbol_set[1] - '1';
@@ -354,9 +355,9 @@ double CandidateScorer::BitsPerMove(const std::vector<std::string>& moves) {
   for (const std::string& m : moves) {
     tokens.push_back(impl_->symbols.Read(m).symbols.k[impl_->symbol_set]);
   }
-  auto ids = impl_->model.Encode(tokens);
+  auto ids = impl_->model->Encode(tokens);
   if (!ids.ok()) return 0.0;  // a vocabulary model encodes every token
-  return impl_->model.model().LogLoss(*ids) / static_cast<double>(moves.size());
+  return impl_->model->model().LogLoss(*ids) / static_cast<double>(moves.size());
 }
 
 CandidateScore CandidateScorer::Score(const plan::RoutePlan& p) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstdlib>
 
 #include "app/setting_day.h"
 #include "app/variations.h"
@@ -447,6 +448,8 @@ TEST(NoveltyTest, EachLevelsBestLandsInItsBandOnTheExamplePairs) {
           }
         } else {
           misses += names[i] + "/" + NoveltyName(level) + " ";
+          std::printf("%s + %s, %s: %s\n", names[i].c_str(), names[(i + 1) % names.size()].c_str(),
+                      NoveltyName(level), note.c_str());
           // Not met: never silently, the note says why and what to try,
           // with what the IC picker saw (how many ICs, how many meet the
           // constraints, the shares of new moves reached).
