@@ -473,6 +473,54 @@ TEST(NoveltyTest, EachLevelsBestLandsInItsBandOnTheExamplePairs) {
   }
 }
 
+// Issue 33: a level the inputs cannot reach is said so in a setter's words,
+// with the measured figures (docs/BENCHMARKS.md, "what blocks `new`"): on
+// campus rail + crimp ladder no variation within the setter's rules changes
+// more than 9 of its 18 moves, so `new` is out of reach; the sentence is a
+// catalog message (translated by id) and the note begins with it.
+TEST(NoveltyTest, AnUnreachableLevelIsSaidInASettersWords) {
+  if (!CandidateScorer::Make({}).ok()) GTEST_SKIP() << "grammar or model missing";
+  std::vector<chaos::InputRoute> in;
+  for (const char* f : {"campus-rail", "crimp-ladder"}) {
+    const std::string path = FindDataFile(std::string("examples/") + f + ".crdl");
+    if (path.empty()) GTEST_SKIP() << "bundled examples missing";
+    auto r = ReadCrdlFile(path);
+    ASSERT_TRUE(r.ok()) << r.status().message();
+    in.push_back({r->Name("x"), *r});
+  }
+  SettingRequest req;
+  chaos::VaryParams params;
+  ApplySetterPreset(&params, &req);
+  req.grid.radius = kDaySearchRadius;
+  GalleryOptions go;
+  go.novelty = Novelty::kNew;
+  std::string note;
+  Message said;
+  auto g = MakeGallery(in, params, req, {}, go, &note, &said);
+  ASSERT_TRUE(g.ok()) << g.status().message();
+  const Candidate& best = g->front();
+  EXPECT_NE(best.score.novelty, Novelty::kNew);
+  EXPECT_EQ(said.kind, Message::Kind::kMessage);
+  EXPECT_EQ(said.id,
+            "No variation of these routes changes more than two thirds of the moves within the "
+            "setter's rules (the most changed: {1} of {2}); showing the best of the others "
+            "instead ({3})");
+  EXPECT_EQ(said.English(),
+            "No variation of these routes changes more than two thirds of the moves within the "
+            "setter's rules (the most changed: 9 of 18); showing the best of the others instead "
+            "(" + std::to_string(best.score.new_moves) + " of 18 moves changed)");
+  EXPECT_EQ(best.score.new_moves, 5);  // measured: the best of the others
+  EXPECT_EQ(note.rfind(said.English() + ". Details: ", 0), 0u) << note;
+  // Met: nothing said.
+  go.novelty = Novelty::kMix;
+  auto mix = MakeGallery(in, params, req, {}, go, &note, &said);
+  ASSERT_TRUE(mix.ok()) << mix.status().message();
+  if (mix->front().score.novelty == Novelty::kMix && mix->front().score.warnings.empty()) {
+    EXPECT_TRUE(said.empty());
+    EXPECT_EQ(note, "");
+  }
+}
+
 // Issue 33, "Must show": `make run`'s demo prints the `mix` level's
 // variation: scripts/run.sh varies crimp ladder + slab dance with
 // `--preset setter --novelty mix`, and that gallery's best (the CLI's search

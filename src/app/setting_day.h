@@ -123,6 +123,10 @@ struct DaySlotProposal {
   // on a V0 slab or a kids' wall) and was not asked: the style used instead
   // and why ("" = the slot's own).
   std::string style_note;
+  // Issue 33: the novelty asked not met without a warning, in a setter's
+  // words (MakeGallery's `said`; `note` begins with its English): empty when
+  // met.
+  Message novelty_said;
 };
 
 struct SettingDayProposal {
