@@ -531,12 +531,12 @@
     let map = null;      // the last slice
     let picked = null;   // [i, j] grid cell
     let suggested = [];  // grid indices of suggested ICs
-    const FIELDS = ['preset', 'system', 'params', 'integrator', 'step', 'ref_ic', 'var_ic', 'skip',
+    const FIELDS = ['preset', 'novelty', 'system', 'params', 'integrator', 'step', 'ref_ic', 'var_ic', 'skip',
       'mapping', 'mask', 'max_repeat', 'name', 'grade', 'colour', 'wall', 'setter', 'date', 'notes',
       'visibility', 'metric', 'crux_window', 'match', 'target_effect', 'target_change', 'smooth_method'];
     // Checkboxes of the form state (the setter's constraints), '1' in the URL when ticked.
     const CHECKS = ['keep_start', 'keep_finish', 'alternate_hands'];
-    const DEFAULTS = { preset: 'setter', metric: 'effect', match: 'text', smooth_method: 'vomm' };
+    const DEFAULTS = { preset: 'setter', novelty: 'mix', metric: 'effect', match: 'text', smooth_method: 'vomm' };
     const ADVANCED = ['system', 'params', 'integrator', 'step', 'ref_ic', 'var_ic', 'skip', 'mapping', 'mask',
       'max_repeat', 'crux_window', 'match', 'target_effect', 'target_change', 'smooth_method'].concat(CHECKS);
     const chosen = $('#chosen');
@@ -819,6 +819,8 @@
       if (!ids.length) return say($('#vary-msg'), tr('Choose at least one route.'));
       saveState();
       const body = Object.assign(params(), { routes: ids, smooth: $('#smooth').checked });
+      // Issue 33: the novelty asked of the setter's gallery (mix, the default, left out).
+      if (body.preset === 'setter' && $('#novelty').value !== 'mix') body.novelty = $('#novelty').value;
       for (const k of ['name', 'grade', 'colour', 'wall', 'setter', 'date', 'notes']) if ($('#' + k).value.trim()) body[k] = $('#' + k).value.trim();
       if ($('#visibility').value) body.public = $('#visibility').value === 'public';
       if ($('#duplicate').checked) body.duplicate = true;
@@ -865,6 +867,15 @@
     p.textContent = tr('The setter\'s preset: the best of {1} candidates ({2} kept by the filter), score {3}: {4}.',
       gallery.count, gallery.kept, gallery.score, (gallery.reasons_text || gallery.reasons).join('; '));
     plan.parentNode.insertBefore(p, plan);
+    // Issue 33: the novelty asked could not be met, and why.
+    const why = gallery.novelty_note_text || gallery.novelty_note;
+    if (why) {
+      const n = document.createElement('p');
+      n.className = 'notice no-print';
+      n.id = 'novelty-note';
+      n.textContent = why;
+      plan.parentNode.insertBefore(n, plan);
+    }
   }
 
   // ---- import page ----

@@ -218,6 +218,94 @@ int MovesOutside(int new_moves, int moves, Novelty level) {
   return new_moves < lo ? lo - new_moves : new_moves > hi ? new_moves - hi : 0;
 }
 
+// A warning's kind ("start-mid-route: move 4 ...") in a setter's words, as
+// what a route "has".
+Message WarningWords(std::string_view warning) {
+  const std::string_view kind = warning.substr(0, warning.find(':'));
+  if (kind == "start-mid-route") return Msg("a start hold mid-route");
+  if (kind == "finish-mid-route") return Msg("a finish hold mid-route");
+  if (kind == "repeated-move") return Msg("a move repeated");
+  if (kind == "same-hand") return Msg("the same hand twice in a row");
+  if (kind == "no-finish") return Msg("no finish");
+  if (kind == "early-crux") return Msg("the crux too early");
+  return std::string(kind);
+}
+
+// Why the level asked is not met without a warning, in a setter's words
+// (MakeGallery's `said`): no variation within the setter's rules (kept by
+// the filter) lands in the level, with the nearest share reached (the most
+// changed for `new`, the least for `close`) among the scanned and made
+// variations; or every one there has a warning, named.
+Message NoveltyMissed(Novelty level, const std::vector<Candidate>& out,
+                      const std::vector<ScanPoint>& points) {
+  const Candidate& best = out.front();
+  const Message level_words = Word(NoveltyWords(level));
+  std::vector<std::pair<int, int>> kept;  // new moves, moves
+  for (const ScanPoint& pt : points) {
+    if (pt.kept && pt.moves > 0) kept.push_back({pt.new_moves, pt.moves});
+  }
+  bool met = false;
+  for (const Candidate& c : out) {
+    if (c.score.rejected || c.score.moves <= 0) continue;
+    kept.push_back({c.score.new_moves, c.score.moves});
+    met = met || c.score.novelty == level;
+  }
+  const Message shown = MsgN("{1} of {2} move changed", "{1} of {2} moves changed",
+                             best.score.moves, {std::to_string(best.score.new_moves),
+                                                std::to_string(best.score.moves)});
+  if (met) {
+    // Every kept candidate in the level has a warning: the one they share,
+    // else the best's.
+    std::string common = best.score.warnings.empty() ? "" : best.score.warnings.front();
+    const std::string kind = common.substr(0, common.find(':'));
+    bool all = !kind.empty();
+    for (const Candidate& c : out) {
+      if (c.score.rejected || c.score.novelty != level) continue;
+      bool has = false;
+      for (const std::string& w : c.score.warnings) has = has || w.rfind(kind + ":", 0) == 0;
+      all = all && has;
+    }
+    if (all) {
+      return Msg("The variations of these routes that are {1} all have {2}; the best of them is "
+                 "shown ({3}): check it at the wall, or ask for another novelty",
+                 {level_words, WarningWords(common), shown});
+    }
+    return Msg("The variations of these routes that are {1} all carry a warning; the best of them "
+               "is shown ({2}, with {3}): check it at the wall, or ask for another novelty",
+               {level_words, shown, WarningWords(common)});
+  }
+  if (kept.empty()) {
+    return Msg("No variation of these routes passes the setter's rules: each is rejected; the "
+               "best of them is shown ({1})", {shown});
+  }
+  // The nearest share to the level's band: the most changed for new, the
+  // least for close, the nearest to the band for mix.
+  auto share_less = [](const std::pair<int, int>& a, const std::pair<int, int>& b) {
+    return static_cast<long>(a.first) * b.second < static_cast<long>(b.first) * a.second;
+  };
+  if (level == Novelty::kNew) {
+    const auto m = *std::max_element(kept.begin(), kept.end(), share_less);
+    return Msg("No variation of these routes changes more than two thirds of the moves within "
+               "the setter's rules (the most changed: {1} of {2}); showing the best of the "
+               "others instead ({3})",
+               {std::to_string(m.first), std::to_string(m.second), shown});
+  }
+  if (level == Novelty::kClose) {
+    const auto m = *std::min_element(kept.begin(), kept.end(), share_less);
+    return Msg("No variation of these routes changes less than a third of the moves within "
+               "the setter's rules (the least changed: {1} of {2}); showing the best of the "
+               "others instead ({3})",
+               {std::to_string(m.first), std::to_string(m.second), shown});
+  }
+  const auto lo = *std::min_element(kept.begin(), kept.end(), share_less);
+  const auto hi = *std::max_element(kept.begin(), kept.end(), share_less);
+  return Msg("No variation of these routes changes between a third and two thirds of the moves "
+             "within the setter's rules (from {1} of {2} to {3} of {4}); showing the best of "
+             "the others instead ({5})",
+             {std::to_string(lo.first), std::to_string(lo.second), std::to_string(hi.first),
+              std::to_string(hi.second), shown});
+}
+
 }  // namespace
 
 Status CandidateSlot::Validate() const {
@@ -319,10 +407,11 @@ struct CandidateScorer::Impl {
   CandidateSlot slot;
   language::MoveLanguage styles;   // the project's grammar (style reading)
   language::MoveLanguage symbols;  // the model's own reading of moves
-  markov::TokenModel model;
+  // Read once per process and shared (plan::CachedModel): immutable.
+  std::shared_ptr<const markov::TokenModel> model;
   int symbol_set = 0;  // 0..3 (k1..k4)
-  Impl(CandidateSlot s, language::MoveLanguage st, language::MoveLanguage sy, markov::TokenModel m,
-       int set)
+  Impl(CandidateSlot s, language::MoveLanguage st, language::MoveLanguage sy,
+       std::shared_ptr<const markov::TokenModel> m, int set)
       : slot(std::move(s)),
         styles(std::move(st)),
         symbols(std::move(sy)),
@@ -339,8 +428,8 @@ Result<CandidateScorer> CandidateScorer::Make(const CandidateSlot& slot, const s
   SB_RETURN_IF_ERROR(slot.Validate());
   std::string path = model == "default" ? plan::DefaultModelPath() : model;
   if (path.empty()) return Status::NotFound("the bundled Markov model (data/models/default.sbm) was not found");
-  SB_ASSIGN_OR_RETURN(markov::TokenModel m, markov::LoadModel(path));
-  SB_ASSIGN_OR_RETURN(plan::SymbolSource src, plan::CheckSmoothingModel(m, path));
+  SB_ASSIGN_OR_RETURN(std::shared_ptr<const markov::TokenModel> m, plan::CachedModel(path));
+  SB_ASSIGN_OR_RETURN(plan::SymbolSource src, plan::CheckSmoothingModel(*m, path));
   SB_ASSIGN_OR_RETURN(language::MoveLanguage sy, plan::LoadSymbolLanguage(src));
   SB_ASSIGN_OR_RETURN(language::MoveLanguage st, language::MoveLanguage::LoadDefault());
   const int set = src.symbol_set[1] - '1';
@@ -354,9 +443,9 @@ double CandidateScorer::BitsPerMove(const std::vector<std::string>& moves) {
   for (const std::string& m : moves) {
     tokens.push_back(impl_->symbols.Read(m).symbols.k[impl_->symbol_set]);
   }
-  auto ids = impl_->model.Encode(tokens);
+  auto ids = impl_->model->Encode(tokens);
   if (!ids.ok()) return 0.0;  // a vocabulary model encodes every token
-  return impl_->model.model().LogLoss(*ids) / static_cast<double>(moves.size());
+  return impl_->model->model().LogLoss(*ids) / static_cast<double>(moves.size());
 }
 
 CandidateScore CandidateScorer::Score(const plan::RoutePlan& p) {
@@ -575,8 +664,11 @@ Result<std::vector<Candidate>> MakeGallery(const std::vector<chaos::InputRoute>&
                                            const SettingRequest& setting,
                                            const CandidateSlot& slot,
                                            const GalleryOptions& options,
-                                           std::string* note) {
+                                           std::string* note, Message* said) {
   if (note) note->clear();
+  if (said) *said = Message();
+  std::string own_note;
+  if (said && !note) note = &own_note;
   if (options.rings < 0 || options.rings > kMaxGalleryRings) {
     return Status::InvalidInput("rings: between 0 and " + std::to_string(kMaxGalleryRings));
   }
@@ -716,6 +808,8 @@ Result<std::vector<Candidate>> MakeGallery(const std::vector<chaos::InputRoute>&
   RankCandidates(&out);
   const Candidate& best = out.front();
   if (note && (!met() || !best.score.warnings.empty())) {
+    const Message why = NoveltyMissed(options.novelty, out, scan.points);
+    if (said) *said = why;
     // Why the level asked is not met without a warning, in words a setter
     // can act on.
     int in_level = 0;
@@ -780,6 +874,8 @@ Result<std::vector<Candidate>> MakeGallery(const std::vector<chaos::InputRoute>&
               std::to_string(best.score.new_moves) + " of " + std::to_string(best.score.moves) +
               " moves new): try novelty " + NoveltyName(best.score.novelty) + " or other inputs";
     }
+    // The setter's sentence first, the picker's figures after it.
+    *note = why.English() + ". Details: " + *note;
   }
   return out;
 }
@@ -797,7 +893,8 @@ Result<GalleryChoice> ChooseFromGallery(const std::vector<chaos::InputRoute>& in
                                         const GalleryOptions& options) {
   GalleryChoice out;
   SB_ASSIGN_OR_RETURN(out.candidates,
-                      MakeGallery(inputs, *params, *setting, slot, options, &out.note));
+                      MakeGallery(inputs, *params, *setting, slot, options, &out.note,
+                                  &out.note_said));
   out.count = static_cast<int>(out.candidates.size());
   for (const Candidate& c : out.candidates) out.kept += c.score.rejected ? 0 : 1;
   params->var_ic = out.candidates.front().searched_from;

@@ -232,12 +232,19 @@ inline constexpr int kMaxGalleryRings = 4;
 // it scanned, how many meet the constraints, and the share of new moves the
 // variations passing the filter reach (so a setter sees the inputs cannot
 // give the level, and a reader can check it with the same scan).
+// `*said` (optional) says the same in a setter's words, translated by id
+// (empty when the level is met): "No variation of these routes changes more
+// than two thirds of the moves within the setter's rules (the most changed:
+// 9 of 18); showing the best of the others instead (7 of 18 moves
+// changed)", or "The variations of these routes that are mostly new all
+// have a start hold mid-route; ...". `*note` begins with it.
 Result<std::vector<Candidate>> MakeGallery(const std::vector<chaos::InputRoute>& inputs,
                                            const chaos::VaryParams& params,
                                            const SettingRequest& setting,
                                            const CandidateSlot& slot,
                                            const GalleryOptions& options,
-                                           std::string* note = nullptr);
+                                           std::string* note = nullptr,
+                                           Message* said = nullptr);
 
 // The gallery's best, as the setter's preset uses it (`vary --preset setter`
 // and the web's "preset": "setter": one step for both). Value type.
@@ -247,6 +254,7 @@ struct GalleryChoice {
   int count = 0;                      // candidates made (duplicates dropped)
   int kept = 0;                       // of them, kept by the filter
   std::string note;                   // MakeGallery's (the level not met, why)
+  Message note_said;                  // the same in a setter's words (MakeGallery's `said`)
 };
 // The plans a gallery with `options` builds at most (its ICs: 1 + 8 per
 // ring; the IC picker's scans of other levels build none), what a caller

@@ -634,10 +634,12 @@ Result<SettingDayProposal> SettingDays::Propose(const Viewer& v, const SettingDa
       go.novelty = work[i].slot.novelty.value_or(req.novelty);
       go.max_levels = levels;
       std::string level_note;
+      Message level_said;
       Result<std::vector<Candidate>> gallery =
-          MakeGallery(work[i].inputs, params, setting, cs, go, &level_note);
+          MakeGallery(work[i].inputs, params, setting, cs, go, &level_note, &level_said);
       DaySlotProposal& sp = out.slots[i];
       sp.novelty = go.novelty;
+      sp.novelty_said = level_said;
       if (!gallery.ok()) {
         sp.note = "no candidate: " + gallery.status().message();
         sp.note_said = Msg("no candidate: {1}", {gallery.status().message()});

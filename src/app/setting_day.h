@@ -127,6 +127,10 @@ struct DaySlotProposal {
   // and why ("" = the slot's own).
   std::string style_note;
   Message style_note_said;  // issue 32: `style_note` as a message id
+  // Issue 33: the novelty asked not met without a warning, in a setter's
+  // words (MakeGallery's `said`; `note` begins with its English): empty when
+  // met.
+  Message novelty_said;
 };
 
 struct SettingDayProposal {

@@ -118,6 +118,7 @@ int RunVary(const std::vector<std::string>& args) {
   smoothing.model = smooth.empty() ? "default" : smooth;
   app::SmoothingOutcome outcome;
   std::string gallery_report;
+  std::string novelty_note;  // issue 33: the novelty asked not met, why
   if (setter_preset) {
     if (!token_files.empty()) {
       return Fail(kCmd, Status::InvalidInput("--preset setter: for routes, not --tokens"));
@@ -139,6 +140,7 @@ int RunVary(const std::vector<std::string>& args) {
                      "(docs/setting.md); the first is printed above:\n" +
                      (gallery->note.empty() ? "" : "Note: " + gallery->note + "\n") +
                      app::GalleryReport(gallery->candidates);
+    novelty_note = gallery->note_said.English();
   }
   Result<plan::RoutePlan> p =
       app::BuildPlan(std::move(inputs).value(), *params, *req, smoothing, &outcome);
@@ -164,7 +166,11 @@ int RunVary(const std::vector<std::string>& args) {
     return Fail(kCmd, outcome.status);
   }
   std::string rendered = plan::Render(*p, *fmt);
-  if (*fmt == plan::Format::kText || *fmt == plan::Format::kMarkdown) rendered += gallery_report;
+  if (*fmt == plan::Format::kText || *fmt == plan::Format::kMarkdown) {
+    rendered += gallery_report;  // its Note: line says it
+  } else if (!novelty_note.empty()) {
+    std::fprintf(stderr, "vary: note: %s\n", novelty_note.c_str());
+  }
   return WriteOutput(kCmd, out, rendered);
 }
 

@@ -7,6 +7,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <set>
 
 #include "base/files.h"
@@ -379,7 +382,26 @@ Result<MoveLanguage> MoveLanguage::LoadDefault() {
         "default grammar not found (set SB_DATA_DIR to the directory holding "
         "grammar/climbing.gra)");
   }
-  return LoadDir(dir, Tokenization::kFolded);
+  // The bundled grammar is read and compiled once per process (per
+  // directory found) and shared: a Grammar is immutable after loading, so
+  // every MoveLanguage made here (each with its own parser) reads the same
+  // one. Errors are not kept (the next call reads the files again).
+  static std::mutex mu;
+  static auto* loaded = new std::map<std::string, std::shared_ptr<const Grammar>>;  // never freed
+  {
+    std::lock_guard<std::mutex> lock(mu);
+    auto it = loaded->find(dir);
+    if (it != loaded->end()) return MoveLanguage(it->second, Tokenization::kFolded);
+  }
+  auto g = LoadGrammarDir(dir);
+  if (!g.ok()) return g.status();
+  std::shared_ptr<const Grammar> grammar = std::move(g.value());
+  {
+    std::lock_guard<std::mutex> lock(mu);
+    // A racing first load keeps the first one stored: one grammar per directory.
+    grammar = loaded->emplace(dir, std::move(grammar)).first->second;
+  }
+  return MoveLanguage(std::move(grammar), Tokenization::kFolded);
 }
 
 Result<MoveLanguage> MoveLanguage::LoadDir(const std::string& dir, Tokenization tokenization) {

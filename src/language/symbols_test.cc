@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <string>
+#include <thread>
+#include <vector>
 
 namespace sb::language {
 namespace {
@@ -132,6 +135,37 @@ TEST(SymbolsTest, DefaultGrammarIsFound) {
   ::setenv("SB_DATA_DIR", "/nonexistent-dir", 1);
   EXPECT_FALSE(DefaultGrammarDir().empty());  // falls back to the source tree
   ::unsetenv("SB_DATA_DIR");
+}
+
+// Issue 33: the bundled grammar is compiled once per process and shared by
+// every MoveLanguage LoadDefault makes (each with its own parser), from any
+// thread, reading moves exactly as a grammar loaded on its own does.
+TEST(SymbolsTest, LoadDefaultSharesOneGrammarAcrossThreads) {
+  auto a = MoveLanguage::LoadDefault();
+  ASSERT_TRUE(a.ok()) << a.status().message();
+  auto fresh = MoveLanguage::LoadDir(DefaultGrammarDir());
+  ASSERT_TRUE(fresh.ok()) << fresh.status().message();
+  EXPECT_NE(&a->grammar(), &fresh->grammar());
+  const std::vector<std::string> moves = {"dyno to big sloping edge", "L crimp sidepull",
+                                          "match", "heel hook the jug"};
+  std::vector<std::string> want;
+  for (const std::string& m : moves) want.push_back(fresh->SymbolsOf(m).k[3]);
+  std::vector<const Grammar*> seen(4, nullptr);
+  std::vector<int> same(4, 0);
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 4; ++t) {
+    threads.emplace_back([&, t] {
+      auto l = MoveLanguage::LoadDefault();
+      if (!l.ok()) return;
+      seen[t] = &l->grammar();
+      for (size_t i = 0; i < moves.size(); ++i) same[t] += l->SymbolsOf(moves[i]).k[3] == want[i];
+    });
+  }
+  for (std::thread& th : threads) th.join();
+  for (int t = 0; t < 4; ++t) {
+    EXPECT_EQ(seen[t], &a->grammar()) << t;
+    EXPECT_EQ(same[t], static_cast<int>(moves.size())) << t;
+  }
 }
 
 // The project's grammar: moves as climbers write them.

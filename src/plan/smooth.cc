@@ -44,6 +44,8 @@ Cache& TheCache() {
   return *cache;
 }
 
+}  // namespace
+
 Result<std::shared_ptr<const markov::TokenModel>> CachedModel(const std::string& path) {
   std::error_code ec;
   auto mtime = std::filesystem::last_write_time(path, ec);
@@ -65,6 +67,8 @@ Result<std::shared_ptr<const markov::TokenModel>> CachedModel(const std::string&
   }
   return shared;
 }
+
+namespace {
 
 // The grammar of a source, cached by (.gra, frames) path.
 Result<std::shared_ptr<const language::Grammar>> CachedGrammar(const std::string& gra,

@@ -5,6 +5,7 @@
 #define SB_PLAN_SMOOTH_H_
 
 #include <map>
+#include <memory>
 #include <string>
 
 #include "base/status.h"
@@ -64,6 +65,12 @@ Status Smooth(const std::string& model_path, RoutePlan* plan, double min_bits = 
 
 // The bundled model (data/models/default.sbm, see FindDataFile), or "".
 std::string DefaultModelPath();
+
+// The model at `path`, read once per process and shared (the one Smooth
+// uses): read again only when the file's size or modification time changes.
+// A TokenModel is immutable; the pointer may be kept and used from any
+// thread. Errors: markov::LoadModel's. Thread-safe.
+Result<std::shared_ptr<const markov::TokenModel>> CachedModel(const std::string& path);
 
 }  // namespace sb::plan
 

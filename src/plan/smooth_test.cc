@@ -65,6 +65,18 @@ TEST(Smooth, SuggestionsSitAtBoundariesAndLowerTheBits) {
   EXPECT_TRUE(strict.smoothing.empty());
 }
 
+// Issue 33: the bundled model is read once per process and shared.
+TEST(Smooth, CachedModelIsReadOnceAndShared) {
+  const std::string path = DefaultModelPath();
+  if (path.empty()) GTEST_SKIP() << "bundled model missing";
+  auto a = CachedModel(path);
+  ASSERT_TRUE(a.ok()) << a.status().message();
+  auto b = CachedModel(path);
+  ASSERT_TRUE(b.ok()) << b.status().message();
+  EXPECT_EQ(a->get(), b->get());
+  EXPECT_FALSE(CachedModel(path + ".missing").ok());
+}
+
 TEST(Smooth, BadModelsAreErrors) {
   RoutePlan plan = ExamplePlan();
   EXPECT_EQ(Smooth("/nonexistent/model.sbm", &plan).code(), Status::Code::kNotFound);

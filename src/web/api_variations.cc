@@ -204,6 +204,14 @@ void PostVariation(Exchange& x) {
                           {"new_moves", best.new_moves},
                           {"moves", best.moves}};
     if (!v->gallery->note.empty()) out["gallery"]["note"] = v->gallery->note;
+    // Issue 33: the novelty asked not met, in a setter's words (and in the
+    // caller's language).
+    if (!v->gallery->note_said.empty()) {
+      out["gallery"]["novelty_note"] = v->gallery->note_said.English();
+      if (const std::string lang = ApiLanguage(x); lang != "en") {
+        out["gallery"]["novelty_note_text"] = TrMessage(lang, v->gallery->note_said);
+      }
+    }
     // The reasons in the caller's language, beside the English ones (issue 32).
     if (const std::string lang = ApiLanguage(x); lang != "en") {
       json said = json::array();

@@ -669,6 +669,11 @@ std::string VaryPage(const PageViewer& v, const std::vector<app::RouteView>& cho
        "</option><option value=\"default\">" + Tr(v, "default (the paper's: variation IC -16,-12,52)") +
        "</option><option value=\"more\">" + Tr(v, "more (the paper's: IC -16,-13.5,52, skip 100)") +
        "</option></select></label>\n"
+       // Issue 33: how much of the inputs the setter's preset changes.
+       "<label>" + Tr(v, "Novelty") + " <select id=\"novelty\"><option value=\"close\">" +
+       Tr(v, "close to its inputs") + "</option><option value=\"mix\" selected>" +
+       Tr(v, "a mix of its inputs and new moves") + "</option><option value=\"new\">" +
+       Tr(v, "mostly new") + "</option></select></label>\n"
        "<label class=\"inline\"><input type=\"checkbox\" id=\"smooth\"> " +
        Tr(v, "Smooth (suggest linking moves)") + "</label>\n"
        "<details id=\"advanced\"><summary>" + Tr(v, "Advanced parameters") + "</summary><div class=\"grid2\">\n"

@@ -141,6 +141,7 @@ json ProposalJson(const app::SettingDayProposal& p) {
            {"style", s.slot.style}, {"novelty", app::NoveltyName(s.novelty)},
            {"candidates", cands}};
     if (!s.note.empty()) j["note"] = s.note;
+    if (!s.novelty_said.empty()) j["novelty_note"] = s.novelty_said.English();
     if (s.accepted_route) j["accepted_route"] = s.accepted_route;
     if (!s.reachable_band.empty()) j["reachable_band"] = s.reachable_band;
     if (!s.style_note.empty()) j["style_note"] = s.style_note;
@@ -426,6 +427,9 @@ void PageSettingDay(Exchange& x) {
              E(s.slot.band.empty() ? Tr(lang, "any grade") : s.slot.band) + " · " +
              E(s.slot.style.empty() ? Tr(lang, "any style") : Tr(lang, s.slot.style.c_str())) + " · " +
              E(Tr(lang, app::NoveltyWords(s.novelty))) + "</h2>\n";
+        if (!s.novelty_said.empty()) {  // issue 33: the novelty asked not met, why
+          b += "<p class=\"note novelty-note\">" + E(TrMessage(lang, s.novelty_said)) + "</p>\n";
+        }
         // The notes in the page's language (app::Message ids, issue 32).
         if (!s.note.empty()) {
           b += "<p class=\"note\">" +
