@@ -56,20 +56,6 @@ RouteDiscipline DisciplineOfRoute(const Route& route, std::string_view wall_disc
   return out;
 }
 
-Status CheckGradeOfDiscipline(std::string_view grade, std::string_view discipline,
-                              std::string_view field) {
-  const std::optional<grades::Discipline> d = Named(discipline);
-  const std::string typed(Trim(grade));
-  if (!d || typed.empty()) return Status::Ok();
-  Result<grades::Grade> g = grades::ParseGrade(typed, {d, std::nullopt}, field);
-  if (g.ok() && g->discipline() == *d) return Status::Ok();
-  return Status::InvalidInput(
-      std::string(field) + ": \"" + typed + "\"" +
-      (*d == grades::Discipline::kRoped
-           ? " is not a roped grade (YDS, French or UIAA, such as 5.10a, 6b+ or VI+)"
-           : " is not a bouldering grade (V or Font, such as V4 or 6B+)"));
-}
-
 std::string FitDiscipline(const std::string& grade_discipline) {
   return grade_discipline.empty() ? "bouldering" : grade_discipline;
 }

@@ -61,16 +61,6 @@ std::string GradeNote(const std::string& typed_grade, const std::string& discipl
 bool FeltGradeFits(const grades::Grade& felt, const std::string& typed_grade,
                    const std::string& discipline);
 
-// A gym route's grade on a wall of `discipline` ("bouldering", "roped")
-// without a scale of its own (issue 32): OK when it is a grade of one of
-// that discipline's built-in scales (read with the discipline: a bare "4" is
-// V4, "6a+" Font on a bouldering wall); else kInvalidInput
-// `FIELD: "5.10a" is not a bouldering grade (V or Font, such as V4 or 6B+)`
-// (a roped wall: `... is not a roped grade (YDS, French or UIAA, ...)`). OK
-// for an empty grade or an unknown discipline. Pure.
-Status CheckGradeOfDiscipline(std::string_view grade, std::string_view discipline,
-                              std::string_view field = "grade");
-
 // The discipline whose ascent fit holds a route: its stored `grade_discipline`,
 // else "bouldering" (the logbook's fits and what the pages charge for them;
 // the store's one-discipline tick read says the same in SQL). Pure.

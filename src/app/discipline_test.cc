@@ -76,21 +76,6 @@ class DisciplineTest : public AppTest {
     EXPECT_TRUE(id.ok()) << id.status().message();
     return id.ok() ? *id : 0;
   }
-  // A route on the bouldering wall whose grade is of the other discipline's
-  // scale ("5.8"): since issue 32 such a grade is refused on a new route of
-  // the wall, so the route is set while the wall is roped and the wall made
-  // bouldering again (as a head setter who changes a wall's discipline).
-  int64_t SetOtherScale(const std::string& crdl) {
-    Gyms& gyms = services_->gyms;
-    Wall w = *gyms.GetWall(head_, wall_);
-    w.discipline = "roped";
-    EXPECT_TRUE(gyms.EditWall(head_, w).ok());
-    const int64_t id = Set(crdl, true);
-    w = *gyms.GetWall(head_, wall_);
-    w.discipline = "bouldering";
-    EXPECT_TRUE(gyms.EditWall(head_, w).ok());
-    return id;
-  }
   std::vector<int64_t> Ids(const RouteQuery& q) {
     std::vector<int64_t> out;
     Result<std::vector<RouteView>> r = services_->routes.List(head_, q);
@@ -110,7 +95,7 @@ class DisciplineTest : public AppTest {
 TEST_F(DisciplineTest, GradesReadOneWayEverywhere) {
   const int64_t old8 = Set("name: Old\ntype: Bouldering\ngrade: 5.8\n---\nR crimp\n", false);
   const int64_t old10 = Set("name: Ten\ntype: Bouldering\ngrade: 5.10\n---\nR crimp\n", false);
-  const int64_t cave8 = SetOtherScale("name: Cave\ngrade: 5.8\n---\nR crimp\n");
+  const int64_t cave8 = Set("name: Cave\ngrade: 5.8\n---\nR crimp\n", true);
   const int64_t v0 = Set("name: Easy\ngrade: V0\n---\nR jug\n", true);
   const int64_t rope8 = Set("name: Rope\ngrade: 5.8\n---\nR jug\n", false);
   RouteQuery q;
@@ -143,7 +128,7 @@ TEST_F(DisciplineTest, GradesReadOneWayEverywhere) {
 
 TEST_F(DisciplineTest, OnlyHeadSettersSetARoutesDiscipline) {
   Routes& r = services_->routes;
-  const int64_t cave8 = SetOtherScale("name: Cave\ngrade: 5.8\n---\nR crimp\n");
+  const int64_t cave8 = Set("name: Cave\ngrade: 5.8\n---\nR crimp\n", true);
   RouteEdit e;
   e.discipline = "roped";
   EXPECT_EQ(r.Update(setter_, cave8, e).code(), Code::kPermission);
@@ -163,15 +148,8 @@ TEST_F(DisciplineTest, OnlyHeadSettersSetARoutesDiscipline) {
   RouteEdit keep;
   keep.crdl = v.crdl + "L jug\n";
   EXPECT_TRUE(r.Update(setter_, cave8, keep).ok());
-  e.discipline = "";  // back to its wall's: its roped 5.8 is no grade of the bouldering wall
-  const Status back = r.Update(head_, cave8, e);
-  EXPECT_EQ(back.message(),
-            "grade: \"5.8\" is not a bouldering grade (V or Font, such as V4 or 6B+)");
-  EXPECT_EQ(r.DisciplineOf(*r.Get(head_, cave8))->Describe(), "roped (set by a head setter)");
-  RouteEdit both;  // with a bouldering grade it goes back
-  both.crdl = "name: Cave\ngrade: V0\n---\nR crimp\nL jug\n";
-  both.discipline = "";
-  ASSERT_TRUE(r.Update(head_, cave8, both).ok()) << r.Update(head_, cave8, both).message();
+  e.discipline = "";  // back to its wall's
+  ASSERT_TRUE(r.Update(head_, cave8, e).ok());
   EXPECT_EQ(r.DisciplineOf(*r.Get(head_, cave8))->Describe(), "bouldering (from its wall)");
 }
 
@@ -181,8 +159,8 @@ TEST_F(DisciplineTest, OnlyHeadSettersSetARoutesDiscipline) {
 TEST_F(DisciplineTest, AWallsNewDisciplineReachesItsRoutesAtOnce) {
   Routes& r = services_->routes;
   Gyms& gyms = services_->gyms;
-  const int64_t cave8 = SetOtherScale("name: Cave\ngrade: 5.8\n---\nR crimp\n");
-  const int64_t pinned = SetOtherScale("name: Pinned\ngrade: 5.9\n---\nR crimp\n");
+  const int64_t cave8 = Set("name: Cave\ngrade: 5.8\n---\nR crimp\n", true);
+  const int64_t pinned = Set("name: Pinned\ngrade: 5.9\n---\nR crimp\n", true);
   const int64_t off = Set("name: Off\ngrade: V1\n---\nR jug\n", false);
   RouteEdit e;
   e.discipline = "bouldering";
@@ -212,45 +190,6 @@ TEST_F(DisciplineTest, AWallsNewDisciplineReachesItsRoutesAtOnce) {
   w.name = "Big cave";
   ASSERT_TRUE(gyms.EditWall(head_, w).ok());
   EXPECT_EQ(r.Get(head_, cave8)->grade_value, 8.0);
-}
-
-// Issue 32: on a wall of a discipline without a scale of its own, a gym
-// route's grade is one of that discipline's built-in scales, else 400
-// naming the field and what is accepted; a head setter's "discipline:" line
-// decides otherwise, and a personal route's grade stays free.
-TEST_F(DisciplineTest, AGymRoutesGradeIsOfItsWallsDiscipline) {
-  Routes& r = services_->routes;
-  GymFields g;
-  g.gym = gym_;
-  g.wall = std::to_string(wall_);
-  g.state = "set";
-  Result<int64_t> roped = r.Create(setter_, "name: R\ngrade: 5.10a\n---\nR crimp\n", true, g);
-  ASSERT_EQ(roped.status().code(), Code::kInvalidInput);
-  EXPECT_EQ(roped.status().message(),
-            "grade: \"5.10a\" is not a bouldering grade (V or Font, such as V4 or 6B+)");
-  EXPECT_TRUE(r.Create(setter_, "name: V\ngrade: V4\n---\nR crimp\n", true, g).ok());
-  EXPECT_TRUE(r.Create(setter_, "name: F\ngrade: 6a+\n---\nR crimp\n", true, g).ok())
-      << "a Font grade in lower case on a bouldering wall";
-  EXPECT_TRUE(r.Create(setter_, "name: B\ngrade: 4\n---\nR crimp\n", true, g).ok())
-      << "a bare number is V4 on a bouldering wall";
-  // An edit is read the same way.
-  const int64_t v4 = Set("name: Edit\ngrade: V4\n---\nR crimp\n", true);
-  RouteEdit e;
-  e.crdl = "name: Edit\ngrade: VI+\n---\nR crimp\n";
-  EXPECT_EQ(r.Update(setter_, v4, e).code(), Code::kInvalidInput);
-  EXPECT_EQ(r.Get(head_, v4)->grade, "V4");
-  // A roped wall refuses a V grade.
-  Wall w = *services_->gyms.GetWall(head_, wall_);
-  w.discipline = "roped";
-  ASSERT_TRUE(services_->gyms.EditWall(head_, w).ok());
-  Result<int64_t> boulder = r.Create(setter_, "name: X\ngrade: V3\n---\nR crimp\n", true, g);
-  EXPECT_EQ(boulder.status().message(),
-            "grade: \"V3\" is not a roped grade (YDS, French or UIAA, such as 5.10a, 6b+ or VI+)");
-  EXPECT_TRUE(r.Create(setter_, "name: U\ngrade: VI+\n---\nR crimp\n", true, g).ok());
-  // Off the wall and personal routes: as before.
-  EXPECT_TRUE(Set("name: Off\ngrade: 5.10a\ntype: Bouldering\n---\nR crimp\n", false) > 0);
-  GymFields none;
-  EXPECT_TRUE(r.Create(User("solo"), "name: Mine\ngrade: V4\n---\nR crimp\n", true, none).ok());
 }
 
 TEST_F(AppTest, TheOwnerSetsAGymlessRoutesDiscipline) {

@@ -594,13 +594,6 @@ Result<GymImport::Plan> GymImport::Read(const Viewer& v, int64_t gym, const Impo
         std::string msg = g.status().message();
         bad("grade", msg.rfind("grade: ", 0) == 0 ? msg.substr(7) : msg);
       }
-    } else if (!out.grade.empty() && !wall_discipline.empty()) {
-      // Issue 32: a sector without a scale of its own takes its discipline's
-      // built-in scales (as the route's create does on confirm).
-      if (Status s = CheckGradeOfDiscipline(out.grade, wall_discipline); !s.ok()) {
-        const std::string msg = s.message();
-        bad("grade", msg.rfind("grade: ", 0) == 0 ? msg.substr(7) : msg);
-      }
     }
 
     // Duplicates in the list.

@@ -357,23 +357,11 @@ Status Routes::ApplyWallDiscipline(store::RouteRecord* rec, bool strict) {
   // grade is one of a built-in scale's, else the dashboard's bands, the
   // filters and the setting day would not see it (hands-on, stop 40: "V99"
   // and "blah" were stored). A personal route's grade stays free text.
-  // On a wall of a discipline (issue 32: grades are read in the wall's
-  // scale): one of that discipline's built-in scales ("5.10a" is refused on
-  // a bouldering wall, naming what it accepts). A head setter's
-  // "discipline:" line or the route's type decide otherwise, as before.
-  // Read with the route's discipline when it has one (a bare "4" is V4 on
-  // a bouldering wall, 5.4 on a roped one).
-  std::optional<grades::Discipline> hint;
-  if (Result<grades::Discipline> rd = grades::ParseDiscipline(d.discipline); rd.ok()) hint = *rd;
   if (strict && rec->gym_id && !Trim(rec->grade).empty() &&
-      !grades::ParseGrade(rec->grade, {hint, std::nullopt}, "grade").ok()) {
+      !grades::ParseGrade(rec->grade, {}, "grade").ok()) {
     return Status::InvalidInput("grade: \"" + std::string(Trim(rec->grade)) +
                                 "\" is not a grade of a built-in scale (V, Font, YDS, French or UIAA, "
                                 "such as V4, 6B+, 5.10a, 6b+ or VI+)");
-  }
-  // (A grade of no built-in scale is refused above, whatever the wall.)
-  if (strict && rec->gym_id && d.source == kFromWall) {
-    SB_RETURN_IF_ERROR(CheckGradeOfDiscipline(rec->grade, d.discipline));
   }
   return Status::Ok();
 }

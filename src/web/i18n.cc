@@ -228,7 +228,10 @@ std::string ColourLabelIn(std::string_view lang, const std::string& colour) {
   if (!t.empty() && t[0] == '#') return Tr(lang, english.c_str()) + " (" + std::string(t) + ")";
   const std::vector<std::string>& known = plan::KnownColourNames();
   if (std::find(known.begin(), known.end(), Lower(t)) != known.end()) {
-    return Tr(lang, english.c_str());
+    // A name already in the page's language is shown as the gym typed it
+    // ("Red" on an English page).
+    std::string said = Tr(lang, english.c_str());
+    return Lower(said) == Lower(t) ? std::string(t) : said;
   }
   return std::string(t);
 }

@@ -227,10 +227,16 @@ TEST(I18nTest, TheCardIsInThePagesLanguageThroughout) {
       }
       continue;
     }
+    // The command that reproduces the variation keeps the CLI's options
+    // (`--mapping euclidean`) in every language: not a sentence.
+    std::string words = page;
+    if (size_t c = words.find("--system"); c != std::string::npos) {
+      words.erase(c, words.find("</p>", c) - c);
+    }
     for (const char* w : {"(crux)", "(match?)", "(hand swapped)", "Preset ", "reference IC",
                           "mapping ", "Reproduce", "Summary: ", "Warning", "held", "mean estimate",
                           "yellow", "suggested"}) {
-      EXPECT_EQ(page.find(w), std::string::npos) << lang << ": " << w;
+      EXPECT_EQ(words.find(w), std::string::npos) << lang << ": " << w;
     }
     EXPECT_NE(page.find(v.lang == "de" ? "0,5 vom verlangten IC" : "0,5 de l"), std::string::npos)
         << lang << ": the decimal comma";
